@@ -1,0 +1,49 @@
+"""frictionlaws: friction laws for rubber and tyres, fitted, compared and exported.
+
+The public API is imported lazily so that ``import frictionlaws`` and the CLI
+stay fast; heavy modules (lmfit, pandas, pint, sympy, matplotlib) load only
+when a function that needs them is called.
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+__version__ = "0.1.0"
+
+#: public name -> module that defines it
+_API = {
+    "get_law": "registry",
+    "list_laws": "registry",
+    "register": "registry",
+    "REGISTRY": "registry",
+    "Law": "law",
+    "Param": "law",
+    "Setting": "law",
+    "Derived": "law",
+    "VARIABLES": "law",
+    "InputError": "errors",
+    "FitError": "errors",
+    "UnknownLawError": "errors",
+    "fit": "fitting",
+    "FitResult": "fitting",
+    "load_result": "fitting",
+    "load_dataset": "io",
+    "Dataset": "io",
+    "list_datasets": "io",
+}
+
+__all__ = sorted(_API) + ["__version__"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _API:
+        value = getattr(import_module(f"{__name__}.{_API[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'frictionlaws' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return __all__

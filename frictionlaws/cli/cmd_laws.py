@@ -1,0 +1,34 @@
+"""``frictionlaws laws``: list the registered laws."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser("laws", help="list the registered friction laws",
+                       description="List the registered friction laws.")
+    p.add_argument("--family", choices=("sliding", "slip"), help="only this family")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    return p
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.registry import list_laws
+
+    laws = list_laws(args.family)
+    if args.json:
+        print(json.dumps([{"id": law.id, "title": law.title, "family": law.family,
+                           "aliases": list(law.aliases), "variables": list(law.variables),
+                           "params": list(law.param_names), "evidence": law.evidence}
+                          for law in laws], indent=2))
+        return 0
+    width = max(len(law.id) for law in laws)
+    print(f"{'id':<{width}}  {'family':<7}  {'variables':<9}  {'k':>2}  title")
+    for law in laws:
+        var = ",".join(law.variables) or "-"
+        alias = f" (alias: {', '.join(law.aliases)})" if law.aliases else ""
+        print(f"{law.id:<{width}}  {law.family:<7}  {var:<9}  {len(law.params):>2}  "
+              f"{law.title}{alias}")
+    return 0

@@ -1,0 +1,76 @@
+"""Exception types used across frictionlaws.
+
+Every error raised because of what a user supplied (a file, a column, a unit,
+a law name, a parameter) derives from :class:`InputError`.  The CLI turns any
+``InputError`` into a one-line message on stderr and exit code 2.
+"""
+
+from __future__ import annotations
+
+
+class FrictionLawsError(Exception):
+    """Base class of all frictionlaws errors."""
+
+
+class InputError(FrictionLawsError, ValueError):
+    """Bad input: a malformed file, an unknown unit or law, an invalid value.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong and what was expected.
+    file : str, optional
+        The file concerned.
+    column : str, optional
+        The column concerned.
+    row : int, optional
+        The 1-based data row concerned (as a spreadsheet shows it, header = row 1).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        file: str | None = None,
+        column: str | None = None,
+        row: int | None = None,
+    ) -> None:
+        self.file = file
+        self.column = column
+        self.row = row
+        self.bare_message = message
+        super().__init__(self._compose())
+
+    def _compose(self) -> str:
+        where = []
+        if self.file is not None:
+            where.append(f"file '{self.file}'")
+        if self.column is not None:
+            where.append(f"column '{self.column}'")
+        if self.row is not None:
+            where.append(f"row {self.row}")
+        prefix = ", ".join(where)
+        return f"{prefix}: {self.bare_message}" if prefix else self.bare_message
+
+
+class UnknownLawError(InputError, KeyError):
+    """A law name or alias that is not registered."""
+
+    def __str__(self) -> str:  # KeyError would add quotes
+        return self._compose()
+
+
+class DomainError(InputError):
+    """A law was asked to do something outside what it is defined for."""
+
+
+class FitError(FrictionLawsError):
+    """A fit could not be carried out (not a data-format problem)."""
+
+
+class ExtrapolationWarning(UserWarning):
+    """A law is used outside the range its parameters were fitted on or valid for."""
+
+
+class IdentifiabilityWarning(UserWarning):
+    """The data cannot determine one or more parameters of a law."""

@@ -1,0 +1,840 @@
+"""Fitting a law to data with lmfit, honestly.
+
+:func:`fit` builds an :class:`lmfit.Model` from a law's declaration (the
+independent variables passed explicitly), starts from the law's data-driven
+guess, tries several starts where the surface may have several minima, and
+returns a :class:`FitResult` with values, standard errors, 95 % confidence
+intervals, the correlation matrix, goodness of fit and warnings.
+
+Identifiability is checked on the Jacobian at the optimum: its columns are
+scaled to unit length and decomposed (SVD).  A relative singular value below
+``1e-5`` means a direction in parameter space the data cannot see at all; the
+parameters that carry that direction are *named* in
+:attr:`FitResult.non_identifiable` and their standard errors are withheld
+instead of printing meaningless numbers.  Values between ``1e-5`` and ``1e-2``
+give a "poorly determined" warning.
+
+Standard errors are the asymptotic ones from the covariance matrix (scaled by
+the reduced chi-square as lmfit does); the 95 % intervals use Student's t with
+``n - k`` degrees of freedom.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+import math
+import warnings
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import ExtrapolationWarning, FitError, InputError
+from .law import VARIABLES, Law
+from .registry import get_law
+
+__all__ = ["fit", "FitResult", "ParamEstimate", "load_result", "FitData", "as_fit_data",
+           "RESULT_FORMAT", "RESULT_VERSION"]
+
+RESULT_FORMAT = "frictionlaws-fit-result"
+RESULT_VERSION = 1
+
+#: Relative singular value below which a parameter direction is not identifiable.
+RANK_TOL = 1e-5
+#: Relative singular value below which a parameter direction is poorly determined.
+WEAK_TOL = 1e-2
+
+
+@dataclass(frozen=True)
+class ParamEstimate:
+    """One fitted (or fixed) parameter.
+
+    ``stderr`` and ``ci95`` are None when the parameter was fixed or the data
+    cannot determine it.
+    """
+
+    name: str
+    value: float
+    stderr: float | None
+    ci95: tuple[float, float] | None
+    unit: str
+    fixed: bool = False
+    identifiable: bool = True
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"value": self.value, "stderr": self.stderr,
+                "ci95": list(self.ci95) if self.ci95 is not None else None,
+                "unit": self.unit, "fixed": self.fixed, "identifiable": self.identifiable}
+
+
+@dataclass
+class FitData:
+    """The arrays a fit works on (SI), with where they came from."""
+
+    arrays: dict[str, np.ndarray]
+    name: str
+    source: str
+    weights: np.ndarray | None = None
+    notes: list[str] = field(default_factory=list)
+    row_labels: np.ndarray | None = None
+
+    @property
+    def n(self) -> int:
+        return int(self.arrays["mu"].size)
+
+    @property
+    def variables(self) -> set[str]:
+        return {k for k in self.arrays if k in VARIABLES}
+
+    def subset(self, mask: np.ndarray) -> FitData:
+        """The rows where ``mask`` is True."""
+        mask = np.asarray(mask)
+        return FitData(
+            {k: v[mask] for k, v in self.arrays.items()}, self.name, self.source,
+            None if self.weights is None else self.weights[mask], list(self.notes),
+            None if self.row_labels is None else self.row_labels[mask])
+
+    def ranges(self) -> dict[str, tuple[float, float]]:
+        """(min, max) of every variable present, in SI."""
+        return {k: (float(np.min(v)), float(np.max(v))) for k, v in self.arrays.items()
+                if k in VARIABLES and v.size}
+
+
+def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
+                units: Mapping[str, str] | None = None, area: Any = None,
+                weights: Any = "auto") -> FitData:
+    """Turn a dataset name, path, Dataset, DataFrame or mapping of arrays into :class:`FitData`.
+
+    A mapping of arrays must hold ``"mu"`` and variables by their canonical
+    names in SI; everything else goes through :func:`frictionlaws.io.load_dataset`.
+    """
+    if isinstance(data, FitData):
+        fd = data
+    elif isinstance(data, Mapping) and "mu" in data:
+        arrays = {}
+        for k, v in data.items():
+            if k == "mu" or k in VARIABLES:
+                arrays[k] = np.atleast_1d(np.asarray(v, dtype=float))
+        n = arrays["mu"].size
+        for k, v in arrays.items():
+            if v.size == 1 and n > 1:
+                arrays[k] = np.full(n, float(v[0]))
+            elif v.size != n:
+                raise InputError(f"array '{k}' has {v.size} values but 'mu' has {n}")
+        for k, v in arrays.items():
+            if not np.all(np.isfinite(v)):
+                bad = np.flatnonzero(~np.isfinite(v))
+                raise InputError(f"array '{k}' has non-finite values at indices "
+                                 f"{bad[:5].tolist()}")
+        w = data.get("weights")
+        fd = FitData(arrays, "arrays", "in-memory arrays",
+                     None if w is None else np.asarray(w, float))
+    else:
+        from .io import load_dataset
+
+        ds = load_dataset(data, mapping=mapping, units=units, area=area)
+        fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
+        labels = getattr(ds, "row_labels", None)
+        fd.row_labels = np.asarray(labels) if labels is not None else None
+    if isinstance(weights, str):
+        if weights != "auto":
+            raise InputError(f"weights must be 'auto', None or an array, not {weights!r}")
+    elif weights is None:
+        fd.weights = None
+    else:
+        w = np.asarray(weights, float)
+        if w.shape != fd.arrays["mu"].shape or np.any(~np.isfinite(w)) or np.any(w < 0):
+            raise InputError("weights must be finite, non-negative and one per row")
+        fd.weights = w
+    return fd
+
+
+def _row_names(fd: FitData, idx: np.ndarray) -> str:
+    labels = fd.row_labels if fd.row_labels is not None else np.arange(1, fd.n + 1)
+    shown = ", ".join(str(labels[i]) for i in idx[:8])
+    return shown + (f" and {idx.size - 8} more" if idx.size > 8 else "")
+
+
+def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData, list[str]]:
+    """Family/variable checks and rows where a singular law is undefined."""
+    law.require_variables(fd.variables, f"data '{fd.name}'")
+    notes: list[str] = []
+    bad = np.zeros(fd.n, dtype=bool)
+    reasons = []
+    for var, floor in law.floors.items():
+        x = fd.arrays[var]
+        x = np.abs(x) if var == "v" else x
+        b = x <= floor
+        if b.any():
+            bad |= b
+            reasons.append(f"{var} = 0 ({VARIABLES[var].meaning}), where law '{law.id}' "
+                           f"is singular (it uses log or a negative power of {var})")
+    if bad.any():
+        idx = np.flatnonzero(bad)
+        msg = "; ".join(reasons)
+        if on_invalid == "drop":
+            notes.append(f"dropped {idx.size} of {fd.n} rows (rows {_row_names(fd, idx)}): {msg}")
+            fd = fd.subset(~bad)
+        else:
+            raise InputError(
+                f"data '{fd.name}': {idx.size} rows (rows {_row_names(fd, idx)}) have {msg}; "
+                "remove them or drop them explicitly (--drop-invalid)")
+    k = len(law.params)
+    if fd.n == 0:
+        raise InputError(f"data '{fd.name}' has no rows left to fit law '{law.id}'")
+    if fd.n < k:
+        raise InputError(f"data '{fd.name}' has {fd.n} rows; law '{law.id}' has {k} "
+                         "parameters: at least as many rows as parameters are needed")
+    return fd, notes
+
+
+def _model_function(law: Law, extra: tuple[str, ...]) -> Any:
+    """A function with an explicit signature for lmfit.Model."""
+    settings = law.setting_values
+    indep = law.variables or ("_shape",)
+    names = list(indep) + list(law.param_names) + list(extra)
+
+    def model(**kw: Any) -> Any:
+        variables = {k: kw[k] for k in law.variables}
+        shape = kw.get("_shape")
+        values = {**settings, **{k: kw[k] for k in law.param_names}, **{k: kw[k] for k in extra}}
+        out = law.evaluate(variables, values)
+        if shape is not None:
+            out = np.broadcast_to(out, np.shape(shape))
+        return out
+
+    model.__signature__ = inspect.Signature(
+        [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD) for n in names])
+    model.__name__ = law.id.replace("-", "_").replace("+", "_")
+    return model
+
+
+@dataclass
+class FitResult:
+    """The outcome of :func:`fit` (or of :func:`load_result`)."""
+
+    law: Law
+    params: dict[str, ParamEstimate]
+    settings: dict[str, float]
+    metrics: dict[str, float]
+    correlation: dict[str, dict[str, float]]
+    success: bool
+    message: str
+    warnings: list[str]
+    non_identifiable: list[str]
+    derived: dict[str, dict[str, Any]]
+    data: dict[str, Any]
+    notes: list[str] = field(default_factory=list)
+    provenance: dict[str, Any] = field(default_factory=dict)
+    lmfit_result: Any = None
+    residual: np.ndarray | None = None
+    best_fit: np.ndarray | None = None
+
+    @property
+    def values(self) -> dict[str, float]:
+        """All parameter and setting values, ready for :meth:`Law.evaluate`."""
+        out = dict(self.settings)
+        out.update({k: p.value for k, p in self.params.items()})
+        return out
+
+    @property
+    def param_values(self) -> dict[str, float]:
+        """Parameter values only (no settings)."""
+        return {k: p.value for k, p in self.params.items()}
+
+    def predict(self, *, warn: bool = True, **variables: Any) -> Any:
+        """Evaluate the fitted law; warn when outside the fitted data range."""
+        if warn:
+            msgs = self.extrapolation(variables)
+            if msgs:
+                warnings.warn("; ".join(msgs), ExtrapolationWarning, stacklevel=2)
+        return self.law.evaluate(variables, self.values)
+
+    def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
+        """Messages for variables outside the range the law was fitted on."""
+        msgs = []
+        for k, (lo, hi) in self.data.get("ranges", {}).items():
+            if k in variables and k in self.law.variables:
+                x = np.asarray(variables[k], float)
+                if x.size and (np.min(x) < lo * (1 - 1e-9) - 1e-300
+                               or np.max(x) > hi * (1 + 1e-9)):
+                    msgs.append(f"{k} outside the fitted range {lo:g}..{hi:g} "
+                                f"{VARIABLES[k].unit}: extrapolation")
+        return msgs
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-able dict (the versioned save format)."""
+        return {
+            "format": RESULT_FORMAT,
+            "version": RESULT_VERSION,
+            "law": self.law.id,
+            "law_title": self.law.title,
+            "params": {k: p.to_dict() for k, p in self.params.items()},
+            "settings": {k: {"value": v, "unit": self.law.setting(k).unit if any(
+                s.name == k for s in self.law.settings) else ""}
+                for k, v in self.settings.items()},
+            "metrics": dict(self.metrics),
+            "derived": self.derived,
+            "correlation": self.correlation,
+            "success": self.success,
+            "message": self.message,
+            "warnings": list(self.warnings),
+            "non_identifiable": list(self.non_identifiable),
+            "notes": list(self.notes),
+            "data": self.data,
+            "provenance": self.provenance,
+        }
+
+    def to_json(self, **kw: Any) -> str:
+        """JSON text of :meth:`to_dict`."""
+        return json.dumps(_clean_json(self.to_dict()), indent=kw.pop("indent", 2), **kw)
+
+    def save(self, path: str | Path) -> Path:
+        """Write the versioned JSON to ``path``."""
+        path = Path(path)
+        path.write_text(self.to_json() + "\n", encoding="utf-8")
+        return path
+
+    def report(self) -> str:
+        """A plain-text report with units."""
+        lines = [f"law: {self.law.id} - {self.law.title}"]
+        d = self.data
+        rng = ", ".join(_fmt_range(k, lo, hi) for k, (lo, hi) in d.get("ranges", {}).items())
+        lines.append(f"data: {d.get('name')} ({d.get('n')} rows{'; ' + rng if rng else ''})")
+        lines.append(f"formula: {self.law.title}; see 'frictionlaws show {self.law.id}'")
+        lines.append("")
+        hdr = f"{'parameter':<10} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
+        lines.append(hdr)
+        for p in self.params.values():
+            if p.fixed:
+                se, ci = "fixed", ""
+            elif not p.identifiable:
+                se, ci = "n/a", "not identifiable"
+            else:
+                se = _g(p.stderr)
+                ci = f"[{_g(p.ci95[0])}, {_g(p.ci95[1])}]" if p.ci95 else ""
+            lines.append(f"{p.name:<10} {_g(p.value):>13} {se:>11} {ci:>29}  {p.unit or '-'}")
+        for k, v in self.settings.items():
+            unit = self.law.setting(k).unit if any(s.name == k for s in self.law.settings) else ""
+            lines.append(f"{k:<10} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
+        if self.derived:
+            lines.append("")
+            lines.append("derived quantities:")
+            for k, dv in self.derived.items():
+                se = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
+                lines.append(f"  {k} = {_g(dv['value'])}{se} {dv.get('unit') or '-'}"
+                             f"  ({dv.get('meaning', '')})")
+        m = self.metrics
+        lines.append("")
+        lines.append(
+            f"R^2 = {m['r2']:.4f}   adj. R^2 = {m['adj_r2']:.4f}   RMSE = {m['rmse']:.4g} (-)   "
+            f"AIC = {m['aic']:.2f}   BIC = {m['bic']:.2f}   n = {m['n']}   k = {m['k']}")
+        status = "converged" if self.success else "NOT converged"
+        lines.append(f"status: {status} ({self.message})")
+        for note in self.notes:
+            lines.append(f"note: {note}")
+        for w in self.warnings:
+            lines.append(f"warning: {w}")
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.report()
+
+
+def _g(x: float | None) -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "n/a"
+    return f"{x:.6g}"
+
+
+def _fmt_range(k: str, lo: float, hi: float) -> str:
+    var = VARIABLES.get(k)
+    if var is None:
+        return f"{k} {lo:g}..{hi:g}"
+    scale = {"MPa": 1e-6}.get(var.display_unit, 1.0)
+    if var.display_unit == "degC":
+        return f"{k} {lo - 273.15:.4g}..{hi - 273.15:.4g} degC"
+    unit = var.display_unit or "-"
+    return f"{k} {lo * scale:.4g}..{hi * scale:.4g} {unit}"
+
+
+def _clean_json(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _clean_json(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean_json(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        x = float(obj)
+        return x if math.isfinite(x) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+# --------------------------------------------------------------------- fitting
+
+
+def _starts(law: Law, guess: dict[str, float], names: list[str], n_random: int,
+            rng: np.random.Generator) -> list[dict[str, float]]:
+    starts = [dict(guess)]
+    if law.linear:
+        return starts
+    starts.append({**guess, **{k: law.param(k).default for k in names if k in law.param_names}})
+    for preset in law.presets.values():
+        starts.append({**guess, **{k: v for k, v in preset.items() if k in names}})
+    for _ in range(n_random):
+        s = dict(guess)
+        for k in names:
+            if k not in law.param_names:
+                continue
+            p = law.param(k)
+            lo, hi = p.bounds
+            x = guess[k]
+            if x > 0 and lo >= 0:
+                x = x * math.exp(rng.normal(0.0, 1.0))
+            else:
+                x = x + rng.normal(0.0, 1.0) * max(abs(x), 0.1 * (abs(p.default) or 1.0))
+            s[k] = x
+        starts.append(s)
+    return starts
+
+
+def _clip(value: float, lo: float, hi: float) -> float:
+    if not math.isfinite(value):
+        return value
+    span = hi - lo if math.isfinite(hi - lo) else 0.0
+    eps = 1e-9 * span
+    if math.isfinite(lo) and value <= lo:
+        value = lo + eps if span else (lo + abs(lo) * 1e-9 + 1e-300 if lo >= 0 else lo)
+    if math.isfinite(hi) and value >= hi:
+        value = hi - eps if span else hi
+    return value
+
+
+def _jacobian(func: Any, x: np.ndarray) -> np.ndarray:
+    """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``."""
+    f0 = func(x)
+    jac = np.empty((f0.size, x.size))
+    for j in range(x.size):
+        h = 1e-6 * max(abs(x[j]), 1e-8)
+        xp, xm = x.copy(), x.copy()
+        xp[j] += h
+        xm[j] -= h
+        jac[:, j] = (func(xp) - func(xm)) / (2 * h)
+    return jac
+
+
+def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list[str], float]:
+    """Names of non-identifiable and poorly determined parameters, and the ratio s_min/s_max."""
+    norms = np.linalg.norm(jac, axis=0)
+    dead = [names[j] for j in range(len(names)) if not np.isfinite(norms[j]) or norms[j] == 0]
+    ok = [j for j in range(len(names)) if np.isfinite(norms[j]) and norms[j] > 0]
+    if not ok:
+        return list(names), [], 0.0
+    jn = jac[:, ok] / norms[ok]
+    if not np.all(np.isfinite(jn)):
+        return list(names), [], 0.0
+    _, s, vt = np.linalg.svd(jn, full_matrices=False)
+    if jn.shape[0] < jn.shape[1]:
+        s = np.concatenate([s, np.zeros(jn.shape[1] - jn.shape[0])])
+        vt = np.linalg.svd(np.vstack([jn, np.zeros((jn.shape[1] - jn.shape[0], jn.shape[1]))]))[2]
+    rel = s / s[0] if s[0] > 0 else np.zeros_like(s)
+    non_id, weak = set(dead), set()
+    for i, r in enumerate(rel):
+        if r < WEAK_TOL:
+            comp = np.abs(vt[i])
+            involved = {names[ok[j]] for j in np.flatnonzero(comp > 0.1 * comp.max())}
+            (non_id if r < RANK_TOL else weak).update(involved)
+    weak -= non_id
+    order = {n: i for i, n in enumerate(names)}
+    return (sorted(non_id, key=order.get), sorted(weak, key=order.get),
+            float(rel[-1]) if rel.size else 0.0)
+
+
+def fit(
+    law: str | Law,
+    data: Any,
+    *,
+    fix: Mapping[str, float] | None = None,
+    free: Iterable[str] = (),
+    initial: Mapping[str, float] | None = None,
+    weights: Any = "auto",
+    starts: int | None = None,
+    seed: int = 0,
+    on_invalid: str = "error",
+    mapping: Mapping[str, str] | None = None,
+    units: Mapping[str, str] | None = None,
+    area: Any = None,
+    method: str = "least_squares",
+) -> FitResult:
+    """Fit ``law`` to ``data`` with lmfit.
+
+    Parameters
+    ----------
+    law : str or Law
+        Law id or alias, or a :class:`~frictionlaws.law.Law`.
+    data : str, path, Dataset, DataFrame or mapping
+        A packaged dataset name, a CSV path, a loaded dataset, or a mapping of
+        SI arrays with ``"mu"`` and the law's variables.
+    fix : mapping, optional
+        Parameters held at the given values (``{"n": 1/3}``).  Settings may be
+        given here too, to change their fixed value.
+    free : iterable of str, optional
+        Settings to fit as parameters (e.g. ``["E_v"]`` for Denny, which then
+        is not identifiable: the result says so).
+    initial : mapping, optional
+        Initial values overriding the law's data-driven guess.
+    weights : {"auto"}, None or array
+        ``"auto"`` uses the dataset's replicate statistics (1/mu_std, else
+        sqrt(n)) when present; None fits unweighted.
+    starts : int, optional
+        Number of extra random starts for non-linear laws (default 6).
+    seed : int
+        Seed of the random starts (results are reproducible).
+    on_invalid : {"error", "drop"}
+        What to do with rows where the law is singular (v = 0 in a log-v law):
+        raise a clear error, or drop them and say so in the result.
+    mapping, units, area
+        Passed to :func:`frictionlaws.io.load_dataset` when ``data`` is a file.
+    method : str
+        lmfit minimisation method.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    InputError
+        Bad data, unknown names, data without the law's variables.
+    FitError
+        When no start gives a finite fit.
+    """
+    import lmfit
+    from scipy import stats
+
+    law = get_law(law)
+    fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
+    if on_invalid not in ("error", "drop"):
+        raise InputError("on_invalid must be 'error' or 'drop'")
+    fd, notes = _check_data_for_law(law, fd, on_invalid)
+    notes = list(fd.notes) + notes
+    fix = dict(fix or {})
+    free = list(dict.fromkeys(free))
+    setting_names = [s.name for s in law.settings]
+    for k in free:
+        if k not in setting_names:
+            if k in law.param_names:
+                continue
+            raise InputError(f"law '{law.id}' has no setting '{k}' to free "
+                             f"(settings: {', '.join(setting_names) or 'none'})")
+    for k in fix:
+        if k not in law.param_names and k not in setting_names:
+            raise InputError(f"cannot fix '{k}': law '{law.id}' has parameters "
+                             f"{', '.join(law.param_names)} and settings "
+                             f"{', '.join(setting_names) or 'none'}")
+        if not math.isfinite(float(fix[k])):
+            raise InputError(f"cannot fix '{k}' to a non-finite value")
+    freed = tuple(k for k in free if k in setting_names)
+    settings = {k: float(fix.get(k, v)) for k, v in law.setting_values.items() if k not in freed}
+
+    x = {k: fd.arrays[k] for k in law.variables}
+    y = fd.arrays["mu"]
+    guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
+    guess = law.initial_guess(guess_data)
+    for k in freed:
+        guess[k] = float(initial.get(k, law.setting(k).value) if initial else law.setting(k).value)
+    if initial:
+        unknown = set(initial) - set(guess)
+        if unknown:
+            raise InputError(f"unknown initial value(s) {sorted(unknown)} for law '{law.id}'")
+        guess.update({k: float(v) for k, v in initial.items()})
+
+    # settings fixed to non-default values flow through the model's closure
+    law_for_model = law
+    if settings != {k: v for k, v in law.setting_values.items() if k not in freed}:
+        from dataclasses import replace
+
+        from .law import Setting
+
+        law_for_model = replace(law, settings=tuple(
+            Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
+            for s in law.settings))
+    func = _model_function(law_for_model, freed)
+    indep = law.variables or ("_shape",)
+    model = lmfit.Model(func, independent_vars=list(indep), nan_policy="raise")
+    vary_names = [k for k in list(law.param_names) + list(freed) if k not in fix]
+    if not vary_names:
+        raise InputError(f"every parameter of law '{law.id}' is fixed: nothing to fit")
+    bounds = {p.name: p.bounds for p in law.params}
+    bounds.update({k: law.setting(k).bounds for k in freed})
+
+    def make_params(start: Mapping[str, float]) -> Any:
+        params = lmfit.Parameters()
+        for k in list(law.param_names) + list(freed):
+            lo, hi = bounds[k]
+            if k in fix:
+                params.add(k, value=float(fix[k]), vary=False)
+            else:
+                params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
+        return params
+
+    kwargs = {k: x[k] for k in law.variables}
+    if not law.variables:
+        kwargs["_shape"] = y
+    w = fd.weights
+    rng = np.random.default_rng(seed)
+    n_random = 6 if starts is None else int(starts)
+    best = None
+    errors = []
+    for start in _starts(law, guess, vary_names, n_random, rng):
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                res = model.fit(y, make_params(start), weights=w, method=method, **kwargs)
+        except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
+            errors.append(str(exc))
+            continue
+        if not np.isfinite(res.chisqr):
+            continue
+        if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
+            best = res
+    if best is None:
+        raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
+                       f"finite result{(' (' + errors[0] + ')') if errors else ''}")
+
+    # --------------------------------------------------------- diagnostics
+    warn_msgs: list[str] = []
+    vary = [k for k in vary_names]
+    values = {k: float(best.params[k].value) for k in list(law.param_names) + list(freed)}
+    full_values = {**settings, **values}
+
+    def residual_vec(theta: np.ndarray) -> np.ndarray:
+        vals = dict(full_values)
+        vals.update(dict(zip(vary, theta)))
+        with np.errstate(all="ignore"):
+            out = law.evaluate(x, vals) if law.variables else np.broadcast_to(
+                law.evaluate({}, vals), y.shape)
+        out = np.asarray(out, float)
+        return out * (w if w is not None else 1.0)
+
+    theta0 = np.array([values[k] for k in vary])
+    jac = _jacobian(residual_vec, theta0)
+    non_id, weak, ratio = _identifiability(jac, vary)
+    for var in law.variables:
+        xs = np.unique(fd.arrays[var])
+        if xs.size == 1:
+            warn_msgs.append(
+                f"the data have a single value of {var} ({_fmt_range(var, xs[0], xs[0])}); "
+                f"parameters acting through {var} cannot be determined")
+    if non_id:
+        warn_msgs.append(
+            f"the data cannot determine {', '.join(non_id)}: they cannot be told apart "
+            f"(Jacobian rank deficient, singular-value ratio {ratio:.1e}); their standard "
+            "errors are withheld. Fix some of them (--fix) or use an identifiable form.")
+    if weak:
+        warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
+                         "correlated; wide intervals)")
+
+    n, k = y.size, len(vary)
+    dof = n - k
+    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
+    cov_names = list(best.var_names) if best.covar is not None else []
+    estimates: dict[str, ParamEstimate] = {}
+    for name in list(law.param_names) + list(freed):
+        unit = law.setting(name).unit if name in freed else law.param(name).unit
+        par = best.params[name]
+        if name in fix:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
+            continue
+        se = par.stderr
+        ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
+        if ok:
+            ci = (values[name] - tval * se, values[name] + tval * se)
+            estimates[name] = ParamEstimate(name, values[name], float(se), ci, unit)
+        else:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit,
+                                            identifiable=name not in non_id)
+            if name not in non_id:
+                warn_msgs.append(f"no standard error for {name}"
+                                 + (" (as many parameters as data points)" if dof <= 0 else ""))
+        lo, hi = bounds[name]
+        scale = max(abs(values[name]), 1e-12)
+        if (math.isfinite(lo) and abs(values[name] - lo) <= 1e-6 * max(scale, abs(lo))) or (
+                math.isfinite(hi) and abs(values[name] - hi) <= 1e-6 * max(scale, abs(hi))):
+            warn_msgs.append(f"{name} = {values[name]:.6g} is at its bound "
+                             f"[{lo:g}, {hi:g}]: the optimum may lie beyond it")
+
+    corr: dict[str, dict[str, float]] = {}
+    if best.covar is not None:
+        cv = np.asarray(best.covar)
+        sd = np.sqrt(np.clip(np.diag(cv), 0, None))
+        with np.errstate(all="ignore"):
+            cm = cv / np.outer(sd, sd)
+        for i, a in enumerate(cov_names):
+            corr[a] = {b: float(cm[i, j]) for j, b in enumerate(cov_names)}
+
+    # goodness of fit (unweighted residuals for R^2/RMSE; lmfit's AIC/BIC)
+    fitted = np.asarray(best.best_fit, float)
+    resid = y - fitted
+    ss_res = float(np.sum(resid**2))
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else (1.0 if ss_res == 0 else 0.0)
+    adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
+    aic = float(best.aic)
+    aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else float("inf")
+    metrics = {
+        "r2": r2, "adj_r2": adj, "rmse": math.sqrt(ss_res / n),
+        "mae": float(np.mean(np.abs(resid))), "max_abs_residual": float(np.max(np.abs(resid))),
+        "aic": aic, "aicc": aicc, "bic": float(best.bic), "chisqr": float(best.chisqr),
+        "redchi": float(best.redchi) if dof > 0 else float("nan"), "n": int(n), "k": int(k),
+        "weighted": w is not None,
+    }
+
+    if not best.success:
+        warn_msgs.append(f"the optimiser did not report convergence: {best.message}")
+    adm = law.check_admissible(full_values)
+    if adm:
+        warn_msgs.append(f"fitted parameters not admissible: {adm}")
+    outside = law.outside_domain(fd.arrays)
+    for var, count in outside.items():
+        lo, hi = law.domain[var]
+        warn_msgs.append(f"{count} data rows lie outside the law's valid domain of {var} "
+                         f"({_fmt_range(var, lo, hi)})")
+
+    derived = _derived(law, full_values, vary, best, non_id)
+    return FitResult(
+        law=law,
+        params=estimates,
+        settings=settings,
+        metrics=metrics,
+        correlation=corr,
+        success=bool(best.success),
+        message=str(best.message),
+        warnings=warn_msgs,
+        non_identifiable=non_id,
+        derived=derived,
+        data={"name": fd.name, "source": fd.source, "n": int(n),
+              "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
+        notes=notes,
+        provenance=_provenance(),
+        lmfit_result=best,
+        residual=resid,
+        best_fit=fitted,
+    )
+
+
+def _derived(law: Law, values: dict[str, float], vary: list[str], res: Any,
+             non_id: list[str]) -> dict[str, dict[str, Any]]:
+    """Derived quantities with uncertainties propagated from the covariance (delta method)."""
+    out: dict[str, dict[str, Any]] = {}
+    if not law.derived:
+        return out
+    names = list(res.var_names) if res.covar is not None else []
+    cov = np.asarray(res.covar) if res.covar is not None else None
+    for d in law.derived:
+        def f(theta: np.ndarray, d=d) -> float:
+            vals = dict(values)
+            vals.update(dict(zip(names, theta)))
+            with np.errstate(all="ignore"):
+                return float(d.func(_numpy_ns(), **vals))
+        value = f(np.array([values[k] for k in names])) if names else float(
+            d.func(_numpy_ns(), **values))
+        se = None
+        if cov is not None and not non_id and math.isfinite(value):
+            theta = np.array([values[k] for k in names])
+            g = np.empty(theta.size)
+            for j in range(theta.size):
+                h = 1e-6 * max(abs(theta[j]), 1e-10)
+                tp, tm = theta.copy(), theta.copy()
+                tp[j] += h
+                tm[j] -= h
+                g[j] = (f(tp) - f(tm)) / (2 * h)
+            var = float(g @ cov @ g)
+            se = math.sqrt(var) if var >= 0 and math.isfinite(var) else None
+        out[d.name] = {"value": value, "stderr": se, "unit": d.unit, "meaning": d.meaning}
+    return out
+
+
+def _numpy_ns() -> Any:
+    from .law import NUMPY
+
+    return NUMPY
+
+
+def _provenance() -> dict[str, Any]:
+    from importlib.metadata import PackageNotFoundError, version
+
+    def ver(pkg: str) -> str:
+        try:
+            return version(pkg)
+        except PackageNotFoundError:
+            return "unknown"
+
+    from . import __version__
+
+    return {"frictionlaws": __version__, "lmfit": ver("lmfit"), "numpy": ver("numpy"),
+            "created": datetime.now(timezone.utc).isoformat(timespec="seconds")}
+
+
+def load_result(path: str | Path) -> FitResult:
+    """Load a fit result saved by :meth:`FitResult.save` (or ``fit --save``).
+
+    Also accepts a plain ``{"law": ID, "params": {name: value}}`` JSON file.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("file not found", file=str(path))
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise InputError(f"not a JSON file ({exc})", file=str(path)) from None
+    if not isinstance(doc, dict) or "law" not in doc or "params" not in doc:
+        raise InputError("expected a JSON object with 'law' and 'params'", file=str(path))
+    if doc.get("format", RESULT_FORMAT) != RESULT_FORMAT:
+        raise InputError(f"unknown format {doc.get('format')!r}", file=str(path))
+    if int(doc.get("version", RESULT_VERSION)) > RESULT_VERSION:
+        raise InputError(f"saved with a newer result version {doc['version']} "
+                         f"(this frictionlaws reads up to {RESULT_VERSION})", file=str(path))
+    law = get_law(doc["law"])
+    params: dict[str, ParamEstimate] = {}
+    settings = dict(law.setting_values)
+    for k, v in doc.get("settings", {}).items():
+        settings[k] = float(v["value"] if isinstance(v, dict) else v)
+    for k, v in doc["params"].items():
+        if isinstance(v, dict):
+            ci = v.get("ci95")
+            est = ParamEstimate(k, float(v["value"]), v.get("stderr"),
+                                tuple(ci) if ci else None, v.get("unit", ""),
+                                bool(v.get("fixed", False)), bool(v.get("identifiable", True)))
+        else:
+            unit = law.param(k).unit if k in law.param_names else ""
+            est = ParamEstimate(k, float(v), None, None, unit, fixed=True)
+        if k in law.param_names:
+            params[k] = est
+        elif any(s.name == k for s in law.settings):
+            settings.pop(k, None)
+            params[k] = est
+        else:
+            raise InputError(f"law '{law.id}' has no parameter '{k}'", file=str(path))
+    missing = [p.name for p in law.params if p.name not in params and not p.optional]
+    if missing:
+        raise InputError(f"missing parameter(s) {', '.join(missing)} for law '{law.id}'",
+                         file=str(path))
+    for p in law.params:
+        if p.name not in params:
+            params[p.name] = ParamEstimate(p.name, p.default, None, None, p.unit, fixed=True)
+    return FitResult(
+        law=law, params=params, settings={k: v for k, v in settings.items() if k not in params},
+        metrics=doc.get("metrics", {}), correlation=doc.get("correlation", {}),
+        success=bool(doc.get("success", True)), message=doc.get("message", "loaded"),
+        warnings=list(doc.get("warnings", [])),
+        non_identifiable=list(doc.get("non_identifiable", [])),
+        derived=doc.get("derived", {}), data=doc.get("data", {}),
+        notes=list(doc.get("notes", [])), provenance=doc.get("provenance", {}))

@@ -1,0 +1,597 @@
+"""The declaration of a friction law, and everything derived from it.
+
+A law is declared once, as a :class:`Law` built from
+
+* its variables (names from :data:`VARIABLES`, always in SI),
+* its fitted parameters (:class:`Param`: unit, default, bounds, meaning),
+* its fixed settings (:class:`Setting`: reference scales such as ``p_ref``),
+* one formula, written as a Python function ``formula(m, **names)`` where ``m``
+  is a math namespace.  Called with :data:`NUMPY` it is the vectorised numpy
+  evaluation; called with the sympy namespace and symbols it is the symbolic
+  form used by the docs, the Fortran generator and the tests.
+
+Floors (``v_min``, ``p_min``) and the absolute value of the sliding velocity
+are applied by the :class:`Law` wrapper before the formula is called, so the
+formula stays smooth, and the exporters apply the same floors.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from .errors import DomainError, InputError
+
+__all__ = [
+    "VARIABLES",
+    "Variable",
+    "Param",
+    "Setting",
+    "Derived",
+    "Law",
+    "NUMPY",
+    "sympy_namespace",
+    "V_MIN",
+    "P_MIN",
+]
+
+#: Floor applied to the sliding velocity in laws with log v or v**(-k) [m/s].
+V_MIN = 1e-9
+#: Floor applied to the contact pressure in laws singular at p = 0 [Pa].
+P_MIN = 1.0
+#: Floor applied to the normal load in laws singular at F_N = 0 [N].
+F_MIN = 1e-6
+
+
+@dataclass(frozen=True)
+class Variable:
+    """An independent variable a law may use (always in SI units inside)."""
+
+    name: str
+    unit: str
+    meaning: str
+    display_unit: str
+    typical: tuple[float, float]
+
+
+#: The independent variables known to frictionlaws, with their SI unit.
+VARIABLES: dict[str, Variable] = {
+    "p": Variable("p", "Pa", "contact pressure", "MPa", (1e4, 1e6)),
+    "v": Variable("v", "m/s", "sliding velocity (magnitude)", "m/s", (1e-3, 10.0)),
+    "T": Variable("T", "K", "temperature", "degC", (253.15, 373.15)),
+    "F_N": Variable("F_N", "N", "normal load", "N", (1.0, 1000.0)),
+    "s": Variable("s", "", "slip ratio (braking slip, 0..1)", "", (0.0, 1.0)),
+}
+
+FAMILIES = ("sliding", "slip")
+EVIDENCE_TAGS = {
+    "C": "confirmed in a public source",
+    "S": "secondary support only",
+    "M": "as commonly quoted, not verified against the original",
+    "I": "own derivation or numerical check",
+    "NF": "original not found; documented identifiable recommendation",
+}
+
+
+@dataclass(frozen=True)
+class Param:
+    """A fitted parameter of a law.
+
+    Parameters
+    ----------
+    name : str
+        Python identifier used in the formula and as keyword argument.
+    unit : str
+        Unit in SI, parsable by pint (``""`` for dimensionless).
+    default : float
+        A typical value; also the fallback initial guess.
+    bounds : tuple of float
+        Lower and upper bound used by the fitter (may be infinite).
+    meaning : str
+        One line saying what the parameter is.
+    optional : bool
+        When True the law may be called without this parameter and the
+        default is used (e.g. the Schallamach exponent n = 1/3).
+    """
+
+    name: str
+    unit: str
+    default: float
+    bounds: tuple[float, float] = (-math.inf, math.inf)
+    meaning: str = ""
+    optional: bool = False
+
+
+@dataclass(frozen=True)
+class Setting:
+    """A fixed setting of a law (a reference scale), not fitted by default."""
+
+    name: str
+    value: float
+    unit: str
+    meaning: str = ""
+    bounds: tuple[float, float] = (0.0, math.inf)
+
+
+@dataclass(frozen=True)
+class Derived:
+    """A quantity derived from the parameters (peak, slope at origin...).
+
+    ``func(m, **params_and_settings)`` returns the value; it is written with
+    the same math namespace as the formula so uncertainties can be propagated
+    numerically by the fitter.
+    """
+
+    name: str
+    unit: str
+    meaning: str
+    func: Callable[..., Any]
+
+
+def _sympy_log10(x: Any) -> Any:
+    import sympy
+
+    return sympy.log(x, 10)
+
+
+#: The numpy math namespace passed to formulas for numeric evaluation.
+NUMPY = SimpleNamespace(
+    exp=np.exp,
+    log=np.log,
+    log10=np.log10,
+    sqrt=np.sqrt,
+    sin=np.sin,
+    cos=np.cos,
+    tanh=np.tanh,
+    cosh=np.cosh,
+    arctan=np.arctan,
+    abs=np.abs,
+    sign=np.sign,
+    maximum=np.maximum,
+    minimum=np.minimum,
+    pi=np.pi,
+    is_symbolic=False,
+)
+
+
+@functools.lru_cache(maxsize=1)
+def sympy_namespace() -> SimpleNamespace:
+    """The sympy math namespace passed to formulas for the symbolic form."""
+    import sympy
+
+    return SimpleNamespace(
+        exp=sympy.exp,
+        log=sympy.log,
+        log10=_sympy_log10,
+        sqrt=sympy.sqrt,
+        sin=sympy.sin,
+        cos=sympy.cos,
+        tanh=sympy.tanh,
+        cosh=sympy.cosh,
+        arctan=sympy.atan,
+        abs=sympy.Abs,
+        sign=sympy.sign,
+        maximum=sympy.Max,
+        minimum=sympy.Min,
+        pi=sympy.pi,
+        is_symbolic=True,
+    )
+
+
+def _is_series(x: Any) -> bool:
+    return type(x).__name__ == "Series" and hasattr(x, "index")
+
+
+@dataclass(eq=False)
+class Law:
+    """One friction law, declared once.
+
+    Parameters
+    ----------
+    id : str
+        Registry id (lower case, hyphenated), e.g. ``"thirion"``.
+    title : str
+        Human name, e.g. ``"Thirion (pressure saturation)"``.
+    family : {"sliding", "slip"}
+        Sliding-velocity laws (tribometer, rubber) or slip-ratio laws (tyre).
+    variables : tuple of str
+        Variables the formula uses, keys of :data:`VARIABLES`.
+    params : tuple of Param
+        Fitted parameters, in formula order.
+    formula : callable
+        ``formula(m, **kw)`` with ``m`` a math namespace and ``kw`` the
+        variables, parameters and settings by name.
+    settings : tuple of Setting
+        Fixed reference scales.
+    floors : dict
+        Variable name -> floor value applied before the formula (``v`` is also
+        taken as ``|v|``).
+    presets : dict
+        Preset name -> parameter dict.
+    domain : dict
+        Variable name -> (low, high) in SI where the law is valid or was
+        measured; outside it the law is an extrapolation.
+    typical : dict
+        Variable name -> (low, high) in SI: the range to plot or tabulate by
+        default (falls back to the domain, then to :data:`VARIABLES`).
+    references : tuple of str
+        Bibliographic references.
+    evidence : str
+        Evidence tag(s), e.g. ``"C"`` or ``"S, I"`` (see ``laws.md``).
+    guess : callable, optional
+        ``guess(data) -> dict`` returning initial values from a mapping with
+        ``"mu"`` and the variables as numpy arrays.
+    derived : tuple of Derived
+        Derived quantities.
+    admissible : callable, optional
+        ``admissible(params) -> str | None``: a message when a parameter set is
+        not admissible (e.g. a denominator that can vanish).
+    linear : bool
+        True when the law is linear in its parameters (closed-form fit).
+    aliases : tuple of str
+        Other names the registry accepts.
+    description : str
+        A paragraph shown by ``show`` and the docs.
+    notes : str
+        Caveats and traps.
+    """
+
+    id: str
+    title: str
+    family: str
+    variables: tuple[str, ...]
+    params: tuple[Param, ...]
+    formula: Callable[..., Any]
+    settings: tuple[Setting, ...] = ()
+    floors: Mapping[str, float] = field(default_factory=dict)
+    presets: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    domain: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    typical: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    references: tuple[str, ...] = ()
+    evidence: str = "M"
+    guess: Callable[[Mapping[str, np.ndarray]], dict[str, float]] | None = None
+    derived: tuple[Derived, ...] = ()
+    admissible: Callable[[Mapping[str, float]], str | None] | None = None
+    linear: bool = False
+    aliases: tuple[str, ...] = ()
+    description: str = ""
+    notes: str = ""
+
+    def __post_init__(self) -> None:
+        if self.family not in FAMILIES:
+            raise ValueError(f"law {self.id}: family must be one of {FAMILIES}")
+        unknown = set(self.variables) - set(VARIABLES)
+        if unknown:
+            raise ValueError(f"law {self.id}: unknown variables {sorted(unknown)}")
+        names = [p.name for p in self.params] + [s.name for s in self.settings]
+        if len(set(names)) != len(names):
+            raise ValueError(f"law {self.id}: duplicate parameter/setting names")
+        clash = set(names) & set(VARIABLES)
+        if clash:
+            raise ValueError(f"law {self.id}: names clash with variables {clash}")
+        for name, preset in self.presets.items():
+            missing = {p.name for p in self.params if not p.optional} - set(preset)
+            extra = set(preset) - set(names)
+            if missing or extra:
+                raise ValueError(
+                    f"law {self.id}: preset {name!r} missing {sorted(missing)} "
+                    f"or unknown {sorted(extra)}"
+                )
+
+    # ------------------------------------------------------------------ names
+    @property
+    def param_names(self) -> tuple[str, ...]:
+        """Names of the fitted parameters, in declaration order."""
+        return tuple(p.name for p in self.params)
+
+    @property
+    def setting_values(self) -> dict[str, float]:
+        """The default values of the fixed settings."""
+        return {s.name: s.value for s in self.settings}
+
+    def param(self, name: str) -> Param:
+        """The :class:`Param` called ``name``."""
+        for p in self.params:
+            if p.name == name:
+                return p
+        raise InputError(
+            f"law '{self.id}' has no parameter '{name}' "
+            f"(parameters: {', '.join(self.param_names)})"
+        )
+
+    def setting(self, name: str) -> Setting:
+        """The :class:`Setting` called ``name``."""
+        for s in self.settings:
+            if s.name == name:
+                return s
+        raise InputError(
+            f"law '{self.id}' has no setting '{name}' "
+            f"(settings: {', '.join(s.name for s in self.settings) or 'none'})"
+        )
+
+    @property
+    def defaults(self) -> dict[str, float]:
+        """Default parameter values."""
+        return {p.name: p.default for p in self.params}
+
+    def typical_range(self, name: str) -> tuple[float, float]:
+        """The default plotting/tabulation range of variable ``name`` in SI."""
+        if name in self.typical:
+            return self.typical[name]
+        if name in self.domain:
+            return self.domain[name]
+        return VARIABLES[name].typical
+
+    # ------------------------------------------------------------ evaluation
+    def resolve(self, values: Mapping[str, float] | None = None, preset: str | None = None
+                ) -> dict[str, float]:
+        """Complete parameters and settings: preset, then ``values``, then defaults.
+
+        Raises
+        ------
+        InputError
+            When a required parameter is missing or a name is unknown.
+        """
+        out: dict[str, float] = dict(self.setting_values)
+        if preset is not None:
+            if preset not in self.presets:
+                raise InputError(
+                    f"law '{self.id}' has no preset '{preset}' "
+                    f"(presets: {', '.join(self.presets) or 'none'})"
+                )
+            out.update(self.presets[preset])
+        values = dict(values or {})
+        known = set(self.param_names) | set(out)
+        unknown = set(values) - known
+        if unknown:
+            raise InputError(
+                f"law '{self.id}' does not take {', '.join(sorted(unknown))} "
+                f"(parameters: {', '.join(self.param_names)}; settings: "
+                f"{', '.join(s.name for s in self.settings) or 'none'})"
+            )
+        out.update({k: float(v) for k, v in values.items()})
+        missing = []
+        for p in self.params:
+            if p.name not in out:
+                if p.optional:
+                    out[p.name] = p.default
+                else:
+                    missing.append(p.name)
+        if missing:
+            raise InputError(
+                f"law '{self.id}' needs parameter(s) {', '.join(missing)} "
+                "(give them, or a preset)"
+            )
+        return out
+
+    def _prepare(self, name: str, x: Any) -> Any:
+        x = np.asarray(x, dtype=float)
+        if name == "v":
+            x = np.abs(x)
+        floor = self.floors.get(name)
+        if floor is not None:
+            x = np.maximum(x, floor)
+        return x
+
+    def evaluate(self, variables: Mapping[str, Any], params: Mapping[str, float]) -> Any:
+        """Evaluate with explicit mappings of variables and complete parameters.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> array-like in SI.  Variables the law does not use
+            are allowed and only set the output shape.
+        params : mapping
+            Parameters and settings, as returned by :meth:`resolve`.
+
+        Returns
+        -------
+        float or numpy.ndarray or pandas.Series
+            A float when every input is a scalar, a Series when a Series came in.
+        """
+        missing = [v for v in self.variables if v not in variables]
+        if missing:
+            raise InputError(
+                f"law '{self.id}' needs variable(s) {', '.join(missing)} "
+                f"({', '.join(VARIABLES[m].meaning + ' [' + VARIABLES[m].unit + ']' for m in missing)})"
+            )
+        unknown = set(variables) - set(VARIABLES)
+        if unknown:
+            raise InputError(f"unknown variable(s) {sorted(unknown)}; known: {list(VARIABLES)}")
+        kw = {k: self._prepare(k, variables[k]) for k in self.variables}
+        kw.update(params)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            out = self.formula(NUMPY, **kw)
+        shapes = [np.shape(x) for x in variables.values()]
+        shape = np.broadcast_shapes(*shapes) if shapes else ()
+        if np.shape(out) != shape:
+            out = np.broadcast_to(out, shape).copy()
+        if shape == ():
+            return float(out)
+        for x in variables.values():
+            if _is_series(x):
+                return type(x)(out, index=x.index, name="mu")
+        return out
+
+    def __call__(self, *, preset: str | None = None, **kwargs: Any) -> Any:
+        """Evaluate the law: ``law(p=p, v=v, a=1.0, b=2e-6)``.
+
+        Variables and parameters are given by keyword; settings may be
+        overridden by keyword too; ``preset=`` takes a named preset.
+        """
+        variables = {k: v for k, v in kwargs.items() if k in VARIABLES}
+        values = {k: v for k, v in kwargs.items() if k not in VARIABLES}
+        return self.evaluate(variables, self.resolve(values, preset))
+
+    def bind(self, values: Mapping[str, float] | None = None, preset: str | None = None
+             ) -> Callable[..., Any]:
+        """A plain vectorised function of the law's variables with fixed parameters.
+
+        The returned callable takes the variables positionally in the order
+        of :attr:`variables` (or by keyword), applies the floors and calls the
+        formula directly: no checking, negligible overhead.
+        """
+        params = self.resolve(values, preset)
+        formula = self.formula
+        names = self.variables
+        floors = dict(self.floors)
+
+        def bound(*args: Any, **kwargs: Any) -> Any:
+            kw = dict(zip(names, args))
+            kw.update(kwargs)
+            if "v" in kw:
+                kw["v"] = np.abs(kw["v"])
+            for k, f in floors.items():
+                kw[k] = np.maximum(kw[k], f)
+            kw.update(params)
+            return formula(NUMPY, **kw)
+
+        bound.__name__ = f"{self.id.replace('-', '_')}_bound"
+        bound.__doc__ = f"{self.title} with fixed parameters {params}; arguments {names} (SI)."
+        return bound
+
+    # -------------------------------------------------------------- symbolic
+    def symbols(self) -> dict[str, Any]:
+        """Sympy symbols for variables, parameters and settings (positive where natural)."""
+        import sympy
+
+        syms: dict[str, Any] = {}
+        for v in self.variables:
+            syms[v] = sympy.Symbol(v, positive=v in ("p", "v", "T", "F_N") or v in self.floors)
+        for p in self.params:
+            syms[p.name] = sympy.Symbol(p.name, real=True)
+        for s in self.settings:
+            syms[s.name] = sympy.Symbol(s.name, positive=True)
+        return syms
+
+    def symbolic(self, substitute_settings: bool = False) -> Any:
+        """The formula as a sympy expression (floors not included).
+
+        Parameters
+        ----------
+        substitute_settings : bool
+            Replace the settings by their numeric values.
+        """
+        syms = self.symbols()
+        expr = self.formula(sympy_namespace(), **syms)
+        if substitute_settings:
+            expr = expr.subs({syms[s.name]: s.value for s in self.settings})
+        return expr
+
+    def latex(self) -> str:
+        """LaTeX of the formula, ``\\mu = ...``."""
+        import sympy
+
+        return r"\mu = " + sympy.latex(self.symbolic())
+
+    def pretty(self) -> str:
+        """A one-line plain-text rendering of the formula."""
+        import sympy
+
+        return "mu = " + sympy.sstr(self.symbolic())
+
+    # ----------------------------------------------------------------- misc
+    def check_admissible(self, params: Mapping[str, float]) -> str | None:
+        """A message when ``params`` are not admissible, else None."""
+        if self.admissible is None:
+            return None
+        return self.admissible(params)
+
+    def initial_guess(self, data: Mapping[str, np.ndarray]) -> dict[str, float]:
+        """A data-driven initial guess, clipped into the bounds."""
+        guess = self.defaults
+        if self.guess is not None:
+            try:
+                with np.errstate(all="ignore"):
+                    g = self.guess(data)
+                guess.update({k: float(v) for k, v in g.items() if np.isfinite(v)})
+            except (ValueError, np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError):
+                pass
+        for p in self.params:
+            lo, hi = p.bounds
+            val = guess[p.name]
+            if not lo <= val <= hi:
+                span = (hi - lo) if np.isfinite(hi - lo) else max(abs(val), 1.0)
+                val = min(max(val, lo + 1e-6 * span if np.isfinite(lo) else val),
+                          hi - 1e-6 * span if np.isfinite(hi) else val)
+            guess[p.name] = val
+        return guess
+
+    def outside_domain(self, variables: Mapping[str, Any]) -> dict[str, int]:
+        """Count, per variable, how many values lie outside :attr:`domain`."""
+        out = {}
+        for name, (lo, hi) in self.domain.items():
+            if name in variables:
+                x = np.asarray(variables[name], dtype=float)
+                if name == "v":
+                    x = np.abs(x)
+                n = int(np.count_nonzero((x < lo * (1 - 1e-9)) | (x > hi * (1 + 1e-9))))
+                if n:
+                    out[name] = n
+        return out
+
+    def require_variables(self, available: set[str], what: str = "the data") -> None:
+        """Raise a clear error when ``available`` lacks a variable this law needs."""
+        missing = [v for v in self.variables if v not in available]
+        if missing:
+            fam = ("a slip law (tyre, rolling wheel) needs the slip ratio s; "
+                   "pure-sliding tribometer data cannot determine it"
+                   if self.family == "slip" and "s" in missing else
+                   f"{self.family} law needs " + ", ".join(
+                       f"{m} ({VARIABLES[m].meaning})" for m in missing))
+            raise DomainError(
+                f"law '{self.id}' cannot be fitted to {what}: {fam}; "
+                f"available: {', '.join(sorted(available)) or 'none'}"
+            )
+
+    def summary(self) -> dict[str, Any]:
+        """A JSON-able description of the law (used by ``show --json`` and the docs)."""
+        return {
+            "id": self.id,
+            "title": self.title,
+            "aliases": list(self.aliases),
+            "family": self.family,
+            "variables": {v: VARIABLES[v].unit for v in self.variables},
+            "params": [
+                {"name": p.name, "unit": p.unit, "default": p.default,
+                 "bounds": [_jsonable(b) for b in p.bounds], "meaning": p.meaning,
+                 "optional": p.optional}
+                for p in self.params
+            ],
+            "settings": [
+                {"name": s.name, "value": s.value, "unit": s.unit, "meaning": s.meaning}
+                for s in self.settings
+            ],
+            "floors": dict(self.floors),
+            "presets": {k: dict(v) for k, v in self.presets.items()},
+            "domain": {k: list(v) for k, v in self.domain.items()},
+            "derived": [{"name": d.name, "unit": d.unit, "meaning": d.meaning}
+                        for d in self.derived],
+            "references": list(self.references),
+            "evidence": self.evidence,
+            "description": self.description,
+            "notes": self.notes,
+        }
+
+    def derived_values(self, params: Mapping[str, float]) -> dict[str, float]:
+        """Evaluate the derived quantities for complete ``params``."""
+        out = {}
+        for d in self.derived:
+            with np.errstate(all="ignore"):
+                out[d.name] = float(d.func(NUMPY, **params))
+        return out
+
+    def __repr__(self) -> str:
+        return f"<Law {self.id!r}: {self.title}>"
+
+
+def _jsonable(x: float) -> float | str | None:
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    return x

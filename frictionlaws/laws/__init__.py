@@ -1,0 +1,13 @@
+"""The built-in laws. Importing this package registers every law.
+
+One module per group of laws; each declares its laws once with
+:func:`frictionlaws.registry.register`.
+"""
+
+from importlib import import_module
+
+#: The modules that declare built-in laws, in registration order.
+LAW_MODULES = ("basic", "thesis")
+
+for _name in LAW_MODULES:
+    import_module(f"{__name__}.{_name}")

@@ -1,0 +1,37 @@
+"""Small numerical helpers shared by the laws' initial-guess functions."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+
+
+def linear_lstsq(columns: Sequence[np.ndarray], y: np.ndarray) -> np.ndarray:
+    """Least-squares coefficients of ``y ~ sum(c_i * columns_i)``."""
+    a = np.column_stack([np.broadcast_to(np.asarray(c, float), np.shape(y)) for c in columns])
+    coef, *_ = np.linalg.lstsq(a, np.asarray(y, float), rcond=None)
+    return coef
+
+
+def linear_guess(
+    names: Sequence[str], basis: Callable[[Mapping[str, np.ndarray]], Sequence[np.ndarray]]
+) -> Callable[[Mapping[str, np.ndarray]], dict[str, float]]:
+    """A guess function for a law linear in its parameters.
+
+    ``basis(data)`` returns one column per parameter (in ``names`` order); the
+    guess is the ordinary least-squares solution, which is also the optimum.
+    """
+
+    def guess(data: Mapping[str, np.ndarray]) -> dict[str, float]:
+        coef = linear_lstsq(basis(data), data["mu"])
+        return dict(zip(names, (float(c) for c in coef)))
+
+    return guess
+
+
+def spread(x: np.ndarray) -> float:
+    """Max/min ratio of the positive values of ``x`` (1 when constant)."""
+    x = np.asarray(x, float)
+    x = x[x > 0]
+    return float(x.max() / x.min()) if x.size else 1.0

@@ -1,0 +1,427 @@
+"""Units at the edges: parse unit strings with pint, convert to SI, write back.
+
+Inside frictionlaws every quantity is SI: contact pressure ``p`` in Pa,
+sliding velocity ``v`` in m/s, temperature ``T`` in K, normal load ``F_N`` in
+N, friction coefficient ``mu`` and slip ratio ``s`` dimensionless.  Files and
+command lines may use any unit pint understands (``MPa``, ``N/mm^2``, ``psi``,
+``km/h``, ``degC``, ``degF``, ``kgf``...); this module turns them into SI and
+back, and says clearly when a unit is unknown or has the wrong dimension.
+
+Two conventions need care and are handled here:
+
+* offset temperature units (``degC``, ``degF``) are converted as absolute
+  temperatures (20 degC -> 293.15 K), never as differences;
+* a normal load given as a *mass* (``kg``, ``g``, ``lb``: the dead weights of a
+  tribometer) is turned into a force with g = 9.8 m/s^2, the value the source
+  thesis used for its tables; ``kgf`` (kilogram-force) uses standard gravity
+  9.80665 m/s^2.  :func:`conversion_note` returns the sentence that a dataset
+  records when the mass convention was applied.
+
+pint is imported only inside functions and its registry is built once, on
+first use, so importing this module costs nothing.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .errors import InputError
+
+__all__ = [
+    "QUANTITIES",
+    "Quantity",
+    "G_THESIS",
+    "G_STANDARD",
+    "unit_registry",
+    "parse_unit",
+    "check_unit",
+    "to_si",
+    "from_si",
+    "conversion_note",
+    "parse_quantity",
+    "display_unit",
+    "header",
+    "is_no_unit",
+]
+
+#: Gravity used to turn a dead weight in kg into a load, as the thesis did [m/s^2].
+G_THESIS = 9.8
+#: Standard gravity, used by pint for ``kgf`` and ``lbf`` [m/s^2].
+G_STANDARD = 9.80665
+
+#: Strings that mean "no unit" for a dimensionless column.
+_NO_UNIT = {"", "-", "1", "–", "—", "dimensionless", "none"}
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A kind of quantity a column or option can hold.
+
+    Parameters
+    ----------
+    si : str
+        The SI unit used inside frictionlaws (``""`` for dimensionless).
+    what : str
+        A phrase naming the dimension in error messages ("a pressure").
+    examples : tuple of str
+        Units shown in messages as examples of what is accepted.
+    display : str
+        Unit used when writing the quantity in outputs.
+    """
+
+    si: str
+    what: str
+    examples: tuple[str, ...]
+    display: str
+
+
+#: Quantity kinds by name: the canonical dataset columns plus a few used by options.
+QUANTITIES: dict[str, Quantity] = {
+    "mu": Quantity("", "a dimensionless friction coefficient", ("-",), ""),
+    "mu_std": Quantity("", "a dimensionless standard deviation of mu", ("-",), ""),
+    "n": Quantity("", "a dimensionless count", ("-",), ""),
+    "s": Quantity("", "a dimensionless slip ratio", ("-", "%"), ""),
+    "p": Quantity("Pa", "a pressure", ("MPa", "kPa", "Pa", "bar", "psi", "N/mm^2"), "MPa"),
+    "v": Quantity("m/s", "a velocity", ("m/s", "mm/s", "km/h"), "m/s"),
+    "T": Quantity("K", "a temperature", ("degC", "K", "degF"), "degC"),
+    "F_N": Quantity("N", "a force", ("N", "kN", "kgf", "lbf", "kg (dead weight)"), "N"),
+    "area": Quantity("m**2", "an area", ("mm^2", "cm^2", "m^2"), "mm^2"),
+    "length": Quantity("m", "a length", ("mm", "m"), "mm"),
+    "time": Quantity("s", "a time", ("s", "ms"), "s"),
+    "torque": Quantity("N*m", "a torque", ("N*m", "N*mm"), "N*m"),
+    "frequency": Quantity("Hz", "a frequency", ("Hz", "1/s"), "Hz"),
+    "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s"),
+}
+
+# Names of common dimensions, for "unit 'm' is a length, expected a pressure".
+_DIMENSION_NAMES = {
+    "": "dimensionless",
+    "[length]": "a length",
+    "[mass]": "a mass",
+    "[time]": "a time",
+    "[temperature]": "a temperature",
+    "[length] ** 2": "an area",
+    "[length] ** 3": "a volume",
+    "[length] / [time]": "a velocity",
+    "[length] / [time] ** 2": "an acceleration",
+    "[length] * [mass] / [time] ** 2": "a force",
+    "[mass] / [length] / [time] ** 2": "a pressure",
+    "[length] ** 2 * [mass] / [time] ** 2": "an energy or a torque",
+    "1 / [time]": "a frequency or an angular velocity",
+    "[current] * [time]": "an electric charge",
+}
+
+
+@functools.lru_cache(maxsize=1)
+def unit_registry() -> Any:
+    """The shared pint ``UnitRegistry`` (built once, on first use).
+
+    Offset units are converted to base units automatically so that a string
+    such as ``"20 degC"`` parses as an absolute temperature.
+    """
+    import pint
+
+    return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+
+
+def is_no_unit(unit: str | None) -> bool:
+    """True when ``unit`` means "dimensionless / no unit" (``""``, ``"-"``, ``"1"``)."""
+    return unit is None or unit.strip().lower() in _NO_UNIT
+
+
+def _kind(quantity: str) -> Quantity:
+    try:
+        return QUANTITIES[quantity]
+    except KeyError:
+        raise ValueError(
+            f"unknown quantity kind {quantity!r}; expected one of {', '.join(QUANTITIES)}"
+        ) from None
+
+
+def _describe_dimension(unit: Any) -> str:
+    key = str(unit.dimensionality)
+    key = "" if key == "dimensionless" else key
+    return _DIMENSION_NAMES.get(key, f"of dimension {key}")
+
+
+def _suggest(text: str, kind: Quantity) -> str:
+    """A hint for a unit pint does not know (e.g. wrong capitalisation)."""
+    low = text.strip().lower()
+    for ex in kind.examples:
+        ex_unit = ex.split(" ")[0]
+        if ex_unit.lower() == low and ex_unit != text.strip():
+            return f"; units are case-sensitive: did you mean '{ex_unit}'?"
+    if low in {"c", "°c", "deg c", "celsius", "centigrade"} and kind.si == "K":
+        return "; did you mean 'degC'?"
+    if low in {"f", "°f", "deg f", "fahrenheit"} and kind.si == "K":
+        return "; did you mean 'degF'?"
+    return ""
+
+
+def _examples(kind: Quantity) -> str:
+    return ", ".join(kind.examples)
+
+
+def parse_unit(
+    unit: str, quantity: str, *, column: str | None = None, file: str | None = None
+) -> Any:
+    """Parse ``unit`` with pint and check it fits ``quantity``.
+
+    Parameters
+    ----------
+    unit : str
+        The unit as written by the user (``"MPa"``, ``"degC"``, ``"-"``...).
+    quantity : str
+        A key of :data:`QUANTITIES` (``"p"``, ``"v"``, ``"T"``, ``"F_N"``,
+        ``"mu"``, ``"s"``, ``"area"``...).
+    column, file : str, optional
+        Where the unit came from, for the error message.
+
+    Returns
+    -------
+    pint.Unit
+        The parsed unit.  For ``F_N`` a mass unit is accepted (dead weight).
+
+    Raises
+    ------
+    InputError
+        When pint does not know the unit, or its dimension does not match.
+    """
+    kind = _kind(quantity)
+    ureg = unit_registry()
+    text = "" if unit is None else str(unit).strip()
+    if is_no_unit(text):
+        parsed = ureg.dimensionless
+    else:
+        try:
+            parsed = ureg.parse_units(text)
+        except Exception:  # noqa: BLE001 - pint raises several types for bad text
+            raise InputError(
+                f"unknown unit '{text}'; expected {kind.what} unit such as "
+                f"{_examples(kind)}{_suggest(text, kind)}",
+                file=file, column=column,
+            ) from None
+    expected = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+    if parsed.dimensionality == expected.dimensionality:
+        return parsed
+    if quantity == "F_N" and parsed.dimensionality == ureg.kilogram.dimensionality:
+        return parsed  # a dead weight given as a mass: see to_si / conversion_note
+    got = _describe_dimension(parsed)
+    hint = _suggest(text, kind) if got == "an electric charge" else ""
+    raise InputError(
+        f"unit '{text}' is {got}, expected {kind.what} (e.g. {_examples(kind)}){hint}",
+        file=file, column=column,
+    )
+
+
+def check_unit(
+    unit: str, quantity: str, *, column: str | None = None, file: str | None = None
+) -> None:
+    """Raise :class:`InputError` unless ``unit`` is a valid unit for ``quantity``."""
+    parse_unit(unit, quantity, column=column, file=file)
+
+
+def _is_mass(parsed: Any) -> bool:
+    ureg = unit_registry()
+    return bool(parsed.dimensionality == ureg.kilogram.dimensionality)
+
+
+def to_si(
+    values: Any,
+    unit: str,
+    quantity: str,
+    *,
+    column: str | None = None,
+    file: str | None = None,
+) -> np.ndarray:
+    """Convert ``values`` given in ``unit`` to the SI unit of ``quantity``.
+
+    Parameters
+    ----------
+    values : array-like or float
+        Numbers in ``unit``.
+    unit : str
+        Unit string understood by pint; ``""``, ``"-"`` or ``"1"`` for
+        dimensionless.  ``"%"`` is accepted for dimensionless quantities.
+    quantity : str
+        Kind of quantity, a key of :data:`QUANTITIES` (``"p"`` -> Pa,
+        ``"v"`` -> m/s, ``"T"`` -> K, ``"F_N"`` -> N, ``"mu"``, ``"s"`` -> 1).
+    column, file : str, optional
+        Where the values came from, named in error messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        Float array in SI (0-d array for a scalar input).
+
+    Notes
+    -----
+    Temperatures in ``degC``/``degF`` are absolute (20 degC -> 293.15 K).  A
+    normal load in a mass unit (``kg``) is a dead weight and is multiplied by
+    :data:`G_THESIS` = 9.8 m/s^2; ``kgf`` uses standard gravity.
+    """
+    kind = _kind(quantity)
+    parsed = parse_unit(unit, quantity, column=column, file=file)
+    ureg = unit_registry()
+    arr = np.asarray(values, dtype=float)
+    if quantity == "F_N" and _is_mass(parsed):
+        kg = ureg.Quantity(arr, parsed).to("kg").magnitude
+        return np.asarray(kg * G_THESIS, dtype=float)
+    target = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+    return np.asarray(ureg.Quantity(arr, parsed).to(target).magnitude, dtype=float)
+
+
+def from_si(values: Any, unit: str, quantity: str) -> np.ndarray:
+    """Convert SI ``values`` of ``quantity`` into ``unit`` (the inverse of :func:`to_si`)."""
+    kind = _kind(quantity)
+    parsed = parse_unit(unit, quantity)
+    ureg = unit_registry()
+    arr = np.asarray(values, dtype=float)
+    if quantity == "F_N" and _is_mass(parsed):
+        return np.asarray(
+            ureg.Quantity(arr / G_THESIS, "kg").to(parsed).magnitude, dtype=float
+        )
+    source = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+    return np.asarray(ureg.Quantity(arr, source).to(parsed).magnitude, dtype=float)
+
+
+def conversion_note(unit: str, quantity: str, column: str | None = None) -> str | None:
+    """The sentence a dataset records when a conversion needs a convention.
+
+    Returns a note for a normal load given as a mass (converted with
+    g = 9.8 m/s^2 as in the thesis), ``None`` otherwise.
+    """
+    if quantity != "F_N" or is_no_unit(unit):
+        return None
+    parsed = parse_unit(unit, quantity, column=column)
+    if not _is_mass(parsed):
+        return None
+    where = f"column '{column}'" if column else "F_N"
+    return (
+        f"{where}: normal load given as a mass in '{unit}' (dead weight), converted to "
+        f"newtons with g = {G_THESIS} m/s^2 as the thesis did; write the unit as 'kgf' to "
+        f"use standard gravity {G_STANDARD} m/s^2 instead"
+    )
+
+
+_NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
+
+
+def parse_quantity(
+    text: str | float,
+    expected: str,
+    *,
+    what: str | None = None,
+    file: str | None = None,
+    column: str | None = None,
+) -> float:
+    """Parse a quantity such as ``"314.16 mm^2"`` into a float in SI.
+
+    Parameters
+    ----------
+    text : str or float
+        A number followed by a unit.  A plain float is taken as already SI.
+    expected : str
+        The kind of quantity, a key of :data:`QUANTITIES` (``"area"``,
+        ``"p"``, ``"T"``...).
+    what : str, optional
+        How to name the value in messages (e.g. ``"--area"``).
+    file, column : str, optional
+        Passed on to :class:`InputError`.
+
+    Returns
+    -------
+    float
+        The value in the SI unit of ``expected`` (m^2 for an area).
+
+    Raises
+    ------
+    InputError
+        When the text has no number, no unit where one is needed, an unknown
+        unit or the wrong dimension.
+    """
+    kind = _kind(expected)
+    label = what or expected
+    if isinstance(text, (int, float, np.integer, np.floating)) and not isinstance(text, bool):
+        value = float(text)
+        if not np.isfinite(value):
+            raise InputError(f"{label} must be a finite number, got {text}",
+                             file=file, column=column)
+        return value
+    raw = str(text).strip()
+    if not _NUMBER_START.match(raw):
+        raise InputError(
+            f"{label} '{raw}' is not a number with a unit; expected e.g. "
+            f"'{_example_quantity(expected)}'",
+            file=file, column=column,
+        )
+    ureg = unit_registry()
+    try:
+        q = ureg.parse_expression(raw)
+    except Exception:  # noqa: BLE001 - pint raises several types for bad text
+        raise InputError(
+            f"{label} '{raw}' could not be read (unknown unit?); expected {kind.what} "
+            f"such as '{_example_quantity(expected)}'",
+            file=file, column=column,
+        ) from None
+    if not hasattr(q, "units"):
+        q = ureg.Quantity(float(q), ureg.dimensionless)
+    target = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+    if q.dimensionality != target.dimensionality:
+        if kind.si and q.dimensionless:
+            raise InputError(
+                f"{label} '{raw}' has no unit; give {kind.what} with its unit, e.g. "
+                f"'{_example_quantity(expected)}'",
+                file=file, column=column,
+            )
+        raise InputError(
+            f"{label} '{raw}' is {_describe_dimension(q.units)}, expected {kind.what} "
+            f"(e.g. '{_example_quantity(expected)}')",
+            file=file, column=column,
+        )
+    value = float(q.to(target).magnitude)
+    if not np.isfinite(value):
+        raise InputError(f"{label} '{raw}' is not finite", file=file, column=column)
+    return value
+
+
+def _example_quantity(expected: str) -> str:
+    return {
+        "area": "314.16 mm^2",
+        "p": "0.2 MPa",
+        "v": "1.38 m/s",
+        "T": "20 degC",
+        "F_N": "49 N",
+        "length": "40 mm",
+        "time": "10 s",
+        "torque": "0.3 N*m",
+        "frequency": "1000 Hz",
+        "angular_velocity": "331 rpm",
+    }.get(expected, "1")
+
+
+def display_unit(quantity: str) -> str:
+    """The unit frictionlaws writes ``quantity`` in (p MPa, v m/s, T degC, F_N N)."""
+    return _kind(quantity).display
+
+
+def header(column: str, unit: str | None = None) -> str:
+    """A CSV/table header with its unit: ``header("p")`` -> ``"p [MPa]"``; ``"mu"`` stays."""
+    unit = display_unit(column) if unit is None and column in QUANTITIES else unit
+    return f"{column} [{unit}]" if unit else column
+
+
+def si_unit(quantity: str) -> str:
+    """The SI unit of ``quantity`` as a string (``""`` when dimensionless)."""
+    return _kind(quantity).si
+
+
+def examples(quantity: str) -> Sequence[str]:
+    """Example units accepted for ``quantity`` (used in messages and docs)."""
+    return _kind(quantity).examples
