@@ -305,7 +305,7 @@ class FitResult:
         d = self.data
         rng = ", ".join(_fmt_range(k, lo, hi) for k, (lo, hi) in d.get("ranges", {}).items())
         lines.append(f"data: {d.get('name')} ({d.get('n')} rows{'; ' + rng if rng else ''})")
-        lines.append(f"formula: {self.law.title}; see 'frictionlaws show {self.law.id}'")
+        lines.append(f"formula: {self.law.pretty()}   (SI: {self._si_note()})")
         lines.append("")
         hdr = f"{'parameter':<10} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
         lines.append(hdr)
@@ -344,6 +344,9 @@ class FitResult:
     def __str__(self) -> str:
         return self.report()
 
+    def _si_note(self) -> str:
+        return ", ".join(f"{v} in {VARIABLES[v].unit or '-'}" for v in self.law.variables) or "-"
+
 
 def _g(x: float | None) -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
@@ -380,21 +383,28 @@ def _clean_json(obj: Any) -> Any:
 # --------------------------------------------------------------------- fitting
 
 
-def _starts(law: Law, guess: dict[str, float], names: list[str], n_random: int,
-            rng: np.random.Generator) -> list[dict[str, float]]:
+def _starts(law: Law, guess: dict[str, float], names: list[str]) -> list[dict[str, float]]:
+    """Deterministic starts: the data-driven guess, the defaults and the presets."""
     starts = [dict(guess)]
     if law.linear:
         return starts
     starts.append({**guess, **{k: law.param(k).default for k in names if k in law.param_names}})
     for preset in law.presets.values():
         starts.append({**guess, **{k: v for k, v in preset.items() if k in names}})
+    return starts
+
+
+def _random_starts(law: Law, guess: dict[str, float], names: list[str], n_random: int,
+                   rng: np.random.Generator) -> list[dict[str, float]]:
+    """Random perturbations of the guess (log-normal for positive parameters)."""
+    starts = []
     for _ in range(n_random):
         s = dict(guess)
         for k in names:
             if k not in law.param_names:
                 continue
             p = law.param(k)
-            lo, hi = p.bounds
+            lo, _hi = p.bounds
             x = guess[k]
             if x > 0 and lo >= 0:
                 x = x * math.exp(rng.normal(0.0, 1.0))
@@ -494,7 +504,10 @@ def fit(
         ``"auto"`` uses the dataset's replicate statistics (1/mu_std, else
         sqrt(n)) when present; None fits unweighted.
     starts : int, optional
-        Number of extra random starts for non-linear laws (default 6).
+        Number of random starts for non-linear laws.  By default the fit
+        starts from the data-driven guess, the defaults and every preset, and
+        adds 6 random starts only when those end at different minima; giving
+        ``starts`` forces that many random starts.
     seed : int
         Seed of the random starts (results are reproducible).
     on_invalid : {"error", "drop"}
@@ -591,24 +604,40 @@ def fit(
     w = fd.weights
     rng = np.random.default_rng(seed)
     n_random = 6 if starts is None else int(starts)
+    n_random_forced = starts is not None and int(starts) > 0
     best = None
-    errors = []
-    for start in _starts(law, guess, vary_names, n_random, rng):
+    errors: list[str] = []
+    finals: list[float] = []
+
+    max_nfev = 300 * (len(vary_names) + 1)
+
+    def run(start: Mapping[str, float]) -> None:
+        nonlocal best
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                res = model.fit(y, make_params(start), weights=w, method=method, **kwargs)
+                res = model.fit(y, make_params(start), weights=w, method=method,
+                                max_nfev=max_nfev, **kwargs)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
             errors.append(str(exc))
-            continue
+            return
         if not np.isfinite(res.chisqr):
-            continue
+            return
+        finals.append(float(res.chisqr))
         if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
             best = res
+
+    for start in _starts(law, guess, vary_names):
+        run(start)
+    # Random starts when the deterministic ones disagree (several minima) or all failed:
+    # the surface is then multi-modal or hard, and more starts are worth their cost.
+    spread = (max(finals) - min(finals)) / max(min(finals), 1e-300) if finals else math.inf
+    if not law.linear and (spread > 1e-6 or best is None or n_random_forced):
+        for start in _random_starts(law, guess, vary_names, n_random, rng):
+            run(start)
     if best is None:
         raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
                        f"finite result{(' (' + errors[0] + ')') if errors else ''}")
-
     # --------------------------------------------------------- diagnostics
     warn_msgs: list[str] = []
     vary = [k for k in vary_names]

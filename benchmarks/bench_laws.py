@@ -1,0 +1,163 @@
+"""Benchmarks of the foundation, each printed as a ratio against a baseline from the same run.
+
+1. Evaluation of every law on 1e6 points through ``law(...)`` against a hand-written numpy
+   expression of the same formula (with the same floors).  Target: at most 1.3x.
+2. Fit time per law with ``frictionlaws.fit`` (lmfit, diagnostics, identifiability check)
+   against ``scipy.optimize.curve_fit`` of the hand-written expression on the same data.
+3. CLI start-up (``python -m frictionlaws laws`` and ``--version``) against
+   ``python -c "import lmfit"``.  Target: at most 1.5x.
+
+Run: ``python benchmarks/bench_laws.py [--quick]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import frictionlaws as fl
+from frictionlaws.law import F_MIN, V_MIN
+
+# Hand-written numpy expressions of each law (x: variables, q: parameters and settings).
+# Written independently of the law modules, with the same floors the laws declare.
+HAND = {
+    "coulomb": lambda x, q: np.full_like(x["p"], q["mu0"]),
+    "thirion": lambda x, q: 1.0 / (q["a"] + q["b"] * x["p"]),
+    "schallamach": lambda x, q: q["mu_ref"] * (np.maximum(x["F_N"], F_MIN) / q["F_ref"])
+    ** (-q["n"]),
+    "denny": lambda x, q: 1.0 / (q["a"] * (1.0 + q["b"] * x["p"] / q["E_v"])),
+    "exponential-decay": lambda x, q: q["mu_d"] + (q["mu_s"] - q["mu_d"])
+    * np.exp(-((np.abs(x["v"]) / q["v_c"]) ** q["delta"])),
+    "quadratic-pv": lambda x, q: q["c0"] + q["c1"] * x["p"] + q["c2"] * np.abs(x["v"])
+    + q["c3"] * x["p"] * np.abs(x["v"]) + q["c4"] * x["p"] ** 2 + q["c5"] * np.abs(x["v"]) ** 2,
+    "thesis-poly2": lambda x, q: q["a0"] + q["a1"] * (x["p"] / 1e6) + q["a2"] * (x["p"] / 1e6)
+    ** 2 + q["a3"] * np.abs(x["v"]) + q["a4"] * np.abs(x["v"]) ** 2,
+    "thesis-poly3": lambda x, q: q["a0"] + q["a1"] * (x["p"] / 1e6) + q["a2"] * (x["p"] / 1e6)
+    ** 2 + q["a3"] * (x["p"] / 1e6) ** 3 + q["a4"] * np.abs(x["v"]) + q["a5"] * np.abs(x["v"])
+    ** 2 + q["a6"] * np.abs(x["v"]) ** 3,
+}
+_ = V_MIN  # laws with log-velocity floors add their hand-written forms here with V_MIN
+
+
+def params_for(law):
+    """Preset (first) or defaults, plus settings."""
+    if law.presets:
+        return law.resolve(preset=next(iter(law.presets)))
+    return law.resolve(law.defaults)
+
+
+def points(law, n, rng):
+    out = {}
+    for var in law.variables or ("p",):
+        lo, hi = law.typical_range(var)
+        out[var] = rng.uniform(lo, hi, n)
+    return out
+
+
+def best_time(f, repeat=7):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        f()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def bench_evaluation(n, rng):
+    print(f"\n1. evaluation on {n:.0e} points: law(...) vs hand-written numpy (target <= 1.3x)")
+    print(f"{'law':<22} {'law [ms]':>9} {'numpy [ms]':>10} {'ratio':>6}")
+    worst = 0.0
+    for law in fl.list_laws():
+        hand = HAND.get(law.id)
+        if hand is None:
+            print(f"{law.id:<22} no hand-written baseline")
+            continue
+        x = points(law, n, rng)
+        q = params_for(law)
+        kw = {**x, **{k: v for k, v in q.items()}}
+        np.testing.assert_allclose(law(**kw), hand(x, q), rtol=1e-10)
+        t_law = best_time(lambda kw=kw, law=law: law(**kw))
+        t_hand = best_time(lambda x=x, q=q, hand=hand: hand(x, q))
+        ratio = t_law / t_hand
+        worst = max(worst, ratio)
+        print(f"{law.id:<22} {t_law * 1e3:9.2f} {t_hand * 1e3:10.2f} {ratio:6.2f}")
+    print(f"worst evaluation ratio: {worst:.2f}x")
+    return worst
+
+
+def bench_fit(rng, n=200):
+    from scipy.optimize import curve_fit
+
+    print(f"\n2. fit time on {n} synthetic points: frictionlaws.fit vs scipy curve_fit")
+    print(f"{'law':<22} {'fit [ms]':>9} {'curve_fit [ms]':>14} {'ratio':>6}")
+    ratios = []
+    for law in fl.list_laws():
+        hand = HAND.get(law.id)
+        if hand is None:
+            print(f"{law.id:<22} no hand-written baseline")
+            continue
+        x = points(law, n, rng)
+        q = params_for(law)
+        mu = np.broadcast_to(law(**x, **q), (n,))
+        mu = mu + 0.02 * np.mean(np.abs(mu)) * rng.standard_normal(n)
+        data = {**x, "mu": mu}
+        names = list(law.param_names)
+        settings = law.setting_values
+        guess = law.initial_guess(data)
+        lo = [law.param(k).bounds[0] for k in names]
+        hi = [law.param(k).bounds[1] for k in names]
+        p0 = [guess[k] for k in names]
+
+        def model(_, *theta, x=x, names=names, settings=settings, hand=hand):
+            return hand(x, {**settings, **dict(zip(names, theta))})
+
+        def run_cf(model=model, p0=p0, mu=mu, lo=lo, hi=hi):
+            curve_fit(model, None, mu, p0=p0, bounds=(lo, hi), maxfev=20000)
+
+        t_fit = best_time(lambda law=law, data=data: fl.fit(law, data), repeat=3)
+        t_cf = best_time(run_cf, repeat=3)
+        ratios.append(t_fit / t_cf)
+        print(f"{law.id:<22} {t_fit * 1e3:9.1f} {t_cf * 1e3:14.1f} {t_fit / t_cf:6.1f}")
+    print(f"median fit-time ratio: {statistics.median(ratios):.1f}x (frictionlaws adds multi-start, "
+          "covariance, identifiability and derived-quantity diagnostics)")
+
+
+def bench_startup(repeat):
+    print("\n3. CLI start-up vs `python -c \"import lmfit\"` (target <= 1.5x)")
+
+    def timed(cmd):
+        ts = []
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+            ts.append(time.perf_counter() - t0)
+        return statistics.median(ts)
+
+    base = timed([sys.executable, "-c", "import lmfit"])
+    print(f"{'python -c import lmfit':<36} {base * 1e3:8.0f} ms  1.00")
+    worst = 0.0
+    for args in (["--version"], ["laws"], ["show", "thirion"]):
+        t = timed([sys.executable, "-m", "frictionlaws", *args])
+        worst = max(worst, t / base)
+        print(f"{'frictionlaws ' + ' '.join(args):<36} {t * 1e3:8.0f} ms  {t / base:.2f}")
+    print(f"worst start-up ratio: {worst:.2f}x")
+    return worst
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="fewer points and repeats")
+    args = ap.parse_args()
+    rng = np.random.default_rng(0)
+    bench_evaluation(100_000 if args.quick else 1_000_000, rng)
+    bench_fit(rng)
+    bench_startup(3 if args.quick else 7)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,6 @@
+"""``python -m frictionlaws``: the same as the ``frictionlaws`` command."""
+
+from frictionlaws.cli import entry
+
+if __name__ == "__main__":
+    entry()

@@ -1,0 +1,119 @@
+"""The command line through ``main(argv)``: laws, show, fit."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from frictionlaws import list_laws
+from frictionlaws.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_help_and_version(capsys):
+    code, out, _ = run(capsys, "--help")
+    assert code == 0 and "fit" in out and "show" in out
+    code, out, _ = run(capsys, "--version")
+    assert code == 0 and "frictionlaws" in out
+
+
+def test_no_command_and_unknown_command(capsys):
+    code, _, _ = run(capsys)
+    assert code == 2
+    code, _, err = run(capsys, "frobnicate")
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_laws_lists_every_law(capsys):
+    code, out, _ = run(capsys, "laws")
+    assert code == 0
+    for law in list_laws():
+        assert law.id in out
+    code, out, _ = run(capsys, "laws", "--json")
+    ids = {d["id"] for d in json.loads(out)}
+    assert ids == {law.id for law in list_laws()}
+    code, out, _ = run(capsys, "laws", "--family", "slip", "--json")
+    assert all(d["family"] == "slip" for d in json.loads(out))
+
+
+@pytest.mark.parametrize("law_id", [law.id for law in list_laws()])
+def test_show_prints_every_part_of_the_declaration(capsys, law_id):
+    code, out, _ = run(capsys, "show", law_id)
+    assert code == 0
+    for part in ("formula: mu = ", "parameters:", "settings:", "presets:", "domain:",
+                 "references:", "evidence:"):
+        assert part in out, (law_id, part)
+    code, out, _ = run(capsys, "show", law_id, "--json")
+    doc = json.loads(out)
+    assert doc["id"] == law_id and doc["latex"].startswith(r"\mu")
+
+
+def test_show_unknown_law_is_exit_2(capsys):
+    code, _, err = run(capsys, "show", "thirio")
+    assert code == 2 and "unknown law 'thirio'" in err and "thirion" in err
+
+
+def test_fit_thirion_on_thesis_steel(capsys):
+    code, out, _ = run(capsys, "fit", "--law", "thirion", "thesis-steel")
+    assert code == 0
+    lines = out.splitlines()
+    a = next(x for x in lines if x.startswith("a "))
+    b = next(x for x in lines if x.startswith("b "))
+    assert len(a.split()) >= 4 and b.rstrip().endswith("1/Pa")
+    assert "R^2 = " in out and "std. error" in out
+
+
+def test_fit_json_has_the_documented_keys(capsys, tmp_path):
+    save = tmp_path / "fit.json"
+    code, out, _ = run(capsys, "fit", "--law", "thirion", "thesis-steel", "--json",
+                       "--save", str(save))
+    assert code == 0
+    doc = json.loads(out)
+    for key in ("law", "params", "metrics", "warnings"):
+        assert key in doc
+    for name in ("a", "b"):
+        assert set(doc["params"][name]) >= {"value", "stderr", "unit"}
+        assert doc["params"][name]["stderr"] > 0
+    assert set(doc["metrics"]) >= {"r2", "rmse", "aic", "bic", "n"}
+    assert doc["metrics"]["n"] == 19
+    assert json.loads(save.read_text())["law"] == "thirion"
+
+
+def test_fit_with_the_thesis_column_names(capsys):
+    code, out, err = run(capsys, "fit", "--law", "thirion", "thesis-steel-original",
+                         "--map", "mu=FC,p=CP,v=DV", "--units", "p=MPa,v=m/s", "--json")
+    assert code == 0, err
+    ref_code, ref_out, _ = run(capsys, "fit", "--law", "thirion", "thesis-steel", "--json")
+    a, b = json.loads(out), json.loads(ref_out)
+    assert a["params"]["b"]["value"] == pytest.approx(b["params"]["b"]["value"], rel=1e-9)
+
+
+def test_fit_denny_free_E_v_names_parameters(capsys):
+    code, out, _ = run(capsys, "fit", "--law", "denny", "thesis-steel", "--free", "E_v")
+    assert code == 0
+    assert "cannot determine b, E_v" in out
+
+
+def test_fit_fix_option(capsys):
+    code, out, _ = run(capsys, "fit", "--law", "schallamach", "thesis-steel", "--fix",
+                       "n=0.3333", "--json")
+    assert code == 0
+    assert json.loads(out)["params"]["n"]["fixed"] is True
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (["fit", "--law", "thirion", "thesis-steel", "--fix", "a"], "NAME=VALUE"),
+    (["fit", "--law", "thirion", "thesis-steel", "--fix", "a=x"], "not a number"),
+    (["fit", "--law", "thirion", "thesis-steel", "--free", "E_v"], "no setting 'E_v'"),
+    (["fit", "thesis-steel"], "--law"),
+])
+def test_fit_usage_errors_are_one_line_exit_2(capsys, argv, needle):
+    code, _, err = run(capsys, *argv)
+    assert code == 2
+    assert len(err.strip().splitlines()) == 1 and needle in err and "Traceback" not in err
