@@ -123,8 +123,8 @@ def bench_fit(rng, n=200):
         t_cf = best_time(run_cf, repeat=3)
         ratios.append(t_fit / t_cf)
         print(f"{law.id:<22} {t_fit * 1e3:9.1f} {t_cf * 1e3:14.1f} {t_fit / t_cf:6.1f}")
-    print(f"median fit-time ratio: {statistics.median(ratios):.1f}x (frictionlaws adds multi-start, "
-          "covariance, identifiability and derived-quantity diagnostics)")
+    print(f"median fit-time ratio: {statistics.median(ratios):.1f}x (frictionlaws adds "
+          "multi-start, covariance, identifiability and derived-quantity diagnostics)")
 
 
 def bench_startup(repeat):

@@ -397,10 +397,9 @@ class Law:
         """
         missing = [v for v in self.variables if v not in variables]
         if missing:
-            raise InputError(
-                f"law '{self.id}' needs variable(s) {', '.join(missing)} "
-                f"({', '.join(VARIABLES[m].meaning + ' [' + VARIABLES[m].unit + ']' for m in missing)})"
-            )
+            what = ", ".join(f"{VARIABLES[m].meaning} [{VARIABLES[m].unit or '-'}]"
+                             for m in missing)
+            raise InputError(f"law '{self.id}' needs variable(s) {', '.join(missing)} ({what})")
         unknown = set(variables) - set(VARIABLES)
         if unknown:
             raise InputError(f"unknown variable(s) {sorted(unknown)}; known: {list(VARIABLES)}")
