@@ -32,6 +32,16 @@ _API = {
     "load_dataset": "io",
     "Dataset": "io",
     "list_datasets": "io",
+    "export": "export",
+    "compare": "compare",
+    "BrushModel": "tyre",
+    "BrushTyre": "tyre",
+    "MagicFormula": "tyre",
+    "reduce_mf": "tyre",
+    "thesis_comparison": "tyre",
+    "process_campaign": "tribometer",
+    "load_rig": "tribometer",
+    "run_validation": "validation",
 }
 
 __all__ = sorted(_API) + ["__version__"]

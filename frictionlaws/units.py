@@ -99,23 +99,24 @@ QUANTITIES: dict[str, Quantity] = {
     "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s"),
 }
 
-# Names of common dimensions, for "unit 'm' is a length, expected a pressure".
-_DIMENSION_NAMES = {
-    "": "dimensionless",
-    "[length]": "a length",
-    "[mass]": "a mass",
-    "[time]": "a time",
-    "[temperature]": "a temperature",
-    "[length] ** 2": "an area",
-    "[length] ** 3": "a volume",
-    "[length] / [time]": "a velocity",
-    "[length] / [time] ** 2": "an acceleration",
-    "[length] * [mass] / [time] ** 2": "a force",
-    "[mass] / [length] / [time] ** 2": "a pressure",
-    "[length] ** 2 * [mass] / [time] ** 2": "an energy or a torque",
-    "1 / [time]": "a frequency or an angular velocity",
-    "[current] * [time]": "an electric charge",
-}
+# Names of common dimensions, for "unit 'm' is a length, expected a pressure":
+# a representative unit of each, compared by dimensionality.
+_DIMENSION_NAMES = (
+    ("", "dimensionless"),
+    ("m", "a length"),
+    ("kg", "a mass"),
+    ("s", "a time"),
+    ("K", "a temperature"),
+    ("m**2", "an area"),
+    ("m**3", "a volume"),
+    ("m/s", "a velocity"),
+    ("m/s**2", "an acceleration"),
+    ("N", "a force"),
+    ("Pa", "a pressure"),
+    ("J", "an energy or a torque"),
+    ("1/s", "a frequency or an angular velocity"),
+    ("C", "an electric charge"),
+)
 
 
 @functools.lru_cache(maxsize=1)
@@ -145,9 +146,13 @@ def _kind(quantity: str) -> Quantity:
 
 
 def _describe_dimension(unit: Any) -> str:
-    key = str(unit.dimensionality)
-    key = "" if key == "dimensionless" else key
-    return _DIMENSION_NAMES.get(key, f"of dimension {key}")
+    ureg = unit_registry()
+    dim = unit.dimensionality
+    for ref, name in _DIMENSION_NAMES:
+        ref_unit = ureg.parse_units(ref) if ref else ureg.dimensionless
+        if ref_unit.dimensionality == dim:
+            return name
+    return f"of dimension {dim}"
 
 
 def _suggest(text: str, kind: Quantity) -> str:

@@ -22,6 +22,12 @@ COMMANDS = (
     "laws",
     "show",
     "fit",
+    "compare",
+    "datasets",
+    "tyre",
+    "process",
+    "validate",
+    "export",
 )
 
 

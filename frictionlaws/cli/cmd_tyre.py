@@ -1,0 +1,360 @@
+"""``frictionlaws tyre``: friction laws inside tyre models.
+
+Sub-commands:
+
+* ``cornering``: cornering stiffness of a brush tyre against load with a law
+  (preset, explicit values, a saved fit, or a fit run on the spot);
+* ``thesis``: the thesis' comparison (constant mu against laws fitted to
+  ``thesis-steel``) beside its Table 6-2;
+* ``mf``: summary of a Magic Formula property file (.tir or JSON);
+* ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
+  F_x0/F_z curve at one load.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+from ._common import add_data_options, add_fit_options, parse_floats
+
+_MAX_LOADS = 1000
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "tyre", help="use friction laws inside tyre models (brush model, Magic Formula)",
+        description="Friction laws inside tyre models: brush-model cornering stiffness with "
+        "any sliding law, the thesis' comparison, Magic Formula property files (.tir/JSON) "
+        "and their reduction to simple slip laws.")
+    tsub = p.add_subparsers(dest="tyre_command", metavar="SUBCOMMAND",
+                            parser_class=type(p))
+
+    c = tsub.add_parser(
+        "cornering", help="cornering stiffness of a brush tyre against load",
+        description="Cornering stiffness (kN/deg) of a brush tyre whose bristles obey a "
+        "friction law mu(p, v), against load: the least-squares slope of Fy over the slip "
+        "angles (default 1, 2, 3 deg, as in the thesis) and the slope at the origin.")
+    c.add_argument("--law", help="law id or alias (a law of p and/or v); optional with "
+                   "--params")
+    src = c.add_mutually_exclusive_group(required=True)
+    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
+    src.add_argument("--params", metavar="FILE.json",
+                     help="parameters saved by 'frictionlaws fit --save'")
+    src.add_argument("--fit", metavar="DATA",
+                     help="fit the law to DATA (CSV file or packaged dataset) first")
+    src.add_argument("--set", metavar="NAME=VALUE,...", action="append",
+                     help="parameter values in SI, e.g. mu0=0.9")
+    _load_options(c, default="2:6.5:0.5")
+    c.add_argument("--angles", default="1,2,3", metavar="DEG,...",
+                   help="slip angles of the secant [deg] (default 1,2,3)")
+    _tyre_options(c)
+    add_data_options(c)
+    add_fit_options(c)
+    c.add_argument("--json", action="store_true", help="print one JSON object")
+
+    t = tsub.add_parser(
+        "thesis", help="the thesis' cornering comparison beside its Table 6-2",
+        description="Brush-model cornering stiffness with constant mu 0.9 and 1.0 and with "
+        "laws fitted to the thesis-steel dataset, beside the thesis' FE results (Table 6-2), "
+        "with the ratio CS(6.5 kN)/CS(2 kN).")
+    t.add_argument("--laws", default="thirion", metavar="LAW,...",
+                   help="laws of p to fit to the data (default thirion)")
+    t.add_argument("--data", default="thesis-steel", metavar="DATA",
+                   help="dataset the laws are fitted to (default thesis-steel)")
+    _tyre_options(t)
+    t.add_argument("--json", action="store_true", help="print one JSON object")
+
+    m = tsub.add_parser(
+        "mf", help="summary of a Magic Formula property file",
+        description="Read a Magic Formula property file (ADAMS .tir or JSON) and print its "
+        "version, nominal load, peak friction coefficients and slip stiffnesses.")
+    m.add_argument("file", metavar="FILE", help=".tir or .json property file, or a packaged "
+                   "example (MagicFormula52, MagicFormula61, MagicFormula62)")
+    _load_options(m, default=None)
+    m.add_argument("--json", action="store_true", help="print one JSON object")
+
+    r = tsub.add_parser(
+        "reduce", help="fit a slip law to a property file's Fx0/Fz curve",
+        description="Fit a slip law (pacejka, burckhardt, ...) to mu = |Fx0|/Fz of a Magic "
+        "Formula property file at one load and report the fit error.")
+    r.add_argument("file", metavar="FILE", help=".tir or .json property file")
+    r.add_argument("--law", default="pacejka", help="slip law (default pacejka)")
+    r.add_argument("--load", required=True, metavar="LOAD",
+                   help="vertical load, in --load-unit (default kN)")
+    r.add_argument("--load-unit", default="kN", metavar="UNIT", help="unit of --load")
+    r.add_argument("--side", choices=("braking", "driving"), default="braking")
+    r.add_argument("--slip-max", type=float, default=1.0, help="largest slip ratio (<= 1)")
+    r.add_argument("--points", type=int, default=201, help="number of slip points")
+    r.add_argument("--json", action="store_true", help="print one JSON object")
+    r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
+                   "(usable with --params)")
+    return p
+
+
+def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
+    p.add_argument("--loads", default=default, metavar="START:STOP:STEP",
+                   help="vertical loads, a range START:STOP:STEP (inclusive) or a list "
+                        "A,B,C, in --load-unit" + (f" (default {default})" if default else ""))
+    p.add_argument("--load-unit", default="kN", metavar="UNIT",
+                   help="unit of --loads (default kN)")
+
+
+def _tyre_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("brush tyre (defaults: a passenger tyre like the thesis')")
+    g.add_argument("--width", metavar="LEN", help="contact patch width (default '150 mm')")
+    g.add_argument("--half-length", metavar="LEN",
+                   help="contact half-length at --ref-load (default '55 mm')")
+    g.add_argument("--ref-load", metavar="LOAD", help="reference load (default '3 kN')")
+    g.add_argument("--c-py", metavar="STIFF",
+                   help="lateral tread stiffness per unit patch length (default "
+                        "'8.49e6 N/m^2')")
+    g.add_argument("--pressure-shape", choices=("parabolic", "uniform"), default=None,
+                   help="contact pressure along the patch (default parabolic)")
+    g.add_argument("--speed", metavar="SPEED", help="road speed (default '10 km/h')")
+
+
+# --------------------------------------------------------------------- helpers
+
+
+def parse_loads(text: str, unit: str) -> Any:
+    """``"2:6.5:0.5"`` or ``"2,3,4"`` in ``unit`` -> loads in N (numpy array)."""
+    import numpy as np
+
+    from frictionlaws.errors import InputError
+    from frictionlaws.units import to_si
+
+    text = (text or "").strip()
+    if not text:
+        raise InputError("--loads is empty; expected START:STOP:STEP or A,B,C")
+    try:
+        parts = [float(x) for x in text.replace(":", ",").split(",") if x.strip()]
+    except ValueError:
+        raise InputError(f"--loads '{text}': expected START:STOP:STEP or A,B,C "
+                         "(numbers)") from None
+    if ":" in text:
+        if len(parts) != 3 or text.count(":") != 2:
+            raise InputError(f"--loads '{text}': expected START:STOP:STEP")
+        start, stop, step = parts
+        if not step > 0 or stop < start:
+            raise InputError(f"--loads '{text}': expected START <= STOP and STEP > 0")
+        count = int(np.floor((stop - start) / step + 1e-9)) + 1
+        if count > _MAX_LOADS:
+            raise InputError(f"--loads '{text}' gives {count} loads (at most {_MAX_LOADS})")
+        values = start + step * np.arange(count)
+    else:
+        values = np.array(parts)
+    loads = np.asarray(to_si(values, unit, "F_N", column="--loads"), dtype=float)
+    if loads.size == 0 or not np.all(np.isfinite(loads)) or np.any(loads <= 0):
+        raise InputError(f"--loads '{text}': loads must be positive")
+    return loads
+
+
+def _quantity(text: str | None, kind: str, what: str) -> float | None:
+    from frictionlaws.units import parse_quantity
+
+    if text is None:
+        return None
+    return parse_quantity(text, kind, what=what)
+
+
+def _stiffness(text: str | None) -> float | None:
+    """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
+    from frictionlaws.errors import InputError
+    from frictionlaws.units import unit_registry
+
+    if text is None:
+        return None
+    ureg = unit_registry()
+    try:
+        q = ureg.parse_expression(text.strip())
+    except Exception:  # noqa: BLE001 - pint raises several types
+        raise InputError(f"--c-py '{text}' could not be read; expected e.g. "
+                         "'8.49e6 N/m^2'") from None
+    if not hasattr(q, "units"):
+        raise InputError(f"--c-py '{text}' has no unit; expected e.g. '8.49e6 N/m^2'")
+    target = ureg.parse_units("N/m**2")
+    if q.dimensionality != target.dimensionality:
+        raise InputError(f"--c-py '{text}' is not a force per length per length "
+                         "(N/m^2); expected e.g. '8.49e6 N/m^2'")
+    value = float(q.to(target).magnitude)
+    if not value > 0:
+        raise InputError(f"--c-py '{text}' must be positive")
+    return value
+
+
+def _tyre(args: argparse.Namespace) -> Any:
+    from frictionlaws.tyre.brush import BrushTyre
+
+    kw: dict[str, Any] = {}
+    for opt, key, kind in (("width", "width", "length"),
+                           ("half_length", "half_length_ref", "length"),
+                           ("ref_load", "ref_load", "F_N"), ("speed", "speed", "v")):
+        value = _quantity(getattr(args, opt), kind, "--" + opt.replace("_", "-"))
+        if value is not None:
+            kw[key] = value
+    c_py = _stiffness(args.c_py)
+    if c_py is not None:
+        kw["c_py"] = c_py
+    if args.pressure_shape:
+        kw["pressure"] = args.pressure_shape
+    return BrushTyre(**kw)
+
+
+def _warn(messages: list[str]) -> None:
+    for m in messages:
+        print(f"warning: {m}", file=sys.stderr)
+
+
+# ------------------------------------------------------------------------ run
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.errors import InputError
+
+    cmd = getattr(args, "tyre_command", None)
+    if cmd == "cornering":
+        return _run_cornering(args)
+    if cmd == "thesis":
+        return _run_thesis(args)
+    if cmd == "mf":
+        return _run_mf(args)
+    if cmd == "reduce":
+        return _run_reduce(args)
+    raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce")
+
+
+def _run_cornering(args: argparse.Namespace) -> int:
+    import warnings
+
+    from frictionlaws.errors import ExtrapolationWarning, InputError
+    from frictionlaws.tyre.brush import BrushModel
+
+    from ._common import fit_kwargs
+
+    loads = parse_loads(args.loads, args.load_unit)
+    try:
+        angles = [float(a) for a in args.angles.split(",") if a.strip()]
+    except ValueError:
+        raise InputError(f"--angles '{args.angles}': expected numbers in degrees, "
+                         "e.g. 1,2,3") from None
+    tyre = _tyre(args)
+    notes: list[str] = []
+    if args.params:
+        from frictionlaws.fitting import load_result
+        from frictionlaws.registry import get_law
+
+        source = load_result(args.params)
+        if args.law and get_law(args.law).id != source.law.id:
+            raise InputError(f"--law {args.law} does not match the law in the file "
+                             f"('{source.law.id}')", file=args.params)
+        model = BrushModel(source, tyre=tyre)
+        notes.append(f"parameters from {args.params}")
+    else:
+        if not args.law:
+            raise InputError("--law is required (except with --params)")
+        if args.fit:
+            from frictionlaws.fitting import fit
+
+            result = fit(args.law, args.fit, **fit_kwargs(args))
+            model = BrushModel(result, tyre=tyre)
+            m = result.metrics
+            notes.append(f"law fitted to {result.data.get('name')}: "
+                         + ", ".join(f"{k} = {p.value:.6g} {p.unit}".rstrip()
+                                     for k, p in result.params.items())
+                         + f" (R^2 {m['r2']:.4f}, RMSE {m['rmse']:.4g})")
+            notes.extend(f"fit: {w}" for w in result.warnings)
+        elif args.preset:
+            model = BrushModel(args.law, preset=args.preset, tyre=tyre)
+        else:
+            model = BrushModel(args.law, parse_floats(args.set, "--set"), tyre=tyre)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        res = model.cornering(loads, angles)
+    if args.json:
+        out = res.to_dict()
+        out["notes"] = notes
+        print(json.dumps(out, indent=2))
+    else:
+        params = ", ".join(f"{k} = {v:.6g}" for k, v in res.params.items()) or "-"
+        print(f"law: {res.law} ({params}; SI units)")
+        for n in notes:
+            print(f"note: {n}")
+        print("\n".join(line for line in res.table().splitlines()
+                        if not line.startswith("warning: ")))
+        _warn(res.warnings)
+    return 0
+
+
+def _run_thesis(args: argparse.Namespace) -> int:
+    import warnings
+
+    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.tyre.thesis import thesis_comparison
+
+    laws = [x.strip() for x in args.laws.split(",") if x.strip()]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        comp = thesis_comparison(laws=laws, dataset=args.data, tyre=_tyre(args))
+    if args.json:
+        print(json.dumps(comp.to_dict(), indent=2))
+        return 0
+    for label, f in comp.fits.items():
+        print(f"fit {label}: " + ", ".join(f"{k} = {p.value:.6g} {p.unit}".rstrip()
+                                            for k, p in f.params.items())
+              + f" (R^2 {f.metrics['r2']:.4f})")
+    lines = comp.table().splitlines()
+    print("\n".join(line for line in lines if not line.startswith("warning")))
+    _warn([line.split(": ", 1)[1] for line in lines if line.startswith("warning")])
+    return 0
+
+
+def _run_mf(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from frictionlaws.tyre.magic_formula import MagicFormula
+
+    mf = MagicFormula.from_file(args.file)
+    loads = (parse_loads(args.loads, args.load_unit) if args.loads
+             else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
+    summary = mf.summary(loads)
+    if args.json:
+        print(json.dumps(summary, indent=2))
+        return 0
+    print(f"{mf.name}: Magic Formula {mf.version}, FNOMIN {mf.fnomin:g} N"
+          + (f", inflation {mf.pressure / 1e6:.3g} MPa" if mf.pressure else ""))
+    for n in mf.notes:
+        print(f"note: {n}")
+    print(f"{'Fz [kN]':>8}  {'mu_x peak':>9}  {'mu_y peak':>9}  {'Kx [kN]':>9}  "
+          f"{'Ky [kN/rad]':>11}")
+    for i, fz in enumerate(summary["loads_N"]):
+        print(f"{fz / 1000:>8.4g}  {summary['mu_x_peak'][i]:>9.4f}  "
+              f"{summary['mu_y_peak'][i]:>9.4f}  {summary['K_x_N'][i] / 1000:>9.2f}  "
+              f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}")
+    lim = mf.limits.get("fz")
+    if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
+        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: "
+              "extrapolation", file=sys.stderr)
+    return 0
+
+
+def _run_reduce(args: argparse.Namespace) -> int:
+    from frictionlaws.errors import InputError
+    from frictionlaws.tyre.reduce import reduce_mf
+
+    loads = parse_loads(args.load, args.load_unit)
+    if loads.size != 1:
+        raise InputError("--load takes one load")
+    red = reduce_mf(args.file, args.law, fz=float(loads[0]), side=args.side,
+                    slip_max=args.slip_max, n=args.points)
+    if args.save:
+        red.fit.save(args.save)
+    if args.json:
+        print(json.dumps(red.to_dict(), indent=2))
+    else:
+        print(red.report())
+        if args.save:
+            print(f"saved: {args.save}")
+    return 0

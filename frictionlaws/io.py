@@ -1,0 +1,1008 @@
+"""Datasets: read tribometer tables in the user's columns and units, into SI.
+
+A dataset is a table with one friction coefficient per row and the conditions
+it was measured at.  The canonical columns are
+
+=========== ============================== ======================= =====
+column      meaning                        unit in the file        SI
+=========== ============================== ======================= =====
+``mu``      friction coefficient           none (or ``-``)         ``-``
+``p``       contact pressure               required, e.g. ``MPa``  Pa
+``v``       sliding velocity               required, e.g. ``m/s``  m/s
+``T``       temperature                    required, e.g. ``degC`` K
+``F_N``     normal load                    required, e.g. ``N``,   N
+                                           ``kgf``, ``kg``
+``s``       slip ratio                     none, ``-`` or ``%``    ``-``
+``mu_std``  std. deviation of replicate mu none                    ``-``
+``n``       number of replicates           none                    ``-``
+``surface`` counter-surface (text)         ``-``                   ``-``
+=========== ============================== ======================= =====
+
+Units go in the header in square brackets (``p [MPa]``), or through the
+``units`` argument (``--units p=MPa``) for files whose header has none.  Column
+names may be aliases (``cof``, ``pressure``, ``speed``, ``load``...) or be
+mapped explicitly (``--map mu=FC,p=CP,v=DV``).  The full schema, the rules for
+what is an error and what is a reported drop, and the provenance of the
+packaged datasets are in ``datasets/README.md``.
+
+Every problem with the user's input raises :class:`~frictionlaws.errors.InputError`
+naming the file, the column and the row (the line number a text editor or
+spreadsheet shows; the header of a file without comments is row 1).  Rows are
+never dropped silently: each drop is written to :attr:`Dataset.notes`.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import units as _units
+from .errors import InputError
+
+__all__ = [
+    "CANONICAL",
+    "VARIABLE_COLUMNS",
+    "ALIASES",
+    "Dataset",
+    "load_dataset",
+    "list_datasets",
+    "parse_mapping",
+    "parse_units",
+    "canonical_name",
+]
+
+#: Canonical columns, in the order a dataset stores and writes them.
+CANONICAL: tuple[str, ...] = ("mu", "p", "v", "T", "F_N", "s", "mu_std", "n", "surface")
+#: The canonical columns that are independent variables of a law.
+VARIABLE_COLUMNS: tuple[str, ...] = ("p", "v", "T", "F_N", "s")
+_NUMERIC = tuple(c for c in CANONICAL if c != "surface")
+_DIMENSIONLESS = ("mu", "s", "mu_std", "n")
+
+#: Accepted column names for each canonical column.  The canonical names
+#: themselves match exactly (``T`` is temperature, ``t`` is not); these
+#: aliases match case-insensitively, with spaces, ``_`` and ``-`` equivalent.
+ALIASES: dict[str, tuple[str, ...]] = {
+    "mu": ("mu", "μ", "cof", "coef", "friction", "friction coefficient",
+           "coefficient of friction", "friction coef", "mu mean", "mean mu"),
+    "p": ("p", "pressure", "contact pressure", "normal pressure", "nominal pressure"),
+    "v": ("v", "velocity", "speed", "sliding velocity", "sliding speed", "slip velocity",
+          "slip speed"),
+    "T": ("temperature", "temp", "surface temperature"),
+    "F_N": ("f_n", "fn", "load", "normal load", "normal force", "force normal"),
+    "s": ("slip", "slip ratio", "longitudinal slip", "kappa", "κ"),
+    "mu_std": ("mu_std", "mu std", "std mu", "std", "sd", "stdev", "std dev",
+               "standard deviation", "mu sd", "sd mu"),
+    "n": ("count", "replicates", "repeats", "n tests", "n repeats", "n replicates"),
+    "surface": ("surface", "counter surface", "countersurface", "counterface", "material"),
+}
+
+#: Cell contents read as a missing value (the row is then dropped and reported).
+MISSING_TOKENS = frozenset({"", "nan", "na", "n/a", "#n/a", "null", "none", "-", "—", "–"})
+
+_HEADER_UNIT = re.compile(r"^(?P<name>.*?)\s*\[(?P<unit>[^\[\]]*)\]\s*$")
+_DELIMITERS = (";", "\t", ",")
+_DELIMITER_NAMES = {";": "';'", "\t": "tab", ",": "','"}
+_PACKAGED_PREFIX = "packaged:"
+# A data row may start with a spreadsheet error value; it is data, not a comment.
+_SPREADSHEET_ERROR = re.compile(
+    r"^[\"']?#(N/A|VALUE!|DIV/0!|REF!|NUM!|NAME\?|NULL!)", re.IGNORECASE)
+
+
+def _norm(name: str) -> str:
+    return re.sub(r"[\s_\-]+", " ", name.strip().lower()).strip()
+
+
+_ALIAS_LOOKUP: dict[str, str] = {}
+for _canon, _names in ALIASES.items():
+    for _alias in _names:
+        _ALIAS_LOOKUP[_norm(_alias)] = _canon
+
+_CANON_KEYS = {c.lower(): c for c in CANONICAL}
+
+
+def canonical_name(key: str, *, what: str = "name") -> str:
+    """The canonical column for a key of ``--map``/``--units`` (``"f_n"`` -> ``"F_N"``).
+
+    Raises
+    ------
+    InputError
+        When ``key`` is not one of :data:`CANONICAL`.
+    """
+    k = key.strip()
+    if k in CANONICAL:
+        return k
+    if k.lower() in _CANON_KEYS:
+        return _CANON_KEYS[k.lower()]
+    raise InputError(
+        f"{what} '{k}' is not a dataset column; expected one of {', '.join(CANONICAL)}"
+    )
+
+
+def _parse_pairs(text: str | Sequence[str] | Mapping[str, str] | None, option: str,
+                 example: str) -> dict[str, str]:
+    if text is None:
+        return {}
+    if isinstance(text, Mapping):
+        items = [(str(k), str(v)) for k, v in text.items()]
+    else:
+        parts: list[str] = []
+        for chunk in ([text] if isinstance(text, str) else list(text)):
+            parts.extend(p for p in str(chunk).split(","))
+        items = []
+        for part in parts:
+            if not part.strip():
+                if len(parts) > 1:
+                    continue
+                raise InputError(f"{option} is empty; expected e.g. {option} {example}")
+            if "=" not in part:
+                raise InputError(
+                    f"{option}: '{part.strip()}' is not NAME=VALUE; expected e.g. "
+                    f"{option} {example}"
+                )
+            k, v = part.split("=", 1)
+            items.append((k, v))
+    out: dict[str, str] = {}
+    for k, v in items:
+        k, v = k.strip(), v.strip()
+        if not k or not v:
+            raise InputError(
+                f"{option}: '{k}={v}' has an empty name or value; expected e.g. "
+                f"{option} {example}"
+            )
+        canon = canonical_name(k, what=f"{option} name")
+        if canon in out:
+            raise InputError(f"{option}: '{canon}' is given twice")
+        out[canon] = v
+    return out
+
+
+def parse_mapping(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[str, str]:
+    """Parse ``"mu=FC,p=CP,v=DV"`` into ``{"mu": "FC", "p": "CP", "v": "DV"}``.
+
+    Keys are canonical column names (case-insensitive: ``f_n`` is ``F_N``);
+    values are the user's column names.  A list of such strings (a repeated
+    ``--map`` option) or a dict is accepted too.
+
+    Raises
+    ------
+    InputError
+        On text that is not ``NAME=COLUMN`` pairs, an unknown canonical name, a
+        name given twice or one column mapped twice.
+    """
+    out = _parse_pairs(text, "--map", "mu=FC,p=CP,v=DV")
+    seen: dict[str, str] = {}
+    for canon, col in out.items():
+        if col in seen:
+            raise InputError(
+                f"--map: column '{col}' is mapped to both '{seen[col]}' and '{canon}'"
+            )
+        seen[col] = canon
+    return out
+
+
+def parse_units(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[str, str]:
+    """Parse ``"p=MPa,v=km/h"`` into ``{"p": "MPa", "v": "km/h"}``.
+
+    Only the syntax is checked here; each unit is checked against its column
+    (with pint) when the data are loaded.
+
+    Raises
+    ------
+    InputError
+        On text that is not ``NAME=UNIT`` pairs or an unknown canonical name.
+    """
+    return _parse_pairs(text, "--units", "p=MPa,v=m/s")
+
+
+# --------------------------------------------------------------------------- Dataset
+@dataclass(eq=False)
+class Dataset:
+    """A friction dataset in canonical SI columns.
+
+    Attributes
+    ----------
+    frame : pandas.DataFrame
+        Canonical columns only, in SI: ``mu`` [-], ``p`` [Pa], ``v`` [m/s],
+        ``T`` [K], ``F_N`` [N], ``s`` [-], ``mu_std`` [-], ``n`` [-],
+        ``surface`` (text); only those present.
+    name : str
+        Short name (packaged name or file stem).
+    source : str
+        The path read, ``packaged:NAME``, or ``<DataFrame>``.
+    units : dict
+        Canonical column -> unit as given by the user (``"MPa"``, ``"kg"``;
+        ``""`` for dimensionless).
+    notes : list of str
+        What the loader did that the user should know: ignored columns,
+        dropped rows, unit conventions, derived columns.
+    provenance : str or None
+        Where the data come from (the file's ``#`` comment block).
+    rows : numpy.ndarray or None
+        For each row of ``frame``, the row of the source file (line number);
+        used to name rows in later messages.
+    """
+
+    frame: pd.DataFrame
+    name: str
+    source: str
+    units: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    provenance: str | None = None
+    rows: np.ndarray | None = None
+
+    def __len__(self) -> int:
+        return len(self.frame)
+
+    def __repr__(self) -> str:
+        cols = ", ".join(self.frame.columns)
+        return f"Dataset({self.name!r}, {len(self)} rows, columns: {cols})"
+
+    @property
+    def variables(self) -> set[str]:
+        """Variable columns present (among ``p``, ``v``, ``T``, ``F_N``, ``s``)."""
+        return {c for c in VARIABLE_COLUMNS if c in self.frame.columns}
+
+    @property
+    def varying(self) -> set[str]:
+        """Variable columns that take more than one distinct value."""
+        return {c for c in self.variables if self.frame[c].nunique() > 1}
+
+    @property
+    def row_labels(self) -> np.ndarray | None:
+        """Source-file row of each dataset row (same as :attr:`rows`)."""
+        return self.rows
+
+    def row_of(self, index: int) -> int | None:
+        """The source-file row of the dataset row at position ``index``."""
+        if self.rows is None:
+            return None
+        return int(self.rows[index])
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """``{"mu": ..., "p": ..., ...}``: mu and each variable as float arrays in SI."""
+        return {c: self.frame[c].to_numpy(dtype=float)
+                for c in ("mu", *VARIABLE_COLUMNS) if c in self.frame.columns}
+
+    def weights(self) -> np.ndarray | None:
+        """Fit weights from the replicate statistics, or None (unweighted).
+
+        * ``mu_std`` present and > 0 in every row: ``1 / mu_std``, multiplied by
+          ``sqrt(n)`` when ``n`` is present too (1 / standard error of the mean);
+        * otherwise ``n`` present: ``sqrt(n)`` (a mean of n replicates has a
+          variance n times smaller);
+        * otherwise ``None``.
+
+        Weights multiply the residuals (lmfit's convention), so a weight is
+        1 / sigma.  When ``mu_std`` is present but cannot be used (a zero in
+        some row), the loader says so in :attr:`notes`.
+        """
+        f = self.frame
+        n = f["n"].to_numpy(dtype=float) if "n" in f.columns else None
+        if "mu_std" in f.columns:
+            std = f["mu_std"].to_numpy(dtype=float)
+            if len(std) and np.all(std > 0):
+                w = 1.0 / std
+                return w * np.sqrt(n) if n is not None else w
+        if n is not None:
+            return np.sqrt(n)
+        return None
+
+    def subset(self, mask: Any) -> Dataset:
+        """A new dataset with the rows where ``mask`` is true (boolean array-like)."""
+        m = np.asarray(mask, dtype=bool)
+        if m.shape != (len(self),):
+            raise InputError(
+                f"subset mask has shape {m.shape}, expected ({len(self)},) for dataset "
+                f"'{self.name}'"
+            )
+        frame = self.frame.loc[m].reset_index(drop=True)
+        rows = None if self.rows is None else self.rows[m]
+        notes = list(self.notes)
+        if not m.all():
+            notes.append(f"subset: kept {int(m.sum())} of {len(self)} rows")
+        return Dataset(frame, self.name, self.source, dict(self.units), notes,
+                       self.provenance, rows)
+
+    def describe(self) -> str:
+        """A short text: rows, and the range of each column in display units."""
+        lines = [f"{self.name}: {len(self)} rows ({self.source})"]
+        for col in ("mu", *VARIABLE_COLUMNS, "mu_std", "n"):
+            if col not in self.frame.columns:
+                continue
+            unit = _units.display_unit(col)
+            vals = _units.from_si(self.frame[col].to_numpy(dtype=float), unit, col)
+            distinct = len(np.unique(vals))
+            rng = (f"{vals.min():.4g}" if distinct == 1
+                   else f"{vals.min():.4g} .. {vals.max():.4g}")
+            label = _units.header(col, unit)
+            given = self.units.get(col)
+            src = f", given in {given}" if given and given != unit else ""
+            lines.append(f"  {label:<12} {rng}  ({distinct} distinct{src})")
+        if "surface" in self.frame.columns:
+            surfaces = sorted({str(s) for s in self.frame["surface"] if str(s)})
+            lines.append(f"  {'surface':<12} {', '.join(surfaces) or '-'}")
+        for note in self.notes:
+            lines.append(f"note: {note}")
+        return "\n".join(lines)
+
+    def summary(self) -> dict[str, Any]:
+        """A JSON-able summary: name, source, rows, columns with SI ranges, notes."""
+        cols = {}
+        for col in self.frame.columns:
+            if col == "surface":
+                cols[col] = {"values": sorted({str(s) for s in self.frame[col]})}
+                continue
+            vals = self.frame[col].to_numpy(dtype=float)
+            cols[col] = {"unit": _units.si_unit(col), "min": float(vals.min()),
+                         "max": float(vals.max()), "distinct": int(len(np.unique(vals))),
+                         "given_unit": self.units.get(col, "")}
+        return {"name": self.name, "source": self.source, "rows": len(self),
+                "columns": cols, "notes": list(self.notes), "provenance": self.provenance}
+
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write the canonical schema, units in the headers, provenance as ``#`` lines.
+
+        Numbers are written with 15 significant digits in display units
+        (p in MPa, v in m/s, T in degC, F_N in N), so that
+        ``load_dataset(path)`` gives back the same SI values.
+        """
+        path = Path(path)
+        cols = [c for c in CANONICAL if c in self.frame.columns]
+        headers = [_units.header(c) if c in _units.QUANTITIES else c for c in cols]
+        columns: list[list[str]] = []
+        for c in cols:
+            if c == "surface":
+                columns.append([str(s) for s in self.frame[c]])
+                continue
+            unit = _units.display_unit(c)
+            vals = _units.from_si(self.frame[c].to_numpy(dtype=float), unit, c)
+            columns.append([format(float(x), ".15g") for x in vals])
+        with path.open("w", encoding="utf-8", newline="") as fh:
+            if self.provenance:
+                for line in self.provenance.splitlines():
+                    fh.write(f"# {line}".rstrip() + "\n")
+            writer = csv.writer(fh, lineterminator="\n")
+            writer.writerow(headers)
+            for row in zip(*columns, strict=True):
+                writer.writerow(row)
+        return path
+
+
+# --------------------------------------------------------------------------- reading text
+@dataclass
+class _Table:
+    """Raw cells of a table, before columns are resolved."""
+
+    headers: list[str]
+    columns: list[list[Any]]
+    rows: list[int]  # source row of each data row
+    source: str
+    comments: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    decimal_comma: bool = False
+    from_file: bool = True
+    delimiter: str | None = None
+
+
+def _decode(raw: bytes, source: str) -> tuple[str, str | None]:
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:
+            return raw.decode("utf-16"), None
+        except UnicodeDecodeError:
+            pass
+    head = raw[:8192]
+    controls = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
+    if b"\x00" in head or controls > max(2, len(head) // 20):
+        raise InputError(
+            "is not a text CSV file (binary content, e.g. a spreadsheet or an image); "
+            "export the data as CSV text",
+            file=source,
+        )
+    try:
+        return raw.decode("utf-8-sig"), None
+    except UnicodeDecodeError:
+        pass
+    for enc in ("cp1252", "latin-1"):
+        try:
+            return raw.decode(enc), f"file is not UTF-8; read it as {enc}"
+        except UnicodeDecodeError:
+            continue
+    raise InputError("cannot decode the file as text", file=source)  # pragma: no cover
+
+
+def _detect_delimiter(header_line: str) -> str | None:
+    for d in _DELIMITERS:
+        if d in header_line:
+            return d
+    return None
+
+
+def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
+             raw: bytes | None = None) -> _Table:
+    """Read a CSV file into raw cells (used by :func:`load_dataset`).
+
+    Detects ``;``, tab or ``,`` delimiters from the header line, decimal commas
+    (with ``;`` or tab), a UTF-8 BOM (or UTF-16 with BOM), ``#`` comment lines
+    and blank lines.  Cells stay strings; :func:`load_dataset` converts them.
+    """
+    source = source or str(path)
+    if raw is None:
+        p = Path(path)
+        if not p.exists():
+            raise InputError(
+                "file not found; expected a CSV file or the name of a packaged dataset "
+                f"({', '.join(_packaged_names()) or 'none'})",
+                file=source,
+            )
+        if p.is_dir():
+            raise InputError("is a directory; expected a CSV file", file=source)
+        try:
+            raw = p.read_bytes()
+        except OSError as exc:
+            raise InputError(f"cannot read the file ({exc.strerror})", file=source) from None
+    text, enc_note = _decode(raw, source)
+    notes = [enc_note] if enc_note else []
+    lines = text.splitlines()
+    comments: list[str] = []
+    header: list[str] | None = None
+    header_row = 0
+    delimiter: str | None = None
+    data: list[list[str]] = []
+    rows: list[int] = []
+    for number, line in enumerate(lines, start=1):
+        stripped = line.strip()
+        if stripped.startswith("#") and not (header is not None
+                                             and _SPREADSHEET_ERROR.match(stripped)):
+            comments.append(stripped[1:].strip() if stripped[1:2] != " " else stripped[2:])
+            continue
+        if not stripped:
+            continue
+        if header is None:
+            delimiter = _detect_delimiter(line)
+            header = _split(line, delimiter)
+            header_row = number
+            continue
+        if delimiter is None and any(d in line for d in _DELIMITERS):
+            found = next(_DELIMITER_NAMES[d] for d in _DELIMITERS if d in line)
+            raise InputError(
+                f"the header has a single column '{header[0]}' but this row contains "
+                f"{found}: the header and the data use different delimiters",
+                file=source, row=number,
+            )
+        data.append(_split(line, delimiter))
+        rows.append(number)
+    if header is None:
+        raise InputError(
+            "file is empty (no header line); expected a header such as "
+            "'mu,p [MPa],v [m/s]' followed by data rows",
+            file=source,
+        )
+    if not data:
+        raise InputError(
+            f"file has a header (row {header_row}) but no data rows",
+            file=source,
+        )
+    headers = [h.strip() for h in header]
+    ncol = len(headers)
+    for cells, number in zip(data, rows, strict=True):
+        if len(cells) > ncol:
+            extra = cells[ncol:]
+            if any(c.strip() for c in extra):
+                raise InputError(
+                    f"has {len(cells)} fields but the header has {ncol} "
+                    f"(delimiter {_DELIMITER_NAMES.get(delimiter or '', 'none')}); "
+                    "check the delimiter and the quoting"
+                    + ("; a decimal comma needs ';' or tab as the delimiter"
+                       if delimiter == "," else ""),
+                    file=source, row=number,
+                )
+            del cells[ncol:]
+        elif len(cells) < ncol:
+            if len(cells) == 1 and ncol > 1 and any(d in cells[0] for d in _DELIMITERS):
+                raise InputError(
+                    f"has 1 field but the header has {ncol}: the row uses another "
+                    f"delimiter than the header ({_DELIMITER_NAMES.get(delimiter or '')})",
+                    file=source, row=number,
+                )
+            cells.extend([""] * (ncol - len(cells)))
+    columns = [[cells[j] for cells in data] for j in range(ncol)]
+    decimal_comma = delimiter in (";", "\t")
+    return _Table(headers, columns, rows, source, comments, notes, decimal_comma, True,
+                  delimiter)
+
+
+def _split(line: str, delimiter: str | None) -> list[str]:
+    if delimiter is None:
+        return [line.strip()]
+    return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True))
+
+
+def _table_from_frame(df: pd.DataFrame, source: str) -> _Table:
+    headers = [str(c) for c in df.columns]
+    columns = [df.iloc[:, j].tolist() for j in range(df.shape[1])]
+    rows = list(range(1, len(df) + 1))
+    if not len(df):
+        raise InputError("the DataFrame has no rows", file=source)
+    return _Table(headers, columns, rows, source, from_file=False)
+
+
+# --------------------------------------------------------------------------- building
+def _split_header(h: str) -> tuple[str, str | None]:
+    m = _HEADER_UNIT.match(h)
+    if m:
+        return m.group("name").strip(), m.group("unit").strip()
+    return h.strip(), None
+
+
+def _match_column(wanted: str, headers: list[str], names: list[str]) -> int | None:
+    for pool in (headers, names):
+        hits = [j for j, h in enumerate(pool) if h == wanted]
+        if len(hits) == 1:
+            return hits[0]
+    low = wanted.strip().lower()
+    for pool in (headers, names):
+        hits = [j for j, h in enumerate(pool) if h.lower() == low]
+        if len(hits) == 1:
+            return hits[0]
+    return None
+
+
+def _resolve_name(name: str) -> str | None:
+    if name in CANONICAL:
+        return name
+    return _ALIAS_LOOKUP.get(_norm(name))
+
+
+def _to_float(cell: Any, decimal_comma: bool) -> float | None:
+    """A float, ``nan`` for a missing value, or None when not a number."""
+    if cell is None or (not isinstance(cell, str) and bool(np.ndim(cell) == 0)
+                        and pd.isna(cell)):
+        return math.nan
+    if isinstance(cell, (bool, np.bool_)):
+        return None
+    if isinstance(cell, (int, float, np.integer, np.floating)):
+        return float(cell)
+    text = str(cell).strip()
+    if text.lower() in MISSING_TOKENS:
+        return math.nan
+    if decimal_comma and "," in text:
+        if "." in text or text.count(",") > 1:
+            return None
+        text = text.replace(",", ".")
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def _row_label(table: _Table, i: int) -> int | None:
+    return table.rows[i] if table.from_file else None
+
+
+def _where(table: _Table, i: int) -> str:
+    return "" if table.from_file else f" (DataFrame row position {i})"
+
+
+def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
+           units: Mapping[str, str] | None, area: str | float | None,
+           provenance: str | None) -> Dataset:
+    src = table.source
+    notes = list(table.notes)
+    headers = table.headers
+    # ---- header names and units, duplicates
+    parsed = [_split_header(h) for h in headers]
+    names = [p[0] for p in parsed]
+    seen: dict[str, int] = {}
+    for j, h in enumerate(headers):
+        if not h:
+            if any(str(c).strip() for c in table.columns[j] if c is not None):
+                raise InputError(f"column {j + 1} has no name in the header but holds data",
+                                 file=src)
+            continue
+        if h in seen:
+            raise InputError(
+                f"duplicate column (columns {seen[h] + 1} and {j + 1} have the same "
+                "header); keep one or rename it",
+                file=src, column=h,
+            )
+        seen[h] = j
+    # ---- which column is which canonical
+    listed = ", ".join(h for h in headers if h) or "none"
+    map_ = parse_mapping(mapping) if mapping else {}
+    assigned: dict[str, int] = {}
+    explicit: set[str] = set()
+    for canon, user_col in map_.items():
+        j = _match_column(user_col, headers, names)
+        if j is None:
+            raise InputError(
+                f"--map {canon}={user_col}: no such column in the file (columns: {listed})",
+                file=src, column=user_col,
+            )
+        if j in assigned.values():
+            other = next(c for c, k in assigned.items() if k == j)
+            raise InputError(f"--map: column mapped to both '{other}' and '{canon}'",
+                             file=src, column=headers[j])
+        assigned[canon] = j
+        explicit.add(canon)
+    ignored: list[str] = []
+    for j, nm in enumerate(names):
+        if j in assigned.values() or not headers[j]:
+            continue
+        canon = _resolve_name(nm)
+        if canon is None:
+            ignored.append(headers[j])
+            continue
+        if canon in explicit:
+            notes.append(f"column '{headers[j]}' ignored: {canon} comes from "
+                         f"--map {canon}={map_[canon]}")
+            continue
+        if canon in assigned:
+            raise InputError(
+                f"columns '{headers[assigned[canon]]}' and '{headers[j]}' both give "
+                f"'{canon}'; keep one, or choose with --map {canon}=COLUMN",
+                file=src, column=headers[j],
+            )
+        assigned[canon] = j
+    if "mu" not in assigned:
+        if len([h for h in headers if h]) == 1 and table.from_file:
+            only = headers[0]
+            if re.search(r"[|:]|\S\s+\S", only):
+                raise InputError(
+                    f"found a single column '{only}': the delimiter is not recognised; "
+                    "expected columns separated by ',', ';' or a tab",
+                    file=src,
+                )
+        raise InputError(
+            "no friction coefficient column: expected a column named 'mu' (or cof, "
+            f"friction, ...) or --map mu=COLUMN (columns: {listed})",
+            file=src,
+        )
+    if ignored:
+        notes.append(
+            f"ignored column{'s' if len(ignored) > 1 else ''} not in the schema: "
+            f"{', '.join(ignored)} (use --map to use them)"
+        )
+    # ---- units
+    unit_of: dict[str, str] = {}
+    extra_units = {}
+    for key, unit in (units or {}).items():
+        canon = None
+        try:
+            canon = canonical_name(key, what="--units name")
+        except InputError:
+            j = _match_column(key, headers, names)
+            if j is None:
+                raise InputError(
+                    f"--units {key}={unit}: '{key}' is neither a dataset column "
+                    f"({', '.join(CANONICAL)}) nor a column of the file (columns: {listed})",
+                    file=src,
+                ) from None
+            canon = next((c for c, k in assigned.items() if k == j), None)
+            if canon is None:
+                raise InputError(
+                    f"--units {key}={unit}: the column is not used; map it first, "
+                    f"e.g. --map p={key}",
+                    file=src, column=headers[j],
+                ) from None
+        extra_units[canon] = str(unit).strip()
+    for canon in extra_units:
+        if canon not in assigned:
+            raise InputError(
+                f"--units {canon}={extra_units[canon]}: the file has no '{canon}' column "
+                f"(columns: {listed})",
+                file=src,
+            )
+    for canon, j in assigned.items():
+        header_unit = parsed[j][1]
+        given = extra_units.get(canon)
+        if header_unit is not None and given is not None and header_unit != given:
+            raise InputError(
+                f"the header gives unit '{header_unit}' but --units gives "
+                f"{canon}={given}; give the unit once",
+                file=src, column=headers[j],
+            )
+        unit = header_unit if header_unit is not None else given
+        if canon == "surface":
+            continue
+        if unit is None:
+            if canon in _DIMENSIONLESS:
+                unit = ""
+            elif not table.from_file:
+                unit = _units.si_unit(canon)
+            else:
+                ex = _units.display_unit(canon)
+                raise InputError(
+                    f"column has no unit; give it in the header as '{names[j]} [{ex}]' "
+                    f"or with --units {canon}={ex}",
+                    file=src, column=headers[j],
+                )
+        _units.check_unit(unit, canon, column=headers[j], file=src)
+        unit_of[canon] = unit
+    # ---- numbers
+    values: dict[str, np.ndarray] = {}
+    n_rows = len(table.rows)
+    for canon in [c for c in CANONICAL if c in assigned and c != "surface"]:
+        j = assigned[canon]
+        col = headers[j]
+        out = np.empty(n_rows)
+        for i, cell in enumerate(table.columns[j]):
+            x = _to_float(cell, table.decimal_comma)
+            if x is None:
+                text = str(cell).strip()
+                others = [_DELIMITER_NAMES[d] for d in _DELIMITERS
+                          if d in text and d != table.delimiter]
+                hint = (f" (it contains {others[0]}: does this row use another delimiter "
+                        f"than the header's {_DELIMITER_NAMES.get(table.delimiter or '')}?)"
+                        if others and table.delimiter else "")
+                if table.delimiter == "," and re.fullmatch(r"[-+]?\d+,\d+", text):
+                    hint = " (a decimal comma needs ';' or tab as the delimiter)"
+                raise InputError(
+                    f"non-numeric value '{text}'{_where(table, i)}; expected "
+                    f"a number{' (decimal comma or point)' if table.decimal_comma else ''} "
+                    f"or an empty cell{hint}",
+                    file=src, column=col, row=_row_label(table, i),
+                )
+            if math.isinf(x):
+                raise InputError(f"value '{cell}' is not finite{_where(table, i)}",
+                                 file=src, column=col, row=_row_label(table, i))
+            out[i] = x
+        if np.isnan(out).all():
+            if canon == "mu" or canon in explicit:
+                raise InputError(f"column is empty (every cell is empty or NaN); "
+                                 f"'{canon}' needs values",
+                                 file=src, column=col)
+            notes.append(f"column '{col}' ({canon}) is empty: ignored")
+            unit_of.pop(canon, None)
+            continue
+        values[canon] = out
+    # ---- physical checks (errors), before unit conversion so values are as written
+    checks = {
+        "mu": (lambda x: x < 0, "a friction coefficient must be >= 0"),
+        "p": (lambda x: x < 0, "a contact pressure must be >= 0"),
+        "F_N": (lambda x: x < 0, "a normal load must be >= 0"),
+        "mu_std": (lambda x: x < 0, "a standard deviation must be >= 0"),
+        "n": (lambda x: (x < 1) | (x != np.round(x)),
+              "a number of replicates must be a whole number >= 1"),
+    }
+    si: dict[str, np.ndarray] = {}
+    for canon, arr in values.items():
+        j = assigned[canon]
+        if canon in checks:
+            bad_fn, msg = checks[canon]
+            with np.errstate(invalid="ignore"):
+                bad = np.flatnonzero(bad_fn(arr) & ~np.isnan(arr))
+            if bad.size:
+                i = int(bad[0])
+                more = f" ({bad.size} such rows)" if bad.size > 1 else ""
+                raise InputError(
+                    f"value {table.columns[j][i]}{_where(table, i)} is not allowed: "
+                    f"{msg}{more}",
+                    file=src, column=headers[j], row=_row_label(table, i),
+                )
+        si[canon] = _units.to_si(arr, unit_of[canon], canon, column=headers[j], file=src)
+        note = _units.conversion_note(unit_of[canon], canon, column=headers[j])
+        if note:
+            notes.append(note)
+        if canon == "T":
+            with np.errstate(invalid="ignore"):
+                bad = np.flatnonzero(si[canon] < 0)
+            if bad.size:
+                i = int(bad[0])
+                raise InputError(
+                    f"temperature {table.columns[j][i]} {unit_of[canon]}{_where(table, i)} "
+                    "is below absolute zero (is the unit right?)",
+                    file=src, column=headers[j], row=_row_label(table, i),
+                )
+    # ---- missing values: drop rows and say so
+    keep = np.ones(n_rows, dtype=bool)
+    for canon in CANONICAL:
+        if canon not in si:
+            continue
+        nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
+        if nan_rows.size:
+            keep[nan_rows] = False
+            col = headers[assigned[canon]]
+            if table.from_file:
+                labels = [str(table.rows[i]) for i in nan_rows]
+                shown = ", ".join(labels[:12]) + (", ..." if len(labels) > 12 else "")
+                where = f"row{'s' if len(labels) > 1 else ''} {shown}"
+            else:
+                where = f"positions {', '.join(str(i) for i in nan_rows[:12])}"
+            notes.append(
+                f"dropped {nan_rows.size} row{'s' if nan_rows.size > 1 else ''} "
+                f"({where}): empty or NaN in column '{col}'"
+            )
+    if not keep.any():
+        raise InputError(
+            f"no usable rows: all {n_rows} data rows have an empty or NaN value in "
+            "mu or a variable column",
+            file=src,
+        )
+    # ---- frame
+    frame = pd.DataFrame({c: si[c][keep] for c in CANONICAL if c in si})
+    if "surface" in assigned:
+        j = assigned["surface"]
+        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
+                for c in table.columns[j]]
+        frame["surface"] = pd.Series([s for s, k in zip(surf, keep, strict=True) if k],
+                                     dtype=object)
+    frame = frame[[c for c in CANONICAL if c in frame.columns]]
+    units_given = {c: unit_of.get(c, "") for c in frame.columns if c != "surface"}
+    # ---- p from F_N and area
+    if area is not None:
+        if "p" in frame.columns:
+            notes.append(f"area {area!r} not used: the data have a pressure column")
+        elif "F_N" not in frame.columns:
+            raise InputError(
+                f"--area {area} needs a normal-load column F_N to derive the pressure, "
+                "and the data have none",
+                file=src,
+            )
+        else:
+            a = _units.parse_quantity(area, "area", what="--area", file=src)
+            if not a > 0:
+                raise InputError(f"--area {area} must be > 0", file=src)
+            frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
+            units_given["p"] = f"F_N / area ({area})"
+            notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")
+            frame = frame[[c for c in CANONICAL if c in frame.columns]]
+    if "v" in frame.columns:
+        neg = int((frame["v"] < 0).sum())
+        if neg:
+            notes.append(f"{neg} row{'s' if neg > 1 else ''} with negative v: laws use |v|")
+    if "s" in frame.columns:
+        out_range = int(((frame["s"] < 0) | (frame["s"] > 1)).sum())
+        if out_range:
+            notes.append(f"{out_range} row(s) with slip ratio s outside 0..1")
+    if "mu_std" in frame.columns and not (frame["mu_std"] > 0).all():
+        zero = int((frame["mu_std"] <= 0).sum())
+        alt = "sqrt(n)" if "n" in frame.columns else "none (unweighted fit)"
+        notes.append(f"mu_std is 0 in {zero} row(s): weights cannot be 1/mu_std; "
+                     f"weights used: {alt}")
+    rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
+    return Dataset(frame.reset_index(drop=True), name, src, units_given, notes, provenance,
+                   rows)
+
+
+# --------------------------------------------------------------------------- packaged
+def _datasets_dir() -> Any:
+    """The packaged datasets directory (an importlib.resources Traversable)."""
+    from importlib import resources
+
+    try:
+        return resources.files("frictionlaws._datasets")
+    except ModuleNotFoundError:  # a source checkout not (re)installed
+        here = Path(__file__).resolve().parent.parent / "datasets"
+        return here
+
+
+def _packaged_names() -> list[str]:
+    try:
+        base = _datasets_dir()
+        return sorted(p.name[:-4] for p in base.iterdir() if p.name.endswith(".csv"))
+    except (OSError, FileNotFoundError):  # pragma: no cover - broken install
+        return []
+
+
+def _header_info(text: str) -> tuple[str, str, int]:
+    """Title (first comment line), provenance (all comment lines), data rows."""
+    comments: list[str] = []
+    count = -1
+    for line in text.splitlines():
+        s = line.strip()
+        if s.startswith("#"):
+            comments.append(s[2:] if s[1:2] == " " else s[1:])
+        elif s:
+            count += 1
+    title = comments[0] if comments else ""
+    return title, "\n".join(comments), max(count, 0)
+
+
+def list_datasets() -> list[dict[str, Any]]:
+    """The packaged datasets: ``name``, ``title``, ``rows``, ``provenance``.
+
+    The title is the first ``#`` line of the file and the provenance its whole
+    comment block; ``rows`` counts the data lines.
+    """
+    base = _datasets_dir()
+    out = []
+    for name in _packaged_names():
+        text = (base / f"{name}.csv").read_text(encoding="utf-8-sig")
+        title, prov, rows = _header_info(text)
+        out.append({"name": name, "title": title, "rows": rows, "provenance": prov})
+    return out
+
+
+# --------------------------------------------------------------------------- entry point
+def load_dataset(
+    name_or_path: str | os.PathLike[str] | pd.DataFrame | Mapping[str, Any] | Dataset,
+    *,
+    mapping: Mapping[str, str] | str | None = None,
+    units: Mapping[str, str] | str | None = None,
+    area: str | float | None = None,
+) -> Dataset:
+    """Load a dataset from a CSV file, a packaged dataset name or a DataFrame.
+
+    Parameters
+    ----------
+    name_or_path : str, path, DataFrame, dict or Dataset
+        A CSV path; the name of a packaged dataset (see :func:`list_datasets`,
+        e.g. ``"thesis-steel"``); a DataFrame or dict of columns (canonical or
+        aliased names; columns without a unit in the name are taken as SI); or a
+        :class:`Dataset`, returned unchanged.
+    mapping : dict or str, optional
+        Canonical column -> the user's column, e.g. ``{"mu": "FC", "p": "CP"}``
+        or ``"mu=FC,p=CP"``.
+    units : dict or str, optional
+        Units of columns whose header has none, e.g. ``{"p": "MPa"}`` or
+        ``"p=MPa,v=m/s"``.
+    area : str or float, optional
+        Nominal contact area, ``"314.16 mm^2"`` or a float in m^2: when the
+        data have a normal load ``F_N`` but no pressure, ``p = F_N / area``.
+
+    Returns
+    -------
+    Dataset
+
+    Raises
+    ------
+    InputError
+        For a missing, empty, binary or malformed file, an unknown or
+        wrong-dimension unit, a missing ``mu`` column, a non-numeric cell, a
+        negative pressure, load or friction coefficient, a bad mapping, or when
+        no row is left after dropping rows with missing values.  The message
+        names the file, column and row.
+    """
+    if isinstance(mapping, str):
+        mapping = parse_mapping(mapping)
+    if isinstance(units, str):
+        units = parse_units(units)
+    if isinstance(name_or_path, Dataset):
+        if mapping or units or area is not None:
+            raise InputError(
+                f"dataset '{name_or_path.name}' is already loaded; mapping, units and area "
+                "apply only when reading a file or a DataFrame"
+            )
+        return name_or_path
+    if isinstance(name_or_path, pd.DataFrame):
+        table = _table_from_frame(name_or_path, "<DataFrame>")
+        return _build(table, "dataframe", mapping, units, area, None)
+    if isinstance(name_or_path, Mapping):
+        try:
+            frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in name_or_path.items()})
+        except ValueError as exc:
+            raise InputError(f"cannot build a table from the dict: {exc}") from None
+        table = _table_from_frame(frame, "<dict>")
+        return _build(table, "data", mapping, units, area, None)
+    if not isinstance(name_or_path, (str, os.PathLike)):
+        raise InputError(
+            f"cannot load a dataset from a {type(name_or_path).__name__}; expected a path, "
+            "a packaged dataset name, a DataFrame or a Dataset"
+        )
+    text = os.fspath(name_or_path)
+    path = Path(text)
+    if not path.exists() and text in _packaged_names():
+        raw = (_datasets_dir() / f"{text}.csv").read_bytes()
+        table = _read_csv(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
+        prov = "\n".join(table.comments) or None
+        return _build(table, text, mapping, units, area, prov)
+    if not path.exists() and text.startswith(_PACKAGED_PREFIX):
+        if text[len(_PACKAGED_PREFIX):] in _packaged_names():
+            return load_dataset(text[len(_PACKAGED_PREFIX):], mapping=mapping, units=units,
+                                area=area)
+        raise InputError(
+            f"no packaged dataset '{text[len(_PACKAGED_PREFIX):]}' (packaged: "
+            f"{', '.join(_packaged_names())})"
+        )
+    table = _read_csv(path, source=text)
+    prov = "\n".join(table.comments) or None
+    return _build(table, path.stem, mapping, units, area, prov)

@@ -1,0 +1,39 @@
+"""Friction laws inside tyre models.
+
+* :class:`BrushModel` / :class:`BrushTyre`: a steady-state brush tyre whose
+  local friction limit is any sliding law mu(p, v) (lateral F_y(alpha),
+  longitudinal F_x(kappa), cornering stiffness against load);
+* :func:`thesis_comparison`: the source thesis' cornering experiment (constant
+  mu against friction fitted to its tribometer data) beside its Table 6-2;
+* :class:`MagicFormula`: the PAC2002 / MF 5.2 and MF 6.1/6.2 pure-slip forces
+  from ADAMS ``.tir`` or JSON property files (:func:`read_property_file`);
+* :func:`reduce_mf`: fit a simple slip law (``pacejka``, ``burckhardt``) to a
+  Magic Formula curve at one load.
+
+Units are SI everywhere (N, m, Pa, m/s, rad).
+"""
+
+from .brush import BrushModel, BrushTyre, CorneringResult
+from .magic_formula import MagicFormula, MFCoefficients
+from .reduce import Reduction, equivalent_pacejka, mf_slip_curve, reduce_mf
+from .thesis import TABLE_6_2, ThesisComparison, thesis_comparison, thesis_ratios
+from .tir import PropertyFile, read_property_file, write_tir
+
+__all__ = [
+    "BrushModel",
+    "BrushTyre",
+    "CorneringResult",
+    "MagicFormula",
+    "MFCoefficients",
+    "PropertyFile",
+    "read_property_file",
+    "write_tir",
+    "Reduction",
+    "reduce_mf",
+    "equivalent_pacejka",
+    "mf_slip_curve",
+    "TABLE_6_2",
+    "ThesisComparison",
+    "thesis_comparison",
+    "thesis_ratios",
+]

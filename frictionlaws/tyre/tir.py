@@ -1,0 +1,470 @@
+"""Magic Formula property files: the ADAMS ``.tir`` text format and its JSON variant.
+
+A property file is a set of named sections, each a set of ``KEY = value``
+entries.  Two spellings of the same content are read here:
+
+* **ADAMS .tir** (text)::
+
+      $------------------------------------------------ comment line
+      ! another comment line
+      [LONGITUDINAL_COEFFICIENTS]
+      PCX1                     = 1.6      $Shape factor Cfx
+      PDX1                     = 1.1      $Longitudinal friction Mux at Fznom
+      [UNITS]
+      LENGTH                   = 'meter'
+
+  ``$`` starts a comment anywhere outside quotes, ``!`` and ``$`` at the start
+  of a line make it a comment, values are numbers (Fortran ``1.0D+00`` too) or
+  quoted strings, and a few sections hold tables: a ``{col1 col2}`` header
+  followed by rows of numbers.
+* **JSON** (the layout used by the example files in ``datasets/mf-examples``):
+  one object whose members that are objects are the sections (``"MODEL"``,
+  ``"LONGITUDINAL_COEFFICIENTS"``...); other members (``"Name"``, ``"Mass"``)
+  are kept as metadata.
+
+Both give a :class:`PropertyFile`.  Keys and section names are case-insensitive
+(stored in upper case).  Anything malformed raises
+:class:`~frictionlaws.errors.InputError` naming the file and line.  The
+``[UNITS]`` section is honoured: :meth:`PropertyFile.si` converts the
+dimensional entries (loads, lengths, pressures, stiffnesses) to SI with pint.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError
+
+__all__ = ["PropertyFile", "read_property_file", "read_tir", "read_json", "write_tir",
+           "format_tir", "json_to_tir", "converted_header", "CHRONO_PROVENANCE"]
+
+#: Provenance of the packaged example property files (datasets/mf-examples).
+CHRONO_PROVENANCE = ("Project Chrono, data/vehicle/generic/tire/ (commit 7689fbc0), "
+                     "BSD-3-Clause, Copyright (c) Chrono Development Team; example data, "
+                     "not measured")
+
+Value = float | str
+
+_SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
+_KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
+_TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
+_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eEdD][-+]?\d+)?$")
+
+#: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`.
+#: Everything else a Magic Formula uses is dimensionless or an angle (radians).
+DIMENSIONAL = {
+    ("VERTICAL", "FNOMIN"): "force",
+    ("VERTICAL", "VERTICAL_STIFFNESS"): "force/length",
+    ("VERTICAL", "VERTICAL_DAMPING"): "force*time/length",
+    ("VERTICAL_FORCE_RANGE", "FZMIN"): "force",
+    ("VERTICAL_FORCE_RANGE", "FZMAX"): "force",
+    ("DIMENSION", "UNLOADED_RADIUS"): "length",
+    ("DIMENSION", "WIDTH"): "length",
+    ("DIMENSION", "RIM_RADIUS"): "length",
+    ("DIMENSION", "RIM_WIDTH"): "length",
+    ("OPERATING_CONDITIONS", "INFLPRES"): "pressure",
+    ("OPERATING_CONDITIONS", "NOMPRES"): "pressure",
+    ("TIRE_CONDITIONS", "IP"): "pressure",
+    ("TIRE_CONDITIONS", "IP_NOM"): "pressure",
+    ("INFLATION_PRESSURE_RANGE", "PRESMIN"): "pressure",
+    ("INFLATION_PRESSURE_RANGE", "PRESMAX"): "pressure",
+    ("MODEL", "LONGVL"): "length/time",
+}
+
+
+@dataclass
+class PropertyFile:
+    """The content of a Magic Formula property file.
+
+    Attributes
+    ----------
+    sections : dict
+        Section name (upper case) -> {key (upper case) -> float or str}.
+    tables : dict
+        Section name -> (column names, list of rows) for table sections.
+    metadata : dict
+        Top-level JSON members that are not sections (``Name``, ``Mass``...).
+    path : str
+        Where it was read from (``"<memory>"`` when built in code).
+    format : str
+        ``"tir"`` or ``"json"``.
+    lines : dict
+        (section, key) -> line number in a ``.tir`` file, for messages.
+    comments : dict
+        (section, key) -> the trailing ``$comment`` of a ``.tir`` entry.
+    """
+
+    sections: dict[str, dict[str, Value]]
+    tables: dict[str, tuple[list[str], list[list[float]]]] = field(default_factory=dict)
+    metadata: dict[str, Any] = field(default_factory=dict)
+    path: str = "<memory>"
+    format: str = "tir"
+    lines: dict[tuple[str, str], int] = field(default_factory=dict)
+    comments: dict[tuple[str, str], str] = field(default_factory=dict)
+
+    # ----------------------------------------------------------------- access
+    def has(self, section: str, key: str) -> bool:
+        """True when ``[section] key`` is present."""
+        return key.upper() in self.sections.get(section.upper(), {})
+
+    def get(self, section: str, key: str, default: Any = None) -> Any:
+        """The raw value of ``[section] key`` (float or str), or ``default``."""
+        return self.sections.get(section.upper(), {}).get(key.upper(), default)
+
+    def number(self, section: str, key: str, default: float | None = None) -> float:
+        """``[section] key`` as a float (file units); ``default`` when absent.
+
+        Raises
+        ------
+        InputError
+            When the entry is absent and no default is given, or is not a number.
+        """
+        section, key = section.upper(), key.upper()
+        value = self.sections.get(section, {}).get(key)
+        if value is None:
+            if default is None:
+                raise InputError(f"[{section}] {key} is missing", file=self.path)
+            return float(default)
+        if isinstance(value, str):
+            raise InputError(f"[{section}] {key} = '{value}' is text, expected a number",
+                             file=self.path, row=self.lines.get((section, key)))
+        return float(value)
+
+    def text(self, section: str, key: str, default: str | None = None) -> str | None:
+        """``[section] key`` as text (numbers are formatted), or ``default``."""
+        value = self.get(section, key)
+        if value is None:
+            return default
+        return value if isinstance(value, str) else _format_number(value)
+
+    def coefficients(self, *sections: str) -> dict[str, float]:
+        """All numeric entries of ``sections`` merged into one dict (upper-case keys)."""
+        out: dict[str, float] = {}
+        for sec in sections:
+            for k, v in self.sections.get(sec.upper(), {}).items():
+                if not isinstance(v, str):
+                    out[k] = float(v)
+        return out
+
+    # ------------------------------------------------------------------ units
+    def unit(self, kind: str) -> str:
+        """The unit the file declares for ``kind`` (LENGTH, FORCE, ANGLE, MASS, TIME, PRESSURE).
+
+        Missing entries mean SI (meter, newton, radian, kg, second, pascal).
+        """
+        defaults = {"LENGTH": "meter", "FORCE": "newton", "ANGLE": "radian", "MASS": "kg",
+                    "TIME": "second", "PRESSURE": ""}
+        value = self.text("UNITS", kind, defaults[kind.upper()])
+        return (value or "").strip()
+
+    def si(self, section: str, key: str, default: float | None = None) -> float:
+        """``[section] key`` converted to SI with the file's ``[UNITS]`` (pint).
+
+        Dimensionless entries are returned unchanged.  ``default`` is taken as
+        already SI.
+        """
+        section, key = section.upper(), key.upper()
+        if not self.has(section, key):
+            if default is None:
+                raise InputError(f"[{section}] {key} is missing", file=self.path)
+            return float(default)
+        value = self.number(section, key)
+        kind = DIMENSIONAL.get((section, key))
+        if kind is None:
+            return value
+        return value * self.si_factor(kind)
+
+    def si_factor(self, kind: str) -> float:
+        """Factor from the file's unit of ``kind`` (e.g. ``"force/length"``) to SI."""
+        from ..units import unit_registry
+
+        ureg = unit_registry()
+        pieces = {"force": self.unit("FORCE"), "length": self.unit("LENGTH"),
+                  "time": self.unit("TIME")}
+        if kind == "pressure" and self.unit("PRESSURE"):
+            expr, target = _pint_name(self.unit("PRESSURE")), "pascal"
+        else:
+            formula = "force/length**2" if kind == "pressure" else kind
+            expr = re.sub(r"\b(force|length|time)\b",
+                          lambda m: f"({_pint_name(pieces[m.group(1)])})", formula)
+            target = re.sub(r"\b(force|length|time)\b",
+                            lambda m: {"force": "newton", "length": "meter",
+                                       "time": "second"}[m.group(1)], formula)
+        try:
+            return float(ureg.Quantity(1.0, ureg.parse_units(expr)).to(target)
+                         .magnitude)
+        except Exception as exc:  # noqa: BLE001 - pint raises several types
+            raise InputError(f"[UNITS] cannot convert '{expr}' to {target} ({exc})",
+                             file=self.path) from None
+
+    def check_angle_unit(self) -> None:
+        """Raise when the file's angles are not in radians (coefficients assume radians)."""
+        unit = self.unit("ANGLE").lower()
+        if unit not in ("radian", "radians", "rad"):
+            from ..units import unit_registry
+
+            ureg = unit_registry()
+            try:
+                factor = float(ureg.Quantity(1.0, _pint_name(unit)).to("radian").magnitude)
+            except Exception:  # noqa: BLE001
+                factor = math.nan
+            if factor != 1.0:
+                raise InputError(
+                    f"[UNITS] ANGLE = '{unit}': only property files with angles in radians "
+                    "are supported (slip-angle and camber coefficients are defined per "
+                    "radian); convert the file", file=self.path,
+                    row=self.lines.get(("UNITS", "ANGLE")))
+
+    def __repr__(self) -> str:
+        return (f"<PropertyFile {self.path!r} ({self.format}): "
+                f"{len(self.sections)} sections>")
+
+
+def _pint_name(unit: str) -> str:
+    """Unit names as ADAMS writes them -> names pint knows."""
+    u = unit.strip().strip("'").strip()
+    aliases = {"METER": "meter", "MM": "millimeter", "CM": "centimeter", "KM": "kilometer",
+               "NEWTON": "newton", "KN": "kilonewton", "N": "newton", "KGF": "kilogram_force",
+               "POUND_FORCE": "pound_force", "LBF": "pound_force", "SECOND": "second",
+               "SEC": "second", "MILLI": "millisecond", "PASCAL": "pascal", "KPA": "kilopascal",
+               "MPA": "megapascal", "BAR": "bar", "PSI": "psi", "RADIAN": "radian",
+               "RADIANS": "radian", "DEGREE": "degree", "DEGREES": "degree", "DEG": "degree"}
+    return aliases.get(u.upper(), u)
+
+
+def _format_number(x: float) -> str:
+    if float(x).is_integer() and abs(x) < 1e15:
+        return str(int(x))
+    return repr(float(x))
+
+
+# ------------------------------------------------------------------- reading
+
+
+def read_property_file(path: str | Path) -> PropertyFile:
+    """Read a ``.tir`` or ``.json`` property file (chosen by content, then suffix).
+
+    Raises
+    ------
+    InputError
+        File missing, unreadable or malformed (with the line number).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("property file not found", file=str(path))
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        text = path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise InputError(f"cannot read ({exc.strerror})", file=str(path)) from None
+    if text.lstrip().startswith("{") or path.suffix.lower() == ".json":
+        return read_json(text, source=str(path))
+    return read_tir(text, source=str(path))
+
+
+def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> PropertyFile:
+    """Read the JSON variant (a text or an already decoded mapping)."""
+    if isinstance(text, str):
+        try:
+            doc = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise InputError(f"not valid JSON: {exc.msg}", file=source, row=exc.lineno) from None
+    else:
+        doc = text
+    if not isinstance(doc, Mapping):
+        raise InputError("expected a JSON object whose members are the sections", file=source)
+    sections: dict[str, dict[str, Value]] = {}
+    metadata: dict[str, Any] = {}
+    for name, body in doc.items():
+        if isinstance(body, Mapping):
+            sec = str(name).upper()
+            if sec in sections:
+                raise InputError(f"section '{name}' appears twice (case-insensitive)",
+                                 file=source)
+            entries: dict[str, Value] = {}
+            for key, value in body.items():
+                k = str(key).upper()
+                if k in entries:
+                    raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
+                                     file=source)
+                if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+                    raise InputError(
+                        f"[{sec}] {key}: expected a number or a string, got "
+                        f"{type(value).__name__}", file=source)
+                if isinstance(value, float) and not math.isfinite(value):
+                    raise InputError(f"[{sec}] {key} is not finite", file=source)
+                entries[k] = float(value) if isinstance(value, (int, float)) else value
+            sections[sec] = entries
+        else:
+            metadata[str(name)] = body
+    if not sections:
+        raise InputError("no sections found (expected members such as "
+                         "\"LONGITUDINAL_COEFFICIENTS\": {...})", file=source)
+    return PropertyFile(sections, metadata=metadata, path=source, format="json")
+
+
+def _strip_comment(text: str) -> tuple[str, str]:
+    """Split ``value $comment`` at the first ``$`` outside single quotes."""
+    quoted = False
+    for i, ch in enumerate(text):
+        if ch == "'":
+            quoted = not quoted
+        elif ch == "$" and not quoted:
+            return text[:i].rstrip(), text[i + 1:].strip()
+    return text.rstrip(), ""
+
+
+def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
+    raw = raw.strip()
+    if not raw:
+        raise InputError(f"{key} has no value", file=source, row=lineno)
+    if raw[0] in "'\"":
+        quote = raw[0]
+        end = raw.find(quote, 1)
+        if end < 0:
+            raise InputError(f"{key}: unterminated string {raw}", file=source, row=lineno)
+        if raw[end + 1:].strip():
+            raise InputError(f"{key}: unexpected text after the string: {raw[end + 1:]!r}",
+                             file=source, row=lineno)
+        return raw[1:end]
+    if _NUMBER.match(raw):
+        value = float(raw.replace("d", "e").replace("D", "E"))
+        if not math.isfinite(value):
+            raise InputError(f"{key} = {raw} is not finite", file=source, row=lineno)
+        return value
+    if " " in raw or "\t" in raw:
+        raise InputError(f"{key} = {raw!r}: expected one number or a quoted string",
+                         file=source, row=lineno)
+    return raw  # a bare word (e.g. TRUE): kept as text
+
+
+def read_tir(text: str, *, source: str = "<memory>") -> PropertyFile:
+    """Parse the text of an ADAMS ``.tir`` property file."""
+    sections: dict[str, dict[str, Value]] = {}
+    tables: dict[str, tuple[list[str], list[list[float]]]] = {}
+    lines: dict[tuple[str, str], int] = {}
+    comments: dict[tuple[str, str], str] = {}
+    current: str | None = None
+    table: tuple[list[str], list[list[float]]] | None = None
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip().lstrip("\ufeff")
+        if not line or line[0] in "$!":
+            continue
+        m = _SECTION.match(line)
+        if m:
+            current = m.group(1).upper()
+            if current in sections:
+                raise InputError(f"section [{current}] appears twice", file=source, row=lineno)
+            sections[current] = {}
+            table = None
+            continue
+        if current is None:
+            raise InputError(f"entry before the first [SECTION]: {line!r}", file=source,
+                             row=lineno)
+        m = _TABLE_HEADER.match(line)
+        if m:
+            cols = m.group(1).split()
+            if not cols:
+                raise InputError("empty table header {}", file=source, row=lineno)
+            if current in tables:
+                raise InputError(f"section [{current}] has two tables", file=source, row=lineno)
+            table = (cols, [])
+            tables[current] = table
+            continue
+        m = _KEY.match(line)
+        if m:
+            key = m.group(1).upper()
+            value_text, comment = _strip_comment(m.group(2))
+            if (current, key) in lines:
+                raise InputError(
+                    f"[{current}] {key} is given twice (lines {lines[(current, key)]} and "
+                    f"{lineno}); remove one", file=source, row=lineno)
+            sections[current][key] = _parse_value(value_text, source, lineno, key)
+            lines[(current, key)] = lineno
+            if comment:
+                comments[(current, key)] = comment
+            table = None
+            continue
+        if table is not None:
+            body, _ = _strip_comment(line)
+            parts = body.split()
+            try:
+                row = [float(p.replace("d", "e").replace("D", "E")) for p in parts]
+            except ValueError:
+                raise InputError(f"[{current}] table row is not numeric: {line!r}",
+                                 file=source, row=lineno) from None
+            if len(row) != len(table[0]):
+                raise InputError(
+                    f"[{current}] table row has {len(row)} values, the header "
+                    f"{{{' '.join(table[0])}}} names {len(table[0])}", file=source, row=lineno)
+            table[1].append(row)
+            continue
+        raise InputError(f"cannot read line {line!r}: expected KEY = value, [SECTION], "
+                         "a $comment or a table row", file=source, row=lineno)
+    if not sections:
+        raise InputError("no [SECTION] found: not a .tir property file", file=source)
+    return PropertyFile(sections, tables, path=source, format="tir", lines=lines,
+                        comments=comments)
+
+
+# ------------------------------------------------------------------- writing
+
+
+def format_tir(pf: PropertyFile, *, header: Iterable[str] = ()) -> str:
+    """The ``.tir`` text of ``pf`` (sections in their order, tables included).
+
+    ``header`` lines are written first as ``!`` comments (e.g. provenance).
+    """
+    out = [f"! {h}" if h else "!" for h in header]
+    for sec, entries in pf.sections.items():
+        out.append("$" + "-" * (78 - len(sec)) + sec.lower())
+        out.append(f"[{sec}]")
+        for key, value in entries.items():
+            text = f"'{value}'" if isinstance(value, str) else _format_number(value)
+            comment = pf.comments.get((sec, key))
+            line = f"{key:<26} = {text}"
+            if comment:
+                line = f"{line:<50} ${comment}"
+            out.append(line)
+        if sec in pf.tables:
+            cols, rows = pf.tables[sec]
+            out.append("{" + " ".join(cols) + "}")
+            out.extend(" ".join(_format_number(x) for x in row) for row in rows)
+    return "\n".join(out) + "\n"
+
+
+def write_tir(pf: PropertyFile, path: str | Path, *, header: Iterable[str] = ()) -> Path:
+    """Write ``pf`` as an ADAMS ``.tir`` file (see :func:`format_tir`)."""
+    path = Path(path)
+    path.write_text(format_tir(pf, header=header), encoding="utf-8")
+    return path
+
+
+def converted_header(source: str, provenance: str) -> list[str]:
+    """Header lines that label a ``.tir`` written from another file as a conversion."""
+    return [
+        f"CONVERTED by frictionlaws from {source}: not an original ADAMS property file.",
+        "Same sections, keys and values as the source; its non-section members follow.",
+        f"Source: {provenance}",
+    ]
+
+
+def json_to_tir(src: str | Path, dst: str | Path, *, provenance: str) -> Path:
+    """Write the JSON property file ``src`` as a ``.tir`` file ``dst``, labelled as converted.
+
+    Top-level JSON members that are not sections (``Name``, ``Mass``...) are
+    written as header comments so that nothing is lost.
+    """
+    src = Path(src)
+    pf = read_property_file(src)
+    header = converted_header(src.name, provenance)
+    for k, v in pf.metadata.items():
+        header.append(f"JSON member {k}: {json.dumps(v)}")
+    return write_tir(pf, dst, header=header)

@@ -1,0 +1,135 @@
+"""``frictionlaws tyre``: cornering, thesis, mf, reduce."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from frictionlaws.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+
+
+def run(capsys, *argv):
+    code = main(["tyre", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cornering_with_set_prints_units(capsys):
+    code, out, err = run(capsys, "cornering", "--law", "coulomb", "--set", "mu0=0.9")
+    assert code == 0, err
+    assert "CS [kN/deg]" in out and "load [kN]" in out and "SI units" in out
+    rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
+    loads = [float(r[0]) for r in rows]
+    assert loads == [2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0, 6.5]
+    cs = np.array([float(r[1]) for r in rows])
+    assert cs[-1] / cs[0] == pytest.approx(3.25, rel=2e-3)
+    assert "CS(6.5 kN) / CS(2 kN) = 3.250" in out
+
+
+def test_cornering_preset_and_json(capsys):
+    code, out, _ = run(capsys, "cornering", "--law", "coulomb", "--preset", "thesis-fe-1.0",
+                       "--loads", "2,4", "--angles", "1,3", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert d["loads_kN"] == [2.0, 4.0] and d["angles_deg"] == [1.0, 3.0]
+    assert d["params"] == {"mu0": 1.0}
+    assert len(d["cornering_stiffness_kN_per_deg"]) == 2
+
+
+def test_cornering_load_units_and_tyre_options(capsys):
+    code, out, _ = run(capsys, "cornering", "--law", "coulomb", "--set", "mu0=0.9",
+                       "--loads", "2000:4000:1000", "--load-unit", "N", "--width", "120 mm",
+                       "--half-length", "6 cm", "--c-py", "9 N/mm^2", "--speed", "20 km/h",
+                       "--pressure-shape", "uniform", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert d["loads_kN"] == [2.0, 3.0, 4.0]
+    t = d["tyre"]
+    assert t["width"] == pytest.approx(0.12) and t["half_length_ref"] == pytest.approx(0.06)
+    assert t["c_py"] == pytest.approx(9e6) and t["speed"] == pytest.approx(20 / 3.6)
+    assert t["pressure"] == "uniform"
+
+
+def test_cornering_fit_and_params_file(capsys, tmp_path):
+    code, out, err = run(capsys, "cornering", "--law", "thirion", "--fit", "thesis-steel",
+                         "--loads", "2,6.5")
+    assert code == 0
+    assert "law fitted to thesis-steel" in out and "1/Pa" in out
+    assert "extrapolated" in err  # the patch pressures exceed the data's 0.25 MPa
+    saved = tmp_path / "thirion.json"
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--save", str(saved)]) == 0
+    capsys.readouterr()
+    code, out2, _ = run(capsys, "cornering", "--params", str(saved), "--loads", "2,6.5")
+    assert code == 0
+    table = [line for line in out.splitlines() if line.strip()[:1].isdigit()]
+    table2 = [line for line in out2.splitlines() if line.strip()[:1].isdigit()]
+    assert table == table2
+    code, _, err = run(capsys, "cornering", "--params", str(saved), "--law", "coulomb")
+    assert code == 2 and "does not match" in err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "6:2:1"], "START <= STOP"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "a,b"], "numbers"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads=-1,2"], "positive"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--load-unit", "m"], "force"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--width", "3 s"], "length"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--c-py", "5 N"], "N/m^2"),
+    (["cornering", "--law", "schallamach", "--preset", "hertz"], "F_N"),
+    (["cornering", "--law", "nope", "--set", "a=1"], "unknown law"),
+    (["cornering", "--set", "mu0=0.9"], "--law is required"),
+    (["cornering", "--law", "coulomb"], "one of the arguments"),
+    (["mf", "missing.tir"], "not found"),
+    (["reduce", "MagicFormula62", "--law", "thirion", "--load", "4"], "sliding law"),
+])
+def test_bad_input_exits_2_with_one_line(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert message in err
+    assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_thesis_command(capsys):
+    code, out, err = run(capsys, "thesis")
+    assert code == 0
+    assert "Table 6-2" in out and "kN/deg" in out
+    ratio_line = next(line for line in out.splitlines() if line.strip().startswith("ratio"))
+    values = [float(x) for x in ratio_line.replace("|", " ").split()[1:]]
+    assert values[0] == pytest.approx(3.25, abs=0.01)   # coulomb 0.9
+    assert values[2] < 0.85 * values[0]                 # thirion fitted to thesis-steel
+    assert values[3] == pytest.approx(2.648, abs=1e-3)  # thesis mu 0.9
+    assert values[5] == pytest.approx(1.891, abs=1e-3)  # thesis S120
+    assert "fit thirion (thesis-steel)" in out
+    assert "extrapolated" in err
+
+
+def test_mf_command(capsys):
+    code, out, _ = run(capsys, "mf", str(EXAMPLES / "MagicFormula62_Parameters.json"),
+                       "--loads", "3,6.752")
+    assert code == 0
+    assert "Magic Formula 6.2" in out and "FNOMIN 6752 N" in out and "mu_x peak" in out
+    assert "1.1632" in out  # PDX1 at the nominal load
+    code, out, _ = run(capsys, "mf", "MagicFormula52", "--json")
+    d = json.loads(out)
+    assert d["version"] == "5.2" and d["fnomin_N"] == 9416.6
+    assert len(d["mu_x_peak"]) == 3
+
+
+def test_reduce_command(capsys, tmp_path):
+    saved = tmp_path / "reduced.json"
+    code, out, _ = run(capsys, "reduce", "MagicFormula62", "--law", "pacejka", "--load", "4",
+                       "--save", str(saved))
+    assert code == 0
+    assert "reduced to law 'pacejka'" in out and "RMSE" in out and "(Magic Formula:" in out
+    doc = json.loads(saved.read_text())
+    assert doc["law"] == "pacejka" and doc["format"] == "frictionlaws-fit-result"
+    code, out, _ = run(capsys, "reduce", str(EXAMPLES / "MagicFormula52_Parameters.json"),
+                       "--law", "burckhardt", "--load", "5000", "--load-unit", "N", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert d["load_N"] == 5000.0 and d["errors"]["rmse"] > 0
