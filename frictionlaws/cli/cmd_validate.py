@@ -1,0 +1,51 @@
+"""``frictionlaws validate``: run the validation suite against published values."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "validate", help="run the validation suite against published values",
+        description="Run the validation suite: the library against figures from the source "
+        "thesis and the law catalogue, the FE manuals' friction formulas, independent "
+        "reference implementations of every law, a parameter-recovery study and the "
+        "thesis' tyre conclusion. Prints, per case, the source, the expected and obtained "
+        "values, the tolerance and pass or fail. Exit code 0 when every case passes, 1 "
+        "when any fails, 2 for an unknown case name.")
+    p.add_argument("--case", metavar="NAME", action="append", default=[],
+                   help="run only this case (id or shell pattern such as 'thesis-*'; "
+                        "repeatable)")
+    p.add_argument("--list", action="store_true", help="list the cases and their sources")
+    p.add_argument("--json", action="store_true", help="print the report as JSON")
+    return p
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.validation import list_cases, run_validation
+    from frictionlaws.validation.core import select_cases
+
+    names = [n for chunk in args.case for n in chunk.split(",") if n.strip()]
+    if args.list:
+        for case in select_cases(list_cases(), names or None):
+            print(f"{case.id}: {case.title}\n    source: {case.source}")
+        return 0
+    select_cases(list_cases(), names or None)  # unknown names: InputError -> exit 2
+
+    def progress(res) -> None:
+        if not args.json:
+            print(res.format() + "\n", flush=True)
+
+    report = run_validation(names or None, progress=progress)
+    if args.json:
+        print(report.to_json())
+    else:
+        for w in report.warnings:
+            print(f"warning: {w}")
+        print(report.summary_line())
+        if not report.passed:
+            failed = ", ".join(r.id for r in report.results if not r.passed)
+            print(f"failed: {failed}", file=sys.stderr)
+    return 0 if report.passed else 1
