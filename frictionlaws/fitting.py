@@ -427,16 +427,30 @@ def _clip(value: float, lo: float, hi: float) -> float:
     return value
 
 
-def _jacobian(func: Any, x: np.ndarray) -> np.ndarray:
-    """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``."""
+def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.ndarray:
+    """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``.
+
+    The first step is 1e-6 of the parameter's magnitude or of its typical
+    scale (``scales``, e.g. the declared default), whichever is larger, or
+    1e-6 in its unit when both are zero.  When that step moves the model by
+    less than 1e-7 of its size (a parameter sitting near a bound of 0, say),
+    the step grows until it does, so every column stands well above round-off.
+    """
     f0 = func(x)
+    size = max(float(np.linalg.norm(f0)), 1e-300)
     jac = np.empty((f0.size, x.size))
     for j in range(x.size):
-        h = 1e-6 * max(abs(x[j]), 1e-8)
-        xp, xm = x.copy(), x.copy()
-        xp[j] += h
-        xm[j] -= h
-        jac[:, j] = (func(xp) - func(xm)) / (2 * h)
+        mag = max(abs(x[j]), abs(scales[j]) if scales is not None else 0.0)
+        h = 1e-6 * mag if mag > 0 else 1e-6
+        for _ in range(8):
+            xp, xm = x.copy(), x.copy()
+            xp[j] += h
+            xm[j] -= h
+            diff = func(xp) - func(xm)
+            if np.linalg.norm(diff) >= 1e-7 * size or not np.all(np.isfinite(diff)):
+                break
+            h *= 10.0
+        jac[:, j] = diff / (2 * h)
     return jac
 
 
@@ -654,7 +668,9 @@ def fit(
         return out * (w if w is not None else 1.0)
 
     theta0 = np.array([values[k] for k in vary])
-    jac = _jacobian(residual_vec, theta0)
+    scales = np.array([law.param(k).default if k in law.param_names else law.setting(k).value
+                       for k in vary])
+    jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
     for var in law.variables:
         xs = np.unique(fd.arrays[var])

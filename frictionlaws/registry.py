@@ -20,6 +20,8 @@ from .law import FAMILIES, Law
 __all__ = ["Registry", "REGISTRY", "register", "get_law", "list_laws", "ENTRY_POINT_GROUP"]
 
 ENTRY_POINT_GROUP = "frictionlaws.laws"
+#: Reference temperature of ``<law>+wlf`` laws looked up by name [K] (20 degC).
+DEFAULT_T_REF = 293.15
 
 
 class Registry:
@@ -29,6 +31,7 @@ class Registry:
         self._laws: dict[str, Law] = {}
         self._names: dict[str, str] = {}
         self._plugin_errors: list[str] = []
+        self._derived: dict[str, Law] = {}
 
     def register(self, law: Law) -> Law:
         """Add ``law``; raise ValueError when its id or an alias is taken."""
@@ -62,11 +65,29 @@ class Registry:
         key2 = str(name).strip().lower()
         if key2 in self._names:
             return self._laws[self._names[key2]]
+        if key.endswith("+wlf"):
+            return self._temperature_aware(key[: -len("+wlf")])
         close = difflib.get_close_matches(key, list(self._names), n=3, cutoff=0.6)
         hint = f"; did you mean {', '.join(close)}?" if close else ""
         raise UnknownLawError(
             f"unknown law '{name}'{hint} (run 'frictionlaws laws' for the list)"
         )
+
+    def _temperature_aware(self, base_name: str) -> Law:
+        """``<law>+wlf``: the base law at reduced velocity a_T(T) v.
+
+        Grosch's constants (C1 = 8.86, C2 = 101.6 K) with T_ref =
+        :data:`DEFAULT_T_REF` (20 degC, so T_g is taken as -30 degC).  Built on
+        first use and cached (not listed by :meth:`list`), so fits saved with
+        it load again.  C1, C2 and T_ref are settings: change them with
+        ``fix`` or fit them with ``free``.
+        """
+        from .temperature import with_wlf
+
+        base = self.get(base_name)
+        if base.id not in self._derived:
+            self._derived[base.id] = with_wlf(base, preset="grosch", T_ref=DEFAULT_T_REF)
+        return self._derived[base.id]
 
     def ids(self) -> list[str]:
         """All law ids in registration order."""

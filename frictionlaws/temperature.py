@@ -328,7 +328,9 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
     ``log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref)``.  Its symbolic form,
     evaluation, fitting (C1, C2, T_ref are settings that may be freed) and
     ``show`` all work through the standard :class:`~frictionlaws.law.Law`
-    interface.  The base law's parameters keep their meaning *at T_ref*.
+    interface.  The base law's parameters keep their meaning *at T_ref*.  The
+    base law's floors (``v_min``) apply to the measured velocity, before the
+    shift, as for every law.
 
     Parameters
     ----------

@@ -239,3 +239,19 @@ def test_duplicate_registration_is_rejected():
 def test_variables_table_is_si():
     assert VARIABLES["p"].unit == "Pa" and VARIABLES["v"].unit == "m/s"
     assert VARIABLES["T"].unit == "K" and VARIABLES["F_N"].unit == "N"
+
+
+def test_temperature_aware_variant_by_name():
+    """``<law>+wlf`` resolves to the law at reduced velocity, without joining list_laws()."""
+    base = get_law("savkoor")
+    law = get_law("Savkoor+WLF")
+    assert law is get_law("savkoor+wlf")
+    assert "T" in law.variables and law.id == "savkoor+wlf"
+    assert law.id not in {x.id for x in list_laws()}
+    params = CASES["savkoor"].params
+    T_ref = law.setting_values["T_ref"]
+    assert law(p=1e5, v=0.3, T=T_ref, **params) == pytest.approx(base(p=1e5, v=0.3, **params))
+    # 10 K warmer acts as a lower velocity: v * a_T(T)
+    log_aT = -8.86 * 10 / (101.6 + 10)
+    assert law(p=1e5, v=0.3, T=T_ref + 10, **params) == pytest.approx(
+        base(p=1e5, v=0.3 * 10**log_aT, **params), rel=1e-12)
