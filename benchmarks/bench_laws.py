@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.law import F_MIN, V_MIN
+from frictionlaws.law import F_MIN, P_MIN, V_MIN
 
 # Hand-written numpy expressions of each law (x: variables, q: parameters and settings).
 # Written independently of the law modules, with the same floors the laws declare.
@@ -41,7 +41,47 @@ HAND = {
     ** 2 + q["a3"] * (x["p"] / 1e6) ** 3 + q["a4"] * np.abs(x["v"]) + q["a5"] * np.abs(x["v"])
     ** 2 + q["a6"] * np.abs(x["v"]) ** 3,
 }
-_ = V_MIN  # laws with log-velocity floors add their hand-written forms here with V_MIN
+
+
+def _vf(x):
+    """|v| floored at V_MIN, as the log-velocity laws declare."""
+    return np.maximum(np.abs(x["v"]), V_MIN)
+
+
+def _pf(x):
+    """p floored at P_MIN, as the laws singular at p = 0 declare."""
+    return np.maximum(x["p"], P_MIN)
+
+
+def _bell(q, lv):
+    return q["mu_s"] + (q["mu_m"] - q["mu_s"]) * np.exp(-(q["h10"] ** 2) * lv**2)
+
+
+HAND.update({
+    "savkoor": lambda x, q: (_pf(x) / q["p_ref"]) ** q["n"] * _bell(q, np.log10(_vf(x) / q["v_m"])),
+    "nackenhorst": lambda x, q: q["A"] * (_pf(x) / q["p_ref"]) ** q["n"] + q["b0"]
+    + q["b1"] * np.log(_vf(x) / q["v_ref"]) + q["b2"] * np.log(_vf(x) / q["v_ref"]) ** 2,
+    "nackenhorst-thesis": lambda x, q: q["c1"] * (_pf(x) / q["c2"]) ** q["c3"]
+    + q["c4"] * np.log(_vf(x) / q["c5"]) - q["c6"] * np.log(_vf(x) / q["c7"]),
+    "huemer": lambda x, q: (q["alpha"] * (_pf(x) / q["p_ref"]) ** (q["n"] - 1.0) + q["beta"])
+    / (1.0 + q["b"] * (_vf(x) / q["v_ref"]) ** (-1.0 / q["m_v"])
+       + q["c"] * (_vf(x) / q["v_ref"]) ** (-2.0 / q["m_v"])),
+    "wriggers": lambda x, q: (q["b"] / _pf(x)) * np.arctan(q["d"] * _pf(x))
+    * (2.0 * np.abs(x["v"]) * q["a"] * _pf(x) / (x["v"] ** 2 + (q["a"] * _pf(x)) ** 2)) ** q["c"],
+    "park": lambda x, q: (_pf(x) / q["p0"]) ** (-q["n"]) * _bell(
+        q, np.log10(_vf(x) / q["v_m"])
+        - q["C1"] * (x["T"] - q["T_ref"]) / (q["C2"] + x["T"] - q["T_ref"])),
+    "pacejka": lambda x, q: q["D"] * np.sin(q["C"] * np.arctan(
+        q["B"] * (x["s"] + q["S_h"]) - q["E"] * (q["B"] * (x["s"] + q["S_h"])
+                                             - np.arctan(q["B"] * (x["s"] + q["S_h"])))))
+    + q["S_v"],
+    "burckhardt": lambda x, q: (q["c1"] * (1.0 - np.exp(-q["c2"] * x["s"])) - q["c3"] * x["s"])
+    * np.exp(-q["c4"] * np.abs(x["v"])),
+    "burckhardt-sqrt": lambda x, q: q["c1"] * np.sqrt(x["s"]) - q["c2"] * x["s"],
+    "kiencke-daiss": lambda x, q: q["k_s"] * x["s"] / (q["c1"] * x["s"] ** 2 + q["c2"] * x["s"]
+                                                      + 1.0),
+    "germann": lambda x, q: q["a0"] + q["a1"] * x["s"] + q["a2"] * x["s"] ** 2,
+})
 
 
 def params_for(law):

@@ -1,0 +1,76 @@
+"""``frictionlaws compare``: fit several laws to one dataset and rank them."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ._common import add_data_options, data_kwargs
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    p = sub.add_parser(
+        "compare", help="compare laws on one dataset (fit, CV, extrapolation, report)",
+        description="Fit every applicable law (or the ones given) to a dataset and rank them "
+        "by k-fold cross-validated RMSE. Per law: k, R^2, adjusted R^2, RMSE, MAE, max "
+        "|residual|, AIC, AICc, BIC, Akaike weights (among laws fitted to the same rows), CV "
+        "RMSE, RMSE on the held-out upper part of the pressure/velocity range, a plausibility "
+        "scan over an extended box (0.5 x lowest .. 3 x highest measured value; 0 <= mu <= 5; "
+        "the trend must keep the sign the data show) and residual structure tests. Rows where "
+        "a law is singular (v = 0 in a log-velocity law) are dropped for that law and "
+        "reported; laws the data cannot feed are listed as skipped, laws that fail to fit as "
+        "failed. Exit 0 when at least one law was fitted, 1 when none could be, 2 on bad "
+        "input.")
+    p.add_argument("data", metavar="DATA", help="CSV file or packaged dataset name")
+    which = p.add_mutually_exclusive_group()
+    which.add_argument("--laws", metavar="A,B,...",
+                       help="laws to compare (ids or aliases, comma-separated)")
+    which.add_argument("--family", choices=("sliding", "slip"),
+                       help="compare every law of this family (default: slip when the data "
+                            "have a slip ratio, else sliding)")
+    add_data_options(p)
+    p.add_argument("--folds", type=int, default=5, metavar="K",
+                   help="cross-validation folds (default 5; more than the rows = leave-one-out)")
+    p.add_argument("--holdout", default="0.3", metavar="FRACTION|VAR=F,...",
+                   help="upper fraction of the range held out for the extrapolation test: one "
+                        "number for p and v, or e.g. p=0.3,v=0.2; 0 for none (default 0.3)")
+    p.add_argument("--seed", type=int, default=0,
+                   help="seed of the folds and of the fits' random starts (default 0)")
+    p.add_argument("--starts", type=int, default=None, metavar="N",
+                   help="random starts per non-linear fit (default: the fitter's rule)")
+    p.add_argument("--weights", choices=("auto", "none"), default="auto",
+                   help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
+    p.add_argument("--mu-max", type=float, default=5.0, metavar="MU",
+                   help="upper physical limit of mu in the plausibility scan (default 5)")
+    p.add_argument("--report", metavar="DIR",
+                   help="write report.html (self-contained), report.md, comparison.json and "
+                        "PNG figures to DIR")
+    p.add_argument("--json", action="store_true",
+                   help="print the comparison as one JSON object instead of the table")
+    p.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
+                   help="progress bar on stderr (auto: only on a terminal)")
+    return p
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.compare import compare
+
+    kw = data_kwargs(args)
+    cmp = compare(
+        args.laws, args.data, family=args.family, folds=args.folds, holdout=args.holdout,
+        seed=args.seed, starts=args.starts,
+        weights="auto" if args.weights == "auto" else None,
+        mu_limits=(0.0, args.mu_max),
+        progress={"auto": None, "on": True, "off": False}[args.progress], **kw)
+    written = cmp.write_report(args.report) if args.report else {}
+    if args.json:
+        print(cmp.to_json())
+    else:
+        print(cmp.table())
+        if written:
+            print(f"\nreport: {written['report.html']} (also report.md, comparison.json and "
+                  f"{sum(1 for k in written if not k.startswith(('report', 'comparison')))} "
+                  "PNG figures)")
+    if args.report and args.json:
+        print(f"report: {written['report.html']}", file=sys.stderr)
+    return 0

@@ -1,0 +1,842 @@
+"""The comparison as a console table, Markdown, self-contained HTML and PNG figures.
+
+Figures (matplotlib with the Agg backend, imported only here):
+
+* ``fits_<x>_by_<g>.png``: the data with every fitted law, mu against one
+  variable with one panel per level of the other (mu vs p per velocity, mu vs
+  v per pressure); each curve spans the range of the rows its law was fitted
+  on, and a law is not drawn in a panel all of whose rows it had to drop;
+* ``residuals.png``: for every law, residuals against each variable and the
+  fitted value, and the normal Q-Q plot, with the test p-values;
+* ``extrapolation_holdout.png``: each law fitted below the holdout threshold,
+  with the held-out points it is scored on;
+* ``extrapolation_box.png``: each fully fitted law over the extended box, with
+  the measured range, the physical limits and the points where the
+  plausibility scan flagged it;
+* ``metrics.png``: fit RMSE, cross-validated RMSE and extrapolation RMSE per law.
+
+``report.html`` embeds every PNG as base64 and needs nothing else; ``report.md``
+links the PNG files next to it; ``comparison.json`` is :meth:`Comparison.to_json`.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..law import VARIABLES
+from .extrapolation import evaluate_on, fmt_value
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .core import Comparison, LawComparison
+
+__all__ = ["format_table", "write_report", "make_figures", "Figure"]
+
+#: Most panels in one fits figure (levels with the most rows are shown).
+MAX_PANELS = 8
+DPI = 100
+
+
+# ------------------------------------------------------------------ helpers
+
+
+def _num(x: Any, fmt: str = ".3g") -> str:
+    if x is None:
+        return "n/a"
+    try:
+        xf = float(x)
+    except (TypeError, ValueError):
+        return str(x)
+    if math.isnan(xf):
+        return "n/a"
+    if math.isinf(xf):
+        return "inf" if xf > 0 else "-inf"
+    return format(xf, fmt)
+
+
+def _disp(var: str, x: Any) -> Any:
+    """SI -> display unit (MPa, degC)."""
+    if var == "mu":
+        return x
+    du = VARIABLES[var].display_unit
+    if du == "MPa":
+        return np.asarray(x, float) / 1e6
+    if du == "degC":
+        return np.asarray(x, float) - 273.15
+    return x
+
+
+def _label(var: str) -> str:
+    if var == "mu":
+        return "friction coefficient mu [-]"
+    info = VARIABLES[var]
+    return f"{info.meaning.split(' (')[0]} {var} [{info.display_unit or '-'}]"
+
+
+def _ranges_text(cmp: Comparison) -> str:
+    parts = []
+    for k, x in cmp.data.arrays.items():
+        if k in VARIABLES:
+            parts.append(f"{k} {fmt_value(k, float(np.min(x)))} .. "
+                         f"{fmt_value(k, float(np.max(x)))}")
+    return "; ".join(parts)
+
+
+def _yes(r: LawComparison) -> str:
+    return "yes" if r.plausible else "NO"
+
+
+# -------------------------------------------------------------------- table
+
+
+def _common(cmp: Comparison) -> bool:
+    return cmp.settings.get("ranking_metric") == "cv_rmse_common"
+
+
+def _columns(cmp: Comparison) -> list[str]:
+    cols = ["rank", "law", "k", "n", "R^2", "adj.R^2", "RMSE", "CV RMSE"]
+    if _common(cmp):
+        cols.append("CV common")
+    return cols + ["extrap.RMSE", "AICc", "grp", "weight", "plausible", "resid."]
+
+
+def _rows(cmp: Comparison) -> list[list[str]]:
+    out = []
+    for r in cmp.results:
+        m = r.metrics
+        star = "" if r.cv.complete else "*"
+        row = [str(r.rank), r.law.id, str(m["k"]), str(m["n"]), _num(m["r2"], ".3f"),
+               _num(m["adj_r2"], ".3f"), _num(m["rmse"], ".4f"), _num(r.cv.rmse, ".4f") + star]
+        if _common(cmp):
+            row.append(_num(r.cv_rmse_common, ".4f") + star)
+        row += [_num(r.extrapolation_rmse, ".4f"), _num(m["aicc"], ".1f"),
+                str(r.aic_group), _num(r.akaike_weight, ".3f"), _yes(r),
+                "structure" if r.residuals.structured else "ok"]
+        out.append(row)
+    return out
+
+
+def _header_lines(cmp: Comparison) -> list[str]:
+    d = cmp.data
+    s = cmp.settings
+    hold = ", ".join(sp.describe() for sp in cmp.splits) or "none"
+    return [
+        f"Comparison of {len(cmp.results)} laws on '{d.name}' ({d.n} rows; {_ranges_text(cmp)})",
+        f"ranked by {s['folds']}-fold cross-validated RMSE (seed {s['seed']}"
+        + (", over the rows all laws share" if _common(cmp) else "")
+        + "); RMSE, CV RMSE and extrapolation RMSE are in units of mu (-)",
+        f"extrapolation holdout: {hold}",
+        "plausibility box: " + "; ".join(f"{k} {v['display']}"
+                                         for k, v in s["extended_box"].items())
+        + f"; physical limits {s['mu_limits'][0]:g} <= mu <= {s['mu_limits'][1]:g}",
+    ]
+
+
+def format_table(cmp: Comparison) -> str:
+    """The ranked table with flags, notes, skipped and failed laws (plain text)."""
+    rows = _rows(cmp)
+    columns = _columns(cmp)
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
+              for i, h in enumerate(columns)]
+    left = {1}
+
+    def line(cells: Sequence[str]) -> str:
+        return "  ".join(c.ljust(w) if i in left else c.rjust(w)
+                         for i, (c, w) in enumerate(zip(cells, widths))).rstrip()
+
+    out = _header_lines(cmp) + ["", line(columns)]
+    out += [line(r) for r in rows]
+    if _common(cmp):
+        out.append(f"CV common: CV RMSE over the {cmp.settings['common_rows']} rows every law "
+                   "could use (the ranking criterion, as the laws were fitted to different rows)")
+    if any(not r.cv.complete for r in cmp.results):
+        out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
+    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
+               "within a group only")
+    bad = [r for r in cmp.results if not r.plausible]
+    if bad:
+        out += ["", "IMPLAUSIBLE outside the measured range (extended box):"]
+        for r in bad:
+            for reason in r.plausibility.reasons:
+                out.append(f"  {r.law.id}: {reason}")
+    trends = [t.describe() for t in cmp.trends.values()]
+    if trends:
+        out += ["", "trends the data show: " + "; ".join(trends)]
+    struct = [(r.law.id, s) for r in cmp.results for s in r.residuals.structure]
+    if struct:
+        out += ["", "residual structure (each test at the 5 % level):"]
+        out += [f"  {lid}: {s}" for lid, s in struct]
+    ident = [(r.law.id, w) for r in cmp.results for w in r.fit.warnings]
+    if ident:
+        out += ["", "fit warnings (identifiability, bounds):"]
+        out += [f"  {lid}: {w}" for lid, w in ident]
+    notes = [(r.law.id, n) for r in cmp.results for n in r.notes + r.extra_notes]
+    if notes or cmp.notes or cmp.data.notes:
+        out += ["", "notes:"]
+        out += [f"  {n}" for n in cmp.data.notes + cmp.notes]
+        out += [f"  {lid}: {n}" for lid, n in notes]
+    if cmp.skipped:
+        out += ["", "skipped (cannot be fitted to these data):"]
+        out += [f"  {s['id']}: {s['reason']}" for s in cmp.skipped]
+    if cmp.failed:
+        out += ["", "failed to fit:"]
+        out += [f"  {f['id']}: {f['error']}" for f in cmp.failed]
+    return "\n".join(out)
+
+
+# ------------------------------------------------------------------ figures
+
+
+@dataclass
+class Figure:
+    """One PNG figure of the report."""
+
+    name: str
+    title: str
+    caption: str
+    png: bytes
+
+
+def _styles(cmp: Comparison) -> dict[str, dict[str, Any]]:
+    import matplotlib
+
+    colours = list(matplotlib.colormaps["tab10"].colors) + list(
+        matplotlib.colormaps["Dark2"].colors)
+    dashes = ["-", "--", "-.", ":"]
+    out = {}
+    # tab10 solid, then Dark2 dashed, so neighbouring colours differ in style too
+    for i, r in enumerate(cmp.results):
+        style = 0 if i < 10 else 1 + (i - 10) // 8
+        out[r.law.id] = {"color": colours[i % len(colours)],
+                         "linestyle": dashes[style % len(dashes)]}
+    return out
+
+
+def _law_handles(cmp: Comparison, styles: dict[str, dict[str, Any]],
+                 suffix: dict[str, str] | None = None) -> list[Any]:
+    from matplotlib.lines import Line2D
+
+    suffix = suffix or {}
+    return [Line2D([], [], lw=2, **styles[r.law.id],
+                   label=f"{r.rank}. {r.law.id}{suffix.get(r.law.id, '')}")
+            for r in cmp.results]
+
+
+def _png(fig: Any) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _levels(values: np.ndarray) -> tuple[list[tuple[float, np.ndarray, str]], str]:
+    """Panels for a grouping variable: (representative value, row mask, label), note."""
+    uniq, counts = np.unique(values, return_counts=True)
+    if uniq.size <= MAX_PANELS:
+        return [(float(u), values == u, "") for u in uniq], ""
+    if uniq.size > 3 * MAX_PANELS:
+        edges = np.quantile(values, [0.25, 0.5, 0.75])
+        bins = np.searchsorted(edges, values, side="right")
+        out = []
+        for b in np.unique(bins):
+            m = bins == b
+            out.append((float(np.median(values[m])), m, "bin"))
+        return out, "continuous values grouped into quartile bins (curves at the bin median)"
+    order = sorted(range(uniq.size), key=lambda i: (-counts[i], uniq[i]))[:MAX_PANELS]
+    chosen = sorted(order, key=lambda i: uniq[i])
+    return ([(float(uniq[i]), values == uniq[i], "") for i in chosen],
+            f"{MAX_PANELS} of {uniq.size} levels shown (those with the most rows)")
+
+
+def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[str, float]:
+    """The most common combination of ``others`` among ``rows`` (median if continuous)."""
+    if not others:
+        return {}
+    arr = np.column_stack([cmp.data.arrays[k][rows] for k in others])
+    uniq, counts = np.unique(arr, axis=0, return_counts=True)
+    if counts.max() == 1 and uniq.shape[0] > MAX_PANELS:
+        return {k: float(np.median(cmp.data.arrays[k][rows])) for k in others}
+    best = uniq[int(np.argmax(counts))]
+    return {k: float(v) for k, v in zip(others, best)}
+
+
+def _at_text(level: dict[str, float]) -> str:
+    return ", ".join(f"{k} = {fmt_value(k, v)}" for k, v in level.items())
+
+
+def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
+    lo, hi = float(np.min(mu)), float(np.max(mu))
+    span = max(hi - lo, 0.1 * max(abs(hi), 1e-3))
+    return max(0.0, lo - pad * span) if lo >= 0 else lo - pad * span, hi + pad * span
+
+
+def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
+                 ) -> Figure:
+    import matplotlib.pyplot as plt
+
+    d = cmp.data
+    mu = d.arrays["mu"]
+    xs = d.arrays[x]
+    if g is None:
+        panels, note = [(math.nan, np.ones(d.n, bool), "")], ""
+    else:
+        panels, note = _levels(d.arrays[g])
+    others = [k for k in cmp.design.varying if k not in (x, g)]
+    ncols = min(4, len(panels))
+    nrows = math.ceil(len(panels) / ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(3.6 * ncols + 2.6, 3.0 * nrows + 0.6),
+                             squeeze=False, sharey=True, layout="constrained")
+    ylim = _ylim_data(mu)
+    for ax in axes.ravel()[len(panels):]:
+        ax.set_visible(False)
+    for (level, mask, kind), ax in zip(panels, axes.ravel()):
+        ax.plot(_disp(x, xs[mask]), mu[mask], "o", color="black", ms=5, zorder=5,
+                label="measured")
+        fixed = {g: level} if g is not None else {}
+        fixed.update({k: float(np.median(d.arrays[k][mask])) for k in others})
+        for r in cmp.results:
+            if not (r.rows & mask).any():
+                continue
+            lo, hi = r.fit.data["ranges"].get(x, (float(xs.min()), float(xs.max())))
+            grid = np.linspace(lo, hi, 200) if hi > lo else np.array([lo])
+            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in fixed.items()}}
+            yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
+            ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
+        if g is not None:
+            if kind == "bin":
+                gm = d.arrays[g][mask]
+                title = (f"{g} {fmt_value(g, float(gm.min()))} .. "
+                         f"{fmt_value(g, float(gm.max()))}")
+            else:
+                title = f"{g} = {fmt_value(g, level)}"
+            nr = int(mask.sum())
+            ax.set_title(f"{title} ({nr} row{'s' if nr != 1 else ''})", fontsize=9)
+        ax.set_xlabel(_label(x))
+        ax.set_ylabel(_label("mu"))
+        ax.set_ylim(*ylim)
+        ax.grid(alpha=0.3)
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], marker="o", ls="", color="black", label="measured")]
+    handles += _law_handles(cmp, styles)
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="law (rank)")
+    what = f"mu against {x}" + (f" for each level of {g}" if g else "")
+    fig.suptitle(f"{cmp.data.name}: {what}", fontsize=11)
+    caption = (f"The data with every fitted law: {what}. Each curve spans the {x} range of "
+               "the rows its law was fitted on; a law that dropped all rows of a panel "
+               "(e.g. v = 0 for a log-velocity law) is not drawn there.")
+    if others:
+        caption += f" Other variables at the panel's median ({', '.join(others)})."
+    if note:
+        caption += f" {note}."
+    name = f"fits_{x}" + (f"_by_{g}" if g else "")
+    return Figure(name, what, caption, _png(fig))
+
+
+def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+    import matplotlib.pyplot as plt
+
+    cols = list(cmp.design.varying) + ["fitted", "qq"]
+    n = len(cmp.results)
+    # a fixed layout: constrained layout is slow with dozens of panels
+    height = 2.5 * n + 1.2
+    fig, axes = plt.subplots(n, len(cols), figsize=(3.4 * len(cols), height), squeeze=False)
+    fig.subplots_adjust(left=0.07, right=0.99, bottom=0.5 / height, top=1 - 0.95 / height,
+                        hspace=0.8, wspace=0.34)
+    for i, r in enumerate(cmp.results):
+        res = r.fit.residual
+        sub = cmp.data.subset(r.rows)
+        colour = styles[r.law.id]["color"]
+        for j, c in enumerate(cols):
+            ax = axes[i, j]
+            if c == "qq":
+                osm, osr = r.residuals.normal_quantiles
+                ax.plot(osm, osr, "o", ms=3.5, color=colour)
+                if osm.size > 1 and np.ptp(osm) > 0:
+                    slope, icpt = np.polyfit(osm, osr, 1)
+                    ax.plot(osm, icpt + slope * osm, "-", color="grey", lw=1)
+                ax.set_xlabel("normal quantile [-]", fontsize=8)
+                ax.set_ylabel("ordered residual [-]", fontsize=8)
+                sp = r.residuals.shapiro_p
+                ax.set_title(f"{r.rank}. {r.law.id}: normal Q-Q\n(Shapiro-Wilk p = "
+                             f"{_num(sp, '.2g')})", fontsize=8)
+            else:
+                xv = r.fit.best_fit if c == "fitted" else _disp(c, sub.arrays[c])
+                ax.axhline(0.0, color="grey", lw=0.8)
+                ax.plot(xv, res, "o", ms=3.5, color=colour)
+                t = r.residuals.tests.get(c, {})
+                runs_p = (t.get("runs") or {}).get("p_value")
+                title = "fitted value" if c == "fitted" else c
+                ax.set_title(f"{r.rank}. {r.law.id}: vs {title}\n(runs p = "
+                             f"{_num(runs_p, '.2g')}, Kendall p = "
+                             f"{_num(t.get('kendall_p'), '.2g')})", fontsize=8)
+                ax.set_xlabel("fitted mu [-]" if c == "fitted" else _label(c), fontsize=8)
+                ax.set_ylabel("residual of mu [-]", fontsize=8)
+            ax.tick_params(labelsize=7)
+            ax.grid(alpha=0.3)
+    fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order",
+                 fontsize=11, y=1 - 0.25 / height)
+    caption = ("Residuals of each fitted law (rows in rank order) against each variable and "
+               "against the fitted value, and the normal Q-Q plot. The panel titles give the "
+               "one-sided runs-test p-value (small: residual signs cluster along the "
+               "variable, a systematic misfit) and the Kendall-trend p-value.")
+    return Figure("residuals", "residuals", caption, _png(fig))
+
+
+def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    splits = [s for s in cmp.splits if s.usable]
+    if not splits:
+        return None
+    d = cmp.data
+    mu = d.arrays["mu"]
+    fig, axes = plt.subplots(1, len(splits), figsize=(5.2 * len(splits) + 2.8, 4.4),
+                             squeeze=False, layout="constrained")
+    for split, ax in zip(splits, axes[0]):
+        x = split.variable
+        xs = d.arrays[x]
+        others = [k for k in cmp.design.varying if k != x]
+        level = _mode_level(cmp, split.test, others)
+        match = np.ones(d.n, bool)
+        for k, v in level.items():
+            match &= np.isclose(d.arrays[k], v, rtol=1e-9, atol=0)
+        lo, hi = float(xs.min()), float(xs.max())
+        ax.axvspan(_disp(x, split.threshold), _disp(x, hi + 0.04 * (hi - lo)),
+                   color="tab:red", alpha=0.08)
+        ax.plot(_disp(x, xs[~match]), mu[~match], "o", color="0.75", ms=4, zorder=3)
+        tr = match & ~split.test
+        te = match & split.test
+        ax.plot(_disp(x, xs[tr]), mu[tr], "o", color="black", ms=5, zorder=5)
+        ax.plot(_disp(x, xs[te]), mu[te], "s", mfc="none", mec="tab:red", mew=2, ms=9,
+                zorder=6)
+        grid = np.linspace(lo, hi, 250)
+        for r in cmp.results:
+            h = next((h for h in r.holdouts if h.variable == x), None)
+            if h is None or h.fit is None:
+                continue
+            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in level.items()}}
+            yv = evaluate_on(r.law, h.fit.values, cmp.design, pts)
+            ok = r.rows.any()
+            if ok:
+                ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
+        ax.set_ylim(*_ylim_data(mu, 0.3))
+        ax.set_xlim(_disp(x, lo - 0.04 * (hi - lo)), _disp(x, hi + 0.04 * (hi - lo)))
+        ax.set_xlabel(_label(x))
+        ax.set_ylabel(_label("mu"))
+        at = f" at {_at_text(level)}" if level else ""
+        ax.set_title(f"fitted on {x} <= {fmt_value(x, split.threshold)}, scored above"
+                     f"\n({int(split.test.sum())} held-out rows; curves{at})", fontsize=9)
+        ax.grid(alpha=0.3)
+    handles = [Line2D([], [], marker="o", ls="", color="black", label="training rows"),
+               Line2D([], [], marker="s", ls="", mfc="none", mec="tab:red", mew=2, ms=8,
+                      label="held-out rows"),
+               Line2D([], [], marker="o", ls="", color="0.75", label="rows at other levels"),
+               Patch(color="tab:red", alpha=0.15, label="held-out range")]
+    handles += _law_handles(cmp, styles, {r.law.id: f" ({_num(r.extrapolation_rmse, '.3f')})"
+                                          for r in cmp.results})
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8,
+               title="law (extrapolation RMSE)")
+    fig.suptitle(f"{cmp.data.name}: extrapolation to the held-out upper range", fontsize=11)
+    caption = ("Extrapolation test: each law is fitted on the rows below the threshold only "
+               "and predicts the held-out rows above it (red squares); the legend gives the "
+               "RMSE of mu (-) on the held-out rows of every split, pooled.")
+    return Figure("extrapolation_holdout", "extrapolation to held-out rows", caption,
+                  _png(fig))
+
+
+def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    d = cmp.data
+    mu = d.arrays["mu"]
+    lo_lim, hi_lim = cmp.settings["mu_limits"]
+    vars_ = [k for k in cmp.design.varying if k in cmp.box] or list(cmp.box)[:1]
+    if not vars_:
+        vars_ = []
+    fig, axes = plt.subplots(1, max(1, len(vars_)), figsize=(5.4 * max(1, len(vars_)) + 3.4,
+                                                             4.8),
+                             squeeze=False, layout="constrained")
+    drawn_at: dict[str, list[str]] = {}
+    for x, ax in zip(vars_, axes[0]):
+        blo, bhi = cmp.box[x]
+        xs = d.arrays[x]
+        others = [k for k in cmp.box if k != x and k in cmp.design.varying]
+        level = _mode_level(cmp, np.ones(d.n, bool), others)
+        ax.axvspan(_disp(x, float(xs.min())), _disp(x, float(xs.max())), color="0.85",
+                   alpha=0.6, zorder=0)
+        for lim in (lo_lim, hi_lim):
+            ax.axhline(lim, color="tab:red", lw=1, ls="--", zorder=1)
+        grid = np.unique(np.concatenate([np.linspace(blo, bhi, 400),
+                                         np.geomspace(max(blo, bhi * 1e-4), bhi, 200)]))
+        ax.plot(_disp(x, xs), mu, "o", color="black", ms=4, zorder=6)
+        for r in cmp.results:
+            flag = next((f for f in r.plausibility.flags
+                         if f.kind == "trend" and f.variable == x), None)
+            lev = dict(level)
+            if flag is not None:
+                lev.update({k: v for k, v in flag.at.items() if k != x and k in lev})
+                moved = {k: v for k, v in lev.items() if v != level[k]}
+                if moved:
+                    drawn_at[r.law.id] = drawn_at.get(r.law.id, []) + [
+                        f"{x} panel at {_at_text(moved)}"]
+            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in lev.items()}}
+            yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
+            lw = 2.2 if not r.plausible else 1.2
+            ax.plot(_disp(x, grid), yv, lw=lw, **styles[r.law.id], zorder=4)
+            for f in r.plausibility.flags:
+                if f.kind == "trend" and f.variable == x and f.mu:
+                    ax.plot([_disp(x, f.at[x]), _disp(x, f.to[x])], list(f.mu), "X",
+                            color=styles[r.law.id]["color"], mec="black", ms=9, zorder=7)
+                elif f.kind in ("above-limit", "below-limit") and x in f.at and f.mu:
+                    same = all(math.isclose(f.at.get(k, v), v, rel_tol=1e-6)
+                               for k, v in lev.items())
+                    if same:
+                        yv_clip = min(max(f.mu[0], lo_lim - 0.9), hi_lim + 1.4)
+                        ax.plot(_disp(x, f.at[x]), yv_clip,
+                                "^" if f.kind == "above-limit" else "v",
+                                color=styles[r.law.id]["color"], mec="black", ms=9,
+                                zorder=7)
+        ax.set_xlim(_disp(x, blo), _disp(x, bhi))
+        ax.set_ylim(lo_lim - 1.0, hi_lim + 1.5)
+        ax.set_xlabel(_label(x))
+        ax.set_ylabel(_label("mu"))
+        at = f" at {_at_text(level)}" if level else ""
+        ax.set_title(f"fully fitted laws over the extended {x} range{at}\n"
+                     "(a law whose trend turns is drawn where it turns: see legend)",
+                     fontsize=9)
+        ax.grid(alpha=0.3)
+    handles = [Line2D([], [], marker="o", ls="", color="black", label="measured"),
+               Patch(color="0.85", label="measured range"),
+               Line2D([], [], color="tab:red", ls="--", label="physical limits of mu"),
+               Line2D([], [], marker="X", ls="", color="0.5", mec="black", ms=8,
+                      label="trend reversal (from, to)"),
+               Line2D([], [], marker="^", ls="", color="0.5", mec="black", ms=8,
+                      label="limit exceeded (worst point)")]
+    suffix = {}
+    for r in cmp.results:
+        text = "" if r.plausible else " (IMPLAUSIBLE)"
+        if r.law.id in drawn_at:
+            text += "\n    " + "; ".join(drawn_at[r.law.id])
+        suffix[r.law.id] = text
+    handles += _law_handles(cmp, styles, suffix)
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="law (rank)")
+    fig.suptitle(f"{cmp.data.name}: plausibility outside the measured range", fontsize=11)
+    box = "; ".join(f"{k} {v['display']}" for k, v in cmp.settings["extended_box"].items())
+    caption = (f"Each fully fitted law over the extended box ({box}); grey: the measured "
+               f"range; dashed red: the physical limits {lo_lim:g} <= mu <= {hi_lim:g}. "
+               "Implausible laws are drawn thick; X marks where a law's trend turns against "
+               "the trend the data show (from the running extreme to the worst point); "
+               "triangles mark the worst point outside the limits (clipped to the panel).")
+    return Figure("extrapolation_box", "plausibility over the extended box", caption,
+                  _png(fig))
+
+
+def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+    import matplotlib.pyplot as plt
+
+    res = cmp.results
+    n = len(res)
+    fig, ax = plt.subplots(figsize=(10, 0.7 * n + 1.8), layout="constrained")
+    k = cmp.settings["folds"]
+    series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6"),
+              (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan")]
+    if _common(cmp):
+        series.append((f"{k}-fold CV RMSE, rows all laws share (ranking)",
+                       [r.cv_rmse_common for r in res], "tab:blue"))
+    series.append(("extrapolation RMSE", [r.extrapolation_rmse for r in res], "tab:orange"))
+    hgt = 0.8 / len(series)
+    y = np.arange(n)
+    allv = [v for _, vals, _ in series for v in vals if v is not None and math.isfinite(v)
+            and v > 0]
+    vmin = min(allv) if allv else 1e-3
+    vmax = max(allv) if allv else 1.0
+    for j, (name, vals, colour) in enumerate(series):
+        yy = y + (j - (len(series) - 1) / 2) * hgt
+        good = [v if v is not None and math.isfinite(v) and v > 0 else np.nan for v in vals]
+        ax.barh(yy, good, height=hgt, color=colour, label=name)
+        for yi, v in zip(yy, vals):
+            if v is None or not math.isfinite(v):
+                ax.text(vmin * 0.55, yi, "n/a", va="center", fontsize=7)
+            else:
+                ax.text(v * 1.04, yi, f"{v:.3g}", va="center", fontsize=7)
+    ax.set_xscale("log")
+    ax.set_xlim(vmin * 0.5, vmax * 3.0)
+    ax.set_yticks(y)
+    ax.set_yticklabels([f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
+                        for r in res])
+    for lab, r in zip(ax.get_yticklabels(), res):
+        if not r.plausible:
+            lab.set_color("tab:red")
+    ax.invert_yaxis()
+    ax.set_xlabel("RMSE of mu [-] (log scale)")
+    ax.set_ylabel("law (rank by CV RMSE)")
+    ax.grid(axis="x", alpha=0.3, which="both")
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
+                 "upper range", fontsize=10)
+    caption = ("Fit RMSE (on the rows fitted), cross-validated RMSE (on rows left out of "
+               "each fit; the ranking criterion) and extrapolation RMSE (on the held-out "
+               "upper range), per law in rank order; implausible laws in red.")
+    return Figure("metrics", "metrics", caption, _png(fig))
+
+
+def make_figures(cmp: Comparison) -> list[Figure]:
+    """Render every figure of the report (Agg backend)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    styles = _styles(cmp)
+    figs: list[Figure] = []
+    with plt.rc_context({"font.size": 9, "axes.titlesize": 9}):
+        var = cmp.design.varying
+        if len(var) >= 2:
+            figs.append(_fits_figure(cmp, var[0], var[1], styles))
+            figs.append(_fits_figure(cmp, var[1], var[0], styles))
+        elif len(var) == 1:
+            figs.append(_fits_figure(cmp, var[0], None, styles))
+        figs.append(_residuals_figure(cmp, styles))
+        hold = _holdout_figure(cmp, styles)
+        if hold is not None:
+            figs.append(hold)
+        if cmp.box:
+            figs.append(_box_figure(cmp, styles))
+        figs.append(_metrics_figure(cmp, styles))
+    return figs
+
+
+# ------------------------------------------------------------- md and html
+
+
+def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
+    head = ["rank", "law", "title", "k", "n", "R²", "adj. R²", "RMSE", "MAE", "max |res|",
+            "AIC", "AICc", "BIC", "group", "Akaike w.", "CV RMSE", "CV RMSE (common rows)",
+            "extrap. RMSE", "plausible", "residuals"]
+    rows = []
+    for r in cmp.results:
+        m = r.metrics
+        rows.append([str(r.rank), r.law.id, r.law.title, str(m["k"]), str(m["n"]),
+                     _num(m["r2"], ".4f"), _num(m["adj_r2"], ".4f"), _num(m["rmse"], ".4f"),
+                     _num(m["mae"], ".4f"), _num(m["max_abs_residual"], ".4f"),
+                     _num(m["aic"], ".2f"), _num(m["aicc"], ".2f"), _num(m["bic"], ".2f"),
+                     str(r.aic_group), _num(r.akaike_weight, ".3f"),
+                     _num(r.cv.rmse, ".4f") + ("" if r.cv.complete else " *"),
+                     _num(r.cv_rmse_common, ".4f") + ("" if r.cv.complete else " *"),
+                     _num(r.extrapolation_rmse, ".4f"), _yes(r),
+                     "structure" if r.residuals.structured else "ok"])
+    return head, rows
+
+
+def _sections(cmp: Comparison) -> list[tuple[str, list[Any]]]:
+    """(heading, items) for the prose parts; an item is a str or (str, sub-items)."""
+    out: list[tuple[str, list[Any]]] = []
+    plaus: list[Any] = []
+    for r in cmp.results:
+        if r.plausible:
+            plaus.append(f"{r.law.id}: plausible (mu {_num(r.plausibility.mu_min)} .. "
+                         f"{_num(r.plausibility.mu_max)} over the box)")
+        else:
+            plaus.append((f"{r.law.id}: IMPLAUSIBLE", list(r.plausibility.reasons)))
+    out.append(("Plausibility outside the measured range", plaus))
+    out.append(("Trends the data show", [t.describe() for t in cmp.trends.values()]))
+    ex = []
+    for r in cmp.results:
+        parts = [f"{h.variable}: RMSE {_num(h.rmse, '.4f')} on {h.n_test} held-out rows "
+                 f"(fitted on {h.n_train})" if h.error is None else
+                 f"{h.variable}: {h.error}" for h in r.holdouts]
+        ex.append(f"{r.law.id}: " + ("; ".join(parts) or "no holdout"))
+    out.append(("Extrapolation to the held-out upper range", ex))
+    cv = []
+    for r in cmp.results:
+        folds = ", ".join("no rows" if f is None and i + 1 not in
+                          {x["fold"] for x in r.cv.failed} else
+                          ("failed" if f is None else _num(f, ".3f"))
+                          for i, f in enumerate(r.cv.fold_rmse))
+        cv.append(f"{r.law.id}: CV RMSE {_num(r.cv.rmse, '.4f')} over {r.cv.n_scored} rows; "
+                  f"per fold {folds}" + ("" if r.cv.complete else
+                                         f"; {len(r.cv.failed)} fold(s) failed"))
+    out.append(("Cross-validation", cv))
+    struct: list[Any] = [(r.law.id, list(r.residuals.structure)) for r in cmp.results
+                         if r.residuals.structure]
+    out.append(("Residual structure (each test at the 5 % level)",
+                struct or ["no law shows residual structure at the 5 % level"]))
+    warn: list[Any] = [(r.law.id, list(r.fit.warnings)) for r in cmp.results if r.fit.warnings]
+    out.append(("Fit warnings (identifiability, bounds)", warn or ["none"]))
+    notes: list[Any] = list(cmp.data.notes) + list(cmp.notes)
+    notes += [(r.law.id, r.notes + r.extra_notes) for r in cmp.results
+              if r.notes or r.extra_notes]
+    out.append(("Notes (dropped rows, failed folds)", notes or ["none"]))
+    out.append(("Skipped laws (cannot be fitted to these data)",
+                [f"{s['id']}: {s['reason']}" for s in cmp.skipped] or ["none"]))
+    out.append(("Laws that failed to fit",
+                [f"{f['id']}: {f['error']}" for f in cmp.failed] or ["none"]))
+    return out
+
+
+def _method(cmp: Comparison) -> list[str]:
+    s = cmp.settings
+    box = "; ".join(f"{k} {v['display']}" for k, v in s["extended_box"].items())
+    hold = "; ".join(sp.describe() for sp in cmp.splits) or "none"
+    return [
+        f"Ranking: {s['ranking']}.",
+        f"Cross-validation: {s['folds']} folds, rows shuffled with seed {s['seed']}; the same "
+        "folds for every law; each fold refitted from the law's own data-driven start.",
+        f"Extrapolation: {s['holdout_rule']}. Splits: {hold}.",
+        f"Plausibility box: {box} ({s['extended_box_rule']}); physical limits "
+        f"{s['mu_limits'][0]:g} <= mu <= {s['mu_limits'][1]:g}; {s['trend_rule']} "
+        f"({s['trend_tolerance']['relative']:.0%} of mu, at least "
+        f"{s['trend_tolerance']['absolute']:g}).",
+        f"Akaike weights: {s['akaike_weights']}.",
+        f"Residual tests: {s['residual_tests']}.",
+        "RMSE, MAE, CV RMSE and extrapolation RMSE are in units of mu (dimensionless, -).",
+    ]
+
+
+def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
+    """The report as Markdown, linking the PNG files."""
+    d = cmp.data
+
+    def esc(t: str) -> str:
+        return t.replace("|", "\\|")
+
+    lines = [f"# Comparison of friction laws on {d.name}", "",
+             f"Data: {d.name} ({d.source}), {d.n} rows; {_ranges_text(cmp)}.", ""]
+    lines += [f"- {m}" for m in _method(cmp)] + [""]
+    head, rows = _metric_table(cmp)
+    lines += ["## Ranking", "", "| " + " | ".join(esc(h) for h in head) + " |",
+              "|" + "|".join("---" for _ in head) + "|"]
+    lines += ["| " + " | ".join(esc(c) for c in r) + " |" for r in rows]
+    lines += ["", "`*` cross-validation incomplete. Groups: laws fitted to the same rows; "
+              "AIC-based numbers compare within a group only.", ""]
+    for heading, items in _sections(cmp):
+        lines += [f"## {heading}", ""]
+        for item in items:
+            if isinstance(item, tuple):
+                lines.append(f"- {esc(item[0])}")
+                lines += [f"    - {esc(sub)}" for sub in item[1]]
+            else:
+                lines.append(f"- {esc(item)}")
+        lines.append("")
+    lines += ["## Figures", ""]
+    for f in figures:
+        lines += [f"### {f.title}", "", f"![{f.title}]({f.name}.png)", "", f.caption, ""]
+    return "\n".join(lines)
+
+
+_CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;
+color:#222;max-width:1400px}
+table{border-collapse:collapse;font-size:13px;margin:1em 0}
+th,td{border:1px solid #ccc;padding:3px 5px;text-align:right}
+td.l,th.l{text-align:left}
+td.law{min-width:13em;max-width:19em}
+span.title{font-size:11px;color:#555}
+tr.bad td{background:#fff0f0}
+th{background:#f3f3f3}
+.bad-word{color:#b00;font-weight:bold}
+figure{margin:1.5em 0}
+figure img{max-width:100%;border:1px solid #ddd}
+figcaption{font-size:13px;color:#444;max-width:1100px}
+li{margin:0.2em 0}
+"""
+
+
+def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
+    """The report as one self-contained HTML page (figures embedded as base64 PNG)."""
+    e = html.escape
+    d = cmp.data
+    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
+             f"<title>Comparison of friction laws on {e(d.name)}</title>",
+             f"<style>{_CSS}</style></head><body>",
+             f"<h1>Comparison of friction laws on {e(d.name)}</h1>",
+             f"<p>Data: <b>{e(d.name)}</b> ({e(d.source)}), {d.n} rows; "
+             f"{e(_ranges_text(cmp))}.</p>",
+             "<ul>" + "".join(f"<li>{e(m)}</li>" for m in _method(cmp)) + "</ul>",
+             "<h2>Ranking</h2>"]
+    head, rows = _metric_table(cmp)
+    # the title goes under the law id (a separate column makes the table too wide)
+    skip = head.index("title")
+    parts.append("<table><tr>" + "".join(
+        f"<th class='{'l' if h == 'law' else ''}'>{e(h)}</th>"
+        for i, h in enumerate(head) if i != skip) + "</tr>")
+    for r, row in zip(cmp.results, rows):
+        cls = "" if r.plausible else " class='bad'"
+        cells = []
+        for i, c in enumerate(row):
+            if i == skip:
+                continue
+            text = e(c)
+            cls_td = ""
+            if head[i] == "plausible" and c == "NO":
+                text = "<span class='bad-word'>NO</span>"
+            if head[i] == "law":
+                text = f"<b>{e(c)}</b><br><span class='title'>{e(row[skip])}</span>"
+                cls_td = "l law"
+            cells.append(f"<td class='{cls_td}'>{text}</td>")
+        parts.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
+    parts.append("</table>")
+    parts.append("<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
+                 "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
+                 "alone in its group has weight 1 trivially).</p>")
+
+    def mark(text: str) -> str:
+        return e(text).replace("IMPLAUSIBLE", "<span class='bad-word'>IMPLAUSIBLE</span>")
+
+    for heading, items in _sections(cmp):
+        parts.append(f"<h2>{e(heading)}</h2><ul>")
+        for item in items:
+            if isinstance(item, tuple):
+                subs = "".join(f"<li>{mark(sub)}</li>" for sub in item[1])
+                parts.append(f"<li><b>{mark(item[0])}</b><ul>{subs}</ul></li>")
+            else:
+                parts.append(f"<li>{mark(item)}</li>")
+        parts.append("</ul>")
+    parts.append("<h2>Figures</h2>")
+    for f in figures:
+        b64 = base64.b64encode(f.png).decode("ascii")
+        parts.append(f"<figure id='{e(f.name)}'><h3>{e(f.title)}</h3>"
+                     f"<img alt='{e(f.title)}' src='data:image/png;base64,{b64}'>"
+                     f"<figcaption>{e(f.caption)}</figcaption></figure>")
+    parts.append("</body></html>")
+    return "\n".join(parts)
+
+
+def write_report(cmp: Comparison, directory: str | Path) -> dict[str, Path]:
+    """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``."""
+    from ..errors import InputError
+
+    out = Path(directory)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the report directory ({exc.strerror})",
+                         file=str(out)) from None
+    figures = make_figures(cmp)
+    written: dict[str, Path] = {}
+    for f in figures:
+        p = out / f"{f.name}.png"
+        p.write_bytes(f.png)
+        written[f.name] = p
+    (out / "report.md").write_text(to_markdown(cmp, figures) + "\n", encoding="utf-8")
+    (out / "report.html").write_text(to_html(cmp, figures) + "\n", encoding="utf-8")
+    (out / "comparison.json").write_text(cmp.to_json() + "\n", encoding="utf-8")
+    written["report.md"] = out / "report.md"
+    written["report.html"] = out / "report.html"
+    written["comparison.json"] = out / "comparison.json"
+    return written

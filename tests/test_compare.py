@@ -1,0 +1,332 @@
+"""Tests of frictionlaws.compare: statistics, CV, extrapolation, plausibility, API."""
+
+from __future__ import annotations
+
+import importlib
+import itertools
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+import frictionlaws
+from frictionlaws.compare import Comparison, compare
+from frictionlaws.compare.cv import cross_validate, kfold_assignment
+from frictionlaws.compare.extrapolation import (
+    _kendall_s_var,
+    data_trend,
+    data_trends,
+    design_of,
+    extended_box,
+    holdout_splits,
+    parse_holdout,
+    scan_plausibility,
+)
+from frictionlaws.compare.residuals import analyse_residuals, runs_pmf, runs_test
+from frictionlaws.errors import InputError, UnknownLawError
+from frictionlaws.fitting import FitData, as_fit_data
+from frictionlaws.law import Law, Param
+
+# a small, fast set: a constant, a 2-parameter law, both thesis polynomials and a
+# log-velocity law that must drop the v = 0 rows
+LAWS = ["coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"]
+
+
+@pytest.fixture(scope="module")
+def steel() -> FitData:
+    return as_fit_data("thesis-steel")
+
+
+@pytest.fixture(scope="module")
+def cmp(steel: FitData) -> Comparison:
+    return compare(LAWS, steel, seed=3)
+
+
+# ------------------------------------------------------------------ residuals
+
+
+@pytest.mark.parametrize("n1,n2", [(1, 1), (2, 3), (4, 4), (5, 2), (3, 6)])
+def test_runs_pmf_matches_enumeration(n1: int, n2: int) -> None:
+    seqs = set(itertools.permutations([1] * n1 + [-1] * n2))
+    counts: dict[int, int] = {}
+    for s in seqs:
+        r = 1 + sum(a != b for a, b in zip(s, s[1:]))
+        counts[r] = counts.get(r, 0) + 1
+    for r in range(1, n1 + n2 + 1):
+        assert runs_pmf(r, n1, n2) == pytest.approx(counts.get(r, 0) / len(seqs), abs=1e-12)
+
+
+def test_runs_test_flags_clustering_not_alternation() -> None:
+    clustered = runs_test([1] * 6 + [-1] * 6)
+    assert clustered["runs"] == 2 and clustered["expected"] == pytest.approx(7.0)
+    assert clustered["p_value"] < 0.01 and clustered["method"] == "exact"
+    alternating = runs_test([1, -1] * 6)
+    assert alternating["runs"] == 12 and alternating["p_value"] > 0.99
+    assert alternating["p_two_sided"] < 0.01
+    assert runs_test([1, 1, 0, 1])["p_value"] is None  # one sign only: no test
+
+
+def test_runs_test_normal_approximation_for_long_sequences() -> None:
+    rng = np.random.default_rng(1)
+    r = runs_test(rng.normal(size=500))
+    assert r["method"] == "normal" and 0.0 < r["p_value"] <= 1.0
+    assert runs_test(np.r_[np.ones(250), -np.ones(250)])["p_value"] < 1e-10
+
+
+def test_residual_analysis_finds_a_systematic_misfit() -> None:
+    x = np.linspace(0.0, 1.0, 30)
+    resid = (x - 0.5) ** 2 - 1 / 12  # a straight line fitted to a parabola leaves a U
+    res = analyse_residuals(resid, 1.0 - x, {"p": x})
+    assert res.tests["p"]["runs"]["runs"] == 3
+    assert res.tests["p"]["runs"]["p_value"] < 1e-4
+    assert any("cluster along p" in s for s in res.structure)
+    noise = np.random.default_rng(7).normal(0.0, 0.1, 30)
+    calm = analyse_residuals(noise, 1.0 - x, {"p": x})
+    assert calm.structure == [], calm.structure
+    osm, osr = calm.normal_quantiles
+    assert osm.size == 30 and np.all(np.diff(osr) >= 0)
+
+
+# --------------------------------------------------------------------- trends
+
+
+def test_kendall_variance_matches_scipy() -> None:
+    rng = np.random.default_rng(0)
+    for x, y in [(rng.normal(size=15), rng.normal(size=15)),
+                 (np.repeat([1.0, 2.0, 3.0, 4.0], 4), rng.integers(0, 5, 16).astype(float))]:
+        s, var, _ = _kendall_s_var(x, y)
+        fd = FitData({"mu": y, "p": x}, "t", "t")
+        tr = data_trend(fd, "p", design_of(fd), continuity=False)
+        ref = stats.kendalltau(x, y, method="asymptotic")
+        assert tr.p_value == pytest.approx(ref.pvalue, rel=1e-9)
+        assert np.sign(s) == np.sign(ref.statistic)
+
+
+def test_steel_design_and_trends(steel: FitData) -> None:
+    design = design_of(steel)
+    assert design.varying == ["p", "v"]
+    assert design.derived["F_N"][0] == "p"  # F_N = A p on a fixed pin
+    trends = data_trends(steel, design)
+    assert trends["p"].sign == -1 and trends["p"].p_value < 1e-3
+    # within each pressure level mu rises with the velocity class; pooled rows would mix
+    # the pressure effect in (the 2.77 m/s row was measured at the lowest pressure only)
+    assert trends["v"].sign == 1 and trends["v"].strata == 7
+    assert trends["p"].ends["high"]["sign"] == -1 and trends["p"].ends["low"]["sign"] == -1
+    box = extended_box(steel, design)
+    assert box["p"] == pytest.approx((0.5 * 31190.0, 3 * 249600.0))
+    assert box["v"] == pytest.approx((0.0, 3 * 2.77))
+
+
+def test_end_trends_of_a_peaked_curve() -> None:
+    # a slip curve: rises to a peak near s = 0.14, then falls; overall it falls
+    s = np.linspace(0.01, 0.6, 25)
+    mu = np.sin(1.9 * np.arctan(10 * s)) + np.random.default_rng(0).normal(0, 0.02, 25)
+    fd = FitData({"mu": mu, "s": s}, "slip", "synthetic")
+    tr = data_trend(fd, "s", design_of(fd))
+    assert tr.sign == -1
+    assert tr.ends["low"]["sign"] == 1 and "lowest 7 of the 25" in tr.ends["low"]["basis"]
+    assert tr.ends["high"]["sign"] == -1
+
+
+def test_no_trend_without_evidence() -> None:
+    rng = np.random.default_rng(5)
+    x = np.linspace(1e5, 2e5, 12)
+    fd = FitData({"mu": 1.0 + 0.01 * rng.normal(size=12), "p": x}, "flat", "t")
+    assert data_trend(fd, "p", design_of(fd)).sign == 0
+
+
+# ------------------------------------------------------------------- holdout
+
+
+def test_parse_holdout() -> None:
+    assert parse_holdout(0.3) == {"p": 0.3, "v": 0.3}
+    assert parse_holdout("0.25") == {"p": 0.25, "v": 0.25}
+    assert parse_holdout("p=0.3, v=0.2") == {"p": 0.3, "v": 0.2}
+    assert parse_holdout({"T": 0.5}) == {"T": 0.5}
+    assert parse_holdout(None) == {} and parse_holdout("0") == {}
+    for bad in ("1.5", "p=abc", "x=0.3", "p=0.3,garbage"):
+        with pytest.raises(InputError):
+            parse_holdout(bad)
+
+
+def test_holdout_splits_on_steel(steel: FitData) -> None:
+    design = design_of(steel)
+    splits = {s.variable: s for s in holdout_splits(
+        steel, {"p": 0.3, "v": 0.3, "F_N": 0.3, "T": 0.3}, design)}
+    p, v = splits["p"], splits["v"]
+    assert p.usable and int(p.test.sum()) == 3
+    assert p.threshold == pytest.approx(31190 + 0.7 * (249600 - 31190))
+    assert np.all(steel.arrays["p"][p.test] > p.threshold)
+    assert v.usable and int(v.test.sum()) == 1
+    assert "follows p" in splits["F_N"].reason
+    assert "no T" in splits["T"].reason
+
+
+# ---------------------------------------------------------------- the folds
+
+
+def test_kfold_assignment() -> None:
+    a = kfold_assignment(19, 5, seed=11)
+    assert np.array_equal(a, kfold_assignment(19, 5, seed=11))
+    assert not np.array_equal(a, kfold_assignment(19, 5, seed=12))
+    assert sorted(np.bincount(a)) == [3, 4, 4, 4, 4]
+    with pytest.raises(InputError):
+        kfold_assignment(5, 6, 0)
+
+
+def test_cv_is_identical_on_rerun_with_the_same_seed(steel: FitData, cmp: Comparison) -> None:
+    again = compare(LAWS, steel, seed=3)
+    for a, b in zip(cmp.results, again.results):
+        assert a.law.id == b.law.id
+        assert a.cv.to_dict() == b.cv.to_dict()
+        assert np.array_equal(a.cv.predictions, b.cv.predictions, equal_nan=True)
+        assert a.cv_rmse_common == b.cv_rmse_common
+    assert np.array_equal(cmp.folds, again.folds)
+    other = compare(["thirion"], steel, seed=4)
+    assert not np.array_equal(other.folds, cmp.folds)
+
+
+def test_cv_reports_folds_that_cannot_be_fitted(steel: FitData) -> None:
+    from frictionlaws.registry import get_law
+
+    law = get_law("thesis-poly3")  # 7 parameters
+    few = steel.subset(np.arange(steel.n) < 8)  # 8 rows: a 4-row training fold is too small
+    res = cross_validate(law, few, np.ones(8, bool), kfold_assignment(8, 2, 0))
+    assert not res.complete and len(res.failed) == 2
+    assert "at least as many rows as parameters" in res.failed[0]["error"]
+    assert math.isnan(res.rmse)
+
+
+# ------------------------------------------------------------- comparison
+
+
+def test_ranking_and_row_groups(cmp: Comparison) -> None:
+    assert sorted(cmp.ranking) == sorted(LAWS)
+    sav = cmp["savkoor"]
+    assert sav.n_dropped == 8 and "dropped 8 of 19 rows" in sav.notes[0]
+    # ranked by the CV RMSE over the rows all laws share (savkoor cannot use v = 0)
+    assert cmp.settings["ranking_metric"] == "cv_rmse_common"
+    assert cmp.settings["common_rows"] == 11
+    # identifiable laws first, each group by CV RMSE over the common rows
+    flags = [bool(r.fit.non_identifiable) for r in cmp.results]
+    assert flags == sorted(flags)
+    for flag in (False, True):
+        keys = [r.cv_rmse_common for r in cmp.results if bool(r.fit.non_identifiable) == flag]
+        assert keys == sorted(keys)
+    # Akaike weights only among laws fitted to the same rows
+    groups: dict[int, list[float]] = {}
+    for r in cmp.results:
+        groups.setdefault(r.aic_group, []).append(r.akaike_weight)
+    assert len(groups) == 2
+    for ws in groups.values():
+        assert sum(ws) == pytest.approx(1.0)
+    assert sav.aic_group_size == 1 and sav.akaike_weight == 1.0
+    m = cmp["thirion"].metrics
+    assert m["k"] == 2 and m["n"] == 19 and 0.9 < m["r2"] < 1.0
+
+
+def test_thesis_polynomials_flagged_outside_the_pressure_range(cmp: Comparison) -> None:
+    for lid in ("thesis-poly2", "thesis-poly3"):
+        r = cmp[lid]
+        assert not r.plausible
+        text = " ".join(r.plausibility.reasons)
+        assert "p outside the measured range" in text or "outside the measured p range" in text
+    poly2 = " ".join(cmp["thesis-poly2"].plausibility.reasons)
+    assert "as p increases beyond the highest measured p (0.2496 MPa)" in poly2
+    assert "data show mu falling with p" in poly2
+    assert "mu < 0" in " ".join(cmp["thesis-poly3"].plausibility.reasons)
+    assert cmp["thirion"].plausible and cmp["coulomb"].plausible
+    assert math.isfinite(cmp["thesis-poly3"].extrapolation_rmse)
+
+
+def test_json_holds_every_metric(cmp: Comparison) -> None:
+    doc = json.loads(cmp.to_json())
+    assert doc["format"] == "frictionlaws-comparison"
+    assert doc["dataset"]["name"] == "thesis-steel" and doc["dataset"]["n"] == 19
+    assert doc["dataset"]["variables"]["p"]["unit"] == "Pa"
+    assert doc["units"]["p"] == "Pa" and doc["units"]["rmse"] == "-"
+    keys = {"r2", "adj_r2", "rmse", "mae", "max_abs_residual", "aic", "aicc", "bic", "k", "n",
+            "akaike_weight", "cv_rmse", "cv_rmse_common", "cv", "extrapolation_rmse",
+            "extrapolation", "plausible", "plausibility_reasons", "warnings",
+            "non_identifiable", "residual_tests", "params", "rank"}
+    assert [law["id"] for law in doc["laws"]] == cmp.ranking
+    for law in doc["laws"]:
+        assert keys <= set(law), keys - set(law)
+        assert isinstance(law["plausible"], bool)
+        assert law["cv"]["seed"] == 3 and law["cv"]["folds"] == 5
+    poly3 = next(x for x in doc["laws"] if x["id"] == "thesis-poly3")
+    assert poly3["non_identifiable"] and poly3["plausibility_reasons"]
+    assert "p" in poly3["residual_tests"]["tests"]
+
+
+def test_skipped_failed_and_bad_input(steel: FitData) -> None:
+    def broken(m, p, a):
+        raise ZeroDivisionError("boom")
+
+    bad = Law(id="broken-test-law", title="always fails", family="sliding", variables=("p",),
+              params=(Param("a", "", 1.0),), formula=broken)
+    c = compare(["thirion", "park", "pacejka", bad], steel, folds=3, holdout=None)
+    assert c.ranking == ["thirion"]
+    skipped = {s["id"]: s["reason"] for s in c.skipped}
+    assert "T (temperature)" in skipped["park"] and "slip ratio" in skipped["pacejka"]
+    assert c.failed[0]["id"] == "broken-test-law" and "boom" in c.failed[0]["error"]
+    text = c.table()
+    assert "park" in text and "broken-test-law" in text
+    with pytest.raises(UnknownLawError):
+        compare(["no-such-law"], steel)
+    with pytest.raises(InputError):
+        compare(["park"], steel)  # nothing left to fit: says why
+    with pytest.raises(InputError):
+        compare(["thirion"], steel, folds=1)
+    with pytest.raises(InputError):
+        compare(["thirion"], steel, mu_limits=(5, 0))
+
+
+def test_family_default_and_public_api(steel: FitData) -> None:
+    c = frictionlaws.compare("coulomb,thirion", steel, folds=30, holdout="p=0.3")
+    assert c.settings["folds"] == 19  # reduced to leave-one-out, with a note
+    assert any("leave-one-out" in n for n in c.notes)
+    assert [s["variable"] for s in c.settings["splits"]] == ["p"]
+    importlib.import_module("frictionlaws.compare.core")  # binds the package's name
+    assert callable(frictionlaws.compare)
+    assert frictionlaws.compare("coulomb", steel, folds=2, holdout=None).ranking == ["coulomb"]
+
+
+def test_plausibility_scan_flags_blow_up_and_reversal() -> None:
+    p = np.linspace(1e5, 3e5, 9)
+    fd = FitData({"mu": 2.0 - 3e-6 * p, "p": p}, "falling", "synthetic")
+    design = design_of(fd)
+    trends = data_trends(fd, design)
+    box = extended_box(fd, design)
+
+    def pole(m, p, a, c):
+        return a / (p - c)
+
+    law = Law(id="pole-test", title="pole", family="sliding", variables=("p",),
+              params=(Param("a", "", 1.0), Param("c", "Pa", 0.0)), formula=pole)
+    res = scan_plausibility(law, {"a": 1e5, "c": 5e5}, fd, design, box, trends)
+    kinds = {f.kind for f in res.flags}
+    assert not res.plausible and {"below-limit", "above-limit"} <= kinds
+
+    def parabola(m, p, a, b):
+        return a + b * (p / 1e5 - 2.0) ** 2
+
+    law2 = Law(id="parabola-test", title="parabola", family="sliding", variables=("p",),
+               params=(Param("a", "", 1.0), Param("b", "", 0.1)), formula=parabola)
+    res2 = scan_plausibility(law2, {"a": 1.0, "b": 0.05}, fd, design, box, trends)
+    assert [f.kind for f in res2.flags] == ["trend"]
+    assert "rises by" in res2.reasons[0] and "as p increases beyond" in res2.reasons[0]
+    assert "falling with p" in res2.reasons[0]
+    assert res2.flags[0].to["p"] == pytest.approx(9e5)
+    # the same law, gently falling everywhere in the box: plausible
+    res3 = scan_plausibility(law2, {"a": 1.0, "b": 0.0}, fd, design, box, trends)
+    assert res3.plausible and res3.mu_min == res3.mu_max == 1.0
+
+
+def test_progress_bar_only_when_asked(steel: FitData, capsys: pytest.CaptureFixture) -> None:
+    compare(["coulomb"], steel, folds=2, holdout=None, progress=True)
+    assert "compare" in capsys.readouterr().err
+    compare(["coulomb"], steel, folds=2, holdout=None)  # stderr is not a terminal
+    assert capsys.readouterr().err == ""

@@ -1,0 +1,125 @@
+"""The ``frictionlaws compare`` command: default set with a report, --json, bad input."""
+
+from __future__ import annotations
+
+import json
+import re
+from html import escape as html_escape
+from pathlib import Path
+
+import pytest
+
+from frictionlaws.cli import main
+from frictionlaws.registry import list_laws
+
+
+@pytest.fixture(scope="module")
+def default_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, Path]:
+    """One run over the default set (every sliding law) with a report."""
+    import contextlib
+    import io
+
+    out = tmp_path_factory.mktemp("compare") / "out"
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        rc = main(["compare", "thesis-steel", "--report", str(out)])
+    return rc, buf.getvalue(), out
+
+
+@pytest.mark.slow
+def test_default_set_ranks_all_applicable_sliding_laws(default_run) -> None:
+    rc, text, out = default_run
+    assert rc == 0
+    doc = json.loads((out / "comparison.json").read_text())
+    ranked = doc["ranking"]
+    skipped = {s["id"] for s in doc["skipped"]}
+    failed = {f["id"] for f in doc["failed"]}
+    sliding = {law.id for law in list_laws("sliding")}
+    # every sliding law is ranked, skipped with a reason, or listed as failed
+    assert set(ranked) | skipped | failed == sliding
+    assert not set(ranked) & skipped
+    assert "park" in skipped  # needs temperature
+    assert {"coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"} <= set(ranked)
+    ranks = [law["rank"] for law in doc["laws"]]
+    assert ranks == list(range(1, len(ranked) + 1))
+    for lid in ranked:
+        assert re.search(rf"^\s+\d+\s+{re.escape(lid)}\s", text, re.M), lid
+    for lid in skipped:
+        assert lid in text
+
+
+@pytest.mark.slow
+def test_report_embeds_every_figure_and_names_every_law(default_run) -> None:
+    _, _, out = default_run
+    html = (out / "report.html").read_text()
+    pngs = sorted(out.glob("*.png"))
+    assert len(pngs) >= 5
+    assert html.count("data:image/png;base64") == len(pngs)
+    for p in pngs:
+        assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert f"id='{p.stem}'" in html
+    doc = json.loads((out / "comparison.json").read_text())
+    for law in doc["laws"]:
+        assert law["id"] in html and html_escape(law["title"]) in html
+    for law in doc["skipped"]:
+        assert law["id"] in html
+    assert "src='http" not in html and "href='http" not in html  # self-contained
+    md = (out / "report.md").read_text()
+    header = next(line for line in md.splitlines() if line.startswith("| rank"))
+    separator = md.splitlines()[md.splitlines().index(header) + 1]
+    assert header.replace("\\|", "").count("|") == separator.count("|")
+    for p in pngs:
+        assert f"]({p.name})" in md
+
+
+@pytest.mark.slow
+def test_report_shows_why_the_thesis_polynomials_are_implausible(default_run) -> None:
+    _, text, out = default_run
+    doc = json.loads((out / "comparison.json").read_text())
+    laws = {law["id"]: law for law in doc["laws"]}
+    html = (out / "report.html").read_text()
+    for lid in ("thesis-poly2", "thesis-poly3"):
+        assert laws[lid]["plausible"] is False
+        for reason in laws[lid]["plausibility_reasons"]:
+            assert reason in text  # console
+            assert reason.replace("<", "&lt;").replace(">", "&gt;") in html  # report
+    assert "IMPLAUSIBLE" in html
+    assert (out / "extrapolation_box.png").is_file()
+    assert (out / "extrapolation_holdout.png").is_file()
+    assert "id='extrapolation_box'" in html
+
+
+def test_json_output(capsys: pytest.CaptureFixture) -> None:
+    rc = main(["compare", "thesis-steel", "--laws", "thirion,thesis-poly2", "--json",
+               "--folds", "4", "--seed", "7", "--holdout", "p=0.3"])
+    assert rc == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["settings"]["seed"] == 7 and doc["settings"]["folds"] == 4
+    assert doc["dataset"]["variables"]["v"]["unit"] == "m/s"
+    for law in doc["laws"]:
+        for key in ("r2", "rmse", "aic", "bic", "cv_rmse", "extrapolation_rmse", "plausible",
+                    "plausibility_reasons", "adj_r2", "mae", "max_abs_residual", "aicc",
+                    "akaike_weight", "k", "warnings", "residual_tests"):
+            assert key in law, key
+        assert law["extrapolation"][0]["variable"] == "p"
+    assert {law["id"] for law in doc["laws"]} == {"thirion", "thesis-poly2"}
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["--laws", "nosuchlaw"], "unknown law"),
+    (["--holdout", "1.5"], "between 0 and 1"),
+    (["--folds", "1"], "at least 2"),
+    (["--laws", "park"], "needs T"),
+    (["--laws", "thirion", "--family", "sliding"], "not allowed with"),
+])
+def test_bad_input_exit_2(argv: list[str], message: str,
+                          capsys: pytest.CaptureFixture) -> None:
+    rc = main(["compare", "thesis-steel", *argv])
+    err = capsys.readouterr().err
+    assert rc == 2 and message in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_missing_file_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    rc = main(["compare", str(tmp_path / "nothing.csv")])
+    assert rc == 2 and "nothing.csv" in capsys.readouterr().err
