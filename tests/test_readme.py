@@ -16,7 +16,7 @@ def bash_blocks():
 def test_readme_opens_with_the_two_commands():
     blocks = bash_blocks()
     assert blocks[0] == "pip install . && frictionlaws fit --law thirion thesis-steel"
-    assert blocks[1] == 'pip install ".[test]" && python -m pytest'
+    assert blocks[1] == 'pip install ".[test]" && python -m pytest -n auto'
 
 
 def test_ci_runs_the_readme_test_command_verbatim():
