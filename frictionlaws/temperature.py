@@ -276,7 +276,7 @@ def resolve_wlf(*, C1: float | None = None, C2: float | None = None,
 # ------------------------------------------------------------ temperature-aware laws
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, repr=False)
 class WLFLaw(Law):
     """A law whose velocity is reduced with the WLF shift factor.
 

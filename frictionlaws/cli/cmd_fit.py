@@ -11,7 +11,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
         "fit", help="fit a law to a dataset",
         description="Fit a friction law to a dataset (CSV file or packaged dataset name) and "
-        "print parameters with standard errors, 95 %% confidence intervals and units, "
+        "print parameters with standard errors, 95 % confidence intervals and units, "
         "goodness of fit and warnings. Exit 0 on success, 1 when the optimiser did not "
         "converge, 2 on bad input.")
     p.add_argument("data", metavar="DATA", help="CSV file or packaged dataset name")

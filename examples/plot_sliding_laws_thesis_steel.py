@@ -1,0 +1,117 @@
+"""
+Every sliding law fitted to the thesis steel data
+=================================================
+
+The packaged dataset ``thesis-steel`` holds the 19 friction coefficients the thesis
+prints for a tread-rubber pin on a steel disc: eight pressures with the disc at rest,
+ten at 1.38 m/s and one at 2.77 m/s. Here every registered sliding-velocity law is fitted
+to it with the same call, and the fits are drawn side by side.
+
+Two things to watch: laws with a logarithm or a negative power of the velocity cannot
+use the eight rows at v = 0, so they are fitted to the remaining 11 (the fitter drops
+the rows and says so); and a law with more parameters than the data can support is
+flagged with the parameters it cannot determine.
+"""
+
+# %%
+# Load the data and fit every law
+# -------------------------------
+# The list of laws comes from the registry, so a new sliding law appears here without
+# editing this example. Laws whose variables the data lack (the temperature-dependent
+# Park law needs ``T``) are reported and skipped.
+import warnings
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import frictionlaws as fl
+from frictionlaws.errors import DomainError
+
+data = fl.load_dataset("thesis-steel")
+print(data)
+
+results = {}
+for law in fl.list_laws("sliding"):
+    try:
+        law.require_variables(data.variables)
+    except DomainError as exc:
+        print(f"skipped {law.id}:\n    {exc}")
+        continue
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the warnings are kept in result.warnings
+        results[law.id] = fl.fit(law, data, on_invalid="drop")
+print(f"fitted {len(results)} laws")
+
+# %%
+# One panel per law
+# -----------------
+# Each panel shows the measured points (coloured by disc velocity) and the fitted law at
+# the velocities it was fitted on; open circles are rows a law could not use (v = 0 for the
+# log-velocity laws), and no curve is drawn there. A red title marks a fit with parameters
+# the data cannot determine.
+frame = data.frame
+speeds = np.unique(frame["v"])
+colors = dict(zip(speeds, plt.get_cmap("viridis")(np.linspace(0, 0.8, len(speeds)))))
+p_grid = np.linspace(0.02e6, 0.27e6, 120)
+
+ncol = 4
+nrow = int(np.ceil(len(results) / ncol))
+fig, axes = plt.subplots(nrow, ncol, figsize=(13, 2.9 * nrow), sharex=True, sharey=True,
+                         layout="constrained")
+for ax, (law_id, res) in zip(axes.flat, results.items()):
+    for v in speeds:
+        rows = frame["v"] == v
+        used = not res.extrapolation({"v": np.array([v])})
+        ax.plot(frame["p"][rows] / 1e6, frame["mu"][rows], "o", ms=4, color=colors[v],
+                mfc=colors[v] if used else "none")
+        if not used:
+            continue
+        variables = {"p": p_grid, "v": np.full_like(p_grid, v),
+                     "F_N": p_grid * 314.16e-6}  # F_N from p on the 20 mm pin (Schallamach)
+        mu = res.law.evaluate({k: variables[k] for k in res.law.variables} or {"p": p_grid},
+                              res.values)
+        ax.plot(p_grid / 1e6, np.broadcast_to(mu, p_grid.shape), color=colors[v], lw=1.5)
+    flag = " (!)" if res.non_identifiable else ""
+    ax.set_title(f"{law_id}{flag}\nR² = {res.metrics['r2']:.3f}, n = {res.metrics['n']}",
+                 fontsize=9, color="C3" if res.non_identifiable else "k")
+    ax.grid(alpha=0.3)
+for ax in axes.flat[len(results):]:
+    ax.set_visible(False)
+for col in range(ncol):
+    visible = [ax for ax in axes[:, col] if ax.get_visible()]
+    if visible:
+        visible[-1].xaxis.set_tick_params(labelbottom=True)
+        visible[-1].set_xlabel("p [MPa]")
+for ax in axes[:, 0]:
+    ax.set_ylabel("μ [–]")
+axes.flat[0].set_ylim(0, 4.5)
+handles = [plt.Line2D([], [], color=colors[v], marker="o", label=f"v = {v:g} m/s")
+           for v in speeds]
+handles.append(plt.Line2D([], [], color="0.3", marker="o", mfc="none", ls="none",
+                          label="row not used by the law"))
+fig.legend(handles=handles, loc="outside lower center", ncol=len(handles))
+plt.show()
+
+# %%
+# The numbers
+# -----------
+# R² and RMSE are on the rows each law was fitted to; AICc compares laws fitted to the
+# same rows only (the log-velocity laws saw 11 rows, the others 19).
+print(f"{'law':<20}{'n':>4}{'k':>4}{'R²':>9}{'RMSE':>9}{'AICc':>9}  not identifiable")
+for law_id, res in results.items():
+    m = res.metrics
+    print(f"{law_id:<20}{m['n']:>4}{m['k']:>4}{m['r2']:>9.3f}{m['rmse']:>9.3f}"
+          f"{m['aicc']:>9.1f}  {', '.join(res.non_identifiable) or '-'}")
+
+# %%
+# What the comparison says
+# ------------------------
+# The pressure-saturation laws (Thirion, Denny) follow the fall of μ with pressure with
+# two parameters. The polynomial and quadratic forms fit a little better in R² but
+# spend more parameters and turn at the edges. With only three velocity levels (and one
+# point at the highest) the velocity-dependent laws are not determined: the fitter
+# names the parameters it cannot separate instead of printing meaningless errors.
+# Wriggers' law has no static friction (μ = 0 at v = 0), so it cannot follow the eight rows
+# measured with the disc at rest, hence its negative R². The full report of any fit says
+# what it could and could not determine in words:
+print(results["nackenhorst"].report())
