@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from ._common import add_data_options
+
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
@@ -15,12 +17,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "units, the loader's notes and the provenance.")
     p.add_argument("name", nargs="?", metavar="NAME",
                    help="packaged dataset name or CSV file to describe")
-    p.add_argument("--map", metavar="COL=NAME,...",
-                   help="map canonical columns to the file's columns, e.g. mu=FC,p=CP,v=DV")
-    p.add_argument("--units", metavar="COL=UNIT,...",
-                   help="units of columns whose header has none, e.g. p=MPa,v=m/s")
-    p.add_argument("--area", metavar="AREA",
-                   help="nominal contact area to derive p from F_N, e.g. '314.16 mm^2'")
+    add_data_options(p)
     p.add_argument("--json", action="store_true", help="print JSON")
     return p
 

@@ -30,6 +30,15 @@ def linear_guess(
     return guess
 
 
+def subsample(d: Mapping[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
+    """At most ``n`` evenly spaced rows of every array (for initial guesses only)."""
+    size = np.size(d["mu"])
+    if size <= n:
+        return {k: np.asarray(v, float) for k, v in d.items()}
+    idx = np.linspace(0, size - 1, n).astype(int)
+    return {k: np.asarray(v, float)[idx] for k, v in d.items()}
+
+
 def spread(x: np.ndarray) -> float:
     """Max/min ratio of the positive values of ``x`` (1 when constant)."""
     x = np.asarray(x, float)

@@ -14,9 +14,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..law import Derived, Law, Param
+from ..law import NUMPY, Derived, Law, Param
 from ..registry import register
-from ._guess import linear_guess, linear_lstsq
+from ._guess import linear_guess, linear_lstsq, subsample
 
 __all__ = ["pacejka_peak", "BURCKHARDT_ROADS", "PACEJKA_SURFACES"]
 
@@ -26,11 +26,7 @@ _MAX_GUESS_ROWS = 1500
 
 
 def _subsample(d: Mapping[str, np.ndarray], n: int = _MAX_GUESS_ROWS) -> dict[str, np.ndarray]:
-    size = np.size(d["mu"])
-    if size <= n:
-        return {k: np.asarray(v, float) for k, v in d.items()}
-    idx = np.linspace(0, size - 1, n).astype(int)
-    return {k: np.asarray(v, float)[idx] for k, v in d.items()}
+    return subsample(d, n)
 
 
 # --------------------------------------------------------------------- pacejka
@@ -43,8 +39,7 @@ def _pacejka(m, s, B, C, D, E, S_h, S_v):
 
 def _mf(s: np.ndarray, B: float, C: float, D: float, E: float, S_h: float, S_v: float
         ) -> np.ndarray:
-    Bx = B * (np.asarray(s, float) + S_h)
-    return D * np.sin(C * np.arctan(Bx - E * (Bx - np.arctan(Bx)))) + S_v
+    return _pacejka(NUMPY, np.asarray(s, float), B, C, D, E, S_h, S_v)
 
 
 def pacejka_peak(B: float, C: float, D: float, E: float, S_h: float = 0.0, S_v: float = 0.0,

@@ -18,7 +18,7 @@ import numpy as np
 from ..law import NUMPY, P_MIN, V_MIN, Derived, Law, Param, Setting
 from ..registry import register
 from ..temperature import WLF_PRESETS, WLFLaw, wlf_formula, wlf_settings
-from ._guess import spread
+from ._guess import spread, subsample
 
 __all__ = ["nackenhorst_from_thesis", "P_REF_SAVKOOR", "P_REF_NACKENHORST", "P_REF_HUEMER",
            "P0_PARK", "T_REF_PARK", "P_REF_WRIGGERS_DERIVED"]
@@ -44,12 +44,7 @@ _MAX_GUESS_ROWS = 3000
 
 
 def _subsample(d: Mapping[str, np.ndarray], n: int = _MAX_GUESS_ROWS) -> dict[str, np.ndarray]:
-    """At most ``n`` evenly spaced rows of every array (initial guesses only)."""
-    size = np.size(d["mu"])
-    if size <= n:
-        return {k: np.asarray(v, float) for k, v in d.items()}
-    idx = np.linspace(0, size - 1, n).astype(int)
-    return {k: np.asarray(v, float)[idx] for k, v in d.items()}
+    return subsample(d, n)
 
 
 def _bell_fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float, float]:
