@@ -1,0 +1,166 @@
+"""``frictionlaws export``: write a law to an FE code's input, a table or a subroutine."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+_FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
+            "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
+
+_EPILOG = """\
+ranges: --p, --v, --T, --F_N, --s take MIN:MAX or MIN:MAX:N.  Bare numbers are in the
+--units system (mm-N-s: p in MPa, v in mm/s; SI: Pa, m/s; T in K unless overridden); a
+bound may carry its own unit, without spaces or quoted:
+  --p 0.01:0.5:20 --units mm-N-s        (MPa)      --p 10kPa:0.5MPa:20
+  --v 1e-3m/s:10m/s:30 --spacing v=log             --T 20degC:80degC:7
+With N for every variable and no --tol the grid is as given; with --tol (or a missing N)
+breakpoints are placed until the solver's interpolation (linear between points, end
+values held) is within TOL of the law everywhere in the box (default TOL 0.001).
+
+unit systems: SI (Pa, m/s, K, N), mm-N-s (MPa, mm/s, K, N), mm-kg-ms (GPa, m/s, K, kN);
+override a unit after the name, e.g. --units mm-N-s,T=degC.
+
+formats: csv, json (grids); abaqus (*FRICTION table); abaqus-decay (*FRICTION,
+EXPONENTIAL DECAY, exact laws only); lsdyna (FS/FD/DC when exact, else FS=2
+*DEFINE_TABLE); ansys (TB,FRIC + TBFIELD); radioss (/FRICTION Ifric 1 or 4, exact or
+fitted over the box with the error reported); abaqus-fric-coef, abaqus-vfric-coef,
+abaqus-vfric (Fortran user subroutines; no box needed).
+"""
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    from ._common import add_fit_options
+
+    p = sub.add_parser(
+        "export", help="export a law to Abaqus, LS-DYNA, Ansys, Radioss, tables or Fortran",
+        description="Write a friction law in a finite-element code's own input (or a grid, or "
+        "an Abaqus user subroutine), in the model's units, with a header stating the law, "
+        "parameters, units, box, the maximum interpolation error and where it occurs.",
+        epilog=_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--law", help="law id or alias (may be omitted with --params)")
+    src = p.add_mutually_exclusive_group()
+    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
+    src.add_argument("--params", metavar="FILE.json",
+                     help="parameters: {'law': ..., 'params': {...}} or a 'fit --save' file")
+    src.add_argument("--fit", metavar="DATA",
+                     help="fit the law to DATA (CSV or packaged dataset) and export the result")
+    p.add_argument("--set", metavar="NAME=VALUE,...", action="append", default=[],
+                   help="give or override parameter values (SI), e.g. mu0=0.9")
+    p.add_argument("--format", required=True, choices=_FORMATS, metavar="FORMAT",
+                   help="output format: " + ", ".join(_FORMATS))
+    for var in ("p", "v", "T", "F_N", "s"):
+        p.add_argument(f"--{var}", metavar="MIN:MAX[:N]", dest=f"range_{var}",
+                       help=f"range of {var} (see below)")
+    p.add_argument("--spacing", metavar="VAR=lin|log,...", action="append", default=[],
+                   help="point spacing per variable (default log when MAX/MIN >= 100)")
+    p.add_argument("--units", default="SI", metavar="SYSTEM",
+                   help="unit system of the file: SI (default), mm-N-s, mm-kg-ms[,VAR=UNIT]")
+    p.add_argument("--tol", type=float, help="largest interpolation error in mu (adaptive grid)")
+    p.add_argument("--max-rows", type=int, default=200_000, metavar="N",
+                   help="largest table allowed (default 200000)")
+    p.add_argument("-o", "--output", required=True, metavar="FILE",
+                   help="output file ('-' for standard output)")
+    g = p.add_argument_group("fit options (with --fit)")
+    g.add_argument("--map", metavar="COL=NAME,...",
+                   help="map canonical columns to the data file's columns")
+    g.add_argument("--data-units", metavar="COL=UNIT,...",
+                   help="units of data columns whose header has none, e.g. p=MPa,v=m/s")
+    g.add_argument("--area", metavar="AREA", help="nominal contact area, e.g. '314.16 mm^2'")
+    add_fit_options(g)
+    s = p.add_argument_group("solver options")
+    s.add_argument("--lsdyna-contact", metavar="SSID,MSID[,SSTYP,MSTYP]",
+                   help="LS-DYNA contact card 1 ids (default 1,2,3,3: part ids 1 and 2)")
+    s.add_argument("--lsdyna-table-id", type=int, default=1000, metavar="ID",
+                   help="LS-DYNA *DEFINE_TABLE id (curves follow: ID+1, ...)")
+    s.add_argument("--ansys-mat", type=int, default=1, metavar="MAT", help="Ansys material id")
+    s.add_argument("--radioss-id", type=int, default=1, metavar="ID",
+                   help="Radioss /FRICTION id")
+    return p
+
+
+def _options(args: argparse.Namespace) -> dict:
+    from frictionlaws.errors import InputError
+
+    opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
+            "radioss_id": args.radioss_id}
+    if args.lsdyna_contact:
+        try:
+            ids = [int(x) for x in args.lsdyna_contact.split(",")]
+        except ValueError:
+            ids = []
+        if len(ids) not in (2, 4):
+            raise InputError(f"--lsdyna-contact '{args.lsdyna_contact}': expected "
+                             "SSID,MSID or SSID,MSID,SSTYP,MSTYP (integers)")
+        opts.update(lsdyna_ssid=ids[0], lsdyna_msid=ids[1])
+        if len(ids) == 4:
+            opts.update(lsdyna_sstyp=ids[2], lsdyna_mstyp=ids[3])
+    return opts
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.errors import InputError
+    from frictionlaws.export import export
+    from frictionlaws.export.api import parse_range
+    from frictionlaws.export.systems import unit_system
+
+    from ._common import fit_kwargs, parse_assignments, parse_floats
+
+    system = unit_system(args.units)
+    spacing = parse_assignments(args.spacing, "--spacing")
+    box = {}
+    for var in ("p", "v", "T", "F_N", "s"):
+        text = getattr(args, f"range_{var}")
+        if text is not None:
+            box[var] = parse_range(var, text, system, spacing.get(var, "auto"))
+    for var in spacing:
+        if var not in box:
+            raise InputError(f"--spacing {var}=...: no range given for {var} (--{var} MIN:MAX)")
+    values = parse_floats(args.set, "--set")
+    params = None
+    source = None
+    law = args.law
+    if args.params:
+        from frictionlaws.fitting import load_result
+
+        result = load_result(args.params)
+        if values:
+            raise InputError("--set cannot be combined with --params (edit the file instead)")
+        params = result
+        source = f"file {args.params}"
+    elif args.fit:
+        if not law:
+            raise InputError("--fit needs --law")
+        if values:
+            raise InputError("--set cannot be combined with --fit (hold values with --fix)")
+        fit_args = argparse.Namespace(**vars(args))
+        fit_args.units = args.data_units
+        from frictionlaws.fitting import fit
+
+        result = fit(law, args.fit, **fit_kwargs(fit_args))
+        if not result.success:
+            print(f"error: the fit of '{law}' to {args.fit} did not converge "
+                  f"({result.message}); nothing exported", file=sys.stderr)
+            return 1
+        m = result.metrics
+        params = result
+        source = (f"fit to {args.fit} (n = {m.get('n')}, R^2 = {m.get('r2', float('nan')):.4g}, "
+                  f"rmse = {m.get('rmse', float('nan')):.3g})")
+        for w in result.warnings:
+            print(f"fit warning: {w}", file=sys.stderr)
+    else:
+        if not law:
+            raise InputError("give --law (with --preset, --set or --fit), or --params FILE.json")
+        if not args.preset and not values:
+            raise InputError("give the parameters: --preset NAME, --params FILE.json, "
+                             "--fit DATA or --set NAME=VALUE,...")
+        params = values or None
+    res = export(law, params, args.format, box, preset=args.preset, units=system, tol=args.tol,
+                 path=None if args.output == "-" else args.output, max_rows=args.max_rows,
+                 source=source, options=_options(args))
+    if args.output == "-":
+        sys.stdout.write(res.text)
+        print(res.report(), file=sys.stderr)
+    else:
+        print(res.report())
+    return 0

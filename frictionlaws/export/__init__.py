@@ -1,0 +1,43 @@
+"""Export a law to finite-element codes: tables, keyword cards and user subroutines.
+
+:func:`export` writes a law, with its parameters, in the model's unit system,
+to one of :data:`FORMATS`:
+
+* tables the solver interpolates (``csv``, ``json``, ``abaqus`` ``*FRICTION``,
+  ``lsdyna`` ``*DEFINE_TABLE``, ``ansys`` ``TB,FRIC``), on grids whose
+  interpolation error is measured (and, with ``tol``, bounded) the way the
+  solver interpolates: multilinear, end values held (:mod:`.grid`);
+* closed forms the solver has built in (``abaqus-decay``, LS-DYNA FS/FD/DC,
+  Radioss Ifric 1 and 4), written only when exact (:mod:`.exact`), or for
+  Radioss fitted over the box with the approximation error stated;
+* Abaqus user subroutines generated from the symbolic form (:mod:`.fortran`).
+
+Every file starts with a header: law, parameters with units, unit system, box,
+the maximum interpolation error and where it occurs, and what the solver does
+outside the box.
+"""
+
+import sys as _sys
+import types as _types
+
+from .api import FORMATS, ExportResult, export, make_specs, parse_range
+from .grid import AxisSpec, Grid, GridError
+from .systems import SYSTEMS, UnitSystem, unit_system
+
+__all__ = ["export", "ExportResult", "FORMATS", "AxisSpec", "Grid", "GridError",
+           "UnitSystem", "unit_system", "SYSTEMS", "parse_range", "make_specs"]
+
+
+class _CallableModule(_types.ModuleType):
+    """This package, callable as :func:`export`.
+
+    ``frictionlaws.export`` is both the public function (lazy API table) and
+    this package; once the package is imported Python binds the name to the
+    module, so the module forwards calls to :func:`export`.
+    """
+
+    def __call__(self, *args, **kwargs):  # type: ignore[no-untyped-def]
+        return export(*args, **kwargs)
+
+
+_sys.modules[__name__].__class__ = _CallableModule

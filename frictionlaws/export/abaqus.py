@@ -1,0 +1,125 @@
+"""Abaqus keyword exports: the ``*FRICTION`` table and ``EXPONENTIAL DECAY``.
+
+Table (``abaqus``): data lines ``mu, slip rate, contact pressure,
+temperature, field 1, ...`` (eight values per line, continuation lines after
+that); slip rate varies fastest, then pressure, then temperature, then the
+field variables; ascending within each block; every block carries the same
+slip-rate values.  Columns the law does not use are left out from the right;
+one that must stay because a later column is used holds a single value ``0``
+(mu does not depend on it).  Variables Abaqus does not pass to ``*FRICTION``
+(normal load ``F_N``, slip ratio ``s``) become field variables
+(``DEPENDENCIES=n``), in the order the law lists them.
+
+``abaqus-decay``: ``*FRICTION, EXPONENTIAL DECAY`` with ``mu_s, mu_k, d_c``,
+exact only when the law is of that form (see :mod:`.exact`); otherwise an
+:class:`~frictionlaws.errors.InputError` suggests fitting ``exponential-decay``
+with ``delta = 1`` first.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from ..errors import InputError
+from .exact import exp_decay_form
+from .fortran import FIELD_VARIABLES
+from .job import Job, Written, commented, model_axes, tabulated
+
+__all__ = ["write_abaqus", "write_abaqus_decay", "table_columns", "OUTSIDE_ABAQUS"]
+
+OUTSIDE_ABAQUS = ("Abaqus interpolates linearly between the table rows and holds the end "
+                  "values outside the table (no extrapolation)")
+_ORDER = ("v", "p", "T")
+_COLUMN = {"v": "slip rate", "p": "contact pressure", "T": "temperature"}
+
+
+def _num(x: float) -> str:
+    return f"{float(x):.12g}"
+
+
+def table_columns(variables: tuple[str, ...]) -> tuple[list[str], list[str]]:
+    """(independent columns in Abaqus order, field variables) for a law's variables."""
+    fields = [v for v in variables if v in FIELD_VARIABLES]
+    if fields:
+        n_indep = 3
+    else:
+        used = [i for i, v in enumerate(_ORDER) if v in variables]
+        n_indep = max(used) + 1 if used else 0
+    return list(_ORDER[:n_indep]) + fields, fields
+
+
+def write_abaqus(job: Job) -> Written:
+    """``*FRICTION`` with mu tabulated against slip rate, pressure, temperature, fields."""
+    law = job.law
+    cols, fields = table_columns(law.variables)
+    axes_vars = [c for c in cols if c in law.variables]
+    grid, err, how = job.make_grid(axes_vars, "abaqus")
+    mu = tabulated(job, grid)
+    model = dict(zip(grid.names, model_axes(job, grid), strict=True))
+    col_vals = [model.get(c, np.array([0.0])) for c in cols]
+    summary = [*job.box_lines(grid), *job.error_lines(err, how)]
+    body = list(summary)
+    colspec = ["mu"] + [
+        (f"{_COLUMN[c]} ({c} [{job.units.label(c)}])" if c in _COLUMN else
+         f"field {fields.index(c) + 1} ({c} [{job.units.label(c)}])")
+        + ("" if c in law.variables else ": single value 0, mu does not depend on it")
+        for c in cols]
+    body.append("data lines: " + ", ".join(colspec))
+    if cols:
+        body.append("order: slip rate varies fastest, then pressure, then temperature"
+                    + (", then the field variables" if fields else "")
+                    + "; ascending; the same slip-rate values in every block")
+    for i, f in enumerate(fields):
+        body.append(f"field variable {i + 1} must carry {f} in the model's unit "
+                    f"[{job.units.label(f)}] (define it with *FIELD, *INITIAL CONDITIONS, "
+                    "TYPE=FIELD or USDFLD)")
+    body.append("place the *FRICTION block under the *SURFACE INTERACTION it belongs to")
+    head = job.header("Abaqus *FRICTION table", body, OUTSIDE_ABAQUS)
+    lines = commented(head, "** ")
+    lines.append("*FRICTION" + (f", DEPENDENCIES={len(fields)}" if fields else ""))
+    for idx_rev in itertools.product(*[range(len(v)) for v in reversed(col_vals)]):
+        idx = idx_rev[::-1]
+        grid_idx = tuple(idx[cols.index(n)] for n in grid.names)
+        vals = [float(mu[grid_idx])] + [float(cv[i]) for cv, i in zip(col_vals, idx,
+                                                                      strict=True)]
+        for k in range(0, len(vals), 8):
+            lines.append(", ".join(_num(x) for x in vals[k:k + 8]))
+    if float(np.min(mu)) < 0:
+        job.warnings.append("the law gives negative mu inside the box")
+    return Written("\n".join(lines) + "\n", rows=grid.rows, error=err, grid=grid,
+                   summary=summary, details={"columns": cols, "fields": fields})
+
+
+def write_abaqus_decay(job: Job) -> Written:
+    """``*FRICTION, EXPONENTIAL DECAY``: exact for laws of that form, else a refusal."""
+    law = job.law
+    form, why = exp_decay_form(law, job.values)
+    if form is None:
+        raise InputError(
+            f"abaqus-decay: {why}, so *FRICTION, EXPONENTIAL DECAY cannot represent it "
+            "exactly. Fit 'exponential-decay' with delta held at 1 first (frictionlaws fit "
+            "--law exponential-decay --fix delta=1 DATA --save fit.json, then export "
+            "--params fit.json), or export a table with --format abaqus")
+    scale, _ = job.units.affine("v")
+    d_c = form.d_c * scale
+    notes = []
+    if form.mu_s == form.mu_k:
+        d_c = 1.0
+        notes.append("mu is constant (mu_s = mu_k): d_c has no effect and is written as 1")
+    body = [
+        *job.box_lines(),
+        "exact: mu = mu_k + (mu_s - mu_k) exp(-d_c * slip rate) is the law itself "
+        "(checked numerically)",
+        f"mu_s = {form.mu_s!r}, mu_k = {form.mu_k!r}, d_c = {d_c!r} "
+        f"[1/({job.units.label('v')})] (= 1/v_c)",
+        *notes,
+        "place the *FRICTION block under the *SURFACE INTERACTION it belongs to",
+    ]
+    head = job.header("Abaqus *FRICTION, EXPONENTIAL DECAY", body,
+                      "the same formula holds at every slip rate (no table, no box)")
+    lines = commented(head, "** ")
+    lines += ["*FRICTION, EXPONENTIAL DECAY", f"{form.mu_s!r}, {form.mu_k!r}, {d_c!r}"]
+    return Written("\n".join(lines) + "\n", exact=True, summary=body[-3:],
+                   details={"mu_s": form.mu_s, "mu_k": form.mu_k, "d_c": d_c})

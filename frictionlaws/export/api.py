@@ -1,0 +1,417 @@
+"""The export entry point: :func:`export` any law to any supported format."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..law import VARIABLES, Law
+from .grid import MAX_ROWS, AxisSpec, Grid
+from .job import Job, Written
+from .systems import UnitSystem, unit_system
+
+__all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
+
+
+def _fortran(fmt: str) -> Callable[[Job], Written]:
+    def write(job: Job) -> Written:
+        from .fortran import FIELD_VARIABLES, fortran_source, routine_name
+
+        law = job.law
+        fields = [v for v in law.variables if v in FIELD_VARIABLES]
+        u = job.units
+        names = {"abaqus-fric-coef": "FRIC_COEF (Abaqus/Standard)",
+                 "abaqus-vfric-coef": "VFRIC_COEF (Abaqus/Explicit, general contact)",
+                 "abaqus-vfric": "VFRIC (Abaqus/Explicit, contact pairs)"}
+        body = [f"routine: {names[fmt]}, calling {routine_name(law)} (the law, SI, "
+                "implicit none)"]
+        if fmt == "abaqus-fric-coef":
+            body += [
+                "interface of Abaqus 2017 and later: fCoef(nBlock,2), fCoefDeriv(nBlock,20,2), "
+                "slipData(nBlock,6) with the slip-rate magnitude in slipData(k,1); check it "
+                "against your release (older releases pass fCoef(nBlock), "
+                "fCoefDeriv(nBlock,3), slipRate(nBlock), as VFRIC_COEF does)",
+                "out: fCoef(k,1) = fCoef(k,2) = mu (isotropic); fCoefDeriv(k,1..3,j) = "
+                f"d mu/d slip rate [1/({u.label('v')})], d mu/d pressure "
+                f"[1/{u.label('p')}], d mu/d temperature [1/{u.label('T')}]; other slots 0",
+            ]
+        elif fmt == "abaqus-vfric-coef":
+            body += [
+                "out: fCoef(k) = mu; fCoefDeriv(k,1..3) = d mu/d slip rate "
+                f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
+                f"temperature [1/{u.label('T')}]",
+            ]
+        else:
+            body += [
+                "out: fTangential(1,k) = -min(mu * |fNormal|, fStickForce) (opposing slip), "
+                "other directions 0",
+                "in: slip rate = |dSlipFric(:,k)| / dTimPrev; p = |fNormal(k)| / "
+                "areaSlv(jConSlvid(k)); T = tempSlv(k)"
+                + ("; F_N = |fNormal(k)|, the nodal normal force, which is not a "
+                   "tribometer's normal load: check the law's meaning" if "F_N" in
+                   law.variables else ""),
+            ]
+        fld = [v for v in fields if not (fmt == "abaqus-vfric" and v == "F_N")]
+        for i, v in enumerate(fld):
+            src = (f"preDefSlv(k,{i + 1})" if fmt == "abaqus-vfric"
+                   else f"fieldAvg(k,{i + 1})")
+            body.append(f"field variable {i + 1} = {v} ({VARIABLES[v].meaning}) "
+                        f"[{u.label(v)}], read from {src}; the analysis stops if it is "
+                        "missing")
+        if "T" in law.variables:
+            body.append("the law needs the temperature: the analysis stops if none is "
+                        "defined")
+        body += [
+            "inputs are converted from the model's units to SI, the law is evaluated in SI "
+            "with its floors, and the derivatives are scaled back to the model's units",
+            "every local is declared (the include's implicit typing would make names "
+            "starting i..n INTEGER); in Abaqus/Explicit the real arguments take the "
+            "include's precision",
+            "use: abaqus job=<job> user=<this file>",
+        ]
+        if job.specs:
+            job.domain_warnings()
+            body += job.box_lines()
+        head = job.header(f"Abaqus user subroutine {names[fmt]}", body,
+                          "the subroutine evaluates the law itself at any input (check the "
+                          "law's domain)")
+        text = fortran_source(law, job.values, fmt, job.units, head)
+        return Written(text, exact=True, summary=body[:1],
+                       details={"routine": routine_name(law)})
+
+    return write
+
+
+def _lazy(module: str, name: str) -> Callable[[Job], Written]:
+    def write(job: Job) -> Written:
+        from importlib import import_module
+
+        return getattr(import_module(f"frictionlaws.export.{module}"), name)(job)
+
+    return write
+
+
+#: Format name -> (writer, one-line description, needs a box).
+FORMATS: dict[str, tuple[Callable[[Job], Written], str, bool]] = {
+    "csv": (_lazy("tables", "write_csv"), "grid of mu, CSV with units in the header", True),
+    "json": (_lazy("tables", "write_json"), "grid of mu, JSON with units", True),
+    "abaqus": (_lazy("abaqus", "write_abaqus"),
+               "Abaqus *FRICTION table (mu, slip rate, pressure, temperature, fields)", True),
+    "abaqus-decay": (_lazy("abaqus", "write_abaqus_decay"),
+                     "Abaqus *FRICTION, EXPONENTIAL DECAY (exact laws only)", False),
+    "lsdyna": (_lazy("lsdyna", "write_lsdyna"),
+               "LS-DYNA FS/FD/DC card when exact, else FS=2 *DEFINE_TABLE", True),
+    "ansys": (_lazy("ansys", "write_ansys"), "Ansys TB,FRIC with TBFIELD NPRES/SLRV/TEMP",
+              True),
+    "radioss": (_lazy("radioss", "write_radioss"),
+                "OpenRadioss /FRICTION Ifric 1/4, exact or fitted over the box", True),
+    "abaqus-fric-coef": (_fortran("abaqus-fric-coef"),
+                         "Fortran FRIC_COEF (Abaqus/Standard), mu and derivatives", False),
+    "abaqus-vfric-coef": (_fortran("abaqus-vfric-coef"),
+                          "Fortran VFRIC_COEF (Abaqus/Explicit), mu and derivatives", False),
+    "abaqus-vfric": (_fortran("abaqus-vfric"),
+                     "Fortran VFRIC (Abaqus/Explicit contact pairs), friction force", False),
+}
+
+
+@dataclass
+class ExportResult:
+    """What :func:`export` wrote.
+
+    Attributes
+    ----------
+    format : str
+        The export format.
+    text : str
+        The file content.
+    path : str or None
+        Where it was written (None when not written).
+    law : str
+        Law id.
+    units : str
+        Unit system name.
+    rows : int or None
+        Table rows, None for formula exports.
+    exact : bool
+        True when the file reproduces the law exactly (no interpolation).
+    max_error : float or None
+        Largest ``|mu_file - mu_law|`` in the box (interpolation or approximation).
+    error_at : dict
+        Where it occurs, in the model's units.
+    rms_error : float or None
+        Root mean square error over the check sample.
+    warnings : list of str
+        Extrapolation and other warnings (also in the file's header).
+    summary : list of str
+        Lines for the user.
+    details : dict
+        Format-specific facts (coefficients, ids...).
+    grid : Grid or None
+        The grid written, breakpoints in SI.
+    """
+
+    format: str
+    text: str
+    path: str | None
+    law: str
+    units: str
+    rows: int | None
+    exact: bool
+    max_error: float | None
+    error_at: dict[str, float] = field(default_factory=dict)
+    rms_error: float | None = None
+    warnings: list[str] = field(default_factory=list)
+    summary: list[str] = field(default_factory=list)
+    details: dict[str, Any] = field(default_factory=dict)
+    grid: Grid | None = None
+
+    def report(self) -> str:
+        """A few lines for the command line."""
+        where = f"{self.path}" if self.path else "(not written)"
+        lines = [f"wrote {where}: {self.format}, law {self.law}, units {self.units}"]
+        lines += [f"  {s}" for s in self.summary]
+        lines += [f"  WARNING: {w}" for w in self.warnings]
+        return "\n".join(lines)
+
+
+# ------------------------------------------------------------------ ranges
+
+
+def _check_range(var: str, lo: float, hi: float) -> None:
+    if var in ("p", "v", "F_N") and lo < 0:
+        raise InputError(f"range of {var} ({VARIABLES[var].meaning}) must not be negative, "
+                         f"got MIN {lo:g} {VARIABLES[var].unit} (SI)")
+    if var == "T" and lo <= 0:
+        raise InputError(f"range of T must be above 0 K, got MIN {lo:g} K (SI)")
+
+
+def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
+                spacing: str = "auto") -> AxisSpec:
+    """Parse ``MIN:MAX[:N]`` for variable ``var``.
+
+    Bare numbers are in ``units`` (the export's unit system); a bound may carry
+    its own unit, e.g. ``"10kPa:0.5MPa:20"`` or ``"20degC:80degC"``.
+
+    Raises
+    ------
+    InputError
+        With the option name, the text and an example, when malformed.
+    """
+    from ..units import parse_quantity
+
+    system = unit_system(units)
+    opt = f"--{var}"
+    parts = str(text).split(":")
+    example = {"p": "0.01:0.5:20 (in the --units system) or 10kPa:0.5MPa:20",
+               "v": "0:2:21 or 1e-3m/s:10m/s:30", "T": "253.15:353.15:5 or 20degC:80degC:7",
+               "F_N": "10:500:12 or 1N:1kN", "s": "0:1:41"}[var]
+    if len(parts) not in (2, 3):
+        raise InputError(f"{opt} '{text}': expected MIN:MAX or MIN:MAX:N, e.g. {opt} {example}")
+
+    def bound(s: str) -> float:
+        s = s.strip()
+        if not s:
+            raise InputError(f"{opt} '{text}': empty bound; expected MIN:MAX[:N], e.g. "
+                             f"{opt} {example}")
+        try:
+            x = float(s)
+        except ValueError:
+            return parse_quantity(s, var, what=opt)
+        if not math.isfinite(x):
+            raise InputError(f"{opt} '{text}': bounds must be finite")
+        return float(system.to_si(var, x))
+
+    lo, hi = bound(parts[0]), bound(parts[1])
+    n = None
+    if len(parts) == 3:
+        try:
+            n = int(parts[2].strip())
+        except ValueError:
+            raise InputError(f"{opt} '{text}': N must be a whole number of points, got "
+                             f"'{parts[2].strip()}'") from None
+    _check_range(var, lo, hi)
+    return AxisSpec(var, lo, hi, n, spacing)
+
+
+def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
+               spacing: Mapping[str, str] | None = None) -> dict[str, AxisSpec]:
+    """Ranges from an API ``box``: SI tuples ``(min, max[, n])``, quantity strings, text."""
+    from ..units import parse_quantity
+
+    spacing = dict(spacing or {})
+    for k, s in spacing.items():
+        if k not in VARIABLES:
+            raise InputError(f"spacing for unknown variable '{k}' (variables: "
+                             f"{', '.join(VARIABLES)})")
+        if s not in ("lin", "log", "auto"):
+            raise InputError(f"spacing of {k} must be lin or log, got '{s}'")
+    out: dict[str, AxisSpec] = {}
+    for var, spec in (box or {}).items():
+        if var not in VARIABLES:
+            raise InputError(f"box: unknown variable '{var}' (variables: "
+                             f"{', '.join(VARIABLES)})")
+        sp = spacing.get(var, "auto")
+        if isinstance(spec, AxisSpec):
+            out[var] = spec
+        elif isinstance(spec, str):
+            out[var] = parse_range(var, spec, units, sp)
+        else:
+            seq = list(spec)
+            if len(seq) not in (2, 3):
+                raise InputError(f"box['{var}']: expected (min, max) or (min, max, n), "
+                                 f"got {spec!r}")
+            lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
+            n = None
+            if len(seq) == 3 and seq[2] is not None:
+                if int(seq[2]) != seq[2]:
+                    raise InputError(f"box['{var}']: n must be a whole number, got {seq[2]!r}")
+                n = int(seq[2])
+            _check_range(var, lo, hi)
+            out[var] = AxisSpec(var, lo, hi, n, sp)
+    for var in spacing:
+        if var not in out:
+            raise InputError(f"spacing given for {var} but no range (--{var} MIN:MAX[:N])")
+    return out
+
+
+# ------------------------------------------------------------------ export
+
+
+def _values(law: Law | str | None, params: Any, preset: str | None
+            ) -> tuple[Law, dict[str, float], Any, str]:
+    from ..registry import get_law
+
+    fit = None
+    if params is not None and hasattr(params, "values") and hasattr(params, "law") \
+            and not isinstance(params, Mapping):
+        fit = params
+        fit_law = params.law
+        if law is not None and get_law(law).id != fit_law.id:
+            raise InputError(f"the parameters are for law '{fit_law.id}', not "
+                             f"'{get_law(law).id}'")
+        law_obj = fit_law
+        values = dict(params.values)
+        source = "fit result" + (f" ({params.message})" if getattr(params, "message", "")
+                                 else "")
+    else:
+        if law is None:
+            raise InputError("no law given")
+        law_obj = get_law(law)
+        values = law_obj.resolve(params, preset)
+        parts = ([f"preset '{preset}'"] if preset else []) + (["given values"] if params
+                                                               else [])
+        source = " with ".join(parts) or "law defaults"
+    for k, v in values.items():
+        if not math.isfinite(float(v)):
+            raise InputError(f"parameter {k} of law '{law_obj.id}' is not finite ({v!r})")
+    return law_obj, {k: float(v) for k, v in values.items()}, fit, source
+
+
+def export(law: Law | str | None, params: Any = None, format: str = "csv",
+           box: Mapping[str, Any] | None = None, *, preset: str | None = None,
+           units: str | UnitSystem = "SI", tol: float | None = None,
+           spacing: Mapping[str, str] | None = None, path: str | Path | None = None,
+           max_rows: int = MAX_ROWS, source: str | None = None,
+           options: Mapping[str, Any] | None = None) -> ExportResult:
+    """Export a law to a finite-element code's input, a table or a user subroutine.
+
+    Parameters
+    ----------
+    law : Law or str or None
+        The law (id or alias); may be None when ``params`` is a fit result.
+    params : mapping or FitResult, optional
+        Parameter values (SI) or a :class:`~frictionlaws.fitting.FitResult`
+        (also from :func:`~frictionlaws.fitting.load_result`); missing ones
+        come from ``preset`` or the defaults of optional parameters.
+    format : str
+        One of :data:`FORMATS`: ``csv``, ``json``, ``abaqus``, ``abaqus-decay``,
+        ``lsdyna``, ``ansys``, ``radioss``, ``abaqus-fric-coef``,
+        ``abaqus-vfric-coef``, ``abaqus-vfric``.
+    box : mapping, optional
+        Variable -> ``(min, max)`` or ``(min, max, n)`` in SI (numbers) or as
+        quantity strings (``("10 kPa", "0.5 MPa", 20)``), or ``"MIN:MAX[:N]"``
+        text in the ``units`` system.  Needed for the table formats (every
+        variable the law uses) and the Radioss fit.
+    preset : str, optional
+        A named preset of the law.
+    units : str or UnitSystem
+        Unit system of the file: ``"SI"`` (Pa, m/s, K, N), ``"mm-N-s"``
+        (MPa, mm/s, K, N), ``"mm-kg-ms"`` (GPa, m/s, K, kN), optionally with
+        overrides such as ``"mm-N-s,T=degC"``.
+    tol : float, optional
+        Largest interpolation error allowed in mu: the grid is refined until
+        the solver's interpolation meets it everywhere in the box.  Without
+        ``tol``, a box giving a count for every variable is used as it is;
+        otherwise the grid is adaptive with tol 1e-3.
+    spacing : mapping, optional
+        Variable -> ``"lin"`` or ``"log"`` (default: log when min > 0 and
+        max/min >= 100, else lin).
+    path : str or Path, optional
+        Write the file there.
+    max_rows : int
+        Largest table allowed.
+    source : str, optional
+        How the parameters were obtained (written in the header).
+    options : mapping, optional
+        Format options: ``lsdyna_ssid``, ``lsdyna_msid``, ``lsdyna_sstyp``,
+        ``lsdyna_mstyp``, ``lsdyna_contact``, ``lsdyna_table_id``,
+        ``ansys_mat``, ``radioss_id``.
+
+    Returns
+    -------
+    ExportResult
+        The text, where it was written, and the error statement.
+
+    Raises
+    ------
+    InputError
+        Unknown format, bad box, a law needing a variable without a range, or
+        a format that cannot represent the law (``abaqus-decay``; variables a
+        solver does not support).
+    """
+    if format not in FORMATS:
+        raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
+    if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+        raise InputError(f"tolerance must be a positive number, got {tol!r}")
+    law_obj, values, fit, src = _values(law, params, preset)
+    message = law_obj.check_admissible(values)
+    system = unit_system(units)
+    specs = make_specs(box, system, spacing)
+    job = Job(law=law_obj, values=values, fmt=format, units=system, specs=specs, tol=tol,
+              max_rows=int(max_rows), source=source or src, fit=fit,
+              options=dict(options or {}))
+    if message:
+        job.warnings.append(f"parameters not admissible: {message}")
+    if fit is not None:
+        job.warnings += [f"fit: {w}" for w in getattr(fit, "warnings", [])]
+        if getattr(fit, "success", True) is False:
+            job.warnings.append("fit: the optimiser did not converge")
+    writer, _, needs_box = FORMATS[format]
+    if needs_box:
+        job.domain_warnings()
+    written = writer(job)
+    err = written.error
+    out_path = None
+    if path is not None and str(path) != "-":
+        p = Path(path)
+        try:
+            p.write_text(written.text, encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
+        out_path = str(p)
+    error_at = {}
+    if err is not None:
+        error_at = {k: float(np.asarray(system.to_model(k, v))) for k, v in err.where.items()}
+    return ExportResult(
+        format=format, text=written.text, path=out_path, law=law_obj.id, units=system.name,
+        rows=written.rows, exact=written.exact,
+        max_error=(0.0 if written.exact else (err.max_abs if err is not None else None)),
+        error_at=error_at, rms_error=None if err is None else err.rms,
+        warnings=list(job.warnings), summary=list(written.summary),
+        details=dict(written.details), grid=written.grid)

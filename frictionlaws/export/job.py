@@ -1,0 +1,275 @@
+"""What one export needs: the law, its values, units, box, and the common header.
+
+Writers (one module per solver) receive a :class:`Job` and return a
+:class:`Written`; the header every file carries (law, parameters with units,
+unit system, box, grid, maximum interpolation error and where it occurs, what
+the solver does outside the box) is composed here so all formats say the same
+things the same way.
+"""
+
+from __future__ import annotations
+
+import functools
+import textwrap
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..law import VARIABLES, Law
+from .grid import AxisSpec, Grid, GridError, make_grid
+from .systems import UnitSystem
+
+__all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
+
+#: How a missing range is given on the command line (used in messages).
+CLI_BOX_HINT = {"p": "--p MIN:MAX[:N]", "v": "--v MIN:MAX[:N]", "T": "--T MIN:MAX[:N]",
+                "F_N": "--F_N MIN:MAX[:N]", "s": "--s MIN:MAX[:N]"}
+
+
+def fmt_num(x: float, digits: int = 6) -> str:
+    """A compact number for headers and messages."""
+    return f"{float(x):.{digits}g}"
+
+
+@dataclass
+class Written:
+    """What a writer produced.
+
+    Attributes
+    ----------
+    text : str
+        The file content.
+    rows : int or None
+        Table rows (grid points), None for formula exports.
+    error : GridError or None
+        Interpolation (or approximation) error, SI locations.
+    exact : bool
+        True when the file reproduces the law exactly (a formula, not a table).
+    summary : list of str
+        Lines to show the user (also in the header).
+    grid : Grid or None
+        The grid written, when there is one.
+    details : dict
+        Format-specific facts (fitted coefficients, ids...).
+    """
+
+    text: str
+    rows: int | None = None
+    error: GridError | None = None
+    exact: bool = False
+    summary: list[str] = field(default_factory=list)
+    grid: Grid | None = None
+    details: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class Job:
+    """Everything a writer needs for one export.
+
+    Attributes
+    ----------
+    law : Law
+        The law.
+    values : dict
+        Complete parameters and settings in SI (``law.resolve`` output).
+    fmt : str
+        Export format.
+    units : UnitSystem
+        The units the file is written in.
+    specs : dict
+        Variable -> :class:`AxisSpec` (SI) for the ranges the user gave.
+    tol : float or None
+        Interpolation tolerance (adaptive grid) or None.
+    max_rows : int
+        Largest table allowed.
+    source : str
+        Where the parameter values came from.
+    fit : object, optional
+        The :class:`~frictionlaws.fitting.FitResult` they came from.
+    options : dict
+        Format-specific options.
+    warnings : list of str
+        Warnings collected on the way (written in the header and returned).
+    """
+
+    law: Law
+    values: dict[str, float]
+    fmt: str
+    units: UnitSystem
+    specs: dict[str, AxisSpec]
+    tol: float | None
+    max_rows: int
+    source: str
+    fit: Any = None
+    options: dict[str, Any] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @functools.cached_property
+    def func(self) -> Callable[..., Any]:
+        """The law as a fast vectorised function of its variables (SI)."""
+        return self.law.bind(self.values)
+
+    def require_box(self, names: Sequence[str], what: str) -> list[AxisSpec]:
+        """The ranges of ``names``; InputError naming the option when one is missing."""
+        missing = [n for n in names if n not in self.specs]
+        if missing:
+            raise InputError(
+                f"{what}: law '{self.law.id}' depends on "
+                + ", ".join(f"{m} ({VARIABLES[m].meaning})" for m in missing)
+                + "; give its range: " + " ".join(CLI_BOX_HINT[m] for m in missing)
+                + " (API: box={" + ", ".join(f"'{m}': (min, max)" for m in missing) + "})")
+        return [self.specs[n] for n in names]
+
+    def make_grid(self, names: Sequence[str], what: str) -> tuple[Grid, GridError, str]:
+        """The grid over ``names`` (the order of the table's axes) and its error."""
+        specs = self.require_box(names, what)
+        return make_grid(self.func, specs, self.tol, max_rows=self.max_rows)
+
+    # ------------------------------------------------------------- header
+    def model(self, var: str, x_si: float) -> str:
+        """``"0.25 MPa"``: an SI value written in the model's unit."""
+        unit = self.units.unit(var)
+        val = float(self.units.to_model(var, x_si))
+        return f"{fmt_num(val)} {unit}".rstrip()
+
+    def param_lines(self) -> list[str]:
+        """Parameter and setting lines with units (and standard errors from a fit)."""
+        out = ["parameters (SI, as the law is defined):"]
+        est = getattr(self.fit, "params", None) or {}
+        for p in self.law.params:
+            unit = p.unit or "-"
+            line = f"  {p.name} = {self.values[p.name]!r} [{unit}]"
+            e = est.get(p.name)
+            if e is not None and getattr(e, "stderr", None) is not None:
+                line += f" +/- {fmt_num(e.stderr, 3)} (standard error)"
+            elif e is not None and getattr(e, "fixed", False):
+                line += " (fixed)"
+            out.append(line + (f"  {p.meaning}" if p.meaning else ""))
+        for s in self.law.settings:
+            unit = s.unit or "-"
+            out.append(f"  {s.name} = {self.values[s.name]!r} [{unit}] (setting)"
+                       + (f"  {s.meaning}" if s.meaning else ""))
+        if self.law.floors:
+            out.append("floors (applied before the formula, as the Python law does): "
+                       + ", ".join(f"{k} >= {fmt_num(v)} {VARIABLES[k].unit}".rstrip()
+                                   for k, v in self.law.floors.items()))
+        return out
+
+    def box_lines(self, grid: Grid | None = None) -> list[str]:
+        """The box in model units, with the grid when there is one."""
+        if grid is None:
+            if not self.specs:
+                return []
+            return ["box: " + "; ".join(
+                f"{n} {self.model(n, s.lo)} .. {self.model(n, s.hi)}"
+                for n, s in self.specs.items() if n in self.law.variables)]
+        parts = []
+        for name, pts, sp in zip(grid.names, grid.points, grid.spacing, strict=True):
+            if len(pts) == 1:
+                parts.append(f"{name} {self.model(name, pts[0])} (a single value)")
+            else:
+                parts.append(f"{name} {self.model(name, pts[0])} .. "
+                             f"{self.model(name, pts[-1])} ({len(pts)} points, {sp})")
+        return ["box: " + "; ".join(parts) if parts else "box: none (mu is constant)",
+                f"table rows: {grid.rows}"]
+
+    def error_lines(self, err: GridError | None, how: str, kind: str = "interpolation"
+                    ) -> list[str]:
+        """Maximum error, where it occurs, rms and how it was checked."""
+        if err is None:
+            return []
+        where = ", ".join(f"{k} = {self.model(k, v)}" for k, v in err.where.items())
+        out = [f"grid: {how}"] if how else []
+        out.append(f"max {kind} error |mu_file - mu_law| = {err.max_abs:.3g}"
+                   + (f" at {where}" if where else "")
+                   + f"; rms {err.rms:.3g}")
+        if err.n_checked > 1:
+            out.append(f"checked on {err.n_checked} points: every breakpoint and "
+                       f"{err.per_interval} points inside every interval along each "
+                       f"variable (all combinations), plus {err.n_random} random points")
+        return out
+
+    def domain_warnings(self) -> None:
+        """Warn when the box leaves the law's domain or the fitted data's range."""
+        for name, spec in self.specs.items():
+            if name not in self.law.variables:
+                continue
+            dom = self.law.domain.get(name)
+            if dom and (spec.lo < dom[0] * (1 - 1e-9) - 1e-300 or spec.hi > dom[1] * (1 + 1e-9)):
+                self.warnings.append(
+                    f"the box of {name} ({self.model(name, spec.lo)} .. "
+                    f"{self.model(name, spec.hi)}) leaves the law's domain "
+                    f"({self.model(name, dom[0])} .. {self.model(name, dom[1])}): "
+                    "the exported values there are an extrapolation of the law")
+            rng = (getattr(self.fit, "data", None) or {}).get("ranges", {}).get(name)
+            if rng and (spec.lo < rng[0] * (1 - 1e-9) - 1e-300 or spec.hi > rng[1] * (1 + 1e-9)):
+                self.warnings.append(
+                    f"the box of {name} extends beyond the fitted data "
+                    f"({self.model(name, rng[0])} .. {self.model(name, rng[1])}): "
+                    "extrapolation of the fit")
+        for name, spec in self.specs.items():
+            if name in self.law.variables and spec.single:
+                self.warnings.append(
+                    f"{name} has a single value ({self.model(name, spec.lo)}): the file holds mu "
+                    f"at that {name} for every {name} the model reaches")
+        for name in self.specs:
+            if name not in self.law.variables:
+                self.warnings.append(f"law '{self.law.id}' does not depend on {name}: "
+                                     "its range is ignored")
+
+    def header(self, title: str, body: Sequence[str], outside: str | None) -> list[str]:
+        """The header lines every exported file starts with."""
+        from .. import __version__
+
+        law = self.law
+        try:
+            formula = law.pretty()
+        except Exception:  # noqa: BLE001 - a plugin law's symbolic form may fail
+            formula = "(symbolic form unavailable)"
+        lines = [
+            f"frictionlaws {__version__} export: {title}",
+            f"law: {law.id} - {law.title} (evidence {law.evidence})",
+            f"formula: {formula}",
+            *self.param_lines(),
+            f"parameters from: {self.source}",
+            f"units: {self.units.describe(law.variables)}",
+            *body,
+        ]
+        if outside:
+            lines.append(f"outside the box: {outside}")
+        for w in self.warnings:
+            lines.append(f"WARNING: {w}")
+        return lines
+
+
+def commented(lines: Sequence[str], prefix: str, width: int = 78) -> list[str]:
+    """Header lines as comments, wrapped to ``width`` columns."""
+    out = []
+    for line in lines:
+        if not line:
+            out.append(prefix.rstrip())
+            continue
+        indent = len(line) - len(line.lstrip())
+        wrapped = textwrap.wrap(line, max(20, width - len(prefix)),
+                                subsequent_indent=" " * (indent + 2),
+                                break_long_words=False, break_on_hyphens=False)
+        out += [(prefix + w).rstrip() for w in wrapped or [""]]
+    return out
+
+
+def model_axes(job: Job, grid: Grid) -> list[np.ndarray]:
+    """The grid's breakpoints converted to the model's units."""
+    return [np.asarray(job.units.to_model(n, p), float)
+            for n, p in zip(grid.names, grid.points, strict=True)]
+
+
+def tabulated(job: Job, grid: Grid) -> np.ndarray:
+    """mu on the grid (SI evaluation)."""
+    from .grid import tabulate
+
+    return tabulate(job.func, grid.names, grid.points)
+
+

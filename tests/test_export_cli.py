@@ -1,0 +1,125 @@
+"""``frictionlaws export`` on the command line: outputs, parameter sources, errors."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+
+from frictionlaws.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_abaqus_table_in_mm_n_s(tmp_path, capsys):
+    out_file = tmp_path / "fric.inp"
+    code, out, err = run(capsys, "export", "--law", "thesis-poly2", "--preset", "steel",
+                         "--format", "abaqus", "--p", "0.03:0.25", "--v", "0:2770",
+                         "--units", "mm-N-s", "--tol", "0.005", "-o", str(out_file))
+    assert code == 0, err
+    text = out_file.read_text()
+    assert "*FRICTION" in text and "** units: mm-N-s (p MPa, v mm/s)" in text
+    assert f"wrote {out_file}" in out and "max interpolation error" in out
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "csv", "--p", "0.1-0.5"],
+     "expected MIN:MAX"),
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "nastran", "--p", "0:1"],
+     "invalid choice: 'nastran'"),
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "abaqus"],
+     "depends on p (contact pressure); give its range: --p MIN:MAX[:N]"),
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "abaqus-decay"],
+     "cannot represent it exactly. Fit 'exponential-decay'"),
+    (["--law", "savkoor", "--format", "csv", "--p", "0:1", "--v", "0:1"],
+     "give the parameters"),
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "csv", "--p",
+      "1furlong:2furlong"], "--p"),
+    (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "csv", "--p", "0:1",
+      "--spacing", "p=log"], "log spacing of p needs MIN > 0"),
+    (["--law", "park", "--set", "n=0.1,mu_s=.5,mu_m=1.2,h10=.3,v_m=.01", "--format",
+      "lsdyna", "--p", "0:1", "--v", "0:1"], "depends on T"),
+    (["--law", "nosuchlaw", "--set", "a=1", "--format", "csv"], "unknown law 'nosuchlaw'"),
+])
+def test_bad_input_exits_2_with_one_line(argv, message, tmp_path, capsys):
+    code, out, err = run(capsys, "export", *argv, "-o", str(tmp_path / "x"))
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    assert message in lines[0]
+    assert not (tmp_path / "x").exists()
+
+
+def test_plain_params_json(tmp_path, capsys):
+    pfile = tmp_path / "p.json"
+    pfile.write_text(json.dumps({"law": "thirion", "params": {"a": 0.5, "b": 2e-6}}))
+    code, out, err = run(capsys, "export", "--params", str(pfile), "--format", "json",
+                         "--p", "0:1:11", "--units", "mm-N-s", "-o", str(tmp_path / "g.json"))
+    assert code == 0, err
+    doc = json.loads((tmp_path / "g.json").read_text())
+    assert doc["law"] == "thirion" and doc["units"]["p"] == "MPa"
+    assert doc["parameters"]["b"]["value"] == 2e-6
+    assert doc["mu"][0] == pytest.approx(2.0)
+
+
+def test_saved_fit_result_as_params(tmp_path, capsys):
+    saved = tmp_path / "fit.json"
+    code, out, err = run(capsys, "fit", "--law", "thesis-poly2", "thesis-steel",
+                         "--save", str(saved))
+    assert code == 0, err
+    out_file = tmp_path / "f.rad"
+    code, out, err = run(capsys, "export", "--params", str(saved), "--format", "radioss",
+                         "--units", "mm-N-s", "-o", str(out_file))
+    assert code == 0, err
+    text = re.sub(r"\n#\s*", " ", out_file.read_text())
+    assert "exact: Ifric 1" in text
+    assert f"parameters from: file {saved}".replace(" ", "") in text.replace(" ", "")
+    assert "standard error" in text
+    # the saved law must match --law when both are given
+    code, out, err = run(capsys, "export", "--law", "thirion", "--params", str(saved),
+                         "--format", "radioss", "-o", str(out_file))
+    assert code == 2 and "not 'thirion'" in err
+
+
+def test_fit_then_export(tmp_path, capsys):
+    out_file = tmp_path / "grid.csv"
+    code, out, err = run(capsys, "export", "--law", "thesis-poly2", "--fit", "thesis-steel",
+                         "--format", "csv", "--p", "0.03MPa:0.25MPa:5", "--v", "0:2.77:4",
+                         "-o", str(out_file))
+    assert code == 0, err
+    text = out_file.read_text()
+    assert "# parameters from: fit to thesis-steel (n = 19" in text
+    assert "+/-" in text
+
+
+def test_stdout_output_and_fortran_without_box(tmp_path, capsys):
+    code, out, err = run(capsys, "export", "--law", "exponential-decay", "--preset",
+                         "rubber-steel", "--format", "abaqus-vfric-coef", "--units", "mm-N-s",
+                         "-o", "-")
+    assert code == 0, err
+    assert "subroutine vfric_coef" in out and "wrote (not written)" in err
+
+
+def test_temperature_in_degc(tmp_path, capsys):
+    out_file = tmp_path / "park.inp"
+    code, out, err = run(capsys, "export", "--law", "park", "--set",
+                         "n=0.11,mu_s=0.5,mu_m=1.2,h10=0.3,v_m=0.01", "--format", "abaqus",
+                         "--p", "0.02:1:4", "--v", "1:3000:6", "--T", "0:50:3",
+                         "--units", "mm-N-s,T=degC", "-o", str(out_file))
+    assert code == 0, err
+    text = out_file.read_text()
+    assert "T degC" in text
+    rows = [ln for ln in text.splitlines() if ln and not ln.startswith("*")]
+    temps = sorted({float(r.split(",")[3]) for r in rows})
+    assert temps == pytest.approx([0.0, 25.0, 50.0])
+
+
+def test_help_documents_range_syntax(capsys):
+    code, out, err = run(capsys, "export", "--help")
+    assert code == 0
+    assert "MIN:MAX:N" in out and "10kPa:0.5MPa:20" in out and "mm-N-s" in out
