@@ -1,0 +1,1145 @@
+"""Raw records -> friction coefficients per record -> a dataset per condition.
+
+Manifest
+    A CSV file with one row per record (paths relative to the manifest)::
+
+        file,load [kg],surface,condition,mode
+        records/steel_3kg_01.csv,3,steel,steel 3 kg 5 km/h,steady
+        records/s120_2kg_01.csv,2,sandpaper 120,S120 2 kg,initial
+
+    * ``file`` (required): the record CSV (see :mod:`.records`);
+    * ``load`` (required) with its unit: a mass (``load [kg]``) is a dead
+      weight, turned into a force with the rig's ``g``; a force
+      (``load [N]``, ``load [kgf]``) is used as it is;
+    * ``surface`` (required): the counter-surface;
+    * ``condition`` (optional): records with the same label are repeats of one
+      condition.  Without it, records are grouped by surface, mode, load and
+      their measured disc and pin speeds (speeds closer than the rig's
+      ``grouping.speed_step`` are the same condition);
+    * ``mode`` (optional): ``steady`` (default) or ``initial`` (abrasive
+      surfaces: only the first seconds of sliding are valid);
+    * ``window_start``, ``window_end`` (optional, with a time unit, e.g.
+      ``window_start [s]``): override the automatic window of that record
+      (either or both; an empty cell keeps the automatic value);
+    * ``direction`` (optional): ``signed`` (default: the speeds in the file
+      carry their direction), ``counter`` (the file holds magnitudes; pin and
+      disc counter-rotate) or ``same`` (magnitudes; same direction).
+
+Per record
+    filter the torque (zero-phase low-pass, :mod:`.signal`); subtract the
+    system error and the internal torque at the current disc speed; friction
+    force = torque / track radius; mu = force / normal load; find the window
+    (or take the manifest's); the record's mu is the mean of the filtered mu
+    over the window.  Sliding velocity ``v = r |w_pin - w_disc|`` and slip ratio
+    ``s = |w_pin - w_disc| / max(|w_pin|, |w_disc|)`` (thesis Eq. 3-4) use the
+    window means of the signed speeds, so a counter-rotating pin gives
+    ``1 < s <= 2`` and a fixed pin ``s = 1``; contact pressure = load / area.
+
+Per condition
+    The record means of the usable records are averaged: ``mu`` (mean),
+    ``mu_std`` (sample standard deviation, ddof = 1), ``n``, and the 95 %
+    Student-t interval ``mu +/- t(0.975, n - 1) * mu_std / sqrt(n)``.  It
+    covers the condition's true coefficient when the record means scatter
+    normally about it (repeat-to-repeat scatter dominates the in-record noise).
+
+Outlier rule
+    Two-sided Grubbs test on the record means of a condition with at least 4
+    usable records (so that 3 remain; with 3 the test can only flag a record
+    because the other two happen to agree closely), significance ``alpha``
+    (rig ``[outliers] alpha``, default 0.01), applied once: the record with
+    the largest ``G = |x - mean| / sd`` is dropped when ``G`` exceeds the
+    critical value
+    ``(n - 1) / sqrt(n) * sqrt(t^2 / (n - 2 + t^2))`` with ``t`` the
+    ``1 - alpha / (2 n)`` quantile of Student's t with ``n - 2`` degrees of
+    freedom.  The dropped record is reported with its ``G`` and the critical
+    value.  ``[outliers] rule = "none"`` keeps every record.
+
+Unusable records
+    A missing or unreadable file, wrong columns or units, NaNs, a time base
+    that is not uniform, a record shorter than ``min_duration``, no sliding,
+    no steady window, no friction (mean mu below ``min_mu``), sensor saturation inside
+    the window, or a bad manifest row: the record is reported with the reason
+    (file, column, row) and the rest are processed.  Conditions with fewer than
+    ``min_repeats`` (default 2) usable records are not written to the dataset
+    and are listed in the summary.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from .records import Record, read_record, split_header
+from .rig import RPM, Rig
+from .signal import NoWindow, Window, auto_cutoff, find_window, lowpass, speed_segment
+
+__all__ = [
+    "ManifestEntry",
+    "RecordResult",
+    "ConditionResult",
+    "Campaign",
+    "read_manifest",
+    "manifest_from_rows",
+    "process_record",
+    "process_campaign",
+    "process_records",
+    "grubbs",
+    "student_interval",
+    "SATURATION_FRACTION",
+]
+
+#: A raw reading at this fraction of the sensor's full scale counts as saturated.
+SATURATION_FRACTION = 0.995
+#: Consecutive equal samples at the record's extreme that count as a flat-topped (clipped) signal.
+CLIP_RUN = 20
+MODES = ("steady", "initial")
+#: The outlier test needs this many usable records (so that at least 3 remain).
+GRUBBS_MIN = 4
+DIRECTIONS = ("signed", "counter", "same")
+
+
+# --------------------------------------------------------------------------- manifest
+@dataclass(frozen=True)
+class ManifestEntry:
+    """One manifest row, checked.
+
+    ``error`` is set (and the record reported unusable) when the row itself is bad.
+    """
+
+    row: int
+    file: str
+    path: str
+    load: float  # N
+    load_text: str
+    surface: str
+    condition: str | None = None
+    mode: str = "steady"
+    window_start: float | None = None
+    window_end: float | None = None
+    direction: str = "signed"
+    error: str | None = None
+
+
+_MANIFEST_COLUMNS = {"file", "load", "surface", "condition", "mode", "window_start",
+                     "window_end", "direction"}
+
+
+def _norm(name: str) -> str:
+    return "_".join(name.strip().lower().replace("-", " ").split())
+
+
+def read_manifest(path: str | os.PathLike[str], rig: Rig) -> tuple[list[ManifestEntry],
+                                                                     list[str]]:
+    """Read and check a manifest CSV (format in the module docstring).
+
+    Returns
+    -------
+    entries : list of ManifestEntry
+        One per data row; rows with a problem carry ``error``.
+    notes : list of str
+        Remarks (ignored columns...).
+
+    Raises
+    ------
+    InputError
+        When the file is missing or malformed, a required column is missing, or
+        a column's unit is wrong: problems that concern every row.
+    """
+    src = os.fspath(path)
+    headers, columns, rows = _read_table(src)
+    base = Path(src).resolve().parent
+    return _entries(headers, columns, rows, src, base, rig)
+
+
+def _read_table(src: str) -> tuple[list[str], list[list[str]], list[int]]:
+    """Cells of a small CSV table: headers, columns and the line number of each row.
+
+    ``#`` comment lines and blank lines are skipped; the delimiter (``,``, ``;``
+    or tab) is taken from the header line.
+    """
+    import csv
+
+    p = Path(src)
+    if not p.exists():
+        raise InputError("manifest file not found", file=src)
+    if p.is_dir():
+        raise InputError("is a directory; expected a manifest CSV file", file=src)
+    raw = p.read_bytes()
+    if b"\x00" in raw[:4096]:
+        raise InputError("is not a text CSV file (binary content)", file=src)
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    header: list[str] | None = None
+    delimiter = ","
+    data: list[list[str]] = []
+    rows: list[int] = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        if header is None:
+            delimiter = next((d for d in (";", "\t", ",") if d in line), ",")
+            header = [h.strip() for h in next(csv.reader([line], delimiter=delimiter))]
+            continue
+        cells = next(csv.reader([line], delimiter=delimiter))
+        if len(cells) > len(header) and any(c.strip() for c in cells[len(header):]):
+            raise InputError(f"has {len(cells)} fields but the header has {len(header)}",
+                             file=src, row=number)
+        cells = (cells + [""] * len(header))[: len(header)]
+        data.append(cells)
+        rows.append(number)
+    if header is None:
+        raise InputError("manifest is empty; expected a header 'file,load [kg],surface' and "
+                         "one row per record", file=src)
+    if not data:
+        raise InputError("manifest has a header but no rows", file=src)
+    columns = [[cells[j] for cells in data] for j in range(len(header))]
+    return header, columns, rows
+
+
+def manifest_from_rows(rows: Sequence[Mapping[str, Any]], rig: Rig, *,
+                       base: str | os.PathLike[str] = ".", source: str = "<manifest>"
+                       ) -> tuple[list[ManifestEntry], list[str]]:
+    """Check manifest rows given as dicts (column header -> value), as :func:`read_manifest`."""
+    if not rows:
+        raise InputError("the manifest has no rows", file=source)
+    headers: list[str] = []
+    for r in rows:
+        for k in r:
+            if k not in headers:
+                headers.append(str(k))
+    columns = [[r.get(h, "") for r in rows] for h in headers]
+    return _entries(headers, columns, list(range(2, len(rows) + 2)), source, Path(base), rig)
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, float) and math.isnan(value):
+        return ""
+    return str(value).strip()
+
+
+def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src: str,
+             base: Path, rig: Rig) -> tuple[list[ManifestEntry], list[str]]:
+    from ..units import parse_unit, unit_registry
+
+    found: dict[str, int] = {}
+    units: dict[str, str | None] = {}
+    ignored: list[str] = []
+    for j, h in enumerate(headers):
+        name, unit = split_header(h)
+        key = _norm(name)
+        if key == "f_n":
+            key = "load"
+        if key not in _MANIFEST_COLUMNS:
+            if h.strip():
+                ignored.append(h)
+            continue
+        if key in found:
+            raise InputError(f"two columns give '{key}' ('{headers[found[key]]}' and '{h}')",
+                             file=src, column=h)
+        found[key] = j
+        units[key] = unit
+    for key in ("file", "load", "surface"):
+        if key not in found:
+            example = {"file": "file", "load": "load [kg]", "surface": "surface"}[key]
+            raise InputError(
+                f"manifest has no '{key}' column; expected columns file, load [kg] (or "
+                f"load [N]), surface and optionally condition, mode, window_start [s], "
+                f"window_end [s], direction (e.g. '{example}'; found: "
+                f"{', '.join(headers) or 'none'})", file=src)
+    load_h = headers[found["load"]]
+    load_unit = units["load"]
+    if not load_unit:
+        raise InputError("the load column has no unit; write 'load [kg]' for dead weights or "
+                         "'load [N]' for a force", file=src, column=load_h)
+    parsed = parse_unit(load_unit, "F_N", column=load_h, file=src)
+    ureg = unit_registry()
+    is_mass = parsed.dimensionality == ureg.kilogram.dimensionality
+    load_factor = (float(ureg.Quantity(1.0, parsed).to("kg").magnitude) * rig.g if is_mass
+                   else float(ureg.Quantity(1.0, parsed).to("N").magnitude))
+    win_factor: dict[str, float] = {}
+    for key in ("window_start", "window_end"):
+        if key in found:
+            u = units[key]
+            h = headers[found[key]]
+            if not u:
+                raise InputError(f"the {key} column has no unit; write '{key} [s]'",
+                                 file=src, column=h)
+            win_factor[key] = float(ureg.Quantity(1.0, parse_unit(u, "time", column=h,
+                                                                   file=src)).to("s").magnitude)
+    notes = []
+    if ignored:
+        notes.append(f"manifest columns ignored: {', '.join(ignored)}")
+    if is_mass:
+        notes.append(f"loads given as a mass ('{load_h}') are dead weights: F_N = m * g with "
+                     f"g = {rig.g:g} m/s^2 from the rig")
+    entries: list[ManifestEntry] = []
+    seen: dict[str, int] = {}
+    for i, row in enumerate(rows):
+        def get(key: str, i: int = i) -> str:
+            return _cell(columns[found[key]][i]) if key in found else ""
+
+        file = get("file")
+        errors: list[str] = []
+        load = math.nan
+        text = get("load")
+        try:
+            load = float(text) * load_factor
+        except ValueError:
+            errors.append(f"column '{load_h}': load '{text}' is not a number")
+        else:
+            if not (load > 0 and math.isfinite(load)):
+                errors.append(f"column '{load_h}': load must be > 0, got '{text}'")
+        if not file:
+            errors.append("column 'file' is empty")
+        surface = get("surface")
+        if not surface:
+            errors.append("column 'surface' is empty")
+        mode = get("mode").lower() or "steady"
+        if mode not in MODES:
+            errors.append(f"column 'mode': '{get('mode')}' is not one of steady, initial")
+        direction = get("direction").lower() or "signed"
+        if direction not in DIRECTIONS:
+            errors.append(f"column 'direction': '{get('direction')}' is not one of "
+                          f"{', '.join(DIRECTIONS)}")
+        window: dict[str, float | None] = {}
+        for key in ("window_start", "window_end"):
+            cell = get(key)
+            window[key] = None
+            if cell:
+                try:
+                    window[key] = float(cell) * win_factor[key]
+                except ValueError:
+                    errors.append(f"column '{headers[found[key]]}': '{cell}' is not a number")
+        ws, we = window["window_start"], window["window_end"]
+        if ws is not None and we is not None and not we > ws:
+            errors.append(f"window_end ({we:g} s) must be after window_start ({ws:g} s)")
+        path = str((base / file).resolve()) if file else ""
+        if file:
+            if path in seen:
+                errors.append(f"file listed twice (also in manifest row {seen[path]})")
+            else:
+                seen[path] = row
+        condition = get("condition") or None
+        error = None
+        if errors:
+            error = f"manifest '{src}' row {row}: " + "; ".join(errors)
+        entries.append(ManifestEntry(
+            row=row, file=file, path=path, load=load,
+            load_text=f"{text} {load_unit}".strip(), surface=surface, condition=condition,
+            mode=mode if mode in MODES else "steady", window_start=ws, window_end=we,
+            direction=direction if direction in DIRECTIONS else "signed", error=error))
+    return entries, notes
+
+
+# --------------------------------------------------------------------------- per record
+@dataclass
+class RecordResult:
+    """The outcome for one record.
+
+    ``status`` is ``"used"``, ``"outlier"`` (usable but dropped by the outlier
+    rule) or ``"unusable"`` (``reason`` says why).  Quantities in SI except
+    where the name says otherwise.
+    """
+
+    file: str
+    row: int
+    surface: str
+    mode: str
+    load: float
+    load_text: str
+    condition: str = ""
+    status: str = "unusable"
+    reason: str = ""
+    mu: float = math.nan
+    mu_window_std: float = math.nan
+    window_start: float = math.nan
+    window_end: float = math.nan
+    window_source: str = ""
+    cutoff: float = math.nan
+    cutoff_source: str = ""
+    fs: float = math.nan
+    duration: float = math.nan
+    n_samples: int = 0
+    p: float = math.nan
+    v: float = math.nan
+    s: float = math.nan
+    disc_speed: float = math.nan
+    pin_speed: float = math.nan
+    grubbs_g: float = math.nan
+    notes: list[str] = field(default_factory=list)
+    explicit_condition: bool = False
+
+    @property
+    def usable(self) -> bool:
+        return self.status in ("used", "outlier")
+
+
+@dataclass
+class _Signals:
+    """Signals kept for a diagnostic plot."""
+
+    time: np.ndarray
+    raw: np.ndarray
+    filtered: np.ndarray
+    mu: np.ndarray
+    window: Window | None
+    segment: tuple[int, int] | None
+
+
+def _apply_direction(rec: Record, direction: str) -> tuple[np.ndarray, np.ndarray]:
+    disc = rec.disc_speed
+    pin = rec.pin()
+    if direction == "counter":
+        return np.abs(disc), -np.abs(pin)
+    if direction == "same":
+        return np.abs(disc), np.abs(pin)
+    return disc, pin
+
+
+def _saturation(raw: np.ndarray, rig: Rig, sl: slice) -> tuple[int, str]:
+    """Saturated samples in ``sl`` and a description (0, "" when none)."""
+    if rig.torque_range is not None:
+        lim = SATURATION_FRACTION * rig.torque_range
+        sat = np.abs(raw[sl]) >= lim
+        k = int(np.count_nonzero(sat))
+        if k:
+            return k, (f"{k} samples at or beyond {lim:.4g} N m (99.5 % of the sensor range "
+                       f"{rig.torque_range:g} N m)")
+    seg = raw[sl]
+    if seg.size < CLIP_RUN:
+        return 0, ""
+    for extreme in (float(np.max(raw)), float(np.min(raw))):
+        at = seg == extreme
+        if np.count_nonzero(at) < CLIP_RUN:
+            continue
+        m = np.concatenate(([0], at.astype(np.int8), [0]))
+        d = np.diff(m)
+        runs = np.flatnonzero(d == -1) - np.flatnonzero(d == 1)
+        longest = int(runs.max())
+        if longest >= CLIP_RUN:
+            return int(np.count_nonzero(at)), (
+                f"the reading sticks at its extreme {extreme:.6g} N m for {longest} "
+                "consecutive samples (clipped signal)")
+    return 0, ""
+
+
+def process_record(record: Record, entry: ManifestEntry, rig: Rig, *,
+                   keep_signals: bool = False) -> RecordResult | tuple[RecordResult, Any]:
+    """Process one record: filter, offsets, mu, window, v, s, p.
+
+    Parameters
+    ----------
+    record : Record
+        The raw record (SI).
+    entry : ManifestEntry
+        Its manifest row (load, mode, window override, direction).
+    rig : Rig
+        Geometry, offsets and settings.
+    keep_signals : bool
+        Also return the signals for a diagnostic plot.
+
+    Returns
+    -------
+    RecordResult
+        (and the signals when ``keep_signals``).  Problems with the record give
+        ``status = "unusable"`` with the reason; nothing is raised for them.
+    """
+    res = _base_result(entry)
+    box: dict[str, _Signals] = {}
+    try:
+        _process(record, entry, rig, res, box if keep_signals else None)
+    except (InputError, NoWindow) as exc:
+        res.status = "unusable"
+        res.reason = " ".join(str(exc).split())
+    return (res, box.get("signals")) if keep_signals else res
+
+
+def _base_result(entry: ManifestEntry) -> RecordResult:
+    return RecordResult(file=entry.file, row=entry.row, surface=entry.surface, mode=entry.mode,
+                        load=entry.load, load_text=entry.load_text,
+                        condition=entry.condition or "",
+                        explicit_condition=entry.condition is not None)
+
+
+def _process(rec: Record, entry: ManifestEntry, rig: Rig, res: RecordResult,
+             box: dict[str, _Signals] | None) -> None:
+    from scipy.ndimage import uniform_filter1d
+
+    st = rig.window
+    src = rec.source
+    res.n_samples = len(rec)
+    res.fs = fs = rec.fs
+    res.duration = rec.duration
+    if res.duration < st.min_duration:
+        raise InputError(f"too short: {res.duration:.3g} s of data (min_duration "
+                         f"{st.min_duration:g} s)", file=src)
+    time = rec.time
+    raw = rec.torque
+    disc, pin = _apply_direction(rec, entry.direction)
+    # cut-off and filtering
+    if rig.filter.cutoff is None:
+        info = auto_cutoff(raw, fs, rig.filter)
+        res.cutoff, res.cutoff_source = info.cutoff, f"auto ({info.limited_by})"
+    else:
+        res.cutoff, res.cutoff_source = rig.filter.cutoff, "rig"
+    if not res.cutoff < 0.5 * fs:
+        raise InputError(f"filter cut-off {res.cutoff:g} Hz is not below the Nyquist frequency "
+                         f"{0.5 * fs:g} Hz of this record", file=src)
+    filtered = lowpass(raw, fs, res.cutoff, rig.filter.order)
+    m = max(1, int(round(fs / res.cutoff)))
+    disc_f = uniform_filter1d(disc, m, mode="nearest")
+    pin_f = uniform_filter1d(pin, m, mode="nearest")
+    # offsets -> friction torque -> mu
+    friction = filtered - rig.system_error - rig.internal_torque(disc_f)
+    mu = friction / (rig.track_radius * entry.load)
+    if box is not None:  # kept for the diagnostic plot, even if no window is found
+        box["signals"] = _Signals(time, raw, filtered, mu, None, None)
+    # window
+    segment: tuple[int, int] | None = None
+    win: Window | None = None
+    ws, we = entry.window_start, entry.window_end
+    if ws is not None or we is not None:
+        for name, value in (("window_start", ws), ("window_end", we)):
+            if value is not None and not (time[0] <= value <= time[-1]):
+                raise InputError(f"{name} {value:g} s from the manifest (row {entry.row}) is "
+                                 f"outside the record ({time[0]:g} .. {time[-1]:g} s)",
+                                 file=src)
+    if ws is None or we is None:  # at least one end from the automatic detection
+        a, b, seg_notes = speed_segment([disc_f, pin_f], st.speed_tolerance,
+                                        step=max(1, int(fs // 200)))
+        segment = (a, b)
+        if box is not None:
+            box["signals"].segment = segment
+        res.notes.extend(seg_notes)
+        win = find_window(mu, fs, segment, st, entry.mode)
+        res.notes.extend(win.notes)
+    if ws is not None or we is not None:
+        s0 = int(np.searchsorted(time, ws)) if ws is not None else win.start  # type: ignore
+        e0 = (int(np.searchsorted(time, we, side="right")) if we is not None
+              else win.stop)  # type: ignore[union-attr]
+        if e0 - s0 < 2:
+            raise InputError(f"the window from the manifest (row {entry.row}) holds fewer than "
+                             "2 samples", file=src)
+        res.window_source = ("manifest" if ws is not None and we is not None
+                             else "manifest start" if ws is not None else "manifest end")
+        win = Window(s0, e0, segment or (0, len(rec)), None, None, ())
+    else:
+        res.window_source = "auto"
+    assert win is not None
+    if box is not None:
+        box["signals"].window = win
+    sl = win.slice()
+    res.window_start, res.window_end = float(time[win.start]), float(time[win.stop - 1])
+    # saturation
+    k, what = _saturation(raw, rig, sl)
+    if k:
+        unit = rec.units.get("torque")
+        raise InputError(f"sensor saturation inside the window: {what}", file=src,
+                         column=f"torque [{unit}]" if unit else "torque")
+    k_all, what_all = _saturation(raw, rig, slice(None))
+    if k_all:
+        res.notes.append(f"sensor saturation outside the window: {what_all}")
+    # results
+    vals = mu[sl]
+    res.mu = float(np.mean(vals))
+    res.mu_window_std = float(np.std(vals, ddof=1)) if vals.size > 1 else math.nan
+    if not res.mu >= st.min_mu:
+        raise NoWindow(f"no friction: mu = {res.mu:.3g} in the window is below min_mu = "
+                       f"{st.min_mu:g}: pin not in contact, or offsets wrong?")
+    wd = float(np.mean(disc[sl]))
+    wp = float(np.mean(pin[sl]))
+    rel = abs(wp - wd)
+    res.disc_speed, res.pin_speed = wd, wp
+    res.v = rig.track_radius * rel
+    top = max(abs(wp), abs(wd))
+    res.s = rel / top if top > 0 else math.nan
+    res.p = entry.load / rig.contact_area
+    rng = rig.internal_range_rpm()
+    if rng is not None and not rng[0] * 0.999 <= abs(wd) / RPM <= rng[1] * 1.001:
+        res.notes.append(f"disc speed {abs(wd) / RPM:.4g} rpm is outside the internal-torque "
+                         f"table ({rng[0]:g} .. {rng[1]:g} rpm): its end value was used")
+    res.status = "used"
+
+
+# --------------------------------------------------------------------------- statistics
+def student_interval(values: Sequence[float] | np.ndarray, level: float = 0.95
+                     ) -> tuple[float, float, float, float]:
+    """Mean, sample standard deviation and Student-t interval of the mean.
+
+    Returns
+    -------
+    mean, std, low, high : float
+        ``std``, ``low`` and ``high`` are NaN for fewer than 2 values.
+    """
+    from scipy import stats
+
+    x = np.asarray(values, dtype=float)
+    n = x.size
+    if n == 0:
+        return math.nan, math.nan, math.nan, math.nan
+    mean = float(np.mean(x))
+    if n < 2:
+        return mean, math.nan, math.nan, math.nan
+    sd = float(np.std(x, ddof=1))
+    half = float(stats.t.ppf(0.5 + level / 2.0, n - 1)) * sd / math.sqrt(n)
+    return mean, sd, mean - half, mean + half
+
+
+def grubbs(values: Sequence[float] | np.ndarray, alpha: float = 0.01
+           ) -> tuple[int | None, float, float]:
+    """Two-sided Grubbs test for a single outlier.
+
+    Parameters
+    ----------
+    values : array-like
+        At least 3 values.
+    alpha : float
+        Significance level.
+
+    Returns
+    -------
+    index : int or None
+        Position of the outlier, or None.
+    G : float
+        The statistic ``max |x - mean| / sd`` (NaN for fewer than 3 values).
+    G_crit : float
+        Its critical value at ``alpha``.
+    """
+    from scipy import stats
+
+    x = np.asarray(values, dtype=float)
+    n = x.size
+    if n < 3:
+        return None, math.nan, math.nan
+    sd = float(np.std(x, ddof=1))
+    t = float(stats.t.ppf(1.0 - alpha / (2.0 * n), n - 2))
+    g_crit = (n - 1) / math.sqrt(n) * math.sqrt(t * t / (n - 2 + t * t))
+    if sd == 0:
+        return None, 0.0, g_crit
+    dev = np.abs(x - np.mean(x)) / sd
+    i = int(np.argmax(dev))
+    g = float(dev[i])
+    return (i if g > g_crit else None), g, g_crit
+
+
+@dataclass
+class ConditionResult:
+    """Statistics of one condition (SI units)."""
+
+    condition: str
+    surface: str
+    mode: str
+    n: int
+    mu: float
+    mu_std: float
+    ci95: tuple[float, float]
+    p: float
+    v: float
+    s: float
+    F_N: float
+    disc_speed: float
+    pin_speed: float
+    load_text: str
+    files: list[str] = field(default_factory=list)
+    outliers: list[tuple[str, str]] = field(default_factory=list)
+    unusable: list[tuple[str, str]] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    written: bool = True
+
+
+def _clusters(values: np.ndarray, step: float) -> np.ndarray:
+    """Labels of 1-D gap clusters: sorted values closer than ``step`` share a label."""
+    order = np.argsort(values, kind="stable")
+    labels = np.empty(values.size, dtype=int)
+    k = 0
+    for j, i in enumerate(order):
+        if j and values[i] - values[order[j - 1]] > step:
+            k += 1
+        labels[i] = k
+    return labels
+
+
+def _auto_conditions(results: list[RecordResult], step: float) -> None:
+    groups: dict[tuple[str, str, float], list[RecordResult]] = {}
+    for r in results:
+        if r.explicit_condition or not math.isfinite(r.load):
+            continue
+        groups.setdefault((r.surface, r.mode, round(r.load, 9)), []).append(r)
+    for (_surface, _mode, _), members in groups.items():
+        usable = [r for r in members if r.usable]
+        if not usable:
+            continue
+        disc = np.array([r.disc_speed for r in usable])
+        pin = np.array([r.pin_speed for r in usable])
+        ld = _clusters(disc, step)
+        labels: dict[tuple[int, int], list[RecordResult]] = {}
+        for c in np.unique(ld):
+            idx = np.flatnonzero(ld == c)
+            lp = _clusters(pin[idx], step)
+            for k, i in zip(lp, idx, strict=True):
+                labels.setdefault((int(c), int(k)), []).append(usable[i])
+        for recs in labels.values():
+            d = float(np.mean([r.disc_speed for r in recs])) / RPM
+            pp = float(np.mean([r.pin_speed for r in recs])) / RPM
+            name = (f"{recs[0].surface} | {recs[0].load_text} | disc {d:.0f} rpm, "
+                    f"pin {pp:.0f} rpm | {recs[0].mode}")
+            for r in recs:
+                r.condition = name
+        unusable = [r for r in members if not r.usable]
+        if len(labels) == 1:
+            only = next(iter(labels.values()))[0].condition
+            for r in unusable:
+                r.condition = only
+
+
+def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
+              ) -> list[ConditionResult]:
+    """Group records into conditions, apply the outlier rule, compute the statistics.
+
+    Sets ``status`` to ``"outlier"`` on records dropped by the rule.
+    """
+    _auto_conditions(results, rig.group_speed_step)
+    order: list[str] = []
+    by: dict[str, list[RecordResult]] = {}
+    for r in results:
+        if not r.condition:
+            continue
+        if r.condition not in by:
+            order.append(r.condition)
+        by.setdefault(r.condition, []).append(r)
+    out = []
+    for name in order:
+        members = by[name]
+        usable = [r for r in members if r.usable]
+        unusable = [(r.file, r.reason) for r in members if not r.usable]
+        notes: list[str] = []
+        outliers: list[tuple[str, str]] = []
+        if rig.outliers.rule == "grubbs" and len(usable) >= GRUBBS_MIN:
+            mus = np.array([r.mu for r in usable])
+            idx, g, g_crit = grubbs(mus, rig.outliers.alpha)
+            for r, gi in zip(usable, np.abs(mus - mus.mean()) / (mus.std(ddof=1) or 1.0),
+                             strict=True):
+                r.grubbs_g = float(gi)
+            if idx is not None:
+                bad = usable[idx]
+                bad.status = "outlier"
+                rest = np.delete(mus, idx)
+                bad.reason = (f"outlier (Grubbs, alpha = {rig.outliers.alpha:g}): mu = "
+                              f"{bad.mu:.4g} vs {rest.mean():.4g} +/- {rest.std(ddof=1):.2g} of "
+                              f"the other {rest.size} records; G = {g:.4f} > {g_crit:.4f}")
+                outliers.append((bad.file, bad.reason))
+                usable = [r for r in usable if r is not bad]
+        if not usable:
+            out.append(ConditionResult(name, members[0].surface, members[0].mode, 0, math.nan,
+                                       math.nan, (math.nan, math.nan), math.nan, math.nan,
+                                       math.nan, members[0].load, math.nan, math.nan,
+                                       members[0].load_text, [], outliers, unusable,
+                                       ["no usable record"], written=False))
+            continue
+        mus = [r.mu for r in usable]
+        mean, sd, lo, hi = student_interval(mus)
+        loads = {round(r.load, 9) for r in usable}
+        surfaces = {r.surface for r in usable}
+        modes = {r.mode for r in usable}
+        if len(loads) > 1:
+            texts = ", ".join(sorted({r.load_text for r in usable}))
+            notes.append(f"records have different loads ({texts}); the mean load is used")
+        if len(surfaces) > 1:
+            notes.append(f"records have different surfaces ({', '.join(sorted(surfaces))})")
+        if len(modes) > 1:
+            notes.append(f"records have different modes ({', '.join(sorted(modes))})")
+        vs = np.array([r.v for r in usable])
+        if vs.size > 1 and np.ptp(vs) > max(0.05 * np.mean(vs), rig.group_speed_step
+                                            * rig.track_radius):
+            notes.append(f"sliding velocities differ between records ({vs.min():.3g} .. "
+                         f"{vs.max():.3g} m/s); the mean is used")
+        written = len(usable) >= min_repeats
+        if not written:
+            notes.append(f"{len(usable)} usable record(s), fewer than min_repeats = "
+                         f"{min_repeats}: not written to the dataset")
+        F = float(np.mean([r.load for r in usable]))
+        out.append(ConditionResult(
+            condition=name, surface=usable[0].surface if len(surfaces) == 1
+            else "/".join(sorted(surfaces)), mode=usable[0].mode, n=len(usable), mu=mean,
+            mu_std=sd, ci95=(lo, hi), p=F / rig.contact_area,
+            v=float(np.mean(vs)), s=float(np.mean([r.s for r in usable])), F_N=F,
+            disc_speed=float(np.mean([r.disc_speed for r in usable])),
+            pin_speed=float(np.mean([r.pin_speed for r in usable])),
+            load_text=usable[0].load_text, files=[r.file for r in usable], outliers=outliers,
+            unusable=unusable, notes=notes, written=written))
+    return out
+
+
+# --------------------------------------------------------------------------- campaign
+@dataclass
+class Campaign:
+    """The result of processing a campaign: per record, per condition, and notes."""
+
+    records: list[RecordResult]
+    conditions: list[ConditionResult]
+    rig: Rig
+    source: str = "<memory>"
+    notes: list[str] = field(default_factory=list)
+    min_repeats: int = 2
+
+    @property
+    def used(self) -> list[RecordResult]:
+        return [r for r in self.records if r.status == "used"]
+
+    @property
+    def outliers(self) -> list[RecordResult]:
+        return [r for r in self.records if r.status == "outlier"]
+
+    @property
+    def unusable(self) -> list[RecordResult]:
+        return [r for r in self.records if r.status == "unusable"]
+
+    def dataset_frame(self) -> Any:
+        """The per-condition dataset with display-unit headers (what ``write_dataset`` writes).
+
+        Columns: ``condition``, ``surface``, ``mu``, ``mu_std``, ``mu_ci95_low``,
+        ``mu_ci95_high``, ``n``, ``p [MPa]``, ``v [m/s]``, ``s``, ``F_N [N]``,
+        ``mode``, ``disc_speed [rpm]``, ``pin_speed [rpm]``, ``n_outliers``,
+        ``n_unusable``.  Only conditions with at least ``min_repeats`` usable
+        records.
+        """
+        import pandas as pd
+
+        rows = []
+        for c in self.conditions:
+            if not c.written:
+                continue
+            rows.append({
+                "condition": c.condition, "surface": c.surface, "mu": c.mu,
+                "mu_std": c.mu_std, "mu_ci95_low": c.ci95[0], "mu_ci95_high": c.ci95[1],
+                "n": c.n, "p [MPa]": c.p / 1e6, "v [m/s]": c.v, "s": c.s, "F_N [N]": c.F_N,
+                "mode": c.mode, "disc_speed [rpm]": c.disc_speed / RPM,
+                "pin_speed [rpm]": c.pin_speed / RPM, "n_outliers": len(c.outliers),
+                "n_unusable": len(c.unusable)})
+        cols = ["condition", "surface", "mu", "mu_std", "mu_ci95_low", "mu_ci95_high", "n",
+                "p [MPa]", "v [m/s]", "s", "F_N [N]", "mode", "disc_speed [rpm]",
+                "pin_speed [rpm]", "n_outliers", "n_unusable"]
+        return pd.DataFrame(rows, columns=cols)
+
+    def dataset(self) -> Any:
+        """The dataset as a :class:`frictionlaws.io.Dataset` (SI), ready for ``fit``."""
+        from ..io import load_dataset
+
+        f = self.dataset_frame()
+        if f.empty:
+            raise InputError("no condition has enough usable records for a dataset",
+                             file=self.source)
+        frame = {"mu": f["mu"].to_numpy(), "p": f["p [MPa]"].to_numpy() * 1e6,
+                 "v": f["v [m/s]"].to_numpy(), "s": f["s"].to_numpy(),
+                 "F_N": f["F_N [N]"].to_numpy(), "mu_std": f["mu_std"].to_numpy(),
+                 "n": f["n"].to_numpy(), "surface": f["surface"].to_numpy()}
+        ds = load_dataset(frame)
+        ds.name = Path(self.source).stem if self.source != "<memory>" else "processed"
+        ds.notes.extend(self.summary_lines(short=True))
+        return ds
+
+    def records_frame(self) -> Any:
+        """The per-record table (display-unit headers)."""
+        import pandas as pd
+
+        rows = []
+        for r in self.records:
+            rows.append({
+                "file": r.file, "manifest_row": r.row, "condition": r.condition,
+                "surface": r.surface, "mode": r.mode, "status": r.status, "reason": r.reason,
+                "mu": r.mu, "mu_window_std": r.mu_window_std, "load": r.load_text,
+                "F_N [N]": r.load, "p [MPa]": r.p / 1e6, "v [m/s]": r.v, "s": r.s,
+                "disc_speed [rpm]": r.disc_speed / RPM, "pin_speed [rpm]": r.pin_speed / RPM,
+                "window_start [s]": r.window_start, "window_end [s]": r.window_end,
+                "window_source": r.window_source, "cutoff [Hz]": r.cutoff,
+                "cutoff_source": r.cutoff_source, "fs [Hz]": r.fs, "duration [s]": r.duration,
+                "samples": r.n_samples, "grubbs_G": r.grubbs_g, "notes": "; ".join(r.notes)})
+        return pd.DataFrame(rows)
+
+    def _provenance(self) -> list[str]:
+        n = len(self.records)
+        return [
+            f"Processed by frictionlaws process from manifest {self.source} with rig "
+            f"{self.rig.source}",
+            f"{n} records: {len(self.used)} used, {len(self.outliers)} outliers dropped, "
+            f"{len(self.unusable)} unusable (see the per-record table)",
+            "mu: mean of the record means of a condition; mu_std: their sample standard "
+            "deviation; mu_ci95_low/high: 95 % Student-t interval of the mean; n: records used",
+            f"outlier rule: {self.rig.outliers.rule}"
+            + (f" (two-sided Grubbs, alpha = {self.rig.outliers.alpha:g}, once per condition)"
+               if self.rig.outliers.rule == "grubbs" else ""),
+        ]
+
+    def write_dataset(self, path: str | os.PathLike[str]) -> Path:
+        """Write the dataset CSV (foundation schema, units in headers, provenance as ``#``)."""
+        return _write_csv(path, self.dataset_frame(), self._provenance())
+
+    def write_records(self, path: str | os.PathLike[str]) -> Path:
+        """Write the per-record table as CSV."""
+        return _write_csv(path, self.records_frame(), self._provenance()[:2])
+
+    def summary_lines(self, *, short: bool = False) -> list[str]:
+        """Lines of the summary: counts, unusable records, outliers, conditions not written."""
+        written = [c for c in self.conditions if c.written]
+        lines = [f"{len(self.records)} records: {len(self.used)} used, "
+                 f"{len(self.outliers)} dropped as outliers, {len(self.unusable)} unusable; "
+                 f"{len(written)} conditions in the dataset"]
+        if short:
+            for r in self.unusable:
+                lines.append(f"unusable record {r.file}: {r.reason}")
+            for r in self.outliers:
+                lines.append(f"outlier {r.file} ({r.condition}): {r.reason}")
+            return lines
+        if self.unusable:
+            lines.append("unusable records:")
+            lines += [f"  {r.file}: {r.reason}" for r in self.unusable]
+        if self.outliers:
+            lines.append("outliers dropped:")
+            lines += [f"  {r.file} [{r.condition}]: {r.reason}" for r in self.outliers]
+        unassigned = [r for r in self.unusable if not r.condition]
+        if unassigned:
+            lines.append(f"{len(unassigned)} unusable record(s) could not be assigned to a "
+                         "condition (no 'condition' column and no measured speeds)")
+        not_written = [c for c in self.conditions if not c.written]
+        if not_written:
+            lines.append("conditions not in the dataset:")
+            lines += [f"  {c.condition}: {'; '.join(c.notes)}" for c in not_written]
+        other = [(c.condition, note) for c in written for note in c.notes]
+        if other:
+            lines.append("condition notes:")
+            lines += [f"  {name}: {note}" for name, note in other]
+        rec_notes = [(r.file, n) for r in self.records for n in r.notes
+                     if not n.startswith("window ends")]
+        if rec_notes:
+            lines.append(f"record notes ({len(rec_notes)}):")
+            lines += [f"  {f}: {n}" for f, n in rec_notes[:20]]
+            if len(rec_notes) > 20:
+                lines.append(f"  ... {len(rec_notes) - 20} more in the per-record table")
+        lines += [f"note: {n}" for n in self.notes]
+        return lines
+
+    def summary(self) -> str:
+        return "\n".join(self.summary_lines())
+
+
+def _fmt(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, (float, np.floating)):
+        return "" if not math.isfinite(float(value)) else format(float(value), ".10g")
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    return str(value)
+
+
+def _write_csv(path: str | os.PathLike[str], frame: Any, comments: list[str]) -> Path:
+    import csv
+
+    out = Path(path)
+    if out.parent and not out.parent.exists():
+        raise InputError("the output directory does not exist", file=str(out))
+    with out.open("w", encoding="utf-8", newline="") as fh:
+        for c in comments:
+            fh.write(f"# {c}\n")
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(list(frame.columns))
+        for row in frame.itertuples(index=False):
+            w.writerow([_fmt(v) for v in row])
+    return out
+
+
+# --------------------------------------------------------------------------- drivers
+_WORKER: dict[str, Any] = {}
+
+
+def _init_worker(rig: Rig, plots: str | None) -> None:
+    _WORKER["rig"] = rig
+    _WORKER["plots"] = plots
+
+
+def _run_entry(entry: ManifestEntry) -> RecordResult:
+    return _handle(entry, _WORKER["rig"], _WORKER["plots"], None)
+
+
+def _handle(entry: ManifestEntry, rig: Rig, plots: str | None,
+            record: Record | None) -> RecordResult:
+    if entry.error:
+        res = _base_result(entry)
+        res.reason = entry.error
+        return res
+    try:
+        rec = record if record is not None else read_record(entry.path, source=entry.file)
+        if record is not None:
+            rec.check()
+    except InputError as exc:
+        res = _base_result(entry)
+        res.reason = " ".join(str(exc).split())
+        return res
+    if plots is None:
+        return process_record(rec, entry, rig)  # type: ignore[return-value]
+    res, sig = process_record(rec, entry, rig, keep_signals=True)  # type: ignore[misc]
+    from .plots import plot_record
+
+    try:
+        plot_record(Path(plots), res, rec, sig)
+    except Exception as exc:  # noqa: BLE001 - a failed plot must not lose the record
+        res.notes.append(f"diagnostic plot failed: {type(exc).__name__}: {exc}")
+    return res
+
+
+def _progress(total: int, progress: bool | None, desc: str) -> Any:
+    from tqdm import tqdm
+
+    return tqdm(total=total, disable=None if progress is None else not progress,
+                unit="record", desc=desc, file=sys.stderr, leave=False)
+
+
+def _run(entries: list[ManifestEntry], rig: Rig, records: Sequence[Record] | None,
+         jobs: int, progress: bool | None, plots: str | None) -> list[RecordResult]:
+    results: list[RecordResult] = []
+    bar = _progress(len(entries), progress, "processing")
+    try:
+        if jobs > 1 and records is None and len(entries) >= 4 * jobs:
+            from concurrent.futures import ProcessPoolExecutor
+
+            chunk = max(1, min(16, len(entries) // (8 * jobs)))
+            with ProcessPoolExecutor(max_workers=jobs, initializer=_init_worker,
+                                     initargs=(rig, plots)) as ex:
+                for res in ex.map(_run_entry, entries, chunksize=chunk):
+                    results.append(res)
+                    bar.update(1)
+        else:
+            for i, entry in enumerate(entries):
+                rec = records[i] if records is not None else None
+                results.append(_handle(entry, rig, plots, rec))
+                bar.update(1)
+    finally:
+        bar.close()
+    return results
+
+
+def _jobs(jobs: int | None, n: int) -> int:
+    if jobs is None or jobs <= 0:
+        jobs = os.cpu_count() or 1
+    return max(1, min(jobs, n))
+
+
+def process_campaign(
+    manifest: str | os.PathLike[str],
+    rig: Rig | str | os.PathLike[str],
+    *,
+    jobs: int | None = 1,
+    progress: bool | None = None,
+    plots: str | os.PathLike[str] | None = None,
+    min_repeats: int = 2,
+) -> Campaign:
+    """Process every record of a manifest into per-record and per-condition results.
+
+    Parameters
+    ----------
+    manifest : str or path
+        The manifest CSV (format in the module docstring).
+    rig : Rig or path
+        A :class:`Rig` or the path of its TOML description.
+    jobs : int, optional
+        Worker processes (``None`` or 0: one per CPU).  Results do not depend on it.
+    progress : bool, optional
+        Show a progress bar on stderr; ``None`` (default): only when stderr is a
+        terminal.
+    plots : str or path, optional
+        Directory for diagnostic plots (created); matplotlib is imported only then.
+    min_repeats : int
+        Conditions with fewer usable records are not written to the dataset
+        (at least 2: a standard deviation needs two).
+
+    Returns
+    -------
+    Campaign
+
+    Raises
+    ------
+    InputError
+        For a bad manifest or rig (problems of single records are reported in
+        the results instead).
+    """
+    if not isinstance(rig, Rig):
+        from .rig import load_rig
+
+        rig = load_rig(rig)
+    if min_repeats < 2:
+        raise InputError(f"min_repeats must be at least 2 (a standard deviation needs two "
+                         f"records), got {min_repeats}")
+    entries, notes = read_manifest(manifest, rig)
+    plots_dir = _plots_dir(plots)
+    results = _run(entries, rig, None, _jobs(jobs, len(entries)), progress, plots_dir)
+    conditions = summarise(results, rig, min_repeats=min_repeats)
+    camp = Campaign(results, conditions, rig, os.fspath(manifest), notes, min_repeats)
+    if plots_dir is not None:
+        _summary_plot(camp, plots_dir)
+    return camp
+
+
+def process_records(
+    records: Sequence[Record],
+    manifest: Sequence[Mapping[str, Any]] | Sequence[ManifestEntry],
+    rig: Rig,
+    *,
+    progress: bool | None = False,
+    plots: str | os.PathLike[str] | None = None,
+    min_repeats: int = 2,
+) -> Campaign:
+    """Process records held in memory (e.g. from :mod:`.synthetic`), one manifest row each.
+
+    ``manifest`` holds dicts with the manifest's columns (``file``,
+    ``load [kg]``, ``surface``, ``condition``, ``mode``...) or ready
+    :class:`ManifestEntry` objects; ``file`` only names the record.
+    """
+    if len(records) != len(manifest):
+        raise InputError(f"{len(records)} records but {len(manifest)} manifest rows")
+    if manifest and isinstance(manifest[0], ManifestEntry):
+        entries = list(manifest)  # type: ignore[arg-type]
+        notes: list[str] = []
+    else:
+        entries, notes = manifest_from_rows(manifest, rig)  # type: ignore[arg-type]
+    entries = [replace(e, path="") for e in entries]
+    plots_dir = _plots_dir(plots)
+    results = _run(entries, rig, records, 1, progress, plots_dir)
+    conditions = summarise(results, rig, min_repeats=min_repeats)
+    camp = Campaign(results, conditions, rig, "<memory>", notes, min_repeats)
+    if plots_dir is not None:
+        _summary_plot(camp, plots_dir)
+    return camp
+
+
+def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
+    if plots is None:
+        return None
+    d = Path(plots)
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the plots directory ({exc.strerror})",
+                         file=str(d)) from None
+    return str(d)
+
+
+def _summary_plot(camp: Campaign, plots_dir: str) -> None:
+    from .plots import plot_conditions
+
+    try:
+        plot_conditions(Path(plots_dir) / "conditions.png", camp)
+    except Exception as exc:  # noqa: BLE001 - report, do not lose the processing
+        camp.notes.append(f"summary plot failed: {type(exc).__name__}: {exc}")

@@ -1,0 +1,535 @@
+"""The rig description: geometry, offsets and processing settings, read from TOML.
+
+A rig file describes one tribometer and how its records are processed.  Every
+dimensional value is a string with its unit, parsed with pint through
+:mod:`frictionlaws.units`, so ``"40 mm"`` and ``"0.04 m"`` mean the same::
+
+    track_radius = "40 mm"        # mean radius of the pin track
+    pin_diameter = "20 mm"        # or: contact_area = "314.16 mm^2"
+    system_error = "0.3 N*m"      # constant torque offset (hanging-weight test)
+    g = "9.8 m/s^2"               # turns a dead weight in kg into a load
+    torque_range = "10 N*m"       # optional: sensor full scale (saturation check)
+
+    [internal_torque]             # optional: no-contact torque vs disc speed
+    disc_speed_rpm = [0, 100, 331, 663]
+    torque_Nm = [0.11, 0.06, 0.06, 0.12]
+
+    [filter]
+    cutoff = "auto"               # or a frequency, e.g. "20 Hz"
+    order = 4
+
+    [window]                      # steady-window detection (defaults shown)
+    min_duration = "3 s"
+    min_window = "2 s"
+    speed_tolerance = 0.05
+    smooth = "0.5 s"
+    level_tolerance = 0.03
+    noise_factor = 4.0
+    start_tolerance = 0.01
+    settle = "0.5 s"
+    end_margin = "0.5 s"
+    initial_delay = "1 s"
+    initial_duration = "3 s"
+    min_mu = 0.02
+
+    [outliers]
+    rule = "grubbs"               # or "none"
+    alpha = 0.01
+
+    [grouping]
+    speed_step = "10 rpm"
+
+Unknown keys are an error (a typo must not silently fall back to a default).
+The meaning of each setting is documented on :class:`FilterSettings`,
+:class:`WindowSettings`, :class:`OutlierSettings` and :class:`Rig`.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..units import parse_quantity, unit_registry
+
+__all__ = [
+    "FilterSettings",
+    "WindowSettings",
+    "OutlierSettings",
+    "Rig",
+    "load_rig",
+    "rig_from_dict",
+    "RPM",
+]
+
+#: One revolution per minute in rad/s.
+RPM = 2.0 * math.pi / 60.0
+
+
+@dataclass(frozen=True)
+class FilterSettings:
+    """Zero-phase low-pass filter applied to every signal of a record.
+
+    Attributes
+    ----------
+    cutoff : float or None
+        Cut-off frequency [Hz]; ``None`` means automatic, from the spectrum of
+        the torque signal (see :func:`frictionlaws.tribometer.signal.auto_cutoff`).
+    order : int
+        Order of the Butterworth prototype.  It is applied forwards and
+        backwards (``scipy.signal.sosfiltfilt``), so the effective order is
+        twice this and the phase shift is zero.
+    auto_min, auto_max : float
+        Bounds of an automatic cut-off [Hz]; ``auto_max`` of 0 means a quarter
+        of the sampling rate.
+    auto_snr : float
+        The automatic cut-off is where the torque spectrum falls to within this
+        factor of the broadband noise floor.
+    """
+
+    cutoff: float | None = None
+    order: int = 4
+    auto_min: float = 1.0
+    auto_max: float = 0.0
+    auto_snr: float = 10.0
+
+
+@dataclass(frozen=True)
+class WindowSettings:
+    """How the steady sliding window is found (times in s, fractions in 1).
+
+    Attributes
+    ----------
+    min_duration : float
+        Records shorter than this are unusable ("too short").
+    min_window : float
+        A detected window shorter than this means "no steady window".
+    speed_tolerance : float
+        The motors count as running at speed while each moving speed channel
+        is within this fraction of its plateau value.
+    smooth : float
+        Length of the moving average used to compare the filtered friction
+        signal with its steady level.
+    level_tolerance : float
+        Relative band around the steady level that counts as steady (the band
+        is never narrower than ``noise_factor`` robust standard deviations of
+        the smoothed signal).
+    noise_factor : float
+        See ``level_tolerance``.
+    start_tolerance : float
+        Tighter relative band the start-up peak must have decayed into before
+        the window starts (also never narrower than the noise band), so that
+        its tail does not bias the mean.
+    settle : float
+        Extra time skipped after the start-up peak has fallen into that band.
+    end_margin : float
+        Time dropped before the motors leave their plateau speed.
+    initial_delay : float
+        ``initial`` mode: the window starts this long after the motors reach
+        speed (skips the start-up transient).
+    initial_duration : float
+        ``initial`` mode: length of the window (abrasive surfaces: only the
+        first seconds of sliding are valid).
+    min_mu : float
+        A window whose mean friction coefficient is below this (or not clearly
+        above the noise) means "no friction": the pin is not in contact or the
+        offsets are wrong.
+    """
+
+    min_duration: float = 3.0
+    min_window: float = 2.0
+    speed_tolerance: float = 0.05
+    smooth: float = 0.5
+    level_tolerance: float = 0.03
+    noise_factor: float = 4.0
+    start_tolerance: float = 0.01
+    settle: float = 0.5
+    end_margin: float = 0.5
+    initial_delay: float = 1.0
+    initial_duration: float = 3.0
+    min_mu: float = 0.02
+
+
+@dataclass(frozen=True)
+class OutlierSettings:
+    """The outlier rule applied to the record means of each condition.
+
+    Attributes
+    ----------
+    rule : {"grubbs", "none"}
+        ``"grubbs"``: the two-sided Grubbs test at significance ``alpha``,
+        applied once per condition (at most one record dropped) and only when
+        the condition has at least 4 usable records.  ``"none"``: keep all.
+    alpha : float
+        Significance level of the Grubbs test.  The default 0.01 drops a good
+        record in about 1 % of normal conditions; 0.05 detects outliers more
+        often but lowers the coverage of the confidence intervals.
+    """
+
+    rule: str = "grubbs"
+    alpha: float = 0.01
+
+
+@dataclass(frozen=True)
+class Rig:
+    """A pin-on-disc tribometer and the settings used to process its records.
+
+    Attributes
+    ----------
+    track_radius : float
+        Mean radius of the pin track [m]: friction force = torque / radius and
+        sliding velocity = radius * relative angular speed.
+    contact_area : float
+        Nominal contact area of the pin [m^2]: pressure = load / area.
+    system_error : float
+        Constant torque offset of the sensor [N m], subtracted from every
+        reading (from the hanging-weight test).
+    g : float
+        Gravity [m/s^2] used for loads given as a mass (dead weights).
+    internal_speed : numpy.ndarray or None
+        Disc speeds of the internal-torque table [rad/s], increasing.
+    internal_torque_table : numpy.ndarray or None
+        No-contact torque at those speeds [N m] (system error excluded).
+    torque_range : float or None
+        Sensor full scale [N m]; readings at 99.5 % of it count as saturated.
+    filter, window, outliers : settings
+        See :class:`FilterSettings`, :class:`WindowSettings`, :class:`OutlierSettings`.
+    group_speed_step : float
+        Without a ``condition`` column, records whose disc and pin speeds differ
+        by less than this [rad/s] belong to the same condition.
+    source : str
+        Where the description came from.
+    """
+
+    track_radius: float = 0.040
+    contact_area: float = math.pi * 0.010**2
+    system_error: float = 0.0
+    g: float = 9.8
+    internal_speed: np.ndarray | None = None
+    internal_torque_table: np.ndarray | None = None
+    torque_range: float | None = None
+    filter: FilterSettings = field(default_factory=FilterSettings)
+    window: WindowSettings = field(default_factory=WindowSettings)
+    outliers: OutlierSettings = field(default_factory=OutlierSettings)
+    group_speed_step: float = 10.0 * RPM
+    source: str = "<defaults>"
+
+    def internal_torque(self, disc_speed: Any) -> np.ndarray:
+        """The no-contact torque [N m] at ``disc_speed`` [rad/s] (by |speed|).
+
+        Linear interpolation in the table; outside it the end values are held
+        (see :meth:`internal_range_rpm` to warn about that).  Zero when the rig
+        has no table.
+        """
+        w = np.abs(np.asarray(disc_speed, dtype=float))
+        if self.internal_speed is None or self.internal_torque_table is None:
+            return np.zeros_like(w)
+        return np.interp(w, self.internal_speed, self.internal_torque_table)
+
+    def internal_range_rpm(self) -> tuple[float, float] | None:
+        """The disc-speed range covered by the internal-torque table [rpm]."""
+        if self.internal_speed is None:
+            return None
+        return float(self.internal_speed[0] / RPM), float(self.internal_speed[-1] / RPM)
+
+    def to_toml(self) -> str:
+        """The rig as TOML text that :func:`load_rig` reads back to the same values."""
+        f, w, o = self.filter, self.window, self.outliers
+        lines = [
+            f'track_radius = "{self.track_radius * 1e3:.10g} mm"',
+            f'contact_area = "{self.contact_area * 1e6:.10g} mm^2"',
+            f'system_error = "{self.system_error:.10g} N*m"',
+            f'g = "{self.g:.10g} m/s^2"',
+        ]
+        if self.torque_range is not None:
+            lines.append(f'torque_range = "{self.torque_range:.10g} N*m"')
+        if self.internal_speed is not None and self.internal_torque_table is not None:
+            rpm = ", ".join(f"{x / RPM:.10g}" for x in self.internal_speed)
+            tq = ", ".join(f"{x:.10g}" for x in self.internal_torque_table)
+            lines += ["", "[internal_torque]", f"disc_speed_rpm = [{rpm}]",
+                      f"torque_Nm = [{tq}]"]
+        cutoff = '"auto"' if f.cutoff is None else f'"{f.cutoff:.10g} Hz"'
+        lines += ["", "[filter]", f"cutoff = {cutoff}", f"order = {f.order}",
+                  f'auto_min = "{f.auto_min:.10g} Hz"', f'auto_max = "{f.auto_max:.10g} Hz"',
+                  f"auto_snr = {f.auto_snr:.10g}"]
+        lines += ["", "[window]"]
+        for fl in fields(WindowSettings):
+            val = getattr(w, fl.name)
+            if fl.name in _WINDOW_FRACTIONS:
+                lines.append(f"{fl.name} = {val:.10g}")
+            else:
+                lines.append(f'{fl.name} = "{val:.10g} s"')
+        lines += ["", "[outliers]", f'rule = "{o.rule}"', f"alpha = {o.alpha:.10g}"]
+        lines += ["", "[grouping]", f'speed_step = "{self.group_speed_step / RPM:.10g} rpm"']
+        return "\n".join(lines) + "\n"
+
+    def describe(self) -> dict[str, Any]:
+        """The rig in display units (JSON-able), for reports."""
+        return {
+            "source": self.source,
+            "track_radius [mm]": self.track_radius * 1e3,
+            "contact_area [mm^2]": self.contact_area * 1e6,
+            "system_error [N m]": self.system_error,
+            "g [m/s^2]": self.g,
+            "torque_range [N m]": self.torque_range,
+            "internal_torque": None if self.internal_speed is None else {
+                "disc_speed [rpm]": (self.internal_speed / RPM).tolist(),
+                "torque [N m]": np.asarray(self.internal_torque_table).tolist()},
+            "filter cutoff [Hz]": "auto" if self.filter.cutoff is None else self.filter.cutoff,
+            "outlier rule": self.outliers.rule,
+            "outlier alpha": self.outliers.alpha,
+        }
+
+
+_WINDOW_FRACTIONS = {"speed_tolerance", "level_tolerance", "noise_factor", "min_mu",
+                     "start_tolerance"}
+_TOP_KEYS = {"track_radius", "pin_diameter", "contact_area", "system_error", "g",
+             "torque_range", "internal_torque", "filter", "window", "outliers", "grouping",
+             "name", "description"}
+
+
+def load_rig(path: str | os.PathLike[str]) -> Rig:
+    """Read a rig description from a TOML file.
+
+    Parameters
+    ----------
+    path : str or path
+        The TOML file (format in the module docstring).
+
+    Returns
+    -------
+    Rig
+
+    Raises
+    ------
+    InputError
+        For a missing or malformed file, an unknown key, a value without a unit
+        or with the wrong dimension, or an inconsistent internal-torque table.
+    """
+    import tomllib
+
+    src = os.fspath(path)
+    p = Path(src)
+    if not p.exists():
+        raise InputError("rig file not found; expected a TOML rig description", file=src)
+    if p.is_dir():
+        raise InputError("is a directory; expected a TOML rig description", file=src)
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8-sig"))
+    except UnicodeDecodeError:
+        raise InputError("is not a UTF-8 text file; expected a TOML rig description",
+                         file=src) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"is not valid TOML: {exc}", file=src) from None
+    return rig_from_dict(data, source=src)
+
+
+def _quantity(table: Mapping[str, Any], key: str, kind: str, src: str, prefix: str = "",
+              default: Any = None, required: bool = False, sign: str = "positive") -> Any:
+    name = f"{prefix}{key}"
+    if key not in table:
+        if required:
+            raise InputError(f"missing '{name}' (e.g. {name} = \"{_EXAMPLE[kind]}\")", file=src)
+        return default
+    raw = table[key]
+    if isinstance(raw, bool) or not isinstance(raw, (str, int, float)):
+        raise InputError(f"'{name}' must be a string with a unit, e.g. "
+                         f"{name} = \"{_EXAMPLE[kind]}\"", file=src)
+    if isinstance(raw, (int, float)) and raw != 0:
+        raise InputError(f"'{name} = {raw}' has no unit; write e.g. "
+                         f"{name} = \"{_EXAMPLE[kind]}\"", file=src)
+    value = parse_quantity(raw, kind, what=f"'{name}'", file=src)
+    if sign == "positive" and not value > 0:
+        raise InputError(f"'{name}' must be > 0, got {raw!r}", file=src)
+    if sign == "nonneg" and value < 0:
+        raise InputError(f"'{name}' must be >= 0, got {raw!r}", file=src)
+    return value
+
+
+_EXAMPLE = {"length": "40 mm", "area": "314.16 mm^2", "torque": "0.3 N*m",
+            "time": "0.5 s", "frequency": "20 Hz", "angular_velocity": "10 rpm"}
+
+
+def _acceleration(raw: Any, name: str, src: str) -> float:
+    if isinstance(raw, bool) or not isinstance(raw, str):
+        raise InputError(f"'{name}' must be a string with a unit, e.g. {name} = \"9.8 m/s^2\"",
+                         file=src)
+    ureg = unit_registry()
+    try:
+        q = ureg.Quantity(raw)
+    except Exception:  # noqa: BLE001 - pint raises several types
+        raise InputError(f"'{name} = \"{raw}\"' could not be read; expected an acceleration "
+                         "such as \"9.8 m/s^2\"", file=src) from None
+    target = ureg.parse_units("m/s^2")
+    if not hasattr(q, "dimensionality") or q.dimensionality != target.dimensionality:
+        raise InputError(f"'{name} = \"{raw}\"' is not an acceleration; expected e.g. "
+                         "\"9.8 m/s^2\"", file=src)
+    value = float(q.to(target).magnitude)
+    if not value > 0 or not math.isfinite(value):
+        raise InputError(f"'{name}' must be > 0, got {raw!r}", file=src)
+    return value
+
+
+def _number(table: Mapping[str, Any], key: str, src: str, prefix: str, default: float,
+            lo: float, hi: float) -> float:
+    if key not in table:
+        return default
+    raw = table[key]
+    if isinstance(raw, bool) or not isinstance(raw, (int, float)):
+        raise InputError(f"'{prefix}{key}' must be a number, got {raw!r}", file=src)
+    if not (lo <= float(raw) <= hi):
+        raise InputError(f"'{prefix}{key}' = {raw} is outside {lo:g}..{hi:g}", file=src)
+    return float(raw)
+
+
+def _check_keys(table: Any, allowed: set[str], src: str, where: str) -> None:
+    if not isinstance(table, Mapping):
+        raise InputError(f"'{where}' must be a table, e.g. [{where}]", file=src)
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        place = f"[{where}]" if where else "the top level"
+        raise InputError(
+            f"unknown key{'s' if len(unknown) > 1 else ''} "
+            f"{', '.join(repr(u) for u in unknown)} in {place}"
+            f"; expected {', '.join(sorted(allowed))}",
+            file=src,
+        )
+
+
+def rig_from_dict(data: Mapping[str, Any], *, source: str = "<dict>") -> Rig:
+    """Build a :class:`Rig` from a parsed TOML table (see :func:`load_rig`)."""
+    src = source
+    _check_keys(data, _TOP_KEYS, src, "")
+    radius = _quantity(data, "track_radius", "length", src, required=True)
+    if "contact_area" in data and "pin_diameter" in data:
+        raise InputError("give either 'pin_diameter' or 'contact_area', not both", file=src)
+    if "contact_area" in data:
+        area = _quantity(data, "contact_area", "area", src)
+    elif "pin_diameter" in data:
+        d = _quantity(data, "pin_diameter", "length", src)
+        area = math.pi * d * d / 4.0
+    else:
+        raise InputError("missing 'pin_diameter' (e.g. pin_diameter = \"20 mm\") or "
+                         "'contact_area' (e.g. contact_area = \"314.16 mm^2\")", file=src)
+    system_error = _quantity(data, "system_error", "torque", src, default=0.0,
+                             sign="any")
+    g = _acceleration(data["g"], "g", src) if "g" in data else 9.8
+    torque_range = _quantity(data, "torque_range", "torque", src)
+
+    speeds = table = None
+    if "internal_torque" in data:
+        it = data["internal_torque"]
+        _check_keys(it, {"disc_speed_rpm", "torque_Nm"}, src, "internal_torque")
+        for key in ("disc_speed_rpm", "torque_Nm"):
+            if key not in it:
+                raise InputError(f"[internal_torque] needs '{key}' (a list of numbers)",
+                                 file=src)
+        try:
+            rpm = np.asarray(it["disc_speed_rpm"], dtype=float)
+            tq = np.asarray(it["torque_Nm"], dtype=float)
+        except (TypeError, ValueError):
+            raise InputError("[internal_torque]: disc_speed_rpm and torque_Nm must be lists "
+                             "of numbers", file=src) from None
+        if rpm.ndim != 1 or tq.ndim != 1 or rpm.size == 0 or rpm.size != tq.size:
+            raise InputError(
+                f"[internal_torque]: disc_speed_rpm ({rpm.size} values) and torque_Nm "
+                f"({tq.size} values) must be non-empty lists of the same length", file=src)
+        if not (np.all(np.isfinite(rpm)) and np.all(np.isfinite(tq))):
+            raise InputError("[internal_torque]: values must be finite numbers", file=src)
+        if np.any(rpm < 0):
+            raise InputError("[internal_torque]: disc_speed_rpm must be >= 0 (speeds are "
+                             "looked up by magnitude)", file=src)
+        order = np.argsort(rpm, kind="stable")
+        rpm, tq = rpm[order], tq[order]
+        if np.any(np.diff(rpm) == 0):
+            raise InputError("[internal_torque]: disc_speed_rpm has a repeated value",
+                             file=src)
+        speeds, table = rpm * RPM, tq
+
+    filt = FilterSettings()
+    if "filter" in data:
+        ft = data["filter"]
+        _check_keys(ft, {"cutoff", "order", "auto_min", "auto_max", "auto_snr"}, src, "filter")
+        cutoff: float | None = None
+        raw = ft.get("cutoff", "auto")
+        if not (isinstance(raw, str) and raw.strip().lower() == "auto"):
+            cutoff = _quantity(ft, "cutoff", "frequency", src, prefix="filter.")
+        order = ft.get("order", 4)
+        if isinstance(order, bool) or not isinstance(order, int) or not 1 <= order <= 10:
+            raise InputError(f"'filter.order' must be an integer 1..10, got {order!r}",
+                             file=src)
+        filt = FilterSettings(
+            cutoff=cutoff, order=order,
+            auto_min=_quantity(ft, "auto_min", "frequency", src, prefix="filter.",
+                               default=1.0),
+            auto_max=_quantity(ft, "auto_max", "frequency", src, prefix="filter.",
+                               default=0.0, sign="nonneg"),
+            auto_snr=_number(ft, "auto_snr", src, "filter.", 10.0, 1.0, 1e6),
+        )
+
+    win = WindowSettings()
+    if "window" in data:
+        wt = data["window"]
+        names = {f.name for f in fields(WindowSettings)}
+        _check_keys(wt, names, src, "window")
+        kw: dict[str, float] = {}
+        for name in names:
+            if name not in wt:
+                continue
+            if name in _WINDOW_FRACTIONS:
+                hi = 100.0 if name in ("noise_factor", "min_mu") else 1.0
+                kw[name] = _number(wt, name, src, "window.", 0.0, 0.0, hi)
+            else:
+                kw[name] = _quantity(wt, name, "time", src, prefix="window.", sign="nonneg")
+        win = WindowSettings(**kw)
+
+    out = OutlierSettings()
+    if "outliers" in data:
+        ot = data["outliers"]
+        _check_keys(ot, {"rule", "alpha"}, src, "outliers")
+        rule = str(ot.get("rule", "grubbs")).strip().lower()
+        if rule not in ("grubbs", "none"):
+            raise InputError(f"'outliers.rule' = {ot.get('rule')!r}; expected 'grubbs' or "
+                             "'none'", file=src)
+        out = OutlierSettings(rule=rule, alpha=_number(ot, "alpha", src, "outliers.", 0.01,
+                                                       1e-6, 0.5))
+
+    step = 10.0 * RPM
+    if "grouping" in data:
+        gt = data["grouping"]
+        _check_keys(gt, {"speed_step"}, src, "grouping")
+        step = _angular(gt, "speed_step", src, "grouping.", step)
+
+    return Rig(track_radius=radius, contact_area=area, system_error=system_error, g=g,
+               internal_speed=speeds, internal_torque_table=table, torque_range=torque_range,
+               filter=filt, window=win, outliers=out, group_speed_step=step, source=src)
+
+
+def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default: float) -> float:
+    if key not in table:
+        return default
+    from .records import angular_unit_factor
+
+    raw = table[key]
+    if not isinstance(raw, str):
+        raise InputError(f"'{prefix}{key}' must be a string with a unit, e.g. \"10 rpm\"",
+                         file=src)
+    parts = raw.strip().split(None, 1)
+    try:
+        number = float(parts[0])
+    except (ValueError, IndexError):
+        raise InputError(f"'{prefix}{key} = \"{raw}\"' is not a number with a unit; "
+                         "expected e.g. \"10 rpm\"", file=src) from None
+    if len(parts) < 2:
+        raise InputError(f"'{prefix}{key} = \"{raw}\"' has no unit; expected e.g. \"10 rpm\"",
+                         file=src)
+    value = number * angular_unit_factor(parts[1], column=f"{prefix}{key}", file=src)
+    if not value > 0:
+        raise InputError(f"'{prefix}{key}' must be > 0", file=src)
+    return value
