@@ -330,3 +330,17 @@ def test_progress_bar_only_when_asked(steel: FitData, capsys: pytest.CaptureFixt
     assert "compare" in capsys.readouterr().err
     compare(["coulomb"], steel, folds=2, holdout=None)  # stderr is not a terminal
     assert capsys.readouterr().err == ""
+
+
+def test_default_family_tells_tyre_slip_from_pin_on_disc_data() -> None:
+    from frictionlaws.compare.core import default_family
+    from frictionlaws.fitting import as_fit_data
+
+    s = np.linspace(0.0, 1.0, 12)
+    tyre = as_fit_data({"mu": 0.9 * np.sin(1.9 * np.arctan(10 * s)), "s": s})
+    assert default_family(tyre) == "slip"
+    pin = as_fit_data({"mu": np.ones(6), "p": np.linspace(3e4, 2e5, 6),
+                       "v": np.ones(6), "s": np.array([1.0, 1.0, 1.2, 1.5, 2.0, 2.0])})
+    assert default_family(pin) == "sliding"
+    fixed_pin = as_fit_data({"mu": np.ones(6), "p": np.linspace(3e4, 2e5, 6), "s": np.ones(6)})
+    assert default_family(fixed_pin) == "sliding"

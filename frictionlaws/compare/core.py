@@ -266,6 +266,20 @@ class Comparison:
 # ----------------------------------------------------------------- compare
 
 
+def default_family(fd: FitData) -> str:
+    """The family a dataset calls for: ``"slip"`` for tyre-like slip data.
+
+    Slip laws need the slip ratio s of a rolling wheel, 0 <= s <= 1, varying
+    from row to row.  Pin-on-disc records carry s too (a fixed pin gives
+    s = 1, a counter-rotating pin 1 < s <= 2): that is sliding data.
+    """
+    if "s" not in fd.variables:
+        return "sliding"
+    s = fd.arrays["s"]
+    rolling = bool(np.all((s >= 0) & (s <= 1)) and np.unique(s).size > 1)
+    return "slip" if rolling and "p" not in fd.variables else "sliding"
+
+
 def _select_laws(laws: Any, family: str | None, fd: FitData
                  ) -> tuple[list[Law], list[dict[str, str]], str]:
     if laws is not None and family is not None:
@@ -283,7 +297,7 @@ def _select_laws(laws: Any, family: str | None, fd: FitData
         what = "the laws asked for"
     else:
         if family is None:
-            family = "slip" if "s" in fd.variables else "sliding"
+            family = default_family(fd)
         chosen = list_laws(family)
         what = f"the {family} laws"
     ok, skipped = [], []
@@ -365,8 +379,9 @@ def compare(
         Anything :func:`frictionlaws.fitting.as_fit_data` accepts (a packaged
         dataset name such as ``"thesis-steel"``, a CSV path, SI arrays).
     family : {"sliding", "slip"}, optional
-        The family to take when ``laws`` is None; by default ``"slip"`` when
-        the data have a slip ratio, else ``"sliding"``.
+        The family to take when ``laws`` is None; by default
+        :func:`default_family`: ``"slip"`` for rolling-wheel slip data (s
+        varying within 0..1, no contact pressure), else ``"sliding"``.
     folds : int
         Number of cross-validation folds (at most the number of rows; more is
         reduced to leave-one-out with a note).
