@@ -55,6 +55,7 @@ __all__ = [
     "Dataset",
     "load_dataset",
     "list_datasets",
+    "datasets_dir",
     "parse_mapping",
     "parse_units",
     "canonical_name",
@@ -874,8 +875,13 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
 
 
 # --------------------------------------------------------------------------- packaged
-def _datasets_dir() -> Any:
-    """The packaged datasets directory (an importlib.resources Traversable)."""
+def datasets_dir() -> Any:
+    """The packaged datasets directory (an importlib.resources Traversable).
+
+    The installed package ships them as ``frictionlaws._datasets``; in a
+    source checkout (tests run from the clone) they are the top-level
+    ``datasets/`` folder beside the package.
+    """
     from importlib import resources
 
     try:
@@ -887,7 +893,7 @@ def _datasets_dir() -> Any:
 
 def _packaged_names() -> list[str]:
     try:
-        base = _datasets_dir()
+        base = datasets_dir()
         return sorted(p.name[:-4] for p in base.iterdir() if p.name.endswith(".csv"))
     except (OSError, FileNotFoundError):  # pragma: no cover - broken install
         return []
@@ -913,7 +919,7 @@ def list_datasets() -> list[dict[str, Any]]:
     The title is the first ``#`` line of the file and the provenance its whole
     comment block; ``rows`` counts the data lines.
     """
-    base = _datasets_dir()
+    base = datasets_dir()
     out = []
     for name in _packaged_names():
         text = (base / f"{name}.csv").read_text(encoding="utf-8-sig")
@@ -991,7 +997,7 @@ def load_dataset(
     text = os.fspath(name_or_path)
     path = Path(text)
     if not path.exists() and text in _packaged_names():
-        raw = (_datasets_dir() / f"{text}.csv").read_bytes()
+        raw = (datasets_dir() / f"{text}.csv").read_bytes()
         table = _read_csv(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
         prov = "\n".join(table.comments) or None
         return _build(table, text, mapping, units, area, prov)

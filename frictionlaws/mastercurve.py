@@ -564,9 +564,9 @@ def build_master_curve(
 
 
 def _dma_path(name: str) -> Any:
-    from .io import _datasets_dir
+    from .io import datasets_dir
 
-    return _datasets_dir() / "dma-pyvisco" / name
+    return datasets_dir() / "dma-pyvisco" / name
 
 
 def _read_two_header_csv(name: str) -> tuple[list[str], list[str], np.ndarray]:

@@ -68,7 +68,7 @@ def test_thesis_original_loads_through_map_and_units() -> None:
     for col in ("mu", "p", "v"):
         np.testing.assert_array_equal(ds.frame[col], ref.frame[col])
     # NL [kg] x 9.8 is the F_N of thesis-steel
-    raw = pd.read_csv(io._datasets_dir() / "thesis-steel-original.csv", comment="#")
+    raw = pd.read_csv(io.datasets_dir() / "thesis-steel-original.csv", comment="#")
     np.testing.assert_allclose(raw["NL"] * 9.8, ref.frame["F_N"], rtol=1e-12)
     assert raw["PV"].isna().all()
     assert any("NL, PV" in n and "ignored" in n for n in ds.notes)

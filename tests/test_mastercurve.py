@@ -237,9 +237,9 @@ def test_dma_against_the_upstream_shift_factors(dma):
 
 def test_dma_upstream_master_curve_is_not_these_sweeps():
     """At the reference temperature the shipped master curve is 8-30 times softer."""
-    import importlib.resources as ir
+    from frictionlaws.io import datasets_dir
 
-    text = (ir.files("frictionlaws._datasets") / "dma-pyvisco" / "freq_user_master.csv"
+    text = (datasets_dir() / "dma-pyvisco" / "freq_user_master.csv"
             ).read_text(encoding="utf-8-sig").splitlines()
     rows = np.array([[float(v) for v in ln.split(",")] for ln in text[2:] if ln.strip()])
     d = load_dma_example()

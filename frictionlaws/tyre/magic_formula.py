@@ -520,9 +520,9 @@ def _packaged_example(name: str) -> Path | None:
         return None
     candidates.append(Path(name).name)
     try:
-        from importlib.resources import files
+        from ..io import datasets_dir
 
-        root = files("frictionlaws._datasets") / "mf-examples"
+        root = datasets_dir() / "mf-examples"
         for cand in candidates:
             p = root / cand
             if p.is_file():

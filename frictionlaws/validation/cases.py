@@ -482,9 +482,9 @@ def _case_wlf_sets(run: CaseRun) -> None:
 
 def _read_pyvisco_shifts() -> tuple[np.ndarray, np.ndarray]:
     """The upstream shift factors, parsed here independently (T in degC -> K)."""
-    from importlib.resources import files
+    from ..io import datasets_dir
 
-    path = files("frictionlaws._datasets") / "dma-pyvisco" / "freq_user_master__shift_factors.csv"
+    path = datasets_dir() / "dma-pyvisco" / "freq_user_master__shift_factors.csv"
     lines = [ln for ln in path.read_text(encoding="utf-8-sig").splitlines() if ln.strip()]
     names = [x.strip() for x in lines[0].split(",")]
     units = [x.strip() for x in lines[1].split(",")]
@@ -911,12 +911,12 @@ def _fx0_pacejka2006(c: dict[str, float], fz0: float, kappa: float, fz: float) -
 
 def _case_mf52(run: CaseRun) -> None:
     import json
-    from importlib.resources import files
 
+    from ..io import datasets_dir
     from ..tyre import MagicFormula
 
     name = "MagicFormula52_Parameters.json"
-    raw = json.loads((files("frictionlaws._datasets") / "mf-examples" / name).read_text(
+    raw = json.loads((datasets_dir() / "mf-examples" / name).read_text(
         encoding="utf-8"))
     coef = {k: float(v) for k, v in raw["LONGITUDINAL_COEFFICIENTS"].items()}
     scaling = [k for k, v in raw.get("SCALING_COEFFICIENTS", {}).items() if float(v) != 1.0]
