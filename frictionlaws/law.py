@@ -410,7 +410,8 @@ class Law:
         shapes = [np.shape(x) for x in variables.values()]
         shape = np.broadcast_shapes(*shapes) if shapes else ()
         if np.shape(out) != shape:
-            out = np.broadcast_to(out, shape).copy()
+            out = (np.full(shape, float(out)) if np.ndim(out) == 0
+                   else np.broadcast_to(out, shape).copy())
         if shape == ():
             return float(out)
         for x in variables.values():
