@@ -162,3 +162,14 @@ def test_pole_in_the_box_is_reported_with_its_location():
     f = get_law("thirion").bind({"a": -0.5, "b": 1e-6})  # 1/(a + b p): pole at p = 5e5 Pa
     with pytest.raises(InputError, match=r"crowd near p = 4999\d\d \(SI\)"):
         adaptive_grid(f, [AxisSpec("p", 0.0, 1e6)], 1e-3)
+
+
+def test_adaptive_grid_is_never_larger_than_evenly_spaced_for_a_quadratic():
+    """Even spacing is optimal for constant curvature; the adaptive mode then falls back to it."""
+    law = get_law("thesis-poly2")
+    f = law.bind(preset="steel")
+    specs = [AxisSpec("p", 3e4, 2.5e5), AxisSpec("v", 0.0, 2.77)]
+    grid, err = adaptive_grid(f, specs, 1e-3)
+    uniform, _ = uniform_grid_for_tol(f, specs, 1e-3, spacing="spec")
+    assert err.max_abs <= 1e-3
+    assert grid.rows <= uniform.rows, (grid.shape, uniform.shape)

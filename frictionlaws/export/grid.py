@@ -553,7 +553,49 @@ def adaptive_grid(func: Func, specs: Sequence[AxisSpec], tol: float, *,
         return _repair(func, names, spacing, last, tol, max_rows, max_iter)
     if k > 1:
         best = _coordinate_pass(func, names, specs, context, best, best_s * tol / k, tol)
-    return best
+    return _evenly_spaced_if_smaller(func, names, specs, best, tol)
+
+
+def _evenly_spaced_if_smaller(func: Func, names: tuple[str, ...], specs: Sequence[AxisSpec],
+                              best: tuple[Grid, GridError], tol: float
+                              ) -> tuple[Grid, GridError]:
+    """Keep the adaptive grid unless evenly spaced breakpoints do as well with fewer rows.
+
+    Where a law's curvature is the same everywhere (a quadratic), even spacing
+    is already optimal and the adaptive split of the tolerance between the
+    variables can cost a few rows.  Starting from the adaptive grid's counts,
+    each variable's count is lowered (bisection) while an evenly spaced grid
+    (each variable's own lin/log spacing) still meets ``tol``.
+    """
+    grid = best[0]
+    counts = [len(p) for p in grid.points]
+
+    def build(c: Sequence[int]) -> Grid:
+        return Grid(names, tuple(breakpoints(s.lo, s.hi, n, s.kind) if not s.single
+                                 else np.array([s.lo]) for s, n in zip(specs, c)),
+                    grid.spacing)
+
+    def meets(c: Sequence[int]) -> bool:
+        return check_error(func, build(c), budget=_BUDGET_REFINE, n_random=2000).max_abs <= tol
+
+    if not meets(counts):
+        return best
+    for a, spec in enumerate(specs):
+        lo, hi = (1 if spec.single else 2), counts[a]
+        while lo < hi:
+            mid = (lo + hi) // 2
+            trial = list(counts)
+            trial[a] = mid
+            if meets(trial):
+                hi = mid
+            else:
+                lo = mid + 1
+        counts[a] = hi
+    even = build(counts)
+    if even.rows >= grid.rows:
+        return best
+    err = check_error(func, even)
+    return (even, err) if err.max_abs <= tol else best
 
 
 def _coordinate_pass(func: Func, names: tuple[str, ...], specs: Sequence[AxisSpec],
