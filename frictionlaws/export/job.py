@@ -167,7 +167,8 @@ class Job:
                 f"{n} {self.model(n, s.lo)} .. {self.model(n, s.hi)}"
                 for n, s in self.specs.items() if n in self.law.variables)]
         parts = []
-        for name, pts, sp in zip(grid.names, grid.points, grid.spacing, strict=True):
+        for name, pts in zip(grid.names, grid.points, strict=True):
+            sp = _spacing_label(pts)
             if len(pts) == 1:
                 parts.append(f"{name} {self.model(name, pts[0])} (a single value)")
             else:
@@ -273,3 +274,15 @@ def tabulated(job: Job, grid: Grid) -> np.ndarray:
     return tabulate(job.func, grid.names, grid.points)
 
 
+def _spacing_label(pts: np.ndarray) -> str:
+    """How the breakpoints are spaced, read off the points themselves."""
+    pts = np.asarray(pts, float)
+    if len(pts) < 3:
+        return "ends only"
+    if np.allclose(np.diff(pts), (pts[-1] - pts[0]) / (len(pts) - 1), rtol=1e-6, atol=0):
+        return "evenly spaced"
+    if pts[0] > 0:
+        lp = np.log(pts)
+        if np.allclose(np.diff(lp), (lp[-1] - lp[0]) / (len(pts) - 1), rtol=1e-6, atol=0):
+            return "log-spaced"
+    return "uneven: refined where mu curves"
