@@ -123,3 +123,15 @@ def test_bad_input_exit_2(argv: list[str], message: str,
 def test_missing_file_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
     rc = main(["compare", str(tmp_path / "nothing.csv")])
     assert rc == 2 and "nothing.csv" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_non_identifiable_laws_are_marked_and_ranked_last(default_run) -> None:
+    _, text, out = default_run
+    doc = json.loads((out / "comparison.json").read_text())
+    laws = doc["laws"]
+    unid = [bool(law["non_identifiable"]) for law in laws]
+    assert any(unid) and unid == sorted(unid)
+    assert "NOT IDENTIFIABLE from these data" in text
+    assert "thesis-poly3: cannot determine a4, a5, a6" in text  # 3 velocity levels, 4 terms
+    assert "<th class=''>identifiable</th>" in (out / "report.html").read_text()

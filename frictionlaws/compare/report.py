@@ -105,7 +105,7 @@ def _columns(cmp: Comparison) -> list[str]:
     cols = ["rank", "law", "k", "n", "R^2", "adj.R^2", "RMSE", "CV RMSE"]
     if _common(cmp):
         cols.append("CV common")
-    return cols + ["extrap.RMSE", "AICc", "grp", "weight", "plausible", "resid."]
+    return cols + ["extrap.RMSE", "AICc", "grp", "weight", "identifiable", "plausible", "resid."]
 
 
 def _rows(cmp: Comparison) -> list[list[str]]:
@@ -118,7 +118,8 @@ def _rows(cmp: Comparison) -> list[list[str]]:
         if _common(cmp):
             row.append(_num(r.cv_rmse_common, ".4f") + star)
         row += [_num(r.extrapolation_rmse, ".4f"), _num(m["aicc"], ".1f"),
-                str(r.aic_group), _num(r.akaike_weight, ".3f"), _yes(r),
+                str(r.aic_group), _num(r.akaike_weight, ".3f"),
+                "NO" if r.fit.non_identifiable else "yes", _yes(r),
                 "structure" if r.residuals.structured else "ok"]
         out.append(row)
     return out
@@ -161,6 +162,11 @@ def format_table(cmp: Comparison) -> str:
         out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
     out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
                "within a group only")
+    unid = [r for r in cmp.results if r.fit.non_identifiable]
+    if unid:
+        out += ["", "NOT IDENTIFIABLE from these data (ranked after the identifiable laws):"]
+        out += [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
+                for r in unid]
     bad = [r for r in cmp.results if not r.plausible]
     if bad:
         out += ["", "IMPLAUSIBLE outside the measured range (extended box):"]
@@ -627,7 +633,7 @@ def make_figures(cmp: Comparison) -> list[Figure]:
 def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
     head = ["rank", "law", "title", "k", "n", "R²", "adj. R²", "RMSE", "MAE", "max |res|",
             "AIC", "AICc", "BIC", "group", "Akaike w.", "CV RMSE", "CV RMSE (common rows)",
-            "extrap. RMSE", "plausible", "residuals"]
+            "extrap. RMSE", "identifiable", "plausible", "residuals"]
     rows = []
     for r in cmp.results:
         m = r.metrics
@@ -638,7 +644,8 @@ def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
                      str(r.aic_group), _num(r.akaike_weight, ".3f"),
                      _num(r.cv.rmse, ".4f") + ("" if r.cv.complete else " *"),
                      _num(r.cv_rmse_common, ".4f") + ("" if r.cv.complete else " *"),
-                     _num(r.extrapolation_rmse, ".4f"), _yes(r),
+                     _num(r.extrapolation_rmse, ".4f"),
+                     "NO" if r.fit.non_identifiable else "yes", _yes(r),
                      "structure" if r.residuals.structured else "ok"])
     return head, rows
 
@@ -783,7 +790,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
                 continue
             text = e(c)
             cls_td = ""
-            if head[i] == "plausible" and c == "NO":
+            if head[i] in ("plausible", "identifiable") and c == "NO":
                 text = "<span class='bad-word'>NO</span>"
             if head[i] == "law":
                 text = f"<b>{e(c)}</b><br><span class='title'>{e(row[skip])}</span>"
