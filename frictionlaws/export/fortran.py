@@ -364,11 +364,16 @@ def _inputs(law: Law, src: Mapping[str, str]) -> list[str]:
     return out
 
 
-def _fric_coef(law: Law, units: Any, name: str) -> list[str]:
-    fields = _field_index(law)
-    src = {"p": "pressure(kk)", "v": "slipData(kk,1)",
+def _sources(law: Law, slip_rate: str) -> dict[str, str]:
+    """Where each variable comes from in the coefficient interfaces (kk: the contact point)."""
+    src = {"p": "pressure(kk)", "v": slip_rate,
            "T": "tempAvg(kk)" if "T" in law.variables else "0.0d0"}
-    src.update({v: f"fieldAvg(kk,{i})" for v, i in fields.items()})
+    src.update({v: f"fieldAvg(kk,{i})" for v, i in _field_index(law).items()})
+    return src
+
+
+def _fric_coef(law: Law, units: Any, name: str) -> list[str]:
+    src = _sources(law, "slipData(kk,1)")
     conv, _ = _conversions(law, units)
     lines = [
         "      subroutine fric_coef (",
@@ -423,10 +428,7 @@ def _fric_coef(law: Law, units: Any, name: str) -> list[str]:
 
 
 def _vfric_coef(law: Law, units: Any, name: str) -> list[str]:
-    fields = _field_index(law)
-    src = {"p": "pressure(kk)", "v": "slipRate(kk)",
-           "T": "tempAvg(kk)" if "T" in law.variables else "0.0d0"}
-    src.update({v: f"fieldAvg(kk,{i})" for v, i in fields.items()})
+    src = _sources(law, "slipRate(kk)")
     conv, _ = _conversions(law, units)
     return [
         "      subroutine vfric_coef (",
