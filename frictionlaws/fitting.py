@@ -707,8 +707,11 @@ def fit(
             estimates[name] = ParamEstimate(name, values[name], None, None, unit,
                                             identifiable=name not in non_id)
             if name not in non_id:
-                warn_msgs.append(f"no standard error for {name}"
-                                 + (" (as many parameters as data points)" if dof <= 0 else ""))
+                why = (" (as many parameters as data points)" if dof <= 0 else
+                       " (the covariance matrix is singular because of the parameters the "
+                       "data cannot determine; fix those to get it)" if non_id else
+                       " (the covariance matrix could not be estimated)")
+                warn_msgs.append(f"no standard error for {name}{why}")
         lo, hi = bounds[name]
         scale = max(abs(values[name]), 1e-12)
         if (math.isfinite(lo) and abs(values[name] - lo) <= 1e-6 * max(scale, abs(lo))) or (
