@@ -16,7 +16,7 @@ import argparse
 import tempfile
 import time
 
-from frictionlaws.compare import compare
+from frictionlaws.comparison import compare
 from frictionlaws.fitting import as_fit_data, fit
 from frictionlaws.registry import list_laws
 

@@ -1,8 +1,8 @@
 """Benchmark of the adaptive export grid against evenly spaced grids.
 
-For several laws and boxes, the adaptive grid (:func:`frictionlaws.export.grid.
+For several laws and boxes, the adaptive grid (:func:`frictionlaws.fe_export.grid.
 adaptive_grid`) and the baseline, the smallest evenly spaced grid meeting the same
-tolerance (:func:`~frictionlaws.export.grid.uniform_grid_for_tol`: per-variable
+tolerance (:func:`~frictionlaws.fe_export.grid.uniform_grid_for_tol`: per-variable
 counts, each variable spaced as in the box, lin or log), are built in the same
 run.  Both are then checked the same way (dense structured sample plus random
 points, the solver's multilinear, end-held interpolation).  Printed: rows of each,
@@ -17,7 +17,7 @@ import argparse
 import time
 
 from frictionlaws import get_law
-from frictionlaws.export.grid import AxisSpec, adaptive_grid, uniform_grid_for_tol
+from frictionlaws.fe_export.grid import AxisSpec, adaptive_grid, uniform_grid_for_tol
 
 CASES = [
     ("exponential-decay", {"mu_s": 1.2, "mu_d": 0.6, "v_c": 0.3, "delta": 1.0},

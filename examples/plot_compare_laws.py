@@ -3,7 +3,7 @@ Ranking laws on held-out and extrapolated data
 ==============================================
 
 R² rewards flexibility: the more coefficients, the closer a law follows the measured points,
-whether or not it follows the physics. :func:`frictionlaws.compare.compare` adds the tests a
+whether or not it follows the physics. :func:`frictionlaws.comparison.compare` adds the tests a
 design needs: k-fold cross-validation (prediction of rows the fit did not see), prediction of
 the held-out upper end of the pressure and velocity ranges, and a scan of the fitted law over
 an extended box for values no rubber has and for trends the data contradict.
@@ -17,7 +17,7 @@ an extended box for values no rubber has and for trends the data contradict.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from frictionlaws.compare import compare
+from frictionlaws.comparison import compare
 
 laws = ["coulomb", "schallamach", "thirion", "quadratic-pv", "thesis-poly2", "thesis-poly3"]
 comparison = compare(laws, "thesis-steel", folds=5, holdout=0.3, seed=0, progress=False)

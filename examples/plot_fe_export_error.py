@@ -6,7 +6,7 @@ Most finite-element codes take a pressure- or velocity-dependent friction coeffi
 table: Abaqus ``*FRICTION`` data lines, an LS-DYNA ``*DEFINE_TABLE``, Ansys ``TB,FRIC`` with
 ``TBFIELD``. Between the rows the solver interpolates linearly and beyond the last row it
 holds the end value. A table is therefore an approximation of the law, and how good it is
-depends on where the rows are. :func:`frictionlaws.export.export` measures that error the
+depends on where the rows are. :func:`frictionlaws.fe_export.export` measures that error the
 way the solver interpolates, writes it into the file's header, and can place the rows until
 it is below a tolerance.
 """
@@ -22,8 +22,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.export import export
-from frictionlaws.export.grid import AxisSpec, interpolate, uniform_grid_for_tol
+from frictionlaws.fe_export import export
+from frictionlaws.fe_export.grid import AxisSpec, interpolate, uniform_grid_for_tol
 
 fit = fl.fit("thirion", "thesis-steel")
 coarse = export(None, fit, "abaqus", {"p": ("0.01 MPa", "0.5 MPa", 6)}, units="mm-N-s",

@@ -12,9 +12,9 @@ import pytest
 from scipy import stats
 
 import frictionlaws
-from frictionlaws.compare import Comparison, compare
-from frictionlaws.compare.cv import cross_validate, kfold_assignment
-from frictionlaws.compare.extrapolation import (
+from frictionlaws.comparison import Comparison, compare
+from frictionlaws.comparison.cv import cross_validate, kfold_assignment
+from frictionlaws.comparison.extrapolation import (
     _kendall_s_var,
     data_trend,
     data_trends,
@@ -24,7 +24,7 @@ from frictionlaws.compare.extrapolation import (
     parse_holdout,
     scan_plausibility,
 )
-from frictionlaws.compare.residuals import analyse_residuals, runs_pmf, runs_test
+from frictionlaws.comparison.residuals import analyse_residuals, runs_pmf, runs_test
 from frictionlaws.errors import InputError, UnknownLawError
 from frictionlaws.fitting import FitData, as_fit_data
 from frictionlaws.law import Law, Param
@@ -289,8 +289,8 @@ def test_family_default_and_public_api(steel: FitData) -> None:
     assert c.settings["folds"] == 19  # reduced to leave-one-out, with a note
     assert any("leave-one-out" in n for n in c.notes)
     assert [s["variable"] for s in c.settings["splits"]] == ["p"]
-    importlib.import_module("frictionlaws.compare.core")  # binds the package's name
-    assert callable(frictionlaws.compare)
+    importlib.import_module("frictionlaws.comparison.core")  # the package has its own name
+    assert frictionlaws.compare is compare
     assert frictionlaws.compare("coulomb", steel, folds=2, holdout=None).ranking == ["coulomb"]
 
 
@@ -333,7 +333,7 @@ def test_progress_bar_only_when_asked(steel: FitData, capsys: pytest.CaptureFixt
 
 
 def test_default_family_tells_tyre_slip_from_pin_on_disc_data() -> None:
-    from frictionlaws.compare.core import default_family
+    from frictionlaws.comparison.core import default_family
     from frictionlaws.fitting import as_fit_data
 
     s = np.linspace(0.0, 1.0, 12)

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from frictionlaws import list_laws
-from frictionlaws.export import export, unit_system
+from frictionlaws.fe_export import export, unit_system
 
 GFORTRAN = shutil.which("gfortran")
 pytestmark = pytest.mark.skipif(

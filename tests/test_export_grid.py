@@ -8,7 +8,7 @@ from scipy.interpolate import RegularGridInterpolator
 
 from frictionlaws import get_law
 from frictionlaws.errors import InputError
-from frictionlaws.export.grid import (
+from frictionlaws.fe_export.grid import (
     AxisSpec,
     Grid,
     adaptive_grid,

@@ -53,7 +53,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.compare import compare
+    from frictionlaws.comparison import compare
 
     kw = data_kwargs(args)
     cmp = compare(

@@ -100,9 +100,9 @@ def _options(args: argparse.Namespace) -> dict:
 
 def run(args: argparse.Namespace) -> int:
     from frictionlaws.errors import InputError
-    from frictionlaws.export import export
-    from frictionlaws.export.api import parse_range
-    from frictionlaws.export.systems import unit_system
+    from frictionlaws.fe_export import export
+    from frictionlaws.fe_export.api import parse_range
+    from frictionlaws.fe_export.systems import unit_system
 
     from ._common import fit_kwargs, parse_assignments, parse_floats
 

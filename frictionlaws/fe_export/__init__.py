@@ -15,10 +15,10 @@ to one of :data:`FORMATS`:
 Every file starts with a header: law, parameters with units, unit system, box,
 the maximum interpolation error and where it occurs, and what the solver does
 outside the box.
-"""
 
-import sys as _sys
-import types as _types
+The function is also ``frictionlaws.export``; this package is named
+``fe_export`` so that the two never shadow each other.
+"""
 
 from .api import FORMATS, ExportResult, export, make_specs, parse_range
 from .grid import AxisSpec, Grid, GridError
@@ -26,18 +26,3 @@ from .systems import SYSTEMS, UnitSystem, unit_system
 
 __all__ = ["export", "ExportResult", "FORMATS", "AxisSpec", "Grid", "GridError",
            "UnitSystem", "unit_system", "SYSTEMS", "parse_range", "make_specs"]
-
-
-class _CallableModule(_types.ModuleType):
-    """This package, callable as :func:`export`.
-
-    ``frictionlaws.export`` is both the public function (lazy API table) and
-    this package; once the package is imported Python binds the name to the
-    module, so the module forwards calls to :func:`export`.
-    """
-
-    def __call__(self, *args, **kwargs):  # type: ignore[no-untyped-def]
-        return export(*args, **kwargs)
-
-
-_sys.modules[__name__].__class__ = _CallableModule

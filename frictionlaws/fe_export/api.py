@@ -92,7 +92,7 @@ def _lazy(module: str, name: str) -> Callable[[Job], Written]:
     def write(job: Job) -> Written:
         from importlib import import_module
 
-        return getattr(import_module(f"frictionlaws.export.{module}"), name)(job)
+        return getattr(import_module(f"frictionlaws.fe_export.{module}"), name)(job)
 
     return write
 

@@ -9,28 +9,11 @@ ranked table and writes JSON and a self-contained HTML/Markdown report.
 Modules: :mod:`.core` (compare, ranking, Akaike weights), :mod:`.cv`,
 :mod:`.extrapolation`, :mod:`.residuals`, :mod:`.report` (matplotlib, imported
 only when a report is written).
-"""
 
-import sys
-import types
-from typing import Any
+The function is also ``frictionlaws.compare``; this package is named
+``comparison`` so that the two never shadow each other.
+"""
 
 from .core import Comparison, LawComparison, compare
 
 __all__ = ["compare", "Comparison", "LawComparison"]
-
-
-class _CallableModule(types.ModuleType):
-    """This package shares its name with its main function, ``frictionlaws.compare``.
-
-    Importing a submodule (``frictionlaws.compare.core``) makes Python bind the
-    *package* to the attribute ``frictionlaws.compare``; calling the package
-    calls :func:`compare`, so ``frictionlaws.compare(laws, data)`` works
-    whatever was imported first.
-    """
-
-    def __call__(self, *args: Any, **kwargs: Any) -> Comparison:
-        return compare(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule
