@@ -117,3 +117,30 @@ def test_fit_usage_errors_are_one_line_exit_2(capsys, argv, needle):
     code, _, err = run(capsys, *argv)
     assert code == 2
     assert len(err.strip().splitlines()) == 1 and needle in err and "Traceback" not in err
+
+
+def test_fit_temperature_aware_law_with_wlf_constants_freed(capsys, tmp_path):
+    """``<law>+wlf`` by name, with C1 and C2 fitted from data at four temperatures (degC)."""
+    import numpy as np
+
+    from frictionlaws import get_law
+
+    law = get_law("savkoor+wlf")
+    rng = np.random.default_rng(0)
+    n = 240
+    v = np.exp(rng.uniform(np.log(1e-5), 0.0, n))
+    T = rng.choice([273.15, 293.15, 313.15, 333.15], n)
+    true = {"mu_s": 0.4, "mu_m": 1.2, "h10": 0.35, "v_m": 1e-3, "n": 0.0, "C1": 9.5, "C2": 110.0}
+    mu = law(p=1e5, v=v, T=T, **true) + 0.01 * rng.standard_normal(n)
+    path = tmp_path / "wlf.csv"
+    lines = ["mu,p [MPa],v [m/s],T [degC]"]
+    lines += [f"{m:.17g},0.1,{vv:.17g},{t - 273.15:.17g}" for m, vv, t in zip(mu, v, T)]
+    path.write_text("\n".join(lines) + "\n")
+    code, out, err = run(capsys, "fit", "--law", "savkoor+wlf", str(path), "--free", "C1,C2",
+                         "--fix", "n=0", "--json")
+    assert code == 0, err
+    params = json.loads(out)["params"]
+    for name in ("C1", "C2"):
+        est = params[name]
+        assert abs(est["value"] - true[name]) <= 3 * est["stderr"], (name, est)
+    assert params["C2"]["unit"] == "K"
