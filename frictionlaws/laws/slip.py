@@ -210,22 +210,31 @@ def _burckhardt_mu_peak(m, c1, c2, c3, **_):
 
 
 def _burckhardt_guess(d):
+    """Grid over (c2, c4); for each, c1 and c3 >= 0 by linear least squares (2x2, vectorised)."""
     d = _subsample(d)
     s, v, mu = d["s"], np.abs(d["v"]), d["mu"]
     c4_grid = [0.0] + (list(np.geomspace(1e-3, 0.2, 20)) if np.ptp(v) > 0 else [])
+    c2_grid = np.geomspace(1.0, 1000.0, 60)
     best = None
     with np.errstate(all="ignore"):
         for c4 in c4_grid:
             ev = np.exp(-c4 * v)
-            for c2 in np.geomspace(1.0, 1000.0, 60):
-                cols = [(1.0 - np.exp(-c2 * s)) * ev, -s * ev]
-                c1, c3 = linear_lstsq(cols, mu)
-                if c3 < 0:
-                    c3 = 0.0
-                    c1 = float(linear_lstsq(cols[:1], mu)[0])
-                sse = float(np.sum((c1 * cols[0] + c3 * cols[1] - mu) ** 2))
-                if best is None or sse < best[0]:
-                    best = (sse, dict(c1=c1, c2=c2, c3=c3, c4=c4))
+            a = (1.0 - np.exp(-np.outer(s, c2_grid))) * ev[:, None]   # column per c2
+            b = -s * ev
+            aa, ab, bb = np.sum(a * a, 0), a.T @ b, float(b @ b)
+            am, bm = a.T @ mu, float(b @ mu)
+            det = aa * bb - ab**2
+            c1 = np.where(det > 0, (am * bb - ab * bm) / det, am / aa)
+            c3 = np.where(det > 0, (aa * bm - ab * am) / det, 0.0)
+            neg = c3 < 0                                  # c3 >= 0: refit c1 alone
+            c1 = np.where(neg, am / aa, c1)
+            c3 = np.where(neg, 0.0, c3)
+            sse = np.sum((a * c1 + b[:, None] * c3 - mu[:, None]) ** 2, 0)
+            sse = np.where(np.isfinite(sse), sse, np.inf)
+            j = int(np.argmin(sse))
+            if best is None or sse[j] < best[0]:
+                best = (float(sse[j]), dict(c1=float(c1[j]), c2=float(c2_grid[j]),
+                                            c3=float(c3[j]), c4=float(c4)))
     return best[1]
 
 
