@@ -117,18 +117,22 @@ def paired_times(f, g, rounds=15):
     return min(tf), min(tg)
 
 
-def bench_evaluation(n, rng):
-    print(f"\n1. evaluation on {n:.0e} points: law(...) vs hand-written numpy (target <= 1.3x)")
-    print(f"{'law':<22} {'law [ms]':>9} {'numpy [ms]':>10} {'ratio':>6}")
-    worst = 0.0
+def cases(n, rng):
+    """(law, hand-written baseline, points, parameters) for every law that has a baseline."""
     for law in fl.list_laws():
         hand = HAND.get(law.id)
         if hand is None:
             print(f"{law.id:<22} no hand-written baseline")
             continue
-        x = points(law, n, rng)
-        q = params_for(law)
-        kw = {**x, **{k: v for k, v in q.items()}}
+        yield law, hand, points(law, n, rng), params_for(law)
+
+
+def bench_evaluation(n, rng):
+    print(f"\n1. evaluation on {n:.0e} points: law(...) vs hand-written numpy (target <= 1.3x)")
+    print(f"{'law':<22} {'law [ms]':>9} {'numpy [ms]':>10} {'ratio':>6}")
+    worst = 0.0
+    for law, hand, x, q in cases(n, rng):
+        kw = {**x, **q}
         np.testing.assert_allclose(law(**kw), hand(x, q), rtol=1e-10)
         t_law, t_hand = paired_times(lambda kw=kw, law=law: law(**kw),
                                      lambda x=x, q=q, hand=hand: hand(x, q))
@@ -145,13 +149,7 @@ def bench_fit(rng, n=200):
     print(f"\n2. fit time on {n} synthetic points: frictionlaws.fit vs scipy curve_fit")
     print(f"{'law':<22} {'fit [ms]':>9} {'curve_fit [ms]':>14} {'ratio':>6}")
     ratios = []
-    for law in fl.list_laws():
-        hand = HAND.get(law.id)
-        if hand is None:
-            print(f"{law.id:<22} no hand-written baseline")
-            continue
-        x = points(law, n, rng)
-        q = params_for(law)
+    for law, hand, x, q in cases(n, rng):
         mu = np.broadcast_to(law(**x, **q), (n,))
         mu = mu + 0.02 * np.mean(np.abs(mu)) * rng.standard_normal(n)
         data = {**x, "mu": mu}

@@ -56,6 +56,7 @@ __all__ = [
     "load_dataset",
     "list_datasets",
     "datasets_dir",
+    "output_dir",
     "parse_mapping",
     "parse_units",
     "canonical_name",
@@ -875,6 +876,16 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
 
 
 # --------------------------------------------------------------------------- packaged
+def output_dir(path: str | Path, what: str = "output directory") -> Path:
+    """Create ``path`` (and parents) for writing; an :class:`InputError` names it when it fails."""
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the {what} ({exc.strerror})", file=str(out)) from None
+    return out
+
+
 def datasets_dir() -> Any:
     """The packaged datasets directory (an importlib.resources Traversable).
 

@@ -826,14 +826,9 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
 
 def write_report(cmp: Comparison, directory: str | Path) -> dict[str, Path]:
     """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``."""
-    from ..errors import InputError
+    from ..io import output_dir
 
-    out = Path(directory)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"cannot create the report directory ({exc.strerror})",
-                         file=str(out)) from None
+    out = output_dir(directory, "report directory")
     figures = make_figures(cmp)
     written: dict[str, Path] = {}
     for f in figures:

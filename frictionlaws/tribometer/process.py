@@ -1127,13 +1127,9 @@ def process_records(
 def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
     if plots is None:
         return None
-    d = Path(plots)
-    try:
-        d.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"cannot create the plots directory ({exc.strerror})",
-                         file=str(d)) from None
-    return str(d)
+    from ..io import output_dir
+
+    return str(output_dir(plots, "plots directory"))
 
 
 def _summary_plot(camp: Campaign, plots_dir: str) -> None:
