@@ -355,7 +355,7 @@ class Law:
                 f"(parameters: {', '.join(self.param_names)}; settings: "
                 f"{', '.join(s.name for s in self.settings) or 'none'})"
             )
-        out.update({k: float(v) for k, v in values.items()})
+        out.update({k: _as_float(k, v, self.id) for k, v in values.items()})
         missing = []
         for p in self.params:
             if p.name not in out:
@@ -368,7 +368,49 @@ class Law:
                 f"law '{self.id}' needs parameter(s) {', '.join(missing)} "
                 "(give them, or a preset)"
             )
+        self.check_values(out)
         return out
+
+    def bounds_of(self, name: str) -> tuple[float, float]:
+        """The declared bounds of a parameter or setting ``name``."""
+        for p in self.params:
+            if p.name == name:
+                return p.bounds
+        return self.setting(name).bounds
+
+    def check_values(self, values: Mapping[str, float]) -> None:
+        """Refuse parameter or setting values that are non-finite or outside their bounds.
+
+        This is the one validation of parameter values: every entry point
+        (evaluation, fixed values of a fit, saved results, presets, export, tyre
+        models) goes through :meth:`resolve`, which calls it.  Admissibility
+        (e.g. a denominator that can vanish) is checked too.
+
+        Raises
+        ------
+        InputError
+            Naming the law, the parameter, its value and the bounds expected.
+        """
+        for name, value in values.items():
+            lo, hi = self.bounds_of(name)
+            if not math.isfinite(value):
+                raise InputError(f"law '{self.id}': {name} = {value} is not a finite number")
+            if not lo <= value <= hi:
+                unit = self._unit_of(name)
+                raise InputError(
+                    f"law '{self.id}': {name} = {value:.6g}{unit} is outside its bounds "
+                    f"[{lo:.6g}, {hi:.6g}]{unit} ({self._meaning_of(name)})"
+                )
+        message = self.check_admissible(values)
+        if message:
+            raise InputError(f"law '{self.id}': parameters not admissible: {message}")
+
+    def _unit_of(self, name: str) -> str:
+        unit = next((p.unit for p in (*self.params, *self.settings) if p.name == name), "")
+        return f" {unit}" if unit else ""
+
+    def _meaning_of(self, name: str) -> str:
+        return next((p.meaning for p in (*self.params, *self.settings) if p.name == name), "")
 
     def _prepare(self, name: str, x: Any) -> Any:
         x = np.asarray(x, dtype=float)
@@ -427,7 +469,47 @@ class Law:
         """
         variables = {k: v for k, v in kwargs.items() if k in VARIABLES}
         values = {k: v for k, v in kwargs.items() if k not in VARIABLES}
-        return self.evaluate(variables, self.resolve(values, preset))
+        params = self.resolve(values, preset)
+        self.check_variables(variables)
+        out = self.evaluate(variables, params)
+        if not np.all(np.isfinite(np.asarray(out, dtype=float))):
+            raise DomainError(f"law '{self.id}' gives a non-finite mu for these inputs "
+                              f"and parameters {params}")
+        return out
+
+    def check_variables(self, variables: Mapping[str, Any]) -> None:
+        """Refuse variable values a law cannot take: missing, non-numeric, non-finite,
+        a negative pressure or load, a temperature at or below 0 K, or a slip ratio
+        outside [0, 1] or outside a slip law's declared domain.
+
+        Raises
+        ------
+        InputError, DomainError
+            Naming the variable and the offending value.
+        """
+        for name in self.variables:
+            if name not in variables:
+                continue
+            x = _float_array(name, variables[name], self.id)
+            bad = ~np.isfinite(x)
+            if bad.any():
+                raise InputError(f"law '{self.id}': {name} has a non-finite value "
+                                 f"({x[bad].flat[0]}) at index {_first(bad)}")
+            low = _LOWER_LIMITS.get(name)
+            if low is not None:
+                below = x < low[0] if low[1] else x <= low[0]
+                if below.any():
+                    raise DomainError(
+                        f"law '{self.id}': {name} = {x[below].flat[0]:g} at index "
+                        f"{_first(below)} is not allowed ({VARIABLES[name].meaning} must be "
+                        f"{'>=' if low[1] else '>'} {low[0]:g} {VARIABLES[name].unit})")
+            if name == "s":
+                lo, hi = self.domain.get("s", (0.0, 1.0))
+                out = (x < lo - 1e-12) | (x > hi + 1e-12)
+                if out.any():
+                    raise DomainError(
+                        f"law '{self.id}': s = {x[out].flat[0]:g} at index {_first(out)} is "
+                        f"outside the law's slip domain [{lo:g}, {hi:g}]")
 
     def bind(self, values: Mapping[str, float] | None = None, preset: str | None = None
              ) -> Callable[..., Any]:
@@ -595,3 +677,31 @@ def _jsonable(x: float) -> float | str | None:
     if math.isinf(x):
         return "inf" if x > 0 else "-inf"
     return x
+
+
+#: Physical lower limits of variables: (limit, inclusive).
+_LOWER_LIMITS: dict[str, tuple[float, bool]] = {"p": (0.0, True), "F_N": (0.0, True),
+                                                 "T": (0.0, False)}
+
+
+def _first(mask: np.ndarray) -> int | tuple[int, ...]:
+    idx = np.argwhere(mask)[0]
+    return int(idx[0]) if idx.size == 1 else tuple(int(i) for i in idx)
+
+
+def _float_array(name: str, value: Any, law_id: str) -> np.ndarray:
+    try:
+        x = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"law '{law_id}': {name} must be numbers, got {value!r:.60}") from None
+    return np.atleast_1d(x)
+
+
+def _as_float(name: str, value: Any, law_id: str) -> float:
+    """A parameter value as float; booleans, text and None are refused."""
+    if isinstance(value, (bool, np.bool_)) or value is None or isinstance(value, str):
+        raise InputError(f"law '{law_id}': {name} must be a number, got {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"law '{law_id}': {name} must be a number, got {value!r}") from None

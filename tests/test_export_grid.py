@@ -159,7 +159,11 @@ def test_non_finite_law_in_box_is_reported():
 
 
 def test_pole_in_the_box_is_reported_with_its_location():
-    f = get_law("thirion").bind({"a": -0.5, "b": 1e-6})  # 1/(a + b p): pole at p = 5e5 Pa
+    with pytest.raises(InputError, match="outside its bounds"):
+        get_law("thirion").bind({"a": -0.5, "b": 1e-6})
+
+    def f(p):  # thirion's 1/(a + b p) with a = -0.5: a pole at p = 5e5 Pa
+        return 1.0 / (-0.5 + 1e-6 * np.asarray(p))
     with pytest.raises(InputError, match=r"crowd near p = 4999\d\d \(SI\)"):
         adaptive_grid(f, [AxisSpec("p", 0.0, 1e6)], 1e-3)
 

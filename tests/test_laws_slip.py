@@ -134,7 +134,9 @@ def test_germann_domain_is_pre_peak():
     law = get_law("germann")
     assert law.domain["s"] == (0.0, 0.3)
     s = np.linspace(0, 0.6, 40)
-    mu = law(s=s, a0=0.0, a1=8.0, a2=-15.0)
+    mu = law.evaluate({"s": s}, law.resolve({"a0": 0.0, "a1": 8.0, "a2": -15.0}))
+    with pytest.raises(DomainError, match="outside the law's slip domain"):
+        law(s=s, a0=0.0, a1=8.0, a2=-15.0)
     res = fit(law, {"s": s, "mu": mu})
     assert any("outside the law's valid domain of s" in w for w in res.warnings)
     assert law.outside_domain({"s": s}) == {"s": int(np.sum(s > 0.3))}

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from frictionlaws import fit, get_law
-from frictionlaws.errors import DomainError, ExtrapolationWarning
+from frictionlaws.errors import DomainError, ExtrapolationWarning, InputError
 from frictionlaws.laws.velocity import nackenhorst_from_thesis
 
 V = np.geomspace(1e-10, 1e4, 200001)
@@ -66,18 +66,23 @@ def test_wriggers_derived_against_numerical_peak():
 def test_huemer_admissibility_and_limits():
     law = get_law("huemer")
     base = {"alpha": 0.15, "beta": 0.4, "n": 0.6, "m_v": 2.0, "b": 0.5, "c": 0.05}
+    full = {**law.setting_values, **base}
     assert law.check_admissible(law.resolve(base)) is None
-    assert "c = -0.1 < 0" in law.check_admissible(law.resolve(dict(base, c=-0.1)))
+    assert "c = -0.1 < 0" in law.check_admissible(dict(full, c=-0.1))
+    with pytest.raises(InputError, match="outside its bounds"):
+        law(p=1e6, v=1.0, **dict(base, c=-0.1))
     # b < 0 is allowed while b^2 < 4c ...
     assert law.check_admissible(law.resolve(dict(base, b=-0.4, c=0.05))) is None
     # ... but not when the denominator can vanish
-    msg = law.check_admissible(law.resolve(dict(base, b=-0.5, c=0.05)))
+    msg = law.check_admissible(dict(full, b=-0.5, c=0.05))
     assert "vanishes" in msg
     # at b^2 = 4c the denominator has a double root at x = -b/(2c), i.e. v = x^(-m)
     b = -np.sqrt(4 * 0.05)
     v0 = (-b / (2 * 0.05)) ** -2.0
-    assert "vanishes" in law.check_admissible(law.resolve(dict(base, b=b, c=0.05)))
-    assert abs(law(p=1e6, v=v0, **dict(base, b=b, c=0.05))) > 1e6
+    assert "vanishes" in law.check_admissible(dict(full, b=b, c=0.05))
+    assert abs(law.evaluate({"p": 1e6, "v": v0}, dict(full, b=b, c=0.05))) > 1e6
+    with pytest.raises(InputError, match="not admissible"):
+        law(p=1e6, v=v0, **dict(base, b=b, c=0.05))
     # v -> 0 gives mu -> 0 (c > 0); v -> inf gives alpha (p/p_ref)^(n-1) + beta
     assert law(p=1e6, v=0.0, **base) == pytest.approx(0.0, abs=1e-7)  # v floored at 1e-9
     assert law(p=2e6, v=1e12, **base) == pytest.approx(0.15 * 2**-0.4 + 0.4, rel=1e-5)

@@ -161,7 +161,7 @@ register(Law(
     formula=_pacejka,
     guess=_pacejka_guess,
     presets=PACEJKA_SURFACES,
-    domain=SLIP,
+    domain={"s": (-1.0, 1.0)},
     derived=(
         Derived("BCD", "", "slope d mu/ds at s = -S_h (B C D: slip stiffness over load)",
                 lambda m, B, C, D, **_: B * C * D),

@@ -1,0 +1,75 @@
+"""The one JSON encoder of frictionlaws: strict JSON, ``null`` for non-finite numbers.
+
+Every JSON frictionlaws writes (``--json`` output, saved fit results, reports,
+export tables) goes through :func:`dumps`, so a strict parser (one that refuses
+``NaN`` and ``Infinity``) reads all of it.  Infinite *bounds* are the one place
+where infinity carries meaning; they are written by :func:`bound_to_json` as
+the strings ``"inf"``/``"-inf"`` and read back by :func:`bound_from_json`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from collections.abc import Mapping
+from pathlib import PurePath
+from typing import Any
+
+import numpy as np
+
+__all__ = ["to_jsonable", "dumps", "bound_to_json", "bound_from_json"]
+
+
+def _number(x: float) -> float | None:
+    return x if math.isfinite(x) else None
+
+
+def to_jsonable(obj: Any) -> Any:
+    """``obj`` as plain JSON types: non-finite floats become ``None``.
+
+    Handles dicts (keys as strings), lists/tuples/sets, numpy scalars and
+    arrays, dataclasses, paths and objects with a ``to_dict()`` method.
+    """
+    if obj is None or isinstance(obj, (str, bool)):
+        return obj
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        return _number(float(obj))
+    if isinstance(obj, Mapping):
+        return {str(k): to_jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple, set, frozenset)):
+        return [to_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return [to_jsonable(v) for v in obj.tolist()]
+    if isinstance(obj, PurePath):
+        return str(obj)
+    if hasattr(obj, "to_dict") and callable(obj.to_dict):
+        return to_jsonable(obj.to_dict())
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return to_jsonable(dataclasses.asdict(obj))
+    return str(obj)
+
+
+def dumps(obj: Any, *, indent: int | None = 2) -> str:
+    """Strict JSON text of ``obj`` (see :func:`to_jsonable`); never ``NaN``/``Infinity``."""
+    return json.dumps(to_jsonable(obj), indent=indent, allow_nan=False)
+
+
+def bound_to_json(x: float) -> float | str:
+    """A parameter bound for JSON: ``"inf"``/``"-inf"`` for infinite bounds."""
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    return float(x)
+
+
+def bound_from_json(x: Any) -> float:
+    """Inverse of :func:`bound_to_json` (``None`` is read as unbounded is *not* accepted)."""
+    if isinstance(x, str) and x in ("inf", "-inf", "+inf"):
+        return math.inf if not x.startswith("-") else -math.inf
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        raise ValueError(f"a bound must be a number or 'inf'/'-inf', got {x!r}")
+    return float(x)

@@ -1,0 +1,242 @@
+"""The output guard: output paths are checked before any work, and writes are atomic.
+
+Rules (the same for every command and API call that writes files):
+
+* an output may not be one of the inputs (same path or same file through a link),
+  nor appear twice among the outputs;
+* an output file may not be an existing directory or a special file (FIFO, device);
+  its directory must exist and be writable; an output directory may be created;
+* an input must be a regular file (a FIFO would block forever);
+* every file is written to a temporary file in the same directory and renamed into
+  place when complete, so a failure leaves neither a partial file nor a changed one;
+  a directory of outputs is built in a temporary directory and moved in at the end.
+
+Library functions call :func:`check_outputs` at their start with what they will
+read and write; failures raise :class:`~frictionlaws.errors.InputError`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import stat
+import tempfile
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+from typing import IO, Any
+
+from .errors import InputError
+
+__all__ = [
+    "check_input_file",
+    "check_outputs",
+    "atomic_write",
+    "write_text_atomic",
+    "write_bytes_atomic",
+    "atomic_dir",
+    "STDOUT",
+]
+
+#: The name that means standard output rather than a file.
+STDOUT = "-"
+
+PathLike = str | os.PathLike[str]
+
+
+def _key(path: Path) -> str:
+    return os.path.normcase(os.path.realpath(path))
+
+
+def check_input_file(path: PathLike, what: str = "input file") -> Path:
+    """Refuse an input that is missing, a directory or a special file (FIFO, device)."""
+    p = Path(path)
+    try:
+        st = p.stat()
+    except FileNotFoundError:
+        raise InputError(f"{what} not found", file=str(p)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read the {what} ({exc.strerror})", file=str(p)) from None
+    if stat.S_ISDIR(st.st_mode):
+        raise InputError(f"the {what} is a directory, expected a file", file=str(p))
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(f"the {what} is not a regular file (a FIFO or device?); "
+                         "give a file on disk", file=str(p))
+    if not os.access(p, os.R_OK):
+        raise InputError(f"the {what} is not readable", file=str(p))
+    return p
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    if _key(a) == _key(b):
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def _check_file_target(out: Path, what: str) -> None:
+    if out.exists() or out.is_symlink():
+        try:
+            st = out.stat()
+        except OSError as exc:
+            raise InputError(f"cannot use the {what} ({exc.strerror})", file=str(out)) from None
+        if stat.S_ISDIR(st.st_mode):
+            raise InputError(f"the {what} is a directory; give a file name", file=str(out))
+        if not stat.S_ISREG(st.st_mode):
+            raise InputError(f"the {what} is not a regular file (a FIFO or device?)",
+                             file=str(out))
+    parent = out.parent if str(out.parent) else Path(".")
+    if not parent.is_dir():
+        raise InputError(f"the directory of the {what} does not exist", file=str(out))
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"the directory of the {what} is not writable", file=str(out))
+
+
+def _check_dir_target(out: Path, what: str) -> None:
+    if out.exists():
+        if not out.is_dir():
+            raise InputError(f"the {what} exists and is not a directory", file=str(out))
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise InputError(f"the {what} is not writable", file=str(out))
+        return
+    base = out.parent
+    while not base.exists() and base != base.parent:
+        base = base.parent
+    if not base.is_dir() or not os.access(base, os.W_OK | os.X_OK):
+        raise InputError(f"cannot create the {what}: '{base}' is not a writable directory",
+                         file=str(out))
+
+
+def check_outputs(files: Iterable[PathLike | None] = (), *,
+                  dirs: Iterable[PathLike | None] = (),
+                  inputs: Iterable[PathLike | None] = (),
+                  what: str = "output file") -> None:
+    """Check output paths before any work starts.
+
+    Parameters
+    ----------
+    files : iterable of path or None
+        Output files (``None`` and ``"-"``, standard output, are skipped).
+    dirs : iterable of path or None
+        Output directories (created later if missing).
+    inputs : iterable of path or None
+        Files that will be read; none of them may be written.  For an
+        output directory, an input inside it is allowed (files written there
+        are checked again when written, see :func:`atomic_write`).
+
+    Raises
+    ------
+    InputError
+        Naming the output and what is wrong.
+    """
+    ins = [Path(p) for p in inputs if p is not None and str(p) != STDOUT]
+    seen: dict[str, Path] = {}
+    for raw in files:
+        if raw is None or str(raw) == STDOUT:
+            continue
+        out = Path(raw)
+        for src in ins:
+            if _same_file(out, src):
+                raise InputError(f"the {what} is also an input; it would be overwritten "
+                                 "(give another name)", file=str(out))
+        if _key(out) in seen:
+            raise InputError(f"the same {what} is named twice", file=str(out))
+        seen[_key(out)] = out
+        _check_file_target(out, what)
+    for raw in dirs:
+        if raw is None:
+            continue
+        out = Path(raw)
+        for src in ins:
+            if _same_file(out, src):
+                raise InputError("the output directory is also an input", file=str(out))
+        _check_dir_target(out, "output directory")
+    _PROTECTED.update(_key(p) for p in ins)
+
+
+#: Inputs registered by :func:`check_outputs` in this process: never replaced.
+_PROTECTED: set[str] = set()
+
+
+def _refuse_protected(path: Path) -> None:
+    if _key(path) in _PROTECTED:
+        raise InputError("refusing to overwrite an input file", file=str(path))
+
+
+@contextlib.contextmanager
+def atomic_write(path: PathLike, mode: str = "w", *, encoding: str | None = "utf-8",
+                 newline: str | None = None) -> Iterator[IO[Any]]:
+    """Open a temporary file beside ``path``; rename it onto ``path`` when the block succeeds.
+
+    On any exception the temporary file is removed and ``path`` is untouched.
+    """
+    target = Path(path)
+    _refuse_protected(target)
+    _check_file_target(target, "output file")
+    binary = "b" in mode
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part",
+                               dir=str(target.parent) or ".")
+    try:
+        with os.fdopen(fd, mode, encoding=None if binary else encoding,
+                       newline=None if binary else newline) as fh:
+            yield fh
+        try:
+            os.chmod(tmp, 0o666 & ~_umask())
+        except OSError:
+            pass
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def write_text_atomic(path: PathLike, text: str, *, encoding: str = "utf-8") -> Path:
+    """Write ``text`` to ``path`` atomically; return the path."""
+    with atomic_write(path, "w", encoding=encoding, newline="") as fh:
+        fh.write(text)
+    return Path(path)
+
+
+def write_bytes_atomic(path: PathLike, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically; return the path."""
+    with atomic_write(path, "wb") as fh:
+        fh.write(data)
+    return Path(path)
+
+
+@contextlib.contextmanager
+def atomic_dir(path: PathLike) -> Iterator[Path]:
+    """Build a directory of outputs in a temporary directory, then move it into place.
+
+    Yields the temporary directory to write into.  On success every file is moved
+    into ``path`` (created if needed; files already there with other names are kept);
+    on failure nothing in ``path`` changes.
+    """
+    target = Path(path)
+    _check_dir_target(target, "output directory")
+    base = target.parent if str(target.parent) else Path(".")
+    base.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".part", dir=str(base)))
+    try:
+        yield tmp
+        for item in sorted(tmp.rglob("*")):
+            if item.is_file():
+                _refuse_protected(target / item.relative_to(tmp))
+        target.mkdir(parents=True, exist_ok=True)
+        for item in sorted(tmp.rglob("*")):
+            dest = target / item.relative_to(tmp)
+            if item.is_dir():
+                dest.mkdir(parents=True, exist_ok=True)
+            else:
+                os.replace(item, dest)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
