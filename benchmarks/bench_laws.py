@@ -21,67 +21,30 @@ import time
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.law import F_MIN, P_MIN, V_MIN
-
-# Hand-written numpy expressions of each law (x: variables, q: parameters and settings).
-# Written independently of the law modules, with the same floors the laws declare.
-HAND = {
-    "coulomb": lambda x, q: np.full_like(x["p"], q["mu0"]),
-    "thirion": lambda x, q: 1.0 / (q["a"] + q["b"] * x["p"]),
-    "schallamach": lambda x, q: q["mu_ref"] * (np.maximum(x["F_N"], F_MIN) / q["F_ref"])
-    ** (-q["n"]),
-    "denny": lambda x, q: 1.0 / (q["a"] * (1.0 + q["b"] * x["p"] / q["E_v"])),
-    "exponential-decay": lambda x, q: q["mu_d"] + (q["mu_s"] - q["mu_d"])
-    * np.exp(-((np.abs(x["v"]) / q["v_c"]) ** q["delta"])),
-    "quadratic-pv": lambda x, q: q["c0"] + q["c1"] * x["p"] + q["c2"] * np.abs(x["v"])
-    + q["c3"] * x["p"] * np.abs(x["v"]) + q["c4"] * x["p"] ** 2 + q["c5"] * np.abs(x["v"]) ** 2,
-    "thesis-poly2": lambda x, q: q["a0"] + q["a1"] * (x["p"] / 1e6) + q["a2"] * (x["p"] / 1e6)
-    ** 2 + q["a3"] * np.abs(x["v"]) + q["a4"] * np.abs(x["v"]) ** 2,
-    "thesis-poly3": lambda x, q: q["a0"] + q["a1"] * (x["p"] / 1e6) + q["a2"] * (x["p"] / 1e6)
-    ** 2 + q["a3"] * (x["p"] / 1e6) ** 3 + q["a4"] * np.abs(x["v"]) + q["a5"] * np.abs(x["v"])
-    ** 2 + q["a6"] * np.abs(x["v"]) ** 3,
-}
+from frictionlaws.law_examples import EXAMPLES, NUMPY_M
 
 
-def _vf(x):
-    """|v| floored at V_MIN, as the log-velocity laws declare."""
-    return np.maximum(np.abs(x["v"]), V_MIN)
+def hand_written(law):
+    """The law's independent reference form (frictionlaws/law_examples.py) run on numpy arrays.
 
+    The reference forms are written by hand from the catalogue, not from the law modules; the
+    baseline applies the floors the law declares (|v|, v_min, p_min), as the law itself does.
+    """
+    example = EXAMPLES.get(law.id)
+    if example is None:
+        return None
+    ref = example.reference
 
-def _pf(x):
-    """p floored at P_MIN, as the laws singular at p = 0 declare."""
-    return np.maximum(x["p"], P_MIN)
+    def hand(x, q):
+        args = {}
+        for name in ref.variables:
+            value = np.abs(x[name]) if name == "v" else x[name]
+            floor = law.floors.get(name)
+            args[name] = value if floor is None else np.maximum(value, floor)
+        out = ref.func(NUMPY_M, **args, **q)
+        return np.full(np.shape(next(iter(x.values()))), out) if not ref.variables else out
 
-
-def _bell(q, lv):
-    return q["mu_s"] + (q["mu_m"] - q["mu_s"]) * np.exp(-(q["h10"] ** 2) * lv**2)
-
-
-HAND.update({
-    "savkoor": lambda x, q: (_pf(x) / q["p_ref"]) ** q["n"] * _bell(q, np.log10(_vf(x) / q["v_m"])),
-    "nackenhorst": lambda x, q: q["A"] * (_pf(x) / q["p_ref"]) ** q["n"] + q["b0"]
-    + q["b1"] * np.log(_vf(x) / q["v_ref"]) + q["b2"] * np.log(_vf(x) / q["v_ref"]) ** 2,
-    "nackenhorst-thesis": lambda x, q: q["c1"] * (_pf(x) / q["c2"]) ** q["c3"]
-    + q["c4"] * np.log(_vf(x) / q["c5"]) - q["c6"] * np.log(_vf(x) / q["c7"]),
-    "huemer": lambda x, q: (q["alpha"] * (_pf(x) / q["p_ref"]) ** (q["n"] - 1.0) + q["beta"])
-    / (1.0 + q["b"] * (_vf(x) / q["v_ref"]) ** (-1.0 / q["m_v"])
-       + q["c"] * (_vf(x) / q["v_ref"]) ** (-2.0 / q["m_v"])),
-    "wriggers": lambda x, q: (q["b"] / _pf(x)) * np.arctan(q["d"] * _pf(x))
-    * (2.0 * np.abs(x["v"]) * q["a"] * _pf(x) / (x["v"] ** 2 + (q["a"] * _pf(x)) ** 2)) ** q["c"],
-    "park": lambda x, q: (_pf(x) / q["p0"]) ** (-q["n"]) * _bell(
-        q, np.log10(_vf(x) / q["v_m"])
-        - q["C1"] * (x["T"] - q["T_ref"]) / (q["C2"] + x["T"] - q["T_ref"])),
-    "pacejka": lambda x, q: q["D"] * np.sin(q["C"] * np.arctan(
-        q["B"] * (x["s"] + q["S_h"]) - q["E"] * (q["B"] * (x["s"] + q["S_h"])
-                                             - np.arctan(q["B"] * (x["s"] + q["S_h"])))))
-    + q["S_v"],
-    "burckhardt": lambda x, q: (q["c1"] * (1.0 - np.exp(-q["c2"] * x["s"])) - q["c3"] * x["s"])
-    * np.exp(-q["c4"] * np.abs(x["v"])),
-    "burckhardt-sqrt": lambda x, q: q["c1"] * np.sqrt(x["s"]) - q["c2"] * x["s"],
-    "kiencke-daiss": lambda x, q: q["k_s"] * x["s"] / (q["c1"] * x["s"] ** 2 + q["c2"] * x["s"]
-                                                      + 1.0),
-    "germann": lambda x, q: q["a0"] + q["a1"] * x["s"] + q["a2"] * x["s"] ** 2,
-})
+    return hand
 
 
 def params_for(law):
@@ -120,7 +83,7 @@ def paired_times(f, g, rounds=15):
 def cases(n, rng):
     """(law, hand-written baseline, points, parameters) for every law that has a baseline."""
     for law in fl.list_laws():
-        hand = HAND.get(law.id)
+        hand = hand_written(law)
         if hand is None:
             print(f"{law.id:<22} no hand-written baseline")
             continue
@@ -133,7 +96,7 @@ def bench_evaluation(n, rng):
     worst = 0.0
     for law, hand, x, q in cases(n, rng):
         kw = {**x, **q}
-        np.testing.assert_allclose(law(**kw), hand(x, q), rtol=1e-10)
+        np.testing.assert_allclose(law(**kw), hand(x, q), rtol=1e-10, atol=1e-12)
         t_law, t_hand = paired_times(lambda kw=kw, law=law: law(**kw),
                                      lambda x=x, q=q, hand=hand: hand(x, q))
         ratio = t_law / t_hand

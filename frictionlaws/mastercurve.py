@@ -498,11 +498,54 @@ def build_master_curve(
         Non-positive or non-finite values, fewer than two curves, curves
         with fewer than three points, or neighbours that cannot be overlapped.
     """
+    x, y, T = _checked_points(x, y, T)
+    curves = _group(x, y, T, groups, T_tol)
+    if len(curves) < 2 or min(c.x.size for c in curves) < 3:
+        small = [c.label for c in curves if c.x.size < 3]
+        raise InputError(f"curves {small} have fewer than 3 points" if small else
+                         "a master curve needs curves at two or more temperatures "
+                         f"(found {len(curves)})")
+    names = _y_names(y, y_names)
+    temps = np.array([c.T for c in curves])
+    ref = len(curves) // 2 if T_ref is None else int(np.argmin(np.abs(temps - T_ref)))
+    messages = []
+    if T_ref is not None and abs(temps[ref] - T_ref) > T_tol:
+        messages.append(f"no curve at T_ref = {T_ref:.2f} K: the shifts are referred to the "
+                        f"nearest curve, at {temps[ref]:.2f} K")
+    shift, se, rms, pts = _chain_shifts(curves, ref, degree=degree,
+                                        max_extrapolation=max_extrapolation,
+                                        monotonic=monotonic)
+    wlf = _wlf_or_message(temps, shift, float(temps[ref]), se, messages) if fit else None
+    return MasterCurve(curves, float(temps[ref]), shift, se, rms, pts, wlf, x_name, names,
+                       messages)
+
+
+def _wlf_or_message(temps: np.ndarray, shift: np.ndarray, T_ref: float, se: np.ndarray,
+                    messages: list[str]) -> WLFFit | None:
+    """Fit WLF to the shifts; a failure becomes a message, not an error."""
+    try:
+        wlf = fit_wlf(temps, shift, T_ref, stderr=se)
+    except (InputError, ValueError) as exc:
+        messages.append(f"WLF fit failed: {exc}")
+        return None
+    messages.extend(wlf.messages)
+    return wlf
+
+
+def _y_names(y: np.ndarray, y_names: Sequence[str] | None) -> list[str]:
+    k = 1 if y.ndim == 1 else y.shape[1]
+    names = list(y_names) if y_names is not None else (["y"] if k == 1 else
+                                                        [f"y{j}" for j in range(k)])
+    if len(names) != k:
+        raise InputError(f"{len(names)} y_names for {k} y columns")
+    return names
+
+
+def _checked_points(x: Any, y: Any, T: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x, y, T as float arrays: one value per point, finite, x and y positive, T in K."""
     x = np.asarray(x, dtype=float).ravel()
     y = np.asarray(y, dtype=float)
     T = np.asarray(T, dtype=float).ravel()
-    if y.ndim == 1:
-        y = y.reshape(-1)
     if y.shape[0] != x.size or T.size != x.size:
         raise InputError(f"x, y and T must have one value per point (got {x.size}, "
                          f"{y.shape[0]}, {T.size})")
@@ -519,45 +562,29 @@ def build_master_curve(
                              f"points {rows[:5].tolist()}")
     if np.any(T <= 0):
         raise InputError("T must be an absolute temperature in K (> 0)")
-    curves = _group(x, y, T, groups, T_tol)
-    if len(curves) < 2:
-        raise InputError("a master curve needs curves at two or more temperatures "
-                         f"(found {len(curves)})")
-    small = [c.label for c in curves if c.x.size < 3]
-    if small:
-        raise InputError(f"curves {small} have fewer than 3 points")
-    k = 1 if y.ndim == 1 else y.shape[1]
-    names = list(y_names) if y_names is not None else (["y"] if k == 1 else
-                                                        [f"y{j}" for j in range(k)])
-    if len(names) != k:
-        raise InputError(f"{len(names)} y_names for {k} y columns")
-    temps = np.array([c.T for c in curves])
-    ref = len(curves) // 2 if T_ref is None else int(np.argmin(np.abs(temps - T_ref)))
-    messages = []
-    if T_ref is not None and abs(temps[ref] - T_ref) > T_tol:
-        messages.append(f"no curve at T_ref = {T_ref:.2f} K: the shifts are referred to the "
-                        f"nearest curve, at {temps[ref]:.2f} K")
+    return x, y, T
+
+
+def _chain_shifts(curves: list[Curve], ref: int, *, degree: int, max_extrapolation: float,
+                  monotonic: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Shift each curve onto its neighbour towards the reference, accumulating the shifts.
+
+    Returns log10 shifts, their standard errors (variances of the chained pair shifts
+    add), the pair rms mismatch and the number of overlapping points of each pair.
+    """
     n = len(curves)
     shift = np.zeros(n)
     var = np.zeros(n)
     rms = np.full(n, np.nan)
     pts = np.zeros(n, dtype=int)
-    kw = dict(degree=degree, max_extrapolation=max_extrapolation, monotonic=monotonic)
     for i in list(range(ref + 1, n)) + list(range(ref - 1, -1, -1)):
         j = i - 1 if i > ref else i + 1
-        d, se, r, m = pair_shift(curves[j], curves[i], **kw)
+        d, se, r, m = pair_shift(curves[j], curves[i], degree=degree,
+                                 max_extrapolation=max_extrapolation, monotonic=monotonic)
         shift[i] = shift[j] + d
         var[i] = var[j] + (se**2 if np.isfinite(se) else np.nan)
         rms[i], pts[i] = r, m
-    result = MasterCurve(curves, float(temps[ref]), shift, np.sqrt(var), rms, pts, None,
-                         x_name, names, messages)
-    if fit:
-        try:
-            result.wlf = fit_wlf(temps, shift, float(temps[ref]), stderr=np.sqrt(var))
-            messages.extend(result.wlf.messages)
-        except (InputError, ValueError) as exc:
-            messages.append(f"WLF fit failed: {exc}")
-    return result
+    return shift, np.sqrt(var), rms, pts
 
 
 # ------------------------------------------------------------------ packaged DMA data

@@ -111,7 +111,8 @@ def _case_reference(run: CaseRun) -> None:
     builtin = builtin_law_ids()
     missing = [i for i in builtin if i not in REFERENCES]
     stale = [i for i in REFERENCES if i not in builtin]
-    run.require("every built-in law has a reference implementation", not missing,
+    run.require("every built-in law has a reference implementation (an entry in "
+                "frictionlaws/law_examples.py)", not missing,
                 "none missing", ", ".join(missing) or "none missing")
     run.require("every reference implementation names a registered law", not stale,
                 "none stale", ", ".join(stale) or "none stale")
@@ -135,6 +136,7 @@ def _case_reference(run: CaseRun) -> None:
                 score = math.inf
             if worst is None or score > worst[0]:
                 worst = (score, expected, obtained, variables)
+        assert worst is not None  # every reference has at least one point
         where = ", ".join(f"{k}={v:g}" for k, v in worst[3].items()) or "no variables"
         run.compare(f"{law_id}: worst of {len(points)} points", worst[1], worst[2], tol,
                     note=f"worst point {where}" if worst[0] > 1 else "")
@@ -935,6 +937,7 @@ def _case_mf52(run: CaseRun) -> None:
             dev = abs(obtained - expected)
             if worst is None or dev > worst[0]:
                 worst = (dev, expected, obtained, k)
+        assert worst is not None
         run.compare(f"F_x0 at F_z = {fz:g} N, worst of {len(kappas)} slips "
                     f"(kappa = {worst[3]:g})", worst[1], worst[2], Tol(abs=1e-9 * fz),
                     unit="N")

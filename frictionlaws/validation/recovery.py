@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..law_examples import EXAMPLES
 from .reference import REFERENCES, evaluate_reference
 
 __all__ = ["RecoverySetup", "RECOVERY_SETUPS", "NOISE_LEVELS", "SAMPLE_SIZES", "Z_LIMIT",
@@ -66,46 +67,12 @@ class RecoverySetup:
     not_identifiable: bool = False
 
 
-_PV = {"p": (2e4, 1e6), "v": (1e-3, 10.0)}
-
+#: Law id -> :class:`RecoverySetup`, from the one example table
+#: (:mod:`frictionlaws.law_examples`: each entry's ``recovery`` or ``battery`` sampling).
 RECOVERY_SETUPS: dict[str, RecoverySetup] = {
-    "coulomb": RecoverySetup({"mu0": 0.9}, {}),
-    "thirion": RecoverySetup({"a": 0.3, "b": 3e-6}, {"p": (2e4, 1e6)}),
-    "schallamach": RecoverySetup({"mu_ref": 2.0, "n": 0.25}, {"F_N": (2.0, 200.0)},
-                                 log=("F_N",)),
-    "denny": RecoverySetup({"a": 2.0, "b": 15.0}, {"p": (1e4, 2e6)}),
-    "exponential-decay": RecoverySetup({"mu_s": 1.2, "mu_d": 0.6, "v_c": 0.3, "delta": 1.3},
-                                       {"v": (1e-3, 10.0)}, log=("v",)),
-    "quadratic-pv": RecoverySetup({"c0": 1.2, "c1": -1.5e-6, "c2": 0.08, "c3": 2e-7,
-                                   "c4": 8e-13, "c5": -0.015},
-                                  {"p": (5e4, 1e6), "v": (0.0, 3.0)}),
-    "thesis-poly2": RecoverySetup({"a0": 5.18, "a1": -59.2, "a2": 220.0, "a3": 1.05,
-                                   "a4": -0.303}, {"p": (0.03e6, 0.25e6), "v": (0.0, 2.77)}),
-    "thesis-poly3": RecoverySetup({"a0": 6.28, "a1": -108.0, "a2": 809.0, "a3": -2090.0,
-                                   "a4": 0.158, "a5": 0.669, "a6": -0.235},
-                                  {"p": (0.03e6, 0.25e6), "v": (0.0, 2.77)}),
-    "savkoor": RecoverySetup({"mu_s": 0.4, "mu_m": 1.2, "h10": 0.4, "v_m": 0.01, "n": -0.2},
-                             {"p": (2e4, 1e6), "v": (1e-6, 10.0)}, log=("p", "v")),
-    "nackenhorst": RecoverySetup({"A": 0.3, "n": -0.5, "b0": 0.6, "b1": 0.02, "b2": -0.002},
-                                 _PV, log=("p", "v")),
-    "nackenhorst-thesis": RecoverySetup({"c1": 0.3, "c2": 1e5, "c3": -0.5, "c4": 0.05,
-                                         "c5": 1.0, "c6": 0.03, "c7": 0.1},
-                                        _PV, log=("p", "v"), not_identifiable=True),
-    "huemer": RecoverySetup({"alpha": 0.1, "beta": 0.5, "n": 0.5, "m_v": 2.0, "b": 0.5,
-                             "c": 0.2}, {"p": (1e4, 1e7), "v": (1e-4, 10.0)},
-                            log=("p", "v")),
-    "wriggers": RecoverySetup({"a": 1e-6, "b": 1e5, "c": 0.5, "d": 1e-5},
-                              {"p": (2e4, 1e6), "v": (1e-4, 10.0)}, log=("p", "v")),
-    "park": RecoverySetup({"n": 1 / 9, "mu_s": 0.4, "mu_m": 1.2, "h10": 0.4, "v_m": 0.01},
-                          {"p": (2e4, 1e6), "v": (1e-5, 10.0), "T": (233.15, 313.15)},
-                          log=("p", "v")),
-    "pacejka": RecoverySetup({"B": 10.0, "C": 1.9, "D": 1.0, "E": 0.5},
-                             {"s": (0.0, 1.0)}, fix={"S_h": 0.0, "S_v": 0.0}),
-    "burckhardt": RecoverySetup({"c1": 1.2801, "c2": 23.99, "c3": 0.52, "c4": 0.03},
-                                {"s": (0.0, 1.0), "v": (0.0, 40.0)}),
-    "burckhardt-sqrt": RecoverySetup({"c1": 2.5, "c2": 2.5}, {"s": (0.0, 1.0)}),
-    "kiencke-daiss": RecoverySetup({"k_s": 20.0, "c1": 30.0, "c2": 5.0}, {"s": (0.0, 1.0)}),
-    "germann": RecoverySetup({"a0": 0.0, "a1": 8.0, "a2": -15.0}, {"s": (0.0, 0.3)}),
+    law_id: RecoverySetup(ex.study.params, ex.study.ranges, ex.study.log, ex.study.fix,
+                          not ex.recovery_identifiable)
+    for law_id, ex in EXAMPLES.items()
 }
 
 
