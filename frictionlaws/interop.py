@@ -1,0 +1,292 @@
+"""Interoperability with lmfit, pandas, xarray and Jupyter.
+
+* :func:`lmfit_model`: a law as an :class:`lmfit.Model` whose independent variables are
+  the law's variables and whose parameter hints carry the declared defaults and bounds
+  (settings become fixed parameters), so ``model.make_params()`` is ready to fit.
+* :func:`params_frame`: the parameters of a fit result as a tidy :class:`pandas.DataFrame`.
+* :func:`evaluate_labelled`: evaluation on :class:`xarray.DataArray` inputs that keeps
+  their named dimensions and coordinates (through :func:`xarray.apply_ufunc`).
+* :func:`law_html`, :func:`result_html`, :func:`table_html`: the HTML Jupyter shows for
+  laws, fit results and comparisons (``_repr_html_``).
+* :func:`plot_result`: data, fitted curve, confidence band and residuals of a fit.
+
+Heavy libraries are imported inside the functions that need them.
+"""
+
+from __future__ import annotations
+
+import html
+import inspect
+import math
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .law import Law
+
+__all__ = [
+    "lmfit_model",
+    "params_frame",
+    "is_labelled",
+    "evaluate_labelled",
+    "law_html",
+    "result_html",
+    "table_html",
+    "plot_result",
+    "confidence_band",
+]
+
+
+# ------------------------------------------------------------------------ lmfit
+def lmfit_model(law: Law, *, values: Mapping[str, float] | None = None) -> Any:
+    """The law as an :class:`lmfit.Model`.
+
+    Parameters
+    ----------
+    law : Law
+        A registered law (or one built by hand).
+    values : mapping, optional
+        Start values overriding the declared defaults (validated against the bounds).
+
+    Returns
+    -------
+    lmfit.Model
+        Independent variables: the law's variables (SI).  Parameter hints: each
+        fitted parameter with its default and bounds; each setting fixed
+        (``vary=False``) at its value.  ``model.make_params()`` gives a ready set.
+        Laws without variables (Coulomb) take a dummy independent variable ``x``
+        that only sets the output shape.
+    """
+    import lmfit
+
+    start = law.resolve({**law.defaults, **dict(values or {})})
+    variables = list(law.variables) or ["x"]
+    names = [*law.param_names, *(s.name for s in law.settings)]
+    evaluate = law.evaluate
+    used = tuple(law.variables)
+
+    def model_function(**kw: Any) -> Any:
+        xs = {k: kw[k] for k in used}
+        out = evaluate(xs, {n: kw[n] for n in names})
+        shape = np.shape(kw["x"]) if not used else np.shape(out)
+        return np.broadcast_to(out, shape).copy()
+
+    kind = inspect.Parameter.KEYWORD_ONLY
+    model_function.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
+        [inspect.Parameter(v, kind) for v in variables]
+        + [inspect.Parameter(n, kind, default=start[n]) for n in names])
+    model_function.__name__ = law.id.replace("-", "_").replace("+", "_")
+    model = lmfit.Model(model_function, independent_vars=variables, name=law.id)
+    for p in law.params:
+        lo, hi = p.bounds
+        model.set_param_hint(p.name, value=start[p.name], min=lo, max=hi)
+    for s in law.settings:
+        model.set_param_hint(s.name, value=start[s.name], vary=False)
+    return model
+
+
+# ----------------------------------------------------------------------- pandas
+def params_frame(result: Any) -> Any:
+    """The fitted parameters as a DataFrame: one row per parameter.
+
+    Columns: ``value``, ``stderr``, ``ci95_low``, ``ci95_high``, ``unit``, ``fixed``;
+    the index is the parameter name.
+    """
+    import pandas as pd
+
+    rows = []
+    for name, est in result.params.items():
+        ci = est.ci95 if est.ci95 is not None else (math.nan, math.nan)
+        rows.append({"param": name, "value": est.value,
+                     "stderr": math.nan if est.stderr is None else est.stderr,
+                     "ci95_low": ci[0], "ci95_high": ci[1], "unit": est.unit,
+                     "fixed": bool(est.fixed)})
+    frame = pd.DataFrame(rows).set_index("param")
+    frame.attrs["law"] = result.law.id
+    return frame
+
+
+# ----------------------------------------------------------------------- xarray
+def is_labelled(x: Any) -> bool:
+    """True for an :class:`xarray.DataArray` (checked without importing xarray)."""
+    return type(x).__name__ == "DataArray" and hasattr(x, "dims")
+
+
+def evaluate_labelled(law: Law, variables: Mapping[str, Any], params: Mapping[str, float]
+                      ) -> Any:
+    """Evaluate ``law`` where some variables are DataArrays; keep dims and coordinates.
+
+    The DataArrays are aligned and broadcast by xarray; plain arrays or scalars are
+    passed through.  The result is a DataArray named ``mu``.
+    """
+    import xarray as xr
+
+    names = list(variables)
+
+    def plain(*arrays: Any) -> Any:
+        return np.asarray(law.evaluate(dict(zip(names, arrays)), params), dtype=float)
+
+    out = xr.apply_ufunc(plain, *(variables[n] for n in names), dask="allowed")
+    return out.rename("mu").assign_attrs(units="1", law=law.id,
+                                         long_name="friction coefficient")
+
+
+# ---------------------------------------------------------------------- Jupyter
+def table_html(rows: Sequence[Mapping[str, Any]], columns: Sequence[str] | None = None,
+               caption: str = "") -> str:
+    """A small HTML table of ``rows`` (dicts), numbers to 6 significant digits."""
+    if not rows:
+        return f"<p>{html.escape(caption)} (empty)</p>"
+    cols = list(columns or rows[0].keys())
+    head = "".join(f"<th>{html.escape(str(c))}</th>" for c in cols)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(_cell(r.get(c)))}</td>" for c in cols) + "</tr>"
+        for r in rows)
+    cap = f"<caption>{html.escape(caption)}</caption>" if caption else ""
+    return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _cell(x: Any) -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, (float, np.floating)):
+        return f"{float(x):.6g}"
+    if isinstance(x, (tuple, list)):
+        return ", ".join(_cell(v) for v in x)
+    return str(x)
+
+
+def law_html(law: Law) -> str:
+    """HTML for a law: title, formula (plain text), parameters, settings, evidence."""
+    params = [{"name": p.name, "unit": p.unit or "-", "default": p.default,
+               "bounds": p.bounds, "meaning": p.meaning} for p in law.params]
+    settings = [{"name": s.name, "value": s.value, "unit": s.unit or "-",
+                 "meaning": s.meaning} for s in law.settings]
+    parts = [f"<h4>{html.escape(law.title)} <code>{html.escape(law.id)}</code></h4>",
+             f"<p>{html.escape(law.description)}</p>",
+             f"<p>variables: {html.escape(', '.join(law.variables) or 'none')} (SI); "
+             f"evidence: {html.escape(law.evidence)}</p>",
+             table_html(params, caption="parameters")]
+    if settings:
+        parts.append(table_html(settings, caption="settings (fixed)"))
+    return "\n".join(parts)
+
+
+def result_html(result: Any) -> str:
+    """HTML for a fit result: parameters with errors and CI, metrics and warnings."""
+    rows = [{"param": k, "value": e.value, "stderr": e.stderr, "ci95": e.ci95,
+             "unit": e.unit or "-", "fixed": e.fixed} for k, e in result.params.items()]
+    metrics = {k: v for k, v in result.metrics.items()
+               if k in ("r2", "adj_r2", "rmse", "aic", "bic", "n", "k")}
+    warn = "".join(f"<li>{html.escape(w)}</li>" for w in result.warnings)
+    return "\n".join([
+        f"<h4>fit of <code>{html.escape(result.law.id)}</code>"
+        f" ({'converged' if result.success else 'NOT converged'})</h4>",
+        table_html(rows, caption="parameters (SI)"),
+        table_html([metrics], caption="metrics"),
+        f"<ul>{warn}</ul>" if warn else ""])
+
+
+# ----------------------------------------------------------------------- figure
+def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any = None) -> Any:
+    """Data, fitted law, 95 % confidence band and residuals of a fit.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    data : mapping or Dataset, optional
+        The data (``mu`` and the law's variables, SI); by default the data the fit
+        kept (``result.fit_data``; results loaded from JSON keep only ranges).
+    x : str, optional
+        The variable on the horizontal axis (default: the law's first varying one).
+    ax : sequence of two matplotlib Axes, optional
+        Where to draw (curve, residuals); a new figure otherwise.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .errors import InputError
+
+    arrays = _arrays_of(data if data is not None else getattr(result, "fit_data", None))
+    if arrays is None or "mu" not in arrays:
+        raise InputError("no data to plot: pass the data (results loaded from JSON keep "
+                         "only the fitted ranges)")
+    name = x or next((v for v in result.law.variables
+                      if np.ptp(np.asarray(arrays[v], float)) > 0), None)
+    if name is None or name not in arrays:
+        raise InputError(f"law '{result.law.id}' has no varying variable '{x or ''}' to plot "
+                         "against")
+    return _draw(result, arrays, name, ax)
+
+
+def _arrays_of(data: Any) -> Mapping[str, Any] | None:
+    if data is None:
+        return None
+    arrays = getattr(data, "arrays", data)
+    return arrays() if callable(arrays) else arrays
+
+
+def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Half-width of the 95 % confidence band of the fitted curve at ``variables``.
+
+    First-order propagation of the parameter covariance (standard errors and
+    correlations of the fit) through a central-difference Jacobian of the law.
+    """
+    names = [k for k, e in result.params.items()
+             if not e.fixed and e.stderr is not None and math.isfinite(e.stderr)]
+    if not names:
+        return np.zeros(np.broadcast_shapes(*(np.shape(v) for v in variables.values())))
+    se = np.array([result.params[k].stderr for k in names])
+    corr = np.array([[1.0 if a == b else result.correlation.get(a, {}).get(b, 0.0)
+                      for b in names] for a in names])
+    cov = corr * np.outer(se, se)
+    base = result.values
+    cols = []
+    for k in names:
+        h = 1e-6 * max(abs(base[k]), 1e-12)
+        up = result.law.evaluate(variables, {**base, k: base[k] + h})
+        dn = result.law.evaluate(variables, {**base, k: base[k] - h})
+        cols.append((np.asarray(up, float) - np.asarray(dn, float)) / (2 * h))
+    jac = np.stack(cols, axis=-1)
+    var = np.einsum("...i,ij,...j->...", jac, cov, jac)
+    return 1.96 * np.sqrt(np.maximum(var, 0.0))
+
+
+def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any) -> Any:
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(2, 1, figsize=(6, 5), sharex=True,
+                             gridspec_kw={"height_ratios": [3, 1]})
+    fig = ax[0].figure
+    xs = np.asarray(arrays[name], float)
+    mu = np.asarray(arrays["mu"], float)
+    variables = {v: np.asarray(arrays[v], float) for v in result.law.variables}
+    pred = np.broadcast_to(np.asarray(result.law.evaluate(variables, result.values), float),
+                           mu.shape)
+    half = np.broadcast_to(confidence_band(result, variables), mu.shape)
+    order = np.argsort(xs, kind="stable")
+    ax[0].plot(xs, mu, "o", ms=4, label="data")
+    ax[0].plot(xs[order], pred[order], "-", label=f"{result.law.id} fit")
+    ax[0].fill_between(xs[order], (pred - half)[order], (pred + half)[order], alpha=0.25,
+                       label="95 % confidence band")
+    ax[1].axhline(0.0, color="0.5", lw=0.8)
+    ax[1].plot(xs, mu - pred, "o", ms=3)
+    ax[1].set_xlabel(f"{name} [{_unit(name)}]")
+    ax[0].set_ylabel("mu [-]")
+    ax[1].set_ylabel("residual [-]")
+    ax[0].legend()
+    return fig
+
+
+def _unit(name: str) -> str:
+    from .law import VARIABLES
+
+    var = VARIABLES.get(name)
+    return (var.unit or "-") if var is not None else "-"

@@ -1,0 +1,92 @@
+"""lmfit, pandas, xarray and Jupyter interoperability (issue 16)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import frictionlaws as fl
+from frictionlaws import interop
+from frictionlaws.errors import InputError
+
+
+def test_lmfit_model_carries_bounds_and_fits_like_the_library():
+    law = fl.get_law("thirion")
+    model = interop.lmfit_model(law)
+    params = model.make_params()
+    assert model.independent_vars == ["p"]
+    assert params["a"].min == law.param("a").bounds[0]
+    assert params["b"].min == 0.0 and math.isinf(params["b"].max)
+    p = np.linspace(2e4, 1e6, 40)
+    rng = np.random.default_rng(3)
+    mu = law(p=p, a=0.3, b=3e-6) * (1 + 0.01 * rng.standard_normal(p.size))
+    params["a"].set(value=0.5)
+    params["b"].set(value=1e-6)
+    out = model.fit(mu, params, p=p)
+    ours = fl.fit(law, {"p": p, "mu": mu})
+    for k in ("a", "b"):
+        assert out.params[k].value == pytest.approx(ours.params[k].value, rel=1e-5)
+        assert out.params[k].stderr == pytest.approx(ours.params[k].stderr, rel=1e-2)
+
+
+def test_lmfit_model_holds_settings_fixed_and_handles_a_constant_law():
+    model = interop.lmfit_model(fl.get_law("savkoor"))
+    params = model.make_params()
+    assert params["p_ref"].vary is False and params["p_ref"].value == 1e5
+    coulomb = interop.lmfit_model(fl.get_law("coulomb"), values={"mu0": 0.4})
+    out = coulomb.eval(coulomb.make_params(), x=np.zeros(3))
+    assert out.shape == (3,) and np.all(out == 0.4)
+
+
+def test_lmfit_model_refuses_start_values_outside_bounds():
+    with pytest.raises(InputError, match="outside its bounds"):
+        interop.lmfit_model(fl.get_law("thirion"), values={"a": -1.0})
+
+
+def test_params_frame_has_units_and_intervals():
+    res = fl.fit("thirion", "thesis-steel")
+    frame = interop.params_frame(res)
+    assert list(frame.index) == ["a", "b"]
+    assert frame.loc["b", "unit"] == "1/Pa"
+    assert frame.loc["a", "ci95_low"] < frame.loc["a", "value"] < frame.loc["a", "ci95_high"]
+    assert frame.attrs["law"] == "thirion"
+
+
+def test_xarray_inputs_keep_their_dimensions():
+    xr = pytest.importorskip("xarray")
+    law = fl.get_law("savkoor")
+    p = xr.DataArray([5e4, 1e5, 2e5], dims="p", coords={"p": [5e4, 1e5, 2e5]})
+    v = xr.DataArray(np.geomspace(1e-4, 1, 5), dims="v")
+    params = law.resolve(preset=None, values=law.defaults)
+    out = interop.evaluate_labelled(law, {"p": p, "v": v}, params)
+    assert out.dims == ("p", "v") and out.shape == (3, 5)
+    assert out.name == "mu" and out.attrs["units"] == "1"
+    plain = law.evaluate({"p": p.values[:, None], "v": v.values[None, :]}, params)
+    np.testing.assert_allclose(out.values, plain)
+
+
+def test_html_reprs_name_the_parameters():
+    law = fl.get_law("thirion")
+    text = interop.law_html(law)
+    assert "<table>" in text and "1/Pa" in text and "thirion" in text
+    res = fl.fit(law, "thesis-steel")
+    text = interop.result_html(res)
+    assert "converged" in text and "<td>b</td>" in text and "r2" in text
+
+
+def test_plot_result_draws_data_fit_band_and_residuals():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    ds = fl.load_dataset("thesis-steel")
+    res = fl.fit("thirion", ds)
+    fig = interop.plot_result(res, ds)
+    curve, resid = fig.axes
+    assert len(curve.lines) == 2 and len(curve.collections) == 1  # band
+    assert resid.get_xlabel() == "p [Pa]"
+    half = interop.confidence_band(res, {"p": ds.arrays()["p"]})
+    assert np.all(half > 0) and np.all(np.isfinite(half))
+    with pytest.raises(InputError, match="no data to plot"):
+        interop.plot_result(res)
