@@ -1,0 +1,421 @@
+"""Campaigns: many datasets, groups within them, laws fitted to each, in parallel.
+
+A tribometer campaign has several compounds, counter-surfaces and temperatures,
+repeated over weeks.  :func:`fit_many` fits one or more laws to every group
+(``by=`` columns such as ``surface``) of every dataset and returns a
+:class:`Campaign` of plain result records, as a tidy :class:`pandas.DataFrame`
+(:meth:`Campaign.to_frame`), CSV or JSON.
+
+The unit of work is one dataset: a worker loads it, splits it into groups, fits
+every law to every group and returns plain dictionaries (never laws or lmfit
+objects), so the work runs unchanged serially, on local processes
+(``jobs=N``, joblib) or on a Dask cluster (``scheduler="tcp://host:8786"``,
+joblib's Dask backend; needs the ``dask`` extra).  Datasets are loaded inside
+the workers, so the memory of the calling process grows with the number of
+results, not with the data.
+"""
+
+from __future__ import annotations
+
+import gc
+import itertools
+import math
+import os
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import FitError, InputError
+
+__all__ = ["Campaign", "fit_many", "group_keys", "iter_datasets", "run_parallel",
+           "iter_parallel", "SCHEDULER_ENV", "tidy_columns"]
+
+#: Environment variable naming a Dask scheduler address when none is given.
+SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
+
+
+# ------------------------------------------------------------------ inputs
+def iter_datasets(sources: Any) -> list[Any]:
+    """Expand ``sources`` (a name, path, directory, Dataset, or a sequence of them)
+    into a list of items :func:`frictionlaws.io.load_dataset` reads.
+
+    A directory stands for its ``*.csv`` files, sorted by name.  An empty
+    directory is an error naming it.
+    """
+    if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Iterable):
+        sources = [sources]
+    out: list[Any] = []
+    for item in sources:
+        if isinstance(item, (str, os.PathLike)) and Path(item).is_dir():
+            files = sorted(Path(item).glob("*.csv"))
+            if not files:
+                raise InputError("the directory holds no *.csv dataset", file=str(item))
+            out.extend(files)
+        else:
+            out.append(item)
+    if not out:
+        raise InputError("no datasets given")
+    return out
+
+
+def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np.ndarray]]:
+    """The groups of ``dataset`` by the columns ``by``: (key, boolean row mask) pairs.
+
+    Raises
+    ------
+    InputError
+        When a grouping column is not in the dataset (naming the columns it has).
+    """
+    frame = dataset.frame
+    if not by:
+        return [({}, np.ones(len(frame), dtype=bool))]
+    missing = [c for c in by if c not in frame.columns]
+    if missing:
+        raise InputError(f"no column {', '.join(missing)} to group by (columns: "
+                         f"{', '.join(map(str, frame.columns))})", file=str(dataset.source))
+    keys = frame[list(by)].astype(str).agg("\x1f".join, axis=1).to_numpy()
+    groups = []
+    for key in dict.fromkeys(keys.tolist()):
+        mask = keys == key
+        first = int(np.flatnonzero(mask)[0])
+        groups.append(({c: _plain(frame[c].iloc[first]) for c in by}, mask))
+    return groups
+
+
+def _plain(x: Any) -> Any:
+    if isinstance(x, (np.floating, float)):
+        return float(x)
+    if isinstance(x, (np.integer, int)):
+        return int(x)
+    return str(x)
+
+
+# ------------------------------------------------------------------ work
+@dataclass(frozen=True)
+class _Job:
+    """One dataset's work: plain, picklable data only."""
+
+    source: Any
+    laws: tuple[str, ...]
+    by: tuple[str, ...]
+    fit_options: Mapping[str, Any]
+    load_options: Mapping[str, Any]
+
+
+def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
+    """Load one dataset, split it into groups, fit every law to every group."""
+    from .fitting import fit
+    from .io import load_dataset
+
+    try:
+        ds = load_dataset(job.source, **job.load_options)
+        groups = group_keys(ds, job.by)
+    except InputError as exc:
+        return [{"dataset": str(job.source), "group": {}, "law": law, "error": str(exc)}
+                for law in job.laws]
+    records = []
+    for (key, mask), law in itertools.product(groups, job.laws):
+        record: dict[str, Any] = {"dataset": ds.name, "source": str(ds.source),
+                                  "group": key, "law": law, "rows": int(mask.sum())}
+        try:
+            res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
+        except (InputError, FitError) as exc:
+            record["error"] = str(exc)
+        else:
+            record["result"] = _compact(res.to_dict())
+        records.append(record)
+    return records
+
+
+#: What a campaign record keeps of a fit (the full result stays with single fits).
+_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived")
+
+
+def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
+    """The parts of a fit's dict a campaign table needs, as plain JSON-able values."""
+    from .jsonio import to_jsonable
+
+    return to_jsonable({k: doc[k] for k in _KEEP if k in doc})
+
+
+def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int = 1,
+                  scheduler: str | None = None, progress: bool = False,
+                  total: int | None = None) -> Iterator[Any]:
+    """``func(item)`` for each item, in order, as each is done: serially, on ``jobs``
+    local processes or on a Dask cluster.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level function (picklable) of one item.
+    jobs : int
+        1: serial; N > 1: N local worker processes (joblib's loky backend);
+        -1: one per core.
+    scheduler : str, optional
+        A Dask scheduler address (``tcp://host:8786``); the work goes to that
+        cluster through joblib's Dask backend.  Default: the environment
+        variable :data:`SCHEDULER_ENV`, if set.
+    progress : bool
+        Show a progress bar (tqdm) on stderr.
+    total : int, optional
+        Number of items, for the progress bar.
+
+    Yields
+    ------
+    The results, in the order of ``items``; the caller may consume them as they
+    come, so nothing but the current results is held.
+    """
+    _check_jobs(jobs)
+    scheduler = scheduler or os.environ.get(SCHEDULER_ENV) or None
+    items = _progress(items, progress, total)
+    if scheduler is not None:
+        yield from _on_dask(func, items, scheduler)
+        return
+    if jobs == 1:
+        yield from (func(item) for item in items)
+        return
+    import joblib
+
+    yield from joblib.Parallel(n_jobs=jobs, batch_size="auto", return_as="generator")(
+        joblib.delayed(func)(item) for item in items)
+
+
+def run_parallel(func: Callable[[Any], Any], items: Iterable[Any], **kw: Any) -> list[Any]:
+    """The list of :func:`iter_parallel`'s results."""
+    return list(iter_parallel(func, items, **kw))
+
+
+def _check_jobs(jobs: Any) -> None:
+    if isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer)) or not (
+            jobs == -1 or 1 <= jobs <= 1024):
+        raise InputError(f"jobs must be a whole number from 1 to 1024, or -1 for one per "
+                         f"core (got {jobs!r})")
+
+
+def _progress(items: Iterable[Any], on: bool, total: int | None) -> Iterable[Any]:
+    if not on:
+        return items
+    from tqdm import tqdm
+
+    return tqdm(items, total=total, unit="dataset", leave=False)
+
+
+def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str) -> Iterator[Any]:
+    try:
+        import joblib
+        from dask.distributed import Client
+    except ImportError:
+        raise InputError("a Dask scheduler was given but dask.distributed is not installed "
+                         "(install the 'dask' extra: pip install 'frictionlaws[dask]')"
+                         ) from None
+    try:
+        client = Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(f"cannot reach the Dask scheduler at {address!r} ({exc})") from None
+    with client, joblib.parallel_backend("dask"):
+        yield from joblib.Parallel(batch_size="auto", return_as="generator")(
+            joblib.delayed(func)(item) for item in items)
+
+
+# ------------------------------------------------------------------ results
+@dataclass
+class Campaign:
+    """The results of :func:`fit_many`: one plain record per (dataset, group, law).
+
+    Each record has ``dataset``, ``source``, ``group`` (column -> value), ``law``,
+    ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
+    warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
+    fit could not be made).
+    """
+
+    records: list[dict[str, Any]]
+    by: tuple[str, ...] = ()
+    laws: tuple[str, ...] = ()
+    notes: list[str] = field(default_factory=list)
+    path: Path | None = None
+    count: int = 0
+    failed: list[dict[str, Any]] = field(default_factory=list)
+
+    def __len__(self) -> int:
+        return len(self.records) or self.count
+
+    @property
+    def errors(self) -> list[dict[str, Any]]:
+        """Records whose fit failed, with the reason."""
+        return [r for r in self.records if "error" in r] or list(self.failed)
+
+    def rows(self) -> Iterator[dict[str, Any]]:
+        """Tidy rows: one per (dataset, group, law, parameter), metrics repeated."""
+        for rec in self.records:
+            yield from _tidy(rec, self.by)
+
+    def to_frame(self) -> Any:
+        """The tidy rows as a :class:`pandas.DataFrame` (units in the ``unit`` column).
+
+        For a campaign streamed to a CSV file (``fit_many(..., output=...)``) the
+        frame is read back from that file.
+        """
+        import pandas as pd
+
+        if self.path is not None and not self.records:
+            if self.path.suffix.lower() == ".csv":
+                return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
+            raise InputError("a campaign streamed to JSON Lines is read with "
+                             "pandas.read_json(path, lines=True)", file=str(self.path))
+        return pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able: the records, the grouping columns, laws and notes."""
+        return {"by": list(self.by), "laws": list(self.laws), "records": self.records,
+                "notes": list(self.notes)}
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
+        from . import jsonio
+        from .outputs import write_text_atomic
+
+        target = Path(path)
+        if target.suffix.lower() == ".json":
+            return write_text_atomic(target, jsonio.dumps(self.to_dict()) + "\n")
+        if target.suffix.lower() != ".csv":
+            raise InputError("campaign results are written as .csv or .json",
+                             file=str(target))
+        return write_text_atomic(target, self.to_frame().to_csv(index=False,
+                                                                float_format="%.10g"))
+
+    def summary(self) -> str:
+        """One line per record: dataset, group, law, R^2, RMSE or the error."""
+        lines = []
+        for rec in self.records:
+            group = ", ".join(f"{k}={v}" for k, v in rec["group"].items())
+            head = f"{rec['dataset']}{' [' + group + ']' if group else ''} {rec['law']}"
+            if "error" in rec:
+                lines.append(f"{head}: error: {rec['error']}")
+                continue
+            m = rec["result"]["metrics"]
+            lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
+                         f"n = {m.get('n')}")
+        return "\n".join(lines)
+
+
+def _fmt(x: Any) -> str:
+    return "-" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.4g}"
+
+
+_METRICS = ("r2", "rmse", "aic", "bic", "n")
+#: Datasets between two garbage collections while streaming (keeps memory flat).
+_GC_EVERY = 50
+
+
+def tidy_columns(by: Sequence[str]) -> list[str]:
+    """The columns of a campaign's tidy table (the CSV header), for grouping columns ``by``."""
+    return ["dataset", *by, "law", "rows", "param", "value", "stderr", "ci95_low",
+            "ci95_high", "unit", "fixed", "converged", *_METRICS, "warnings", "error"]
+
+
+def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]:
+    base = {"dataset": rec["dataset"], **{c: rec["group"].get(c) for c in by},
+            "law": rec["law"], "rows": rec.get("rows")}
+    if "error" in rec:
+        yield {**base, "error": rec["error"]}
+        return
+    res = rec["result"]
+    metrics = {k: res["metrics"].get(k) for k in _METRICS}
+    for name, est in res["params"].items():
+        ci = est.get("ci95") or (None, None)
+        yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
+               "ci95_low": ci[0], "ci95_high": ci[1], "unit": est["unit"] or "-",
+               "fixed": est["fixed"], "converged": res["success"], **metrics,
+               "warnings": len(res["warnings"]), "error": None}
+
+
+def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, ...],
+            laws: tuple[str, ...]) -> Campaign:
+    """Write records as they come (CSV tidy rows or JSON Lines); keep only the failures."""
+    import csv
+
+    from . import jsonio
+    from .outputs import atomic_write
+
+    count, failed = 0, []
+    as_csv = output.suffix.lower() == ".csv"
+    with atomic_write(output, newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=tidy_columns(by)) if as_csv else None
+        if writer is not None:
+            writer.writeheader()
+        for i, part in enumerate(parts, 1):
+            if i % _GC_EVERY == 0:
+                gc.collect()  # lmfit leaves reference cycles: free them as we go
+            for rec in part:
+                count += 1
+                if "error" in rec:
+                    failed.append(rec)
+                if writer is not None:
+                    writer.writerows(jsonio.to_jsonable(row) for row in _tidy(rec, by))
+                else:
+                    fh.write(jsonio.dumps(rec, indent=None) + "\n")
+    return Campaign([], by, laws, path=output, count=count, failed=failed)
+
+
+def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str] = (),
+             jobs: int = 1, scheduler: str | None = None, progress: bool = False,
+             output: str | os.PathLike[str] | None = None,
+             load_options: Mapping[str, Any] | None = None, **fit_options: Any) -> Campaign:
+    """Fit each law to each group of each dataset.
+
+    Parameters
+    ----------
+    laws : str or sequence of str
+        Law ids (or aliases).
+    datasets : name, path, directory, Dataset or a sequence of them
+        See :func:`iter_datasets`.
+    by : str or sequence of str
+        Grouping columns (e.g. ``"surface"``); each group is fitted on its own.
+    jobs, scheduler, progress
+        See :func:`iter_parallel`.
+    output : path, optional
+        Stream the results to this ``.csv`` (tidy rows) or ``.jsonl`` (one record a
+        line) file as they are done, instead of holding them: the memory then stays
+        flat however many datasets there are.  The file is checked before any work
+        (it may not be an input) and appears only when complete.
+    load_options : mapping, optional
+        ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    **fit_options
+        Passed to :func:`frictionlaws.fit` (``fix``, ``weights``, ``seed``...).
+
+    Returns
+    -------
+    Campaign
+    """
+    from .registry import get_law
+
+    law_ids = tuple(get_law(law).id for law in ([laws] if isinstance(laws, str) else laws))
+    if not law_ids:
+        raise InputError("no law given")
+    columns = (by,) if isinstance(by, str) else tuple(by)
+    sources = iter_datasets(datasets)
+    target = _check_output(output, sources)
+    jobs_list = (_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
+                 for src in sources)
+    parts = iter_parallel(_fit_dataset, jobs_list, jobs=jobs, scheduler=scheduler,
+                          progress=progress, total=len(sources))
+    if target is not None:
+        return _stream(parts, target, columns, law_ids)
+    records = [rec for part in parts for rec in part]
+    return Campaign(records, columns, law_ids, count=len(records))
+
+
+def _check_output(output: Any, sources: Sequence[Any]) -> Path | None:
+    if output is None:
+        return None
+    from .outputs import check_outputs
+
+    target = Path(output)
+    if target.suffix.lower() not in (".csv", ".jsonl"):
+        raise InputError("streamed campaign results are written as .csv or .jsonl",
+                         file=str(target))
+    check_outputs([target], inputs=[s for s in sources if isinstance(s, (str, os.PathLike))])
+    return target
