@@ -10,6 +10,7 @@ the installed package at build time by ``docs/_ext/fl_docgen.py``.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import sys
 import warnings
@@ -55,11 +56,15 @@ numpydoc_class_members_toctree = False
 numpydoc_attributes_as_param_list = True
 numpydoc_xref_param_type = False
 
-# -- math: MathJax 3 from its CDN when online; a local copy when one is given
-# (FRICTIONLAWS_MATHJAX=/path/to/tex-chtml.js, e.g. for offline screenshots).
+# -- math: MathJax 3 served with the site, so it reads offline.  The docs extra installs
+# sphinx-mathjax-offline (a MathJax 3 copy on PyPI), which copies MathJax into _static;
+# FRICTIONLAWS_MATHJAX=/path/to/tex-chtml.js points at another local copy; without
+# either, MathJax comes from its CDN.
 _local_mathjax = os.environ.get("FRICTIONLAWS_MATHJAX")
 if _local_mathjax:
     mathjax_path = Path(_local_mathjax).resolve().as_uri()
+elif importlib.util.find_spec("sphinx-mathjax-offline") is not None:
+    extensions.append("sphinx-mathjax-offline")
 
 # -- sphinx-gallery ------------------------------------------------------------
 sphinx_gallery_conf = {

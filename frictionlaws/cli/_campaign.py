@@ -1,0 +1,140 @@
+"""Campaign options shared by ``fit`` and ``compare``: several datasets, groups, shared
+parameters, parallel workers and a Dask scheduler."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+__all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names"]
+
+
+def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> None:
+    """``--by``, ``--shared``, ``--jobs``, ``--scheduler`` and ``--out``."""
+    g = p.add_argument_group("campaigns (several datasets, groups, parallel work)")
+    g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
+                   help="fit each group of these columns separately, e.g. --by surface")
+    if shared:
+        g.add_argument("--shared", metavar="NAME[,NAME]", action="append", default=[],
+                       help="with --by: one global fit in which these parameters are common "
+                            "to all groups and the others per group, e.g. --shared b")
+    g.add_argument("--jobs", type=_jobs, default=1, metavar="N",
+                   help="worker processes for several datasets (default 1; -1 = one per core)")
+    g.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run the datasets on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
+                        "(default: $FRICTIONLAWS_SCHEDULER; needs the 'dask' extra)")
+    g.add_argument("--out", metavar="FILE", default=None,
+                   help="write the campaign's tidy table to FILE (.csv, .jsonl or .json)")
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
+    if value != -1 and not 1 <= value <= 1024:
+        raise argparse.ArgumentTypeError(f"must be 1..1024 or -1, got {value}")
+    return value
+
+
+def split_names(items: list[str]) -> list[str]:
+    """``["a,b", "c"]`` -> ``["a", "b", "c"]``; a name given twice is an error."""
+    from frictionlaws.errors import InputError
+
+    out: list[str] = []
+    for chunk in items:
+        for name in (s.strip() for s in chunk.split(",")):
+            if not name:
+                continue
+            if name in out:
+                raise InputError(f"'{name}' is given twice")
+            out.append(name)
+    return out
+
+
+def wants_campaign(args: argparse.Namespace) -> bool:
+    """True when the command must run as a campaign (several datasets, a directory, groups)."""
+    data = args.data if isinstance(args.data, list) else [args.data]
+    return (len(data) > 1 or any(Path(d).is_dir() for d in data) or bool(args.by)
+            or bool(getattr(args, "shared", [])))
+
+
+def _check_out(args: argparse.Namespace) -> None:
+    """``--out`` is checked before any work: suffix, not an input, writable."""
+    if not args.out:
+        return
+    from frictionlaws.errors import InputError
+    from frictionlaws.outputs import check_outputs
+
+    if Path(args.out).suffix.lower() not in (".csv", ".jsonl", ".json"):
+        raise InputError("--out takes a .csv, .jsonl or .json file", file=args.out)
+    data = args.data if isinstance(args.data, list) else [args.data]
+    check_outputs([args.out], inputs=[d for d in data if Path(d).exists()])
+
+
+def _refuse_without_by(args: argparse.Namespace) -> None:
+    from frictionlaws.errors import InputError
+
+    if getattr(args, "shared", []) and not args.by:
+        raise InputError("--shared needs --by (the groups that share the parameters)")
+
+
+def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
+    """``fit`` over several datasets and/or groups; print a summary, write ``--out``."""
+    from frictionlaws.campaign import fit_many
+
+    _refuse_without_by(args)
+    _check_out(args)
+    by = split_names(args.by)
+    load = {k: fit_kwargs.pop(k) for k in ("mapping", "units", "area") if k in fit_kwargs}
+    if getattr(args, "shared", []):
+        return _run_shared(args, by, split_names(args.shared), fit_kwargs, load)
+    stream = args.out if args.out and Path(args.out).suffix.lower() in (".csv", ".jsonl") \
+        else None
+    camp = fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
+                    progress=sys.stderr.isatty(), output=stream, load_options=load,
+                    **fit_kwargs)
+    if args.out and stream is None:
+        camp.save(args.out)
+    if getattr(args, "json", False):
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(camp.to_dict() if camp.records else
+                           {"output": str(camp.path), "fits": len(camp),
+                            "errors": camp.errors}))
+    elif camp.records:
+        print(camp.summary())
+    else:
+        print(f"{len(camp)} fits written to {camp.path}; {len(camp.errors)} failed")
+        for rec in camp.errors:
+            print(f"error: {rec['dataset']} {rec['law']}: {rec['error']}", file=sys.stderr)
+    return 1 if camp.errors else 0
+
+
+def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
+                fit_kwargs: dict[str, Any], load: dict[str, Any]) -> int:
+    from frictionlaws.errors import InputError
+    from frictionlaws.shared import fit_shared
+
+    data = args.data if isinstance(args.data, list) else [args.data]
+    if len(data) != 1:
+        raise InputError("a shared-parameter fit takes one dataset (its groups share)")
+    res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
+                     weights=fit_kwargs.get("weights", "auto"), load_options=load)
+    if args.out:
+        from frictionlaws import jsonio
+        from frictionlaws.outputs import check_outputs, write_text_atomic
+
+        check_outputs([args.out], inputs=data)
+        text = (res.to_frame().to_csv(index=False) if Path(args.out).suffix.lower() == ".csv"
+                else jsonio.dumps(res.to_dict()) + "\n")
+        write_text_atomic(args.out, text)
+    if getattr(args, "json", False):
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(res.to_dict()))
+    else:
+        print(res.report())
+    return 0 if res.success else 1
