@@ -88,7 +88,8 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     _refuse_without_by(args)
     _check_out(args)
     by = split_names(args.by)
-    load = {k: fit_kwargs.pop(k) for k in ("mapping", "units", "area") if k in fit_kwargs}
+    load: dict[str, Any] = {k: fit_kwargs.pop(k) for k in ("mapping", "units", "area")
+                            if k in fit_kwargs}
     if getattr(args, "shared", []):
         return _run_shared(args, by, split_names(args.shared), fit_kwargs, load)
     stream = args.out if args.out and Path(args.out).suffix.lower() in (".csv", ".jsonl") \
