@@ -265,7 +265,10 @@ class Campaign:
                 return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
             raise InputError("a campaign streamed to JSON Lines is read with "
                              "pandas.read_json(path, lines=True)", file=str(self.path))
-        return pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
+        frame = pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
+        for col in frame.select_dtypes(include="object").columns:
+            frame[col] = frame[col].where(frame[col].notna(), np.nan)  # None -> NaN, as in CSV
+        return frame
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able: the records, the grouping columns, laws and notes."""
