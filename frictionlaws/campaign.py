@@ -266,8 +266,9 @@ class Campaign:
             raise InputError("a campaign streamed to JSON Lines is read with "
                              "pandas.read_json(path, lines=True)", file=str(self.path))
         frame = pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
-        for col in frame.select_dtypes(include="object").columns:
-            frame[col] = frame[col].where(frame[col].notna(), np.nan)  # None -> NaN, as in CSV
+        for col in frame.columns:
+            if frame[col].dtype == object:  # None -> NaN, as read back from a CSV
+                frame[col] = frame[col].where(frame[col].notna(), np.nan)
         return frame
 
     def to_dict(self) -> dict[str, Any]:
