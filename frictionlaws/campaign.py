@@ -31,7 +31,8 @@ import numpy as np
 from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "group_keys", "iter_datasets", "run_parallel",
-           "iter_parallel", "SCHEDULER_ENV", "tidy_columns"]
+           "iter_parallel", "SCHEDULER_ENV", "tidy_columns", "key_text",
+           "group_column"]
 
 #: Environment variable naming a Dask scheduler address when none is given.
 SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
@@ -83,6 +84,18 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
         first = int(np.flatnonzero(mask)[0])
         groups.append(({c: _plain(frame[c].iloc[first]) for c in by}, mask))
     return groups
+
+
+def key_text(key: Mapping[str, Any]) -> str:
+    """A group key as text, variables with their SI unit: ``surface=steel, T=293.15 K``."""
+    from .law import VARIABLES
+
+    parts = []
+    for col, value in key.items():
+        unit = VARIABLES[col].unit if col in VARIABLES else ""
+        text = f"{value:g}" if isinstance(value, float) else str(value)
+        parts.append(f"{col}={text}{' ' + unit if unit else ''}")
+    return ", ".join(parts)
 
 
 def _plain(x: Any) -> Any:
@@ -294,7 +307,7 @@ class Campaign:
         """One line per record: dataset, group, law, R^2, RMSE or the error."""
         lines = []
         for rec in self.records:
-            group = ", ".join(f"{k}={v}" for k, v in rec["group"].items())
+            group = key_text(rec["group"])
             head = f"{rec['dataset']}{' [' + group + ']' if group else ''} {rec['law']}"
             if "error" in rec:
                 lines.append(f"{head}: error: {rec['error']}")
@@ -314,14 +327,23 @@ _METRICS = ("r2", "rmse", "aic", "bic", "n")
 _GC_EVERY = 50
 
 
+def group_column(name: str) -> str:
+    """The tidy table's header of grouping column ``name``: variables carry their SI unit."""
+    from .law import VARIABLES
+
+    unit = VARIABLES[name].unit if name in VARIABLES else ""
+    return f"{name} [{unit}]" if unit else name
+
+
 def tidy_columns(by: Sequence[str]) -> list[str]:
     """The columns of a campaign's tidy table (the CSV header), for grouping columns ``by``."""
-    return ["dataset", *by, "law", "rows", "param", "value", "stderr", "ci95_low",
-            "ci95_high", "unit", "fixed", "converged", *_METRICS, "warnings", "error"]
+    return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
+            "stderr", "ci95_low", "ci95_high", "unit", "fixed", "converged", *_METRICS,
+            "warnings", "error"]
 
 
 def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]:
-    base = {"dataset": rec["dataset"], **{c: rec["group"].get(c) for c in by},
+    base = {"dataset": rec["dataset"], **{group_column(c): rec["group"].get(c) for c in by},
             "law": rec["law"], "rows": rec.get("rows")}
     if "error" in rec:
         yield {**base, "error": rec["error"]}

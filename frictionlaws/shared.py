@@ -73,10 +73,13 @@ class SharedFit:
         """Tidy DataFrame: one row per (group, parameter)."""
         import pandas as pd
 
+        from .campaign import group_column
+
         rows = []
         for g in self.groups:
+            key = {group_column(c): v for c, v in g["key"].items()}
             for name, est in g["params"].items():
-                rows.append({**g["key"], "param": name, **est})
+                rows.append({**key, "param": name, **est, "unit": est["unit"] or "-"})
         return pd.DataFrame(rows)
 
     def report(self) -> str:
@@ -85,8 +88,10 @@ class SharedFit:
                  f"{len(self.groups)} groups of {', '.join(self.by)}"]
         for k, est in self.shared_values().items():
             lines.append(f"  {k} = {est['value']:.6g} +/- {_g(est['stderr'])} {est['unit']}")
+        from .campaign import key_text
+
         for g in self.groups:
-            key = ", ".join(f"{c}={v}" for c, v in g["key"].items())
+            key = key_text(g["key"])
             own = ", ".join(f"{k} = {e['value']:.6g} +/- {_g(e['stderr'])}"
                             for k, e in g["params"].items() if not e["shared"])
             lines.append(f"  [{key}] n = {g['rows']}: {own}")
