@@ -34,6 +34,8 @@ from typing import Any
 
 __all__ = [
     "UsageError",
+    "MergeAssignments",
+    "MergeNames",
     "non_negative_int",
     "positive_int",
     "bounded_int",
@@ -111,15 +113,63 @@ non_negative_int = bounded_int(0)
 positive_int = bounded_int(1)
 
 
+# ------------------------------------------------------------- merged repeated options
+
+
+def _bare(exc: Exception, option: str | None) -> str:
+    """The message without the option's name in front (argparse adds it)."""
+    msg = str(exc)
+    for prefix in (f"{option}: ", f"{option} "):
+        if option and msg.startswith(prefix):
+            return msg[len(prefix):]
+    return msg
+
+
+class MergeAssignments(argparse.Action):
+    """``--map a=X --map b=Y`` -> ``"a=X,b=Y"``; a name given twice is a usage error.
+
+    The merged value stays one ``NAME=VALUE,...`` string, the form every
+    library function accepts; checking happens as the options are parsed, so
+    the message names the option.
+    """
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        previous = getattr(namespace, self.dest, None)
+        pieces = [previous] if previous else []
+        text = str(values)
+        try:
+            parse_assignments([*pieces, text], option_string or self.dest)
+        except UsageError as exc:
+            raise argparse.ArgumentError(self, _bare(exc, option_string)) from None
+        pieces.append(",".join(p for p in text.split(",") if p.strip()))
+        setattr(namespace, self.dest, ",".join(pieces))
+
+
+class MergeNames(argparse.Action):
+    """``--free A --free B`` -> ``"A,B"``; a name given twice is a usage error."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        previous = getattr(namespace, self.dest, None)
+        pieces = [previous] if previous else []
+        try:
+            parse_names([*pieces, str(values)], option_string or self.dest)
+        except UsageError as exc:
+            raise argparse.ArgumentError(self, _bare(exc, option_string)) from None
+        pieces.append(",".join(p.strip() for p in str(values).split(",") if p.strip()))
+        setattr(namespace, self.dest, ",".join(pieces))
+
+
 # ------------------------------------------------------------------- option groups
 
 
 def add_data_options(p: argparse.ArgumentParser | Any) -> None:
     """``--map``, ``--units`` and ``--area`` for reading a user's file (repeatable maps)."""
-    p.add_argument("--map", metavar="COL=NAME,...", action="append", default=[],
+    p.add_argument("--map", metavar="COL=NAME,...", action=MergeAssignments,
                    help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV "
                         "(repeatable; a column given twice is an error)")
-    p.add_argument("--units", metavar="COL=UNIT,...", action="append", default=[],
+    p.add_argument("--units", metavar="COL=UNIT,...", action=MergeAssignments,
                    help="units of columns whose header has none, e.g. p=MPa,v=m/s "
                         "(repeatable)")
     p.add_argument("--area", metavar="AREA",
@@ -128,9 +178,9 @@ def add_data_options(p: argparse.ArgumentParser | Any) -> None:
 
 def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
     """Options that control a fit (``--fix``, ``--free``, weights, starts, seed)."""
-    p.add_argument("--fix", metavar="NAME=VALUE,...", action="append", default=[],
+    p.add_argument("--fix", metavar="NAME=VALUE,...", action=MergeAssignments,
                    help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")
-    p.add_argument("--free", metavar="SETTING,...", action="append", default=[],
+    p.add_argument("--free", metavar="SETTING,...", action=MergeNames,
                    help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")
     p.add_argument("--weights", choices=("auto", "none"), default="auto",
                    help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
@@ -432,22 +482,38 @@ def range_values(spec: RangeSpec, spacing: str = "lin") -> list[float]:
 def data_source(data: str) -> Iterator[str]:
     """Yield a path for the DATA argument; ``-`` spools standard input to a private file.
 
+    A DATA that names an existing path must be a regular, readable file (a FIFO
+    would block forever, a directory is a mistake).
+
     The library reads files by path (it needs the bytes twice: encoding and
     delimiter detection, then parsing), so standard input is copied to a file
     named ``stdin.csv`` in a private temporary directory, removed afterwards.
     """
     if data != STDIN:
+        if os.path.lexists(data):  # a path, not a packaged name: refuse FIFOs, directories
+            from frictionlaws.outputs import check_input_file
+
+            check_input_file(data, "data file")
         yield data
         return
     stream = getattr(sys.stdin, "buffer", sys.stdin)
     raw = stream.read()
     if isinstance(raw, str):
         raw = raw.encode("utf-8")
+    from frictionlaws.errors import InputError
+
     with tempfile.TemporaryDirectory(prefix="frictionlaws-stdin-") as tmp:
         path = os.path.join(tmp, "stdin.csv")
         with open(path, "wb") as fh:
             fh.write(raw)
-        yield path
+        try:
+            yield path
+        except InputError as exc:  # name standard input, not the private copy
+            if exc.file == path:
+                exc.file = "<stdin>"
+            exc.bare_message = exc.bare_message.replace(path, "<stdin>")
+            exc.args = (exc.compose(),)
+            raise
 
 
 def print_json(obj: Any) -> None:
