@@ -18,7 +18,6 @@ from pathlib import Path
 import pytest
 from hostile import (
     MF52_JSON,
-    MF52_TIR,
     NASTY_NUMBERS,
     UNWRITABLE,
     Snapshot,
@@ -123,7 +122,6 @@ FIT_LAWS = st.sampled_from(["thirion", "coulomb", "quadratic-pv", "exponential-d
 # ------------------------------------------------------------------------------ fit
 
 
-@known("input")
 @hostile(40)
 @given(data=csv_bytes(), law=FIT_LAWS, opts=fit_options(), json_out=st.booleans(),
        save=st.one_of(st.none(), TARGETS))
@@ -157,7 +155,6 @@ def test_fit_reads_hostile_stdin(data: bytes, json_out: bool) -> None:
 # ------------------------------------------------------------------------ datasets
 
 
-@known("input")
 @hostile(30)
 @given(data=csv_bytes(), opts=st.lists(st.one_of(
     st.sampled_from(MAP_VALUES).map(lambda v: ["--map", v]),
@@ -177,7 +174,6 @@ def test_datasets_hostile_csv(data: bytes, opts: list[str], json_out: bool) -> N
 # ------------------------------------------------------------------------- compare
 
 
-@known("compare")
 @hostile(15)
 @given(data=csv_bytes(), folds=st.sampled_from(["2", "2", "2", "0", "-1", "2.7", "1000"]),
        holdout=st.sampled_from(["0.3", "0.3", "0", "1.5", "p=0.3,p=0.2", "nan", "x=0.1"]),
@@ -210,7 +206,6 @@ LOADS = st.sampled_from(["2:6:5", "2:6.5:0.5", "4", "2,3,4", "-1:2:3", "0", "1e9
                          "2:1:3", "2:6:1000000", "3kN:5kN:3", "x", "", "nan", "2:6"])
 
 
-@known("mf")
 @hostile(30)
 @given(data=tir_bytes(), loads=st.one_of(st.none(), LOADS), json_out=st.booleans(),
        as_json=st.booleans())
@@ -243,7 +238,6 @@ def _mutate_json(base: bytes, noise: bytes) -> bytes:
     return text.replace("\"PDX1\": ", "\"PDX1\": NaN, \"x\": ").encode()
 
 
-@known("mf")
 @hostile(15)
 @given(data=tir_bytes(), load=st.sampled_from(["4", "-4", "0", "1e999", "4,5", "4kN", "x"]),
        points=st.sampled_from(["51", "0", "-3", "1000000000", "2"]),
@@ -295,7 +289,6 @@ RANGES = st.one_of(
                      "1_0:2:3", "-5kPa:1MPa:3", "0.01:0.5:5:7"]))
 
 
-@known("export")
 @hostile(30)
 @given(params=params_bytes(), fmt=FORMATS, p=RANGES, v=st.one_of(st.none(), RANGES),
        out=TARGETS, max_rows=st.sampled_from([None, "0", "-1", "10", "x"]))
@@ -314,7 +307,6 @@ def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | No
         check_outcome(run_cli(argv), snapshot=snap, allowed=[target])
 
 
-@known("export")
 @hostile(20)
 @given(data=csv_bytes(), opts=fit_options(), fmt=FORMATS, p=RANGES)
 def test_export_fit_hostile_data(data: bytes, opts: list[str], fmt: str, p: str) -> None:
@@ -344,7 +336,6 @@ def campaign() -> Iterator[Path]:
         yield tmp
 
 
-@known("tribo")
 @hostile(15)
 @given(rig=rig_bytes(), jobs=st.sampled_from(["1", "0", "-1", "x"]),
        out=st.sampled_from(["fresh", "fresh", "input", "dir", "missing-dir"]))
@@ -432,7 +423,7 @@ def test_option_soup(command: str, words: list[str]) -> None:
 
 def _number_case(number: str, where: str) -> object:
     marks = []
-    if number in ("-0",) and where == "fix":  # a = 0 passes the bounds, then 1/a
+    if number in ("-0", "1e-400") and where == "fix":  # a = 0 passes the bounds, then 1/a
         marks.append(known("fit"))
     return pytest.param(number, where, id=f"{where}-{number!r}", marks=marks)
 
@@ -444,6 +435,6 @@ def test_nasty_numbers_in_options(number: str, where: str) -> None:
     if where == "fix":
         argv = ["fit", "thesis-steel", "--law", "thirion", "--fix", f"a={number}"]
     else:
-        argv = ["tyre", "cornering", "--law", "coulomb", "--set", f"mu={number}",
+        argv = ["tyre", "cornering", "--law", "coulomb", "--set", f"mu0={number}",
                 "--loads", "3"]
     check_outcome(run_cli(argv))

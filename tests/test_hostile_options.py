@@ -47,6 +47,12 @@ def _fifo(tmp: Path, name: str) -> Path:
     return path
 
 
+def _write(tmp: Path, name: str, text: str) -> Path:
+    path = tmp / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
 def _files(tmp: Path) -> None:
     (tmp / "data.csv").write_text(GOOD_CSV, encoding="utf-8")
     (tmp / "params.json").write_text(PARAMS, encoding="utf-8")
@@ -76,7 +82,7 @@ CASES = [
          (2,), ("--free", "'E_v' is given twice")),
     Case("set-name-twice", lambda t: ["export", "--law", "thirion", "--set", "a=1",
                                       "--set", "a=2", *EXPORT_P, "-o", str(t / "o.csv")],
-         (2,), ("--set", "'a'"), area="export"),
+         (2,), ("--set", "'a'")),
     # ---- integers
     Case("seed-negative", lambda t: [*FIT, d(t), "--seed", "-1"], (2,),
          ("--seed", "from 0 to")),
@@ -123,9 +129,9 @@ CASES = [
     Case("fit-save-is-input", lambda t: [*FIT, d(t), "--save", d(t)], (2,),
          ("data.csv",), area="fit"),
     Case("fit-save-directory", lambda t: [*FIT, d(t), "--save", str(t / "adir")], (2,),
-         ("adir",), area="fit"),
+         ("adir",)),
     Case("fit-save-missing-dir", lambda t: [*FIT, d(t), "--save", str(t / "no" / "r.json")],
-         (2,), ("r.json",), area="fit"),
+         (2,), ("r.json",)),
     Case("fit-save-unwritable", lambda t: [*FIT, d(t), "--save", UNWRITABLE], (2,),
          ("out.json",)),
     Case("export-output-is-params",
@@ -146,17 +152,22 @@ CASES = [
          area="mf"),
     Case("compare-report-is-a-file", lambda t: ["compare", d(t), "--laws", "thirion",
                                                 "--folds", "2", "--report", d(t)], (2,),
-         ("data.csv",), area="compare"),
+         ("data.csv",)),
+    Case("export-fit-warnings-are-warning-lines",
+         lambda t: ["export", "--law", "thirion", "--fit", str(_write(t, "flat.csv",
+                    "mu,p [MPa]\n0.5,0.1\n0.6,0.1\n0.55,0.1\n")), "--format",
+                    "abaqus-decay", "-o", str(t / "o.inp")], (2,), ("abaqus-decay",),
+         area="export"),
     # ---- special input files
     Case("fit-fifo", lambda t: [*FIT, str(_fifo(t, "pipe.csv"))], (2,), ("pipe.csv",),
          timeout=3.0),
     Case("datasets-fifo", lambda t: ["datasets", str(_fifo(t, "pipe.csv"))], (2,),
          ("pipe.csv",), area="input", timeout=3.0),
     Case("mf-fifo", lambda t: ["tyre", "mf", str(_fifo(t, "pipe.tir"))], (2,), ("pipe.tir",),
-         area="mf", timeout=3.0),
+         timeout=3.0),
     Case("export-params-fifo", lambda t: ["export", "--params", str(_fifo(t, "p.json")),
                                           *EXPORT_P, "-o", str(t / "o.csv")], (2,),
-         ("p.json",), area="fit", timeout=3.0),
+         ("p.json",), timeout=3.0),
     Case("fit-directory-as-data", lambda t: [*FIT, str(t / "adir")], (2,), ("adir",)),
     Case("params-malformed-json", lambda t: ["export", "--params", d(t), *EXPORT_P, "-o",
                                              str(t / "o.csv")], (2,), ("data.csv",)),
