@@ -26,6 +26,7 @@ import argparse
 import contextlib
 import math
 import os
+import re
 import sys
 import tempfile
 from collections.abc import Callable, Iterator, Sequence
@@ -222,7 +223,7 @@ def progress_value(args: argparse.Namespace) -> bool | None:
 
 
 def _chunks(items: Sequence[str] | str | None) -> list[str]:
-    if not items:
+    if items is None:
         return []
     return [items] if isinstance(items, str) else [str(x) for x in items]
 
@@ -358,6 +359,9 @@ def refuse_unused(args: argparse.Namespace, names: Sequence[str], why: str) -> N
 # ------------------------------------------------------------------------ ranges
 
 
+_BARE_NUMBER = re.compile(r"[+-]?[0-9._]*[0-9][0-9._]*(?:[eE][+-]?[0-9]+)?")
+
+
 @dataclass(frozen=True)
 class RangeSpec:
     """A parsed ``MIN:MAX[:N]``: bounds in SI and the number of points (None: not given)."""
@@ -378,7 +382,9 @@ def _bound(text: str, quantity: str, option: str, whole: str,
         raise UsageError(f"{option} '{whole}': empty bound; expected {RANGE_HELP}")
     try:
         x = parse_number(s)
-    except ValueError:
+    except ValueError as exc:
+        if _BARE_NUMBER.fullmatch(s):  # a number without a unit that parse_number refuses
+            raise UsageError(f"{option} '{whole}': {exc}") from None
         try:
             return float(parse_quantity(s, quantity, what=option))
         except InputError as exc:
