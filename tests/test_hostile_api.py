@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hostile import Snapshot, check_api, csv_bytes, params_bytes, rig_bytes, tir_bytes
-from hypothesis import HealthCheck, given, settings
+from hostile import Snapshot, check_api, csv_bytes, hostile, params_bytes, rig_bytes, tir_bytes
+from hypothesis import given
 from hypothesis import strategies as st
 
 import frictionlaws as fl
@@ -28,9 +28,6 @@ from frictionlaws.errors import InputError
 pytestmark = pytest.mark.hostile
 
 
-def hostile(n: int) -> settings:
-    return settings(max_examples=n, deadline=None, derandomize=True, database=None,
-                    suppress_health_check=list(HealthCheck))
 
 
 def known(area: str) -> pytest.MarkDecorator:

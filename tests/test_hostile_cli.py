@@ -23,21 +23,18 @@ from hostile import (
     Snapshot,
     check_outcome,
     csv_bytes,
+    hostile,
     params_bytes,
     rig_bytes,
     run_cli,
     tir_bytes,
 )
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 pytestmark = pytest.mark.hostile
 
 
-def hostile(n: int) -> settings:
-    """Harness settings: ``n`` derandomised examples, no deadline, no example database."""
-    return settings(max_examples=n, deadline=None, derandomize=True, database=None,
-                    suppress_health_check=list(HealthCheck))
 
 
 #: Areas where the harness currently finds failures that other branches fix.
@@ -307,6 +304,7 @@ def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | No
         check_outcome(run_cli(argv), snapshot=snap, allowed=[target])
 
 
+@known("export")  # 'fit warning:' lines before the error (not 'warning:'): one line per problem
 @hostile(20)
 @given(data=csv_bytes(), opts=fit_options(), fmt=FORMATS, p=RANGES)
 def test_export_fit_hostile_data(data: bytes, opts: list[str], fmt: str, p: str) -> None:

@@ -35,9 +35,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from hypothesis import HealthCheck, Phase, settings
 from hypothesis import strategies as st
 
 __all__ = [
+    "hostile",
     "Outcome",
     "Hang",
     "time_limit",
@@ -65,6 +67,17 @@ UNWRITABLE = "/proc/frictionlaws-hostile/out.json"
 
 #: Default time bound of one case [s] (a hang is a failure, not a slow test).
 TIME_LIMIT = 20.0
+
+
+def hostile(n: int) -> settings:
+    """Harness settings: ``n`` derandomised examples, no deadline, no example database.
+
+    Shrinking is off: a failing case is reported as generated, so a failure costs
+    seconds, not the minutes shrinking can take (the CI budget is 60 s).
+    """
+    return settings(max_examples=n, deadline=None, derandomize=True, database=None,
+                    phases=[Phase.explicit, Phase.generate],
+                    suppress_health_check=list(HealthCheck))
 
 
 class Hang(BaseException):
@@ -219,9 +232,10 @@ class Snapshot:
             problems.extend(f"after a failure, removed: {n}" for n in sorted(gone))
         else:
             ok = {str(Path(a)) for a in allowed}
-            ok_dirs = [a for a in ok]
+            parents = {str(parent) for a in allowed for parent in Path(a).parents}
             for n in sorted(changed):
-                if n not in ok and not any(n.startswith(d + os.sep) for d in ok_dirs):
+                inside = any(n.startswith(d + os.sep) for d in ok)
+                if n not in ok and not inside and not (now[n] == "dir" and n in parents):
                     problems.append(f"unexpected file written: {n}")
         return problems
 
