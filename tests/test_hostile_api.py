@@ -18,7 +18,16 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hostile import Snapshot, check_api, csv_bytes, hostile, params_bytes, rig_bytes, tir_bytes
+from hostile import (
+    Snapshot,
+    check_api,
+    check_export_file,
+    csv_bytes,
+    hostile,
+    params_bytes,
+    rig_bytes,
+    tir_bytes,
+)
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -126,6 +135,7 @@ def test_law_call_hostile_parameters(values: dict[str, float]) -> None:
         _finite_mu(res)
 
 
+@known("fit")  # load_result: wrong types in the file give AttributeError/ValueError
 @hostile(25)
 @given(params=params_bytes(), fmt=st.sampled_from(["csv", "json", "abaqus", "lsdyna",
                                                     "ansys", "radioss", "abaqus-fric-coef"]))
@@ -143,18 +153,8 @@ def test_export_from_hostile_params(params: bytes, fmt: str) -> None:
             return fl.export(None, result, fmt, box, path=out)
 
         res = check_api(call, snapshot=snap, allowed=[out])
-        if not isinstance(res, Exception) and fmt == "csv":
-            _finite_csv(out)
-
-
-def _finite_csv(path: Path) -> None:
-    for line in path.read_text(encoding="utf-8").splitlines():
-        if not line or line.startswith(("#", "!", "$", "*")) or line[0] not in "0123456789-.":
-            continue
-        for cell in line.split(","):
-            x = float(cell)
-            assert math.isfinite(x), f"non-finite number in {path}: {line}"
-    return None
+        if not isinstance(res, Exception):
+            check_export_file(out, fmt)
 
 
 @hostile(25)

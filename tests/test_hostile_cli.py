@@ -21,6 +21,7 @@ from hostile import (
     NASTY_NUMBERS,
     UNWRITABLE,
     Snapshot,
+    check_export_file,
     check_outcome,
     csv_bytes,
     hostile,
@@ -301,7 +302,10 @@ def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | No
         argv += ["--v", v] if v is not None else []
         argv += ["--max-rows", max_rows] if max_rows is not None else []
         snap = Snapshot.take([tmp], [src])
-        check_outcome(run_cli(argv), snapshot=snap, allowed=[target])
+        res = run_cli(argv)
+        check_outcome(res, snapshot=snap, allowed=[target])
+        if res.code == 0:
+            check_export_file(target, fmt)
 
 
 @known("export")  # 'fit warning:' lines before the error (not 'warning:'): one line per problem
@@ -315,7 +319,10 @@ def test_export_fit_hostile_data(data: bytes, opts: list[str], fmt: str, p: str)
         argv = ["export", "--law", "thirion", "--fit", str(src), "--format", fmt, "--p", p,
                 "-o", str(target), *[o.replace("--units", "--data-units") for o in opts]]
         snap = Snapshot.take([tmp], [src])
-        check_outcome(run_cli(argv), snapshot=snap, allowed=[target])
+        res = run_cli(argv)
+        check_outcome(res, snapshot=snap, allowed=[target])
+        if res.code == 0:
+            check_export_file(target, fmt)
 
 
 # ------------------------------------------------------------------------- process

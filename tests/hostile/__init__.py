@@ -25,6 +25,7 @@ import contextlib
 import hashlib
 import io
 import json
+import math
 import os
 import re
 import signal
@@ -46,6 +47,8 @@ __all__ = [
     "run_cli",
     "Snapshot",
     "check_outcome",
+    "check_api",
+    "check_export_file",
     "strict_json",
     "stderr_lines",
     "csv_bytes",
@@ -296,6 +299,22 @@ def check_api(call: Callable[[], Any], *, snapshot: Snapshot | None = None,
         problems = snapshot.check(failed=failed, allowed=allowed)
         assert not problems, problems
     return result
+
+
+def check_export_file(path: Path, fmt: str) -> None:
+    """A written grid is sound: every number finite, every mu >= 0, JSON strict."""
+    if fmt == "json":
+        strict_json(path.read_text(encoding="utf-8"))
+        return
+    if fmt != "csv":
+        return
+    rows = [ln for ln in path.read_text(encoding="utf-8").splitlines()
+            if ln and not ln.startswith("#")][1:]
+    assert rows, f"no rows in {path}"
+    for line in rows:
+        cells = [float(c) for c in line.split(",")]
+        assert all(math.isfinite(c) for c in cells), f"non-finite number in {path}: {line}"
+        assert cells[-1] >= 0, f"negative mu in {path}: {line}"
 
 
 # ------------------------------------------------------------------- generators
