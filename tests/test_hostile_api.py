@@ -110,7 +110,7 @@ VARIABLE_VALUES = st.one_of(
 
 
 @known("fit")  # laws evaluated outside their domain give negative mu (issue 12 class 2)
-@hostile(40)
+@hostile(60)
 @given(law=st.sampled_from(["thirion", "coulomb", "thesis-poly2", "savkoor", "pacejka",
                             "burckhardt", "park", "exponential-decay", "schallamach"]),
        p=VARIABLE_VALUES, v=VARIABLE_VALUES, s=VARIABLE_VALUES, T=VARIABLE_VALUES,

@@ -120,7 +120,7 @@ FIT_LAWS = st.sampled_from(["thirion", "coulomb", "quadratic-pv", "exponential-d
 # ------------------------------------------------------------------------------ fit
 
 
-@hostile(40)
+@hostile(60)
 @given(data=csv_bytes(), law=FIT_LAWS, opts=fit_options(), json_out=st.booleans(),
        save=st.one_of(st.none(), TARGETS))
 def test_fit_hostile_csv(data: bytes, law: str, opts: list[str], json_out: bool,
@@ -153,7 +153,7 @@ def test_fit_reads_hostile_stdin(data: bytes, json_out: bool) -> None:
 # ------------------------------------------------------------------------ datasets
 
 
-@hostile(30)
+@hostile(40)
 @given(data=csv_bytes(), opts=st.lists(st.one_of(
     st.sampled_from(MAP_VALUES).map(lambda v: ["--map", v]),
     st.sampled_from(UNIT_VALUES).map(lambda v: ["--units", v]),
@@ -204,7 +204,7 @@ LOADS = st.sampled_from(["2:6:5", "2:6.5:0.5", "4", "2,3,4", "-1:2:3", "0", "1e9
                          "2:1:3", "2:6:1000000", "3kN:5kN:3", "x", "", "nan", "2:6"])
 
 
-@hostile(30)
+@hostile(40)
 @given(data=tir_bytes(), loads=st.one_of(st.none(), LOADS), json_out=st.booleans(),
        as_json=st.booleans())
 def test_tyre_mf_hostile_property_file(data: bytes, loads: str | None, json_out: bool,
@@ -287,7 +287,7 @@ RANGES = st.one_of(
                      "1_0:2:3", "-5kPa:1MPa:3", "0.01:0.5:5:7"]))
 
 
-@hostile(30)
+@hostile(40)
 @given(params=params_bytes(), fmt=FORMATS, p=RANGES, v=st.one_of(st.none(), RANGES),
        out=TARGETS, max_rows=st.sampled_from([None, "0", "-1", "10", "x"]))
 def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | None, out: str,
@@ -405,7 +405,7 @@ SOUP = ["--json", "--json", "--map", "mu=mu", "--units", "p=MPa", "--fix", "a=1"
         "--format", "csv", "--p", "0.01:0.5:3", "=", "--area", "--debug", "--save"]
 
 
-@hostile(40)
+@hostile(60)
 @given(command=st.sampled_from(["laws", "show", "fit", "compare", "datasets", "export",
                                 "process", "validate", "tyre", "tyre mf", "tyre reduce",
                                 "tyre cornering", "tyre thesis"]),

@@ -285,6 +285,7 @@ def check_api(call: Callable[[], Any], *, snapshot: Snapshot | None = None,
 
     result: Any = None
     failed = False
+    _log(Outcome(["api", getattr(call, "__name__", "call")], 0, "", "", 0.0))
     try:
         with time_limit(timeout):
             result = call()
