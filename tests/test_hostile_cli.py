@@ -275,6 +275,20 @@ def test_tyre_cornering_hostile(params: bytes, loads: str | None, angles: str,
         check_outcome(run_cli(argv), snapshot=snap, json_out=json_out)
 
 
+@hostile(10)
+@given(data=csv_bytes(), laws=st.sampled_from(["thirion", "thirion,denny", "nope", "",
+                                               "coulomb", "pacejka", "thirion,thirion"]),
+       json_out=st.booleans())
+def test_tyre_thesis_hostile_data(data: bytes, laws: str, json_out: bool) -> None:
+    with workdir() as tmp:
+        src = tmp / "data.csv"
+        src.write_bytes(data)
+        argv = ["tyre", "thesis", "--data", str(src), "--laws", laws]
+        argv += ["--json"] if json_out else []
+        snap = Snapshot.take([tmp], [src])
+        check_outcome(run_cli(argv), snapshot=snap, json_out=json_out)
+
+
 # -------------------------------------------------------------------------- export
 
 

@@ -113,6 +113,9 @@ CASES = [
                                            "--case", "thesis-*"], (2,), ("given twice",)),
     Case("validate-list-json", lambda t: ["validate", "--list", "--json"], (0,),
          json_out=True),
+    Case("validate-run-json", lambda t: ["validate", "--case", "wlf-constant-sets",
+                                         "--case", "thesis-rig-*", "--json"], (0, 1),
+         json_out=True),
     Case("validate-unknown-case", lambda t: ["validate", "--case", "nope"], (2,),
          ("unknown validation case 'nope'",)),
     # ---- options that do not apply
