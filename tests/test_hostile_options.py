@@ -276,6 +276,10 @@ def test_warnings_are_collected_into_one_line_each(monkeypatch: pytest.MonkeyPat
     assert res.out == "result\n"
     quiet = run_cli(["--quiet", "laws"])
     assert quiet.err == "" and quiet.code == 0
+    cornering = ["tyre", "cornering", "--law", "thesis-poly2", "--preset", "steel"]
+    assert "warning: law 'thesis-poly2' is extrapolated" in run_cli(cornering).err
+    quiet = run_cli(["--quiet", *cornering])
+    assert quiet.code == 0 and quiet.err == "" and "cornering" in quiet.out.lower()
     verbose = run_cli(["--verbose", "laws"])
     assert "RuntimeWarning from" in verbose.err and "site-packages" not in verbose.err
 

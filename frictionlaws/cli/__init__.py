@@ -14,9 +14,10 @@ the output clean:
 * an unexpected internal error -> exit 3 and one line asking for a report;
   ``--debug`` adds the traceback.
 
-Global flags (before the command): ``--quiet`` (no warnings, no automatic
-progress bar), ``--verbose`` (warnings with their category and origin),
-``--debug`` (tracebacks of internal errors), ``--print-completion SHELL``.
+Global flags (before the command): ``--quiet`` (no warning lines, whether
+collected or printed by the command, and no automatic progress bar),
+``--verbose`` (warnings with their category and origin), ``--debug``
+(tracebacks of internal errors), ``--print-completion SHELL``.
 
 Exit codes: 0 success; 1 a check failed (``validate``) or a fit did not
 converge; 2 bad input or usage; 3 an unexpected internal error (a bug: the
@@ -26,10 +27,12 @@ message asks to report it).
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import re
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
@@ -181,6 +184,55 @@ class _Warnings:
             print(f"warning: {text}{times}", file=sys.stderr)
 
 
+class _DropWarnings(io.TextIOBase):
+    """A stderr wrapper that drops whole lines starting with ``warning:`` (``--quiet``)."""
+
+    def __init__(self, target: Any) -> None:
+        self.target = target
+        self.pending = ""
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        self.pending += text
+        *lines, self.pending = self.pending.split("\n")
+        for line in lines:
+            if not line.split("\r")[-1].lstrip().startswith("warning:"):
+                self.target.write(line + "\n")
+        if "\r" in self.pending:  # a progress bar redrawing its line: pass it on now
+            self.target.write(self.pending)
+            self.pending = ""
+        return len(text)
+
+    def flush(self) -> None:
+        self.target.flush()
+
+    def isatty(self) -> bool:
+        return bool(getattr(self.target, "isatty", lambda: False)())
+
+    def finish(self) -> None:
+        if self.pending and not self.pending.lstrip().startswith("warning:"):
+            self.target.write(self.pending)
+        self.pending = ""
+
+
+@contextlib.contextmanager
+def _quiet_stderr(quiet: bool) -> Iterator[None]:
+    """With ``--quiet``, the command's own ``warning:`` lines are dropped too."""
+    if not quiet:
+        yield
+        return
+    original = sys.stderr
+    wrapper = _DropWarnings(original)
+    sys.stderr = wrapper  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        wrapper.finish()
+        sys.stderr = original
+
+
 # ------------------------------------------------------------------------- main
 
 
@@ -217,7 +269,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 2
     collected = _Warnings()
-    with warnings.catch_warnings(record=True) as records:
+    with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet):
         warnings.simplefilter("always")
         code = _dispatch(args)
     if not args.quiet:
