@@ -28,7 +28,7 @@ from hostile import (
     rig_bytes,
     tir_bytes,
 )
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 import frictionlaws as fl
@@ -93,6 +93,7 @@ ARRAY_VALUES = st.one_of(
 
 @known("fit")
 @hostile(25)
+@example(mu=[0.0, -1.0], p=[0.0])  # negative mu and mismatched lengths accepted
 @given(mu=st.lists(ARRAY_VALUES, min_size=0, max_size=6),
        p=st.lists(ARRAY_VALUES, min_size=0, max_size=6))
 def test_fit_arrays_hostile(mu: list[float], p: list[float]) -> None:
@@ -111,6 +112,7 @@ VARIABLE_VALUES = st.one_of(
 
 @known("fit")  # laws evaluated outside their domain give negative mu (issue 12 class 2)
 @hostile(60)
+@example(law="thesis-poly2", p=0.0, v=7.0, s=0.0, T=0.0, F_N=0.0)  # mu = -2.3
 @given(law=st.sampled_from(["thirion", "coulomb", "thesis-poly2", "savkoor", "pacejka",
                             "burckhardt", "park", "exponential-decay", "schallamach"]),
        p=VARIABLE_VALUES, v=VARIABLE_VALUES, s=VARIABLE_VALUES, T=VARIABLE_VALUES,
@@ -137,6 +139,8 @@ def test_law_call_hostile_parameters(values: dict[str, float]) -> None:
 
 @known("fit")  # load_result: wrong types in the file give AttributeError/ValueError
 @hostile(25)
+@example(params=b'{"law": "thirion", "params": {"a": 1.0, "b": {"stderr": 1}}, '
+         b'"settings": -3.9e16}', fmt="abaqus")  # AttributeError in load_result
 @given(params=params_bytes(), fmt=st.sampled_from(["csv", "json", "abaqus", "lsdyna",
                                                     "ansys", "radioss", "abaqus-fric-coef"]))
 def test_export_from_hostile_params(params: bytes, fmt: str) -> None:
@@ -190,6 +194,7 @@ def test_load_rig_hostile(data: bytes) -> None:
 
 @known("fit")
 @hostile(20)
+@example(params=b'{"law": "coulomb", "params": {"mu0": "abc"}}')  # ValueError
 @given(params=params_bytes())
 def test_load_result_hostile(params: bytes) -> None:
     with workdir() as tmp:

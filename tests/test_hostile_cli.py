@@ -30,7 +30,7 @@ from hostile import (
     run_cli,
     tir_bytes,
 )
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 pytestmark = pytest.mark.hostile
@@ -258,6 +258,9 @@ def test_tyre_reduce_hostile(data: bytes, load: str, points: str, save: str | No
 
 @known("fit")
 @hostile(20)
+@example(params=b'{"law": "thesis-poly2", "params": {"a0": {"value": "x"}, "a1": -59.2, '
+         b'"a2": 220.0, "a3": 1.05, "a4": -0.303}}', loads=None, angles="1,2,3", width=None,
+         json_out=False)  # load_result: ValueError, exit 3
 @given(params=params_bytes(), loads=st.one_of(st.none(), LOADS),
        angles=st.sampled_from(["1,2,3", "0", "-1,2", "x", "90", "1e999", ""]),
        width=st.one_of(st.none(), st.sampled_from(["150 mm", "-1 mm", "150 km", "0 mm", "x"])),
@@ -324,6 +327,8 @@ def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | No
 
 @known("export")  # 'fit warning:' lines before the error (not 'warning:'): one line per problem
 @hostile(20)
+@example(data=b"mu,p [MPa]\n0.5,0.1\n0.6,0.1\n0.55,0.1\n", opts=[], fmt="abaqus-decay",
+         p="0.01:0.5:5")
 @given(data=csv_bytes(), opts=fit_options(), fmt=FORMATS, p=RANGES)
 def test_export_fit_hostile_data(data: bytes, opts: list[str], fmt: str, p: str) -> None:
     with workdir() as tmp:
@@ -375,6 +380,8 @@ def test_process_hostile_rig(rig: bytes, jobs: str, out: str) -> None:
 
 @known("tribo")
 @hostile(15)
+@example(data=b"mu;p [MPa];v [m/s]\n1.000,5;0,1;1\n0,8;0.2;2,0\n0,7;1.000;3\n",
+         keep_header=True)  # the per-record table is written, then the run fails
 @given(data=csv_bytes(), keep_header=st.booleans())
 def test_process_hostile_manifest(data: bytes, keep_header: bool) -> None:
     with campaign() as tmp:
