@@ -328,6 +328,21 @@ def test_input_error_option_is_rendered_as_the_flag(monkeypatch: pytest.MonkeyPa
     assert res.err == "error: --map, file 'd.csv': no such column 'PRESSURE'\n"
 
 
+def test_json_stdout_is_made_strict(monkeypatch: pytest.MonkeyPatch) -> None:
+    import json
+
+    from frictionlaws.cli import cmd_laws
+
+    def run(args: object) -> int:
+        print(json.dumps({"r2": float("nan"), "x": [float("inf"), 1.5]}))
+        return 0
+
+    monkeypatch.setattr(cmd_laws, "run", run)
+    res = run_cli(["laws", "--json"])
+    check_outcome(res, codes=(0,), json_out=True)
+    assert strict_json(res.out) == {"r2": None, "x": [None, 1.5]}
+
+
 def test_laws_show_json_is_strict() -> None:
     for argv in (["laws", "--json"], ["show", "thirion", "--json"], ["show", "park", "--json"]):
         res = run_cli(argv)

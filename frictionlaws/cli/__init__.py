@@ -233,6 +233,52 @@ def _quiet_stderr(quiet: bool) -> Iterator[None]:
         sys.stderr = original
 
 
+def _strictly(text: str) -> str:
+    """``text`` as strict JSON: ``NaN``/``Infinity`` become ``null``; other text unchanged."""
+    import json
+
+    from frictionlaws.jsonio import dumps
+
+    def refuse(name: str) -> Any:
+        raise ValueError(name)
+
+    try:
+        json.loads(text, parse_constant=refuse)
+        return text
+    except ValueError:
+        pass
+    try:
+        doc = json.loads(text)
+    except ValueError:
+        return text  # not one JSON document (a command's own text): leave it alone
+    return dumps(doc) + "\n"
+
+
+@contextlib.contextmanager
+def _strict_json_stdout(enabled: bool) -> Iterator[None]:
+    """With ``--json``, hold stdout and make sure it leaves as strict JSON.
+
+    Commands write their document with :func:`frictionlaws.jsonio.dumps`; this is
+    the safety net that keeps ``NaN`` and ``Infinity`` out of stdout whatever a
+    command printed.
+    """
+    if not enabled:
+        yield
+        return
+    original = sys.stdout
+    held = io.StringIO()
+    sys.stdout = held
+    try:
+        yield
+    finally:
+        sys.stdout = original
+        text = held.getvalue()
+        if text:
+            with contextlib.suppress(BrokenPipeError):  # `... --json | head`
+                original.write(_strictly(text))
+                original.flush()
+
+
 # ------------------------------------------------------------------------- main
 
 
@@ -271,7 +317,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     collected = _Warnings()
     with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet):
         warnings.simplefilter("always")
-        code = _dispatch(args)
+        with _strict_json_stdout(bool(getattr(args, "json", False))):
+            code = _dispatch(args)
     if not args.quiet:
         for record in records:
             collected.add(record, args.verbose)
