@@ -110,7 +110,7 @@ def test_progress_value() -> None:
 
 def test_range_grammar_with_units_and_points() -> None:
     r = parse_range("0.01:0.5:20", "p", option="--p", unit="MPa")
-    assert r == RangeSpec(pytest.approx(1e4), pytest.approx(5e5), 20)
+    assert (r.lo, r.hi, r.n) == (pytest.approx(1e4), pytest.approx(5e5), 20)
     r = parse_range("10kPa:0.5MPa", "p", option="--p")
     assert (r.lo, r.hi, r.n) == (pytest.approx(1e4), pytest.approx(5e5), None)
     r = parse_range("20degC:80degC:7", "T", option="--T")
