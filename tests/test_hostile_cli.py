@@ -28,6 +28,7 @@ from hostile import (
     params_bytes,
     rig_bytes,
     run_cli,
+    strict_json,
     tir_bytes,
 )
 from hypothesis import example, given
@@ -120,7 +121,10 @@ FIT_LAWS = st.sampled_from(["thirion", "coulomb", "quadratic-pv", "exponential-d
 # ------------------------------------------------------------------------------ fit
 
 
+@known("input")  # mu = 5e307 is accepted; lmfit overflows: exit 3 (issue 12 class 3)
 @hostile(60)
+@example(data=b"mu,p [MPa]\n5e307,0.1\n1.5,0.2\n1.9,0.3\n", law="coulomb", opts=[],
+         json_out=True, save=None)
 @given(data=csv_bytes(), law=FIT_LAWS, opts=fit_options(), json_out=st.booleans(),
        save=st.one_of(st.none(), TARGETS))
 def test_fit_hostile_csv(data: bytes, law: str, opts: list[str], json_out: bool,
@@ -137,7 +141,12 @@ def test_fit_hostile_csv(data: bytes, law: str, opts: list[str], json_out: bool,
         if json_out:
             argv.append("--json")
         snap = Snapshot.take([tmp], [src])
-        check_outcome(run_cli(argv), snapshot=snap, json_out=json_out, allowed=allowed)
+        res = run_cli(argv)
+        check_outcome(res, snapshot=snap, json_out=json_out, allowed=allowed)
+        if res.code == 0 and json_out:
+            doc = strict_json(res.out)
+            values = [p["value"] for p in doc["params"].values()]
+            assert all(isinstance(v, float | int) for v in values), f"missing value: {doc}"
 
 
 @hostile(12)

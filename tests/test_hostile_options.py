@@ -161,6 +161,12 @@ CASES = [
                     "mu,p [MPa]\n0.5,0.1\n0.6,0.1\n0.55,0.1\n")), "--format",
                     "abaqus-decay", "-o", str(t / "o.inp")], (2,), ("abaqus-decay",),
          area="export"),
+    Case("fit-huge-mu", lambda t: ["fit", str(_write(t, "huge.csv", "mu,p [MPa]\n5e307,0.1\n"
+                                                          "1.5,0.2\n1.9,0.3\n")),
+                                   "--law", "coulomb"], (2,), ("huge.csv",), area="input"),
+    Case("single-option-twice", lambda t: [*FIT, d(t), "--law", "coulomb"], (2,),
+         ("--law", "given twice", "'thirion' and 'coulomb'")),
+    Case("single-option-twice-same-value", lambda t: [*FIT, d(t), "--law", "thirion"], (0,)),
     # ---- special input files
     Case("fit-fifo", lambda t: [*FIT, str(_fifo(t, "pipe.csv"))], (2,), ("pipe.csv",),
          timeout=3.0),

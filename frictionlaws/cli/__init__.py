@@ -83,8 +83,30 @@ OPTION_FLAGS = {
 _SHELLS = ("bash", "zsh", "tcsh")
 
 
+class _StoreOnce(argparse._StoreAction):
+    """The default ``store`` action, refusing a single-valued option given twice differently.
+
+    ``--law thirion --law coulomb`` would otherwise keep the last silently.
+    """
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        given = namespace.__dict__.setdefault("_given_once", {})
+        if self.option_strings and self.dest in given and given[self.dest] != values:
+            raise argparse.ArgumentError(
+                self, f"given twice with different values ('{given[self.dest]}' and "
+                      f"'{values}'); give it once")
+        given[self.dest] = values
+        setattr(namespace, self.dest, values)
+
+
 class _Parser(argparse.ArgumentParser):
     """An ArgumentParser that raises instead of exiting, for a one-line message."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{self.prog}: {message}")
