@@ -19,6 +19,7 @@ import pytest
 from hostile import (
     MF52_JSON,
     NASTY_NUMBERS,
+    RIG_TOML,
     UNWRITABLE,
     Snapshot,
     check_export_file,
@@ -247,7 +248,7 @@ def _mutate_json(base: bytes, noise: bytes) -> bytes:
 
 @hostile(15)
 @given(data=tir_bytes(), load=st.sampled_from(["4", "-4", "0", "1e999", "4,5", "4kN", "x"]),
-       points=st.sampled_from(["51", "0", "-3", "1000000000", "2"]),
+       points=st.sampled_from(["51", "0", "-3", "5000", "2"]),  # huge: see test_hostile_options
        save=st.one_of(st.none(), TARGETS), json_out=st.booleans())
 def test_tyre_reduce_hostile(data: bytes, load: str, points: str, save: str | None,
                              json_out: bool) -> None:
@@ -313,7 +314,10 @@ RANGES = st.one_of(
                      "1_0:2:3", "-5kPa:1MPa:3", "0.01:0.5:5:7"]))
 
 
+@known("fit")  # load_result: a non-numeric value gives ValueError, exit 3
 @hostile(40)
+@example(params=b'{"law": "thirion", "params": {"a": "abc", "b": 3e-6}}', fmt="csv",
+         p="0.01:0.5:5", v=None, out="fresh", max_rows=None)
 @given(params=params_bytes(), fmt=FORMATS, p=RANGES, v=st.one_of(st.none(), RANGES),
        out=TARGETS, max_rows=st.sampled_from([None, "0", "-1", "10", "x"]))
 def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | None, out: str,
@@ -369,7 +373,9 @@ def campaign() -> Iterator[Path]:
         yield tmp
 
 
+@known("tribo")  # -o DIR: the per-record table is written beside it, then the run fails
 @hostile(15)
+@example(rig=RIG_TOML.encode(), jobs="1", out="dir")
 @given(rig=rig_bytes(), jobs=st.sampled_from(["1", "0", "-1", "x"]),
        out=st.sampled_from(["fresh", "fresh", "input", "dir", "missing-dir"]))
 def test_process_hostile_rig(rig: bytes, jobs: str, out: str) -> None:

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
-from hostile import MF52_TIR, UNWRITABLE, Snapshot, check_outcome, run_cli, strict_json
+from hostile import MF52_TIR, RIG_TOML, UNWRITABLE, Snapshot, check_outcome, run_cli, strict_json
 
 pytestmark = pytest.mark.hostile
 
@@ -102,7 +102,7 @@ CASES = [
          (2,), ("--max-rows",), area="export"),
     Case("points-unbounded", lambda t: ["tyre", "reduce", str(t / "tyre.tir"), "--load", "4",
                                         "--points", "1000000000"], (2,), ("--points",),
-         area="mf"),
+         area="mf", timeout=3.0),
     Case("points-zero", lambda t: ["tyre", "reduce", str(t / "tyre.tir"), "--load", "4",
                                    "--points", "0"], (2,), ("--points",), area="mf"),
     # ---- validate
@@ -167,6 +167,10 @@ CASES = [
     Case("single-option-twice", lambda t: [*FIT, d(t), "--law", "coulomb"], (2,),
          ("--law", "given twice", "'thirion' and 'coulomb'")),
     Case("single-option-twice-same-value", lambda t: [*FIT, d(t), "--law", "thirion"], (0,)),
+    Case("process-output-directory",
+         lambda t: ["process", str(_write(t, "m.csv", "file,load [kg],surface\nr.csv,3,steel\n")),
+                    "--rig", str(_write(t, "rig.toml", RIG_TOML)), "-o", str(t / "adir"),
+                    "--jobs", "1"], (2,), ("adir",), area="tribo"),
     # ---- special input files
     Case("fit-fifo", lambda t: [*FIT, str(_fifo(t, "pipe.csv"))], (2,), ("pipe.csv",),
          timeout=3.0),

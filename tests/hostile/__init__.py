@@ -77,9 +77,16 @@ def hostile(n: int) -> settings:
 
     Shrinking is off: a failing case is reported as generated, so a failure costs
     seconds, not the minutes shrinking can take (the CI budget is 60 s).
+
+    Deeper runs: ``HOSTILE_SCALE=10`` multiplies the examples; ``HOSTILE_EXPLORE=1``
+    draws fresh random cases and skips the pinned examples of known failures (use
+    with ``--runxfail`` to see what else a test finds).
     """
-    return settings(max_examples=n, deadline=None, derandomize=True, database=None,
-                    phases=[Phase.explicit, Phase.generate],
+    scale = int(os.environ.get("HOSTILE_SCALE", "1"))
+    explore = os.environ.get("HOSTILE_EXPLORE") == "1"
+    return settings(max_examples=n * max(scale, 1), deadline=None, derandomize=not explore,
+                    database=None,
+                    phases=[Phase.generate] if explore else [Phase.explicit, Phase.generate],
                     suppress_health_check=list(HealthCheck))
 
 
