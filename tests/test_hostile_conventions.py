@@ -180,3 +180,13 @@ def test_stdin_is_spooled_and_named(monkeypatch: pytest.MonkeyPatch) -> None:
     assert str(info.value) == "file '<stdin>': bad table in <stdin>"
     with data_source("thesis-steel") as name:  # a packaged name passes unchanged
         assert name == "thesis-steel"
+
+
+def test_stdin_from_a_terminal_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    monkeypatch.setattr(sys, "stdin", Terminal())
+    with pytest.raises(UsageError, match="terminal"), data_source("-"):
+        pass

@@ -502,6 +502,10 @@ def data_source(data: str) -> Iterator[str]:
             check_input_file(data, "data file")
         yield data
         return
+    if sys.stdin is None or sys.stdin.isatty():
+        raise UsageError("DATA '-' reads standard input, which is a terminal here; pipe a "
+                         "table in (e.g. 'cat runs.csv | frictionlaws fit - ...') or give "
+                         "a file name")
     stream = getattr(sys.stdin, "buffer", sys.stdin)
     raw = stream.read()
     if isinstance(raw, str):
