@@ -25,6 +25,11 @@ class InputError(FrictionLawsError, ValueError):
         The column concerned.
     row : int, optional
         The 1-based data row concerned (as a spreadsheet shows it, header = row 1).
+    option : str, optional
+        The argument of the API call concerned (``"mapping"``, ``"units"``,
+        ``"area"``, ``"fix"``, ``"box.p"``...).  Messages written with it do not
+        repeat the argument's name: the front end names it its own way (the CLI
+        as a flag such as ``--map``), see :meth:`compose`.
     """
 
     def __init__(
@@ -34,15 +39,27 @@ class InputError(FrictionLawsError, ValueError):
         file: str | None = None,
         column: str | None = None,
         row: int | None = None,
+        option: str | None = None,
     ) -> None:
         self.file = file
         self.column = column
         self.row = row
+        self.option = option
         self.bare_message = message
         super().__init__(self._compose())
 
     def _compose(self) -> str:
+        return self.compose()
+
+    def compose(self, option_label: str | None = None) -> str:
+        """The message with its location; ``option_label`` names :attr:`option`.
+
+        Without a label the option is named as the API argument
+        (``argument 'mapping'``); the CLI passes its flag (``--map``).
+        """
         where = []
+        if self.option is not None:
+            where.append(option_label or f"argument '{self.option}'")
         if self.file is not None:
             where.append(f"file '{self.file}'")
         if self.column is not None:

@@ -170,3 +170,32 @@ def test_dropped_rows_are_reported_by_fit(tmp_path: Path,
     assert main(["fit", "--law", "thirion", str(path)]) == 0
     out = capsys.readouterr().out
     assert "dropped 1 row (row 4): empty or NaN in column 'mu'" in out
+
+
+@pytest.mark.parametrize(("extra", "fragments"), [
+    (["--fix", "a=1_000"], ["--fix", "'a=1_000'", "not a number"]),
+    (["--fix", "a=1", "--fix", "a=2"], ["--fix", "'a' is given twice"]),
+    (["--units", "p=MPa", "--units", "p=kPa"], ["--units", "'p' is given twice"]),
+    (["--seed", "-3"], ["--seed", "from 0 to"]),
+    (["--starts", "-1"], ["--starts", "from 0 to 1000"]),
+])
+def test_malformed_options_give_exit_2_and_one_line(
+    extra: list[str], fragments: list[str], capsys: pytest.CaptureFixture[str],
+) -> None:
+    code = main(["fit", "--law", "thirion", "thesis-steel", *extra])
+    captured = capsys.readouterr()
+    _check(code, captured.out, captured.err, fragments)
+
+
+def test_malformed_stdin_is_named_stdin(monkeypatch: pytest.MonkeyPatch,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    """``-`` as DATA: the message names <stdin>, not the private copy."""
+    import io
+    import sys
+
+    raw = (MALFORMED / "non_numeric.csv").read_bytes()
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(raw), encoding="utf-8"))
+    code = main(["fit", "--law", "thirion", "-"])
+    captured = capsys.readouterr()
+    _check(code, captured.out, captured.err,
+           ["file '<stdin>'", "column 'p [MPa]'", "row 3", "non-numeric value 'abc'"])

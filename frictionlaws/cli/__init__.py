@@ -2,8 +2,22 @@
 
 The CLI is thin: each sub-command lives in its own module ``cmd_<name>.py``
 that defines ``add_parser(subparsers)`` and ``run(args) -> int`` and imports
-heavy libraries only inside ``run``.  :func:`main` parses, dispatches and turns
-bad input into exit code 2 with a one-line message.
+heavy libraries only inside ``run``.  :func:`main` parses, dispatches and keeps
+the output clean:
+
+* bad input or usage -> exit 2 and one line on stderr (``error: ...``), naming
+  the file, column, row or option concerned; an unreadable or unwritable user
+  file (``OSError``) and malformed JSON/TOML are bad input too;
+* Python, numpy, scipy and pandas warnings raised during a command are collected
+  and printed once each, after the command's output, as ``warning: ...`` lines
+  (with a count when repeated), never with source paths;
+* an unexpected internal error -> exit 3 and one line asking for a report;
+  ``--debug`` adds the traceback.
+
+Global flags (before the command): ``--quiet`` (no warning lines, whether
+collected or printed by the command, and no automatic progress bar),
+``--verbose`` (warnings with their category and origin), ``--debug``
+(tracebacks of internal errors), ``--print-completion SHELL``.
 
 Exit codes: 0 success; 1 a check failed (``validate``) or a fit did not
 converge; 2 bad input or usage; 3 an unexpected internal error (a bug: the
@@ -13,9 +27,18 @@ message asks to report it).
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
+import re
 import sys
-from collections.abc import Sequence
+import warnings
+from collections.abc import Iterator, Sequence
 from importlib import import_module
+from typing import Any
+
+from ._common import UsageError
+
+__all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS"]
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS = (
@@ -30,16 +53,63 @@ COMMANDS = (
     "export",
 )
 
+#: Library argument (``InputError.option``) -> the flag that sets it.  A command
+#: may override entries with ``set_defaults(_option_flags={...})``.
+OPTION_FLAGS = {
+    "mapping": "--map",
+    "units": "--units",
+    "area": "--area",
+    "fix": "--fix",
+    "free": "--free",
+    "starts": "--starts",
+    "seed": "--seed",
+    "weights": "--weights",
+    "params": "--set",
+    "preset": "--preset",
+    "folds": "--folds",
+    "holdout": "--holdout",
+    "jobs": "--jobs",
+    "min_repeats": "--min-repeats",
+    "tol": "--tol",
+    "max_rows": "--max-rows",
+    "spacing": "--spacing",
+    "box.p": "--p",
+    "box.v": "--v",
+    "box.T": "--T",
+    "box.F_N": "--F_N",
+    "box.s": "--s",
+}
+
+_SHELLS = ("bash", "zsh", "tcsh")
+
+
+class _StoreOnce(argparse._StoreAction):
+    """The default ``store`` action, refusing a single-valued option given twice differently.
+
+    ``--law thirion --law coulomb`` would otherwise keep the last silently.
+    """
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        given = namespace.__dict__.setdefault("_given_once", {})
+        if self.option_strings and self.dest in given and given[self.dest] != values:
+            raise argparse.ArgumentError(
+                self, f"given twice with different values ('{given[self.dest]}' and "
+                      f"'{values}'); give it once")
+        given[self.dest] = values
+        setattr(namespace, self.dest, values)
+
 
 class _Parser(argparse.ArgumentParser):
     """An ArgumentParser that raises instead of exiting, for a one-line message."""
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{self.prog}: {message}")
-
-
-class UsageError(Exception):
-    """Bad command-line usage."""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -49,58 +119,277 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="frictionlaws",
         description="Friction laws for rubber and tyres: list, fit, compare, export.",
+        allow_abbrev=False,  # else '--v' after a command would be read as '--verbose'
     )
     parser.add_argument("--version", action="version", version=f"frictionlaws {__version__}")
+    talk = parser.add_mutually_exclusive_group()
+    talk.add_argument("-q", "--quiet", action="store_true",
+                      help="no warnings and no automatic progress bar on stderr")
+    talk.add_argument("-v", "--verbose", action="store_true",
+                      help="warnings with their category and origin")
+    parser.add_argument("--debug", action="store_true",
+                        help="print the traceback behind an internal error (exit 3)")
+    parser.add_argument("--print-completion", choices=_SHELLS, metavar="SHELL",
+                        help="print a shell completion script (bash, zsh or tcsh) and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in COMMANDS:
         module = import_module(f"frictionlaws.cli.cmd_{name.replace('-', '_')}")
         p = module.add_parser(sub)
-        p.set_defaults(_run=module.run)
+        p.set_defaults(_run=module.run, _parser=p)
+        _mark_nested(p)
     return parser
+
+
+def _mark_nested(p: argparse.ArgumentParser) -> None:
+    """Give nested sub-commands (``tyre cornering``) their own ``_parser`` default."""
+    for action in p._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for child in action.choices.values():
+                child.set_defaults(_parser=child)
+                _mark_nested(child)
+
+
+# --------------------------------------------------------------------- messages
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+_PATH = re.compile(r"(?:[A-Za-z]:)?[\\/][^\s'\"]*?(?:site|dist)-packages[\\/]\S*")
+
+
+def _clean(text: str) -> str:
+    """One line, without library source paths (``.../site-packages/x/y.py:12``)."""
+    return _one_line(_PATH.sub("<library>", str(text)))
+
+
+def _input_message(exc: Exception, args: argparse.Namespace | None) -> str:
+    option = getattr(exc, "option", None)
+    compose = getattr(exc, "compose", None)
+    if option and callable(compose):
+        flags = dict(OPTION_FLAGS)
+        flags.update(getattr(args, "_option_flags", None) or {})
+        return _one_line(compose(flags.get(option, "--" + option.replace("_", "-"))))
+    return _one_line(str(exc))
+
+
+def _os_message(exc: OSError) -> str:
+    what = exc.strerror or type(exc).__name__
+    name = exc.filename
+    if name is None:
+        return _clean(f"{what} ({exc})" if str(exc) and str(exc) != what else what)
+    extra = f" -> '{exc.filename2}'" if exc.filename2 else ""
+    return _clean(f"file '{name}'{extra}: {what.lower() if what[:1].isupper() else what}")
+
+
+class _Warnings:
+    """Warnings collected during a command, printed once per distinct message."""
+
+    def __init__(self) -> None:
+        self.seen: dict[str, list[Any]] = {}
+
+    def add(self, record: warnings.WarningMessage, verbose: bool) -> None:
+        text = _clean(str(record.message)) or type(record.message).__name__
+        if verbose:
+            origin = re.sub(r"\.py$", "", str(record.filename).replace("\\", "/"))
+            origin = origin.rsplit("site-packages/", 1)[-1].rsplit("/", 1)[-1]
+            text = f"{record.category.__name__} from {origin}: {text}"
+        if text in self.seen:
+            self.seen[text][0] += 1
+        else:
+            self.seen[text] = [1]
+
+    def print(self) -> None:
+        for text, (count,) in self.seen.items():
+            times = f" ({count} times)" if count > 1 else ""
+            print(f"warning: {text}{times}", file=sys.stderr)
+
+
+class _DropWarnings(io.TextIOBase):
+    """A stderr wrapper that drops whole lines starting with ``warning:`` (``--quiet``)."""
+
+    def __init__(self, target: Any) -> None:
+        self.target = target
+        self.pending = ""
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        self.pending += text
+        *lines, self.pending = self.pending.split("\n")
+        for line in lines:
+            if not line.split("\r")[-1].lstrip().startswith("warning:"):
+                self.target.write(line + "\n")
+        if "\r" in self.pending:  # a progress bar redrawing its line: pass it on now
+            self.target.write(self.pending)
+            self.pending = ""
+        return len(text)
+
+    def flush(self) -> None:
+        self.target.flush()
+
+    def isatty(self) -> bool:
+        return bool(getattr(self.target, "isatty", lambda: False)())
+
+    def finish(self) -> None:
+        if self.pending and not self.pending.lstrip().startswith("warning:"):
+            self.target.write(self.pending)
+        self.pending = ""
+
+
+@contextlib.contextmanager
+def _quiet_stderr(quiet: bool) -> Iterator[None]:
+    """With ``--quiet``, the command's own ``warning:`` lines are dropped too."""
+    if not quiet:
+        yield
+        return
+    original = sys.stderr
+    wrapper = _DropWarnings(original)
+    sys.stderr = wrapper  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        wrapper.finish()
+        sys.stderr = original
+
+
+def _strictly(text: str) -> str:
+    """``text`` as strict JSON: ``NaN``/``Infinity`` become ``null``; other text unchanged."""
+    import json
+
+    from frictionlaws.jsonio import dumps
+
+    def refuse(name: str) -> Any:
+        raise ValueError(name)
+
+    try:
+        json.loads(text, parse_constant=refuse)
+        return text
+    except ValueError:
+        pass
+    try:
+        doc = json.loads(text)
+    except ValueError:
+        return text  # not one JSON document (a command's own text): leave it alone
+    return dumps(doc) + "\n"
+
+
+@contextlib.contextmanager
+def _strict_json_stdout(enabled: bool) -> Iterator[None]:
+    """With ``--json``, hold stdout and make sure it leaves as strict JSON.
+
+    Commands write their document with :func:`frictionlaws.jsonio.dumps`; this is
+    the safety net that keeps ``NaN`` and ``Infinity`` out of stdout whatever a
+    command printed.
+    """
+    if not enabled:
+        yield
+        return
+    original = sys.stdout
+    held = io.StringIO()
+    sys.stdout = held
+    try:
+        yield
+    finally:
+        sys.stdout = original
+        text = held.getvalue()
+        if text:
+            with contextlib.suppress(BrokenPipeError):  # `... --json | head`
+                original.write(_strictly(text))
+                original.flush()
+
+
+# ------------------------------------------------------------------------- main
+
+
+def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
+    try:
+        return parser.parse_args(argv)
+    except UsageError as exc:
+        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help, --version
+        return int(exc.code or 0)
+
+
+def _completion(parser: argparse.ArgumentParser, shell: str) -> int:
+    try:
+        import shtab
+    except ImportError:
+        print("error: shell completion needs the 'shtab' package: "
+              "pip install 'frictionlaws[cli]'", file=sys.stderr)
+        return 2
+    print(shtab.complete(parser, shell=shell))
+    return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
-    from frictionlaws.errors import FitError, InputError
-
     parser = build_parser()
-    try:
-        args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
-    except UsageError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except SystemExit as exc:  # --help, --version
-        return int(exc.code or 0)
+    args = _parse(parser, list(sys.argv[1:] if argv is None else argv))
+    if isinstance(args, int):
+        return args
+    if args.print_completion:
+        return _completion(parser, args.print_completion)
     if not getattr(args, "command", None):
         parser.print_help()
         return 2
+    collected = _Warnings()
+    with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet):
+        warnings.simplefilter("always")
+        with _strict_json_stdout(bool(getattr(args, "json", False))):
+            code = _dispatch(args)
+    if not args.quiet:
+        for record in records:
+            collected.add(record, args.verbose)
+        collected.print()
+    return code
+
+
+def _dispatch(args: argparse.Namespace) -> int:
+    """Run the command; turn every failure into an exit code and one stderr line."""
+    import json
+
+    from frictionlaws.errors import FitError, InputError
+
     try:
         return int(args._run(args) or 0)
-    except InputError as exc:
-        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
-        return 2
-    except UsageError as exc:
-        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
-        return 2
+    except (InputError, UsageError) as exc:
+        return _fail(_input_message(exc, args), 2)
     except FitError as exc:
-        print(f"error: fit failed: {_one_line(str(exc))}", file=sys.stderr)
-        return 1
+        return _fail(f"fit failed: {_one_line(str(exc))}", 1)
     except BrokenPipeError:
         return 0
+    except OSError as exc:
+        return _fail(_os_message(exc), 2)
+    except (json.JSONDecodeError, UnicodeError) as exc:
+        return _fail(f"unreadable input ({_clean(str(exc))})", 2)
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
+    except MemoryError:
+        return _fail("out of memory: the request is too large (fewer points or rows)", 2)
     except Exception as exc:  # noqa: BLE001 - last resort: never a traceback
-        print(
-            f"error: internal error ({type(exc).__name__}: {_one_line(str(exc))}); "
-            "please report it with the command you ran",
-            file=sys.stderr,
-        )
+        if _is_toml_error(exc):
+            return _fail(f"malformed TOML ({_clean(str(exc))})", 2)
+        _fail(f"internal error ({type(exc).__name__}: {_clean(str(exc))}); "
+              "please report it with the command you ran (--debug shows the traceback)", 3)
+        if getattr(args, "debug", False):
+            import traceback
+
+            traceback.print_exc(file=sys.stderr)
         return 3
 
 
-def _one_line(text: str) -> str:
-    return " ".join(text.split())
+def _is_toml_error(exc: Exception) -> bool:
+    return type(exc).__name__ == "TOMLDecodeError"
+
+
+def _fail(message: str, code: int) -> int:
+    print(f"error: {message}", file=sys.stderr)
+    return code
 
 
 def entry() -> None:

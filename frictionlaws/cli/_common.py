@@ -1,75 +1,287 @@
-"""Options shared by several sub-commands (data loading, fitting)."""
+"""Conventions shared by every sub-command: option groups, option parsing, ranges, stdin.
+
+Rules (documented in ``docs/cli.md``):
+
+* **Repeated options merge.**  ``--map``, ``--units``, ``--fix``, ``--set``,
+  ``--free`` may be given several times; the pieces are merged, and a name given
+  twice (in one occurrence or across several) is an error naming it.
+* **One range grammar**: ``MIN:MAX[:N]`` where each bound is a number (in the
+  command's default unit) or a number with its unit (``0.01MPa:0.5MPa:20``,
+  ``20degC:80degC``), and ``N`` is the number of points, ends included.  A list
+  ``A,B,C`` is accepted where a command takes explicit values.  See
+  :func:`parse_range`.
+* **Integers are checked** by the argparse ``type=`` functions
+  :func:`non_negative_int`, :func:`positive_int` and :func:`bounded_int`, so a
+  negative ``--seed`` or an unbounded ``--points`` is a usage error (exit 2) that
+  names the option and the allowed range.
+* **Options that do not apply are refused** (:func:`refuse_unused`), never
+  silently ignored.
+* **One progress flag**: ``--progress {auto,on,off}`` (:func:`add_progress_option`).
+* **``-`` as DATA** reads standard input (:func:`data_source`).
+"""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import math
+import os
+import re
+import sys
+import tempfile
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from typing import Any
 
+__all__ = [
+    "UsageError",
+    "MergeAssignments",
+    "MergeNames",
+    "non_negative_int",
+    "positive_int",
+    "bounded_int",
+    "SEED_MAX",
+    "add_data_options",
+    "add_fit_options",
+    "add_progress_option",
+    "add_json_option",
+    "progress_value",
+    "parse_assignments",
+    "parse_floats",
+    "parse_names",
+    "data_kwargs",
+    "fit_kwargs",
+    "run_fit",
+    "refuse_unused",
+    "flag_of",
+    "RangeSpec",
+    "parse_range",
+    "parse_values",
+    "range_values",
+    "RANGE_HELP",
+    "MAX_POINTS",
+    "data_source",
+    "STDIN",
+    "print_json",
+]
 
-def add_data_options(p: argparse.ArgumentParser) -> None:
-    """``--map``, ``--units`` and ``--area`` for reading a user's file."""
-    p.add_argument("--map", metavar="COL=NAME,...",
-                   help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV")
-    p.add_argument("--units", metavar="COL=UNIT,...",
-                   help="units of columns whose header has none, e.g. p=MPa,v=m/s")
+#: Largest seed numpy's legacy generators accept.
+SEED_MAX = 2**32 - 1
+#: Largest number of points a range may ask for (a guard against memory exhaustion).
+MAX_POINTS = 100_000
+#: The DATA argument that means standard input.
+STDIN = "-"
+#: What a range looks like, for help texts and messages.
+RANGE_HELP = ("MIN:MAX[:N]: bounds as numbers in the default unit or with their own unit "
+              "(e.g. 0.01MPa:0.5MPa:20), N points with both ends included")
+
+
+class UsageError(Exception):
+    """Bad command-line usage (a malformed, conflicting or inapplicable option)."""
+
+
+# ------------------------------------------------------------------- integer types
+
+
+def bounded_int(lo: int | None = None, hi: int | None = None) -> Callable[[str], int]:
+    """An argparse ``type=`` accepting whole numbers in ``[lo, hi]`` (either end open)."""
+    if lo is not None and hi is not None:
+        allowed = f"a whole number from {lo} to {hi}"
+    elif lo is not None:
+        allowed = f"a whole number >= {lo}"
+    elif hi is not None:
+        allowed = f"a whole number <= {hi}"
+    else:
+        allowed = "a whole number"
+
+    def convert(text: str) -> int:
+        s = str(text).strip()
+        body = s[1:] if s[:1] in "+-" else s
+        if not body.isascii() or not body.isdigit():
+            raise argparse.ArgumentTypeError(f"'{text}' is not {allowed}")
+        value = int(s)
+        if (lo is not None and value < lo) or (hi is not None and value > hi):
+            raise argparse.ArgumentTypeError(f"{value} is out of range: expected {allowed}")
+        return value
+
+    convert.__name__ = "integer"
+    return convert
+
+
+#: A whole number >= 0 (``--jobs``, ``--starts``).
+non_negative_int = bounded_int(0)
+#: A whole number >= 1 (``--max-rows``, ``--folds``).
+positive_int = bounded_int(1)
+
+
+# ------------------------------------------------------------- merged repeated options
+
+
+def _bare(exc: Exception, option: str | None) -> str:
+    """The message without the option's name in front (argparse adds it)."""
+    msg = str(exc)
+    for prefix in (f"{option}: ", f"{option} "):
+        if option and msg.startswith(prefix):
+            return msg[len(prefix):]
+    return msg
+
+
+class MergeAssignments(argparse.Action):
+    """``--map a=X --map b=Y`` -> ``"a=X,b=Y"``; a name given twice is a usage error.
+
+    The merged value stays one ``NAME=VALUE,...`` string, the form every
+    library function accepts; checking happens as the options are parsed, so
+    the message names the option.
+    """
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        previous = getattr(namespace, self.dest, None)
+        pieces = [previous] if previous else []
+        text = str(values)
+        try:
+            parse_assignments([*pieces, text], option_string or self.dest)
+        except UsageError as exc:
+            raise argparse.ArgumentError(self, _bare(exc, option_string)) from None
+        pieces.append(",".join(p for p in text.split(",") if p.strip()))
+        setattr(namespace, self.dest, ",".join(pieces))
+
+
+class MergeNames(argparse.Action):
+    """``--free A --free B`` -> ``"A,B"``; a name given twice is a usage error."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        previous = getattr(namespace, self.dest, None)
+        pieces = [previous] if previous else []
+        try:
+            parse_names([*pieces, str(values)], option_string or self.dest)
+        except UsageError as exc:
+            raise argparse.ArgumentError(self, _bare(exc, option_string)) from None
+        pieces.append(",".join(p.strip() for p in str(values).split(",") if p.strip()))
+        setattr(namespace, self.dest, ",".join(pieces))
+
+
+# ------------------------------------------------------------------- option groups
+
+
+def add_data_options(p: argparse.ArgumentParser | Any) -> None:
+    """``--map``, ``--units`` and ``--area`` for reading a user's file (repeatable maps)."""
+    p.add_argument("--map", metavar="COL=NAME,...", action=MergeAssignments,
+                   help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV "
+                        "(repeatable; a column given twice is an error)")
+    p.add_argument("--units", metavar="COL=UNIT,...", action=MergeAssignments,
+                   help="units of columns whose header has none, e.g. p=MPa,v=m/s "
+                        "(repeatable)")
     p.add_argument("--area", metavar="AREA",
                    help="nominal contact area to derive p from F_N, e.g. '314.16 mm^2'")
 
 
-def add_fit_options(p: argparse.ArgumentParser) -> None:
-    """Options that control a fit (``--fix``, ``--free``, weights, starts)."""
-    p.add_argument("--fix", metavar="NAME=VALUE,...", action="append", default=[],
-                   help="hold parameters (or settings) at values, e.g. n=0.3333")
-    p.add_argument("--free", metavar="SETTING,...", action="append", default=[],
-                   help="fit a fixed setting as a parameter, e.g. E_v")
+def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
+    """Options that control a fit (``--fix``, ``--free``, weights, starts, seed)."""
+    p.add_argument("--fix", metavar="NAME=VALUE,...", action=MergeAssignments,
+                   help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")
+    p.add_argument("--free", metavar="SETTING,...", action=MergeNames,
+                   help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")
     p.add_argument("--weights", choices=("auto", "none"), default="auto",
                    help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
     p.add_argument("--drop-invalid", action="store_true",
                    help="drop (and report) rows where the law is singular, e.g. v = 0 in a "
                         "log-velocity law, instead of stopping")
-    p.add_argument("--starts", type=int, default=None, metavar="N",
-                   help="extra random starts for non-linear laws (default 6)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the random starts")
+    p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
+                   help="extra random starts for non-linear laws, 0 to 1000 (default 6)")
+    p.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
+                   help=f"seed of the random starts, 0 to {SEED_MAX} (default 0)")
 
 
-def parse_assignments(items: list[str] | str | None, what: str) -> dict[str, str]:
-    """Parse ``a=1,b=2`` (possibly repeated) into a dict of strings."""
-    from frictionlaws.errors import InputError
+def add_progress_option(p: argparse.ArgumentParser | Any) -> None:
+    """The one progress flag: ``--progress {auto,on,off}`` (a bar on stderr)."""
+    p.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
+                   help="progress bar on stderr (auto: only when stderr is a terminal)")
 
-    if not items:
-        return {}
-    if isinstance(items, str):
-        items = [items]
+
+def add_json_option(p: argparse.ArgumentParser | Any) -> None:
+    """``--json``: print the result as one strict JSON document on stdout."""
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON document (strict: null for missing numbers)")
+
+
+def progress_value(args: argparse.Namespace) -> bool | None:
+    """``--progress`` as the library's ``progress=``: None (auto), True or False.
+
+    ``--quiet`` turns an automatic bar off.
+    """
+    value = getattr(args, "progress", "auto")
+    if value in (None, "auto"):
+        return False if getattr(args, "quiet", False) else None
+    if isinstance(value, bool):
+        return value
+    return value == "on"
+
+
+# ------------------------------------------------------------------ option parsing
+
+
+def _chunks(items: Sequence[str] | str | None) -> list[str]:
+    if items is None:
+        return []
+    return [items] if isinstance(items, str) else [str(x) for x in items]
+
+
+def parse_assignments(items: Sequence[str] | str | None, what: str) -> dict[str, str]:
+    """Merge ``a=1,b=2`` pieces (possibly repeated) into one dict of strings.
+
+    Raises
+    ------
+    UsageError
+        On a piece that is not ``NAME=VALUE`` or a name given twice.
+    """
     out: dict[str, str] = {}
-    for chunk in items:
-        for part in chunk.split(","):
-            part = part.strip()
-            if not part:
+    for chunk in _chunks(items):
+        parts = chunk.split(",")
+        if not any(part.strip() for part in parts):
+            raise UsageError(f"{what} is empty; expected NAME=VALUE,...")
+        for part in parts:
+            if not part.strip():
                 continue
-            if "=" not in part:
-                raise InputError(f"{what}: expected NAME=VALUE, got '{part}'")
-            k, v = (s.strip() for s in part.split("=", 1))
-            if not k or not v:
-                raise InputError(f"{what}: expected NAME=VALUE, got '{part}'")
+            k, sep, v = (s.strip() for s in part.partition("="))
+            if not sep or not k or not v:
+                raise UsageError(f"{what}: expected NAME=VALUE, got '{part.strip()}'")
+            if k in out:
+                raise UsageError(f"{what}: '{k}' is given twice ({k}={out[k]} and {k}={v})")
             out[k] = v
     return out
 
 
-def parse_floats(items: list[str] | None, what: str) -> dict[str, float]:
-    """Parse ``n=0.333,...`` into floats, with a clear error."""
-    from frictionlaws.errors import InputError
+def parse_floats(items: Sequence[str] | str | None, what: str) -> dict[str, float]:
+    """Merge ``n=0.333,...`` pieces into finite floats (the strict number parser)."""
+    from frictionlaws.numbers import parse_number
 
     out = {}
     for k, v in parse_assignments(items, what).items():
         try:
-            out[k] = float(v)
-        except ValueError:
-            raise InputError(f"{what}: '{k}={v}' is not a number") from None
+            out[k] = parse_number(v)
+        except ValueError as exc:
+            raise UsageError(f"{what}: '{k}={v}': {exc}") from None
+    return out
+
+
+def parse_names(items: Sequence[str] | str | None, what: str) -> list[str]:
+    """Merge ``A,B`` pieces (possibly repeated) into a list; a name given twice is an error."""
+    out: list[str] = []
+    for chunk in _chunks(items):
+        names = [s.strip() for s in chunk.split(",")]
+        if not any(names):
+            raise UsageError(f"{what} is empty; expected NAME,...")
+        for name in filter(None, names):
+            if name in out:
+                raise UsageError(f"{what}: '{name}' is given twice")
+            out.append(name)
     return out
 
 
 def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
-    """mapping/units/area keyword arguments for load_dataset and fit."""
+    """``mapping``/``units``/``area`` keyword arguments for load_dataset and fit."""
     return {
         "mapping": parse_assignments(args.map, "--map") or None,
         "units": parse_assignments(args.units, "--units") or None,
@@ -79,10 +291,9 @@ def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
 
 def fit_kwargs(args: argparse.Namespace) -> dict[str, Any]:
     """Keyword arguments for :func:`frictionlaws.fitting.fit` from the fit options."""
-    free = [s.strip() for chunk in args.free for s in chunk.split(",") if s.strip()]
     return {
         "fix": parse_floats(args.fix, "--fix"),
-        "free": free,
+        "free": parse_names(args.free, "--free"),
         "weights": "auto" if args.weights == "auto" else None,
         "on_invalid": "drop" if args.drop_invalid else "error",
         "starts": args.starts,
@@ -92,7 +303,231 @@ def fit_kwargs(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def run_fit(args: argparse.Namespace, law: str, data: str) -> Any:
-    """Fit ``law`` to ``data`` with the command's options."""
+    """Fit ``law`` to ``data`` with the command's options (``-`` reads stdin)."""
     from frictionlaws.fitting import fit
 
-    return fit(law, data, **fit_kwargs(args))
+    with data_source(data) as source:
+        return fit(law, source, **fit_kwargs(args))
+
+
+# -------------------------------------------------------------- inapplicable options
+
+
+def flag_of(args: argparse.Namespace, dest: str) -> str:
+    """The option string of ``dest`` (``range_p`` -> ``--p``), as the user typed it."""
+    parser = getattr(args, "_parser", None)
+    for action in getattr(parser, "_actions", ()):
+        if action.dest == dest and action.option_strings:
+            longs = [s for s in action.option_strings if s.startswith("--")]
+            return (longs or action.option_strings)[0]
+    return "--" + dest.replace("_", "-")
+
+
+def _is_given(args: argparse.Namespace, dest: str) -> bool:
+    value = getattr(args, dest, None)
+    parser = getattr(args, "_parser", None)
+    if parser is not None:
+        return bool(value != parser.get_default(dest))
+    return value not in (None, False, [], "", ())
+
+
+def refuse_unused(args: argparse.Namespace, names: Sequence[str], why: str) -> None:
+    """Refuse options (argparse dests) that were given but do not apply.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments; ``args._parser`` (set by :func:`frictionlaws.cli.main`)
+        gives the defaults.  Without it, None/False/empty count as not given.
+    names : sequence of str
+        Destinations to check, e.g. ``["fix", "starts"]``.
+    why : str
+        The situation, completing "... not used {why}", e.g. ``"without --fit"``.
+
+    Raises
+    ------
+    UsageError
+        Naming every inapplicable option given.
+    """
+    given = [flag_of(args, n) for n in names if _is_given(args, n)]
+    if given:
+        verb = "is" if len(given) == 1 else "are"
+        raise UsageError(f"{', '.join(given)} {verb} not used {why}; remove "
+                         f"{'it' if len(given) == 1 else 'them'}")
+
+
+# ------------------------------------------------------------------------ ranges
+
+
+_BARE_NUMBER = re.compile(r"[+-]?[0-9._]*[0-9][0-9._]*(?:[eE][+-]?[0-9]+)?")
+
+
+@dataclass(frozen=True)
+class RangeSpec:
+    """A parsed ``MIN:MAX[:N]``: bounds in SI and the number of points (None: not given)."""
+
+    lo: float
+    hi: float
+    n: int | None
+
+
+def _bound(text: str, quantity: str, option: str, whole: str,
+           unit: str | Callable[[float], float] | None) -> float:
+    from frictionlaws.errors import InputError
+    from frictionlaws.numbers import parse_number
+    from frictionlaws.units import parse_quantity, to_si
+
+    s = text.strip()
+    if not s:
+        raise UsageError(f"{option} '{whole}': empty bound; expected {RANGE_HELP}")
+    try:
+        x = parse_number(s)
+    except ValueError as exc:
+        if _BARE_NUMBER.fullmatch(s):  # a number without a unit that parse_number refuses
+            raise UsageError(f"{option} '{whole}': {exc}") from None
+        try:
+            return float(parse_quantity(s, quantity, what=option))
+        except InputError as exc:
+            raise UsageError(f"{option} '{whole}': {exc.bare_message}") from None
+    if unit is None:
+        value = x
+    elif callable(unit):
+        value = float(unit(x))
+    else:
+        value = float(to_si(x, unit, quantity, column=option))
+    if not math.isfinite(value):
+        raise UsageError(f"{option} '{whole}': bounds must be finite")
+    return value
+
+
+def parse_range(text: str, quantity: str, *, option: str,
+                unit: str | Callable[[float], float] | None = None,
+                max_points: int = MAX_POINTS, min_points: int = 2) -> RangeSpec:
+    """Parse the one range grammar ``MIN:MAX[:N]`` into SI bounds.
+
+    Parameters
+    ----------
+    text : str
+        E.g. ``"0.01:0.5:20"``, ``"0.01MPa:0.5MPa"``, ``"20degC:80degC:7"``.
+    quantity : str
+        The quantity (``"p"``, ``"v"``, ``"T"``, ``"F_N"``, ``"s"``) that fixes the
+        unit dimension.
+    option : str
+        The option's name for messages (``"--p"``).
+    unit : str or callable, optional
+        Unit of bare numbers (e.g. ``"kN"``), or a function from a bare number to
+        SI; None means bare numbers are SI.
+    max_points, min_points : int
+        Allowed range of ``N``.
+
+    Returns
+    -------
+    RangeSpec
+        ``lo <= hi`` in SI; ``n`` None when not given.
+
+    Raises
+    ------
+    UsageError
+        Naming the option, the text and what was expected.
+    """
+    parts = str(text).split(":")
+    if len(parts) not in (2, 3):
+        raise UsageError(f"{option} '{text}': expected {RANGE_HELP}")
+    lo = _bound(parts[0], quantity, option, text, unit)
+    hi = _bound(parts[1], quantity, option, text, unit)
+    if hi < lo:
+        raise UsageError(f"{option} '{text}': MIN is above MAX")
+    n = None
+    if len(parts) == 3:
+        try:
+            n = bounded_int(min_points, max_points)(parts[2])
+        except argparse.ArgumentTypeError as exc:
+            raise UsageError(f"{option} '{text}': N {exc}") from None
+        if n > 1 and hi == lo:
+            raise UsageError(f"{option} '{text}': {n} points need MIN < MAX")
+    return RangeSpec(lo, hi, n)
+
+
+def parse_values(text: str, quantity: str, *, option: str,
+                 unit: str | Callable[[float], float] | None = None,
+                 max_points: int = MAX_POINTS) -> list[float]:
+    """Values in SI from a range ``MIN:MAX:N`` (evenly spaced) or a list ``A,B,C``."""
+    s = str(text).strip()
+    if not s:
+        raise UsageError(f"{option} is empty; expected A,B,C or {RANGE_HELP}")
+    if ":" in s:
+        spec = parse_range(s, quantity, option=option, unit=unit, max_points=max_points,
+                           min_points=1)
+        if spec.n is None:
+            raise UsageError(f"{option} '{text}': give the number of points, MIN:MAX:N")
+        return range_values(spec)
+    items = [x for x in s.split(",")]
+    if len(items) > max_points:
+        raise UsageError(f"{option}: {len(items)} values (at most {max_points})")
+    return [_bound(x, quantity, option, s, unit) for x in items]
+
+
+def range_values(spec: RangeSpec, spacing: str = "lin") -> list[float]:
+    """The ``spec.n`` points of a range, both ends included (``lin`` or ``log`` spacing)."""
+    n = spec.n or 2
+    if n == 1:
+        return [spec.lo]
+    if spacing == "log":
+        if spec.lo <= 0:
+            raise UsageError("log spacing needs MIN > 0")
+        ratio = spec.hi / spec.lo
+        return [spec.lo * ratio ** (i / (n - 1)) for i in range(n)]
+    step = (spec.hi - spec.lo) / (n - 1)
+    return [spec.hi if i == n - 1 else spec.lo + i * step for i in range(n)]
+
+
+# ------------------------------------------------------------------------- stdin
+
+
+@contextlib.contextmanager
+def data_source(data: str) -> Iterator[str]:
+    """Yield a path for the DATA argument; ``-`` spools standard input to a private file.
+
+    A DATA that names an existing path must be a regular, readable file (a FIFO
+    would block forever, a directory is a mistake).
+
+    The library reads files by path (it needs the bytes twice: encoding and
+    delimiter detection, then parsing), so standard input is copied to a file
+    named ``stdin.csv`` in a private temporary directory, removed afterwards.
+    """
+    if data != STDIN:
+        if os.path.lexists(data):  # a path, not a packaged name: refuse FIFOs, directories
+            from frictionlaws.outputs import check_input_file
+
+            check_input_file(data, "data file")
+        yield data
+        return
+    if sys.stdin is None or sys.stdin.isatty():
+        raise UsageError("DATA '-' reads standard input, which is a terminal here; pipe a "
+                         "table in (e.g. 'cat runs.csv | frictionlaws fit - ...') or give "
+                         "a file name")
+    stream = getattr(sys.stdin, "buffer", sys.stdin)
+    raw = stream.read()
+    if isinstance(raw, str):
+        raw = raw.encode("utf-8")
+    from frictionlaws.errors import InputError
+
+    with tempfile.TemporaryDirectory(prefix="frictionlaws-stdin-") as tmp:
+        path = os.path.join(tmp, "stdin.csv")
+        with open(path, "wb") as fh:
+            fh.write(raw)
+        try:
+            yield path
+        except InputError as exc:  # name standard input, not the private copy
+            if exc.file == path:
+                exc.file = "<stdin>"
+            exc.bare_message = exc.bare_message.replace(path, "<stdin>")
+            exc.args = (exc.compose(),)
+            raise
+
+
+def print_json(obj: Any) -> None:
+    """Print ``obj`` as strict JSON on stdout (null for non-finite numbers)."""
+    from frictionlaws.jsonio import dumps
+
+    print(dumps(obj))

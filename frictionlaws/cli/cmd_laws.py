@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import argparse
-import json
+
+from ._common import add_json_option, print_json
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser("laws", help="list the registered friction laws",
                        description="List the registered friction laws.")
     p.add_argument("--family", choices=("sliding", "slip"), help="only this family")
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_json_option(p)
     return p
 
 
@@ -19,10 +20,10 @@ def run(args: argparse.Namespace) -> int:
 
     laws = list_laws(args.family)
     if args.json:
-        print(json.dumps([{"id": law.id, "title": law.title, "family": law.family,
-                           "aliases": list(law.aliases), "variables": list(law.variables),
-                           "params": list(law.param_names), "evidence": law.evidence}
-                          for law in laws], indent=2))
+        print_json([{"id": law.id, "title": law.title, "family": law.family,
+                     "aliases": list(law.aliases), "variables": list(law.variables),
+                     "params": list(law.param_names), "evidence": law.evidence}
+                    for law in laws])
         return 0
     width = max(len(law.id) for law in laws)
     print(f"{'id':<{width}}  {'family':<7}  {'variables':<9}  {'k':>2}  title")

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import json
 import re
+
+from ._common import add_json_option, print_json
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -13,7 +14,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                        "settings, presets, domain, derived quantities, references and "
                        "evidence tag.")
     p.add_argument("law", metavar="LAW", help="law id or alias")
-    p.add_argument("--json", action="store_true", help="print JSON")
+    add_json_option(p)
     return p
 
 
@@ -23,7 +24,6 @@ def describe(law_name: str) -> str:
     from frictionlaws.registry import get_law
 
     law = get_law(law_name)
-    s = law.summary()
     out = [f"{law.id}: {law.title}"]
     if law.aliases:
         out.append(f"aliases: {', '.join(law.aliases)}")
@@ -74,7 +74,6 @@ def describe(law_name: str) -> str:
     meaning = "; ".join(f"{t} = {EVIDENCE_TAGS[t]}" for t in dict.fromkeys(tags)
                         if t in EVIDENCE_TAGS)
     out.append(f"evidence: {law.evidence}" + (f" ({meaning})" if meaning else ""))
-    del s
     return "\n".join(out)
 
 
@@ -86,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
         doc = law.summary()
         doc["formula"] = law.pretty()
         doc["latex"] = law.latex()
-        print(json.dumps(doc, indent=2, default=str))
+        print_json(doc)
     else:
         print(describe(args.law))
     return 0

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ._common import add_json_option, parse_names, print_json
+
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
@@ -19,7 +21,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="run only this case (id or shell pattern such as 'thesis-*'; "
                         "repeatable)")
     p.add_argument("--list", action="store_true", help="list the cases and their sources")
-    p.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_json_option(p)
     return p
 
 
@@ -27,12 +29,15 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.validation import list_cases, run_validation
     from frictionlaws.validation.core import select_cases
 
-    names = [n for chunk in args.case for n in chunk.split(",") if n.strip()]
+    names = parse_names(args.case, "--case")  # '' or a repeated name: exit 2
+    cases = select_cases(list_cases(), names or None)  # unknown names: exit 2
     if args.list:
-        for case in select_cases(list_cases(), names or None):
+        if args.json:
+            print_json([{"id": c.id, "title": c.title, "source": c.source} for c in cases])
+            return 0
+        for case in cases:
             print(f"{case.id}: {case.title}\n    source: {case.source}")
         return 0
-    select_cases(list_cases(), names or None)  # unknown names: InputError -> exit 2
 
     def progress(res) -> None:
         if not args.json:
@@ -40,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
 
     report = run_validation(names or None, progress=progress)
     if args.json:
-        print(report.to_json())
+        print_json(report.to_dict())
     else:
         for w in report.warnings:
             print(f"warning: {w}")
