@@ -1,6 +1,6 @@
 r"""
-A campaign at five temperatures: separate fits, a shared parameter, and the test between them
-===========================================================================================
+A campaign at five temperatures: separate fits or a shared parameter
+====================================================================
 
 A compound is measured on the same counter-surface at five temperatures. Thirion's law,
 :math:`1/\mu = a + b\,p`, has a level :math:`1/a` (the friction coefficient at low
