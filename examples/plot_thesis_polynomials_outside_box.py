@@ -15,7 +15,9 @@ rubber ever had. This example shows where.
 # ---------------------------------------
 # ``thesis-poly2`` and ``thesis-poly3`` take the library's SI pressure and convert it to MPa
 # inside the formula, so the presets are the published numbers. Their declared domain is
-# the measured box.
+# the measured box, and it is strict: ``law(...)`` refuses a point outside it (and any
+# negative mu). To look at what the polynomials do outside, ``law.evaluate`` gives the
+# formula's bare numbers.
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -24,10 +26,21 @@ import frictionlaws as fl
 poly2 = fl.get_law("thesis-poly2")
 poly3 = fl.get_law("thesis-poly3")
 print("domain:", {k: v for k, v in poly2.domain.items()})
+try:
+    poly2(p=0.5e6, v=1.38, preset="steel")
+except fl.InputError as exc:
+    print("refused:", exc)
+
+
+def bare(law, preset, **variables):
+    """The formula's numbers, without the domain checks of law(...)."""
+    return law.evaluate(variables, law.resolve(preset=preset))
+
+
 for law in (poly2, poly3):
     for preset in law.presets:
         inside = law(p=0.1e6, v=1.38, preset=preset)
-        outside = law(p=0.5e6, v=1.38, preset=preset)
+        outside = bare(law, preset, p=0.5e6, v=1.38)
         print(f"{law.id:<13} {preset:<10} mu(0.1 MPa) = {inside:6.2f}   "
               f"mu(0.5 MPa) = {outside:8.2f}")
 
@@ -46,9 +59,9 @@ lo_v, hi_v = poly2.domain["v"]
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 5.2), layout="constrained")
 for law, color in ((poly2, "C0"), (poly3, "C1")):
-    ax1.plot(p / 1e6, law(p=p, v=np.full_like(p, 1.38), preset="steel"), color=color,
+    ax1.plot(p / 1e6, bare(law, "steel", p=p, v=np.full_like(p, 1.38)), color=color,
              lw=2, label=f"{law.id} (steel), v = 1.38 m/s")
-    ax2.plot(v, law(p=np.full_like(v, 0.1e6), v=v, preset="steel"), color=color, lw=2,
+    ax2.plot(v, bare(law, "steel", p=np.full_like(v, 0.1e6), v=v), color=color, lw=2,
              label=f"{law.id} (steel), p = 0.1 MPa")
 ax1.plot(p / 1e6, thirion.predict(p=np.maximum(p, 1.0), warn=False), color="k", lw=1.5,
          ls="--", label="thirion fitted to the points")
@@ -72,7 +85,7 @@ plt.show()
 # direction. Contours at μ = 0 and μ = 5 mark where it stops being a friction coefficient;
 # the rectangle is the measured box.
 P, V = np.meshgrid(np.linspace(0.0, 1.0e6, 200), np.linspace(0.0, 11.0, 200))
-MU = poly2(p=P, v=V, preset="steel")
+MU = bare(poly2, "steel", p=P, v=V)
 fig, ax = plt.subplots(figsize=(7, 4.8), layout="constrained")
 mesh = ax.pcolormesh(P / 1e6, V, np.clip(MU, -5, 40), cmap="magma", shading="auto")
 fig.colorbar(mesh, ax=ax, label="μ (clipped to -5..40)")

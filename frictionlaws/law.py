@@ -236,6 +236,10 @@ class Law:
         True when the law is linear in its parameters (closed-form fit).
     aliases : tuple of str
         Other names the registry accepts.
+    strict_domain : bool
+        The law means nothing outside :attr:`domain` (a polynomial valid only over
+        its measured box, a pre-peak slip law): ``law(...)`` refuses variables outside
+        it, fits and exports say so.  Otherwise the domain only marks extrapolation.
     description : str
         A paragraph shown by ``show`` and the docs.
     notes : str
@@ -260,6 +264,7 @@ class Law:
     admissible: Callable[[Mapping[str, float]], str | None] | None = None
     linear: bool = False
     aliases: tuple[str, ...] = ()
+    strict_domain: bool = False
     description: str = ""
     notes: str = ""
 
@@ -378,13 +383,21 @@ class Law:
                 return p.bounds
         return self.setting(name).bounds
 
-    def check_values(self, values: Mapping[str, float]) -> None:
+    def check_values(self, values: Mapping[str, float], *, admissible: bool = True) -> None:
         """Refuse parameter or setting values that are non-finite or outside their bounds.
 
         This is the one validation of parameter values: every entry point
         (evaluation, fixed values of a fit, saved results, presets, export, tyre
         models) goes through :meth:`resolve`, which calls it.  Admissibility
         (e.g. a denominator that can vanish) is checked too.
+
+        Parameters
+        ----------
+        values : mapping
+            Parameter and setting values by name (a complete set when
+            ``admissible`` is True).
+        admissible : bool
+            Also check the law's admissibility rule on the complete set.
 
         Raises
         ------
@@ -401,16 +414,28 @@ class Law:
                     f"law '{self.id}': {name} = {value:.6g}{unit} is outside its bounds "
                     f"[{lo:.6g}, {hi:.6g}]{unit} ({self._meaning_of(name)})"
                 )
+        if not admissible:
+            return
         message = self.check_admissible(values)
         if message:
             raise InputError(f"law '{self.id}': parameters not admissible: {message}")
 
+    def _declared(self, name: str) -> Param | Setting | None:
+        for p in self.params:
+            if p.name == name:
+                return p
+        for s in self.settings:
+            if s.name == name:
+                return s
+        return None
+
     def _unit_of(self, name: str) -> str:
-        unit = next((p.unit for p in (*self.params, *self.settings) if p.name == name), "")
-        return f" {unit}" if unit else ""
+        decl = self._declared(name)
+        return f" {decl.unit}" if decl is not None and decl.unit else ""
 
     def _meaning_of(self, name: str) -> str:
-        return next((p.meaning for p in (*self.params, *self.settings) if p.name == name), "")
+        decl = self._declared(name)
+        return decl.meaning if decl is not None else ""
 
     def _prepare(self, name: str, x: Any) -> Any:
         x = np.asarray(x, dtype=float)
@@ -461,20 +486,29 @@ class Law:
                 return type(x)(out, index=x.index, name="mu")
         return out
 
-    def __call__(self, *, preset: str | None = None, **kwargs: Any) -> Any:
+    def __call__(self, **kwargs: Any) -> Any:
         """Evaluate the law: ``law(p=p, v=v, a=1.0, b=2e-6)``.
 
         Variables and parameters are given by keyword; settings may be
         overridden by keyword too; ``preset=`` takes a named preset.
         """
+        preset = kwargs.pop("preset", None)
+        if preset is not None and not isinstance(preset, str):
+            raise InputError(f"law '{self.id}': preset must be a name, got {preset!r}")
         variables = {k: v for k, v in kwargs.items() if k in VARIABLES}
         values = {k: v for k, v in kwargs.items() if k not in VARIABLES}
         params = self.resolve(values, preset)
         self.check_variables(variables)
         out = self.evaluate(variables, params)
-        if not np.all(np.isfinite(np.asarray(out, dtype=float))):
+        mu = np.asarray(out, dtype=float)
+        if not np.all(np.isfinite(mu)):
             raise DomainError(f"law '{self.id}' gives a non-finite mu for these inputs "
                               f"and parameters {params}")
+        if self.family == "sliding" and np.any(mu < 0):
+            bad = mu < 0
+            raise DomainError(f"law '{self.id}' gives a negative mu ({mu[bad].flat[0]:.4g}) "
+                              f"at index {_first(np.atleast_1d(bad))}: outside the range where "
+                              "the law means anything (a sliding friction coefficient is >= 0)")
         return out
 
     def check_variables(self, variables: Mapping[str, Any]) -> None:
@@ -503,6 +537,7 @@ class Law:
                         f"law '{self.id}': {name} = {x[below].flat[0]:g} at index "
                         f"{_first(below)} is not allowed ({VARIABLES[name].meaning} must be "
                         f"{'>=' if low[1] else '>'} {low[0]:g} {VARIABLES[name].unit})")
+            self._check_strict_domain(name, x)
             if name == "s":
                 lo, hi = self.domain.get("s", (0.0, 1.0))
                 out = (x < lo - 1e-12) | (x > hi + 1e-12)
@@ -537,6 +572,19 @@ class Law:
         bound.__name__ = f"{self.id.replace('-', '_')}_bound"
         bound.__doc__ = f"{self.title} with fixed parameters {params}; arguments {names} (SI)."
         return bound
+
+    def _check_strict_domain(self, name: str, x: np.ndarray) -> None:
+        if not self.strict_domain or name not in self.domain or name == "s":
+            return
+        lo, hi = self.domain[name]
+        xv = np.abs(x) if name == "v" else x
+        out = (xv < lo * (1 - 1e-9) - 1e-300) | (xv > hi * (1 + 1e-9))
+        if out.any():
+            unit = VARIABLES[name].unit
+            raise DomainError(
+                f"law '{self.id}': {name} = {x[out].flat[0]:g} {unit} at index {_first(out)} "
+                f"is outside the range the law is valid for, {lo:g}..{hi:g} {unit} "
+                "(it must not be extrapolated)")
 
     # -------------------------------------------------------------- symbolic
     def symbols(self) -> dict[str, Any]:

@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from law_cases import CASES
 
 from frictionlaws import fit, get_law, list_laws
+from frictionlaws.errors import DomainError
 from frictionlaws.law import EVIDENCE_TAGS, VARIABLES
 
 LAW_IDS = [law.id for law in list_laws()]
@@ -38,6 +39,24 @@ def case_for(law):
     missing = [v for v in law.variables if v not in case.ranges]
     assert not missing, f"test case of {law.id} lacks ranges for {missing}"
     return case
+
+
+def raw(law, preset=None, **kw):
+    """The formula's numbers without the checks of ``law(...)`` (the battery tests the
+    formula itself; the checks are tested in ``test_law_call_refuses_*``)."""
+    variables = {k: v for k, v in kw.items() if k in VARIABLES}
+    return law.evaluate(variables, law.resolve({k: v for k, v in kw.items()
+                                                if k not in VARIABLES}, preset))
+
+
+def test_law_call_refuses_negative_mu_and_a_strict_domain():
+    poly3 = get_law("thesis-poly3")
+    assert raw(poly3, p=0.25e6, v=2.77, preset="steel") < 0  # the published polynomial
+    with pytest.raises(DomainError, match="negative mu"):
+        poly3(p=0.25e6, v=2.77, preset="steel")
+    with pytest.raises(DomainError, match="must not be extrapolated"):
+        get_law("thesis-poly2")(p=0.0, v=7.0, preset="steel")
+    assert get_law("thesis-poly2")(p=0.1e6, v=1.0, preset="steel") > 0
 
 
 def test_completeness_guard():
@@ -79,7 +98,7 @@ def test_finite_over_ranges_and_presets(law_id):
     x = sample(case, rng, 500)
     sets = [case.params] + [dict(p) for p in law.presets.values()]
     for params in sets:
-        mu = law(**x, **params)
+        mu = raw(law, **x, **params)
         assert np.all(np.isfinite(mu)), f"{law_id} not finite with {params}"
         derived = law.derived_values(law.resolve(params))
         assert all(np.isfinite(v) or np.isinf(v) for v in derived.values())
@@ -90,7 +109,7 @@ def test_scalar_in_scalar_out_and_broadcasting(law_id):
     law = get_law(law_id)
     case = case_for(law)
     mids = {v: float(np.mean(case.ranges[v])) for v in law.variables}
-    out = law(**mids, **case.params)
+    out = raw(law, **mids, **case.params)
     assert isinstance(out, float)
     # broadcasting: first variable as a column, the others as rows
     rng = np.random.default_rng(2)
@@ -100,13 +119,13 @@ def test_scalar_in_scalar_out_and_broadcasting(law_id):
         shaped[v] = x[v].reshape((5, 1) if i == 0 else (1, 5))
     if not law.variables:
         shaped = {"p": np.ones((5, 1))}
-    grid = law(**shaped, **case.params)
+    grid = raw(law, **shaped, **case.params)
     expect_shape = np.broadcast_shapes(*(np.shape(a) for a in shaped.values()))
     assert np.shape(grid) == expect_shape
     # element-wise agreement with scalar calls
     idx = (3, 1) if len(expect_shape) == 2 and expect_shape[1] > 1 else (3, 0)
     one = {v: float(np.broadcast_to(a, expect_shape)[idx]) for v, a in shaped.items()}
-    assert np.asarray(grid)[idx] == pytest.approx(law(**one, **case.params), rel=1e-12)
+    assert np.asarray(grid)[idx] == pytest.approx(raw(law, **one, **case.params), rel=1e-12)
 
 
 @pytest.mark.parametrize("law_id", LAW_IDS)
@@ -117,7 +136,7 @@ def test_series_in_series_out(law_id):
     series = {v: pd.Series(x[v], index=range(10, 17)) for v in (law.variables or ["p"])}
     if not law.variables:
         series = {"p": pd.Series(np.ones(7), index=range(10, 17))}
-    out = law(**series, **case.params)
+    out = raw(law, **series, **case.params)
     assert isinstance(out, pd.Series)
     assert list(out.index) == list(range(10, 17))
 
@@ -128,7 +147,7 @@ def test_bind_matches_call(law_id):
     case = case_for(law)
     x = sample(case, np.random.default_rng(4), 50)
     f = law.bind(case.params)
-    direct = law(**x, **case.params)
+    direct = raw(law, **x, **case.params)
     bound = f(*(x[v] for v in law.variables))
     np.testing.assert_allclose(np.broadcast_to(bound, np.shape(direct)), direct, rtol=1e-14)
 
@@ -147,7 +166,7 @@ def test_symbolic_equals_numeric(law_id):
     rng = np.random.default_rng(5)
     x = sample(case, rng, 25)
     values = law.resolve(case.params)
-    numeric = law(**x, **case.params)
+    numeric = raw(law, **x, **case.params)
     numeric = np.broadcast_to(numeric, (25,))
     for i in range(25):
         point = {}
@@ -164,7 +183,7 @@ def test_initial_guess_is_finite_and_within_bounds(law_id):
     law = get_law(law_id)
     case = case_for(law)
     x = sample(case, np.random.default_rng(6))
-    mu = law(**x, **case.params)
+    mu = raw(law, **x, **case.params)
     guess = law.initial_guess({**x, "mu": np.broadcast_to(mu, (case.n,))})
     for p in law.params:
         lo, hi = p.bounds
@@ -177,7 +196,7 @@ def test_parameter_recovery_with_2_percent_noise(law_id):
     case = case_for(law)
     rng = np.random.default_rng(case.seed)
     x = sample(case, rng)
-    mu_true = np.broadcast_to(law(**x, **case.params), (case.n,))
+    mu_true = np.broadcast_to(raw(law, **x, **case.params), (case.n,))
     # 2 % noise: Gaussian with a standard deviation of 2 % of the mean friction level
     mu = mu_true + 0.02 * np.mean(np.abs(mu_true)) * rng.standard_normal(case.n)
     data = {**x, "mu": mu}
@@ -217,7 +236,8 @@ def test_broadcast_shapes_property(n, m):
         shaped = {}
         for i, v in enumerate(law.variables):
             shaped[v] = x[v][:n].reshape(n, 1) if i == 0 else x[v][:m].reshape(1, m)
-        out = law(**shaped, **case.params) if shaped else law(p=np.ones((n, m)), **case.params)
+        out = (raw(law, **shaped, **case.params) if shaped
+               else raw(law, p=np.ones((n, m)), **case.params))
         assert np.shape(out) == ((n, m) if len(law.variables) > 1 else (
             (n, 1) if law.variables else (n, m)))
 

@@ -421,6 +421,7 @@ register(Law(
                                                       d["s"] ** 2]),
     linear=True,
     domain={"s": (0.0, 0.3)},
+    strict_domain=True,
     typical={"s": (0.0, 0.3)},
     derived=(
         Derived("slope_0", "", "initial slope d mu/ds at s = 0 (a1)", lambda m, a1, **_: a1),

@@ -71,6 +71,7 @@ register(Law(
         "all": {"a0": 4.54, "a1": -38.4, "a2": 99.1, "a3": 0.827, "a4": -0.244},
     },
     domain=THESIS_BOX,
+    strict_domain=True,
     references=_REF,
     evidence="C (thesis Table 5-1)",
     description="mu = a0 + a1 P + a2 P^2 + a3 V + a4 V^2 with P in MPa and V in m/s as "
@@ -96,6 +97,7 @@ register(Law(
                 "a4": 1.74, "a5": -1.22, "a6": 0.233},
     },
     domain=THESIS_BOX,
+    strict_domain=True,
     references=_REF,
     evidence="C (thesis Table 5-2)",
     description="mu = a0 + a1 P + a2 P^2 + a3 P^3 + a4 V + a5 V^2 + a6 V^3 with P in MPa "
