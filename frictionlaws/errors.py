@@ -7,6 +7,9 @@ a law name, a parameter) derives from :class:`InputError`.  The CLI turns any
 
 from __future__ import annotations
 
+__all__ = ["FrictionLawsError", "InputError", "UnknownLawError", "GroupingError",
+           "DomainError", "FitError", "ExtrapolationWarning"]
+
 
 class FrictionLawsError(Exception):
     """Base class of all frictionlaws errors."""
@@ -77,6 +80,26 @@ class UnknownLawError(InputError, KeyError):
         return self._compose()
 
 
+class GroupingError(InputError):
+    """Rows from several groups (counter-surfaces, compounds, rigs...) given to one pooled fit.
+
+    ``column`` names the grouping column; the message ends with how to fit each group,
+    in the words of the front end (``by='surface'`` in the API, ``--by surface`` on the
+    command line).
+    """
+
+    def __init__(self, message: str, *, column: str, file: str | None = None) -> None:
+        self.group_column = column
+        super().__init__(message, file=file, column=column, option="by")
+
+    def compose(self, option_label: str | None = None) -> str:
+        where = ", ".join(x for x in (f"file '{self.file}'" if self.file else "",
+                                      f"column '{self.column}'") if x)
+        how = (f"{option_label} {self.group_column}" if option_label
+               else f"by={self.group_column!r}")
+        return f"{where}: {self.bare_message}; fit each group on its own ({how})"
+
+
 class DomainError(InputError):
     """A law was asked to do something outside what it is defined for."""
 
@@ -87,7 +110,3 @@ class FitError(FrictionLawsError):
 
 class ExtrapolationWarning(UserWarning):
     """A law is used outside the range its parameters were fitted on or valid for."""
-
-
-class IdentifiabilityWarning(UserWarning):
-    """The data cannot determine one or more parameters of a law."""

@@ -115,28 +115,12 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
     if isinstance(data, FitData):
         fd = data
     elif isinstance(data, Mapping) and "mu" in data:
-        arrays = {}
-        for k, v in data.items():
-            if k == "mu" or k in VARIABLES:
-                arrays[k] = np.atleast_1d(np.asarray(v, dtype=float))
-        n = arrays["mu"].size
-        for k, v in arrays.items():
-            if v.size == 1 and n > 1:
-                arrays[k] = np.full(n, float(v[0]))
-            elif v.size != n:
-                raise InputError(f"array '{k}' has {v.size} values but 'mu' has {n}")
-        for k, v in arrays.items():
-            if not np.all(np.isfinite(v)):
-                bad = np.flatnonzero(~np.isfinite(v))
-                raise InputError(f"array '{k}' has non-finite values at indices "
-                                 f"{bad[:5].tolist()}")
-        w = data.get("weights")
-        fd = FitData(arrays, "arrays", "in-memory arrays",
-                     None if w is None else np.asarray(w, float))
+        fd = _arrays_fit_data(data)
     else:
         from .io import load_dataset
 
         ds = load_dataset(data, mapping=mapping, units=units, area=area)
+        refuse_pooled_groups(ds)
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
         labels = getattr(ds, "row_labels", None)
         fd.row_labels = np.asarray(labels) if labels is not None else None
@@ -151,6 +135,122 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
             raise InputError("weights must be finite, non-negative and one per row")
         fd.weights = w
     return fd
+
+
+#: Columns that name a group of rows (counter-surface, compound...); a pooled fit over
+#: several of their values is refused.
+GROUP_COLUMNS = ("surface", "compound", "rig", "condition", "material", "counter_surface")
+
+#: Lower limits of the arrays given to a fit: (limit, inclusive).
+_ARRAY_LIMITS = {"mu": (0.0, True), "p": (0.0, True), "F_N": (0.0, True), "T": (0.0, False)}
+
+
+def refuse_pooled_groups(dataset: Any) -> None:
+    """Raise :class:`~frictionlaws.errors.GroupingError` when a grouping column varies."""
+    from .errors import GroupingError
+
+    frame = getattr(dataset, "frame", None)
+    if frame is None:
+        return
+    for col in GROUP_COLUMNS:
+        if col in frame.columns:
+            values = sorted({str(v) for v in frame[col] if str(v).strip()})
+            if len(values) > 1:
+                shown = ", ".join(values[:6]) + (" ..." if len(values) > 6 else "")
+                raise GroupingError(
+                    f"the rows come from {len(values)} values of '{col}' ({shown}); one law "
+                    "fitted to all of them would describe none", column=col,
+                    file=str(getattr(dataset, "source", "")) or None)
+
+
+def _arrays_fit_data(data: Mapping[str, Any]) -> FitData:
+    """Arrays given through the API, with the checks the CSV loader makes."""
+    unknown = [k for k in data if k not in ("mu", "weights", *VARIABLES)]
+    if unknown:
+        raise InputError(f"unknown array(s) {', '.join(map(str, unknown))}; expected 'mu', "
+                         f"'weights' and variables {', '.join(VARIABLES)}")
+    arrays = {}
+    for k, v in data.items():
+        if k == "mu" or k in VARIABLES:
+            arrays[k] = _float_array(k, v)
+    n = arrays["mu"].size
+    if n == 0:
+        raise InputError("array 'mu' is empty")
+    for k, v in arrays.items():
+        if np.ndim(data[k]) == 0 and n > 1:
+            arrays[k] = np.full(n, float(v[0]))
+        elif v.size != n:
+            raise InputError(f"array '{k}' has {v.size} values but 'mu' has {n}")
+    for k, v in arrays.items():
+        if not (k == "mu" and "s" in arrays):  # slip data: mu is signed (driving, shifts)
+            _check_array(k, v)
+        elif not np.all(np.isfinite(v)):
+            _check_array(k, v)
+    w = data.get("weights")
+    return FitData(arrays, "arrays", "in-memory arrays",
+                   None if w is None else np.asarray(w, float))
+
+
+def _float_array(name: str, value: Any) -> np.ndarray:
+    if isinstance(value, (str, bytes)):
+        raise InputError(f"array '{name}' must hold numbers, got text")
+    try:
+        return np.atleast_1d(np.asarray(value, dtype=float)).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"array '{name}' must hold numbers") from None
+
+
+def _check_array(name: str, v: np.ndarray) -> None:
+    if not np.all(np.isfinite(v)):
+        bad = np.flatnonzero(~np.isfinite(v))
+        raise InputError(f"array '{name}' has non-finite values at indices {bad[:5].tolist()}")
+    limit = _ARRAY_LIMITS.get(name)
+    if limit is not None:
+        bad = np.flatnonzero(v < limit[0] if limit[1] else v <= limit[0])
+        if bad.size:
+            op = ">=" if limit[1] else ">"
+            raise InputError(f"array '{name}' must be {op} {limit[0]:g} (SI); "
+                             f"{v[bad[0]]:g} at index {int(bad[0])}"
+                             f"{f' and {bad.size - 1} more' if bad.size > 1 else ''}")
+
+
+def _check_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> None:
+    """Refuse nonsense values of fit's keyword arguments with a clear InputError."""
+    if method not in _METHODS:
+        raise InputError(f"method must be one of {', '.join(_METHODS)}, not {method!r}",
+                         option="method")
+    if starts is not None and (isinstance(starts, bool) or not isinstance(starts, (int, np.integer))
+                               or not 0 <= starts <= 1000):
+        raise InputError(f"starts must be a whole number 0..1000, not {starts!r}",
+                         option="starts")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not (
+            0 <= seed < 2**32):
+        raise InputError(f"seed must be a whole number 0..{2**32 - 1}, not {seed!r}",
+                         option="seed")
+    if on_invalid not in ("error", "drop"):
+        raise InputError(f"on_invalid must be 'error' or 'drop', not {on_invalid!r}")
+
+
+#: lmfit methods a fit may use (bounded, deterministic).
+_METHODS = ("least_squares", "leastsq", "nelder", "lbfgsb", "powell", "trust-constr")
+
+
+def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> dict[str, float]:
+    """Fixed values as floats, each a known name within its declared bounds."""
+    out = {}
+    for k, v in fix.items():
+        if k not in law.param_names and k not in setting_names:
+            raise InputError(f"cannot fix '{k}': law '{law.id}' has parameters "
+                             f"{', '.join(law.param_names)} and settings "
+                             f"{', '.join(setting_names) or 'none'}", option="fix")
+        if isinstance(v, (bool, str)) or v is None:
+            raise InputError(f"cannot fix '{k}' to {v!r}: a number is needed", option="fix")
+        out[k] = float(v)
+    try:
+        law.check_values(out, admissible=False)
+    except InputError as exc:
+        raise InputError(exc.bare_message, option="fix") from None
+    return out
 
 
 def _row_names(fd: FitData, idx: np.ndarray) -> str:
@@ -289,15 +389,19 @@ class FitResult:
             "provenance": self.provenance,
         }
 
-    def to_json(self, **kw: Any) -> str:
-        """JSON text of :meth:`to_dict`."""
-        return json.dumps(_clean_json(self.to_dict()), indent=kw.pop("indent", 2), **kw)
+    def to_json(self, *, indent: int | None = 2) -> str:
+        """Strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers)."""
+        from .jsonio import dumps
+
+        return dumps(self.to_dict(), indent=indent)
 
     def save(self, path: str | Path) -> Path:
-        """Write the versioned JSON to ``path``."""
-        path = Path(path)
-        path.write_text(self.to_json() + "\n", encoding="utf-8")
-        return path
+        """Write the versioned JSON to ``path`` atomically (never over the fitted data)."""
+        from .outputs import check_outputs, write_text_atomic
+
+        source = self.data.get("source") if isinstance(self.data, Mapping) else None
+        check_outputs([path], inputs=[source] if source else [])
+        return write_text_atomic(path, self.to_json() + "\n")
 
     def report(self) -> str:
         """A plain-text report with units."""
@@ -363,21 +467,6 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
         return f"{k} {lo - 273.15:.4g}..{hi - 273.15:.4g} degC"
     unit = var.display_unit or "-"
     return f"{k} {lo * scale:.4g}..{hi * scale:.4g} {unit}"
-
-
-def _clean_json(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {str(k): _clean_json(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean_json(v) for v in obj]
-    if isinstance(obj, (np.floating, float)):
-        x = float(obj)
-        return x if math.isfinite(x) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
 
 
 # --------------------------------------------------------------------- fitting
@@ -547,9 +636,8 @@ def fit(
     from scipy import stats
 
     law = get_law(law)
+    _check_options(method, starts, seed, on_invalid)
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
-    if on_invalid not in ("error", "drop"):
-        raise InputError("on_invalid must be 'error' or 'drop'")
     fd, notes = _check_data_for_law(law, fd, on_invalid)
     notes = list(fd.notes) + notes
     fix = dict(fix or {})
@@ -561,13 +649,7 @@ def fit(
                 continue
             raise InputError(f"law '{law.id}' has no setting '{k}' to free "
                              f"(settings: {', '.join(setting_names) or 'none'})")
-    for k in fix:
-        if k not in law.param_names and k not in setting_names:
-            raise InputError(f"cannot fix '{k}': law '{law.id}' has parameters "
-                             f"{', '.join(law.param_names)} and settings "
-                             f"{', '.join(setting_names) or 'none'}")
-        if not math.isfinite(float(fix[k])):
-            raise InputError(f"cannot fix '{k}' to a non-finite value")
+    fix = _check_fix(law, fix, setting_names)
     freed = tuple(k for k in free if k in setting_names)
     settings = {k: float(fix.get(k, v)) for k, v in law.setting_values.items() if k not in freed}
 
@@ -713,7 +795,8 @@ def fit(
                        " (the covariance matrix could not be estimated)")
                 warn_msgs.append(f"no standard error for {name}{why}")
         lo, hi = bounds[name]
-        scale = max(abs(values[name]), 1e-12)
+        typical = law.param(name).default if name in law.param_names else law.setting(name).value
+        scale = max(abs(values[name]), abs(typical), 1e-300)
         if (math.isfinite(lo) and abs(values[name] - lo) <= 1e-6 * max(scale, abs(lo))) or (
                 math.isfinite(hi) and abs(values[name] - hi) <= 1e-6 * max(scale, abs(hi))):
             warn_msgs.append(f"{name} = {values[name]:.6g} is at its bound "
@@ -733,7 +816,10 @@ def fit(
     resid = y - fitted
     ss_res = float(np.sum(resid**2))
     ss_tot = float(np.sum((y - y.mean()) ** 2))
-    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else (1.0 if ss_res == 0 else 0.0)
+    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else math.nan
+    if ss_tot <= 0:
+        warn_msgs.append("mu takes one value in these data: R^2 is undefined (there is "
+                         "no variation to explain); judge the fit by its RMSE")
     adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
     aic = float(best.aic)
     aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else float("inf")
@@ -745,8 +831,14 @@ def fit(
         "weighted": w is not None,
     }
 
-    if not best.success:
+    success, message = bool(best.success), str(best.message)
+    if not success:
         warn_msgs.append(f"the optimiser did not report convergence: {best.message}")
+    elif r2 < 0:
+        success = False
+        message = (f"the fit is worse than the mean of mu (R^2 = {r2:.4g}): the law does not "
+                   "describe these data")
+        warn_msgs.append(message)
     adm = law.check_admissible(full_values)
     if adm:
         warn_msgs.append(f"fitted parameters not admissible: {adm}")
@@ -763,8 +855,8 @@ def fit(
         settings=settings,
         metrics=metrics,
         correlation=corr,
-        success=bool(best.success),
-        message=str(best.message),
+        success=success,
+        message=message,
         warnings=warn_msgs,
         non_identifiable=non_id,
         derived=derived,
@@ -834,55 +926,113 @@ def _provenance() -> dict[str, Any]:
 def load_result(path: str | Path) -> FitResult:
     """Load a fit result saved by :meth:`FitResult.save` (or ``fit --save``).
 
-    Also accepts a plain ``{"law": ID, "params": {name: value}}`` JSON file.
+    Also accepts a plain ``{"law": ID, "params": {name: value}}`` JSON file.  Every
+    value is checked: numbers where numbers belong, known names, values within the
+    law's bounds; anything else is an :class:`InputError` naming the file and key.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise InputError("file not found", file=str(path))
+    from .outputs import check_input_file
+
+    path = check_input_file(path, "params file")
     try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        doc = json.loads(path.read_text(encoding="utf-8"),
+                         parse_constant=_refuse_constant)
+    except (UnicodeDecodeError, json.JSONDecodeError, ValueError) as exc:
         raise InputError(f"not a JSON file ({exc})", file=str(path)) from None
     if not isinstance(doc, dict) or "law" not in doc or "params" not in doc:
         raise InputError("expected a JSON object with 'law' and 'params'", file=str(path))
     if doc.get("format", RESULT_FORMAT) != RESULT_FORMAT:
         raise InputError(f"unknown format {doc.get('format')!r}", file=str(path))
-    if int(doc.get("version", RESULT_VERSION)) > RESULT_VERSION:
-        raise InputError(f"saved with a newer result version {doc['version']} "
+    version = doc.get("version", RESULT_VERSION)
+    if isinstance(version, bool) or not isinstance(version, int):
+        raise InputError(f"key 'version' must be a whole number, got {version!r}",
+                         file=str(path))
+    if version > RESULT_VERSION:
+        raise InputError(f"saved with a newer result version {version} "
                          f"(this frictionlaws reads up to {RESULT_VERSION})", file=str(path))
-    law = get_law(doc["law"])
-    params: dict[str, ParamEstimate] = {}
+    if not isinstance(doc["law"], str) or not isinstance(doc["params"], dict):
+        raise InputError("'law' must be a law id and 'params' an object", file=str(path))
+    try:
+        law = get_law(doc["law"])
+    except InputError as exc:
+        raise InputError(exc.bare_message, file=str(path)) from None
+    params, settings = _loaded_params(law, doc, str(path))
+    try:
+        law.check_values({**settings, **{k: e.value for k, e in params.items()}})
+    except InputError as exc:
+        raise InputError(exc.bare_message, file=str(path)) from None
+    return FitResult(
+        law=law, params=params, settings={k: v for k, v in settings.items() if k not in params},
+        metrics=_obj(doc, "metrics"), correlation=_obj(doc, "correlation"),
+        success=bool(doc.get("success", True)), message=str(doc.get("message", "loaded")),
+        warnings=[str(w) for w in _list(doc, "warnings")],
+        non_identifiable=[str(w) for w in _list(doc, "non_identifiable")],
+        derived=_obj(doc, "derived"), data=_obj(doc, "data"),
+        notes=[str(w) for w in _list(doc, "notes")], provenance=_obj(doc, "provenance"))
+
+
+def _refuse_constant(name: str) -> float:
+    raise ValueError(f"{name} is not a number JSON allows")
+
+
+def _list(doc: Mapping[str, Any], key: str) -> list[Any]:
+    value = doc.get(key, [])
+    return list(value) if isinstance(value, list) else []
+
+
+def _obj(doc: Mapping[str, Any], key: str) -> dict[str, Any]:
+    value = doc.get(key, {})
+    return dict(value) if isinstance(value, dict) else {}
+
+
+def _number(value: Any, where: str, file: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(
+            float(value)):
+        raise InputError(f"{where} must be a finite number, got {value!r:.40}", file=file)
+    return float(value)
+
+
+def _loaded_param(law: Law, k: str, v: Any, file: str) -> ParamEstimate:
+    if not isinstance(v, dict):
+        unit = law.param(k).unit if k in law.param_names else ""
+        return ParamEstimate(k, _number(v, f"params.{k}", file), None, None, unit, fixed=True)
+    if "value" not in v:
+        raise InputError(f"params.{k} has no 'value'", file=file)
+    value = _number(v["value"], f"params.{k}.value", file)
+    se = v.get("stderr")
+    se = None if se is None else _number(se, f"params.{k}.stderr", file)
+    ci = v.get("ci95")
+    if ci is not None:
+        if not isinstance(ci, list) or len(ci) != 2:
+            raise InputError(f"params.{k}.ci95 must be [low, high]", file=file)
+        ci = (_number(ci[0], f"params.{k}.ci95", file), _number(ci[1], f"params.{k}.ci95", file))
+    unit = v.get("unit", "")
+    return ParamEstimate(k, value, se, ci, unit if isinstance(unit, str) else "",
+                         bool(v.get("fixed", False)), bool(v.get("identifiable", True)))
+
+
+def _loaded_params(law: Law, doc: Mapping[str, Any], file: str
+                   ) -> tuple[dict[str, ParamEstimate], dict[str, float]]:
     settings = dict(law.setting_values)
-    for k, v in doc.get("settings", {}).items():
-        settings[k] = float(v["value"] if isinstance(v, dict) else v)
+    for k, v in _obj(doc, "settings").items():
+        if k not in settings:
+            raise InputError(f"law '{law.id}' has no setting '{k}'", file=file)
+        settings[k] = _number(v.get("value") if isinstance(v, dict) else v,
+                              f"settings.{k}", file)
+    params: dict[str, ParamEstimate] = {}
     for k, v in doc["params"].items():
-        if isinstance(v, dict):
-            ci = v.get("ci95")
-            est = ParamEstimate(k, float(v["value"]), v.get("stderr"),
-                                tuple(ci) if ci else None, v.get("unit", ""),
-                                bool(v.get("fixed", False)), bool(v.get("identifiable", True)))
-        else:
-            unit = law.param(k).unit if k in law.param_names else ""
-            est = ParamEstimate(k, float(v), None, None, unit, fixed=True)
         if k in law.param_names:
-            params[k] = est
-        elif any(s.name == k for s in law.settings):
-            settings.pop(k, None)
-            params[k] = est
+            params[k] = _loaded_param(law, k, v, file)
+        elif k in settings:
+            settings.pop(k)
+            params[k] = _loaded_param(law, k, v, file)
         else:
-            raise InputError(f"law '{law.id}' has no parameter '{k}'", file=str(path))
+            raise InputError(f"law '{law.id}' has no parameter '{k}' "
+                             f"(parameters: {', '.join(law.param_names)})", file=file)
     missing = [p.name for p in law.params if p.name not in params and not p.optional]
     if missing:
         raise InputError(f"missing parameter(s) {', '.join(missing)} for law '{law.id}'",
-                         file=str(path))
+                         file=file)
     for p in law.params:
         if p.name not in params:
             params[p.name] = ParamEstimate(p.name, p.default, None, None, p.unit, fixed=True)
-    return FitResult(
-        law=law, params=params, settings={k: v for k, v in settings.items() if k not in params},
-        metrics=doc.get("metrics", {}), correlation=doc.get("correlation", {}),
-        success=bool(doc.get("success", True)), message=doc.get("message", "loaded"),
-        warnings=list(doc.get("warnings", [])),
-        non_identifiable=list(doc.get("non_identifiable", [])),
-        derived=doc.get("derived", {}), data=doc.get("data", {}),
-        notes=list(doc.get("notes", [])), provenance=doc.get("provenance", {}))
+    return params, settings

@@ -42,6 +42,17 @@ def _temperatures(seed=1, b=3e-6):
     return pd.concat(frames, ignore_index=True), truth
 
 
+def test_a_pooled_fit_over_surfaces_is_refused(tmp_path):
+    from frictionlaws.errors import GroupingError
+
+    with pytest.raises(GroupingError, match="2 values of 'surface'") as exc:
+        fl.fit("thirion", _two_surfaces(tmp_path))
+    assert "by='surface'" in str(exc.value)
+    code = __import__("frictionlaws.cli", fromlist=["main"]).main(
+        ["fit", "--law", "thirion", str(tmp_path / "two.csv")])
+    assert code == 2
+
+
 def test_groups_are_fitted_separately(tmp_path):
     camp = fit_many("thirion", _two_surfaces(tmp_path), by="surface")
     assert [r["group"]["surface"] for r in camp.records] == ["steel", "ice"]
@@ -76,7 +87,8 @@ def test_an_unreadable_dataset_is_a_record_not_a_crash(tmp_path):
     good = _two_surfaces(tmp_path)
     bad = tmp_path / "bad.csv"
     bad.write_text("mu,p [MPa]\n0.5,abc\n")
-    camp = fit_many("thirion", [good, bad])
+    camp = fit_many("thirion", [good, bad], by="surface")
+    assert len(camp) == 3
     assert len(camp.errors) == 1 and "bad.csv" in camp.errors[0]["error"]
     assert "error" in camp.summary()
 

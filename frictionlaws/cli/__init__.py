@@ -69,6 +69,7 @@ OPTION_FLAGS = {
     "folds": "--folds",
     "holdout": "--holdout",
     "jobs": "--jobs",
+    "by": "--by",
     "min_repeats": "--min-repeats",
     "tol": "--tol",
     "max_rows": "--max-rows",

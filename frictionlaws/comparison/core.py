@@ -34,7 +34,6 @@ the id.
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Iterable, Mapping, Sequence
@@ -45,7 +44,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import DomainError, FitError, InputError
-from ..fitting import FitData, FitResult, _clean_json, as_fit_data, fit
+from ..fitting import FitData, FitResult, as_fit_data, fit
+from ..jsonio import dumps as _dumps
 from ..law import VARIABLES, Law
 from ..registry import get_law, list_laws
 from .cv import CVResult, cross_validate, error_text, kfold_assignment
@@ -242,7 +242,7 @@ class Comparison:
 
     def to_json(self, indent: int = 2) -> str:
         """JSON text of :meth:`to_dict` (non-finite numbers become null)."""
-        return json.dumps(_clean_json(self.to_dict()), indent=indent)
+        return _dumps(self.to_dict(), indent=indent)
 
     def table(self) -> str:
         """The ranked console table with the flags, skipped and failed laws."""

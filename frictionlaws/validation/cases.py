@@ -742,7 +742,8 @@ def _case_identifiability(run: CaseRun) -> None:
     run.require("denny with E_v freed: b and E_v named non-identifiable", ok,
                 "b, E_v named", ", ".join(res.non_identifiable) or "none named")
     P, V = (g.ravel() for g in np.meshgrid(np.geomspace(2e4, 1e6, 5), np.geomspace(1e-3, 10, 8)))
-    truth = {"c1": 0.3, "c2": 1e5, "c3": -0.5, "c4": 0.05, "c5": 1.0, "c6": 0.03, "c7": 0.1}
+    # c5 = 1e-4 keeps mu > 0 on the grid (a friction coefficient; fits refuse mu < 0)
+    truth = {"c1": 0.3, "c2": 1e5, "c3": -0.5, "c4": 0.05, "c5": 1e-4, "c6": 0.03, "c7": 0.1}
     mu = (_raw(get_law("nackenhorst-thesis"))(p=P, v=V, **truth)
           + 0.005 * rng.standard_normal(P.size))
     res = fit("nackenhorst-thesis", {"mu": mu, "p": P, "v": V}, weights=None, starts=0)

@@ -101,6 +101,18 @@ def _sample(setup: RecoverySetup, n: int, rng: np.random.Generator) -> dict[str,
     return out
 
 
+def _measured(mu_true: np.ndarray, sigma: float, rng: np.random.Generator) -> np.ndarray:
+    """mu with Gaussian noise, redrawn where it would be negative (a measured friction
+    coefficient is >= 0, and fits refuse negative mu)."""
+    y = mu_true + sigma * rng.standard_normal(mu_true.size)
+    for _ in range(20):
+        neg = y < 0
+        if not neg.any():
+            break
+        y[neg] = mu_true[neg] + sigma * rng.standard_normal(int(neg.sum()))
+    return np.maximum(y, 0.0)
+
+
 def _seed(law_id: str, k: int) -> int:
     return zlib.crc32(law_id.encode()) + 7919 * k
 
@@ -143,7 +155,7 @@ def recover_law(law: Any, setup: RecoverySetup, *, noise_levels: Sequence[float]
                 evaluate_reference(ref, {v: float(x[v][i]) for v in ref.variables}, truth,
                                    precise=False) for i in range(n)])
             sigma = noise * float(np.mean(np.abs(mu_true)))
-            y = mu_true + sigma * rng.standard_normal(n)
+            y = _measured(mu_true, sigma, rng)
             try:
                 res = fit(law, {"mu": y, **x}, fix=dict(setup.fix), weights=None,
                           starts=starts, seed=k)
