@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
+from typing import Any
+
+from ._common import bounded_int
 
 _FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
             "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
@@ -27,6 +31,13 @@ EXPONENTIAL DECAY, exact laws only); lsdyna (FS/FD/DC when exact, else FS=2
 fitted over the box with the error reported); abaqus-fric-coef, abaqus-vfric-coef,
 abaqus-vfric (Fortran user subroutines; no box needed).
 """
+
+
+__all__ = ["add_parser", "run"]
+
+#: Options that only mean something with --fit.
+_FIT_ONLY = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "map", "data_units",
+             "area")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -57,8 +68,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--units", default="SI", metavar="SYSTEM",
                    help="unit system of the file: SI (default), mm-N-s, mm-kg-ms[,VAR=UNIT]")
     p.add_argument("--tol", type=float, help="largest interpolation error in mu (adaptive grid)")
-    p.add_argument("--max-rows", type=int, default=200_000, metavar="N",
-                   help="largest table allowed (default 200000)")
+    p.add_argument("--max-rows", type=bounded_int(1, 10_000_000), default=200_000, metavar="N",
+                   help="largest table allowed (default 200000; 1..10000000)")
     p.add_argument("-o", "--output", required=True, metavar="FILE",
                    help="output file ('-' for standard output)")
     g = p.add_argument_group("fit options (with --fit)")
@@ -104,8 +115,11 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.fe_export.api import parse_range
     from frictionlaws.fe_export.systems import unit_system
 
-    from ._common import fit_kwargs, parse_assignments, parse_floats
+    from ._common import fit_kwargs, parse_assignments, parse_floats, refuse_unused
 
+    _check_files(args)
+    if not args.fit:
+        refuse_unused(args, _FIT_ONLY, "without --fit")
     system = unit_system(args.units)
     spacing = parse_assignments(args.spacing, "--spacing")
     box = {}
@@ -117,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
         if var not in box:
             raise InputError(f"--spacing {var}=...: no range given for {var} (--{var} MIN:MAX)")
     values = parse_floats(args.set, "--set")
-    params = None
+    params: Any = None
     source = None
     law = args.law
     if args.params:
@@ -147,7 +161,7 @@ def run(args: argparse.Namespace) -> int:
         source = (f"fit to {args.fit} (n = {m.get('n')}, R^2 = {m.get('r2', float('nan')):.4g}, "
                   f"rmse = {m.get('rmse', float('nan')):.3g})")
         for w in result.warnings:
-            print(f"fit warning: {w}", file=sys.stderr)
+            print(f"warning: fit: {w}", file=sys.stderr)
     else:
         if not law:
             raise InputError("give --law (with --preset, --set or --fit), or --params FILE.json")
@@ -155,6 +169,7 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("give the parameters: --preset NAME, --params FILE.json, "
                              "--fit DATA or --set NAME=VALUE,...")
         params = values or None
+    _refuse_unused_ranges(law or getattr(params, "law", None), box)
     res = export(law, params, args.format, box, preset=args.preset, units=system, tol=args.tol,
                  path=None if args.output == "-" else args.output, max_rows=args.max_rows,
                  source=source, options=_options(args))
@@ -164,3 +179,28 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(res.report())
     return 0
+
+
+def _check_files(args: argparse.Namespace) -> None:
+    """The output is checked before any work: not an input, a writable file."""
+    if args.output == "-":
+        return
+    from frictionlaws.outputs import check_outputs
+
+    inputs = [x for x in (args.params, args.fit) if x and Path(x).exists()]
+    check_outputs([args.output], inputs=inputs)
+
+
+def _refuse_unused_ranges(law: object, box: dict) -> None:
+    """A range given for a variable the law does not use is an error, not ignored."""
+    if law is None:
+        return
+    from frictionlaws import get_law
+    from frictionlaws.errors import InputError
+
+    law_obj = get_law(law)  # type: ignore[arg-type]
+    unused = [v for v in box if v not in law_obj.variables]
+    if unused:
+        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)}: remove "
+                         + " ".join(f"--{v}" for v in unused)
+                         + f" (its variables: {', '.join(law_obj.variables) or 'none'})")

@@ -377,7 +377,8 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     """
     if format not in FORMATS:
         raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
-    if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+    if tol is not None and (isinstance(tol, bool) or not (
+            isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0)):
         raise InputError(f"tolerance must be a positive number, got {tol!r}")
     law_obj, values, fit, src = _values(law, params, preset)
     message = law_obj.check_admissible(values)

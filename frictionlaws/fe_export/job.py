@@ -22,6 +22,9 @@ from ..law import VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
 
+#: Points at which the law is checked in the box before export (spread over the axes).
+_BOX_SAMPLES = 200_000
+
 __all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
 
 #: How a missing range is given on the command line (used in messages).
@@ -124,9 +127,53 @@ class Job:
         return [self.specs[n] for n in names]
 
     def make_grid(self, names: Sequence[str], what: str) -> tuple[Grid, GridError, str]:
-        """The grid over ``names`` (the order of the table's axes) and its error."""
+        """The grid over ``names`` (the order of the table's axes) and its error.
+
+        Before any grid is built, the law is checked on a dense sampling of the box
+        and on its corners: a non-finite or negative mu anywhere is refused.
+        """
         specs = self.require_box(names, what)
-        return make_grid(self.func, specs, self.tol, max_rows=self.max_rows)
+        self.check_box(specs)
+        grid, err, how = make_grid(self.func, specs, self.tol, max_rows=self.max_rows)
+        self._refuse_bad_mu(grid.names, np.meshgrid(*grid.points, indexing="ij"))
+        return grid, err, how
+
+    def check_box(self, specs: Sequence[AxisSpec]) -> None:
+        """Refuse a law whose mu is non-finite or negative somewhere in the box, and a box
+        beyond a strict domain (a law that must not be extrapolated)."""
+        if self.law.strict_domain:
+            for spec in specs:
+                lo, hi = self.law.domain.get(spec.name, (-np.inf, np.inf))
+                if spec.lo < lo * (1 - 1e-9) or spec.hi > hi * (1 + 1e-9):
+                    raise InputError(
+                        f"law '{self.law.id}' is valid only for {spec.name} in "
+                        f"{self.model(spec.name, lo)} .. {self.model(spec.name, hi)} and must "
+                        f"not be extrapolated; the box asks for {self.model(spec.name, spec.lo)}"
+                        f" .. {self.model(spec.name, spec.hi)}")
+        per_axis = max(2, int(round(_BOX_SAMPLES ** (1.0 / max(len(specs), 1)))))
+        axes = []
+        for spec in specs:
+            lo, hi = spec.lo, spec.hi
+            log = lo > 0 and hi / lo >= 100 and spec.spacing != "lin"
+            pts = np.geomspace(lo, hi, per_axis) if log else np.linspace(lo, hi, per_axis)
+            axes.append(pts)
+        mesh = np.meshgrid(*axes, indexing="ij") if axes else []
+        self._refuse_bad_mu(tuple(s.name for s in specs), mesh)
+
+    def _refuse_bad_mu(self, names: Sequence[str], mesh: Sequence[np.ndarray]) -> None:
+        with np.errstate(all="ignore"):
+            mu = np.asarray(self.func(**dict(zip(names, mesh))), dtype=float)
+        mu = np.broadcast_to(mu, mesh[0].shape) if mesh else np.atleast_1d(mu)
+        bad = ~np.isfinite(mu) | (mu < 0)
+        if not bad.any():
+            return
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        where = ", ".join(f"{n} = {self.model(n, float(m[idx]))}" for n, m in zip(names, mesh))
+        value = mu[idx] if mu.ndim else float(mu)
+        raise InputError(
+            f"law '{self.law.id}' gives mu = {value:.4g} at {where or 'every point'}: "
+            "a friction coefficient must be finite and >= 0 everywhere in the exported box; "
+            "nothing was written (narrow the box or check the parameters)")
 
     # ------------------------------------------------------------- header
     def model(self, var: str, x_si: float) -> str:
