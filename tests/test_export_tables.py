@@ -472,11 +472,18 @@ def test_ranges_with_units_and_bare_numbers_in_the_system():
     assert s.lo == pytest.approx(293.15) and s.hi == pytest.approx(353.15)
 
 
-def test_box_outside_the_law_domain_warns():
-    res = export("thesis-poly2", None, "csv", {"p": (0.01e6, 0.5e6, 5), "v": (0, 2, 3)},
-                 preset="steel")
+def test_box_outside_a_strict_domain_is_refused_and_a_soft_one_warns():
+    # the thesis polynomials must not be extrapolated: refused, nothing written
+    with pytest.raises(InputError, match="must not be extrapolated"):
+        export("thesis-poly2", None, "csv", {"p": (0.01e6, 0.5e6, 5), "v": (0, 2, 3)},
+               preset="steel")
+    # park's temperature domain (T_ref +/- 50 K) marks extrapolation: a warning
+    law = get_law("park")
+    lo, hi = law.domain["T"]
+    res = export("park", law.defaults, "csv",
+                 {"p": (1e5, 2e5, 3), "v": (0.01, 0.1, 3), "T": (lo, hi + 20.0, 3)})
     assert any("leaves the law's domain" in w for w in res.warnings)
-    assert "WARNING: the box of p" in res.text
+    assert "WARNING: the box of T" in res.text
 
 
 def test_public_api_name_is_the_function_after_the_package_is_imported():
