@@ -124,6 +124,7 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
         labels = getattr(ds, "row_labels", None)
         fd.row_labels = np.asarray(labels) if labels is not None else None
+    _check_magnitudes(fd)
     if isinstance(weights, str):
         if weights != "auto":
             raise InputError(f"weights must be 'auto', None or an array, not {weights!r}")
@@ -212,6 +213,30 @@ def _check_array(name: str, v: np.ndarray) -> None:
             raise InputError(f"array '{name}' must be {op} {limit[0]:g} (SI); "
                              f"{v[bad[0]]:g} at index {int(bad[0])}"
                              f"{f' and {bad.size - 1} more' if bad.size > 1 else ''}")
+
+
+#: Largest plausible friction coefficient, and largest magnitude of any other value a fit
+#: can square without overflow.
+MU_MAX = 1e3
+_MAGNITUDE_MAX = 1e100
+
+
+def _check_magnitudes(fd: FitData) -> None:
+    """Refuse values a fit cannot stand behind: mu above :data:`MU_MAX`, anything whose
+    square would overflow."""
+    for name, v in fd.arrays.items():
+        limit = MU_MAX if name == "mu" else _MAGNITUDE_MAX
+        big = np.flatnonzero(np.abs(v) > limit)
+        if big.size:
+            i = int(big[0])
+            row = (f" (row {fd.row_labels[i]})" if fd.row_labels is not None
+                   else f" (index {i})")
+            what = ("a friction coefficient above 1000 is not a measurement (check the "
+                    "column and its unit)" if name == "mu" else
+                    f"values beyond {_MAGNITUDE_MAX:g} (SI) cannot be fitted")
+            raise InputError(f"'{name}' = {v[i]:g}{row}: {what}",
+                             file=fd.source if fd.source != "in-memory arrays" else None,
+                             column=name)
 
 
 def _check_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> None:
@@ -816,8 +841,9 @@ def fit(
     resid = y - fitted
     ss_res = float(np.sum(resid**2))
     ss_tot = float(np.sum((y - y.mean()) ** 2))
-    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else math.nan
-    if ss_tot <= 0:
+    flat = ss_tot <= n * (1e-12 * float(np.max(np.abs(y)))) ** 2  # mu constant to round-off
+    r2 = math.nan if flat else 1.0 - ss_res / ss_tot
+    if flat:
         warn_msgs.append("mu takes one value in these data: R^2 is undefined (there is "
                          "no variation to explain); judge the fit by its RMSE")
     adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
@@ -834,7 +860,7 @@ def fit(
     success, message = bool(best.success), str(best.message)
     if not success:
         warn_msgs.append(f"the optimiser did not report convergence: {best.message}")
-    elif r2 < 0:
+    elif r2 < -1e-9:
         success = False
         message = (f"the fit is worse than the mean of mu (R^2 = {r2:.4g}): the law does not "
                    "describe these data")

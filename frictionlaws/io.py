@@ -447,6 +447,9 @@ def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
             )
         if p.is_dir():
             raise InputError("is a directory; expected a CSV file", file=source)
+        from .outputs import check_input_file
+
+        check_input_file(p, "data file")  # a FIFO or device would block or never end
         try:
             raw = p.read_bytes()
         except OSError as exc:

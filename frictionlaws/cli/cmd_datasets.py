@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 
-from ._common import add_data_options
+from ._common import add_data_options, data_source
+
+__all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -23,6 +24,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
+    from frictionlaws import jsonio
     from frictionlaws.io import list_datasets, load_dataset
 
     if args.name is None:
@@ -32,16 +34,17 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("--map, --units and --area need a dataset NAME or file")
         items = list_datasets()
         if args.json:
-            print(json.dumps(items, indent=2))
+            print(jsonio.dumps(items))
             return 0
         width = max([len(d["name"]) for d in items] + [4])
         print(f"{'name':<{width}}  {'rows':>4}  title")
         for d in items:
             print(f"{d['name']:<{width}}  {d['rows']:>4}  {d['title']}")
         return 0
-    ds = load_dataset(args.name, mapping=args.map, units=args.units, area=args.area)
+    with data_source(args.name) as source:
+        ds = load_dataset(source, mapping=args.map, units=args.units, area=args.area)
     if args.json:
-        print(json.dumps(ds.summary(), indent=2))
+        print(jsonio.dumps(ds.summary()))
         return 0
     print(ds.describe())
     if ds.provenance:
