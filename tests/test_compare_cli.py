@@ -108,7 +108,7 @@ def test_json_output(capsys: pytest.CaptureFixture) -> None:
 @pytest.mark.parametrize("argv,message", [
     (["--laws", "nosuchlaw"], "unknown law"),
     (["--holdout", "1.5"], "between 0 and 1"),
-    (["--folds", "1"], "at least 2"),
+    (["--folds", "1"], "from 2 to"),
     (["--laws", "park"], "needs T"),
     (["--laws", "thirion", "--family", "sliding"], "not allowed with"),
 ])

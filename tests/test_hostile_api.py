@@ -3,7 +3,7 @@
 Invariant: a call returns a sound result or raises ``InputError`` (``DomainError``)
 or ``FitError`` with a one-line message; never another exception type, never a
 hang, never a changed input, never a non-finite or negative friction coefficient
-in a result.  Areas being fixed on other branches carry ``xfail(strict=False)``.
+in a result.  Every case must pass.
 """
 
 from __future__ import annotations
@@ -40,8 +40,9 @@ pytestmark = pytest.mark.hostile
 
 
 
-def known(area: str) -> pytest.MarkDecorator:
-    return pytest.mark.xfail(strict=False, reason=f"being fixed on the '{area}' branch")
+def covers(area: str) -> pytest.MarkDecorator:
+    """The area (issue 12 class) a case guards; every case must pass."""
+    return pytest.mark.hostile
 
 
 @contextlib.contextmanager
@@ -92,7 +93,7 @@ ARRAY_VALUES = st.one_of(
 )
 
 
-@known("fit")
+@covers("fit")
 @hostile(25)
 @example(mu=[0.0, -1.0], p=[0.0])  # negative mu and mismatched lengths accepted
 @given(mu=st.lists(ARRAY_VALUES, min_size=0, max_size=6),
@@ -111,7 +112,7 @@ VARIABLE_VALUES = st.one_of(
 )
 
 
-@known("fit")  # laws evaluated outside their domain give negative mu (issue 12 class 2)
+@covers("fit")  # laws evaluated outside their domain give negative mu (issue 12 class 2)
 @hostile(60)
 @example(law="thesis-poly2", p=0.0, v=7.0, s=0.0, T=0.0, F_N=0.0)  # mu = -2.3
 @given(law=st.sampled_from(["thirion", "coulomb", "thesis-poly2", "savkoor", "pacejka",
@@ -138,7 +139,7 @@ def test_law_call_hostile_parameters(values: dict[str, float]) -> None:
         _finite_mu(res)
 
 
-@known("fit")  # load_result: wrong types in the file give AttributeError/ValueError
+@covers("fit")  # load_result: wrong types in the file give AttributeError/ValueError
 @hostile(25)
 @example(params=b'{"law": "thirion", "params": {"a": 1.0, "b": {"stderr": 1}}, '
          b'"settings": -3.9e16}', fmt="abaqus")  # AttributeError in load_result
@@ -162,7 +163,7 @@ def test_export_from_hostile_params(params: bytes, fmt: str) -> None:
             check_export_file(out, fmt)
 
 
-@known("mf")  # a negative or NaN inflation pressure is accepted
+@covers("mf")  # a negative or NaN inflation pressure is accepted
 @hostile(25)
 @example(data=MF52_TIR.read_bytes(), pressure=-2e5)
 @given(data=tir_bytes(), pressure=st.sampled_from([None, -2e5, 0.0, float("nan"), 2.2e5]))
@@ -195,7 +196,7 @@ def test_load_rig_hostile(data: bytes) -> None:
                 assert math.isfinite(x) and x > 0, f"{name} = {x} accepted"
 
 
-@known("fit")
+@covers("fit")
 @hostile(20)
 @example(params=b'{"law": "coulomb", "params": {"mu0": "abc"}}')  # ValueError
 @given(params=params_bytes())
@@ -236,7 +237,7 @@ NONSENSE = [
 
 def _nonsense(case: tuple[str, Any, str | None]) -> Any:
     name, call, area = case
-    marks = [known(area)] if area else []
+    marks = [covers(area)] if area else []
     return pytest.param(call, id=name, marks=marks)
 
 

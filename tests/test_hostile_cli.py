@@ -2,8 +2,7 @@
 
 Each test draws hostile files and options with hypothesis (derandomised, so a CI
 run is reproducible) and checks the invariants of :func:`hostile.check_outcome`.
-Known failures in areas being fixed elsewhere are marked ``xfail(strict=False)``
-with the area in the reason (see ``KNOWN``); an XPASS there means the fix landed.
+Every case must pass; ``covers(area)`` names the area a case guards (see ``AREAS``).
 """
 
 from __future__ import annotations
@@ -40,8 +39,8 @@ pytestmark = pytest.mark.hostile
 
 
 
-#: Areas where the harness currently finds failures that other branches fix.
-KNOWN = {
+#: The areas of the library the cases guard (issue 12 classes).
+AREAS = {
     "input": "input layer (issue 12 classes 3, 5: one table reader, number policy)",
     "fit": "fit command/API (issue 12 classes 1, 7, 9)",
     "export": "export (issue 12 classes 1, 4, 5)",
@@ -51,8 +50,9 @@ KNOWN = {
 }
 
 
-def known(area: str) -> pytest.MarkDecorator:
-    return pytest.mark.xfail(strict=False, reason=f"being fixed on another branch: {KNOWN[area]}")
+def covers(area: str) -> pytest.MarkDecorator:
+    """The area (issue 12 class) a case guards; every case must pass."""
+    return pytest.mark.hostile
 
 
 @contextlib.contextmanager
@@ -122,7 +122,7 @@ FIT_LAWS = st.sampled_from(["thirion", "coulomb", "quadratic-pv", "exponential-d
 # ------------------------------------------------------------------------------ fit
 
 
-@known("input")  # mu = 5e307 is accepted; lmfit overflows: exit 3 (issue 12 class 3)
+@covers("input")  # mu = 5e307 is accepted; lmfit overflows: exit 3 (issue 12 class 3)
 @hostile(60)
 @example(data=b"mu,p [MPa]\n5e307,0.1\n1.5,0.2\n1.9,0.3\n", law="coulomb", opts=[],
          json_out=True, save=None)
@@ -266,7 +266,7 @@ def test_tyre_reduce_hostile(data: bytes, load: str, points: str, save: str | No
         check_outcome(run_cli(argv), snapshot=snap, json_out=json_out, allowed=allowed)
 
 
-@known("fit")
+@covers("fit")
 @hostile(20)
 @example(params=b'{"law": "thesis-poly2", "params": {"a0": {"value": "x"}, "a1": -59.2, '
          b'"a2": 220.0, "a3": 1.05, "a4": -0.303}}', loads=None, angles="1,2,3", width=None,
@@ -314,7 +314,7 @@ RANGES = st.one_of(
                      "1_0:2:3", "-5kPa:1MPa:3", "0.01:0.5:5:7"]))
 
 
-@known("fit")  # load_result: a non-numeric value gives ValueError, exit 3
+@covers("fit")  # load_result: a non-numeric value gives ValueError, exit 3
 @hostile(40)
 @example(params=b'{"law": "thirion", "params": {"a": "abc", "b": 3e-6}}', fmt="csv",
          p="0.01:0.5:5", v=None, out="fresh", max_rows=None)
@@ -338,7 +338,7 @@ def test_export_hostile_params_file(params: bytes, fmt: str, p: str, v: str | No
             check_export_file(target, fmt)
 
 
-@known("export")  # 'fit warning:' lines before the error (not 'warning:'): one line per problem
+@covers("export")  # 'fit warning:' lines before the error (not 'warning:'): one line per problem
 @hostile(20)
 @example(data=b"mu,p [MPa]\n0.5,0.1\n0.6,0.1\n0.55,0.1\n", opts=[], fmt="abaqus-decay",
          p="0.01:0.5:5")
@@ -373,7 +373,7 @@ def campaign() -> Iterator[Path]:
         yield tmp
 
 
-@known("tribo")  # -o DIR: the per-record table is written beside it, then the run fails
+@covers("tribo")  # -o DIR: the per-record table is written beside it, then the run fails
 @hostile(15)
 @example(rig=RIG_TOML.encode(), jobs="1", out="dir")
 @given(rig=rig_bytes(), jobs=st.sampled_from(["1", "0", "-1", "x"]),
@@ -393,7 +393,7 @@ def test_process_hostile_rig(rig: bytes, jobs: str, out: str) -> None:
                       allowed=[target, tmp / "dataset_records.csv"])
 
 
-@known("tribo")
+@covers("tribo")
 @hostile(15)
 @example(data=b"mu;p [MPa];v [m/s]\n1.000,5;0,1;1\n0,8;0.2;2,0\n0,7;1.000;3\n",
          keep_header=True)  # the per-record table is written, then the run fails
@@ -465,7 +465,7 @@ def test_option_soup(command: str, words: list[str]) -> None:
 def _number_case(number: str, where: str) -> object:
     marks = []
     if number in ("-0", "1e-400") and where == "fix":  # a = 0 passes the bounds, then 1/a
-        marks.append(known("fit"))
+        marks.append(covers("fit"))
     return pytest.param(number, where, id=f"{where}-{number!r}", marks=marks)
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import add_data_options, data_kwargs
+from ._common import add_data_options, bounded_int, data_kwargs
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -29,7 +29,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                        help="compare every law of this family (default: slip when the data "
                             "have a slip ratio, else sliding)")
     add_data_options(p)
-    p.add_argument("--folds", type=int, default=5, metavar="K",
+    p.add_argument("--folds", type=bounded_int(2, 100_000), default=5, metavar="K",
                    help="cross-validation folds (default 5; more than the rows = leave-one-out)")
     p.add_argument("--holdout", default="0.3", metavar="FRACTION|VAR=F,...",
                    help="upper fraction of the range held out for the extrapolation test: one "

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import argparse
 
+from ._common import bounded_int
+
+__all__ = ["add_parser", "run"]
+
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
@@ -23,8 +27,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="per-record table (default: DATASET_records.csv next to the dataset)")
     p.add_argument("--plots", metavar="DIR",
                    help="write diagnostic plots (raw, filtered, window) for every record")
-    p.add_argument("--jobs", type=int, default=0, metavar="N",
-                   help="worker processes (default 0: one per CPU)")
+    p.add_argument("--jobs", type=bounded_int(0, 1024), default=0, metavar="N",
+                   help="worker processes (default 0: one per CPU; 0..1024)")
     p.add_argument("--min-repeats", type=int, default=2, metavar="N",
                    help="conditions with fewer usable records are not written (default 2)")
     bar = p.add_mutually_exclusive_group()
@@ -39,26 +43,29 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from frictionlaws.errors import InputError
+    from frictionlaws.outputs import check_outputs
     from frictionlaws.tribometer.process import process_campaign
     from frictionlaws.tribometer.rig import load_rig
 
     out = Path(args.output)
-    if not out.parent.exists():
-        raise InputError("the output directory does not exist", file=str(out))
     records_out = (Path(args.records_out) if args.records_out
                    else out.with_name(f"{out.stem}_records.csv"))
+    # every output is checked before any work: not an input, a writable file
+    check_outputs([out, records_out], dirs=[args.plots], inputs=[args.manifest, args.rig])
     rig = load_rig(args.rig)
     camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=args.progress,
                             plots=args.plots, min_repeats=args.min_repeats)
+    check_outputs([out, records_out], inputs=[r.file for r in camp.records if r.file])
+    if not any(c.written for c in camp.conditions):
+        print(camp.summary())
+        raise InputError(
+            f"no condition has {args.min_repeats} or more usable records: no dataset written, "
+            "nothing written at all (the reasons are in the summary above)", file=args.manifest)
     camp.write_records(records_out)
+    camp.write_dataset(out)
     print(camp.summary())
     print(f"per-record table: {records_out}")
     if args.plots:
         print(f"plots: {args.plots}")
-    if not any(c.written for c in camp.conditions):
-        raise InputError(
-            f"no condition has {args.min_repeats} or more usable records: no dataset written "
-            f"(reasons above and in {records_out})", file=args.manifest)
-    camp.write_dataset(out)
     print(f"dataset: {out}")
     return 0

@@ -18,7 +18,7 @@ import json
 import sys
 from typing import Any
 
-from ._common import add_data_options, add_fit_options, parse_floats
+from ._common import add_data_options, add_fit_options, bounded_int, parse_floats
 
 _MAX_LOADS = 1000
 
@@ -87,7 +87,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--load-unit", default="kN", metavar="UNIT", help="unit of --load")
     r.add_argument("--side", choices=("braking", "driving"), default="braking")
     r.add_argument("--slip-max", type=float, default=1.0, help="largest slip ratio (<= 1)")
-    r.add_argument("--points", type=int, default=201, help="number of slip points")
+    r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
+                   help="number of slip points (3..100000, default 201)")
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
                    "(usable with --params)")
@@ -347,12 +348,18 @@ def _run_reduce(args: argparse.Namespace) -> int:
     loads = parse_loads(args.load, args.load_unit)
     if loads.size != 1:
         raise InputError("--load takes one load")
+    if args.save:
+        from frictionlaws.outputs import check_outputs
+
+        check_outputs([args.save], inputs=[args.file])
     red = reduce_mf(args.file, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        print(json.dumps(red.to_dict(), indent=2))
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(red.to_dict()))
     else:
         print(red.report())
         if args.save:

@@ -418,12 +418,10 @@ def compare(
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
     if fd.n < 3:
         raise InputError(f"data '{fd.name}' has {fd.n} rows; a comparison needs at least 3")
-    try:
-        folds = int(folds)
-    except (TypeError, ValueError):
-        raise InputError(f"folds must be an integer, not {folds!r}") from None
+    if isinstance(folds, bool) or not isinstance(folds, (int, np.integer)):
+        raise InputError(f"folds must be a whole number, not {folds!r}", option="folds")
     if folds < 2:
-        raise InputError(f"folds must be at least 2, not {folds}")
+        raise InputError(f"folds must be at least 2, not {folds}", option="folds")
     lims = tuple(float(x) for x in mu_limits)
     if len(lims) != 2 or not lims[0] < lims[1]:
         raise InputError(f"mu_limits must be (low, high) with low < high, not {mu_limits!r}")

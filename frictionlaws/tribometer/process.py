@@ -948,10 +948,12 @@ def _fmt(value: Any) -> str:
 def _write_csv(path: str | os.PathLike[str], frame: Any, comments: list[str]) -> Path:
     import csv
 
+    from ..outputs import atomic_write
+
     out = Path(path)
     if out.parent and not out.parent.exists():
         raise InputError("the output directory does not exist", file=str(out))
-    with out.open("w", encoding="utf-8", newline="") as fh:
+    with atomic_write(out, newline="") as fh:
         for c in comments:
             fh.write(f"# {c}\n")
         w = csv.writer(fh, lineterminator="\n")

@@ -204,8 +204,12 @@ class MagicFormula:
         self.version = version
         self.pressure = None if pressure is None else float(pressure)
         self.nominal_pressure = None if nominal_pressure is None else float(nominal_pressure)
-        if self.nominal_pressure is not None and self.nominal_pressure <= 0:
+        if self.nominal_pressure is not None and not (
+                math.isfinite(self.nominal_pressure) and self.nominal_pressure > 0):
             raise InputError("the nominal inflation pressure must be positive", file=source)
+        if self.pressure is not None and not (math.isfinite(self.pressure) and self.pressure > 0):
+            raise InputError(f"the inflation pressure must be a positive number of Pa, got "
+                             f"{self.pressure:g}", file=source)
         self.limits = dict(limits or {})
         self.name = name
         self.source = source
