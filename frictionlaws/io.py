@@ -579,12 +579,12 @@ def _to_float(cell: Any, decimal_comma: bool) -> float | None:
     text = str(cell).strip()
     if text.lower() in MISSING_TOKENS:
         return math.nan
-    if decimal_comma and "," in text:
-        if "." in text or text.count(",") > 1:
-            return None
-        text = text.replace(",", ".")
-    try:
-        return float(text)
+    from .numbers import parse_number
+
+    if text.lower().lstrip("+-") in ("inf", "infinity"):
+        return math.inf  # reported as "not finite" with its row
+    try:  # the one number parser: no 1_000, no full-width digits, no overflow
+        return parse_number(text, decimal_comma=decimal_comma and "," in text)
     except ValueError:
         return None
 

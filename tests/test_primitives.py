@@ -160,3 +160,14 @@ def test_atomic_dir_moves_in_only_on_success(tmp_path):
         (tmp / "fig" / "b.png").write_bytes(b"png")
     assert (out / "a.html").read_text() == "x" and (out / "fig" / "b.png").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
+
+
+@pytest.mark.parametrize("cell", ["1_000", "\uff11", "\u0663", "1e999", "0x10", "1 000"])
+def test_dataset_cells_go_through_the_one_number_parser(tmp_path, cell):
+    from frictionlaws.io import load_dataset
+
+    path = tmp_path / "d.csv"
+    path.write_text(f"mu,p [MPa]\n0.5,{cell}\n0.6,0.2\n0.7,0.3\n", encoding="utf-8")
+    with pytest.raises(InputError, match=r"column 'p \[MPa\]', row 2") as exc:
+        load_dataset(path)
+    assert str(path) in str(exc.value)
