@@ -358,6 +358,7 @@ class FitResult:
     lmfit_result: Any = None
     residual: np.ndarray | None = None
     best_fit: np.ndarray | None = None
+    fit_data: FitData | None = None
 
     @property
     def values(self) -> dict[str, float]:
@@ -413,6 +414,31 @@ class FitResult:
             "data": self.data,
             "provenance": self.provenance,
         }
+
+    def to_frame(self) -> Any:
+        """The parameters as a :class:`pandas.DataFrame` (value, stderr, CI, unit, fixed)."""
+        from .interop import params_frame
+
+        return params_frame(self)
+
+    def plot(self, data: Any = None, **kw: Any) -> Any:
+        """Data, fit, 95 % band and residuals (see :func:`frictionlaws.interop.plot_result`)."""
+        from .interop import plot_result
+
+        return plot_result(self, data, **kw)
+
+    def _repr_html_(self) -> str:
+        from .interop import result_html
+
+        return result_html(self)
+
+    def __repr__(self) -> str:
+        m = self.metrics
+        r2 = m.get("r2")
+        r2_text = f"{r2:.4g}" if isinstance(r2, float) and math.isfinite(r2) else "-"
+        values = ", ".join(f"{k}={e.value:.4g}" for k, e in self.params.items())
+        state = "converged" if self.success else "NOT converged"
+        return f"<FitResult {self.law.id}: {values}; R^2 = {r2_text}, n = {m.get('n')}; {state}>"
 
     def to_json(self, *, indent: int | None = 2) -> str:
         """Strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers)."""
@@ -893,6 +919,7 @@ def fit(
         lmfit_result=best,
         residual=resid,
         best_fit=fitted,
+        fit_data=fd,
     )
 
 

@@ -470,6 +470,13 @@ class Law:
         unknown = set(variables) - set(VARIABLES)
         if unknown:
             raise InputError(f"unknown variable(s) {sorted(unknown)}; known: {list(VARIABLES)}")
+        if any(type(x).__name__ == "DataArray" for x in variables.values()):
+            from .interop import evaluate_labelled
+
+            plain = {k: (v.values if type(v).__name__ == "DataArray" else v)
+                     for k, v in variables.items()}
+            self.evaluate(plain, params)  # the same checks, on the bare arrays
+            return evaluate_labelled(self, variables, params)
         kw = {k: self._prepare(k, variables[k]) for k in self.variables}
         kw.update(params)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
@@ -719,6 +726,29 @@ class Law:
 
     def __repr__(self) -> str:
         return f"<Law {self.id!r}: {self.title}>"
+
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickle a registered law by its id (formulas need not be picklable)."""
+        from .registry import get_law
+
+        try:
+            registered = get_law(self.id)
+        except InputError:
+            registered = None
+        if registered is not self:
+            raise TypeError(f"law '{self.id}' is not registered: register it to pickle it")
+        return (get_law, (self.id,))
+
+    def _repr_html_(self) -> str:
+        from .interop import law_html
+
+        return law_html(self)
+
+    def lmfit_model(self, values: Mapping[str, float] | None = None) -> Any:
+        """The law as an :class:`lmfit.Model` (see :func:`frictionlaws.interop.lmfit_model`)."""
+        from .interop import lmfit_model
+
+        return lmfit_model(self, values=values)
 
 
 def _jsonable(x: float) -> float | str | None:

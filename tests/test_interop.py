@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -76,7 +77,7 @@ def test_html_reprs_name_the_parameters():
     assert "converged" in text and "<td>b</td>" in text and "r2" in text
 
 
-def test_plot_result_draws_data_fit_band_and_residuals():
+def test_plot_result_draws_data_fit_band_and_residuals(tmp_path):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -88,5 +89,30 @@ def test_plot_result_draws_data_fit_band_and_residuals():
     assert resid.get_xlabel() == "p [Pa]"
     half = interop.confidence_band(res, {"p": ds.arrays()["p"]})
     assert np.all(half > 0) and np.all(np.isfinite(half))
+    loaded = fl.load_result(res.save(Path(tmp_path) / "r.json"))
     with pytest.raises(InputError, match="no data to plot"):
-        interop.plot_result(res)
+        interop.plot_result(loaded)
+
+
+def test_results_and_laws_show_themselves_and_pickle():
+    import pickle
+
+    law = fl.get_law("thirion")
+    assert pickle.loads(pickle.dumps(law)) is law
+    res = fl.fit(law, "thesis-steel")
+    assert len(repr(res)) < 200 and "thirion" in repr(res)
+    assert "<table>" in res._repr_html_() and "<table>" in law._repr_html_()
+    assert list(res.to_frame().index) == ["a", "b"]
+    assert law.lmfit_model().independent_vars == ["p"]
+    fig = res.plot()  # the fit keeps its data
+    assert len(fig.axes) == 2
+
+
+def test_law_call_keeps_xarray_dimensions():
+    xr = pytest.importorskip("xarray")
+    law = fl.get_law("thirion")
+    p = xr.DataArray([1e5, 2e5, 4e5], dims="pressure")
+    out = law(p=p, a=0.3, b=3e-6)
+    assert out.dims == ("pressure",) and out.name == "mu"
+    with pytest.raises(fl.InputError):
+        law(p=-p, a=0.3, b=3e-6)

@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -312,7 +313,10 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
         For a missing or malformed file, an unknown key, a value without a unit
         or with the wrong dimension, or an inconsistent internal-torque table.
     """
-    import tomllib
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # Python 3.10: the same parser, published as tomli
+        import tomli as tomllib
 
     src = os.fspath(path)
     p = Path(src)
