@@ -30,7 +30,7 @@ import numpy as np
 
 from .errors import FitError, InputError
 
-__all__ = ["Campaign", "fit_many", "group_keys", "iter_datasets", "run_parallel",
+__all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
            "iter_parallel", "SCHEDULER_ENV", "tidy_columns", "key_text",
            "group_column"]
 
@@ -445,3 +445,66 @@ def _check_output(output: Any, sources: Sequence[Any]) -> Path | None:
                          file=str(target))
     check_outputs([target], inputs=[s for s in sources if isinstance(s, (str, os.PathLike))])
     return target
+
+
+@dataclass(frozen=True)
+class _CompareJob:
+    source: Any
+    laws: tuple[str, ...] | None
+    by: tuple[str, ...]
+    options: Mapping[str, Any]
+    load_options: Mapping[str, Any]
+
+
+def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
+    """Load one dataset and compare the laws on each of its groups (plain records)."""
+    from .comparison import compare
+    from .io import load_dataset
+
+    try:
+        ds = load_dataset(job.source, **job.load_options)
+        groups = group_keys(ds, job.by)
+    except InputError as exc:
+        return [{"dataset": str(job.source), "group": {}, "error": str(exc)}]
+    out = []
+    for key, mask in groups:
+        record: dict[str, Any] = {"dataset": ds.name, "group": key, "rows": int(mask.sum())}
+        try:
+            cmp = compare(list(job.laws) if job.laws else None,
+                          ds.subset(mask) if not mask.all() else ds, **job.options)
+        except (InputError, FitError) as exc:
+            record["error"] = str(exc)
+        else:
+            record["ranking"] = cmp.to_frame().to_dict("records")
+        out.append(record)
+    return out
+
+
+def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
+                 by: str | Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
+                 progress: bool = False, load_options: Mapping[str, Any] | None = None,
+                 **compare_options: Any) -> Any:
+    """Compare laws on each group of each dataset; a tidy :class:`pandas.DataFrame`.
+
+    One row per (dataset, group, law) with the ranking metrics of
+    :meth:`frictionlaws.comparison.Comparison.to_frame`, plus ``error`` for a dataset or
+    group that could not be compared.  ``jobs``/``scheduler`` as in :func:`fit_many`;
+    ``compare_options`` go to :func:`frictionlaws.compare` (``folds``, ``seed``...).
+    """
+    import pandas as pd
+
+    columns = (by,) if isinstance(by, str) else tuple(by)
+    sources = iter_datasets(datasets)
+    work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
+                        dict(load_options or {})) for src in sources)
+    rows = []
+    for part in iter_parallel(_compare_dataset, work, jobs=jobs, scheduler=scheduler,
+                              progress=progress, total=len(sources)):
+        for rec in part:
+            base = {"dataset": rec["dataset"],
+                    **{group_column(c): rec["group"].get(c) for c in columns}}
+            if "error" in rec:
+                rows.append({**base, "error": rec["error"]})
+                continue
+            rows.extend({**base, **row, "error": None} for row in rec["ranking"])
+    return pd.DataFrame(rows)

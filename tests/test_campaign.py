@@ -205,3 +205,38 @@ def test_streamed_output_is_checked_before_work(tmp_path):
     with pytest.raises(InputError, match="does not exist"):
         fit_many("thirion", src, output=tmp_path / "nope" / "x.csv")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["two.csv"]
+
+
+def test_compare_many_and_the_cli_compare_by_group(tmp_path, capsys):
+    from frictionlaws.campaign import compare_many
+    from frictionlaws.cli import main
+
+    path = _two_surfaces(tmp_path)
+    frame = compare_many(path, ["thirion", "coulomb"], by="surface", folds=3)
+    assert list(frame["surface"]) == ["steel", "steel", "ice", "ice"]
+    assert list(frame["law"][:2]) == ["thirion", "coulomb"]
+    assert main(["compare", str(path)]) == 2
+    assert "--by surface" in capsys.readouterr().err
+    out = tmp_path / "ranking.csv"
+    assert main(["compare", str(path), "--by", "surface", "--laws", "thirion,coulomb",
+                 "--folds", "3", "--out", str(out)]) == 0
+    assert pd.read_csv(out).shape[0] == 4
+
+
+def test_cli_fit_campaign_and_shared(tmp_path, capsys):
+    from frictionlaws.cli import main
+
+    df, _ = _temperatures()
+    data = tmp_path / "t.csv"
+    df.to_csv(data, index=False)
+    assert main(["fit", "--law", "thirion", str(data), "--by", "T", "--shared", "b",
+                 "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["shared"] == ["b"] and len(doc["groups"]) == 5
+    out = tmp_path / "fits.csv"
+    assert main(["fit", "--law", "thirion", str(data), "--by", "T", "--jobs", "2",
+                 "--out", str(out)]) == 0
+    assert pd.read_csv(out)["T [K]"].nunique() == 5
+    assert main(["fit", "--law", "thirion", str(data), "--shared", "b"]) == 2
+    assert main(["fit", "--law", "thirion", str(data), "--by", "T", "--save",
+                 str(tmp_path / "x.json")]) == 2

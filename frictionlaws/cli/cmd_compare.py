@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
+from ._campaign import add_campaign_options, split_names, wants_campaign
 from ._common import add_data_options, bounded_int, data_kwargs
+
+__all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -21,7 +25,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "reported; laws the data cannot feed are listed as skipped, laws that fail to fit as "
         "failed. Exit 0 when at least one law was fitted, 1 when none could be, 2 on bad "
         "input.")
-    p.add_argument("data", metavar="DATA", help="CSV file or packaged dataset name")
+    p.add_argument("data", metavar="DATA", nargs="+",
+                   help="CSV file(s), a directory of CSV files, or a packaged dataset name; "
+                        "several (or --by) compare each dataset and group separately")
     which = p.add_mutually_exclusive_group()
     which.add_argument("--laws", metavar="A,B,...",
                        help="laws to compare (ids or aliases, comma-separated)")
@@ -49,20 +55,49 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="print the comparison as one JSON object instead of the table")
     p.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
                    help="progress bar on stderr (auto: only on a terminal)")
+    add_campaign_options(p, shared=False)
     return p
 
 
-def run(args: argparse.Namespace) -> int:
-    from frictionlaws.comparison import compare
+def _options(args: argparse.Namespace) -> dict:
+    return {"family": args.family, "folds": args.folds, "holdout": args.holdout,
+            "seed": args.seed, "starts": args.starts,
+            "weights": "auto" if args.weights == "auto" else None,
+            "mu_limits": (0.0, args.mu_max)}
 
-    kw = data_kwargs(args)
-    cmp = compare(
-        args.laws, args.data, family=args.family, folds=args.folds, holdout=args.holdout,
-        seed=args.seed, starts=args.starts,
-        weights="auto" if args.weights == "auto" else None,
-        mu_limits=(0.0, args.mu_max),
-        progress={"auto": None, "on": True, "off": False}[args.progress], **kw)
-    written = cmp.write_report(args.report) if args.report else {}
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.errors import InputError
+    from frictionlaws.outputs import check_outputs
+
+    inputs = [d for d in args.data if Path(d).exists()]
+    check_outputs([args.out], dirs=[args.report], inputs=inputs)
+    if wants_campaign(args):
+        if args.report:
+            raise InputError("--report draws one comparison; for several datasets or groups "
+                             "use --out")
+        return _run_many(args)
+    if args.out:
+        raise InputError("--out writes a campaign table; for one comparison use --json or "
+                         "--report")
+    return _run_one(args, args.data[0])
+
+
+def _run_one(args: argparse.Namespace, data: str) -> int:
+    from frictionlaws.comparison import compare
+    from frictionlaws.outputs import atomic_dir
+
+    from ._common import data_source
+
+    with data_source(data) as source:
+        cmp = compare(args.laws, source, **_options(args),
+                      progress={"auto": None, "on": True, "off": False}[args.progress],
+                      **data_kwargs(args))
+    written = {}
+    if args.report:
+        with atomic_dir(args.report) as tmp:
+            written = {k: Path(args.report) / Path(v).relative_to(tmp)
+                       for k, v in cmp.write_report(tmp).items()}
     if args.json:
         print(cmp.to_json())
     else:
@@ -74,3 +109,26 @@ def run(args: argparse.Namespace) -> int:
     if args.report and args.json:
         print(f"report: {written['report.html']}", file=sys.stderr)
     return 0
+
+
+def _run_many(args: argparse.Namespace) -> int:
+    from frictionlaws import jsonio
+    from frictionlaws.campaign import compare_many
+    from frictionlaws.outputs import write_text_atomic
+
+    laws = split_names([args.laws]) if args.laws else None
+    load = {k: v for k, v in data_kwargs(args).items() if v is not None}
+    frame = compare_many(args.data, laws, by=split_names(args.by), jobs=args.jobs,
+                         scheduler=args.scheduler, progress=args.progress == "on",
+                         load_options=load, **_options(args))
+    if args.out:
+        text = (frame.to_csv(index=False, float_format="%.10g")
+                if args.out.lower().endswith(".csv")
+                else jsonio.dumps(frame.to_dict("records")) + "\n")
+        write_text_atomic(args.out, text)
+    if args.json:
+        print(jsonio.dumps(frame.to_dict("records")))
+    else:
+        print(frame.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    errors = int(frame["error"].notna().sum()) if "error" in frame else 0
+    return 1 if errors else 0

@@ -244,6 +244,24 @@ class Comparison:
         """JSON text of :meth:`to_dict` (non-finite numbers become null)."""
         return _dumps(self.to_dict(), indent=indent)
 
+    def to_frame(self) -> Any:
+        """One row per ranked law: rank, metrics, CV and extrapolation RMSE, flags."""
+        import pandas as pd
+
+        cols = ("rank", "id", "k", "n", "r2", "rmse", "aic", "bic", "cv_rmse",
+                "extrapolation_rmse", "akaike_weight", "plausible", "converged")
+        rows = [{c: r.to_dict()[c] for c in cols} for r in self.results]
+        frame = pd.DataFrame(rows, columns=list(cols)).rename(columns={"id": "law"})
+        frame.attrs["units"] = "mu, rmse, cv_rmse, extrapolation_rmse: - (dimensionless)"
+        return frame
+
+    def _repr_html_(self) -> str:
+        from ..interop import table_html
+
+        rows = self.to_frame().to_dict("records")
+        return table_html(rows, caption=f"laws compared on {self.data.name} "
+                                        f"({self.data.n} rows), best first")
+
     def table(self) -> str:
         """The ranked console table with the flags, skipped and failed laws."""
         from .report import format_table
