@@ -96,3 +96,9 @@ CASES.update({
     "kiencke-daiss": LawCase({"k_s": 20.0, "c1": 30.0, "c2": 5.0}, {"s": (0.0, 1.0)}, seed=8),
     "germann": LawCase({"a0": 0.0, "a1": 8.0, "a2": -15.0}, {"s": (0.0, 0.3)}),
 })
+
+
+# --- issue 19: Persson's theory (laws/persson.py), a numerical double integral
+CASES["persson"] = LawCase({"q1": 3e5, "mu_a": 0.3},
+                           {"p": (2e4, 1e6), "v": (1e-5, 10.0), "T": (263.15, 333.15)},
+                           log=("p", "v"), n=80)

@@ -209,6 +209,74 @@ BURCKHARDT_DOC = {
     "ice": {"c1": 0.05, "c2": 306.39, "c3": 0.0},
 }
 
+# --------------------------------------------------------------------- persson
+
+
+def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
+    """Persson's friction integral by adaptive quadrature, independently of the library.
+
+    Persson, J. Chem. Phys. 115 (2001) 3840 and J. Phys.: Condens. Matter 17
+    (2005) R1: G and mu are integrated together as an ODE in s = ln q
+    (``scipy.integrate.solve_ivp``, DOP853, rtol 1e-7), the angular integrals
+    at every step by adaptive ``scipy.integrate.quad`` over phi of the Prony
+    sum itself (no analytic angular formula, no table); with ``M = math`` (the
+    quick mode of the recovery study) by 24-point Gauss-Legendre on 12 panels
+    of pi/2 - phi, one per decade.  Double precision whatever ``M`` is; slow
+    (seconds a point with adaptive angles, a fraction of a second without).
+    """
+    import math as _m
+
+    import numpy as _np
+    from scipy.integrate import quad, solve_ivp
+
+    if material is None:
+        from ..persson.material import default_material
+
+        material = default_material()
+    p, v, T, q1, mu_a, q0, H, h_rms = (float(x) for x in (p, v, T, q1, mu_a, q0, H, h_rms))
+    Ei, tau, Einf = _np.asarray(material.E_i), _np.asarray(material.tau), material.E_inf
+    aT = 10.0 ** float(material.shift(T))
+    C0 = H * h_rms**2 / (_m.pi * q0**2)
+    e = (1.0 - material.nu**2) * p
+
+    def E(w):
+        x = w * tau
+        return Einf + complex(_np.sum(Ei * 1j * x / (1 + 1j * x)))
+
+    x, w = _np.polynomial.legendre.leggauss(24)
+    edges = (_m.pi / 2) * 10.0 ** -_np.arange(13.0)
+    psi = _np.concatenate([(a + b) / 2 + (a - b) / 2 * x for a, b in zip(edges, edges[1:])])
+    wt = _np.concatenate([(a - b) / 2 * w for a, b in zip(edges, edges[1:])])
+    cphi = _np.sin(psi)
+
+    def ang_fixed(q):
+        xx = (q * abs(v) * aT * cphi)[:, None] * tau
+        Ev = Einf + _np.sum(Ei * 1j * xx / (1 + 1j * xx), axis=1)
+        return 4 * float(_np.sum(wt * cphi * Ev.imag)), 4 * float(_np.sum(wt * abs(Ev) ** 2))
+
+    def ang(q):
+        if M is _m:
+            return ang_fixed(q)
+        w0 = q * abs(v) * aT
+        lo = quad(lambda f: _m.cos(f) * E(w0 * _m.cos(f)).imag, 0, _m.pi / 2, limit=400,
+                  epsabs=0, epsrel=1e-9)[0]
+        sq = quad(lambda f: abs(E(w0 * _m.cos(f))) ** 2, 0, _m.pi / 2, limit=400,
+                  epsabs=0, epsrel=1e-9)[0]
+        return 4 * lo, 4 * sq
+
+    def rhs(s, y):
+        q = _m.exp(s)
+        lo, sq = ang(q)
+        c = C0 * (q / q0) ** (-2 * (1 + H)) * q**4
+        G = y[0]
+        P = 1.0 if G <= 0 else _m.erf(1 / (2 * _m.sqrt(G)))
+        return [c * sq / (8 * e * e), 0.5 * c * P * lo / e]
+
+    sol = solve_ivp(rhs, (_m.log(q0), _m.log(q1)), [0.0, 0.0], method="DOP853", rtol=1e-7,
+                    atol=1e-14)
+    return mu_a + float(sol.y[1, -1])
+
+
 REFERENCES: dict[str, Reference] = {
     "coulomb": Reference(
         _coulomb, (), LAWS_MD + ": mu = mu0",
@@ -291,6 +359,15 @@ REFERENCES: dict[str, Reference] = {
           "C1": 17.44, "C2": 51.6, "T_ref": 243.15}),
         {"p": (5e4, 3e5), "v": (1e-4, 0.5), "T": (253.15, 273.15, 313.15)},
         settings={"p0": 1.5e5, "C1": 8.86, "C2": 101.6}),
+    # a numerical integral: two points keep the suite quick (seconds each, adaptive quad)
+    "persson": Reference(
+        _persson, ("p", "v", "T"),
+        "Persson, J. Chem. Phys. 115 (2001) 3840, Eqs. 39-41, 47 (P(q) as in J. Phys.: "
+        "Condens. Matter 17 (2005) R1), packaged DMA rubber on the asphalt-like surface",
+        ({"q1": 1e6, "mu_a": 0.1, "q0": 2 * 3.141592653589793 / 0.01, "H": 0.8,
+          "h_rms": 0.3e-3},),
+        {"p": (2e5,), "v": (1e-3, 1.0), "T": (293.15,)},
+        settings={"H": 0.8, "h_rms": 0.3e-3}),
     "pacejka": Reference(
         _pacejka, ("s",),
         LAWS_MD + ": mu = D sin(C arctan(B x - E (B x - arctan(B x)))) + S_v, x = s + S_h",
