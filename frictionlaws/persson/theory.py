@@ -18,13 +18,13 @@ Quadrature (the fast path).  Both q integrals run over ln q on Gauss-Legendre
 panels (``order`` nodes per panel, ``panels_per_decade``); the cumulative
 integral G at the nodes uses each panel's spectral integration matrix
 (integral of the Lagrange interpolant), so G and mu have the same high order.
-The angular integral of the loss term is analytic for a Prony series: for
-one term with a = omega0 tau,
-``int_0^2pi cos(phi) Im[i a cos/(1 + i a cos)] dphi = 2 pi a / (sqrt(1 + a^2) (1 + sqrt(1 + a^2)))``.
-The angular integral of |E|^2, a function F(omega0) of omega0 = q v a_T alone, is
-tabulated once per material (composite Gauss-Legendre in pi/2 - phi on panels
-refined geometrically towards phi = pi/2, 16 points per decade of omega0) and
-interpolated by a cubic spline in ln omega0.
+Both angular integrals are functions of omega0 = q v a_T alone, tabulated once
+per material at 16 points per decade of omega0 and interpolated by a cubic
+spline of their log in ln omega0.  The loss term is analytic for a Prony
+series: for one term with a = omega0 tau,
+``int_0^2pi cos(phi) Im[i a cos/(1 + i a cos)] dphi = 2 pi a / (sqrt(1 + a^2) (1 + sqrt(1 + a^2)))``;
+the |E|^2 term is integrated by composite Gauss-Legendre in pi/2 - phi on
+panels refined geometrically towards phi = pi/2.
 """
 
 from __future__ import annotations
@@ -38,7 +38,8 @@ from scipy.special import erf
 
 from .material import Material
 
-__all__ = ["friction", "contact_ratio", "loss_angular", "modulus_sq_angular"]
+__all__ = ["friction", "contact_ratio", "loss_angular", "loss_tabulated", "modulus_sq_angular",
+           "q_nodes"]
 
 
 def loss_angular(material: Material, omega0: Any) -> np.ndarray:
@@ -73,25 +74,46 @@ def _modsq_direct(material: Material, omega0: np.ndarray) -> np.ndarray:
     return out
 
 
-def _modsq_table(material: Material) -> Any:
+def _log_grid(material: Material) -> np.ndarray:
+    """ln omega0 from 1e-6/tau_max to 1e8/tau_min, 16 points per decade."""
+    lo = math.log(1e-6 / float(np.max(material.tau)))
+    hi = math.log(1e8 / float(np.min(material.tau)))
+    return np.linspace(lo, hi, int((hi - lo) / math.log(10) * 16) + 1)
+
+
+def _table(material: Material, key: str) -> Any:
+    """Cubic spline of ln F against ln omega0 for F = |E|^2 or loss angular integral."""
     cache = material._cache
-    if "modsq" not in cache:
+    if key not in cache:
         from scipy.interpolate import CubicSpline
 
-        lo = math.log(1e-6 / float(np.max(material.tau)))
-        hi = math.log(1e8 / float(np.min(material.tau)))
-        n = int((hi - lo) / math.log(10) * 16) + 1
-        lw = np.linspace(lo, hi, n)
-        F = _modsq_direct(material, np.exp(lw))
-        cache["modsq"] = (CubicSpline(lw, np.log(F)), lo, hi)
-    return cache["modsq"]
+        lw = _log_grid(material)
+        w = np.exp(lw)
+        F = _modsq_direct(material, w) if key == "modsq" else loss_angular(material, w)
+        cache[key] = (CubicSpline(lw, np.log(F)), float(lw[0]), float(lw[-1]))
+    return cache[key]
 
 
 def modulus_sq_angular(material: Material, omega0: Any) -> np.ndarray:
-    """``int_0^2pi |E(omega0 cos phi)|^2 dphi`` [Pa^2] (tabulated, spline in ln omega0)."""
-    spline, lo, hi = _modsq_table(material)
+    """``int_0^2pi |E(omega0 cos phi)|^2 dphi`` [Pa^2] (tabulated, spline in ln omega0).
+
+    Constant beyond the table (the rubbery and glassy limits).
+    """
+    spline, lo, hi = _table(material, "modsq")
     lw = np.log(np.maximum(np.asarray(omega0, dtype=float), 1e-300))
     return np.exp(spline(np.clip(lw, lo, hi)))
+
+
+def loss_tabulated(material: Material, omega0: Any) -> np.ndarray:
+    """:func:`loss_angular` from a spline in ln omega0 (the fast path).
+
+    Beyond the table it continues with the exact asymptotes, proportional to
+    omega0 below and to 1/omega0 above.
+    """
+    spline, lo, hi = _table(material, "loss")
+    lw = np.log(np.maximum(np.asarray(omega0, dtype=float), 1e-300))
+    c = np.clip(lw, lo, hi)
+    return np.exp(spline(c) + np.where(lw < lo, lw - lo, 0.0) - np.where(lw > hi, lw - hi, 0.0))
 
 
 @functools.lru_cache(maxsize=16)
@@ -110,8 +132,8 @@ def _panel(order: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return x, w, S
 
 
-def q_nodes(q0: float, q1: float, *, order: int = 8, panels_per_decade: float = 2.0,
-            graded: int = 12) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def q_nodes(q0: float, q1: float, *, order: int = 10, panels_per_decade: float = 2.0,
+            graded: int = 8) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """ln q nodes on [q0, q1], quadrature weights (in ln q) and the cumulative matrix.
 
     The first uniform panel is split geometrically (ratio 10, ``graded``
@@ -206,10 +228,16 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
     shape, vv, TT, pp = _prepare(v, T, p)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
                                   panels_per_decade=panels_per_decade)
-    G = _G(material, surface, vv, TT, pp, nodes, cum)
-    P = _P(G)
-    e = (1.0 - material.nu**2) * pp
-    A = loss_angular(material, _omega0(material, vv, TT, nodes))
-    f = 0.5 * nodes**4 * surface.C(nodes) * P * A / e[:, None]
-    mu = f @ weights
+    qC = nodes**4 * surface.C(nodes)
+    mu = np.empty(vv.size)
+    for k in range(0, vv.size, _BLOCK):
+        b = slice(k, k + _BLOCK)
+        G = _G(material, surface, vv[b], TT[b], pp[b], nodes, cum)
+        e = (1.0 - material.nu**2) * pp[b]
+        A = loss_tabulated(material, _omega0(material, vv[b], TT[b], nodes))
+        mu[b] = (0.5 * qC * _P(G) * A / e[:, None]) @ weights
     return float(mu[0]) if shape == () else mu.reshape(shape)
+
+
+#: Points evaluated together (bounds the memory of the (points x nodes) arrays).
+_BLOCK = 1024
