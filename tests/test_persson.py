@@ -17,9 +17,20 @@ import pytest
 
 import frictionlaws as fl
 from frictionlaws.errors import InputError
-from frictionlaws.persson import (Material, SelfAffine, Shift, asphalt_like, contact_ratio,
-                                  default_material, fit_prony, friction, loss_angular,
-                                  material_from_csv, psd_from_profile, psd_from_profile_csv)
+from frictionlaws.persson import (
+    Material,
+    SelfAffine,
+    Shift,
+    asphalt_like,
+    contact_ratio,
+    default_material,
+    fit_prony,
+    friction,
+    loss_angular,
+    material_from_csv,
+    psd_from_profile,
+    psd_from_profile_csv,
+)
 from frictionlaws.validation.reference import _persson
 
 

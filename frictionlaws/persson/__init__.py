@@ -11,10 +11,22 @@
 The registry law ``persson`` (``frictionlaws/laws/persson.py``) wraps it.
 """
 
-from .material import (Material, Shift, default_material, fit_prony, material_from_csv,
-                       material_from_master_curve)
-from .surface import (SelfAffine, TabulatedPSD, asphalt_like, one_d_to_two_d,
-                      psd_from_profile, psd_from_profile_csv)
+from .material import (
+                       Material,
+                       Shift,
+                       default_material,
+                       fit_prony,
+                       material_from_csv,
+                       material_from_master_curve,
+)
+from .surface import (
+                       SelfAffine,
+                       TabulatedPSD,
+                       asphalt_like,
+                       one_d_to_two_d,
+                       psd_from_profile,
+                       psd_from_profile_csv,
+)
 from .theory import contact_ratio, friction, loss_angular, modulus_sq_angular
 
 __all__ = ["Material", "Shift", "default_material", "fit_prony", "material_from_csv",

@@ -21,8 +21,8 @@ integral G at the nodes uses each panel's spectral integration matrix
 Both angular integrals are functions of omega0 = q v a_T alone, tabulated once
 per material at 16 points per decade of omega0 and interpolated by a cubic
 spline of their log in ln omega0.  The loss term is analytic for a Prony
-series: for one term with a = omega0 tau,
-``int_0^2pi cos(phi) Im[i a cos/(1 + i a cos)] dphi = 2 pi a / (sqrt(1 + a^2) (1 + sqrt(1 + a^2)))``;
+series: for one term with a = omega0 tau and c = cos(phi),
+``int_0^2pi c Im[i a c/(1 + i a c)] dphi = 2 pi a / (sqrt(1 + a^2) (1 + sqrt(1 + a^2)))``;
 the |E|^2 term is integrated by composite Gauss-Legendre in pi/2 - phi on
 panels refined geometrically towards phi = pi/2.
 """
