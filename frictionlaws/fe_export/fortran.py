@@ -232,6 +232,18 @@ def _unique(names: Mapping[str, str]) -> dict[str, str]:
 # ------------------------------------------------------------ law routine
 
 
+def _undefined_functions(law: Law, expr: Any = None) -> list[str]:
+    from sympy.core.function import AppliedUndef
+
+    expr = law.symbolic() if expr is None else expr
+    return sorted({str(f.func) for f in expr.atoms(AppliedUndef)})
+
+
+def has_closed_form(law: Law) -> bool:
+    """True when the law's symbolic form holds no unevaluated function (an integral)."""
+    return not _undefined_functions(law)
+
+
 def require_closed_form(law: Law, expr: Any = None) -> None:
     """Refuse a law whose symbolic form holds an unevaluated function (an integral).
 
@@ -239,10 +251,7 @@ def require_closed_form(law: Law, expr: Any = None) -> None:
     has no Fortran expression; its tables (Abaqus, LS-DYNA, Ansys, Radioss
     formats) are exported instead.
     """
-    from sympy.core.function import AppliedUndef
-
-    expr = law.symbolic() if expr is None else expr
-    undefined = sorted({str(f.func) for f in expr.atoms(AppliedUndef)})
+    undefined = _undefined_functions(law, expr)
     if undefined:
         raise InputError(
             f"law '{law.id}' has no closed form ({', '.join(undefined)} is a numerical "
