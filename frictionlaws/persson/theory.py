@@ -1,10 +1,10 @@
 """Persson's theory of rubber friction: the viscoelastic friction coefficient.
 
 Sources: B. N. J. Persson, Theory of rubber friction and contact mechanics,
-J. Chem. Phys. 115 (2001) 3840-3861, Eqs. (39)-(41), (47); B. N. J. Persson,
+J. Chem. Phys. 115 (2001) 3840-3861; B. N. J. Persson,
 O. Albohr, U. Tartaglino, A. I. Volokitin, E. Tosatti, On the nature of surface
 roughness with application to contact mechanics, sealing, rubber friction and
-adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62, Eqs. (4)-(6).
+adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.
 Without the flash-temperature correction (isothermal rubber; not implemented).
 
     mu = 1/2 int_q0^q1 dq q^3 C(q) P(q) int_0^2pi dphi cos(phi)

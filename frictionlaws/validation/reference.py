@@ -53,6 +53,11 @@ class Reference:
         Setting values the source documents (checked against the law's defaults).
     presets : dict
         Published presets: library preset name -> documented values.
+    rtol : float
+        Relative tolerance of the comparison with the law (1e-9: round-off;
+        larger for a law that is a numerical integral).
+    rtol_why : str
+        Why that tolerance.
     """
 
     func: Callable[..., Any]
@@ -62,6 +67,8 @@ class Reference:
     grid: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     settings: Mapping[str, float] = field(default_factory=dict)
     presets: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    rtol: float = 1e-9
+    rtol_why: str = "round-off of a double evaluation"
 
 
 # ------------------------------------------------------------------ the forms
@@ -220,8 +227,8 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
     (``scipy.integrate.solve_ivp``, DOP853, rtol 1e-7), the angular integrals
     at every step by adaptive ``scipy.integrate.quad`` over phi of the Prony
     sum itself (no analytic angular formula, no table); with ``M = math`` (the
-    quick mode of the recovery study) by 24-point Gauss-Legendre on 12 panels
-    of pi/2 - phi, one per decade.  Double precision whatever ``M`` is; slow
+    quick mode of the recovery study) by 16-point Gauss-Legendre on 12 panels
+    of pi/2 - phi, one per decade, and rtol 1e-6.  Double precision whatever ``M`` is; slow
     (seconds a point with adaptive angles, a fraction of a second without).
     """
     import math as _m
@@ -243,7 +250,7 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
         x = w * tau
         return Einf + complex(_np.sum(Ei * 1j * x / (1 + 1j * x)))
 
-    x, w = _np.polynomial.legendre.leggauss(24)
+    x, w = _np.polynomial.legendre.leggauss(16)
     edges = (_m.pi / 2) * 10.0 ** -_np.arange(13.0)
     psi = _np.concatenate([(a + b) / 2 + (a - b) / 2 * x for a, b in zip(edges, edges[1:])])
     wt = _np.concatenate([(a - b) / 2 * w for a, b in zip(edges, edges[1:])])
@@ -259,9 +266,9 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
             return ang_fixed(q)
         w0 = q * abs(v) * aT
         lo = quad(lambda f: _m.cos(f) * E(w0 * _m.cos(f)).imag, 0, _m.pi / 2, limit=400,
-                  epsabs=0, epsrel=1e-9)[0]
+                  epsabs=0, epsrel=1e-8)[0]
         sq = quad(lambda f: abs(E(w0 * _m.cos(f))) ** 2, 0, _m.pi / 2, limit=400,
-                  epsabs=0, epsrel=1e-9)[0]
+                  epsabs=0, epsrel=1e-8)[0]
         return 4 * lo, 4 * sq
 
     def rhs(s, y):
@@ -272,7 +279,8 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
         P = 1.0 if G <= 0 else _m.erf(1 / (2 * _m.sqrt(G)))
         return [c * sq / (8 * e * e), 0.5 * c * P * lo / e]
 
-    sol = solve_ivp(rhs, (_m.log(q0), _m.log(q1)), [0.0, 0.0], method="DOP853", rtol=1e-7,
+    sol = solve_ivp(rhs, (_m.log(q0), _m.log(q1)), [0.0, 0.0], method="DOP853",
+                    rtol=1e-6 if M is _m else 1e-7,
                     atol=1e-14)
     return mu_a + float(sol.y[1, -1])
 
@@ -359,15 +367,17 @@ REFERENCES: dict[str, Reference] = {
           "C1": 17.44, "C2": 51.6, "T_ref": 243.15}),
         {"p": (5e4, 3e5), "v": (1e-4, 0.5), "T": (253.15, 273.15, 313.15)},
         settings={"p0": 1.5e5, "C1": 8.86, "C2": 101.6}),
-    # a numerical integral: two points keep the suite quick (seconds each, adaptive quad)
+    # a numerical integral: one point keeps the suite quick (seconds, adaptive quadrature);
+    # tests/test_persson.py compares 26 more
     "persson": Reference(
         _persson, ("p", "v", "T"),
-        "Persson, J. Chem. Phys. 115 (2001) 3840, Eqs. 39-41, 47 (P(q) as in J. Phys.: "
+        "Persson, J. Chem. Phys. 115 (2001) 3840 (P(q) as in J. Phys.: "
         "Condens. Matter 17 (2005) R1), packaged DMA rubber on the asphalt-like surface",
         ({"q1": 1e6, "mu_a": 0.1, "q0": 2 * 3.141592653589793 / 0.01, "H": 0.8,
           "h_rms": 0.3e-3},),
-        {"p": (2e5,), "v": (1e-3, 1.0), "T": (293.15,)},
-        settings={"H": 0.8, "h_rms": 0.3e-3}),
+        {"p": (2e5,), "v": (0.01,), "T": (283.15,)},
+        settings={"H": 0.8, "h_rms": 0.3e-3}, rtol=1e-4,
+        rtol_why="two numerical quadratures of a double integral (issue target 1e-4)"),
     "pacejka": Reference(
         _pacejka, ("s",),
         LAWS_MD + ": mu = D sin(C arctan(B x - E (B x - arctan(B x)))) + S_v, x = s + S_h",
