@@ -95,6 +95,11 @@ class Reference:
         Setting values the source documents (checked against the law's defaults).
     presets : dict
         Published presets: library preset name -> documented values.
+    rtol : float
+        Relative tolerance of the comparison with the law (1e-9: round-off;
+        larger for a law that is a numerical integral).
+    rtol_why : str
+        Why that tolerance.
     """
 
     func: Callable[..., Any]
@@ -104,6 +109,8 @@ class Reference:
     grid: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     settings: Mapping[str, float] = field(default_factory=dict)
     presets: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    rtol: float = 1e-9
+    rtol_why: str = "round-off of a double evaluation"
 
 
 @dataclass(frozen=True)
@@ -125,6 +132,11 @@ class LawExample:
         False when the catalogue says the form cannot be identified: the study then
         checks that non-identifiable parameters are named and the curve, not the
         parameters, is recovered.
+    baseline : callable, optional
+        ``baseline(x, q)``: the benchmarks' hand-written numpy evaluation (variables
+        ``x``, parameters and settings ``q``, SI); default: ``reference.func`` on numpy.
+    bench_points : int, optional
+        Fewer points for the evaluation benchmark (a numerical integral).
     """
 
     battery: Sampling
@@ -132,6 +144,8 @@ class LawExample:
     non_identifiable: tuple[str, ...] = ()
     recovery: Sampling | None = None
     recovery_identifiable: bool = True
+    baseline: Callable[..., Any] | None = None
+    bench_points: int | None = None
 
     @property
     def study(self) -> Sampling:
@@ -242,6 +256,89 @@ def _germann(M, s, a0, a1, a2):
 
 
 # ---- the table ------------------------------------------------------------
+
+# ---- numerical references ---------------------------------------------------
+# A law defined by an integral has no closed form to write twice: its reference is a
+# second, slower numerical method (adaptive quadrature with scipy), independent of the
+# library's quadrature; only the material (the packaged DMA master curve) is shared.
+
+
+def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
+    """Persson's friction integral by adaptive quadrature, independently of the library.
+
+    Persson, J. Chem. Phys. 115 (2001) 3840 and J. Phys.: Condens. Matter 17
+    (2005) R1: G and mu are integrated together as an ODE in s = ln q
+    (``scipy.integrate.solve_ivp``, DOP853, rtol 1e-7), the angular integrals
+    at every step by adaptive ``scipy.integrate.quad`` over phi of the Prony
+    sum itself (no analytic angular formula, no table); with ``M = math`` (the
+    quick mode of the recovery study) by 16-point Gauss-Legendre on 12 panels
+    of pi/2 - phi, one per decade, and rtol 1e-6.  Double precision whatever ``M`` is; slow
+    (seconds a point with adaptive angles, a fraction of a second without).
+    """
+    import math as _m
+
+    import numpy as _np
+    from scipy.integrate import quad, solve_ivp
+
+    if material is None:
+        from frictionlaws.persson.material import default_material
+
+        material = default_material()
+    p, v, T, q1, mu_a, q0, H, h_rms = (float(x) for x in (p, v, T, q1, mu_a, q0, H, h_rms))
+    Ei, tau, Einf = _np.asarray(material.E_i), _np.asarray(material.tau), material.E_inf
+    aT = 10.0 ** float(material.shift(T))
+    C0 = H * h_rms**2 / (_m.pi * q0**2)
+    e = (1.0 - material.nu**2) * p
+
+    def E(w):
+        x = w * tau
+        return Einf + complex(_np.sum(Ei * 1j * x / (1 + 1j * x)))
+
+    x, w = _np.polynomial.legendre.leggauss(16)
+    edges = (_m.pi / 2) * 10.0 ** -_np.arange(13.0)
+    psi = _np.concatenate([(a + b) / 2 + (a - b) / 2 * x for a, b in zip(edges, edges[1:])])
+    wt = _np.concatenate([(a - b) / 2 * w for a, b in zip(edges, edges[1:])])
+    cphi = _np.sin(psi)
+
+    def ang_fixed(q):
+        xx = (q * abs(v) * aT * cphi)[:, None] * tau
+        Ev = Einf + _np.sum(Ei * 1j * xx / (1 + 1j * xx), axis=1)
+        return 4 * float(_np.sum(wt * cphi * Ev.imag)), 4 * float(_np.sum(wt * abs(Ev) ** 2))
+
+    def ang(q):
+        if M is _m:
+            return ang_fixed(q)
+        w0 = q * abs(v) * aT
+        lo = quad(lambda f: _m.cos(f) * E(w0 * _m.cos(f)).imag, 0, _m.pi / 2, limit=400,
+                  epsabs=0, epsrel=1e-8)[0]
+        sq = quad(lambda f: abs(E(w0 * _m.cos(f))) ** 2, 0, _m.pi / 2, limit=400,
+                  epsabs=0, epsrel=1e-8)[0]
+        return 4 * lo, 4 * sq
+
+    def rhs(s, y):
+        q = _m.exp(s)
+        lo, sq = ang(q)
+        c = C0 * (q / q0) ** (-2 * (1 + H)) * q**4
+        G = y[0]
+        P = 1.0 if G <= 0 else _m.erf(1 / (2 * _m.sqrt(G)))
+        return [c * sq / (8 * e * e), 0.5 * c * P * lo / e]
+
+    sol = solve_ivp(rhs, (_m.log(q0), _m.log(q1)), [0.0, 0.0], method="DOP853",
+                    rtol=1e-6 if M is _m else 1e-7,
+                    atol=1e-14)
+    return mu_a + float(sol.y[1, -1])
+
+
+def _persson_baseline(x: Mapping[str, Any], q: Mapping[str, float]) -> Any:
+    """The theory called directly on numpy arrays (the benchmark measures the law's wrapper)."""
+    import numpy as _np
+
+    from frictionlaws.persson import SelfAffine, default_material, friction
+
+    surf = SelfAffine.from_rms(q["q0"], q["H"], q["h_rms"], q["q1"])
+    v = _np.maximum(_np.abs(x["v"]), 1e-9)
+    return q["mu_a"] + friction(default_material(), surf, v, x["T"], _np.maximum(x["p"], 1.0))
+
 
 _THESIS = ("source thesis, Eq. 5-1 / Table 5-1 and Eq. 5-2 / Table 5-2 (P in MPa, V in m/s "
            "as published)")
@@ -467,4 +564,19 @@ EXAMPLES: dict[str, LawExample] = {
         Reference(_germann, ("s",), LAWS_MD + ": mu = a0 + a1 s + a2 s^2",
                   ({"a0": 0.01, "a1": 8.0, "a2": -15.0},),
                   {"s": (0.0, 0.1, 0.3)})),
+    # issue 19: Persson's theory, a numerical double integral (one reference point keeps the
+    # suite quick; tests/test_persson.py compares many more)
+    "persson": _entry(
+        Sampling({"q1": 3e5, "mu_a": 0.3},
+                 {"p": (2e4, 1e6), "v": (1e-5, 10.0), "T": (263.15, 333.15)}, log=_LOGPV),
+        Reference(_persson, ("p", "v", "T"),
+                  "Persson, J. Chem. Phys. 115 (2001) 3840 (P(q) as in J. Phys.: Condens. "
+                  "Matter 17 (2005) R1), packaged DMA rubber on the asphalt-like surface",
+                  ({"q1": 1e6, "mu_a": 0.1, "q0": 2 * 3.141592653589793 / 0.01, "H": 0.8,
+                    "h_rms": 0.3e-3},),
+                  {"p": (2e5,), "v": (0.01,), "T": (283.15,)},
+                  settings={"H": 0.8, "h_rms": 0.3e-3}, rtol=1e-4,
+                  rtol_why="two numerical quadratures of a double integral (issue target "
+                  "1e-4)"),
+        baseline=_persson_baseline, bench_points=2000),
 }

@@ -232,12 +232,40 @@ def _unique(names: Mapping[str, str]) -> dict[str, str]:
 # ------------------------------------------------------------ law routine
 
 
+def _undefined_functions(law: Law, expr: Any = None) -> list[str]:
+    from sympy.core.function import AppliedUndef
+
+    expr = law.symbolic() if expr is None else expr
+    return sorted({str(f.func) for f in expr.atoms(AppliedUndef)})
+
+
+def has_closed_form(law: Law) -> bool:
+    """True when the law's symbolic form holds no unevaluated function (an integral)."""
+    return not _undefined_functions(law)
+
+
+def require_closed_form(law: Law, expr: Any = None) -> None:
+    """Refuse a law whose symbolic form holds an unevaluated function (an integral).
+
+    Such a law (e.g. ``persson``, a double integral over wavenumber and angle)
+    has no Fortran expression; its tables (Abaqus, LS-DYNA, Ansys, Radioss
+    formats) are exported instead.
+    """
+    undefined = _undefined_functions(law, expr)
+    if undefined:
+        raise InputError(
+            f"law '{law.id}' has no closed form ({', '.join(undefined)} is a numerical "
+            "integral), so no Fortran user subroutine can be generated; export a table "
+            "format instead")
+
+
 def law_routine(law: Law, values: Mapping[str, float]) -> list[str]:
     """The ``frl_<law>`` subroutine: mu and d(mu)/d(p, v, T, F_N, s) in SI."""
     import sympy
 
     syms = law.symbols()
     expr = law.symbolic()
+    require_closed_form(law, expr)
     params = [p.name for p in law.params]
     settings = [s.name for s in law.settings]
     missing = [n for n in params + settings if n not in values]

@@ -7,7 +7,7 @@ One module per group of laws; each declares its laws once with
 from importlib import import_module
 
 #: The modules that declare built-in laws, in registration order.
-LAW_MODULES = ("basic", "thesis", "velocity", "slip")
+LAW_MODULES = ("basic", "thesis", "velocity", "slip", "persson")
 
 for _name in LAW_MODULES:
     import_module(f"{__name__}.{_name}")

@@ -120,12 +120,12 @@ def _case_reference(run: CaseRun) -> None:
     if plugins:
         run.note(f"plugin law(s) without an independent reference (not validated): "
                  f"{', '.join(plugins)}")
-    tol = Tol(abs=1e-12, rel=1e-9, why="round-off of a double evaluation")
     for law_id in builtin:
         if law_id not in REFERENCES:
             continue
         law = get_law(law_id)
         ref = REFERENCES[law_id]
+        tol = Tol(abs=1e-12, rel=ref.rtol, why=ref.rtol_why)
         worst = None
         points = reference_points(ref)
         for variables, params in points:

@@ -1,0 +1,51 @@
+"""Benchmark of Persson's friction integral: mu(v) on 100 velocities.
+
+The fast path (:func:`frictionlaws.persson.friction`: Gauss-Legendre panels in
+ln q, spectral cumulative integral for G, tabulated angular integrals, all
+velocities at once) against the baseline of the independent reference
+implementation (``frictionlaws.validation.reference._persson``: one adaptive
+ODE in ln q per velocity, fixed Gauss-Legendre angular integrals of the Prony
+sum), timed on 10 of the velocities and scaled to 100.  Both use the packaged
+DMA material on the asphalt-like surface; the largest relative difference is
+printed with the times.  Target: 100 velocities in under 1 s.
+
+Run: ``python benchmarks/bench_persson.py``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from frictionlaws.persson import asphalt_like, default_material, friction
+from frictionlaws.validation.reference import _persson
+
+
+def main() -> None:
+    mat = default_material()
+    surf = asphalt_like(1e6)
+    v = np.logspace(-8, 3, 100)
+    T, p = 293.15, 2e5
+    friction(mat, surf, v[:2], T, p)
+    times = []
+    for _ in range(5):
+        t0 = time.perf_counter()
+        mu = friction(mat, surf, v, T, p)
+        times.append(time.perf_counter() - t0)
+    fast = min(times)
+    sub = v[::10]
+    t0 = time.perf_counter()
+    ref = np.array([_persson(math, p, vi, T, surf.q1, 0.0, surf.q0, surf.H, 0.3e-3,
+                             material=mat) for vi in sub])
+    t_base = (time.perf_counter() - t0) * v.size / sub.size
+    diff = float(np.max(np.abs(mu[::10] / ref - 1)))
+    print(f"persson mu(v), 100 velocities: fast {fast * 1e3:.1f} ms; baseline (reference "
+          f"ODE per velocity, 10 timed, scaled to 100) {t_base:.1f} s; ratio "
+          f"{t_base / fast:.0f}x; largest relative difference {diff:.1e}; target under 1 s: "
+          f"{'met' if fast < 1.0 else 'MISSED'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+"""Persson's theory of rubber friction as a registry law (``persson``).
+
+The viscoelastic friction of the packaged rubber (the DMA master curve of
+``datasets/dma-pyvisco`` as a Prony series, with its own shifts) sliding on a
+self-affine surface (settings q0, H, h_rms; asphalt-like by default), computed
+by :func:`frictionlaws.persson.friction`, plus an additive contribution
+``mu_a`` (adhesion, other mechanisms).  The fitted parameters are the
+short-wavelength cut-off ``q1`` and ``mu_a``.  The symbolic form is
+``mu_a + mu_P(p, v, T, q1, q0, H, h_rms)`` with ``mu_P`` an unevaluated function
+carrying its numerical implementation (sympy ``implemented_function``), so the
+docs render it, ``lambdify`` evaluates it, and the Fortran generator refuses it
+(no closed form).  :func:`persson_law` builds the same law for another material
+or surface.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Any
+
+from ..law import P_MIN, V_MIN, Law, Param, Setting
+from ..persson.material import Material, default_material
+from ..persson.surface import SelfAffine
+from ..persson.theory import friction
+from ..registry import register
+
+__all__ = ["persson_law", "Q0_ASPHALT", "H_ASPHALT", "H_RMS_ASPHALT"]
+
+#: Roll-off wavenumber of the asphalt-like default surface [1/m] (2 pi / 1 cm).
+Q0_ASPHALT = 2 * math.pi / 0.01
+#: Hurst exponent of the asphalt-like default surface.
+H_ASPHALT = 0.8
+#: rms height of the asphalt-like default surface over q >= q0 [m].
+H_RMS_ASPHALT = 0.3e-3
+
+_REFERENCES = (
+    "B. N. J. Persson, Theory of rubber friction and contact mechanics, J. Chem. Phys. 115 "
+    "(2001) 3840-3861.",
+    "B. N. J. Persson, O. Albohr, U. Tartaglino, A. I. Volokitin, E. Tosatti, On the nature "
+    "of surface roughness with application to contact mechanics, sealing, rubber friction "
+    "and adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.",
+)
+
+
+def _numeric(material: Material | None, p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any,
+             h_rms: Any) -> Any:
+    mat = default_material() if material is None else material
+    surface = SelfAffine.from_rms(float(q0), float(H), float(h_rms), float(q1))
+    return friction(mat, surface, v, T, p, q1=float(q1))
+
+
+@functools.lru_cache(maxsize=8)
+def _symbolic_function(name: str, material: Material | None) -> Any:
+    from sympy.utilities.lambdify import implemented_function
+
+    def impl(p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any, h_rms: Any) -> float:
+        return float(_numeric(material, float(p), float(v), float(T), float(q1), float(q0),
+                              float(H), float(h_rms)))
+
+    return implemented_function(name, impl)
+
+
+def persson_law(material: Material | None = None, *, id: str = "persson",
+                title: str = "Persson (viscoelastic friction on a rough surface)",
+                q0: float = Q0_ASPHALT, H: float = H_ASPHALT, h_rms: float = H_RMS_ASPHALT,
+                register_law: bool = False) -> Law:
+    """The Persson law for ``material`` (default: the packaged DMA rubber).
+
+    Parameters
+    ----------
+    material : Material, optional
+        The rubber; default :func:`frictionlaws.persson.default_material`.
+    id, title : str
+        Registry id and title of the law.
+    q0, H, h_rms : float
+        Default values of the surface settings [1/m], [-], [m].
+    register_law : bool
+        Register the law (ids must be unique).
+    """
+
+    def formula(m: Any, p: Any, v: Any, T: Any, q1: Any, mu_a: Any, q0: Any, H: Any,
+                h_rms: Any) -> Any:
+        if m.is_symbolic:
+            return mu_a + _symbolic_function("mu_P", material)(p, v, T, q1, q0, H, h_rms)
+        return mu_a + _numeric(material, p, v, T, q1, q0, H, h_rms)
+
+    law = Law(
+        id=id, title=title, family="sliding", variables=("p", "v", "T"),
+        params=(
+            Param("q1", "1/m", 1e6, (1e4, 1e8), "short-wavelength cut-off of the roughness "
+                  "spectrum (smallest wavelength 2 pi/q1 that the rubber feels)"),
+            Param("mu_a", "", 0.0, (0.0, math.inf),
+                  "additive contribution (adhesion and other mechanisms)"),
+        ),
+        settings=(
+            Setting("q0", q0, "1/m", "roll-off wavenumber of the self-affine surface",
+                    (1.0, 1e6)),
+            Setting("H", H, "", "Hurst exponent of the surface (fractal dimension 3 - H)",
+                    (0.05, 0.99)),
+            Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0",
+                    (1e-9, 0.1)),
+        ),
+        floors={"v": V_MIN, "p": P_MIN},
+        formula=formula,
+        presets={"dma-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
+        domain={"T": (223.15, 373.15)},
+        typical={"v": (1e-6, 10.0), "p": (1e4, 1e6), "T": (253.15, 353.15)},
+        references=_REFERENCES,
+        evidence="C (theory, as published), I (numerical implementation checked against "
+        "adaptive quadrature)",
+        description="mu = mu_a + mu_P(p, v, T; q1): the viscoelastic friction of Persson's "
+        "theory, 1/2 int q^3 C(q) P(q) int cos(phi) Im E(q v cos(phi), T) dphi dq / "
+        "((1 - nu^2) p), with the contact ratio P(q) = erf(1/(2 sqrt(G(q)))), for the "
+        "packaged DMA rubber (Prony series, its own temperature shifts) on a self-affine "
+        "surface C(q) = C0 (q/q0)^(-2(1+H)) with the rms height h_rms (asphalt-like: q0 = "
+        "2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive contribution mu_a.",
+        notes="No closed form: the Fortran user-subroutine formats are refused, tables are "
+        "exported. Isothermal (no flash-temperature correction). The packaged material is a "
+        "stiff polymer (E' 0.14 to 8 GPa), so the viscoelastic part is small; build your own "
+        "with frictionlaws.persson (material_from_csv, persson_law). v is floored at 1e-9 "
+        "m/s, p at 1 Pa; T outside the DMA sweeps (-50..100 degC) extrapolates the shifts.",
+    )
+    if register_law:
+        register(law)
+    return law
+
+
+persson_law(register_law=True)

@@ -1,0 +1,243 @@
+"""Persson's theory of rubber friction: the viscoelastic friction coefficient.
+
+Sources: B. N. J. Persson, Theory of rubber friction and contact mechanics,
+J. Chem. Phys. 115 (2001) 3840-3861; B. N. J. Persson,
+O. Albohr, U. Tartaglino, A. I. Volokitin, E. Tosatti, On the nature of surface
+roughness with application to contact mechanics, sealing, rubber friction and
+adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.
+Without the flash-temperature correction (isothermal rubber; not implemented).
+
+    mu = 1/2 int_q0^q1 dq q^3 C(q) P(q) int_0^2pi dphi cos(phi)
+         Im E(q v cos(phi), T) / ((1 - nu^2) sigma0)
+    P(q) = erf(1 / (2 sqrt(G(q))))
+    G(q) = 1/8 int_q0^q dq' q'^3 C(q') int_0^2pi dphi |E(q' v cos(phi), T) / ((1 - nu^2) sigma0)|^2
+
+with sigma0 = p the nominal pressure.
+
+Quadrature (the fast path).  Both q integrals run over ln q on Gauss-Legendre
+panels (``order`` nodes per panel, ``panels_per_decade``); the cumulative
+integral G at the nodes uses each panel's spectral integration matrix
+(integral of the Lagrange interpolant), so G and mu have the same high order.
+Both angular integrals are functions of omega0 = q v a_T alone, tabulated once
+per material at 16 points per decade of omega0 and interpolated by a cubic
+spline of their log in ln omega0.  The loss term is analytic for a Prony
+series: for one term with a = omega0 tau and c = cos(phi),
+``int_0^2pi c Im[i a c/(1 + i a c)] dphi = 2 pi a / (sqrt(1 + a^2) (1 + sqrt(1 + a^2)))``;
+the |E|^2 term is integrated by composite Gauss-Legendre in pi/2 - phi on
+panels refined geometrically towards phi = pi/2.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Any
+
+import numpy as np
+from scipy.special import erf
+
+from .material import Material
+
+__all__ = ["friction", "contact_ratio", "loss_angular", "loss_tabulated", "modulus_sq_angular",
+           "q_nodes"]
+
+
+def loss_angular(material: Material, omega0: Any) -> np.ndarray:
+    """``int_0^2pi cos(phi) Im E(omega0 cos phi) dphi`` [Pa] (analytic, Prony series)."""
+    w = np.asarray(omega0, dtype=float)
+    out = np.zeros(w.shape)
+    for Ei, ti in zip(material.E_i, material.tau):
+        a = w * ti
+        r = np.sqrt(1.0 + a * a)
+        out += Ei * a / (r * (1.0 + r))
+    return 2.0 * math.pi * out
+
+
+def _angular_nodes() -> tuple[np.ndarray, np.ndarray]:
+    """Nodes psi = pi/2 - phi and weights on [0, pi/2], refined towards psi = 0."""
+    x, w = np.polynomial.legendre.leggauss(10)
+    edges = np.concatenate([[0.0], (math.pi / 2) * 10.0 ** np.linspace(-14, 0, 29)])
+    psi, wt = [], []
+    for a, b in zip(edges[:-1], edges[1:]):
+        psi.append(a + (b - a) * (x + 1) / 2)
+        wt.append(w * (b - a) / 2)
+    return np.concatenate(psi), np.concatenate(wt)
+
+
+def _modsq_direct(material: Material, omega0: np.ndarray) -> np.ndarray:
+    psi, wt = _angular_nodes()
+    out = np.empty(omega0.size)
+    for k in range(0, omega0.size, 64):
+        w = omega0[k:k + 64, None] * np.sin(psi)[None, :]
+        E = material.modulus(w)
+        out[k:k + 64] = 4.0 * (np.abs(E) ** 2) @ wt
+    return out
+
+
+def _log_grid(material: Material) -> np.ndarray:
+    """ln omega0 from 1e-6/tau_max to 1e8/tau_min, 16 points per decade."""
+    lo = math.log(1e-6 / float(np.max(material.tau)))
+    hi = math.log(1e8 / float(np.min(material.tau)))
+    return np.linspace(lo, hi, int((hi - lo) / math.log(10) * 16) + 1)
+
+
+def _table(material: Material, key: str) -> Any:
+    """Cubic spline of ln F against ln omega0 for F = |E|^2 or loss angular integral."""
+    cache = material._cache
+    if key not in cache:
+        from scipy.interpolate import CubicSpline
+
+        lw = _log_grid(material)
+        w = np.exp(lw)
+        F = _modsq_direct(material, w) if key == "modsq" else loss_angular(material, w)
+        cache[key] = (CubicSpline(lw, np.log(F)), float(lw[0]), float(lw[-1]))
+    return cache[key]
+
+
+def modulus_sq_angular(material: Material, omega0: Any) -> np.ndarray:
+    """``int_0^2pi |E(omega0 cos phi)|^2 dphi`` [Pa^2] (tabulated, spline in ln omega0).
+
+    Constant beyond the table (the rubbery and glassy limits).
+    """
+    spline, lo, hi = _table(material, "modsq")
+    lw = np.log(np.maximum(np.asarray(omega0, dtype=float), 1e-300))
+    return np.exp(spline(np.clip(lw, lo, hi)))
+
+
+def loss_tabulated(material: Material, omega0: Any) -> np.ndarray:
+    """:func:`loss_angular` from a spline in ln omega0 (the fast path).
+
+    Beyond the table it continues with the exact asymptotes, proportional to
+    omega0 below and to 1/omega0 above.
+    """
+    spline, lo, hi = _table(material, "loss")
+    lw = np.log(np.maximum(np.asarray(omega0, dtype=float), 1e-300))
+    c = np.clip(lw, lo, hi)
+    return np.exp(spline(c) + np.where(lw < lo, lw - lo, 0.0) - np.where(lw > hi, lw - hi, 0.0))
+
+
+@functools.lru_cache(maxsize=16)
+def _panel(order: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes, weights and cumulative-integration matrix on [-1, 1]."""
+    x, w = np.polynomial.legendre.leggauss(order)
+    V = np.polynomial.legendre.legvander(x, order - 1)
+    # integral from -1 to x_i of each Legendre polynomial P_k
+    Vint = np.empty_like(V)
+    for k in range(order):
+        c = np.zeros(order)
+        c[k] = 1.0
+        ic = np.polynomial.legendre.legint(c, lbnd=-1.0)
+        Vint[:, k] = np.polynomial.legendre.legval(x, ic)
+    S = Vint @ np.linalg.inv(V)
+    return x, w, S
+
+
+def q_nodes(q0: float, q1: float, *, order: int = 10, panels_per_decade: float = 2.0,
+            graded: int = 8) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """ln q nodes on [q0, q1], quadrature weights (in ln q) and the cumulative matrix.
+
+    The first uniform panel is split geometrically (ratio 10, ``graded``
+    times) towards q0: where G(q) grows fast P(q) behaves like
+    ``1/sqrt(ln q - ln q0)`` next to q0, an endpoint singularity that uniform
+    panels resolve slowly.
+    """
+    x, w, S = _panel(order)
+    decades = math.log10(q1 / q0)
+    k = max(1, int(math.ceil(decades * panels_per_decade - 1e-9)))
+    uniform = np.linspace(math.log(q0), math.log(q1), k + 1)
+    first = uniform[1] - uniform[0]
+    fine = uniform[0] + first * 10.0 ** np.arange(-graded, 0, dtype=float)
+    edges = np.concatenate([uniform[:1], fine, uniform[1:]])
+    h = np.diff(edges) / 2
+    nodes = (edges[:-1, None] + h[:, None] * (x[None, :] + 1)).ravel()
+    weights = (h[:, None] * w[None, :]).ravel()
+    npan = edges.size - 1
+    n = npan * order
+    cum = np.zeros((n, n))
+    for j in range(npan):
+        blk = slice(j * order, (j + 1) * order)
+        cum[blk, : j * order] = weights[None, : j * order]
+        cum[blk, blk] = S * h[j]
+    return np.exp(nodes), weights, cum
+
+
+def _prepare(v: Any, T: Any, p: Any) -> tuple[tuple[int, ...], np.ndarray, np.ndarray,
+                                             np.ndarray]:
+    b = np.broadcast_arrays(np.asarray(v, float), np.asarray(T, float), np.asarray(p, float))
+    shape = b[0].shape
+    return shape, np.abs(b[0]).ravel(), b[1].ravel(), b[2].ravel()
+
+
+def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: Any) -> Any:
+    """P(q) = A(q)/A0 at wavenumbers ``q`` (last axis) for each v, T, p (fast path)."""
+    shape, vv, TT, pp = _prepare(v, T, p)
+    q = np.asarray(q, dtype=float)
+    out = []
+    for qi in q:
+        nodes, _, cum = q_nodes(surface.q0, float(qi) if qi > surface.q0 else
+                                surface.q0 * (1 + 1e-12))
+        G = _G(material, surface, vv, TT, pp, nodes, cum)
+        out.append(_P(G[:, -1]) if qi > surface.q0 else np.ones(vv.size))
+    return np.stack(out, axis=-1).reshape(shape + (q.size,))
+
+
+def _omega0(material: Material, v: np.ndarray, T: np.ndarray, q: np.ndarray) -> np.ndarray:
+    aT = 10.0 ** material.shift(T)
+    return (v * aT)[:, None] * q[None, :]
+
+
+def _G(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+       nodes: np.ndarray, cum: np.ndarray) -> np.ndarray:
+    e = (1.0 - material.nu**2) * p
+    F = modulus_sq_angular(material, _omega0(material, v, T, nodes))
+    g = nodes**4 * surface.C(nodes) / 8.0 * F / (e * e)[:, None]
+    # the last node of the cumulative matrix reaches only the last node, not q1:
+    return g @ cum.T
+
+
+def _P(G: np.ndarray) -> np.ndarray:
+    with np.errstate(divide="ignore"):
+        return erf(1.0 / (2.0 * np.sqrt(np.maximum(G, 0.0))))
+
+
+def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
+             q1: float | None = None, order: int = 10, panels_per_decade: float = 2.0
+             ) -> Any:
+    """The viscoelastic friction coefficient mu(v, T, p) of Persson's theory.
+
+    Parameters
+    ----------
+    material : Material
+        The rubber (Prony series, shift, Poisson ratio).
+    surface : SelfAffine or TabulatedPSD
+        The counter-surface spectrum C(q) [m^4] with its ``q0``.
+    v, T, p : array-like
+        Sliding velocity [m/s], temperature [K], nominal pressure [Pa];
+        broadcast together.
+    q1 : float, optional
+        Short-wavelength cut-off [1/m] (default: the surface's ``q1``).
+    order, panels_per_decade
+        Gauss-Legendre nodes per panel and panels per decade of q.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        mu, of the broadcast shape (a float for scalar input).
+    """
+    q1 = float(surface.q1 if q1 is None else q1)
+    shape, vv, TT, pp = _prepare(v, T, p)
+    nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
+                                  panels_per_decade=panels_per_decade)
+    qC = nodes**4 * surface.C(nodes)
+    mu = np.empty(vv.size)
+    for k in range(0, vv.size, _BLOCK):
+        b = slice(k, k + _BLOCK)
+        G = _G(material, surface, vv[b], TT[b], pp[b], nodes, cum)
+        e = (1.0 - material.nu**2) * pp[b]
+        A = loss_tabulated(material, _omega0(material, vv[b], TT[b], nodes))
+        mu[b] = (0.5 * qC * _P(G) * A / e[:, None]) @ weights
+    return float(mu[0]) if shape == () else mu.reshape(shape)
+
+
+#: Points evaluated together (bounds the memory of the (points x nodes) arrays).
+_BLOCK = 1024
