@@ -2,7 +2,7 @@
 
 Sources: Persson, J. Chem. Phys. 115 (2001) 3840; Persson et al., J. Phys.:
 Condens. Matter 17 (2005) R1.  The fast implementation is checked against an
-independent one (frictionlaws.validation.reference._persson: G and mu as an ODE
+independent one (frictionlaws.law_examples._persson: G and mu as an ODE
 in ln q with adaptive steps, angular integrals by quadrature of the Prony sum).
 """
 
@@ -31,7 +31,7 @@ from frictionlaws.persson import (
     psd_from_profile,
     psd_from_profile_csv,
 )
-from frictionlaws.validation.reference import _persson
+from frictionlaws.law_examples import _persson
 
 
 def rubber(C1=8.86, C2=101.6, T_ref=293.15):
