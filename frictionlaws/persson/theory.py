@@ -7,6 +7,8 @@ roughness with application to contact mechanics, sealing, rubber friction and
 adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.
 Without the flash-temperature correction (isothermal rubber; not implemented).
 
+.. code-block:: text
+
     mu = 1/2 int_q0^q1 dq q^3 C(q) P(q) int_0^2pi dphi cos(phi)
          Im E(q v cos(phi), T) / ((1 - nu^2) sigma0)
     P(q) = erf(1 / (2 sqrt(G(q))))
