@@ -395,7 +395,31 @@ class _Table:
     delimiter: str | None = None
 
 
-def _decode(raw: bytes, source: str) -> tuple[str, str | None]:
+def refuse_nul(raw: bytes, source: str) -> None:
+    """Refuse text with a NUL byte anywhere, naming the row it is on.
+
+    A NUL is never part of a CSV cell; CSV readers either stop at it or fail with an
+    internal message, so every table reader calls this before parsing.
+    """
+    at = raw.find(b"\x00")
+    if at >= 0:
+        raise InputError("contains a NUL byte (binary content inside a text file); "
+                         "expected CSV text", file=source, row=raw.count(b"\n", 0, at) + 1)
+
+
+def decode_text(raw: bytes, source: str, what: str = "CSV file") -> tuple[str, str | None]:
+    """Decode the bytes of a text input file; the one encoding rule of every reader.
+
+    UTF-16 with a byte-order mark, UTF-8 (with or without BOM), then cp1252 and
+    latin-1 with a note.  Binary content (a spreadsheet, an image) and NUL bytes
+    anywhere are refused.
+
+    Returns
+    -------
+    text : str
+    note : str or None
+        Set when the file was not UTF-8, to be shown to the user.
+    """
     if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
         try:
             return raw.decode("utf-16"), None
@@ -405,10 +429,11 @@ def _decode(raw: bytes, source: str) -> tuple[str, str | None]:
     controls = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
     if b"\x00" in head or controls > max(2, len(head) // 20):
         raise InputError(
-            "is not a text CSV file (binary content, e.g. a spreadsheet or an image); "
-            "export the data as CSV text",
+            f"is not a text {what} (binary content, e.g. a spreadsheet or an image); "
+            f"export it as text",
             file=source,
         )
+    refuse_nul(raw, source)
     try:
         return raw.decode("utf-8-sig"), None
     except UnicodeDecodeError:
@@ -454,7 +479,7 @@ def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
             raw = p.read_bytes()
         except OSError as exc:
             raise InputError(f"cannot read the file ({exc.strerror})", file=source) from None
-    text, enc_note = _decode(raw, source)
+    text, enc_note = decode_text(raw, source)
     notes = [enc_note] if enc_note else []
     lines = text.splitlines()
     comments: list[str] = []

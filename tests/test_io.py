@@ -594,3 +594,28 @@ def test_nothing_is_lost_when_cells_are_nan_strings(tmp_path: Path) -> None:
     dropped = sum(int(n.split()[1]) for n in ds.notes if n.startswith("dropped"))
     assert dropped == len(tokens)
     assert math.isclose(ds.frame["mu"].iloc[0], 0.5)
+
+
+@pytest.mark.parametrize("reader", ["dataset", "record", "manifest"])
+def test_nul_byte_past_the_first_block_is_refused_with_its_row(tmp_path, reader):
+    """A NUL deep in a file (after the binary sniffing window) is refused, row named.
+
+    pandas reads such a cell as text and the csv module stops with an internal
+    message; every table reader refuses it instead.
+    """
+    from frictionlaws.tribometer.process import read_manifest
+    from frictionlaws.tribometer.records import read_record
+    from frictionlaws.tribometer.rig import Rig
+
+    header, row, read = {
+        "dataset": (b"mu,p [MPa]\n", b"0.5,0.1\n", io.load_dataset),
+        "record": (b"time [s],torque [N m],disc_speed [rpm]\n", b"0.1,2,3\n", read_record),
+        "manifest": (b"record,F_N [N]\n", b"r.csv,100\n",
+                     lambda path: read_manifest(path, Rig())),
+    }[reader]
+    path = tmp_path / "nul.csv"
+    path.write_bytes(header + row * 2000 + row.replace(b",", b",\x00", 1) + row)
+    with pytest.raises(InputError, match="NUL byte") as info:
+        read(path)
+    assert info.value.row == 2002
+    assert str(path) in str(info.value)

@@ -17,6 +17,7 @@ import pytest
 
 import frictionlaws as fl
 from frictionlaws.errors import InputError
+from frictionlaws.law_examples import _persson
 from frictionlaws.persson import (
     Material,
     SelfAffine,
@@ -31,7 +32,6 @@ from frictionlaws.persson import (
     psd_from_profile,
     psd_from_profile_csv,
 )
-from frictionlaws.law_examples import _persson
 
 
 def rubber(C1=8.86, C2=101.6, T_ref=293.15):

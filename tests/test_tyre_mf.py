@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -11,6 +12,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
+from frictionlaws.cli import main
 from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, read_property_file
 from frictionlaws.tyre.magic_formula import mf_curve
@@ -376,7 +378,7 @@ def test_property_file_errors(tmp_path):
     no_fnomin = TIR_SNIPPET.replace("FNOMIN", "FNOMINX")
     with pytest.raises(InputError, match="FNOMIN"):
         MagicFormula.from_property_file(read_tir(no_fnomin))
-    no_pcx1 = TIR_SNIPPET.replace("PCX1", "PCX9")
+    no_pcx1 = TIR_SNIPPET.replace("PCX1                     = 1.65\n", "")
     with pytest.raises(InputError, match="PCX1 is missing"):
         MagicFormula.from_property_file(read_tir(no_pcx1))
     with pytest.raises(InputError, match="text, expected a number"):
@@ -427,3 +429,46 @@ def test_mf_curve_helper_matches():
     kappa = np.linspace(-0.3, 0.3, 13)
     assert np.allclose(mf.fx0(kappa, 3000.0),
                        mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V))
+
+
+# Property files that used to give a number silently: each is refused naming line and key,
+# or (an unknown, unrelated key) listed in a note.
+_PF_CASES = [
+    ("PCX1", "PCX1 = 1,65", "a decimal comma; write 1.65"),
+    ("PCX1", "PCX1 = abc", "PCX1 = 'abc' is text, expected a number"),
+    ("PCX1", "PCX9 = 1.65", "unknown key PCX9: did you mean PCX1"),
+    ("PROPERTY_FILE_FORMAT", "FITTYP = 99", "FITTYP = 99: not a Magic Formula version"),
+    ("PROPERTY_FILE_FORMAT", "FITTYP = 'sixty-one'",
+     "FITTYP = sixty-one: not a Magic Formula version"),
+]
+
+
+@pytest.mark.parametrize(("key", "line", "message"), _PF_CASES)
+def test_property_file_values_are_refused_with_line_and_key(key, line, message):
+    lines = TIR_SNIPPET.splitlines()
+    at = next(i for i, text in enumerate(lines) if text.strip().startswith(key + " "))
+    lines[at] = line
+    with pytest.raises(InputError, match=re.escape(message)) as info:
+        MagicFormula.from_property_file(read_tir("\n".join(lines)))
+    assert info.value.row == at + 1
+
+
+def test_property_file_unknown_keys_are_listed(tmp_path):
+    text = TIR_SNIPPET.replace("[LATERAL_COEFFICIENTS]", "[LATERAL_COEFFICIENTS]\nZZTOP = 3")
+    mf = MagicFormula.from_property_file(read_tir(text))
+    assert any("unknown keys" in n and "ZZTOP" in n for n in mf.notes)
+    path = tmp_path / "extra.tir"
+    path.write_text(text)
+    assert main(["tyre", "mf", str(path)]) == 0
+
+
+def test_property_file_encodings_follow_the_one_rule(tmp_path):
+    """UTF-16 with BOM reads like UTF-8; a NUL byte is refused with its line."""
+    utf16 = tmp_path / "utf16.tir"
+    utf16.write_bytes(TIR_SNIPPET.encode("utf-16"))
+    ref = MagicFormula.from_property_file(read_tir(TIR_SNIPPET))
+    assert MagicFormula.from_file(utf16).fx0(0.1, 4000.0) == ref.fx0(0.1, 4000.0)
+    nul = tmp_path / "nul.tir"
+    nul.write_bytes(TIR_SNIPPET.encode() + b"$ padding\n" * 1000 + b"PCX2 = \x001\n")
+    with pytest.raises(InputError, match="NUL byte"):
+        MagicFormula.from_file(nul)

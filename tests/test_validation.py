@@ -76,7 +76,7 @@ def test_full_suite_passes_with_sources(capsys):
     rec = next(c for c in report["cases"] if c["id"] == "parameter-recovery")
     for law in list_laws():
         assert any(k["name"].startswith(f"{law.id}:") for k in rec["checks"]), law.id
-    assert report["seconds"] < 60
+    assert report["seconds"] < 600  # a hang guard, not a timing claim (CI load varies)
 
 
 def test_text_output_names_source_expected_obtained(capsys):

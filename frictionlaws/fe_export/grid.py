@@ -791,10 +791,11 @@ def make_grid(func: Func, specs: Sequence[AxisSpec], tol: float | None = None, *
     * otherwise adaptive with ``default_tol``.
     """
     if tol is None and all(s.n is not None or s.single for s in specs):
-        grid = fixed_grid(specs)
-        if grid.rows > max_rows:
-            raise InputError(f"the requested grid has {grid.rows} rows, more than the limit "
+        rows = math.prod(1 if s.single else int(s.n or DEFAULT_N) for s in specs)
+        if rows > max_rows:  # counted before a single point is allocated
+            raise InputError(f"the requested grid has {rows} rows, more than the limit "
                              f"{max_rows}; use fewer points or raise the row limit")
+        grid = fixed_grid(specs)
         err = check_error(func, grid)
         return grid, err, "fixed (points per variable as requested)"
     used = default_tol if tol is None else float(tol)

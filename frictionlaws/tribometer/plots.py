@@ -93,7 +93,10 @@ def plot_conditions(path: Path, campaign: Any) -> Path:
         mu = np.array([c.mu for c in sel])
         lo = np.array([c.ci95[0] for c in sel])
         hi = np.array([c.ci95[1] for c in sel])
-        ax.errorbar(p, mu, yerr=[mu - lo, hi - mu], fmt="o", ms=4, capsize=3,
+        # lists, not arrays: matplotlib < 3.10 converts a one-point array row to a
+        # scalar with a NumPy deprecation warning
+        ax.errorbar(p, mu, yerr=[(mu - lo).tolist(), (hi - mu).tolist()], fmt="o", ms=4,
+                    capsize=3,
                     color=f"C{k % 10}", label=surf)
     ax.set_xlabel("contact pressure p [MPa]")
     ax.set_ylabel("mu [-] (mean, 95 % CI)")

@@ -77,6 +77,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..io import decode_text
+from ..outputs import check_input_file
 from .records import Record, read_record, split_header
 from .rig import RPM, Rig
 from .signal import NoWindow, Window, auto_cutoff, find_window, lowpass, speed_segment
@@ -172,13 +174,8 @@ def _read_table(src: str) -> tuple[list[str], list[list[str]], list[int]]:
         raise InputError("manifest file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a manifest CSV file", file=src)
-    raw = p.read_bytes()
-    if b"\x00" in raw[:4096]:
-        raise InputError("is not a text CSV file (binary content)", file=src)
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")
+    check_input_file(p, "manifest file")
+    text, _ = decode_text(p.read_bytes(), src, "manifest CSV file")  # the one encoding rule
     header: list[str] | None = None
     delimiter = ","
     data: list[list[str]] = []

@@ -38,6 +38,7 @@ header is row 1); :mod:`~frictionlaws.tribometer.process` turns it into an
 from __future__ import annotations
 
 import functools
+import io
 import os
 import re
 from dataclasses import dataclass, field
@@ -47,6 +48,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..io import decode_text
+from ..outputs import check_input_file
 from ..units import parse_unit, unit_registry
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
@@ -273,33 +276,27 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
         raise InputError("record file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a record CSV file", file=src)
+    check_input_file(p, "record file")
     try:
-        with p.open("rb") as fh:
-            head = fh.read(4096)
+        raw = p.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read the file ({exc.strerror})", file=src) from None
-    if b"\x00" in head:
-        raise InputError("is not a text CSV file (binary content); export the record as CSV",
-                         file=src)
-    if not head.strip():
+    text, _ = decode_text(raw, src, "record CSV file")  # the one encoding rule
+    if not text.strip():
         raise InputError("file is empty; expected a header such as "
                          "'time [s],torque [N m],disc_speed [rpm]' and data rows", file=src)
     # fast path: no NA parsing (empty cells become text and are reported below), comment
-    # handling and BOM decoding only when the file needs them
+    # handling only when the file needs it
     opts: dict[str, Any] = {"na_filter": False, "low_memory": False}
-    if b"#" in head:
+    if "#" in text:
         opts["comment"] = "#"
-    if head.startswith(b"\xef\xbb\xbf"):
-        opts["encoding"] = "utf-8-sig"
     try:
-        frame = pd.read_csv(p, **opts)
-    except UnicodeDecodeError:
-        raise InputError("is not UTF-8 text", file=src) from None
+        frame = pd.read_csv(io.StringIO(text), **opts)
+    except pd.errors.EmptyDataError:
+        raise InputError("file has no header row", file=src) from None
     except (pd.errors.ParserError, ValueError) as exc:
         raise InputError(f"cannot be read as CSV: {' '.join(str(exc).split())}",
                          file=src) from None
-    except pd.errors.EmptyDataError:
-        raise InputError("file has no header row", file=src) from None
     headers = [str(c) for c in frame.columns]
     found: dict[str, int] = {}
     units: dict[str, str] = {}

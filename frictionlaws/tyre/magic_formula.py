@@ -141,13 +141,15 @@ def _version_of(pf: PropertyFile) -> tuple[str, str]:
     """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
     fittyp = pf.get("MODEL", "FITTYP")
     fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
-    if isinstance(fittyp, float):
-        if int(fittyp) == 61:
-            return "6.1", "FITTYP = 61"
-        if int(fittyp) == 62:
-            return "6.2", "FITTYP = 62"
-        if int(fittyp) in (5, 6, 21):
-            return "5.2", f"FITTYP = {int(fittyp)}"
+    if fittyp is not None:
+        known = {61: "6.1", 62: "6.2", 5: "5.2", 6: "5.2", 21: "5.2"}
+        if not isinstance(fittyp, float) or fittyp not in known:
+            raise InputError(
+                f"[MODEL] FITTYP = {pf.text('MODEL', 'FITTYP')}: not a Magic Formula "
+                "version evaluated here (5, 6 or 21: MF 5.2 / PAC2002; 61: MF 6.1; "
+                "62: MF 6.2)", file=pf.path,
+                row=pf.lines.get(("MODEL", "FITTYP")))
+        return known[int(fittyp)], f"FITTYP = {int(fittyp)}"
     if "PAC2002" in fmt or "MF_05" in fmt:
         return "5.2", f"PROPERTY_FILE_FORMAT = '{fmt}'"
     if "MF_61" in fmt or "MF61" in fmt:
@@ -259,7 +261,7 @@ class MagicFormula:
                            pressure: float | None = None) -> MagicFormula:
         """Build from an already read :class:`~frictionlaws.tyre.tir.PropertyFile`."""
         pf.check_angle_unit()
-        notes = []
+        notes = pf.check_coefficients()
         if version is None:
             version, how = _version_of(pf)
             notes.append(f"Magic Formula {version} equations ({how})")

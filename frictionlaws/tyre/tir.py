@@ -55,6 +55,7 @@ _SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
 _KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
 _NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eEdD][-+]?\d+)?$")
+_DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eEdD][-+]?\d+)?$")
 
 #: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`.
 #: Everything else a Magic Formula uses is dimensionless or an angle (radians).
@@ -75,6 +76,40 @@ DIMENSIONAL = {
     ("INFLATION_PRESSURE_RANGE", "PRESMIN"): "pressure",
     ("INFLATION_PRESSURE_RANGE", "PRESMAX"): "pressure",
     ("MODEL", "LONGVL"): "length/time",
+}
+
+
+def _expand(spec: str) -> frozenset[str]:
+    """``"PCX1 PDX1-3"`` -> {PCX1, PDX1, PDX2, PDX3}."""
+    names: set[str] = set()
+    for item in spec.split():
+        m = re.fullmatch(r"([A-Z_]+?)(\d+)-(\d+)", item)
+        if m:
+            names.update(f"{m.group(1)}{i}" for i in range(int(m.group(2)),
+                                                            int(m.group(3)) + 1))
+        else:
+            names.add(item)
+    return frozenset(names)
+
+
+#: The coefficient names of the Magic Formula 5.2 (PAC2002), 6.1 and 6.2 property
+#: files, per section: a key of a coefficient section outside this list is unknown
+#: (listed to the user, or refused when it is a near miss of an absent name).
+MF_KEYS: dict[str, frozenset[str]] = {
+    "SCALING_COEFFICIENTS": _expand(
+        "LFZO LFZ0 LCX LMUX LEX LKX LHX LVX LGAX LCY LMUY LEY LKY LKYC LKZC LHY LVY LGAY "
+        "LTR LRES LGAZ LXAL LYKA LVYKA LS LSGKP LSGAL LGYR LMX LVMX LMY LMP LMUV LIP LCZ"),
+    "LONGITUDINAL_COEFFICIENTS": _expand(
+        "PCX1 PDX1-3 PEX1-4 PKX1-3 PHX1-2 PVX1-2 PPX1-4 RBX1-3 RCX1 REX1-2 RHX1 PTX1-3"),
+    "LATERAL_COEFFICIENTS": _expand(
+        "PCY1 PDY1-3 PEY1-5 PKY1-7 PHY1-3 PVY1-4 PPY1-5 RBY1-4 RCY1 REY1-2 RHY1-2 RVY1-6 "
+        "PTY1-2"),
+    "ALIGNING_COEFFICIENTS": _expand(
+        "QBZ1-6 QBZ9-10 QCZ1 QDZ1-11 QEZ1-5 QHZ1-4 PPZ1-2 SSZ1-4 QTZ1 MBELT"),
+    "OVERTURNING_COEFFICIENTS": _expand("QSX1-14 PPMX1"),
+    "ROLLING_COEFFICIENTS": _expand("QSY1-8"),
+    "TURNSLIP_COEFFICIENTS": _expand(
+        "PDXP1-3 PKYP1 PDYP1-4 PHYP1-4 PECP1-2 QDTP1 QCRP1-2 QBRP1 QDRP1-2"),
 }
 
 
@@ -151,6 +186,45 @@ class PropertyFile:
                 if not isinstance(v, str):
                     out[k] = float(v)
         return out
+
+    def check_coefficients(self) -> list[str]:
+        """Check the coefficient sections against :data:`MF_KEYS`.
+
+        Returns
+        -------
+        list of str
+            A note listing unknown keys (kept, not used), when there are any.
+
+        Raises
+        ------
+        InputError
+            A coefficient that is text instead of a number, or an unknown key that
+            is a near miss of a standard name the file lacks (a misspelling that
+            would silently leave the coefficient at its default).
+        """
+        import difflib
+
+        unknown: list[str] = []
+        for sec, known in MF_KEYS.items():
+            entries = self.sections.get(sec, {})
+            for key, value in entries.items():
+                row = self.lines.get((sec, key))
+                if isinstance(value, str):
+                    raise InputError(f"[{sec}] {key} = '{value}' is text, expected a number",
+                                     file=self.path, row=row)
+                if key in known:
+                    continue
+                near = [k for k in difflib.get_close_matches(key, known, n=3, cutoff=0.75)
+                        if k not in entries]
+                if near:
+                    raise InputError(
+                        f"[{sec}] unknown key {key}: did you mean {' or '.join(near)}? "
+                        f"({near[0]} is absent, so it would take its default)",
+                        file=self.path, row=row)
+                unknown.append(f"[{sec}] {key}")
+        if not unknown:
+            return []
+        return [f"unknown keys kept but not used by the Magic Formula: {', '.join(unknown)}"]
 
     # ------------------------------------------------------------------ units
     def unit(self, kind: str) -> str:
@@ -258,12 +332,15 @@ def read_property_file(path: str | Path) -> PropertyFile:
     path = Path(path)
     if not path.is_file():
         raise InputError("property file not found", file=str(path))
+    from ..io import decode_text
+    from ..outputs import check_input_file
+
+    check_input_file(path, "property file")
     try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        text = path.read_text(encoding="latin-1")
+        raw = path.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read ({exc.strerror})", file=str(path)) from None
+    text, _ = decode_text(raw, str(path), "property file")  # the one encoding rule
     if text.lstrip().startswith("{") or path.suffix.lower() == ".json":
         return read_json(text, source=str(path))
     return read_tir(text, source=str(path))
@@ -339,6 +416,9 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
         if not math.isfinite(value):
             raise InputError(f"{key} = {raw} is not finite", file=source, row=lineno)
         return value
+    if _DECIMAL_COMMA.match(raw):
+        raise InputError(f"{key} = {raw}: a decimal comma; write {raw.replace(',', '.')} "
+                         "(property files use a decimal point)", file=source, row=lineno)
     if " " in raw or "\t" in raw:
         raise InputError(f"{key} = {raw!r}: expected one number or a quoted string",
                          file=source, row=lineno)
