@@ -214,6 +214,7 @@ def parse_unit(
             ) from None
     expected = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
     if parsed.dimensionality == expected.dimensionality:
+        _check_policy(parsed, text, kind, column=column, file=file)
         return parsed
     if quantity == "F_N" and parsed.dimensionality == ureg.kilogram.dimensionality:
         return parsed  # a dead weight given as a mass: see to_si / conversion_note
@@ -223,6 +224,25 @@ def parse_unit(
         f"unit '{text}' is {got}, expected {kind.what} (e.g. {_examples(kind)}){hint}",
         file=file, column=column,
     )
+
+
+def _check_policy(parsed: Any, text: str, kind: Quantity, *, column: str | None,
+                  file: str | None) -> None:
+    """Units pint calls compatible that still mean something else.
+
+    An angle (``rad``, ``deg``, ``turn``) is dimensionless to pint but is not a
+    friction coefficient or a slip ratio; a temperature difference (``delta_degC``)
+    has the dimension of a temperature but is not one.
+    """
+    ureg = unit_registry()
+    if not kind.si and str(ureg.get_root_units(parsed)[1]) != "dimensionless":
+        raise InputError(
+            f"unit '{text}' is an angle, expected {kind.what} (e.g. {_examples(kind)})",
+            file=file, column=column)
+    if kind.si == "K" and "delta_" in str(parsed):
+        raise InputError(
+            f"unit '{text}' is a temperature difference, expected {kind.what} "
+            f"(e.g. {_examples(kind)})", file=file, column=column)
 
 
 def check_unit(

@@ -380,11 +380,12 @@ def test_unusable_records_are_reported_and_the_rest_processed(tmp_path):
             fh.write(f"{f},3,steel,steel 3 kg,steady\n")
         fh.write("records/steel_3_kg_02.csv,3,steel,steel 3 kg,steady\n")  # listed twice
         fh.write("records/bad_load.csv,heavy,steel,steel 3 kg,steady\n")
+        fh.write("records/odd_load.csv,1_000,steel,steel 3 kg,steady\n")  # one number parser
         fh.write("records/bad_mode.csv,3,steel,steel 3 kg,sideways\n")
     camp = process_campaign(truth.manifest, rig, jobs=1, progress=False)
     reasons = {r.file: r.reason for r in camp.unusable}
     assert set(reasons) == set(extra) | {"records/steel_3_kg_02.csv", "records/bad_load.csv",
-                                         "records/bad_mode.csv"}
+                                         "records/bad_mode.csv", "records/odd_load.csv"}
     assert "missing or non-numeric" in reasons["records/nan.csv"]
     assert "row 5002" in reasons["records/nan.csv"]
     assert "too short" in reasons["records/short.csv"]
@@ -395,15 +396,16 @@ def test_unusable_records_are_reported_and_the_rest_processed(tmp_path):
     assert "not found" in reasons["records/missing.csv"]
     assert "listed twice" in reasons["records/steel_3_kg_02.csv"]
     assert "'heavy' is not a number" in reasons["records/bad_load.csv"]
+    assert "'1_000' is not a number" in reasons["records/odd_load.csv"]
     assert "sideways" in reasons["records/bad_mode.csv"]
     # the good records are processed: 4 used (the repeated row is the one refused)
     (cond,) = camp.conditions
     assert cond.n == 4 and abs(cond.mu / 1.5 - 1) < 0.02
-    assert len(cond.unusable) == 10
+    assert len(cond.unusable) == 11
     text = camp.summary()
-    assert "10 unusable" in text and "records/short.csv: " in text
+    assert "11 unusable" in text and "records/short.csv: " in text
     table = camp.records_frame()
-    assert (table["status"] == "unusable").sum() == 10
+    assert (table["status"] == "unusable").sum() == 11
     assert table.loc[table["status"] == "unusable", "reason"].str.len().min() > 10
 
 

@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 import pytest
 
+from frictionlaws.cli import main
 from frictionlaws.errors import DomainError, ExtrapolationWarning, InputError
 from frictionlaws.law import NUMPY, Law
 from frictionlaws.registry import get_law
@@ -346,3 +347,24 @@ def test_bad_inputs():
                                       "c4": 0.0, "c5": 0.0})
     with pytest.raises(DomainError, match=r"mu = .* at p = .* MPa"):
         neg.fy(np.radians(2.0), 6000.0)
+
+
+@pytest.mark.parametrize(("kwargs", "message"), [
+    ({"width": 150e3}, "width = 150000 m is outside"),
+    ({"width": 1e-4}, "width = 0.0001 m is outside"),
+    ({"radius": 40.0}, "radius = 40 m is outside"),
+    ({"speed": 1e4}, "speed = 10000 m/s is outside"),
+])
+def test_brush_tyre_refuses_geometry_no_tyre_has(kwargs, message):
+    with pytest.raises(InputError, match=message):
+        BrushTyre(**kwargs)
+
+
+@pytest.mark.parametrize("contact", ["sqrt", "deflection"])
+def test_brush_tyre_refuses_a_load_whose_patch_outgrows_the_wheel(contact):
+    tyre = BrushTyre(contact=contact)
+    assert tyre.half_length(6.5e3) < tyre.radius
+    with pytest.raises(InputError, match="more than the tyre radius"):
+        tyre.half_length(1e12)
+    assert main(["tyre", "cornering", "--law", "coulomb", "--set", "mu0=0.9",
+                 "--loads", "1e9:1e9:1"]) == 2

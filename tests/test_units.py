@@ -193,3 +193,25 @@ def test_units_module_does_not_import_pint_until_used() -> None:
 
 def test_registry_is_built_once() -> None:
     assert units.unit_registry() is units.unit_registry()
+
+
+@pytest.mark.parametrize(("unit", "quantity", "message"), [
+    ("deg", "mu", "is an angle"),
+    ("rad", "s", "is an angle"),
+    ("turn", "s", "is an angle"),
+    ("arcmin", "mu", "is an angle"),
+    ("delta_degC", "T", "is a temperature difference"),
+    ("delta_degF", "T", "is a temperature difference"),
+])
+def test_units_pint_calls_compatible_but_mean_something_else(unit, quantity, message):
+    """One unit policy: angles are not mu or slip; a temperature difference is not T."""
+    with pytest.raises(InputError, match=message):
+        units.parse_unit(unit, quantity, column=f"{quantity} [{unit}]", file="f.csv")
+
+
+@pytest.mark.parametrize(("unit", "quantity"), [
+    ("%", "s"), ("percent", "s"), ("-", "mu"), ("", "mu"), ("degC", "T"), ("K", "T"),
+    ("degF", "T"), ("rpm", "angular_velocity"),
+])
+def test_units_the_policy_keeps_accepting(unit, quantity):
+    units.parse_unit(unit, quantity)

@@ -219,6 +219,13 @@ def manifest_from_rows(rows: Sequence[Mapping[str, Any]], rig: Rig, *,
     return _entries(headers, columns, list(range(2, len(rows) + 2)), source, Path(base), rig)
 
 
+def _number(text: str) -> float:
+    """A manifest cell as a number: the one number parser (a decimal comma allowed)."""
+    from ..numbers import parse_number
+
+    return parse_number(text, decimal_comma="," in text)
+
+
 def _cell(value: Any) -> str:
     if value is None:
         return ""
@@ -293,9 +300,9 @@ def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src:
         load = math.nan
         text = get("load")
         try:
-            load = float(text) * load_factor
-        except ValueError:
-            errors.append(f"column '{load_h}': load '{text}' is not a number")
+            load = _number(text) * load_factor
+        except ValueError as exc:
+            errors.append(f"column '{load_h}': load {exc}")
         else:
             if not (load > 0 and math.isfinite(load)):
                 errors.append(f"column '{load_h}': load must be > 0, got '{text}'")
@@ -317,9 +324,9 @@ def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src:
             window[key] = None
             if cell:
                 try:
-                    window[key] = float(cell) * win_factor[key]
-                except ValueError:
-                    errors.append(f"column '{headers[found[key]]}': '{cell}' is not a number")
+                    window[key] = _number(cell) * win_factor[key]
+                except ValueError as exc:
+                    errors.append(f"column '{headers[found[key]]}': {exc}")
         ws, we = window["window_start"], window["window_end"]
         if ws is not None and we is not None and not we > ws:
             errors.append(f"window_end ({we:g} s) must be after window_start ({ws:g} s)")

@@ -138,6 +138,17 @@ _LOCAL_VARIABLES = ("p", "v")
 DEFAULT_C_PY = 8.49e6
 
 
+#: Ranges of real tyres (bicycle to mining tyre) outside which the brush tyre refuses
+#: its geometry and speed: a 150 km wide patch is a typing error, not a tyre.
+TYRE_LIMITS: dict[str, tuple[float, float]] = {
+    "width": (0.005, 2.0),
+    "half_length_ref": (0.001, 1.0),
+    "radius": (0.05, 2.5),
+    "speed": (1e-3, 150.0),
+}
+_LIMIT_UNITS = {"width": "m", "half_length_ref": "m", "radius": "m", "speed": "m/s"}
+
+
 @dataclass(frozen=True)
 class BrushTyre:
     """Geometry, stiffness and operating speed of a brush tyre (SI units).
@@ -187,6 +198,12 @@ class BrushTyre:
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise InputError(f"brush tyre: {name} must be a positive number (SI), "
                                  f"got {value!r}")
+        for name, (lo, hi) in TYRE_LIMITS.items():
+            value = getattr(self, name)
+            if not lo <= value <= hi:
+                raise InputError(f"brush tyre: {name} = {value:g} {_LIMIT_UNITS[name]} is "
+                                 f"outside {lo:g}..{hi:g} {_LIMIT_UNITS[name]}, the range of "
+                                 "real tyres this model is meant for")
         for name in ("q_ra1", "q_ra2"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
@@ -212,9 +229,15 @@ class BrushTyre:
                                  f"at F_z = {fz:g} N; expected a positive length")
             return a
         if self.contact == "sqrt":
-            return self.half_length_ref * math.sqrt(fz / self.ref_load)
-        delta = fz / self.vertical_stiffness
-        return self.q_ra1 * math.sqrt(self.radius * delta) + self.q_ra2 * delta
+            a = self.half_length_ref * math.sqrt(fz / self.ref_load)
+        else:
+            delta = fz / self.vertical_stiffness
+            a = self.q_ra1 * math.sqrt(self.radius * delta) + self.q_ra2 * delta
+        if a > self.radius:  # a patch longer than the wheel's diameter is not a tyre
+            raise InputError(f"brush tyre: at F_z = {fz:g} N the contact half-length would "
+                             f"be {a:.3g} m, more than the tyre radius {self.radius:g} m: "
+                             "the load is beyond what this tyre can carry")
+        return a
 
     def patch(self, fz: float, nodes: int | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Nodes ``s`` [m] (0 = leading edge) and contact pressure ``p`` [Pa] at load ``fz``.
