@@ -453,35 +453,58 @@ def _detect_delimiter(header_line: str) -> str | None:
     return None
 
 
-def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
-             raw: bytes | None = None) -> _Table:
-    """Read a CSV file into raw cells (used by :func:`load_dataset`).
+def read_table(path: str | os.PathLike[str], *, source: str | None = None,
+               raw: bytes | None = None, header_hint: str = "'mu,p [MPa],v [m/s]'",
+               what: str = "data file") -> _Table:
+    """Read a CSV file into raw cells: the one table reader (datasets, manifests).
 
     Detects ``;``, tab or ``,`` delimiters from the header line, decimal commas
-    (with ``;`` or tab), a UTF-8 BOM (or UTF-16 with BOM), ``#`` comment lines
-    and blank lines.  Cells stay strings; :func:`load_dataset` converts them.
+    (with ``;`` or tab), the encoding (:func:`decode_text`), ``#`` comment lines
+    and blank lines.  Quoted fields must close on their line.  Cells stay strings;
+    :func:`load_dataset` converts them.
+
+    Parameters
+    ----------
+    path : path-like
+        The file (ignored for reading when ``raw`` is given).
+    source : str, optional
+        Name used in messages (default: ``path``).
+    raw : bytes, optional
+        The file's content, when already read.
+    header_hint : str
+        An example header, for the message on a file without one.
+    what : str
+        What the file is, for messages ("data file", "manifest file").
     """
     source = source or str(path)
     if raw is None:
-        p = Path(path)
-        if not p.exists():
-            raise InputError(
-                "file not found; expected a CSV file or the name of a packaged dataset "
-                f"({', '.join(_packaged_names()) or 'none'})",
-                file=source,
-            )
-        if p.is_dir():
-            raise InputError("is a directory; expected a CSV file", file=source)
-        from .outputs import check_input_file
-
-        check_input_file(p, "data file")  # a FIFO or device would block or never end
-        try:
-            raw = p.read_bytes()
-        except OSError as exc:
-            raise InputError(f"cannot read the file ({exc.strerror})", file=source) from None
+        raw = _read_bytes(Path(path), source, what)
     text, enc_note = decode_text(raw, source)
-    notes = [enc_note] if enc_note else []
-    lines = text.splitlines()
+    table = _scan_lines(text.splitlines(), source, header_hint)
+    if enc_note:
+        table.notes.append(enc_note)
+    return table
+
+
+def _read_bytes(p: Path, source: str, what: str) -> bytes:
+    if not p.exists():
+        raise InputError(
+            "file not found; expected a CSV file or the name of a packaged dataset "
+            f"({', '.join(_packaged_names()) or 'none'})" if what == "data file"
+            else f"{what} not found", file=source)
+    if p.is_dir():
+        raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
+    from .outputs import check_input_file
+
+    check_input_file(p, what)  # a FIFO or device would block or never end
+    try:
+        return p.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read the file ({exc.strerror})", file=source) from None
+
+
+def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
+    """Header, comments and data rows of the decoded lines (see :func:`read_table`)."""
     comments: list[str] = []
     header: list[str] | None = None
     header_row = 0
@@ -498,7 +521,7 @@ def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
             continue
         if header is None:
             delimiter = _detect_delimiter(line)
-            header = _split(line, delimiter)
+            header = _split(line, delimiter, source, number)
             header_row = number
             continue
         if delimiter is None and any(d in line for d in _DELIMITERS):
@@ -508,25 +531,27 @@ def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
                 f"{found}: the header and the data use different delimiters",
                 file=source, row=number,
             )
-        data.append(_split(line, delimiter))
+        data.append(_split(line, delimiter, source, number))
         rows.append(number)
     if header is None:
-        raise InputError(
-            "file is empty (no header line); expected a header such as "
-            "'mu,p [MPa],v [m/s]' followed by data rows",
-            file=source,
-        )
+        raise InputError(f"file is empty (no header line); expected a header such as "
+                         f"{header_hint} followed by data rows", file=source)
     if not data:
-        raise InputError(
-            f"file has a header (row {header_row}) but no data rows",
-            file=source,
-        )
+        raise InputError(f"file has a header (row {header_row}) but no data rows",
+                         file=source)
     headers = [h.strip() for h in header]
+    columns = _rectangular(data, rows, headers, delimiter, source)
+    return _Table(headers, columns, rows, source, comments, [], delimiter in (";", "\t"),
+                  True, delimiter)
+
+
+def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],
+                 delimiter: str | None, source: str) -> list[list[str]]:
+    """Columns of the rows, each padded or checked to the header's width."""
     ncol = len(headers)
     for cells, number in zip(data, rows, strict=True):
         if len(cells) > ncol:
-            extra = cells[ncol:]
-            if any(c.strip() for c in extra):
+            if any(c.strip() for c in cells[ncol:]):
                 raise InputError(
                     f"has {len(cells)} fields but the header has {ncol} "
                     f"(delimiter {_DELIMITER_NAMES.get(delimiter or '', 'none')}); "
@@ -544,16 +569,20 @@ def _read_csv(path: str | os.PathLike[str], *, source: str | None = None,
                     file=source, row=number,
                 )
             cells.extend([""] * (ncol - len(cells)))
-    columns = [[cells[j] for cells in data] for j in range(ncol)]
-    decimal_comma = delimiter in (";", "\t")
-    return _Table(headers, columns, rows, source, comments, notes, decimal_comma, True,
-                  delimiter)
+    return [[cells[j] for cells in data] for j in range(ncol)]
 
 
-def _split(line: str, delimiter: str | None) -> list[str]:
+def _split(line: str, delimiter: str | None, source: str, row: int) -> list[str]:
     if delimiter is None:
         return [line.strip()]
-    return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True))
+    try:
+        return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True,
+                               strict=True))
+    except csv.Error as exc:
+        hint = ("a quoted field is not closed on its line (a line break inside quotes?); "
+                "write each row on one line" if "end of data" in str(exc)
+                else f"malformed quoting ({exc})")
+        raise InputError(hint, file=source, row=row) from None
 
 
 def _table_from_frame(df: pd.DataFrame, source: str) -> _Table:
@@ -1037,7 +1066,7 @@ def load_dataset(
     path = Path(text)
     if not path.exists() and text in _packaged_names():
         raw = (datasets_dir() / f"{text}.csv").read_bytes()
-        table = _read_csv(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
+        table = read_table(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
         prov = "\n".join(table.comments) or None
         return _build(table, text, mapping, units, area, prov)
     if not path.exists() and text.startswith(_PACKAGED_PREFIX):
@@ -1048,6 +1077,6 @@ def load_dataset(
             f"no packaged dataset '{text[len(_PACKAGED_PREFIX):]}' (packaged: "
             f"{', '.join(_packaged_names())})"
         )
-    table = _read_csv(path, source=text)
+    table = read_table(path, source=text)
     prov = "\n".join(table.comments) or None
     return _build(table, path.stem, mapping, units, area, prov)

@@ -619,3 +619,26 @@ def test_nul_byte_past_the_first_block_is_refused_with_its_row(tmp_path, reader)
         read(path)
     assert info.value.row == 2002
     assert str(path) in str(info.value)
+
+
+@pytest.mark.parametrize("reader", ["dataset", "manifest"])
+@pytest.mark.parametrize(("line", "message"), [
+    (b'0.5,0.1,"a\nb"\n', "a quoted field is not closed on its line"),
+    (b'0.5,0.1,"a"b\n', "malformed quoting"),
+])
+def test_one_table_reader_refuses_broken_quoting_with_its_row(tmp_path, reader, line,
+                                                              message):
+    """Datasets and manifests share one reader: same quoting rule, same message."""
+    from frictionlaws.tribometer.process import read_manifest
+    from frictionlaws.tribometer.rig import Rig
+
+    header, read = {
+        "dataset": (b"mu,p [MPa],note\n0.5,0.1,x\n", io.load_dataset),
+        "manifest": (b"file,load [kg],surface\nr.csv,2,steel\n",
+                     lambda path: read_manifest(path, Rig())),
+    }[reader]
+    path = tmp_path / "quoted.csv"
+    path.write_bytes(header + line)
+    with pytest.raises(InputError, match=message) as info:
+        read(path)
+    assert info.value.row == 3

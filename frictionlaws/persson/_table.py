@@ -9,7 +9,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import InputError
-from ..io import _read_csv, _split_header, _to_float
+from ..io import _split_header, _to_float, read_table
 from ..units import to_si
 
 __all__ = ["read_columns"]
@@ -37,7 +37,7 @@ def read_columns(path: str | os.PathLike[str], wanted: Mapping[str, tuple[str, s
         A missing column, a missing unit, a non-numeric or missing cell
         (naming the file, column and row).
     """
-    table = _read_csv(path)
+    table = read_table(path)
     src = table.source
     names = [_split_header(h) for h in table.headers]
     units = dict(units or {})

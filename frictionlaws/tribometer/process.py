@@ -77,8 +77,6 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..io import decode_text
-from ..outputs import check_input_file
 from .records import Record, read_record, split_header
 from .rig import RPM, Rig
 from .signal import NoWindow, Window, auto_cutoff, find_window, lowpass, speed_segment
@@ -162,46 +160,11 @@ def read_manifest(path: str | os.PathLike[str], rig: Rig) -> tuple[list[Manifest
 
 
 def _read_table(src: str) -> tuple[list[str], list[list[str]], list[int]]:
-    """Cells of a small CSV table: headers, columns and the line number of each row.
+    """Cells of the manifest (the one table reader): headers, columns, row numbers."""
+    from ..io import read_table
 
-    ``#`` comment lines and blank lines are skipped; the delimiter (``,``, ``;``
-    or tab) is taken from the header line.
-    """
-    import csv
-
-    p = Path(src)
-    if not p.exists():
-        raise InputError("manifest file not found", file=src)
-    if p.is_dir():
-        raise InputError("is a directory; expected a manifest CSV file", file=src)
-    check_input_file(p, "manifest file")
-    text, _ = decode_text(p.read_bytes(), src, "manifest CSV file")  # the one encoding rule
-    header: list[str] | None = None
-    delimiter = ","
-    data: list[list[str]] = []
-    rows: list[int] = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        if header is None:
-            delimiter = next((d for d in (";", "\t", ",") if d in line), ",")
-            header = [h.strip() for h in next(csv.reader([line], delimiter=delimiter))]
-            continue
-        cells = next(csv.reader([line], delimiter=delimiter))
-        if len(cells) > len(header) and any(c.strip() for c in cells[len(header):]):
-            raise InputError(f"has {len(cells)} fields but the header has {len(header)}",
-                             file=src, row=number)
-        cells = (cells + [""] * len(header))[: len(header)]
-        data.append(cells)
-        rows.append(number)
-    if header is None:
-        raise InputError("manifest is empty; expected a header 'file,load [kg],surface' and "
-                         "one row per record", file=src)
-    if not data:
-        raise InputError("manifest has a header but no rows", file=src)
-    columns = [[cells[j] for cells in data] for j in range(len(header))]
-    return header, columns, rows
+    table = read_table(src, header_hint="'file,load [kg],surface'", what="manifest file")
+    return table.headers, table.columns, table.rows
 
 
 def manifest_from_rows(rows: Sequence[Mapping[str, Any]], rig: Rig, *,
