@@ -848,6 +848,13 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
                     file=src, column=headers[j], row=_row_label(table, i),
                 )
         si[canon] = _units.to_si(arr, unit_of[canon], canon, column=headers[j], file=src)
+        over = np.flatnonzero(np.isinf(si[canon]))
+        if over.size:
+            i = int(over[0])
+            raise InputError(
+                f"value {table.columns[j][i]} {unit_of[canon]}{_where(table, i)} overflows "
+                "when converted to SI: not a measured value", file=src, column=headers[j],
+                row=_row_label(table, i))
         note = _units.conversion_note(unit_of[canon], canon, column=headers[j])
         if note:
             notes.append(note)

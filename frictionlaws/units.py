@@ -295,11 +295,13 @@ def to_si(
     parsed = parse_unit(unit, quantity, column=column, file=file)
     ureg = unit_registry()
     arr = np.asarray(values, dtype=float)
-    if quantity == "F_N" and _is_mass(parsed):
-        kg = ureg.Quantity(arr, parsed).to("kg").magnitude
-        return np.asarray(kg * G_THESIS, dtype=float)
-    target = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
-    return np.asarray(ureg.Quantity(arr, parsed).to(target).magnitude, dtype=float)
+    # an overflow gives inf, which the callers refuse with the row; no NumPy warning
+    with np.errstate(over="ignore", invalid="ignore"):
+        if quantity == "F_N" and _is_mass(parsed):
+            kg = ureg.Quantity(arr, parsed).to("kg").magnitude
+            return np.asarray(kg * G_THESIS, dtype=float)
+        target = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+        return np.asarray(ureg.Quantity(arr, parsed).to(target).magnitude, dtype=float)
 
 
 def from_si(values: Any, unit: str, quantity: str) -> np.ndarray:

@@ -642,3 +642,16 @@ def test_one_table_reader_refuses_broken_quoting_with_its_row(tmp_path, reader, 
     with pytest.raises(InputError, match=message) as info:
         read(path)
     assert info.value.row == 3
+
+
+def test_overflow_in_unit_conversion_is_refused_with_its_row(tmp_path):
+    """1e300 GPa is finite as written and infinite in Pa: refused, no NumPy warning."""
+    import warnings
+
+    path = tmp_path / "overflow.csv"
+    path.write_text("mu,p [GPa]\n0.5,0.2\n0.5,1e300\n0.6,0.3\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputError, match="overflows when converted to SI") as info:
+            io.load_dataset(path)
+    assert info.value.row == 3 and info.value.column == "p [GPa]"
