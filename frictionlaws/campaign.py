@@ -10,7 +10,7 @@ The unit of work is one dataset: a worker loads it, splits it into groups, fits
 every law to every group and returns plain dictionaries (never laws or lmfit
 objects), so the work runs unchanged serially, on local processes
 (``jobs=N``, joblib) or on a Dask cluster (``scheduler="tcp://host:8786"``,
-joblib's Dask backend; needs the ``dask`` extra).  Datasets are loaded inside
+Dask futures, a bounded window in flight; needs the ``dask`` extra).  Datasets are loaded inside
 the workers, so the memory of the calling process grows with the number of
 results, not with the data.
 """
@@ -21,6 +21,7 @@ import gc
 import itertools
 import math
 import os
+from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -183,7 +184,7 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         -1: one per core.
     scheduler : str, optional
         A Dask scheduler address (``tcp://host:8786``); the work goes to that
-        cluster through joblib's Dask backend.  Default: the environment
+        cluster as Dask futures.  Default: the environment
         variable :data:`SCHEDULER_ENV`, if set.
     progress : bool
         Show a progress bar (tqdm) on stderr.
@@ -231,8 +232,13 @@ def _progress(items: Iterable[Any], on: bool, total: int | None) -> Iterable[Any
 
 
 def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str) -> Iterator[Any]:
+    """``func`` over ``items`` on the Dask cluster at ``address``, results in order.
+
+    Futures are submitted directly (no joblib layer) and a bounded window of them is
+    in flight, a few per worker thread, so the caller's memory does not grow with
+    the number of items and every worker always has the next task queued.
+    """
     try:
-        import joblib
         from dask.distributed import Client
     except ImportError:
         raise InputError("a Dask scheduler was given but dask.distributed is not installed "
@@ -242,9 +248,15 @@ def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str) -> 
         client = Client(address, timeout="10s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError(f"cannot reach the Dask scheduler at {address!r} ({exc})") from None
-    with client, joblib.parallel_backend("dask"):
-        yield from joblib.Parallel(batch_size="auto", return_as="generator")(
-            joblib.delayed(func)(item) for item in items)
+    with client:
+        threads = sum(client.nthreads().values()) or 1
+        window: deque[Any] = deque()
+        for item in items:
+            window.append(client.submit(func, item, pure=False))
+            if len(window) >= 3 * threads:
+                yield window.popleft().result()
+        while window:
+            yield window.popleft().result()
 
 
 # ------------------------------------------------------------------ results

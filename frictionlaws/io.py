@@ -37,7 +37,7 @@ import csv
 import math
 import os
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -654,14 +654,30 @@ def _where(table: _Table, i: int) -> str:
 def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
            units: Mapping[str, str] | None, area: str | float | None,
            provenance: str | None) -> Dataset:
-    src = table.source
+    """The dataset of a table's raw cells: every check of the input layer, in order."""
     notes = list(table.notes)
-    headers = table.headers
-    # ---- header names and units, duplicates
-    parsed = [_split_header(h) for h in headers]
-    names = [p[0] for p in parsed]
+    _check_headers(table)
+    names = [_split_header(h)[0] for h in table.headers]
+    assigned, explicit = _assign_columns(table, names, mapping, notes)
+    unit_of = _column_units(table, names, assigned, units)
+    values = _numbers(table, assigned, explicit, unit_of, notes)
+    si = _to_si_checked(table, assigned, values, unit_of, notes)
+    keep = _rows_to_keep(table, assigned, si, notes)
+    frame = _frame(table, assigned, si, keep)
+    units_given = {c: unit_of.get(c, "") for c in frame.columns if c != "surface"}
+    if area is not None:
+        frame = _pressure_from_area(frame, area, table.source, units_given, notes)
+    notes.extend(_frame_notes(frame))
+    rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
+    return Dataset(frame.reset_index(drop=True), name, table.source, units_given, notes,
+                   provenance, rows)
+
+
+def _check_headers(table: _Table) -> None:
+    """Refuse unnamed columns that hold data and duplicate headers."""
+    src = table.source
     seen: dict[str, int] = {}
-    for j, h in enumerate(headers):
+    for j, h in enumerate(table.headers):
         if not h:
             if any(str(c).strip() for c in table.columns[j] if c is not None):
                 raise InputError(f"column {j + 1} has no name in the header but holds data",
@@ -674,24 +690,29 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
                 file=src, column=h,
             )
         seen[h] = j
-    # ---- which column is which canonical
-    listed = ", ".join(h for h in headers if h) or "none"
+
+
+def _listed(headers: Sequence[str]) -> str:
+    return ", ".join(h for h in headers if h) or "none"
+
+
+def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] | None,
+                    notes: list[str]) -> tuple[dict[str, int], set[str]]:
+    """Canonical name -> column index (the mapping first, then recognised names)."""
+    src, headers = table.source, table.headers
     map_ = parse_mapping(mapping) if mapping else {}
     assigned: dict[str, int] = {}
-    explicit: set[str] = set()
     for canon, user_col in map_.items():
         j = _match_column(user_col, headers, names)
         if j is None:
-            raise InputError(
-                f"--map {canon}={user_col}: no such column in the file (columns: {listed})",
-                file=src, column=user_col,
-            )
+            raise InputError(f"--map {canon}={user_col}: no such column in the file "
+                             f"(columns: {_listed(headers)})", file=src, column=user_col)
         if j in assigned.values():
             other = next(c for c, k in assigned.items() if k == j)
             raise InputError(f"--map: column mapped to both '{other}' and '{canon}'",
                              file=src, column=headers[j])
         assigned[canon] = j
-        explicit.add(canon)
+    explicit = set(assigned)
     ignored: list[str] = []
     for j, nm in enumerate(names):
         if j in assigned.values() or not headers[j]:
@@ -699,70 +720,81 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
         canon = _resolve_name(nm)
         if canon is None:
             ignored.append(headers[j])
-            continue
-        if canon in explicit:
+        elif canon in explicit:
             notes.append(f"column '{headers[j]}' ignored: {canon} comes from "
                          f"--map {canon}={map_[canon]}")
-            continue
-        if canon in assigned:
+        elif canon in assigned:
             raise InputError(
                 f"columns '{headers[assigned[canon]]}' and '{headers[j]}' both give "
                 f"'{canon}'; keep one, or choose with --map {canon}=COLUMN",
                 file=src, column=headers[j],
             )
-        assigned[canon] = j
+        else:
+            assigned[canon] = j
     if "mu" not in assigned:
-        if len([h for h in headers if h]) == 1 and table.from_file:
-            only = headers[0]
-            if re.search(r"[|:]|\S\s+\S", only):
-                raise InputError(
-                    f"found a single column '{only}': the delimiter is not recognised; "
-                    "expected columns separated by ',', ';' or a tab",
-                    file=src,
-                )
-        raise InputError(
-            "no friction coefficient column: expected a column named 'mu' (or cof, "
-            f"friction, ...) or --map mu=COLUMN (columns: {listed})",
-            file=src,
-        )
+        _no_mu(table)
     if ignored:
         notes.append(
             f"ignored column{'s' if len(ignored) > 1 else ''} not in the schema: "
             f"{', '.join(ignored)} (use --map to use them)"
         )
-    # ---- units
-    unit_of: dict[str, str] = {}
-    extra_units = {}
+    return assigned, explicit
+
+
+def _no_mu(table: _Table) -> None:
+    headers = table.headers
+    if len([h for h in headers if h]) == 1 and table.from_file:
+        only = headers[0]
+        if re.search(r"[|:]|\S\s+\S", only):
+            raise InputError(
+                f"found a single column '{only}': the delimiter is not recognised; "
+                "expected columns separated by ',', ';' or a tab",
+                file=table.source,
+            )
+    raise InputError(
+        "no friction coefficient column: expected a column named 'mu' (or cof, "
+        f"friction, ...) or --map mu=COLUMN (columns: {_listed(headers)})",
+        file=table.source,
+    )
+
+
+def _extra_units(table: _Table, names: list[str], assigned: Mapping[str, int],
+                 units: Mapping[str, str] | None) -> dict[str, str]:
+    """Units given outside the header, by canonical name (checked against the columns)."""
+    src, headers = table.source, table.headers
+    extra: dict[str, str] = {}
     for key, unit in (units or {}).items():
-        canon = None
         try:
-            canon = canonical_name(key, what="--units name")
+            canon: str | None = canonical_name(key, what="--units name")
         except InputError:
             j = _match_column(key, headers, names)
             if j is None:
                 raise InputError(
                     f"--units {key}={unit}: '{key}' is neither a dataset column "
-                    f"({', '.join(CANONICAL)}) nor a column of the file (columns: {listed})",
-                    file=src,
-                ) from None
+                    f"({', '.join(CANONICAL)}) nor a column of the file "
+                    f"(columns: {_listed(headers)})", file=src) from None
             canon = next((c for c, k in assigned.items() if k == j), None)
             if canon is None:
                 raise InputError(
                     f"--units {key}={unit}: the column is not used; map it first, "
-                    f"e.g. --map p={key}",
-                    file=src, column=headers[j],
-                ) from None
-        extra_units[canon] = str(unit).strip()
-    for canon in extra_units:
+                    f"e.g. --map p={key}", file=src, column=headers[j]) from None
+        extra[str(canon)] = str(unit).strip()
+    for canon, unit in extra.items():
         if canon not in assigned:
-            raise InputError(
-                f"--units {canon}={extra_units[canon]}: the file has no '{canon}' column "
-                f"(columns: {listed})",
-                file=src,
-            )
+            raise InputError(f"--units {canon}={unit}: the file has no '{canon}' column "
+                             f"(columns: {_listed(headers)})", file=src)
+    return extra
+
+
+def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
+                  units: Mapping[str, str] | None) -> dict[str, str]:
+    """The checked unit of every assigned column (header or ``units``, given once)."""
+    src, headers = table.source, table.headers
+    extra = _extra_units(table, names, assigned, units)
+    unit_of: dict[str, str] = {}
     for canon, j in assigned.items():
-        header_unit = parsed[j][1]
-        given = extra_units.get(canon)
+        header_unit = _split_header(headers[j])[1]
+        given = extra.get(canon)
         if header_unit is not None and given is not None and header_unit != given:
             raise InputError(
                 f"the header gives unit '{header_unit}' but --units gives "
@@ -786,141 +818,166 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
                 )
         _units.check_unit(unit, canon, column=headers[j], file=src)
         unit_of[canon] = unit
-    # ---- numbers
+    return unit_of
+
+
+def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
+    text = str(cell).strip()
+    others = [_DELIMITER_NAMES[d] for d in _DELIMITERS if d in text and d != table.delimiter]
+    hint = (f" (it contains {others[0]}: does this row use another delimiter "
+            f"than the header's {_DELIMITER_NAMES.get(table.delimiter or '')}?)"
+            if others and table.delimiter else "")
+    if table.delimiter == "," and re.fullmatch(r"[-+]?\d+,\d+", text):
+        hint = " (a decimal comma needs ';' or tab as the delimiter)"
+    return InputError(
+        f"non-numeric value '{text}'{_where(table, i)}; expected "
+        f"a number{' (decimal comma or point)' if table.decimal_comma else ''} "
+        f"or an empty cell{hint}",
+        file=table.source, column=column, row=_row_label(table, i),
+    )
+
+
+def _column_numbers(table: _Table, j: int) -> np.ndarray:
+    """The numbers of column ``j`` (NaN where empty); text and infinities refused."""
+    col = table.headers[j]
+    out = np.empty(len(table.rows))
+    for i, cell in enumerate(table.columns[j]):
+        x = _to_float(cell, table.decimal_comma)
+        if x is None:
+            raise _not_a_number(table, cell, i, col)
+        if math.isinf(x):
+            raise InputError(f"value '{cell}' is not finite{_where(table, i)}",
+                             file=table.source, column=col, row=_row_label(table, i))
+        out[i] = x
+    return out
+
+
+def _numbers(table: _Table, assigned: Mapping[str, int], explicit: set[str],
+             unit_of: dict[str, str], notes: list[str]) -> dict[str, np.ndarray]:
+    """Numeric columns as written; an empty optional column is ignored with a note."""
     values: dict[str, np.ndarray] = {}
-    n_rows = len(table.rows)
     for canon in [c for c in CANONICAL if c in assigned and c != "surface"]:
-        j = assigned[canon]
-        col = headers[j]
-        out = np.empty(n_rows)
-        for i, cell in enumerate(table.columns[j]):
-            x = _to_float(cell, table.decimal_comma)
-            if x is None:
-                text = str(cell).strip()
-                others = [_DELIMITER_NAMES[d] for d in _DELIMITERS
-                          if d in text and d != table.delimiter]
-                hint = (f" (it contains {others[0]}: does this row use another delimiter "
-                        f"than the header's {_DELIMITER_NAMES.get(table.delimiter or '')}?)"
-                        if others and table.delimiter else "")
-                if table.delimiter == "," and re.fullmatch(r"[-+]?\d+,\d+", text):
-                    hint = " (a decimal comma needs ';' or tab as the delimiter)"
-                raise InputError(
-                    f"non-numeric value '{text}'{_where(table, i)}; expected "
-                    f"a number{' (decimal comma or point)' if table.decimal_comma else ''} "
-                    f"or an empty cell{hint}",
-                    file=src, column=col, row=_row_label(table, i),
-                )
-            if math.isinf(x):
-                raise InputError(f"value '{cell}' is not finite{_where(table, i)}",
-                                 file=src, column=col, row=_row_label(table, i))
-            out[i] = x
+        col = table.headers[assigned[canon]]
+        out = _column_numbers(table, assigned[canon])
         if np.isnan(out).all():
             if canon == "mu" or canon in explicit:
                 raise InputError(f"column is empty (every cell is empty or NaN); "
-                                 f"'{canon}' needs values",
-                                 file=src, column=col)
+                                 f"'{canon}' needs values", file=table.source, column=col)
             notes.append(f"column '{col}' ({canon}) is empty: ignored")
             unit_of.pop(canon, None)
             continue
         values[canon] = out
-    # ---- physical checks (errors), before unit conversion so values are as written
-    checks = {
-        "mu": (lambda x: x < 0, "a friction coefficient must be >= 0"),
-        "p": (lambda x: x < 0, "a contact pressure must be >= 0"),
-        "F_N": (lambda x: x < 0, "a normal load must be >= 0"),
-        "mu_std": (lambda x: x < 0, "a standard deviation must be >= 0"),
-        "n": (lambda x: (x < 1) | (x != np.round(x)),
-              "a number of replicates must be a whole number >= 1"),
-    }
+    return values
+
+
+#: Physical checks on values as written (before unit conversion): rule and reason.
+_PHYSICAL: dict[str, tuple[Callable[[np.ndarray], np.ndarray], str]] = {
+    "mu": (lambda x: x < 0, "a friction coefficient must be >= 0"),
+    "p": (lambda x: x < 0, "a contact pressure must be >= 0"),
+    "F_N": (lambda x: x < 0, "a normal load must be >= 0"),
+    "mu_std": (lambda x: x < 0, "a standard deviation must be >= 0"),
+    "n": (lambda x: (x < 1) | (x != np.round(x)),
+          "a number of replicates must be a whole number >= 1"),
+}
+
+
+def _first_bad(table: _Table, j: int, bad: np.ndarray, message: str) -> None:
+    """Raise naming the first of the rows ``bad`` (indices), if any."""
+    if bad.size:
+        i = int(bad[0])
+        raise InputError(message.format(cell=table.columns[j][i], where=_where(table, i),
+                                        more=f" ({bad.size} such rows)" if bad.size > 1
+                                        else ""),
+                         file=table.source, column=table.headers[j],
+                         row=_row_label(table, i))
+
+
+def _to_si_checked(table: _Table, assigned: Mapping[str, int],
+                   values: Mapping[str, np.ndarray], unit_of: Mapping[str, str],
+                   notes: list[str]) -> dict[str, np.ndarray]:
+    """Physical checks, then SI conversion (overflow and absolute zero refused)."""
     si: dict[str, np.ndarray] = {}
     for canon, arr in values.items():
-        j = assigned[canon]
-        if canon in checks:
-            bad_fn, msg = checks[canon]
+        j, unit = assigned[canon], unit_of[canon]
+        if canon in _PHYSICAL:
+            bad_fn, msg = _PHYSICAL[canon]
             with np.errstate(invalid="ignore"):
                 bad = np.flatnonzero(bad_fn(arr) & ~np.isnan(arr))
-            if bad.size:
-                i = int(bad[0])
-                more = f" ({bad.size} such rows)" if bad.size > 1 else ""
-                raise InputError(
-                    f"value {table.columns[j][i]}{_where(table, i)} is not allowed: "
-                    f"{msg}{more}",
-                    file=src, column=headers[j], row=_row_label(table, i),
-                )
-        si[canon] = _units.to_si(arr, unit_of[canon], canon, column=headers[j], file=src)
-        over = np.flatnonzero(np.isinf(si[canon]))
-        if over.size:
-            i = int(over[0])
-            raise InputError(
-                f"value {table.columns[j][i]} {unit_of[canon]}{_where(table, i)} overflows "
-                "when converted to SI: not a measured value", file=src, column=headers[j],
-                row=_row_label(table, i))
-        note = _units.conversion_note(unit_of[canon], canon, column=headers[j])
+            _first_bad(table, j, bad, "value {cell}{where} is not allowed: " + msg + "{more}")
+        si[canon] = _units.to_si(arr, unit, canon, column=table.headers[j], file=table.source)
+        _first_bad(table, j, np.flatnonzero(np.isinf(si[canon])),
+                   "value {cell} " + unit + "{where} overflows when converted to SI: "
+                   "not a measured value")
+        note = _units.conversion_note(unit, canon, column=table.headers[j])
         if note:
             notes.append(note)
         if canon == "T":
             with np.errstate(invalid="ignore"):
                 bad = np.flatnonzero(si[canon] < 0)
-            if bad.size:
-                i = int(bad[0])
-                raise InputError(
-                    f"temperature {table.columns[j][i]} {unit_of[canon]}{_where(table, i)} "
-                    "is below absolute zero (is the unit right?)",
-                    file=src, column=headers[j], row=_row_label(table, i),
-                )
-    # ---- missing values: drop rows and say so
-    keep = np.ones(n_rows, dtype=bool)
-    for canon in CANONICAL:
-        if canon not in si:
-            continue
+            _first_bad(table, j, bad, "temperature {cell} " + unit + "{where} is below "
+                       "absolute zero (is the unit right?)")
+    return si
+
+
+def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
+                  si: Mapping[str, np.ndarray], notes: list[str]) -> np.ndarray:
+    """Rows without a missing value; every dropped row is named in a note."""
+    keep = np.ones(len(table.rows), dtype=bool)
+    for canon in [c for c in CANONICAL if c in si]:
         nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
-        if nan_rows.size:
-            keep[nan_rows] = False
-            col = headers[assigned[canon]]
-            if table.from_file:
-                labels = [str(table.rows[i]) for i in nan_rows]
-                shown = ", ".join(labels[:12]) + (", ..." if len(labels) > 12 else "")
-                where = f"row{'s' if len(labels) > 1 else ''} {shown}"
-            else:
-                where = f"positions {', '.join(str(i) for i in nan_rows[:12])}"
-            notes.append(
-                f"dropped {nan_rows.size} row{'s' if nan_rows.size > 1 else ''} "
-                f"({where}): empty or NaN in column '{col}'"
-            )
+        if not nan_rows.size:
+            continue
+        keep[nan_rows] = False
+        if table.from_file:
+            labels = [str(table.rows[i]) for i in nan_rows]
+            shown = ", ".join(labels[:12]) + (", ..." if len(labels) > 12 else "")
+            where = f"row{'s' if len(labels) > 1 else ''} {shown}"
+        else:
+            where = f"positions {', '.join(str(i) for i in nan_rows[:12])}"
+        notes.append(f"dropped {nan_rows.size} row{'s' if nan_rows.size > 1 else ''} "
+                     f"({where}): empty or NaN in column '{table.headers[assigned[canon]]}'")
     if not keep.any():
         raise InputError(
-            f"no usable rows: all {n_rows} data rows have an empty or NaN value in "
+            f"no usable rows: all {len(table.rows)} data rows have an empty or NaN value in "
             "mu or a variable column",
-            file=src,
+            file=table.source,
         )
-    # ---- frame
+    return keep
+
+
+def _frame(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
+           keep: np.ndarray) -> pd.DataFrame:
+    """The kept rows in SI, canonical column order, the surface column as text."""
     frame = pd.DataFrame({c: si[c][keep] for c in CANONICAL if c in si})
     if "surface" in assigned:
-        j = assigned["surface"]
         surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
-                for c in table.columns[j]]
+                for c in table.columns[assigned["surface"]]]
         frame["surface"] = pd.Series([s for s, k in zip(surf, keep, strict=True) if k],
                                      dtype=object)
-    frame = frame[[c for c in CANONICAL if c in frame.columns]]
-    units_given = {c: unit_of.get(c, "") for c in frame.columns if c != "surface"}
-    # ---- p from F_N and area
-    if area is not None:
-        if "p" in frame.columns:
-            notes.append(f"area {area!r} not used: the data have a pressure column")
-        elif "F_N" not in frame.columns:
-            raise InputError(
-                f"--area {area} needs a normal-load column F_N to derive the pressure, "
-                "and the data have none",
-                file=src,
-            )
-        else:
-            a = _units.parse_quantity(area, "area", what="--area", file=src)
-            if not a > 0:
-                raise InputError(f"--area {area} must be > 0", file=src)
-            frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
-            units_given["p"] = f"F_N / area ({area})"
-            notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")
-            frame = frame[[c for c in CANONICAL if c in frame.columns]]
+    return frame[[c for c in CANONICAL if c in frame.columns]]
+
+
+def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
+                        units_given: dict[str, str], notes: list[str]) -> pd.DataFrame:
+    """p = F_N / area when the data have a load and no pressure."""
+    if "p" in frame.columns:
+        notes.append(f"area {area!r} not used: the data have a pressure column")
+        return frame
+    if "F_N" not in frame.columns:
+        raise InputError(f"--area {area} needs a normal-load column F_N to derive the "
+                         "pressure, and the data have none", file=src)
+    a = _units.parse_quantity(area, "area", what="--area", file=src)
+    if not a > 0:
+        raise InputError(f"--area {area} must be > 0", file=src)
+    frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
+    units_given["p"] = f"F_N / area ({area})"
+    notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")
+    return frame[[c for c in CANONICAL if c in frame.columns]]
+
+
+def _frame_notes(frame: pd.DataFrame) -> list[str]:
+    """What the user should know about the values: negative v, slip outside 0..1, weights."""
+    notes = []
     if "v" in frame.columns:
         neg = int((frame["v"] < 0).sum())
         if neg:
@@ -934,9 +991,7 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
         alt = "sqrt(n)" if "n" in frame.columns else "none (unweighted fit)"
         notes.append(f"mu_std is 0 in {zero} row(s): weights cannot be 1/mu_std; "
                      f"weights used: {alt}")
-    rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
-    return Dataset(frame.reset_index(drop=True), name, src, units_given, notes, provenance,
-                   rows)
+    return notes
 
 
 # --------------------------------------------------------------------------- packaged
