@@ -123,3 +123,17 @@ def test_help_documents_range_syntax(capsys):
     code, out, err = run(capsys, "export", "--help")
     assert code == 0
     assert "MIN:MAX:N" in out and "10kPa:0.5MPa:20" in out and "mm-N-s" in out
+
+
+def test_export_json_summary_is_strict_and_names_the_error(tmp_path, capsys):
+    out = tmp_path / "deck.inp"
+    code = main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "abaqus",
+                 "--p", "0.01:0.5:5", "-o", str(out), "--json"])
+    assert code == 0
+    doc = json.loads(capsys.readouterr().out, parse_constant=lambda c: pytest.fail(c))
+    assert doc["path"] == str(out) and doc["format"] == "abaqus" and doc["rows"] == 5
+    assert 0 < doc["max_error"] < 0.05 and doc["units"]
+    assert "\n*FRICTION" in out.read_text()
+    assert main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "abaqus",
+                 "--p", "0.01:0.5:5", "-o", "-", "--json"]) == 2
+    assert "give -o FILE" in capsys.readouterr().err

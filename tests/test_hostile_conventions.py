@@ -190,3 +190,29 @@ def test_stdin_from_a_terminal_is_refused(monkeypatch: pytest.MonkeyPatch) -> No
     monkeypatch.setattr(sys, "stdin", Terminal())
     with pytest.raises(UsageError, match="terminal"), data_source("-"):
         pass
+
+
+def _commands(parser: argparse.ArgumentParser, prefix: str = ""):
+    """(command name, parser) for every leaf command of the CLI."""
+    subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subs:
+        yield prefix.strip(), parser
+        return
+    for name, sub in subs[0].choices.items():
+        yield from _commands(sub, f"{prefix} {name}")
+
+
+def test_one_progress_flag_everywhere() -> None:
+    """Every command with parallel or long work has the one ``--progress {auto,on,off}``."""
+    from frictionlaws.cli import build_parser
+
+    seen = []
+    for name, parser in _commands(build_parser()):
+        flags = {opt: a for a in parser._actions for opt in a.option_strings}
+        assert "--no-progress" not in flags, name
+        if "--progress" in flags:
+            assert tuple(flags["--progress"].choices) == ("auto", "on", "off"), name
+            seen.append(name)
+        if "--jobs" in flags:
+            assert "--progress" in flags, f"{name} has --jobs but no --progress"
+    assert {"fit", "compare", "process"} <= set(seen)

@@ -8,7 +8,10 @@ import sys
 from pathlib import Path
 from typing import Any
 
-__all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names"]
+from ._common import add_progress_option, progress_value
+
+__all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names",
+           "campaign_progress"]
 
 
 def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> None:
@@ -27,6 +30,13 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
                         "(default: $FRICTIONLAWS_SCHEDULER; needs the 'dask' extra)")
     g.add_argument("--out", metavar="FILE", default=None,
                    help="write the campaign's tidy table to FILE (.csv, .jsonl or .json)")
+    add_progress_option(g)
+
+
+def campaign_progress(args: argparse.Namespace) -> bool:
+    """``--progress`` for a campaign: automatic means a bar when stderr is a terminal."""
+    value = progress_value(args)
+    return sys.stderr.isatty() if value is None else value
 
 
 def _jobs(text: str) -> int:
@@ -95,7 +105,7 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     stream = args.out if args.out and Path(args.out).suffix.lower() in (".csv", ".jsonl") \
         else None
     camp = fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
-                    progress=sys.stderr.isatty(), output=stream, load_options=load,
+                    progress=campaign_progress(args), output=stream, load_options=load,
                     **fit_kwargs)
     if args.out and stream is None:
         camp.save(args.out)

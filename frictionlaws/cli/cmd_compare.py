@@ -6,8 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from ._campaign import add_campaign_options, split_names, wants_campaign
-from ._common import add_data_options, bounded_int, data_kwargs
+from ._campaign import add_campaign_options, campaign_progress, split_names, wants_campaign
+from ._common import add_data_options, bounded_int, data_kwargs, progress_value
 
 __all__ = ["add_parser", "run"]
 
@@ -53,8 +53,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "PNG figures to DIR")
     p.add_argument("--json", action="store_true",
                    help="print the comparison as one JSON object instead of the table")
-    p.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
-                   help="progress bar on stderr (auto: only on a terminal)")
     add_campaign_options(p, shared=False)
     return p
 
@@ -91,7 +89,7 @@ def _run_one(args: argparse.Namespace, data: str) -> int:
 
     with data_source(data) as source:
         cmp = compare(args.laws, source, **_options(args),
-                      progress={"auto": None, "on": True, "off": False}[args.progress],
+                      progress=progress_value(args),
                       **data_kwargs(args))
     written = {}
     if args.report:
@@ -119,7 +117,7 @@ def _run_many(args: argparse.Namespace) -> int:
     laws = split_names([args.laws]) if args.laws else None
     load = {k: v for k, v in data_kwargs(args).items() if v is not None}
     frame = compare_many(args.data, laws, by=split_names(args.by), jobs=args.jobs,
-                         scheduler=args.scheduler, progress=args.progress == "on",
+                         scheduler=args.scheduler, progress=campaign_progress(args),
                          load_options=load, **_options(args))
     if args.out:
         text = (frame.to_csv(index=False, float_format="%.10g")

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ._common import bounded_int
+from ._common import add_json_option, bounded_int
 
 _FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
             "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
@@ -72,6 +72,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="largest table allowed (default 200000; 1..10000000)")
     p.add_argument("-o", "--output", required=True, metavar="FILE",
                    help="output file ('-' for standard output)")
+    add_json_option(p)
     g = p.add_argument_group("fit options (with --fit)")
     g.add_argument("--map", metavar="COL=NAME,...",
                    help="map canonical columns to the data file's columns")
@@ -115,9 +116,18 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.fe_export.api import parse_range
     from frictionlaws.fe_export.systems import unit_system
 
-    from ._common import fit_kwargs, parse_assignments, parse_floats, refuse_unused
+    from ._common import (
+        fit_kwargs,
+        parse_assignments,
+        parse_floats,
+        print_json,
+        refuse_unused,
+    )
 
     _check_files(args)
+    if args.json and args.output == "-":
+        raise InputError("--json prints the export's summary on stdout, where -o - puts the "
+                         "file: give -o FILE")
     if not args.fit:
         refuse_unused(args, _FIT_ONLY, "without --fit")
     system = unit_system(args.units)
@@ -176,6 +186,8 @@ def run(args: argparse.Namespace) -> int:
     if args.output == "-":
         sys.stdout.write(res.text)
         print(res.report(), file=sys.stderr)
+    elif args.json:
+        print_json(res.to_dict())
     else:
         print(res.report())
     return 0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import bounded_int
+from ._common import add_progress_option, bounded_int, progress_value
 
 __all__ = ["add_parser", "run"]
 
@@ -31,11 +31,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="worker processes (default 0: one per CPU; 0..1024)")
     p.add_argument("--min-repeats", type=int, default=2, metavar="N",
                    help="conditions with fewer usable records are not written (default 2)")
-    bar = p.add_mutually_exclusive_group()
-    bar.add_argument("--progress", dest="progress", action="store_true", default=None,
-                     help="always show the progress bar (default: when stderr is a terminal)")
-    bar.add_argument("--no-progress", dest="progress", action="store_false",
-                     help="never show the progress bar")
+    add_progress_option(p)
     return p
 
 
@@ -53,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     # every output is checked before any work: not an input, a writable file
     check_outputs([out, records_out], dirs=[args.plots], inputs=[args.manifest, args.rig])
     rig = load_rig(args.rig)
-    camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=args.progress,
+    camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=progress_value(args),
                             plots=args.plots, min_repeats=args.min_repeats)
     check_outputs([out, records_out], inputs=[r.file for r in camp.records if r.file])
     if not any(c.written for c in camp.conditions):

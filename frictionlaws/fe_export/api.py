@@ -171,6 +171,18 @@ class ExportResult:
     details: dict[str, Any] = field(default_factory=dict)
     grid: Grid | None = None
 
+    def to_dict(self) -> dict[str, Any]:
+        """What was written and its error, as JSON-able values (the file's text left out).
+
+        Errors are in mu (dimensionless); ``error_at`` and ``grid`` breakpoints are in
+        the export's unit system (``units``).
+        """
+        return {"format": self.format, "path": self.path, "law": self.law,
+                "units": self.units, "rows": self.rows, "exact": self.exact,
+                "max_error": self.max_error, "rms_error": self.rms_error,
+                "error_at": dict(self.error_at), "warnings": list(self.warnings),
+                "summary": list(self.summary), "details": self.details}
+
     def report(self) -> str:
         """A few lines for the command line."""
         where = f"{self.path}" if self.path else "(not written)"
