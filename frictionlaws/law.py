@@ -729,15 +729,14 @@ class Law:
 
     def __reduce__(self) -> tuple[Any, tuple[str]]:
         """Pickle a registered law by its id (formulas need not be picklable)."""
-        from .registry import get_law
-
+        lookup = _LOOKUP.get("law")
         try:
-            registered = get_law(self.id)
+            registered = lookup(self.id) if lookup is not None else None
         except InputError:
             registered = None
-        if registered is not self:
+        if lookup is None or registered is not self:
             raise TypeError(f"law '{self.id}' is not registered: register it to pickle it")
-        return (get_law, (self.id,))
+        return (lookup, (self.id,))
 
     def _repr_html_(self) -> str:
         from .interop import law_html
@@ -749,6 +748,16 @@ class Law:
         from .interop import lmfit_model
 
         return lmfit_model(self, values=values)
+
+
+#: How a law id is looked up again (set by :mod:`frictionlaws.registry` when it loads,
+#: so that this module does not import the registry).
+_LOOKUP: dict[str, Callable[[str], Law]] = {}
+
+
+def set_lookup(lookup: Callable[[str], Law]) -> None:
+    """Install the function that finds a registered law by id (for pickling)."""
+    _LOOKUP["law"] = lookup
 
 
 def _jsonable(x: float) -> float | str | None:

@@ -11,17 +11,15 @@ from __future__ import annotations
 
 import difflib
 import importlib
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from importlib import metadata
 
 from .errors import UnknownLawError
-from .law import FAMILIES, Law
+from .law import FAMILIES, Law, set_lookup
 
 __all__ = ["Registry", "REGISTRY", "register", "get_law", "list_laws", "ENTRY_POINT_GROUP"]
 
 ENTRY_POINT_GROUP = "frictionlaws.laws"
-#: Reference temperature of ``<law>+wlf`` laws looked up by name [K] (20 degC).
-DEFAULT_T_REF = 293.15
 
 
 class Registry:
@@ -32,6 +30,7 @@ class Registry:
         self._names: dict[str, str] = {}
         self._plugin_errors: list[str] = []
         self._derived: dict[str, Law] = {}
+        self._derivations: dict[str, Callable[[Law], Law]] = {}
 
     def register(self, law: Law) -> Law:
         """Add ``law``; raise ValueError when its id or an alias is taken."""
@@ -65,29 +64,29 @@ class Registry:
         key2 = str(name).strip().lower()
         if key2 in self._names:
             return self._laws[self._names[key2]]
-        if key.endswith("+wlf"):
-            return self._temperature_aware(key[: -len("+wlf")])
+        for suffix, derive in self._derivations.items():
+            if key.endswith(f"+{suffix}"):
+                return self._derived_law(key[: -len(suffix) - 1], suffix, derive)
         close = difflib.get_close_matches(key, list(self._names), n=3, cutoff=0.6)
         hint = f"; did you mean {', '.join(close)}?" if close else ""
         raise UnknownLawError(
             f"unknown law '{name}'{hint} (run 'frictionlaws laws' for the list)"
         )
 
-    def _temperature_aware(self, base_name: str) -> Law:
-        """``<law>+wlf``: the base law at reduced velocity a_T(T) v.
+    def add_derivation(self, suffix: str, derive: Callable[[Law], Law]) -> None:
+        """Make ``<law>+<suffix>`` a name: ``derive(base)`` builds it on first use.
 
-        Grosch's constants (C1 = 8.86, C2 = 101.6 K) with T_ref =
-        :data:`DEFAULT_T_REF` (20 degC, so T_g is taken as -30 degC).  Built on
-        first use and cached (not listed by :meth:`list`), so fits saved with
-        it load again.  C1, C2 and T_ref are settings: change them with
-        ``fix`` or fit them with ``free``.
+        Derived laws are cached and not listed by :meth:`list`, so fits saved with
+        them load again (``+wlf`` is added by :mod:`frictionlaws.temperature`).
         """
-        from .temperature import with_wlf
+        self._derivations[suffix.lower()] = derive
 
+    def _derived_law(self, base_name: str, suffix: str, derive: Callable[[Law], Law]) -> Law:
         base = self.get(base_name)
-        if base.id not in self._derived:
-            self._derived[base.id] = with_wlf(base, preset="grosch", T_ref=DEFAULT_T_REF)
-        return self._derived[base.id]
+        key = f"{base.id}+{suffix}"
+        if key not in self._derived:
+            self._derived[key] = derive(base)
+        return self._derived[key]
 
     def ids(self) -> list[str]:
         """All law ids in registration order."""
@@ -160,6 +159,9 @@ def get_law(name: str | Law) -> Law:
     """
     _ensure_loaded()
     return REGISTRY.get(name)
+
+
+set_lookup(get_law)
 
 
 def list_laws(family: str | None = None) -> list[Law]:

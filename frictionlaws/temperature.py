@@ -36,6 +36,7 @@ import numpy as np
 
 from .errors import DomainError, ExtrapolationWarning, InputError
 from .law import NUMPY, Derived, Law, Setting
+from .registry import REGISTRY, get_law
 
 __all__ = [
     "WLFPreset",
@@ -362,8 +363,6 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
         When the base law does not use the velocity, already uses T, or the
         WLF constants cannot be resolved.
     """
-    from .registry import get_law
-
     base = get_law(law)
     if "v" not in base.variables:
         raise InputError(f"law '{base.id}' does not depend on the velocity v: a WLF shift "
@@ -448,3 +447,20 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
         base_id=base.id,
         T_g=T_g_res,
     )
+
+
+#: Reference temperature of ``<law>+wlf`` laws looked up by name [K] (20 degC).
+DEFAULT_T_REF = 293.15
+
+
+def _grosch_wlf(base: Law) -> Law:
+    """``<law>+wlf``: the base law at reduced velocity a_T(T) v.
+
+    Grosch's constants (C1 = 8.86, C2 = 101.6 K) with T_ref = :data:`DEFAULT_T_REF`
+    (20 degC, so T_g is taken as -30 degC).  C1, C2 and T_ref are settings: change
+    them with ``fix`` or fit them with ``free``.
+    """
+    return with_wlf(base, preset="grosch", T_ref=DEFAULT_T_REF)
+
+
+REGISTRY.add_derivation("wlf", _grosch_wlf)
