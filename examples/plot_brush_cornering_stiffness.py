@@ -118,3 +118,6 @@ plt.show()
 for label, result in comparison.results.items():
     for message in result.warnings:
         print(f"{label}: {message}")
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

@@ -95,3 +95,6 @@ ax.set_ylabel("μ [–]")
 ax.grid(alpha=0.3)
 ax.legend(fontsize="small")
 plt.show()
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

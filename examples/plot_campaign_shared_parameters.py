@@ -84,3 +84,6 @@ ax2.set_xlabel("contact pressure p [MPa]")
 ax2.set_ylabel("friction coefficient mu [-]")
 ax2.legend(fontsize="small")
 plt.show()
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

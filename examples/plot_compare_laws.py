@@ -85,3 +85,6 @@ for law in order:
 # than the polynomials and stays physical. For a design that will see
 # pressures beyond the tribometer's, that is the one to take, with its extrapolation
 # warning in mind.
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

@@ -149,3 +149,6 @@ plt.show()
 radioss = export(law, values, "radioss",
                  {"p": ("0.02 MPa", "0.5 MPa"), "v": ("1e-3 m/s", "1 m/s")}, units="mm-N-s")
 print(radioss.report())
+
+# The gallery thumbnail: figure 2 of this example.
+# sphinx_gallery_thumbnail_number = 2

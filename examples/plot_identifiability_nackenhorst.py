@@ -118,3 +118,6 @@ print("published fit, mapped:   ", {k: round(val, 4) for k, val in mapped.items(
 print("nackenhorst with b2 = 0: ", {k: round(val, 4) for k, val in fit4.param_values.items()})
 print("nackenhorst, all free:   ", {k: round(val, 4) for k, val in fit5.param_values.items()})
 print("truth:                   ", truth)
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

@@ -102,3 +102,6 @@ out = Path(tempfile.mkdtemp()) / "persson.inp"
 main(["export", "--law", "persson", "--preset", "dma-on-asphalt", "--format", "abaqus",
       "--p", "0.2MPa:0.2MPa:1", "--v", "1e-4:1:13", "--T", "0degC:40degC:5", "-o", str(out)])
 print("\n".join(out.read_text().splitlines()[:8]))
+
+# The gallery thumbnail: figure 2 of this example.
+# sphinx_gallery_thumbnail_number = 2

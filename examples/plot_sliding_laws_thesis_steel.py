@@ -115,3 +115,6 @@ for law_id, res in results.items():
 # measured with the disc at rest, hence its negative R². The full report of any fit says
 # what it could and could not determine in words:
 print(results["nackenhorst"].report())
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

@@ -106,3 +106,6 @@ plt.show()
 print(poly2.outside_domain({"p": np.array([0.1e6, 0.5e6, 1.0e6]), "v": np.array([1.0, 5.0, 1.0])}))
 refit = fl.fit("thesis-poly2", "thesis-steel")
 print(refit.extrapolation({"p": np.array([0.5e6]), "v": np.array([1.38])}))
+
+# The gallery thumbnail: figure 2 of this example.
+# sphinx_gallery_thumbnail_number = 2

@@ -107,3 +107,6 @@ try:
     hot(v=0.01, T=-110.0 + 273.15, p=1e5, **base)
 except fl.InputError as exc:
     print(f"{type(exc).__name__}: {exc}")
+
+# The gallery thumbnail: figure 2 of this example.
+# sphinx_gallery_thumbnail_number = 2

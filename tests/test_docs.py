@@ -285,3 +285,14 @@ def test_conf_uses_the_agreed_extensions():
     assert "intersphinx" not in conf
     assert '"abort_on_example_error": True' in conf
     assert 'html_theme = "pydata_sphinx_theme"' in conf
+
+
+@pytest.mark.parametrize("example", sorted(
+    (Path(__file__).resolve().parents[1] / "examples").glob("plot_*.py")), ids=lambda p: p.stem)
+def test_every_gallery_example_chooses_its_thumbnail(example):
+    """Each example names the figure that stands for it, and that figure exists."""
+    text = example.read_text(encoding="utf-8")
+    found = re.findall(r"^# sphinx_gallery_thumbnail_number = (\d+)$", text, re.MULTILINE)
+    assert len(found) == 1, f"{example.name}: no (or several) thumbnail choices"
+    figures = len(re.findall(r"plt\.subplots\(|plt\.figure\(|\.plot\(\)", text))
+    assert 1 <= int(found[0]) <= figures, f"{example.name}: {figures} figures"
