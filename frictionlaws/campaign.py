@@ -32,7 +32,7 @@ import numpy as np
 from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
-           "iter_parallel", "SCHEDULER_ENV", "tidy_columns", "key_text",
+           "iter_parallel", "SCHEDULER_ENV", "tidy_columns", "key_text", "fit_groups",
            "group_column"]
 
 #: Environment variable naming a Dask scheduler address when none is given.
@@ -85,6 +85,42 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
         first = int(np.flatnonzero(mask)[0])
         groups.append(({c: _plain(frame[c].iloc[first]) for c in by}, mask))
     return groups
+
+
+def fit_groups(law: str, data: Any, by: Sequence[str], *,
+               load_options: Mapping[str, Any] | None = None,
+               **fit_options: Any) -> list[tuple[dict[str, Any], Any]]:
+    """Fit ``law`` to each group of one dataset, keeping the full fit results.
+
+    Parameters
+    ----------
+    law : str
+        Law id or alias.
+    data : str, path or Dataset
+        One dataset (file, packaged name or :class:`~frictionlaws.io.Dataset`).
+    by : sequence of str
+        The grouping columns (e.g. ``["surface"]``).
+    load_options : mapping, optional
+        ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    **fit_options
+        Passed to :func:`frictionlaws.fitting.fit` for every group.
+
+    Returns
+    -------
+    list of (dict, FitResult)
+        The group key (column -> value) and its fit, in the order the groups
+        first appear in the data.
+    """
+    from .fitting import fit
+    from .io import Dataset, load_dataset
+
+    dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
+    out = []
+    for key, mask in group_keys(dataset, list(by)):
+        subset = dataset.subset(mask)
+        subset.name = f"{dataset.name} [{key_text(key)}]"
+        out.append((key, fit(law, subset, **fit_options)))
+    return out
 
 
 def key_text(key: Mapping[str, Any]) -> str:

@@ -137,3 +137,44 @@ def test_export_json_summary_is_strict_and_names_the_error(tmp_path, capsys):
     assert main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "abaqus",
                  "--p", "0.01:0.5:5", "-o", "-", "--json"]) == 2
     assert "give -o FILE" in capsys.readouterr().err
+
+
+def _two_surfaces(path, rows_s120=8):
+    import numpy as np
+
+    rng = np.random.default_rng(1)
+    lines = ["mu,p [MPa],surface"]
+    for surface, a, n in (("steel", 0.3, 8), ("S 120", 0.2, rows_s120)):
+        for p in np.linspace(0.03, 0.25, n):
+            mu = 1 / (a + 3e-6 * p * 1e6) + 0.01 * rng.standard_normal()
+            lines.append(f"{mu:.5f},{p:.4f},{surface}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_export_fit_by_group_writes_one_deck_per_group(tmp_path, capsys):
+    data = tmp_path / "two.csv"
+    _two_surfaces(data)
+    out = tmp_path / "deck.inp"
+    argv = ["export", "--law", "thirion", "--fit", str(data), "--format", "abaqus",
+            "--p", "30000:250000:6", "-o", str(out)]
+    assert main(argv) == 2  # pooled over two surfaces: refused, naming --by
+    assert "--by surface" in capsys.readouterr().err
+    assert main([*argv, "--by", "surface", "--json"]) == 0
+    docs = json.loads(capsys.readouterr().out)
+    assert [d["path"] for d in docs] == [str(tmp_path / "deck_steel.inp"),
+                                         str(tmp_path / "deck_S-120.inp")]
+    steel, s120 = ((tmp_path / n).read_text() for n in ("deck_steel.inp", "deck_S-120.inp"))
+    assert "surface=steel" in steel and "surface=S 120" in s120
+    first = [ln for ln in steel.splitlines() if ln and ln[0].isdigit()][0]
+    other = [ln for ln in s120.splitlines() if ln and ln[0].isdigit()][0]
+    assert first != other  # two fits, two tables
+    assert not out.exists()
+
+
+def test_export_fit_by_group_writes_nothing_when_a_group_fails(tmp_path, capsys):
+    data = tmp_path / "two.csv"
+    _two_surfaces(data, rows_s120=1)
+    code = main(["export", "--law", "thirion", "--fit", str(data), "--by", "surface",
+                 "--format", "abaqus", "--p", "30000:250000:6", "-o", str(tmp_path / "d.inp")])
+    assert code in (1, 2)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["two.csv"]

@@ -37,7 +37,7 @@ __all__ = ["add_parser", "run"]
 
 #: Options that only mean something with --fit.
 _FIT_ONLY = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "map", "data_units",
-             "area")
+             "area", "by")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -79,6 +79,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     g.add_argument("--data-units", metavar="COL=UNIT,...",
                    help="units of data columns whose header has none, e.g. p=MPa,v=m/s")
     g.add_argument("--area", metavar="AREA", help="nominal contact area, e.g. '314.16 mm^2'")
+    g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
+                   help="fit and export each group separately, one file per group named "
+                        "FILE's stem + _VALUE (e.g. -o deck.inp --by surface: deck_steel.inp)")
     add_fit_options(g)
     s = p.add_argument_group("solver options")
     s.add_argument("--lsdyna-contact", metavar="SSID,MSID[,SSTYP,MSTYP]",
@@ -152,6 +155,13 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("--set cannot be combined with --params (edit the file instead)")
         params = result
         source = f"file {args.params}"
+    elif args.fit and args.by:
+        if not law:
+            raise InputError("--fit needs --law")
+        if values:
+            raise InputError("--set cannot be combined with --fit (hold values with --fix)")
+        _refuse_unused_ranges(law, box)
+        return _export_groups(args, law, box, system)
     elif args.fit:
         if not law:
             raise InputError("--fit needs --law")
@@ -191,6 +201,64 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(res.report())
     return 0
+
+
+def _export_groups(args: argparse.Namespace, law: str, box: dict, system: Any) -> int:
+    """``export --fit DATA --by COL``: one fit and one file per group, all or nothing.
+
+    Every group is fitted and exported in memory first; the files are written only
+    when all succeeded, each atomically, none over an input.
+    """
+    from frictionlaws.campaign import fit_groups, key_text
+    from frictionlaws.errors import InputError
+    from frictionlaws.fe_export import export
+    from frictionlaws.outputs import check_outputs, write_text_atomic
+
+    from ._campaign import split_names
+    from ._common import fit_kwargs, print_json
+
+    if args.output == "-":
+        raise InputError("--by writes one file per group: give -o FILE, not -o -")
+    fit_args = argparse.Namespace(**vars(args))
+    fit_args.units = args.data_units
+    options = fit_kwargs(fit_args)
+    load = {k: options.pop(k) for k in ("mapping", "units", "area")}
+    groups = fit_groups(law, args.fit, split_names(args.by), load_options=load, **options)
+    failed = [key_text(k) for k, r in groups if not r.success]
+    if failed:
+        raise InputError(f"the fit did not converge for {', '.join(failed)}; nothing exported",
+                         file=args.fit)
+    out = Path(args.output)
+    paths = [_group_path(out, key) for key, _ in groups]
+    if len(set(paths)) < len(paths):
+        raise InputError("two groups give the same file name; group by other columns",
+                         file=args.fit)
+    check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
+    results = []
+    for (key, fitted), path in zip(groups, paths, strict=True):
+        m = fitted.metrics
+        source = (f"fit to {args.fit}, group {key_text(key)} (n = {m.get('n')}, "
+                  f"R^2 = {m.get('r2', float('nan')):.4g})")
+        results.append((path, export(law, fitted, args.format, box, units=system,
+                                     tol=args.tol, path=None, max_rows=args.max_rows,
+                                     source=source, options=_options(args))))
+    for path, res in results:
+        write_text_atomic(path, res.text)
+        res.path = str(path)
+    if args.json:
+        print_json([res.to_dict() for _, res in results])
+    else:
+        print("\n".join(res.report() for _, res in results))
+    return 0
+
+
+def _group_path(out: Path, key: dict) -> Path:
+    """``deck.inp`` and {surface: steel} -> ``deck_steel.inp`` (file-name safe)."""
+    import re
+
+    tag = "_".join(re.sub(r"[^A-Za-z0-9.+-]+", "-", str(v)).strip("-") or "none"
+                   for v in key.values())
+    return out.with_name(f"{out.stem}_{tag}{out.suffix}")
 
 
 def _check_files(args: argparse.Namespace) -> None:
