@@ -55,10 +55,20 @@ class InputError(FrictionLawsError, ValueError):
         return self.compose()
 
     def compose(self, option_label: str | None = None) -> str:
-        """The message with its location; ``option_label`` names :attr:`option`.
+        """Compose the message with its location (option, file, column, row).
 
-        Without a label the option is named as the API argument
-        (``argument 'mapping'``); the CLI passes its flag (``--map``).
+        Parameters
+        ----------
+        option_label : str, optional
+            How to name :attr:`option`: the CLI passes its flag (``--map``).
+            Without a label the option is named as the API argument
+            (``argument 'mapping'``).
+
+        Returns
+        -------
+        str
+            ``"<location>: <message>"``, the location listing the option, file,
+            column and row that are set; the bare message when none is.
         """
         where = []
         if self.option is not None:
@@ -74,7 +84,21 @@ class InputError(FrictionLawsError, ValueError):
 
 
 class UnknownLawError(InputError, KeyError):
-    """A law name or alias that is not registered."""
+    """A law name or alias that is not registered.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong and what was expected (the closest registered names).
+    file : str, optional
+        The file concerned.
+    column : str, optional
+        The column concerned.
+    row : int, optional
+        The 1-based data row concerned (as a spreadsheet shows it, header = row 1).
+    option : str, optional
+        The argument of the API call concerned, as for :class:`InputError`.
+    """
 
     def __str__(self) -> str:  # KeyError would add quotes
         return self._compose()

@@ -210,7 +210,9 @@ def parse_units(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[st
 class Dataset:
     """A friction dataset in canonical SI columns.
 
-    Attributes
+    The parameters are kept as attributes of the same names.
+
+    Parameters
     ----------
     frame : pandas.DataFrame
         Canonical columns only, in SI: ``mu`` [-], ``p`` [Pa], ``v`` [m/s],
@@ -264,18 +266,38 @@ class Dataset:
         return self.rows
 
     def row_of(self, index: int) -> int | None:
-        """The source-file row of the dataset row at position ``index``."""
+        """Return the source-file row of the dataset row at a position.
+
+        Parameters
+        ----------
+        index : int
+            Position of the row in :attr:`frame` (0-based).
+
+        Returns
+        -------
+        int or None
+            The row of the source file (the line number a text editor shows), or
+            None when the dataset has no source rows (built from a DataFrame).
+        """
         if self.rows is None:
             return None
         return int(self.rows[index])
 
     def arrays(self) -> dict[str, np.ndarray]:
-        """``{"mu": ..., "p": ..., ...}``: mu and each variable as float arrays in SI."""
+        """Return mu and each variable column as float arrays in SI.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``{"mu": ..., "p": ..., ...}``: ``mu`` [-] and each variable column
+            present among ``p`` [Pa], ``v`` [m/s], ``T`` [K], ``F_N`` [N] and
+            ``s`` [-].
+        """
         return {c: self.frame[c].to_numpy(dtype=float)
                 for c in ("mu", *VARIABLE_COLUMNS) if c in self.frame.columns}
 
     def weights(self) -> np.ndarray | None:
-        """Fit weights from the replicate statistics, or None (unweighted).
+        """Return fit weights from the replicate statistics, or None (unweighted).
 
         * ``mu_std`` present and > 0 in every row: ``1 / mu_std``, multiplied by
           ``sqrt(n)`` when ``n`` is present too (1 / standard error of the mean);
@@ -286,6 +308,12 @@ class Dataset:
         Weights multiply the residuals (lmfit's convention), so a weight is
         1 / sigma.  When ``mu_std`` is present but cannot be used (a zero in
         some row), the loader says so in :attr:`notes`.
+
+        Returns
+        -------
+        numpy.ndarray or None
+            One weight (1 / sigma of mu) per row, or None when the dataset has
+            neither a usable ``mu_std`` nor an ``n`` column.
         """
         f = self.frame
         n = f["n"].to_numpy(dtype=float) if "n" in f.columns else None
@@ -299,7 +327,24 @@ class Dataset:
         return None
 
     def subset(self, mask: Any) -> Dataset:
-        """A new dataset with the rows where ``mask`` is true (boolean array-like)."""
+        """Return a new dataset with the rows where ``mask`` is true.
+
+        Parameters
+        ----------
+        mask : array-like of bool
+            One boolean per row of the dataset.
+
+        Returns
+        -------
+        Dataset
+            The kept rows (renumbered from 0), with their source-file rows, the
+            same units and provenance, and a note of how many rows were kept.
+
+        Raises
+        ------
+        InputError
+            When ``mask`` does not have one value per row.
+        """
         m = np.asarray(mask, dtype=bool)
         if m.shape != (len(self),):
             raise InputError(
@@ -315,7 +360,15 @@ class Dataset:
                        self.provenance, rows)
 
     def describe(self) -> str:
-        """A short text: rows, and the range of each column in display units."""
+        """Describe the dataset in a short text.
+
+        Returns
+        -------
+        str
+            Name, number of rows and source; the range and number of distinct
+            values of each numeric column in display units (p in MPa, T in
+            degC...); the surfaces; and the loader's notes.
+        """
         lines = [f"{self.name}: {len(self)} rows ({self.source})"]
         for col in ("mu", *VARIABLE_COLUMNS, "mu_std", "n"):
             if col not in self.frame.columns:
@@ -337,7 +390,16 @@ class Dataset:
         return "\n".join(lines)
 
     def summary(self) -> dict[str, Any]:
-        """A JSON-able summary: name, source, rows, columns with SI ranges, notes."""
+        """Summarise the dataset as a JSON-able dict.
+
+        Returns
+        -------
+        dict
+            ``name``, ``source``, ``rows`` (count), ``columns`` (for each
+            numeric column its SI unit, min, max, number of distinct values and
+            the unit given by the user; for ``surface`` its values), ``notes``
+            and ``provenance``.
+        """
         cols = {}
         for col in self.frame.columns:
             if col == "surface":
@@ -351,11 +413,22 @@ class Dataset:
                 "columns": cols, "notes": list(self.notes), "provenance": self.provenance}
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write the canonical schema, units in the headers, provenance as ``#`` lines.
+        """Write the dataset to a CSV file in the canonical schema.
 
-        Numbers are written with 15 significant digits in display units
-        (p in MPa, v in m/s, T in degC, F_N in N), so that
-        ``load_dataset(path)`` gives back the same SI values.
+        Units go in the headers and the provenance in ``#`` lines.  Numbers are
+        written with 15 significant digits in display units (p in MPa, v in m/s,
+        T in degC, F_N in N), so that ``load_dataset(path)`` gives back the same
+        SI values.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file to write (overwritten if it exists).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
         """
         path = Path(path)
         cols = [c for c in CANONICAL if c in self.frame.columns]
@@ -1044,10 +1117,15 @@ def _header_info(text: str) -> tuple[str, str, int]:
 
 
 def list_datasets() -> list[dict[str, Any]]:
-    """The packaged datasets: ``name``, ``title``, ``rows``, ``provenance``.
+    """List the packaged datasets.
 
-    The title is the first ``#`` line of the file and the provenance its whole
-    comment block; ``rows`` counts the data lines.
+    Returns
+    -------
+    list of dict
+        One dict per packaged dataset, by name: ``name`` (what
+        :func:`load_dataset` accepts), ``title`` (the first ``#`` line of the
+        file), ``rows`` (the number of data lines) and ``provenance`` (the whole
+        ``#`` comment block).
     """
     base = datasets_dir()
     out = []
@@ -1088,6 +1166,9 @@ def load_dataset(
     Returns
     -------
     Dataset
+        The data in canonical SI columns, with the units given, the provenance
+        and notes of what the loader did (dropped rows, ignored columns,
+        conversions); a :class:`Dataset` passed in is returned unchanged.
 
     Raises
     ------

@@ -11,7 +11,7 @@ How the shifts are found
 ------------------------
 Neighbouring curves are shifted pairwise and the shifts chained outwards from
 the reference curve.  Each curve is represented on log-log axes by a smooth
-fit (a polynomial of degree 2 in log x by default, continued as a straight
+fit (a polynomial of degree 3 in log x by default, continued as a straight
 line, i.e. a power law, for at most ``max_extrapolation`` decades beyond its
 ends).  The shift d between two neighbours minimises the mean squared
 difference of log y between each curve's points and the other curve's smooth
@@ -485,12 +485,18 @@ def build_master_curve(
         Grouping tolerance [K].
     fit : bool
         Fit WLF to the shifts.
-    x_name, y_names : str
-        Names used in tables.
+    x_name : str
+        Name of ``x`` in tables.
+    y_names : sequence of str, optional
+        Name of each property in ``y`` (one per column).
 
     Returns
     -------
     MasterCurve
+        The curves by increasing temperature, the reference temperature [K],
+        each curve's shift log10 a_T with its standard error and pair mismatch,
+        the WLF fit to the shifts (None when ``fit`` is false or the WLF fit
+        failed) and messages about the reference, extrapolation and WLF fit.
 
     Raises
     ------

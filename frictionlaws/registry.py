@@ -137,7 +137,25 @@ _loaded = False
 
 
 def register(law: Law) -> Law:
-    """Register ``law`` in the global registry and return it."""
+    """Register a law in the global registry.
+
+    Parameters
+    ----------
+    law : Law
+        The law to add; its id and aliases must not be taken yet.
+
+    Returns
+    -------
+    Law
+        ``law`` itself, so that ``register`` can be used as an expression.
+
+    Raises
+    ------
+    TypeError
+        When ``law`` is not a :class:`~frictionlaws.law.Law`.
+    ValueError
+        When its id or one of its aliases is already used by another law.
+    """
     return REGISTRY.register(law)
 
 
@@ -150,7 +168,19 @@ def _ensure_loaded() -> None:
 
 
 def get_law(name: str | Law) -> Law:
-    """Return the law registered under ``name`` (id or alias, any case).
+    """Return the law registered under a name (id or alias, any case).
+
+    Parameters
+    ----------
+    name : str or Law
+        Law id or alias (case-insensitive; ``_`` and ``-`` are equivalent), or
+        ``"<law>+wlf"`` for a derived law; a :class:`~frictionlaws.law.Law` is
+        returned as it is.
+
+    Returns
+    -------
+    Law
+        The registered (or derived) law.
 
     Raises
     ------
@@ -165,6 +195,23 @@ set_lookup(get_law)
 
 
 def list_laws(family: str | None = None) -> list[Law]:
-    """Return all registered laws, optionally filtered by family."""
+    """Return all registered laws, optionally filtered by family.
+
+    Parameters
+    ----------
+    family : {"sliding", "slip"}, optional
+        Only the laws of this family; None for all.
+
+    Returns
+    -------
+    list of Law
+        The laws in registration order; derived laws such as ``"<law>+wlf"``
+        are not listed.
+
+    Raises
+    ------
+    UnknownLawError
+        For an unknown family.
+    """
     _ensure_loaded()
     return REGISTRY.list(family)

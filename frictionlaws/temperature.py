@@ -202,8 +202,9 @@ def wlf_log_aT(T: Any, C1: float | None = None, C2: float | None = None,
     Returns
     -------
     float or numpy.ndarray
-        log10 a_T (positive below T_ref: the material behaves as at a higher
-        velocity or frequency).
+        The decimal logarithm of the shift factor, log10 a_T, per temperature
+        (a float for a scalar ``T``); positive below T_ref: the material behaves
+        as at a higher velocity or frequency.
 
     Raises
     ------

@@ -417,19 +417,34 @@ def compare(
         are unweighted.
     mu_limits : (float, float)
         Physical limits of mu in the plausibility scan (default 0 and 5).
-    mapping, units, area
-        For reading a user's file, as in :func:`~frictionlaws.io.load_dataset`.
+    mapping : mapping or str, optional
+        Canonical column -> the user's column, for reading a user's file, as in
+        :func:`~frictionlaws.io.load_dataset`.
+    units : mapping or str, optional
+        Units of columns whose header has none, as in
+        :func:`~frictionlaws.io.load_dataset`.
+    area : str or float, optional
+        Nominal contact area (``"314.16 mm^2"`` or a float in m^2) to derive
+        the pressure from the normal load, as in
+        :func:`~frictionlaws.io.load_dataset`.
     progress : bool, optional
         Show a tqdm progress bar; by default only when stderr is a terminal.
 
     Returns
     -------
     Comparison
+        The fitted laws in rank order (best first, by cross-validated RMSE),
+        each with its fit, cross-validation, extrapolation (hold-out) errors,
+        plausibility scan, residual tests and Akaike weight; the laws skipped
+        (with the reason) and those whose fit failed (with the error); the
+        settings and notes.
 
     Raises
     ------
     InputError
         Bad data or options, unknown law names, or no law that can be fitted.
+    FitError
+        When every candidate law failed to fit.
     """
     if data is None:
         raise InputError("no data given to compare the laws on")

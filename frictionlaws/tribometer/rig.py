@@ -306,6 +306,9 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
     Returns
     -------
     Rig
+        The rig geometry and calibration in SI (track radius [m], contact area
+        [m^2], torques [N m], disc speeds [rad/s]) and its processing settings,
+        with ``source`` set to ``path``.
 
     Raises
     ------

@@ -220,7 +220,25 @@ class BrushTyre:
 
     # ------------------------------------------------------------- geometry
     def half_length(self, fz: float) -> float:
-        """Contact half-length a [m] at load ``fz`` [N]."""
+        """Return the contact half-length a at a vertical load.
+
+        Parameters
+        ----------
+        fz : float
+            Vertical load F_z [N], positive.
+
+        Returns
+        -------
+        float
+            Contact half-length a [m] given by :attr:`contact`.
+
+        Raises
+        ------
+        InputError
+            When ``fz`` is not a positive number, when a contact-length function
+            gives a non-positive length, or when ``"sqrt"`` or ``"deflection"``
+            gives a longer than the tyre radius.
+        """
         fz = _positive_load(fz)
         if callable(self.contact):
             a = float(self.contact(fz))
@@ -240,9 +258,30 @@ class BrushTyre:
         return a
 
     def patch(self, fz: float, nodes: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Nodes ``s`` [m] (0 = leading edge) and contact pressure ``p`` [Pa] at load ``fz``.
+        """Return the patch nodes and the contact pressure along the patch at a load.
 
-        The discrete pressure integrates (trapezoid) to exactly ``fz``.
+        The discrete pressure integrates (trapezoid rule, times the width) to
+        exactly ``fz``.
+
+        Parameters
+        ----------
+        fz : float
+            Vertical load F_z [N], positive.
+        nodes : int, optional
+            Number of integration intervals (default :attr:`nodes`).
+
+        Returns
+        -------
+        s : numpy.ndarray
+            Positions of the ``nodes + 1`` nodes along the patch [m], from the
+            leading edge (0) to the trailing edge (2a).
+        p : numpy.ndarray
+            Contact pressure at each node [Pa].
+
+        Raises
+        ------
+        InputError
+            For a bad load or a pressure shape function that is not usable.
         """
         fz = _positive_load(fz)
         n = nodes or self.nodes
@@ -265,11 +304,29 @@ class BrushTyre:
         return s, fz * shape / (self.width * integral)
 
     def mean_pressure(self, fz: float) -> float:
-        """Mean contact pressure F_z / (2 a w) [Pa]."""
+        """Return the mean contact pressure F_z / (2 a w) at a load.
+
+        Parameters
+        ----------
+        fz : float
+            Vertical load F_z [N], positive.
+
+        Returns
+        -------
+        float
+            Mean contact pressure [Pa].
+        """
         return _positive_load(fz) / (2 * self.half_length(fz) * self.width)
 
     def describe(self) -> dict[str, Any]:
-        """JSON-able parameters (callables shown by name)."""
+        """Return the tyre's parameters as a JSON-able dict.
+
+        Returns
+        -------
+        dict
+            Field name -> value in SI (callables shown as ``"callable NAME"``),
+            plus ``"units"``: field name -> unit of the dimensional fields.
+        """
         out = asdict(self)
         for k in ("contact", "pressure"):
             v = getattr(self, k)
@@ -667,10 +724,31 @@ class BrushModel:
             warnings.warn("; ".join(msgs), ExtrapolationWarning, stacklevel=3)
 
     def fy(self, alpha: Any, fz: float) -> Any:
-        """Lateral force F_y [N] at slip angles ``alpha`` [rad] and load ``fz`` [N].
+        """Compute the lateral force F_y at slip angles and a vertical load.
 
         F_y has the sign of alpha.  Warns (ExtrapolationWarning) when the patch
         pressures or sliding speeds leave the law's fitted or valid range.
+
+        Parameters
+        ----------
+        alpha : float or array-like
+            Slip angles [rad], strictly between -pi/2 and pi/2.
+        fz : float
+            Vertical load F_z [N], positive.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Lateral force F_y [N]: a float for a scalar ``alpha``, else an array
+            of the shape of ``alpha``.
+
+        Raises
+        ------
+        InputError
+            For a bad load or slip angles that are not finite or not within
+            (-90, 90) degrees.
+        DomainError
+            When the law gives no usable friction limit inside the patch.
         """
         fz = _positive_load(fz)
         alpha = np.asarray(alpha, dtype=float)
@@ -685,10 +763,32 @@ class BrushModel:
         return float(out[0]) if alpha.ndim == 0 else out.reshape(alpha.shape)
 
     def fx(self, kappa: Any, fz: float) -> Any:
-        """Longitudinal force F_x [N] at slip ratios ``kappa`` and load ``fz`` [N].
+        """Compute the longitudinal force F_x at slip ratios and a vertical load.
 
         ``kappa = (Omega R_e - V)/V``: positive when driving, -1 for a locked
         wheel (full sliding at the road speed).  F_x has the sign of kappa.
+        Warns (ExtrapolationWarning) when the patch pressures or sliding speeds
+        leave the law's fitted or valid range.
+
+        Parameters
+        ----------
+        kappa : float or array-like
+            Longitudinal slip ratios [-], finite.
+        fz : float
+            Vertical load F_z [N], positive.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Longitudinal force F_x [N]: a float for a scalar ``kappa``, else an
+            array of the shape of ``kappa``.
+
+        Raises
+        ------
+        InputError
+            For a bad load or slip ratios that are not finite.
+        DomainError
+            When the law gives no usable friction limit inside the patch.
         """
         fz = _positive_load(fz)
         kappa = np.asarray(kappa, dtype=float)
@@ -715,10 +815,31 @@ class BrushModel:
         return float(out[0]) if kappa.ndim == 0 else out.reshape(kappa.shape)
 
     def patch_state(self, slip: float, fz: float, direction: str = "y") -> dict[str, np.ndarray]:
-        """Profiles along the patch at one slip: s [m], p [Pa], elastic line load and limit [N/m].
+        """Compute the profiles along the contact patch at one slip and load.
 
-        ``slip`` is alpha [rad] for ``direction="y"`` or kappa for ``"x"``.
-        ``sliding`` marks the nodes where the bristle carries its friction limit.
+        Parameters
+        ----------
+        slip : float
+            Slip angle alpha [rad] for ``direction="y"``, or slip ratio kappa
+            [-] (> -1, a rolling wheel) for ``direction="x"``.
+        fz : float
+            Vertical load F_z [N], positive.
+        direction : {"y", "x"}
+            Lateral (side slip) or longitudinal slip.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            One value per patch node: ``"s"`` position from the leading edge [m],
+            ``"p"`` contact pressure [Pa], ``"line_load"`` elastic line load
+            carried by the bristles [N/m], ``"adhesion_line_load"`` the line load
+            had every bristle adhered [N/m], and ``"sliding"`` (bool) the nodes
+            where the bristle slides and carries its friction limit.
+
+        Raises
+        ------
+        InputError
+            For a bad load, ``kappa <= -1`` or an unknown ``direction``.
         """
         fz = _positive_load(fz)
         if direction == "y":
@@ -739,7 +860,7 @@ class BrushModel:
 
     def cornering(self, loads: Sequence[float] | np.ndarray,
                   angles_deg: Sequence[float] = DEFAULT_ANGLES_DEG) -> CorneringResult:
-        """Cornering stiffness (secant over ``angles_deg`` and at the origin) against load.
+        """Compute the cornering stiffness (secant over ``angles_deg`` and at the origin) by load.
 
         Parameters
         ----------
@@ -747,6 +868,20 @@ class BrushModel:
             Vertical loads [N].
         angles_deg : sequence of float
             Slip angles [deg] of the secant (the thesis used 1, 2, 3).
+
+        Returns
+        -------
+        CorneringResult
+            Per load: the least-squares cornering stiffness over the angles and
+            the slope at the origin [N/rad], the lateral forces [N], the patch
+            half-length [m] and mean and peak pressures [Pa], and extrapolation
+            warnings.
+
+        Raises
+        ------
+        InputError
+            When no load is given, a load is not positive, or an angle is outside
+            (0, 90) degrees.
         """
         loads = np.atleast_1d(np.asarray(loads, dtype=float))
         if loads.size == 0:

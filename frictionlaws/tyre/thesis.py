@@ -138,7 +138,7 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
                       loads_kN: Sequence[float] = THESIS_LOADS_KN,
                       angles_deg: Sequence[float] = DEFAULT_ANGLES_DEG,
                       constant_mu: Sequence[float] = (0.9, 1.0)) -> ThesisComparison:
-    """Cornering stiffness of the brush tyre with constant and fitted friction.
+    """Compute the brush tyre's cornering stiffness with constant and fitted friction.
 
     Parameters
     ----------
@@ -153,6 +153,14 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
         Loads [kN] and slip angles [deg] (default: the thesis').
     constant_mu : sequence of float
         Constant friction coefficients (law ``coulomb``).
+
+    Returns
+    -------
+    ThesisComparison
+        One :class:`~frictionlaws.tyre.brush.CorneringResult` per constant mu
+        (``"coulomb 0.9"``...) and per fitted law (``"thirion (thesis-steel)"``),
+        the fit results, the loads [kN], angles [deg] and tyre, ready to be set
+        beside Table 6-2 of the thesis (cornering stiffness in kN/deg).
     """
     from ..fitting import fit
 
