@@ -74,6 +74,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     m.add_argument("file", metavar="FILE", help=".tir or .json property file, or a packaged "
                    "example (MagicFormula52, MagicFormula61, MagicFormula62)")
     _load_options(m, default=None)
+    _mf_options(m)
     m.add_argument("--json", action="store_true", help="print one JSON object")
 
     r = tsub.add_parser(
@@ -89,10 +90,31 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--slip-max", type=float, default=1.0, help="largest slip ratio (<= 1)")
     r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
                    help="number of slip points (3..100000, default 201)")
+    _mf_options(r)
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
                    "(usable with --params)")
     return p
+
+
+def _mf_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("Magic Formula conventions (see the tyre page of the guide)")
+    g.add_argument("--slip-angle", choices=("tan_alpha", "alpha"), default="tan_alpha",
+                   help="slip variable of the lateral curve: tan(alpha) (default, the "
+                        "book's alpha*) or alpha itself")
+    g.add_argument("--friction-scaling", choices=("degressive", "linear"),
+                   default="degressive",
+                   help="MF 6.x friction scaling LMU': degressive, A_mu = 10 (default) or "
+                        "linear, A_mu = 1")
+    g.add_argument("--loads-above-fzmax", choices=("extrapolate", "clamp"),
+                   default="extrapolate",
+                   help="loads above the file's FZMAX: extrapolate with a warning "
+                        "(default) or clamp to FZMAX")
+
+
+def _mf_conventions(args: argparse.Namespace) -> dict[str, str]:
+    return {"slip_angle": args.slip_angle, "friction_scaling": args.friction_scaling,
+            "loads_above_fzmax": args.loads_above_fzmax}
 
 
 def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
@@ -317,7 +339,7 @@ def _run_mf(args: argparse.Namespace) -> int:
 
     from frictionlaws.tyre.magic_formula import MagicFormula
 
-    mf = MagicFormula.from_file(args.file)
+    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -336,8 +358,10 @@ def _run_mf(args: argparse.Namespace) -> int:
               f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}")
     lim = mf.limits.get("fz")
     if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
-        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: "
-              "extrapolation", file=sys.stderr)
+        how = ("extrapolation" if mf.loads_above_fzmax == "extrapolate"
+               else "loads above FZMAX evaluated at FZMAX (clamped)")
+        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: {how}",
+              file=sys.stderr)
     return 0
 
 
@@ -352,7 +376,10 @@ def _run_reduce(args: argparse.Namespace) -> int:
         from frictionlaws.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
-    red = reduce_mf(args.file, args.law, fz=float(loads[0]), side=args.side,
+    from frictionlaws.tyre.magic_formula import MagicFormula
+
+    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
     if args.save:
         red.fit.save(args.save)
