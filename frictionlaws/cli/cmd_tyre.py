@@ -8,7 +8,8 @@ Sub-commands:
   ``thesis-steel``) beside its Table 6-2;
 * ``mf``: summary of a Magic Formula property file (.tir or JSON);
 * ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
-  F_x0/F_z curve at one load.
+  F_x0/F_z curve at one load;
+* ``fit-mf``: fit a Magic Formula property file to tyre test data.
 """
 
 from __future__ import annotations
@@ -94,6 +95,28 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
                    "(usable with --params)")
+
+    f = tsub.add_parser(
+        "fit-mf", help="fit a Magic Formula property file to tyre test data",
+        description="Fit the pure-slip Magic Formula (Fx0 and Fy0 coefficient groups) to "
+        "tyre test data (a tidy CSV: 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', "
+        "'pressure [kPa]', 'Fx [N]', 'Fy [N]') in stages, and write a .tir property file. "
+        "Coefficients the data cannot determine keep the template's value (listed).")
+    f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
+    f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
+                   help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
+                        "(MF 5.2 / PAC2002)")
+    f.add_argument("--template", metavar="FILE", help="property file giving FNOMIN, the "
+                   "nominal pressure, the other sections and undetermined coefficients "
+                   "(default: the packaged example of the version)")
+    f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
+                   help="axes of the data: iso (ISO-W, as property files; default) or sae "
+                        "(Fz, Fy and alpha negated to ISO)")
+    f.add_argument("-o", "--output", required=True, metavar="FILE.tir",
+                   help="property file to write")
+    f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
+                   "(png, pdf, svg)")
+    f.add_argument("--json", action="store_true", help="print one JSON object")
     return p
 
 
@@ -246,7 +269,10 @@ def run(args: argparse.Namespace) -> int:
         return _run_mf(args)
     if cmd == "reduce":
         return _run_reduce(args)
-    raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce")
+    if cmd == "fit-mf":
+        return _run_fit_mf(args)
+    raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce, "
+                     "fit-mf")
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
@@ -391,4 +417,25 @@ def _run_reduce(args: argparse.Namespace) -> int:
         print(red.report())
         if args.save:
             print(f"saved: {args.save}")
+    return 0
+
+
+def _run_fit_mf(args: argparse.Namespace) -> int:
+    from frictionlaws.outputs import check_outputs
+    from frictionlaws.tyre.fit_mf import fit_mf
+
+    inputs = [args.data] + ([args.template] if args.template else [])
+    check_outputs([args.output, args.plot], inputs=inputs)
+    res = fit_mf(args.data, fittyp=args.fittyp, template=args.template,
+                 sign_convention=args.sign_convention)
+    res.write(args.output)
+    if args.plot:
+        res.plot(args.plot)
+    if args.json:
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(res.to_dict()))
+        return 0
+    print(res.report())
+    print(f"written: {args.output}" + (f", {args.plot}" if args.plot else ""))
     return 0
