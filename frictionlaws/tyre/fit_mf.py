@@ -421,7 +421,7 @@ def _fit_direction(mf: MagicFormula, d: _Direction, data: TyreData, version: str
     mf.coefficients.update({k: v for k, v in start.items() if k in free})
     rest = [k for k in free if k not in start]
     if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
-        _solve(mf, d, rest, method="trf")
+        _solve(mf, d, rest)
     while True:  # stage 3: global refinement; drop directions the data do not inform
         r = _solve(mf, d, free)
         se, weak = _stderr(r, len(free))
