@@ -72,8 +72,8 @@ and :meth:`MagicFormula.weight_y`); MF 5.2 uses the same equations with
 
 Conventions, each an option named after what it means (defaults first):
 
-* ``slip_angle``: ``"tan_alpha"`` (the book's alpha* = tan(alpha); MFeval's
-  default, useMode +20) or ``"alpha"`` (the angle itself; MFeval useMode +10 and
+* ``slip_angle``: ``"tan_alpha"`` (the book's alpha* = tan(alpha); MFeval
+  useMode +20) or ``"alpha"`` (the angle itself; MFeval useMode +10 and
   several PAC2002 codes; the two differ by < 0.3 % below 5 degrees, by up to
   ~5 % of F_y0 at 25-30 degrees);
 * ``friction_scaling``: ``"degressive"`` (MF 6.x ``LMU' = A LMU / (1 + (A-1) LMU)``
@@ -90,8 +90,7 @@ limited to <= 1 as the textbook requires.  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
 (PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no
-INFLPRES is evaluated at the nominal pressure (dpi = 0, as MFeval does without
-a pressure input), with a note.
+INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
 """
 
 from __future__ import annotations
@@ -120,7 +119,7 @@ A_MU = 10.0
 _SCALING_DEFAULT = 1.0
 
 #: How the slip angle enters the lateral curve: ``tan_alpha`` (the book's alpha*,
-#: MFeval's default "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
+#: MFeval useMode +20 "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
 #: several PAC2002 codes).
 SLIP_ANGLE_INPUTS = ("tan_alpha", "alpha")
 #: Friction scaling of MF 6.x: ``degressive`` (LMU' = A LMU / (1 + (A - 1) LMU), A = 10,
@@ -363,8 +362,8 @@ class MagicFormula:
         if p_i is None and p_nom is not None:
             p_i = p_nom
             notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
-                         "pressure is used, as MFeval does without a pressure input "
-                         "(dpi = 0); pass pressure= to evaluate at another")
+                         "pressure is used (dpi = 0); pass pressure= to evaluate at "
+                         "another")
         limits = {}
         for name, sec, lo, hi, kind in (
                 ("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
