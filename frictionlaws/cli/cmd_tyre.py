@@ -96,6 +96,11 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
                    "(usable with --params)")
 
+    _add_fit_mf(tsub)
+    return p
+
+
+def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f = tsub.add_parser(
         "fit-mf", help="fit a Magic Formula property file to tyre test data",
         description="Fit the pure-slip Magic Formula (Fx0 and Fy0 coefficient groups) to "
@@ -117,7 +122,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
                    "(png, pdf, svg)")
     f.add_argument("--json", action="store_true", help="print one JSON object")
-    return p
 
 
 def _mf_options(p: argparse.ArgumentParser) -> None:
