@@ -97,6 +97,7 @@ QUANTITIES: dict[str, Quantity] = {
     "torque": Quantity("N*m", "a torque", ("N*m", "N*mm"), "N*m"),
     "frequency": Quantity("Hz", "a frequency", ("Hz", "1/s"), "Hz"),
     "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s"),
+    "angle": Quantity("rad", "an angle", ("deg", "rad"), "deg"),
 }
 
 # Names of common dimensions, for "unit 'm' is a length, expected a pressure":

@@ -266,6 +266,61 @@ def test_tyre_reduce_hostile(data: bytes, load: str, points: str, save: str | No
         check_outcome(run_cli(argv), snapshot=snap, json_out=json_out, allowed=allowed)
 
 
+def _tyre_csv(spoil: str, cell: str) -> bytes:
+    """A small flat-track CSV (2 loads, pure slip) from the MF 5.2 example, maybe spoiled."""
+    import math
+
+    import numpy as np
+
+    from frictionlaws.tyre import MagicFormula
+
+    mf = MagicFormula.from_file(MF52_JSON)
+    header = "Fz [kN],kappa [-],alpha [deg],Fx [N],Fy [N]"
+    rows = []
+    for fz in (4.0, 8.0):
+        for s in np.linspace(-0.2, 0.2, 11):
+            rows.append(f"{fz},{s:.3f},0,{mf.fx0(s, fz * 1e3):.2f},")
+            a = math.radians(s * 60)
+            rows.append(f"{fz},0,{s * 60:.2f},,{mf.fy0(a, fz * 1e3):.2f}")
+    if spoil == "cell":
+        rows[3] = rows[3].replace(rows[3].split(",")[0], cell, 1)
+    elif spoil == "no-angle-unit":
+        header = header.replace("alpha [deg]", "alpha")
+    elif spoil == "angle-unit":
+        header = header.replace("alpha [deg]", f"alpha [{cell}]")
+    elif spoil == "negative-load":
+        rows = [r.replace("8.0,", "-8.0,", 1) for r in rows]
+    elif spoil == "drop-fz":
+        header, rows = header.split(",", 1)[1], [r.split(",", 1)[1] for r in rows]
+    return ("\n".join([header, *rows]) + "\n").encode()
+
+
+@covers("mf")
+@hostile(12)
+@given(spoil=st.sampled_from(["none", "cell", "no-angle-unit", "angle-unit", "negative-load",
+                              "drop-fz", "bytes"]),
+       cell=st.sampled_from(NASTY_NUMBERS), raw=st.binary(max_size=200),
+       template=st.one_of(st.none(), tir_bytes()), out=TARGETS,
+       sign=st.sampled_from(["iso", "sae", "xyz"]), json_out=st.booleans())
+def test_tyre_fit_mf_hostile(spoil: str, cell: str, raw: bytes, template: bytes | None,
+                             out: str, sign: str, json_out: bool) -> None:
+    with workdir() as tmp:
+        src = tmp / "flat.csv"
+        src.write_bytes(raw if spoil == "bytes" else _tyre_csv(spoil, cell))
+        inputs = [src]
+        argv = ["tyre", "fit-mf", str(src), "--fittyp", "6", "--sign-convention", sign]
+        if template is not None:
+            tpl = tmp / "template.tir"
+            tpl.write_bytes(template)
+            inputs.append(tpl)
+            argv += ["--template", str(tpl)]
+        target = _target(tmp, out, inputs)
+        argv += ["-o", str(target)] + (["--json"] if json_out else [])
+        snap = Snapshot.take([tmp], inputs)
+        check_outcome(run_cli(argv, timeout=60), snapshot=snap, json_out=json_out,
+                      allowed=[target])
+
+
 @covers("fit")
 @hostile(20)
 @example(params=b'{"law": "thesis-poly2", "params": {"a0": {"value": "x"}, "a1": -59.2, '
@@ -444,7 +499,7 @@ SOUP = ["--json", "--json", "--map", "mu=mu", "--units", "p=MPa", "--fix", "a=1"
 @hostile(60)
 @given(command=st.sampled_from(["laws", "show", "fit", "compare", "datasets", "export",
                                 "process", "validate", "tyre", "tyre mf", "tyre reduce",
-                                "tyre cornering", "tyre thesis"]),
+                                "tyre cornering", "tyre thesis", "tyre fit-mf"]),
        words=st.lists(st.sampled_from(SOUP), max_size=6))
 def test_option_soup(command: str, words: list[str]) -> None:
     """Random option soups: usage errors are one line and exit 2; nothing crashes."""

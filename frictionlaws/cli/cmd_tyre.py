@@ -8,7 +8,8 @@ Sub-commands:
   ``thesis-steel``) beside its Table 6-2;
 * ``mf``: summary of a Magic Formula property file (.tir or JSON);
 * ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
-  F_x0/F_z curve at one load.
+  F_x0/F_z curve at one load;
+* ``fit-mf``: fit a Magic Formula property file to tyre test data.
 """
 
 from __future__ import annotations
@@ -74,6 +75,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     m.add_argument("file", metavar="FILE", help=".tir or .json property file, or a packaged "
                    "example (MagicFormula52, MagicFormula61, MagicFormula62)")
     _load_options(m, default=None)
+    _mf_options(m)
     m.add_argument("--json", action="store_true", help="print one JSON object")
 
     r = tsub.add_parser(
@@ -89,10 +91,57 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--slip-max", type=float, default=1.0, help="largest slip ratio (<= 1)")
     r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
                    help="number of slip points (3..100000, default 201)")
+    _mf_options(r)
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
                    "(usable with --params)")
+
+    _add_fit_mf(tsub)
     return p
+
+
+def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
+    f = tsub.add_parser(
+        "fit-mf", help="fit a Magic Formula property file to tyre test data",
+        description="Fit the pure-slip Magic Formula (Fx0 and Fy0 coefficient groups) to "
+        "tyre test data (a tidy CSV: 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', "
+        "'pressure [kPa]', 'Fx [N]', 'Fy [N]') in stages, and write a .tir property file. "
+        "Coefficients the data cannot determine keep the template's value (listed).")
+    f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
+    f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
+                   help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
+                        "(MF 5.2 / PAC2002)")
+    f.add_argument("--template", metavar="FILE", help="property file giving FNOMIN, the "
+                   "nominal pressure, the other sections and undetermined coefficients "
+                   "(default: the packaged example of the version)")
+    f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
+                   help="axes of the data: iso (ISO-W, as property files; default) or sae "
+                        "(Fz, Fy and alpha negated to ISO)")
+    f.add_argument("-o", "--output", required=True, metavar="FILE.tir",
+                   help="property file to write")
+    f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
+                   "(png, pdf, svg)")
+    f.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def _mf_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("Magic Formula conventions (see the tyre page of the guide)")
+    g.add_argument("--slip-angle", choices=("tan_alpha", "alpha"), default="tan_alpha",
+                   help="slip variable of the lateral curve: tan(alpha) (default, the "
+                        "book's alpha*) or alpha itself")
+    g.add_argument("--friction-scaling", choices=("degressive", "linear"),
+                   default="degressive",
+                   help="MF 6.x friction scaling LMU': degressive, A_mu = 10 (default) or "
+                        "linear, A_mu = 1")
+    g.add_argument("--loads-above-fzmax", choices=("extrapolate", "clamp"),
+                   default="extrapolate",
+                   help="loads above the file's FZMAX: extrapolate with a warning "
+                        "(default) or clamp to FZMAX")
+
+
+def _mf_conventions(args: argparse.Namespace) -> dict[str, str]:
+    return {"slip_angle": args.slip_angle, "friction_scaling": args.friction_scaling,
+            "loads_above_fzmax": args.loads_above_fzmax}
 
 
 def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
@@ -224,7 +273,10 @@ def run(args: argparse.Namespace) -> int:
         return _run_mf(args)
     if cmd == "reduce":
         return _run_reduce(args)
-    raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce")
+    if cmd == "fit-mf":
+        return _run_fit_mf(args)
+    raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce, "
+                     "fit-mf")
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
@@ -317,7 +369,7 @@ def _run_mf(args: argparse.Namespace) -> int:
 
     from frictionlaws.tyre.magic_formula import MagicFormula
 
-    mf = MagicFormula.from_file(args.file)
+    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -336,8 +388,10 @@ def _run_mf(args: argparse.Namespace) -> int:
               f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}")
     lim = mf.limits.get("fz")
     if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
-        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: "
-              "extrapolation", file=sys.stderr)
+        how = ("extrapolation" if mf.loads_above_fzmax == "extrapolate"
+               else "loads above FZMAX evaluated at FZMAX (clamped)")
+        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: {how}",
+              file=sys.stderr)
     return 0
 
 
@@ -352,7 +406,10 @@ def _run_reduce(args: argparse.Namespace) -> int:
         from frictionlaws.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
-    red = reduce_mf(args.file, args.law, fz=float(loads[0]), side=args.side,
+    from frictionlaws.tyre.magic_formula import MagicFormula
+
+    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
     if args.save:
         red.fit.save(args.save)
@@ -364,4 +421,25 @@ def _run_reduce(args: argparse.Namespace) -> int:
         print(red.report())
         if args.save:
             print(f"saved: {args.save}")
+    return 0
+
+
+def _run_fit_mf(args: argparse.Namespace) -> int:
+    from frictionlaws.outputs import check_outputs
+    from frictionlaws.tyre.fit_mf import fit_mf
+
+    inputs = [args.data] + ([args.template] if args.template else [])
+    check_outputs([args.output, args.plot], inputs=inputs)
+    res = fit_mf(args.data, fittyp=args.fittyp, template=args.template,
+                 sign_convention=args.sign_convention)
+    res.write(args.output)
+    if args.plot:
+        res.plot(args.plot)
+    if args.json:
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(res.to_dict()))
+        return 0
+    print(res.report())
+    print(f"written: {args.output}" + (f", {args.plot}" if args.plot else ""))
     return 0

@@ -8,16 +8,20 @@
 * :class:`MagicFormula`: the PAC2002 / MF 5.2 and MF 6.1/6.2 pure-slip forces
   from ADAMS ``.tir`` or JSON property files (:func:`read_property_file`);
 * :func:`reduce_mf`: fit a simple slip law (``pacejka``, ``burckhardt``) to a
-  Magic Formula curve at one load.
+  Magic Formula curve at one load;
+* :func:`fit_mf`: fit a Magic Formula property file to tyre test data
+  (:func:`read_tyre_data`) and write it as ``.tir``.
 
 Units are SI everywhere (N, m, Pa, m/s, rad).
 """
 
 from .brush import BrushModel, BrushTyre, CorneringResult
+from .fit_mf import MFFit, fit_mf
 from .magic_formula import MagicFormula, MFCoefficients
 from .reduce import Reduction, equivalent_pacejka, mf_slip_curve, reduce_mf
 from .thesis import TABLE_6_2, ThesisComparison, thesis_comparison, thesis_ratios
 from .tir import PropertyFile, read_property_file, write_tir
+from .tyre_data import TyreData, read_tyre_data
 
 __all__ = [
     "BrushModel",
@@ -25,6 +29,10 @@ __all__ = [
     "CorneringResult",
     "MagicFormula",
     "MFCoefficients",
+    "MFFit",
+    "fit_mf",
+    "TyreData",
+    "read_tyre_data",
     "PropertyFile",
     "read_property_file",
     "write_tir",

@@ -1,4 +1,4 @@
-"""The Magic Formula (PAC2002 / MF 5.2 and MF 6.1/6.2) for pure slip, from property files.
+"""The Magic Formula (PAC2002 / MF 5.2 and MF 6.1/6.2), pure and combined slip, from property files.
 
 :class:`MagicFormula` evaluates the steady-state pure-slip forces of a tyre
 described by a property file (ADAMS ``.tir`` or its JSON variant, read by
@@ -9,7 +9,8 @@ described by a property file (ADAMS ``.tir`` or its JSON variant, read by
 * ``fy0(alpha, fz)``: lateral force at slip angle ``alpha`` [rad];
 * ``mu_x_peak(fz)``, ``mu_y_peak(fz)``: the peak friction coefficients
   D/F_z;
-* ``longitudinal(fz)``, ``lateral(fz)``: the B, C, D, E, K, S_H, S_V factors.
+* ``longitudinal(fz)``, ``lateral(fz)``: the B, C, D, E, K, S_H, S_V factors;
+* ``fx(kappa, alpha, fz)``, ``fy(kappa, alpha, fz)``: combined-slip forces.
 
 All inputs and outputs are SI and vectorised (numpy broadcasting).  Forces
 follow the sign convention of the property file (for TYDEX/ISO files a
@@ -63,16 +64,33 @@ terms are:
   the degressive friction scaling ``LMU' = A LMU / (1 + (A - 1) LMU)`` with
   A = 10 (equal to LMU when LMU = 1).
 
-Simplifications, stated: pure slip only (no combined-slip weighting G), no
-turn slip (all zeta = 1), no speed dependence of friction (LMUV ignored: the
-steady-state curves are for the file's measurement speed ``LONGVL``), the
-slip angle enters as tan(alpha) in both versions (the 2006 book's alpha*;
-some PAC2002 codes use alpha itself, which differs by less than 0.3 % below
-5 degrees).  Absent coefficients are 0, absent scaling factors 1.  E is
+Combined slip (``fx(kappa, alpha, fz)``, ``fy(...)``) multiplies the pure-slip
+forces by the cosine weighting functions of eqs. (4.E50)-(4.E67):
+``F_x = G_xa F_x0`` and ``F_y = G_yk F_y0 + S_Vyk`` (see :meth:`MagicFormula.weight_x`
+and :meth:`MagicFormula.weight_y`); MF 5.2 uses the same equations with
+``g = gamma LGAY`` and without RBX3/RBY4.
+
+Conventions, each an option named after what it means (defaults first):
+
+* ``slip_angle``: ``"tan_alpha"`` (the book's alpha* = tan(alpha); MFeval
+  useMode +20) or ``"alpha"`` (the angle itself; MFeval useMode +10 and
+  several PAC2002 codes; the two differ by < 0.3 % below 5 degrees, by up to
+  ~5 % of F_y0 at 25-30 degrees);
+* ``friction_scaling``: ``"degressive"`` (MF 6.x ``LMU' = A LMU / (1 + (A-1) LMU)``
+  with A = 10, Pacejka 2012 and MFeval) or ``"linear"`` (LMU' = LMU, A = 1);
+  identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
+* ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
+  with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
+  (evaluated at FZMAX, as MFeval's limit checks do).
+
+Simplifications, stated: no turn slip (all zeta = 1), no speed dependence of
+friction (LMUV ignored: the steady-state curves are for the file's measurement
+speed ``LONGVL``).  Absent coefficients are 0, absent scaling factors 1.  E is
 limited to <= 1 as the textbook requires.  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
-(PAC2002), or the ``pressure=`` argument.
+(PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no
+INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
 """
 
 from __future__ import annotations
@@ -89,7 +107,8 @@ import numpy as np
 from ..errors import ExtrapolationWarning, InputError
 from .tir import PropertyFile, read_property_file
 
-__all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS"]
+__all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
+           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Small number added to C*D and K_y in the denominators (the textbook's epsilon) [N].
@@ -98,6 +117,17 @@ EPS = 1e-6
 A_MU = 10.0
 
 _SCALING_DEFAULT = 1.0
+
+#: How the slip angle enters the lateral curve: ``tan_alpha`` (the book's alpha*,
+#: MFeval useMode +20 "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
+#: several PAC2002 codes).
+SLIP_ANGLE_INPUTS = ("tan_alpha", "alpha")
+#: Friction scaling of MF 6.x: ``degressive`` (LMU' = A LMU / (1 + (A - 1) LMU), A = 10,
+#: Pacejka 2012 and MFeval) or ``linear`` (LMU' = LMU, i.e. A = 1).
+FRICTION_SCALINGS = ("degressive", "linear")
+#: Loads above ``FZMAX``: ``extrapolate`` (the equations at the given load, with a
+#: warning) or ``clamp`` (evaluated at FZMAX, as MFeval's limit checks do).
+LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
 
 
 @dataclass(frozen=True)
@@ -135,6 +165,12 @@ def mf_curve(x: Any, B: Any, C: Any, D: Any, E_a: Any, E_b: Any, S_V: Any) -> An
     E = np.minimum(E_a - E_b * np.sign(x), 1.0)
     bx = B * x
     return D * np.sin(C * np.arctan(bx - E * (bx - np.arctan(bx)))) + S_V
+
+
+def _cos_weight(x: Any, B: Any, C: Any, E: Any) -> Any:
+    """``cos(C arctan(B x - E (B x - arctan(B x))))``, the combined-slip weighting shape."""
+    bx = B * x
+    return np.cos(C * np.arctan(bx - E * (bx - np.arctan(bx))))
 
 
 def _version_of(pf: PropertyFile) -> tuple[str, str]:
@@ -185,6 +221,17 @@ class MagicFormula:
         Labels for reports.
     notes : list of str
         How the version was decided, conversions made.
+    slip_angle : {"tan_alpha", "alpha"}
+        How the slip angle enters the lateral curve (default ``tan_alpha``, the
+        book's alpha* = tan(alpha); ``alpha`` uses the angle itself).
+    friction_scaling : {"degressive", "linear"}
+        MF 6.x friction scaling of the vertical shifts: ``degressive`` (default,
+        LMU' = A LMU / (1 + (A - 1) LMU) with A = 10) or ``linear`` (LMU' = LMU,
+        A = 1).  MF 5.2 always uses LMU' = LMU.
+    loads_above_fzmax : {"extrapolate", "clamp"}
+        Loads above the file's ``FZMAX``: evaluated as given with an
+        :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
+        to FZMAX (as MFeval's limit checks do).
     """
 
     def __init__(self, coefficients: Mapping[str, float], *, fnomin: float,
@@ -192,10 +239,22 @@ class MagicFormula:
                  nominal_pressure: float | None = None,
                  limits: Mapping[str, tuple[float, float]] | None = None,
                  name: str = "", source: str = "<memory>",
-                 notes: list[str] | None = None) -> None:
+                 notes: list[str] | None = None, slip_angle: str = "tan_alpha",
+                 friction_scaling: str = "degressive",
+                 loads_above_fzmax: str = "extrapolate") -> None:
         if version not in MF_VERSIONS:
             raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
                              f"{', '.join(MF_VERSIONS)}", file=source)
+        for what, value, allowed in (("slip_angle", slip_angle, SLIP_ANGLE_INPUTS),
+                                     ("friction_scaling", friction_scaling, FRICTION_SCALINGS),
+                                     ("loads_above_fzmax", loads_above_fzmax,
+                                      LOADS_ABOVE_FZMAX)):
+            if value not in allowed:
+                raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
+                                 file=source)
+        self.slip_angle = slip_angle
+        self.friction_scaling = friction_scaling
+        self.loads_above_fzmax = loads_above_fzmax
         if not (math.isfinite(fnomin) and fnomin > 0):
             raise InputError(f"FNOMIN must be a positive load in N, got {fnomin}", file=source)
         self.coefficients = {k.upper(): float(v) for k, v in coefficients.items()}
@@ -224,8 +283,12 @@ class MagicFormula:
         self._six = six
         self.lmux = c("LMUX", 1.0)
         self.lmuy = c("LMUY", 1.0)
-        self.lmux_prime = A_MU * self.lmux / (1 + (A_MU - 1) * self.lmux) if six else self.lmux
-        self.lmuy_prime = A_MU * self.lmuy / (1 + (A_MU - 1) * self.lmuy) if six else self.lmuy
+        a_mu = A_MU if friction_scaling == "degressive" else 1.0
+        self.lmux_prime = a_mu * self.lmux / (1 + (a_mu - 1) * self.lmux) if six else self.lmux
+        self.lmuy_prime = a_mu * self.lmuy / (1 + (a_mu - 1) * self.lmuy) if six else self.lmuy
+        if loads_above_fzmax == "clamp" and "fz" not in self.limits:
+            self.notes.append("loads_above_fzmax = clamp, but the file gives no FZMAX: "
+                              "loads are not clamped")
 
     # ----------------------------------------------------------- construction
     def _c(self, name: str, default: float | None = None) -> float:
@@ -235,7 +298,7 @@ class MagicFormula:
 
     @classmethod
     def from_file(cls, path: str | Path, *, version: str | None = None,
-                  pressure: float | None = None) -> MagicFormula:
+                  pressure: float | None = None, **options: str) -> MagicFormula:
         """Read a ``.tir`` or JSON property file.
 
         Parameters
@@ -247,6 +310,9 @@ class MagicFormula:
             Override the equation set detected from ``FITTYP``.
         pressure : float, optional
             Inflation pressure [Pa] (default: the file's INFLPRES / IP).
+        **options : str
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
+            class documentation).
         """
         p = Path(path)
         if not p.exists():
@@ -254,12 +320,16 @@ class MagicFormula:
             if packaged is not None:
                 p = packaged
         pf = read_property_file(p)
-        return cls.from_property_file(pf, version=version, pressure=pressure)
+        return cls.from_property_file(pf, version=version, pressure=pressure, **options)
 
     @classmethod
     def from_property_file(cls, pf: PropertyFile, *, version: str | None = None,
-                           pressure: float | None = None) -> MagicFormula:
-        """Build from an already read :class:`~frictionlaws.tyre.tir.PropertyFile`."""
+                           pressure: float | None = None, **options: str) -> MagicFormula:
+        """Build from an already read :class:`~frictionlaws.tyre.tir.PropertyFile`.
+
+        ``options`` are passed to the constructor (``slip_angle``,
+        ``friction_scaling``, ``loads_above_fzmax``).
+        """
         pf.check_angle_unit()
         notes = pf.check_coefficients()
         if version is None:
@@ -289,6 +359,11 @@ class MagicFormula:
             p_nom = p_i
             notes.append("no nominal pressure in the file: the inflation pressure is taken "
                          "as nominal (dpi = 0)")
+        if p_i is None and p_nom is not None:
+            p_i = p_nom
+            notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
+                         "pressure is used (dpi = 0); pass pressure= to evaluate at "
+                         "another")
         limits = {}
         for name, sec, lo, hi, kind in (
                 ("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
@@ -303,7 +378,7 @@ class MagicFormula:
         return cls(coeffs, fnomin=fnomin, version=version,
                    pressure=pressure if pressure is not None else p_i,
                    nominal_pressure=p_nom, limits=limits, name=name, source=pf.path,
-                   notes=notes)
+                   notes=notes, **options)
 
     # ------------------------------------------------------------- helpers
     def _dpi(self, pressure: float | None) -> float:
@@ -341,6 +416,8 @@ class MagicFormula:
     def _inputs(self, fz: Any, gamma: Any, pressure: float | None) -> tuple[Any, Any, float]:
         fz = self._check("fz", fz, positive=True)
         self._warn_range("fz", fz)
+        if self.loads_above_fzmax == "clamp" and "fz" in self.limits:
+            fz = np.minimum(fz, self.limits["fz"][1])
         gamma = np.asarray(gamma, dtype=float)
         if gamma.ndim or gamma != 0.0:
             self._check("gamma", gamma)
@@ -450,13 +527,106 @@ class MagicFormula:
         The slip enters as tan(alpha) (see the module notes); ``gamma`` is the
         inclination angle [rad].
         """
+        alpha_s = self._alpha_star(alpha)
+        fz, gamma, dpi = self._inputs(fz, gamma, pressure)
+        k = self._lat(fz, gamma, dpi)
+        out = mf_curve(alpha_s + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def _alpha_star(self, alpha: Any) -> Any:
+        """The slip variable of the lateral curve: tan(alpha) or alpha (``slip_angle``)."""
         alpha = self._check("alpha", alpha)
         self._warn_range("alpha", alpha)
         if np.any(np.abs(alpha) >= np.pi / 2):
             raise InputError("slip angles must lie strictly between -90 and 90 degrees")
+        return np.tan(alpha) if self.slip_angle == "tan_alpha" else alpha
+
+    # ------------------------------------------------------- combined slip
+    def _camber_c(self, gamma: Any) -> Any:
+        """Camber as the combined-slip terms use it: sin(gamma) (6.x) or gamma LGAY (5.2)."""
+        return np.sin(gamma) if self._six else gamma * self._c("LGAY")
+
+    def weight_x(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0) -> Any:
+        """Combined-slip weighting G_xa of F_x (= 1 at alpha = 0), eqs. (4.E50)-(4.E57).
+
+        ``B_xa = (RBX1 + RBX3 g^2) cos(arctan(RBX2 kappa)) LXAL``, ``C_xa = RCX1``,
+        ``E_xa = REX1 + REX2 dfz`` (<= 1), ``S_Hxa = RHX1``, ``a_s = alpha* + S_Hxa``
+        and ``G_xa = cos(C_xa arctan(B_xa a_s - E_xa (B_xa a_s - arctan(B_xa a_s))))``
+        divided by the same expression at ``a_s = S_Hxa``.
+        """
+        c = self._c
+        kappa = self._check("kappa", kappa)
+        alpha_s = self._alpha_star(alpha)
+        fz, gamma, _ = self._inputs(fz, gamma, None)
+        dfz = (fz - self.fz0) / self.fz0
+        g = self._camber_c(gamma)
+        B = (c("RBX1") + c("RBX3") * g**2) * np.cos(np.arctan(c("RBX2") * kappa)) * c("LXAL")
+        C = c("RCX1")
+        E = np.minimum(c("REX1") + c("REX2") * dfz, 1.0)
+        S_H = c("RHX1")
+        out = _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def weight_y(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
+                 pressure: float | None = None) -> tuple[Any, Any]:
+        """Combined-slip weighting G_yk of F_y and the shift S_Vyk [N], eqs. (4.E58)-(4.E67).
+
+        ``B_yk = (RBY1 + RBY4 g^2) cos(arctan(RBY2 (alpha* - RBY3))) LYKA``,
+        ``C_yk = RCY1``, ``E_yk = REY1 + REY2 dfz`` (<= 1), ``S_Hyk = RHY1 + RHY2 dfz``,
+        ``k_s = kappa + S_Hyk``; ``G_yk`` as for x; ``S_Vyk = D_Vyk sin(RVY5
+        arctan(RVY6 kappa)) LVYKA`` with ``D_Vyk = mu_y F_z (RVY1 + RVY2 dfz + RVY3 g)
+        cos(arctan(RVY4 alpha*))``.  G_yk = 1 and S_Vyk = 0 at kappa = 0.
+        """
+        c = self._c
+        kappa = self._check("kappa", kappa)
+        alpha_s = self._alpha_star(alpha)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
-        k = self._lat(fz, gamma, dpi)
-        out = mf_curve(np.tan(alpha) + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
+        dfz = (fz - self.fz0) / self.fz0
+        g = self._camber_c(gamma)
+        B = ((c("RBY1") + c("RBY4") * g**2) * np.cos(np.arctan(c("RBY2") * (alpha_s - c("RBY3"))))
+             * c("LYKA"))
+        C = c("RCY1")
+        E = np.minimum(c("REY1") + c("REY2") * dfz, 1.0)
+        S_H = c("RHY1") + c("RHY2") * dfz
+        G = _cos_weight(kappa + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
+        mu_y = self._lat(fz, gamma, dpi).mu
+        D_V = (mu_y * fz * (c("RVY1") + c("RVY2") * dfz + c("RVY3") * g)
+               * np.cos(np.arctan(c("RVY4") * alpha_s)))
+        S_V = D_V * np.sin(c("RVY5") * np.arctan(c("RVY6") * kappa)) * c("LVYKA")
+        return G, S_V
+
+    def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
+           pressure: float | None = None) -> Any:
+        """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
+
+        Parameters
+        ----------
+        kappa, alpha : array-like
+            Slip ratio [-] and slip angle [rad], broadcast together with ``fz``.
+        fz : array-like
+            Vertical load [N].
+        gamma : array-like
+            Inclination angle [rad].
+        pressure : float, optional
+            Inflation pressure [Pa].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Equal to :meth:`fx0` where ``alpha = 0``.
+        """
+        out = (np.asarray(self.weight_x(kappa, alpha, fz, gamma))
+               * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
+        return float(out) if np.ndim(out) == 0 else out
+
+    def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
+           pressure: float | None = None) -> Any:
+        """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
+
+        Same arguments as :meth:`fx`; equal to :meth:`fy0` where ``kappa = 0``.
+        """
+        G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
+        out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
 
     def mu_x_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
@@ -493,6 +663,9 @@ class MagicFormula:
             "name": self.name, "source": self.source, "version": self.version,
             "fnomin_N": self.fnomin, "pressure_Pa": self.pressure,
             "nominal_pressure_Pa": self.nominal_pressure,
+            "conventions": {"slip_angle": self.slip_angle,
+                            "friction_scaling": self.friction_scaling,
+                            "loads_above_fzmax": self.loads_above_fzmax},
             "limits_SI": {k: list(v) for k, v in self.limits.items()},
             "loads_N": loads.tolist(),
             "mu_x_peak": np.broadcast_to(lon.mu, loads.shape).tolist(),

@@ -1,0 +1,596 @@
+"""Fit the pure-slip Magic Formula (F_x0, F_y0) to tyre test data and write a property file.
+
+:func:`fit_mf` fits the pure longitudinal and lateral coefficient groups of MF 5.2,
+6.1 or 6.2 to measured forces (:class:`~frictionlaws.tyre.tyre_data.TyreData`) in
+three stages:
+
+1. **per-load curves**: at each load (at the nominal pressure and the smallest
+   camber measured) a Magic Formula curve ``D sin(C arctan(B x - E (B x -
+   arctan(B x)))) + S_V`` with ``x = slip + S_H`` is fitted alone;
+2. **load dependence** (regressions of mu, K, E, S_H, S_V of the per-load curves
+   on ``dfz``) gives the starting values of the load coefficients; the pressure
+   and camber coefficients are then fitted with those held;
+3. **global refinement** of every coefficient the data span, on all pure-slip
+   points at once (:func:`scipy.optimize.least_squares`); standard errors from
+   the Jacobian, ``SE = sqrt(diag(s^2 (J^T J)^-1))``.
+
+Coefficients the data cannot determine (a pressure term with one pressure, a
+camber term with one camber, a curvature in load with fewer than three loads,
+an asymmetry with one sign of slip, or a direction of the Jacobian with no
+information) are left at the template's value and named in the notes.  Rows with
+both slips non-zero (combined slip) are not used.  The slip angle enters as
+tan(alpha), the library's default convention.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..errors import ExtrapolationWarning, FitError, InputError
+from .magic_formula import EXAMPLES, MagicFormula, _packaged_example, mf_curve
+from .tir import PropertyFile, format_tir, read_property_file
+from .tyre_data import TyreData
+
+__all__ = ["MFFit", "fit_mf", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
+
+#: FITTYP -> Magic Formula version.
+FITTYPS = {5: "5.2", 6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
+
+_X = "PCX1 PDX1 PDX2 PDX3 PEX1 PEX2 PEX3 PEX4 PKX1 PKX2 PKX3 PHX1 PHX2 PVX1 PVX2".split()
+_PPX = "PPX1 PPX2 PPX3 PPX4".split()
+_Y52 = ("PCY1 PDY1 PDY2 PDY3 PEY1 PEY2 PEY3 PEY4 PKY1 PKY2 PKY3 PHY1 PHY2 PHY3 "
+        "PVY1 PVY2 PVY3 PVY4").split()
+_Y6 = ("PCY1 PDY1 PDY2 PDY3 PEY1 PEY2 PEY3 PEY4 PEY5 PKY1 PKY2 PKY3 PKY4 PKY5 PKY6 PKY7 "
+       "PHY1 PHY2 PVY1 PVY2 PVY3 PVY4 PPY1 PPY2 PPY3 PPY4 PPY5").split()
+#: Coefficients fitted per version and direction.
+X_COEFFICIENTS = {"5.2": _X, "6.1": _X + _PPX, "6.2": _X + _PPX}
+Y_COEFFICIENTS = {"5.2": _Y52, "6.1": _Y6, "6.2": _Y6}
+
+# What each coefficient needs in the data (beyond one load).
+_NEEDS: dict[str, tuple[str, ...]] = {
+    **{k: ("pressure",) for k in _PPX + "PPY1 PPY2 PPY3 PPY4".split()},
+    "PPY5": ("pressure", "camber"),
+    **{k: ("camber",) for k in "PDX3 PDY3 PEY4 PEY5 PKY3 PKY5 PKY6 PHY3 PVY3".split()},
+    **{k: ("camber", "loads2") for k in "PKY7 PVY4".split()},
+    **{k: ("loads2",) for k in "PDX2 PEX2 PKX2 PHX2 PVX2 PDY2 PEY2 PKY2 PHY2 PVY2".split()},
+    **{k: ("loads3",) for k in "PEX3 PKX3 PKY4".split()},
+    "PEX4": ("both_signs",), "PEY3": ("both_signs",),
+}
+#: Pure-slip selection: |alpha| (rad) and |kappa| below these count as zero.
+ALPHA_ZERO = math.radians(0.05)
+KAPPA_ZERO = 1e-4
+
+
+@dataclass
+class MFFit:
+    """The result of :func:`fit_mf`.
+
+    Attributes
+    ----------
+    version : str
+        Magic Formula version fitted (``"5.2"``, ``"6.1"``, ``"6.2"``).
+    property_file : PropertyFile
+        The template with the fitted coefficients, FITTYP, conditions and ranges.
+    values, stderr : dict
+        Fitted coefficient -> value and standard error.
+    undetermined : list of str
+        Coefficients the data cannot determine (left at the template value).
+    errors : dict
+        Per direction (``"x"``, ``"y"``): ``rmse``, ``max_abs`` [N], ``peak`` [N]
+        (largest measured |F|) and ``n`` points.
+    stages : dict
+        Per direction, the per-load curves of stage 1 (load, mu, K, C, E, S_H, S_V).
+    """
+
+    version: str
+    property_file: PropertyFile
+    model: MagicFormula
+    values: dict[str, float]
+    stderr: dict[str, float]
+    undetermined: list[str]
+    errors: dict[str, dict[str, float]]
+    stages: dict[str, list[dict[str, float]]]
+    data: TyreData
+    seconds: float
+    notes: list[str] = field(default_factory=list)
+
+    def tir_text(self) -> str:
+        """The ``.tir`` text of the fitted property file."""
+        header = [f"FITTED by frictionlaws fit_mf from {self.data.source} "
+                  f"({len(self.data)} rows), Magic Formula {self.version}, pure slip "
+                  "Fx0/Fy0 only; other sections from the template."]
+        header += [f"note: {n}" for n in self.notes]
+        return format_tir(self.property_file, header=header)
+
+    def write(self, path: str | Path) -> Path:
+        """Write the ``.tir`` file atomically (checked as an output first)."""
+        from ..outputs import atomic_write, check_outputs
+
+        check_outputs([path], inputs=[self.data.source])
+        with atomic_write(path) as fh:
+            fh.write(self.tir_text())
+        return Path(path)
+
+    def report(self) -> str:
+        """Plain-text report: coefficients with standard errors, errors, notes."""
+        lines = [f"Magic Formula {self.version} pure-slip fit to {self.data.source} "
+                 f"({len(self.data)} rows, {self.seconds:.1f} s)"]
+        for name, v in self.values.items():
+            se = self.stderr.get(name, math.nan)
+            lines.append(f"  {name:<5} = {v:< 12.6g} +/- {se:.3g}")
+        for d, e in self.errors.items():
+            lines.append(f"F{d}0: {int(e['n'])} points, RMSE {e['rmse']:.4g} N, max |error| "
+                         f"{e['max_abs']:.4g} N, peak |F| {e['peak']:.4g} N")
+        lines.extend(f"note: {n}" for n in self.notes)
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able summary."""
+        return {"version": self.version, "source": self.data.source, "rows": len(self.data),
+                "coefficients": {k: {"value": v, "stderr": self.stderr.get(k)}
+                                 for k, v in self.values.items()},
+                "undetermined": list(self.undetermined), "errors": self.errors,
+                "stages": self.stages, "seconds": self.seconds, "notes": list(self.notes)}
+
+    def plot(self, path: str | Path) -> Path:
+        """Save a figure of data and fit per load (nominal pressure, smallest camber)."""
+        from ._fit_mf_plot import plot_fit
+
+        return plot_fit(self, path)
+
+
+# ------------------------------------------------------------------ helpers
+
+
+def _levels(values: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cluster ``values`` into levels (gaps > ``tol``): (level means, label of each value)."""
+    order = np.argsort(values)
+    sorted_v = values[order]
+    breaks = np.flatnonzero(np.diff(sorted_v) > tol) + 1
+    labels_sorted = np.zeros(values.size, dtype=int)
+    for b in breaks:
+        labels_sorted[b:] += 1
+    labels = np.empty_like(labels_sorted)
+    labels[order] = labels_sorted
+    means = np.array([values[labels == i].mean() for i in range(len(breaks) + 1)])
+    return means, labels
+
+
+def _linfit(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """Intercept and slope of y on x (slope 0 with fewer than two distinct x)."""
+    if np.ptp(x) <= 0 or x.size < 2:
+        return float(np.mean(y)), 0.0
+    slope, intercept = np.polyfit(x, y, 1)
+    return float(intercept), float(slope)
+
+
+@dataclass
+class _Direction:
+    """The pure-slip points of one direction ("x": F_x0 on kappa, "y": F_y0 on alpha)."""
+
+    name: str
+    slip: np.ndarray
+    fz: np.ndarray
+    gamma: np.ndarray
+    dpi: np.ndarray
+    force: np.ndarray
+    load_labels: np.ndarray
+    loads: np.ndarray
+    reference: np.ndarray  # the rows at nominal pressure and smallest camber
+
+    def x(self) -> np.ndarray:
+        """The slip variable of the curve: kappa, or tan(alpha)."""
+        return self.slip if self.name == "x" else np.tan(self.slip)
+
+
+def _select(data: TyreData, name: str, p_nom: float | None) -> _Direction | None:
+    """The pure-slip rows of one direction, with their load levels and reference subset."""
+    if name == "x":
+        keep = np.isfinite(data.fx) & (np.abs(data.alpha) <= ALPHA_ZERO)
+        slip, force = data.kappa[keep], data.fx[keep]
+    else:
+        keep = np.isfinite(data.fy) & (np.abs(data.kappa) <= KAPPA_ZERO)
+        slip, force = data.alpha[keep], data.fy[keep]
+    if keep.sum() == 0:
+        return None
+    fz, gamma, p = data.fz[keep], data.gamma[keep], data.pressure[keep]
+    dpi = np.zeros(fz.size) if p_nom is None else np.where(np.isfinite(p),
+                                                           (p - p_nom) / p_nom, 0.0)
+    loads, labels = _levels(fz, 0.03 * float(np.median(fz)))
+    ref = np.ones(fz.size, dtype=bool)
+    if np.isfinite(p).any() and p_nom is not None:
+        p_lv, p_lab = _levels(np.where(np.isfinite(p), p, p_nom), 0.02 * p_nom)
+        ref &= p_lab == int(np.argmin(np.abs(p_lv - p_nom)))
+    g_lv, g_lab = _levels(gamma, math.radians(0.2))
+    ref &= g_lab == int(np.argmin(np.abs(g_lv)))
+    return _Direction(name, slip, fz, gamma, dpi, force, labels, loads, ref)
+
+
+def _curve_start(x: np.ndarray, y: np.ndarray) -> list[float]:
+    """B, D, E, E_b, S_H, S_V to start one curve (C = 1.4): slope near 0 and peak."""
+    ax = np.abs(x)
+    small = ax <= max(np.quantile(ax, 0.15), np.sort(ax)[min(2, ax.size - 1)])
+    K0 = np.polyfit(x[small], y[small], 1)[0] if np.ptp(x[small]) > 0 else 1.0
+    D0 = float(np.max(np.abs(y)))
+    return [K0 / (1.4 * D0), D0, 0.0, 0.0, 0.0, 0.0]
+
+
+def _stage1(d: _Direction) -> list[dict[str, float]]:
+    """Stage 1: one Magic Formula curve per load at the reference conditions (nominal
+    pressure, smallest camber), all with one shape factor C (C does not depend on load).
+
+    Each curve is ``D sin(C arctan(B x - E (B x - arctan(B x)))) + S_V`` with
+    ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.
+    """
+    sets = [(d.x()[sel], d.force[sel], float(np.mean(d.fz[sel])))
+            for sel in (d.reference & (d.load_labels == i) for i in range(d.loads.size))
+            if sel.sum() >= 8]
+    if not sets:
+        raise FitError(f"stage 1: no load with 8 or more pure-slip F{d.name}0 points at the "
+                       "reference pressure and camber")
+    both = [(x > 0).sum() >= 3 and (x < 0).sum() >= 3 for x, _, _ in sets]
+    p0, lo, hi = [1.4], [0.3], [3.0]
+    for x, y, _ in sets:
+        start = _curve_start(x, y)
+        p0 += start
+        lo += [-np.inf, 1e-6 * start[1], -20.0, -20.0, -np.inf, -np.inf]
+        hi += [np.inf, 5 * start[1], 1.0, 20.0, np.inf, np.inf]
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        out = []
+        for j, (x, y, _) in enumerate(sets):
+            B, D, E, E_b, sh, sv = p[1 + 6 * j: 7 + 6 * j]
+            out.append(mf_curve(x + sh, B, p[0], D, E, E_b if both[j] else 0.0, sv) - y)
+        return np.concatenate(out)
+
+    r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac")
+    C = float(r.x[0])
+    out = []
+    for j, (_, _, fz) in enumerate(sets):
+        B, D, E, E_b, sh, sv = (float(v) for v in r.x[1 + 6 * j: 7 + 6 * j])
+        out.append({"load": fz, "mu": D / fz, "K": B * C * D, "C": C, "E": E,
+                    "E_b": E_b if both[j] else 0.0, "S_H": sh, "S_V": sv, "B": B})
+    return out
+
+
+def _ky_start(curves: list[dict[str, float]], fz0: float, six: bool) -> dict[str, float]:
+    """PKY1, PKY2 (and PKY4 for MF 6.x) from the per-load cornering stiffnesses."""
+    fz = np.array([c["load"] for c in curves])
+    K = np.array([c["K"] for c in curves])
+    free4 = six and fz.size >= 3
+
+    def model(p: np.ndarray) -> np.ndarray:
+        k1, k2 = p[0], p[1]
+        k4 = p[2] if free4 else 2.0
+        return k1 * fz0 * np.sin(k4 * np.arctan(fz / (k2 * fz0)))
+
+    k2_0 = 2.0 * float(fz.max()) / fz0
+    p0 = [float(K[np.argmax(np.abs(K))]) / fz0 * 1.2, k2_0] + ([2.0] if free4 else [])
+    lo = [-np.inf, 0.05] + ([1.0] if free4 else [])
+    hi = [np.inf, 50.0] + ([4.0] if free4 else [])
+    if fz.size >= 2:
+        p = least_squares(lambda q: (model(q) - K) / np.abs(K).max(), p0,
+                          bounds=(lo, hi)).x
+    else:
+        p = np.array(p0)
+        p[0] = K[0] / (fz0 * math.sin(2.0 * math.atan(fz[0] / (p[1] * fz0))))
+    out = {"PKY1": float(p[0]), "PKY2": float(p[1])}
+    if six:
+        out["PKY4"] = float(p[2]) if free4 else 2.0
+    return out
+
+
+def _stage2_start(d: _Direction, curves: list[dict[str, float]], fz0: float,
+                  version: str) -> dict[str, float]:
+    """Starting values of the load coefficients from the per-load curves (regressions)."""
+    fz = np.array([c["load"] for c in curves])
+    dfz = (fz - fz0) / fz0
+    col = {k: np.array([c[k] for c in curves]) for k in ("mu", "K", "C", "E", "S_H", "S_V")}
+    e = np.minimum(col["E"], 0.95)
+    if d.name == "x":
+        names = ("PDX1 PDX2", "PKX1 PKX2", "PEX1 PEX2", "PHX1 PHX2", "PVX1 PVX2")
+        ys = (col["mu"], col["K"] / fz, e, col["S_H"], col["S_V"] / fz)
+        out = {"PCX1": float(np.mean(col["C"]))}
+    else:
+        names = ("PDY1 PDY2", "PEY1 PEY2", "PHY1 PHY2", "PVY1 PVY2")
+        ys = (col["mu"], e, col["S_H"], col["S_V"] / fz)
+        out = {"PCY1": float(np.mean(col["C"]))}
+        out.update(_ky_start(curves, fz0, version != "5.2"))
+    for pair, y in zip(names, ys):
+        a, b = _linfit(dfz, y)
+        n1, n2 = pair.split()
+        out[n1], out[n2] = a, b
+    # the asymmetry of E: E = E0 (1 - P sgn(x)), so P = E_b / E0 at each load
+    e0 = np.array([c["E"] for c in curves])
+    e_b = np.array([c["E_b"] for c in curves])
+    ok = np.abs(e0) > 1e-3
+    if ok.any():
+        out["PEX4" if d.name == "x" else "PEY3"] = float(np.median(e_b[ok] / e0[ok]))
+    return out
+
+
+def _spans(d: _Direction, data: TyreData) -> set[str]:
+    """What the data of one direction span: loads2/3, pressure(3), camber, both_signs."""
+    have: set[str] = set()
+    if d.loads.size >= 2:
+        have.add("loads2")
+    if d.loads.size >= 3:
+        have.add("loads3")
+    n_p = _levels(d.dpi, 0.02)[0].size
+    if n_p >= 2:
+        have.add("pressure")
+    if _levels(d.gamma, math.radians(0.2))[0].size >= 2:
+        have.add("camber")
+    if (d.slip > 0).sum() >= 3 and (d.slip < 0).sum() >= 3:
+        have.add("both_signs")
+    return have
+
+
+def _needs_met(name: str, have: set[str]) -> bool:
+    return all(n in have for n in _NEEDS.get(name, ()))
+
+
+def _predict(mf: MagicFormula, d: _Direction, names: Sequence[str], p: np.ndarray
+             ) -> np.ndarray:
+    """The model force at the points of ``d`` with ``names`` set to ``p``."""
+    for k, v in zip(names, p):
+        mf.coefficients[k] = float(v)
+    if d.name == "x":
+        k = mf._long(d.fz, d.gamma, d.dpi)
+        return mf_curve(d.slip + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
+    k = mf._lat(d.fz, d.gamma, d.dpi)
+    return mf_curve(np.tan(d.slip) + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
+
+
+_BOUNDS = {"PCX1": (0.3, 3.0), "PCY1": (0.3, 3.0), "PKY2": (0.05, 50.0), "PKY4": (1.0, 4.0),
+           "PEX1": (-50.0, 1.0), "PEY1": (-50.0, 1.0)}
+
+
+def _solve(mf: MagicFormula, d: _Direction, names: list[str], method: str = "lm") -> Any:
+    """Least squares over ``names`` (starting at the model's current values).
+
+    Levenberg-Marquardt (MINPACK) from the staged start; when it ends outside the
+    bounds of a shape coefficient (C, PKY2, PKY4, E at nominal load), the bounded
+    trust-region solver is run from the clipped solution.
+    """
+    lo = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[0] for k in names])
+    hi = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[1] for k in names])
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        return _predict(mf, d, names, p) - d.force
+
+    def inside(p: np.ndarray) -> np.ndarray:
+        with np.errstate(invalid="ignore"):
+            return np.clip(p, np.where(np.isfinite(lo), lo + 1e-6 * (1 + np.abs(lo)), lo),
+                           np.where(np.isfinite(hi), hi - 1e-6 * (1 + np.abs(hi)), hi))
+
+    p0 = inside(np.array([mf.coefficients.get(k, 0.0) for k in names]))
+    with np.errstate(all="ignore"):
+        if method == "lm":
+            r = least_squares(resid, p0, method="lm", x_scale="jac",
+                              max_nfev=200 * (len(names) + 1))
+        else:
+            r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
+                              max_nfev=100 * (len(names) + 1))
+        if np.any(r.x < lo) or np.any(r.x > hi) or not np.isfinite(r.cost):
+            r = least_squares(resid, inside(r.x if np.isfinite(r.cost) else p0),
+                              bounds=(lo, hi), x_scale="jac", method="trf",
+                              max_nfev=100 * (len(names) + 1))
+    _predict(mf, d, names, r.x)  # leave the model at the solution
+    return r
+
+
+def _stderr(r: Any, n_free: int) -> tuple[np.ndarray, np.ndarray]:
+    """Standard errors and the smallest relative singular value's direction of J."""
+    J = r.jac
+    n = J.shape[0]
+    norms = np.linalg.norm(J, axis=0)
+    norms[norms == 0] = 1.0
+    _, s, vt = np.linalg.svd(J / norms, full_matrices=False)
+    dof = max(n - n_free, 1)
+    s2 = 2.0 * r.cost / dof
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = (vt.T / s**2) @ vt / np.outer(norms, norms) * s2
+        se = np.sqrt(np.diag(cov))
+    weak = vt[-1] if s[-1] < 1e-6 * s[0] else np.array([])
+    return se, weak
+
+
+def _fit_direction(mf: MagicFormula, d: _Direction, data: TyreData, version: str,
+                   template: dict[str, float]) -> tuple[dict, dict, list[str], list[dict]]:
+    """Stages 1-3 for one direction: (values, stderr, undetermined, stage-1 curves)."""
+    group = X_COEFFICIENTS[version] if d.name == "x" else Y_COEFFICIENTS[version]
+    have = _spans(d, data)
+    free = [k for k in group if _needs_met(k, have)]
+    undetermined = [k for k in group if k not in free]
+    for k in group:  # every coefficient starts at zero or its stage-2 value ...
+        mf.coefficients[k] = 0.0
+    for k in undetermined:  # ... except those the data cannot determine
+        mf.coefficients[k] = template.get(k, 2.0 if k == "PKY4" else 0.0)
+    curves = _stage1(d)
+    start = _stage2_start(d, curves, mf.fz0, version)
+    mf.coefficients.update({k: v for k, v in start.items() if k in free})
+    rest = [k for k in free if k not in start]
+    if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
+        _solve(mf, d, rest)
+    while True:  # stage 3: global refinement; drop directions the data do not inform
+        r = _solve(mf, d, free)
+        se, weak = _stderr(r, len(free))
+        if weak.size == 0 or len(free) <= 1:
+            break
+        worst = free[int(np.argmax(np.abs(weak)))]
+        free.remove(worst)
+        undetermined.append(worst)
+        mf.coefficients[worst] = template.get(worst, 2.0 if worst == "PKY4" else 0.0)
+    values = {k: float(mf.coefficients[k]) for k in free}
+    stderr = {k: float(s) for k, s in zip(free, se)}
+    return values, stderr, undetermined, curves
+
+
+def _template(template: str | Path | PropertyFile | None, version: str) -> PropertyFile:
+    if isinstance(template, PropertyFile):
+        return template
+    if template is None:
+        name = {"5.2": "magicformula52", "6.1": "magicformula61", "6.2": "magicformula62"}
+        p = _packaged_example(EXAMPLES[name[version]])
+        if p is None:
+            raise InputError("the packaged template property files are missing")
+        return read_property_file(p)
+    p = Path(template)
+    if not p.exists() and _packaged_example(str(template)) is not None:
+        p = _packaged_example(str(template))  # type: ignore[assignment]
+    return read_property_file(p)
+
+
+def _nominal_pressure(pf: PropertyFile, data: TyreData, notes: list[str]) -> float | None:
+    measured = data.pressure[np.isfinite(data.pressure)]
+    for sec, key in (("OPERATING_CONDITIONS", "NOMPRES"), ("TIRE_CONDITIONS", "IP_NOM")):
+        if pf.has(sec, key):
+            return pf.si(sec, key)
+    if measured.size:
+        p = float(np.median(measured))
+        notes.append(f"no nominal pressure in the template: the median measured pressure "
+                     f"{p:g} Pa is taken as NOMPRES")
+        return p
+    return None
+
+
+def _errors(mf: MagicFormula, d: _Direction) -> dict[str, float]:
+    names: list[str] = []
+    res = _predict(mf, d, names, np.array([])) - d.force
+    return {"n": float(d.force.size), "rmse": float(np.sqrt(np.mean(res**2))),
+            "max_abs": float(np.max(np.abs(res))), "peak": float(np.max(np.abs(d.force)))}
+
+
+def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
+                p_nom: float | None, data: TyreData) -> PropertyFile:
+    """The template with FITTYP, the fitted coefficients, the pressure and the data ranges."""
+    pf = PropertyFile({s: dict(e) for s, e in t.sections.items()}, dict(t.tables),
+                      dict(t.metadata), path="<fitted>", format="tir",
+                      comments=dict(t.comments))
+    pf.sections.setdefault("MODEL", {})["FITTYP"] = float(fittyp)
+    for k, v in values.items():
+        sec = "LONGITUDINAL_COEFFICIENTS" if "X" in k[2:] else "LATERAL_COEFFICIENTS"
+        pf.sections.setdefault(sec, {})[k] = v
+    f_force, f_p = pf.si_factor("force"), pf.si_factor("pressure")
+    if p_nom is not None and FITTYPS[fittyp] != "5.2":
+        oc = pf.sections.setdefault("OPERATING_CONDITIONS", {})
+        oc["NOMPRES"] = oc["INFLPRES"] = p_nom / f_p
+    ranges = [("VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", data.fz / f_force),
+              ("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", data.kappa),
+              ("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", data.alpha),
+              ("INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", data.gamma)]
+    measured = data.pressure[np.isfinite(data.pressure)]
+    if measured.size and FITTYPS[fittyp] != "5.2":
+        ranges.append(("INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", measured / f_p))
+    for sec, lo, hi, v in ranges:
+        entry = pf.sections.setdefault(sec, {})
+        entry[lo], entry[hi] = float(np.min(v)), float(np.max(v))
+    return pf
+
+
+def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
+           template: str | Path | PropertyFile | None = None,
+           sign_convention: str = "iso") -> MFFit:
+    """Fit the pure-slip Magic Formula (F_x0 and F_y0 groups) to tyre test data.
+
+    Parameters
+    ----------
+    data : TyreData, str or Path
+        The measurements, or a tidy CSV file (:func:`~frictionlaws.tyre.tyre_data.read_tyre_data`).
+    fittyp : {5, 6, 21, 61, 62}
+        FITTYP of the file written: 5, 6 or 21 for MF 5.2 / PAC2002, 61 for MF 6.1,
+        62 for MF 6.2.
+    template : path, PropertyFile or packaged example name, optional
+        Property file providing FNOMIN, the nominal pressure, the other sections
+        and the values of coefficients the data cannot determine (default: the
+        packaged example of the version).
+    sign_convention : {"iso", "sae"}
+        Axes of the measurement when ``data`` is a file.
+
+    Returns
+    -------
+    MFFit
+
+    Raises
+    ------
+    InputError
+        Unknown FITTYP, unreadable data or template.
+    FitError
+        Too few pure-slip points.
+    """
+    from .tyre_data import read_tyre_data
+
+    t0 = time.perf_counter()
+    if fittyp not in FITTYPS:
+        raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
+                         f"{', '.join(str(k) for k in FITTYPS)}")
+    version = FITTYPS[fittyp]
+    if not isinstance(data, TyreData):
+        data = read_tyre_data(data, sign_convention=sign_convention)
+    tpl = _template(template, version)
+    notes = list(data.notes)
+    notes.append(f"template {tpl.path}: FNOMIN, the other sections and the undetermined "
+                 "coefficients come from it")
+    tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
+                                  "LATERAL_COEFFICIENTS")
+    mf = MagicFormula(dict(tpl_coeffs), fnomin=tpl.si("VERTICAL", "FNOMIN"), version=version,
+                      source=tpl.path)
+    p_nom = _nominal_pressure(tpl, data, notes)
+    p_fit = p_nom if version != "5.2" else None
+    if version == "5.2" and np.isfinite(data.pressure).any():
+        notes.append("MF 5.2 has no pressure coefficients here: the pressure column is "
+                     "not used")
+    values: dict[str, float] = {}
+    stderr: dict[str, float] = {}
+    undetermined: list[str] = []
+    stages: dict[str, list[dict[str, float]]] = {}
+    errors: dict[str, dict[str, float]] = {}
+    for name in ("x", "y"):
+        d = _select(data, name, p_fit)
+        if d is None:
+            notes.append(f"no pure-slip F{name}0 points: the F{name}0 coefficients are the "
+                         "template's")
+            continue
+        v, se, und, curves = _fit_direction(mf, d, data, version, tpl_coeffs)
+        values.update(v)
+        stderr.update(se)
+        undetermined.extend(und)
+        stages[name] = curves
+        errors[name] = _errors(mf, d)
+    n_comb = int(np.sum((np.abs(data.alpha) > ALPHA_ZERO) & (np.abs(data.kappa) > KAPPA_ZERO)))
+    if n_comb:
+        notes.append(f"{n_comb} combined-slip rows (kappa and alpha both non-zero) not used")
+    if undetermined:
+        notes.append("not determined by the data, left at the template's value: "
+                     + ", ".join(undetermined))
+    pf = _build_file(tpl, fittyp, values, p_nom, data)
+    return _finish(pf, version, values, stderr, undetermined, errors, stages, data,
+                   t0, notes)
+
+
+def _finish(pf: PropertyFile, version: str, values: dict[str, float],
+            stderr: dict[str, float], undetermined: list[str], errors: dict, stages: dict,
+            data: TyreData, t0: float, notes: list[str]) -> MFFit:
+    """Check that the written text reads back as the fitted model; assemble the result."""
+    from .tir import read_tir
+
+    text = format_tir(pf)
+    back = read_tir(text, source="<fitted .tir>")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        model = MagicFormula.from_property_file(back)
+    if model.version != version:
+        raise FitError(f"the written file reads back as MF {model.version}, not {version}")
+    return MFFit(version=version, property_file=pf, model=model, values=values,
+                 stderr=stderr, undetermined=undetermined, errors=errors, stages=stages,
+                 data=data, seconds=time.perf_counter() - t0, notes=notes)

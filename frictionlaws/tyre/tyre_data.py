@@ -1,0 +1,210 @@
+"""Tyre test data (forces against slip, load, camber and pressure) from a tidy CSV file.
+
+One row per measured point, units in the headers as elsewhere in frictionlaws::
+
+    Fz [kN], kappa [-], alpha [deg], gamma [deg], pressure [kPa], Fx [N], Fy [N]
+
+``Fz`` is required, and at least one of ``Fx`` / ``Fy``; ``kappa``, ``alpha``,
+``gamma`` default to 0 and ``pressure`` to "not measured".  Angles need an
+explicit unit (``deg`` or ``rad``).  Aliases: ``FZ``/``load``, ``SL``/``slip_ratio``,
+``SA``/``slip_angle``, ``IA``/``camber``/``inclination``, ``P``/``p``.  The file is read
+by the one table reader (:func:`frictionlaws.io.read_table`) and converted with
+:func:`frictionlaws.units.to_si`.
+
+Sign conventions
+----------------
+``sign_convention="iso"`` (default) takes the data as they are, in the ISO-W
+(TYDEX W) axes of a Magic Formula property file: x forward, y left, z up, F_z > 0
+for a loaded tyre, and a positive slip angle gives a negative F_y.
+``"sae"`` converts SAE J670 axes (y right, z down: a 180 degree rotation about x) to
+ISO: ``F_z -> -F_z``, ``F_y -> -F_y``, ``alpha -> -alpha``; ``F_x``, ``kappa`` and
+the inclination angle ``gamma`` are unchanged.  The conversion made is recorded
+in the notes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS"]
+
+SIGN_CONVENTIONS = ("iso", "sae")
+
+#: Column -> (quantity kind for :func:`frictionlaws.units.to_si`, accepted names).
+COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
+    "fz": ("F_N", ("fz", "load", "normal_load")),
+    "kappa": ("s", ("kappa", "sl", "slip_ratio", "longitudinal_slip")),
+    "alpha": ("angle", ("alpha", "sa", "slip_angle")),
+    "gamma": ("angle", ("gamma", "ia", "camber", "inclination")),
+    "pressure": ("p", ("pressure", "p", "inflation_pressure")),
+    "fx": ("F_N", ("fx",)),
+    "fy": ("F_N", ("fy",)),
+}
+
+
+@dataclass
+class TyreData:
+    """Measured tyre forces in SI and ISO-W axes (arrays of one length).
+
+    ``pressure`` is NaN where not measured; ``fx`` / ``fy`` are NaN where the
+    row has no such force.  ``rows`` are the source rows (for messages).
+    """
+
+    fz: np.ndarray
+    kappa: np.ndarray
+    alpha: np.ndarray
+    gamma: np.ndarray
+    pressure: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    rows: np.ndarray
+    source: str = "<memory>"
+    notes: list[str] = field(default_factory=list)
+
+    def __len__(self) -> int:
+        return int(self.fz.size)
+
+    @classmethod
+    def from_arrays(cls, *, fz: Any, kappa: Any = 0.0, alpha: Any = 0.0, gamma: Any = 0.0,
+                    pressure: Any = np.nan, fx: Any = np.nan, fy: Any = np.nan,
+                    source: str = "<memory>") -> TyreData:
+        """Build from arrays already in SI and ISO-W axes (broadcast to one length)."""
+        arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
+                                       (fz, kappa, alpha, gamma, pressure, fx, fy)))
+        fz_, k, a, g, p, x, y = (np.array(v, dtype=float).ravel() for v in arrays)
+        data = cls(fz_, k, a, g, p, x, y, np.arange(1, fz_.size + 1), source)
+        data.validate()
+        return data
+
+    def validate(self) -> None:
+        """Refuse non-finite inputs, non-positive loads and rows without any force."""
+        for name in ("fz", "kappa", "alpha", "gamma"):
+            bad = ~np.isfinite(getattr(self, name))
+            if bad.any():
+                raise InputError(f"{name} is missing or not finite", file=self.source,
+                                 column=name, row=int(self.rows[np.argmax(bad)]))
+        if np.any(self.fz <= 0):
+            i = int(np.argmax(self.fz <= 0))
+            raise InputError("the load Fz must be positive in ISO axes (SAE data have "
+                             "negative loads: use the SAE sign convention)", file=self.source,
+                             column="Fz", row=int(self.rows[i]))
+        if np.any(np.abs(self.alpha) >= np.pi / 2):
+            i = int(np.argmax(np.abs(self.alpha) >= np.pi / 2))
+            raise InputError("slip angle beyond 90 degrees (wrong angle unit?)",
+                             file=self.source, column="alpha", row=int(self.rows[i]))
+        bad_p = np.isfinite(self.pressure) & ~(self.pressure > 0)
+        if bad_p.any():
+            raise InputError("the inflation pressure must be positive", file=self.source,
+                             column="pressure", row=int(self.rows[np.argmax(bad_p)]))
+        if not (np.isfinite(self.fx).any() or np.isfinite(self.fy).any()):
+            raise InputError("no Fx or Fy value: nothing to fit", file=self.source)
+
+
+def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
+    from ..io import _split_header
+
+    found: dict[str, tuple[int, str | None]] = {}
+    for j, h in enumerate(headers):
+        name, unit = _split_header(h)
+        key = name.strip().lower().replace(" ", "_")
+        for col, (_, aliases) in COLUMNS.items():
+            if key in aliases:
+                if col in found:
+                    raise InputError(f"two columns give {col} ('{headers[found[col][0]]}' "
+                                     f"and '{h}')", file=source, column=h)
+                found[col] = (j, unit)
+    if "fz" not in found:
+        raise InputError("no Fz column (the vertical load, e.g. 'Fz [N]'); columns: "
+                         + ", ".join(headers), file=source)
+    if "fx" not in found and "fy" not in found:
+        raise InputError("no Fx or Fy column (e.g. 'Fx [N]', 'Fy [N]')", file=source)
+    return found
+
+
+def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
+    from ..io import _to_float
+    from ..units import to_si, unit_registry
+
+    kind = COLUMNS[col][0]
+    header = table.headers[j]
+    if kind == "angle":
+        ureg = unit_registry()
+        if unit is None or not unit.strip() or unit.strip() in ("-", "1"):
+            raise InputError("an angle column needs its unit in the header, e.g. "
+                             f"'{col} [deg]' or '{col} [rad]'", file=table.source,
+                             column=header)
+    values = np.empty(len(table.rows))
+    for i, cell in enumerate(table.columns[j]):
+        v = _to_float(cell, table.decimal_comma)
+        if v is None:
+            raise InputError(f"'{cell}' is not a number", file=table.source, column=header,
+                             row=table.rows[i])
+        values[i] = v
+    si = np.asarray(to_si(values, unit or "", kind, column=header, file=table.source))
+    if kind == "angle" and str(ureg.get_root_units(ureg.parse_units(unit))[1]) != "radian":
+        raise InputError(f"unit '{unit}' is not an angle (deg or rad)", file=table.source,
+                         column=header)
+    inf = np.isinf(si)
+    if inf.any():
+        raise InputError("value is not finite", file=table.source, column=header,
+                         row=table.rows[int(np.argmax(inf))])
+    return si
+
+
+def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreData:
+    """Read tyre test data from a tidy CSV file (see the module documentation).
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    sign_convention : {"iso", "sae"}
+        Axes of the measurement; SAE data are converted to ISO-W.
+
+    Returns
+    -------
+    TyreData
+
+    Raises
+    ------
+    InputError
+        Naming the file, column and row of what cannot be used.
+    """
+    from ..io import read_table
+
+    if sign_convention not in SIGN_CONVENTIONS:
+        raise InputError(f"sign convention must be one of {', '.join(SIGN_CONVENTIONS)}, "
+                         f"got {sign_convention!r}")
+    source = str(path)
+    table = read_table(path, header_hint="'Fz [N],kappa [-],alpha [deg],Fx [N],Fy [N]'",
+                       what="tyre data file")
+    found = _column_index(table.headers, source)
+    n = len(table.rows)
+    arrays = {col: (_convert(table, *found[col], col) if col in found
+                    else np.full(n, np.nan if col in ("pressure", "fx", "fy") else 0.0))
+              for col in COLUMNS}
+    notes = list(table.notes)
+    if sign_convention == "sae":
+        arrays["fz"], arrays["fy"], arrays["alpha"] = (-arrays["fz"], -arrays["fy"],
+                                                       -arrays["alpha"])
+        notes.append("SAE axes converted to ISO-W: Fz, Fy and alpha negated; Fx, kappa and "
+                     "gamma unchanged")
+    else:
+        notes.append("data taken in ISO-W axes (Fz > 0; a positive slip angle gives a "
+                     "negative Fy for a usual tyre)")
+    missing = [c for c in ("kappa", "alpha", "gamma", "pressure") if c not in found]
+    if missing:
+        notes.append(f"no {', '.join(missing)} column: "
+                     + ", ".join("not measured" if c == "pressure" else f"{c} = 0"
+                                 for c in missing))
+    data = TyreData(arrays["fz"], arrays["kappa"], arrays["alpha"], arrays["gamma"],
+                    arrays["pressure"], arrays["fx"], arrays["fy"], np.asarray(table.rows),
+                    source, notes)
+    data.validate()
+    return data
