@@ -94,3 +94,6 @@ for ax in (ax_x, ax_y):
     ax.legend(title="Fz", fontsize="small")
 print(f"largest fitted-vs-original difference: {100 * worst:.2f} % of the peak force")
 plt.show()
+
+# The gallery thumbnail: figure 1 of this example.
+# sphinx_gallery_thumbnail_number = 1

@@ -553,6 +553,20 @@ class MagicFormula:
         ``E_xa = REX1 + REX2 dfz`` (<= 1), ``S_Hxa = RHX1``, ``a_s = alpha* + S_Hxa``
         and ``G_xa = cos(C_xa arctan(B_xa a_s - E_xa (B_xa a_s - arctan(B_xa a_s))))``
         divided by the same expression at ``a_s = S_Hxa``.
+
+        Parameters
+        ----------
+        kappa, alpha : array-like
+            Slip ratio [-] and slip angle [rad], broadcast together with ``fz``.
+        fz : array-like
+            Vertical load [N].
+        gamma : array-like
+            Inclination angle [rad].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            G_xa [-], 1 where ``alpha = 0``.
         """
         c = self._c
         kappa = self._check("kappa", kappa)
@@ -576,6 +590,24 @@ class MagicFormula:
         ``k_s = kappa + S_Hyk``; ``G_yk`` as for x; ``S_Vyk = D_Vyk sin(RVY5
         arctan(RVY6 kappa)) LVYKA`` with ``D_Vyk = mu_y F_z (RVY1 + RVY2 dfz + RVY3 g)
         cos(arctan(RVY4 alpha*))``.  G_yk = 1 and S_Vyk = 0 at kappa = 0.
+
+        Parameters
+        ----------
+        kappa, alpha : array-like
+            Slip ratio [-] and slip angle [rad], broadcast together with ``fz``.
+        fz : array-like
+            Vertical load [N].
+        gamma : array-like
+            Inclination angle [rad].
+        pressure : float, optional
+            Inflation pressure [Pa].
+
+        Returns
+        -------
+        G_yk : float or numpy.ndarray
+            The weighting [-].
+        S_Vyk : float or numpy.ndarray
+            The slip-induced lateral force shift [N].
         """
         c = self._c
         kappa = self._check("kappa", kappa)
@@ -623,7 +655,23 @@ class MagicFormula:
            pressure: float | None = None) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
 
-        Same arguments as :meth:`fx`; equal to :meth:`fy0` where ``kappa = 0``.
+        Equal to :meth:`fy0` where ``kappa = 0``.
+
+        Parameters
+        ----------
+        kappa, alpha : array-like
+            Slip ratio [-] and slip angle [rad], broadcast together with ``fz``.
+        fz : array-like
+            Vertical load [N].
+        gamma : array-like
+            Inclination angle [rad].
+        pressure : float, optional
+            Inflation pressure [Pa].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            F_y [N].
         """
         G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
