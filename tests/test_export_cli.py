@@ -178,3 +178,20 @@ def test_export_fit_by_group_writes_nothing_when_a_group_fails(tmp_path, capsys)
                  "--format", "abaqus", "--p", "30000:250000:6", "-o", str(tmp_path / "d.inp")])
     assert code in (1, 2)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["two.csv"]
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    # a formula card the solver evaluates everywhere: checked on the box like a table
+    (["--law", "quadratic-pv", "--set", "c0=0.5,c1=-1e-5,c2=0,c3=0,c4=0,c5=0",
+      "--format", "radioss", "--p", "0:1MPa", "--v", "0:1"], "mu = -"),
+    # a typed-in coefficient no rubber has
+    (["--law", "coulomb", "--set", "mu0=1e6", "--format", "abaqus"], "in 0..10"),
+    # a friction level of a formula card reached at high slip rates
+    (["--law", "exponential-decay", "--set", "mu_s=1.4,mu_d=9000,v_c=2e4",
+      "--format", "abaqus-decay"], "mu_k = 9000"),
+])
+def test_export_refuses_mu_no_deck_should_hold(tmp_path, capsys, argv, message):
+    out = tmp_path / "deck.txt"
+    assert main(["export", *argv, "-o", str(out)]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()

@@ -105,6 +105,7 @@ def write_abaqus_decay(job: Job) -> Written:
     scale, _ = job.units.affine("v")
     d_c = form.d_c * scale
     notes = []
+    job.check_levels({"mu_s": form.mu_s, "mu_k": form.mu_k})
     if form.mu_s == form.mu_k:
         d_c = 1.0
         notes.append("mu is constant (mu_s = mu_k): d_c has no effect and is written as 1")

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..law import VARIABLES, Law
+from .fortran import FORTRAN_FORMATS
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
@@ -98,6 +99,10 @@ def _lazy(module: str, name: str) -> Callable[[Job], Written]:
 
 
 #: Format name -> (writer, one-line description, needs a box).
+#: Table formats that write a formula card instead when the law has the solver's form
+#: (LS-DYNA FS/FD/DC, Radioss Ifric 1/4): the law is checked where the solver evaluates it.
+_FORMULA_CARDS = ("lsdyna", "radioss")
+
 FORMATS: dict[str, tuple[Callable[[Job], Written], str, bool]] = {
     "csv": (_lazy("tables", "write_csv"), "grid of mu, CSV with units in the header", True),
     "json": (_lazy("tables", "write_json"), "grid of mu, JSON with units", True),
@@ -408,13 +413,19 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     writer, _, needs_box = FORMATS[format]
     if needs_box:
         job.domain_warnings()
+    if not needs_box or format in _FORMULA_CARDS:
+        # tables check their own box while the grid is built
+        job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
     err = written.error
     out_path = None
     if path is not None and str(path) != "-":
+        from ..outputs import check_outputs, write_text_atomic
+
         p = Path(path)
+        check_outputs([p])
         try:
-            p.write_text(written.text, encoding="utf-8")
+            write_text_atomic(p, written.text)
         except OSError as exc:
             raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
         out_path = str(p)

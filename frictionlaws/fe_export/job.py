@@ -10,8 +10,9 @@ things the same way.
 from __future__ import annotations
 
 import functools
+import math
 import textwrap
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,6 +25,10 @@ from .systems import UnitSystem
 
 #: Points at which the law is checked in the box before export (spread over the axes).
 _BOX_SAMPLES = 200_000
+#: Largest friction coefficient an export writes.  Rubber on dry rough surfaces
+#: reaches 3 to 4; a larger value in a deck is a unit or parameter error (mu_k = 9495
+#: from extrapolated fits, mu0 = 1e6 typed by hand).
+MU_EXPORT_MAX = 10.0
 
 __all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
 
@@ -164,7 +169,7 @@ class Job:
         with np.errstate(all="ignore"):
             mu = np.asarray(self.func(**dict(zip(names, mesh))), dtype=float)
         mu = np.broadcast_to(mu, mesh[0].shape) if mesh else np.atleast_1d(mu)
-        bad = ~np.isfinite(mu) | (mu < 0)
+        bad = ~np.isfinite(mu) | (mu < 0) | (mu > MU_EXPORT_MAX)
         if not bad.any():
             return
         idx = tuple(int(i) for i in np.argwhere(bad)[0])
@@ -172,8 +177,36 @@ class Job:
         value = mu[idx] if mu.ndim else float(mu)
         raise InputError(
             f"law '{self.law.id}' gives mu = {value:.4g} at {where or 'every point'}: "
-            "a friction coefficient must be finite and >= 0 everywhere in the exported box; "
-            "nothing was written (narrow the box or check the parameters)")
+            f"a friction coefficient must be finite and in 0..{MU_EXPORT_MAX:g} everywhere in "
+            "the exported box; nothing was written (narrow the box or check the parameters)")
+
+    def check_levels(self, levels: Mapping[str, float]) -> None:
+        """Refuse friction levels of a formula card (``mu_s``, ``mu_k``...) outside
+        0..:data:`MU_EXPORT_MAX`: the solver reaches them at some slip rate."""
+        for name, value in levels.items():
+            if not (math.isfinite(value) and 0 <= value <= MU_EXPORT_MAX):
+                raise InputError(
+                    f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
+                    f"a friction coefficient in 0..{MU_EXPORT_MAX:g}; nothing was written "
+                    "(check the parameters; a fit that cannot determine them needs --fix)")
+
+    def check_formula_box(self, *, code: bool = False) -> None:
+        """Check a formula export (no table) where the solver will evaluate it.
+
+        The box given for a variable, else the law's typical range, is sampled as for
+        tables: mu must be finite and in 0..:data:`MU_EXPORT_MAX` there.  With ``code``
+        (a user subroutine, evaluated wherever the simulation goes) a law with a strict
+        domain is refused: only a table holds its ends.
+        """
+        if self.law.strict_domain and code:
+            raise InputError(
+                f"law '{self.law.id}' is valid only inside its measured box and must not be "
+                f"extrapolated; an export to {self.fmt} would evaluate it anywhere: export a "
+                "table (csv, abaqus, ansys, lsdyna) over the box instead")
+        specs = [self.specs[v] if v in self.specs
+                 else AxisSpec(v, *self.law.typical_range(v))
+                 for v in self.law.variables]
+        self.check_box(specs)
 
     # ------------------------------------------------------------- header
     def model(self, var: str, x_si: float) -> str:

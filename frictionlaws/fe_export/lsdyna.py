@@ -110,6 +110,7 @@ def write_lsdyna(job: Job) -> Written:
     if form is not None:
         scale, _ = job.units.affine("v")
         dc = form.d_c * scale
+        job.check_levels({"FS = mu_s": form.mu_s, "FD = mu_k": form.mu_k})
         cards = _contact_cards(job, form.mu_s, form.mu_k, dc)
         written = [float(c) for c in (cards[4][0:10], cards[4][10:20], cards[4][20:30])]
         vv = np.linspace(0.0, 20.0 / dc, 2001) if dc > 0 else np.array([0.0, 1.0])

@@ -150,6 +150,7 @@ def write_radioss(job: Job) -> Written:
     form, _ = exp_decay_form(law, job.values)
     if form is not None:
         scale, _ = job.units.affine("v")
+        job.check_levels({"Fric = mu_s": form.mu_s, "C1 = mu_k": form.mu_k})
         c = {"C1": form.mu_k, "Fric": form.mu_s, "C2": form.d_c * scale}
         body = [*job.box_lines(),
                 "exact: Ifric 4, mu = C1 + (Fric - C1) exp(-C2 v) is the law itself "
