@@ -594,6 +594,93 @@ def _clip(value: float, lo: float, hi: float) -> float:
     return value
 
 
+@dataclass
+class _GlobalStage:
+    """Bounded differential evolution on transformed parameters (the global stage of a fit).
+
+    Each parameter is searched on a finite box: two-sided bounds linearly (in log10
+    when both are positive and far apart), positive one-sided ones in log10 over eight
+    decades around the guess, others linearly over +/- 10 typical sizes.  Two-sided
+    boxes reach 5 % beyond each bound and are clipped back, so a bound is reachable
+    exactly (laws such as Wriggers' change form there).
+    """
+
+    law: Law
+    held: dict[str, float]
+    names: list[str]
+    bounds: dict[str, tuple[float, float]]
+    guess: dict[str, float]
+    x: dict[str, np.ndarray]
+    y: np.ndarray
+    w: np.ndarray | None
+    seed: int
+
+    def wanted(self, best: Any, finals: list[float]) -> bool:
+        """True when the local starts end worse than the mean of mu or at different minima."""
+        if self.law.linear or best is None:
+            return not self.law.linear
+        fitted = np.asarray(best.best_fit, float)
+        ss_tot = float(np.sum((self.y - self.y.mean()) ** 2))
+        if ss_tot > 0 and float(np.sum((self.y - fitted) ** 2)) > ss_tot:
+            return True
+        rel = (np.asarray(finals) - min(finals)) / max(min(finals), 1e-300)
+        return bool(np.mean(rel > 1e-3) > 0.5)  # most starts miss the best basin
+
+    def _box(self, k: str) -> tuple[float, float, str]:
+        lo, hi = self.bounds[k]
+        ref = abs(self.guess.get(k, 0.0)) or abs(self._default(k)) or 1.0
+        if math.isfinite(lo) and math.isfinite(hi):
+            if lo > 0 and hi / lo > 1e3:
+                span = math.log10(hi / lo)
+                return math.log10(lo) - 0.05 * span, math.log10(hi) + 0.05 * span, "log"
+            return lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), "lin"
+        if math.isfinite(lo) and lo >= 0:
+            c = math.log10(max(ref, lo * 10, 1e-300))
+            return c - 4.0, c + 4.0, "log"
+        c = self.guess.get(k, 0.0)
+        return c - 10 * ref, c + 10 * ref, "lin"
+
+    def _default(self, k: str) -> float:
+        return self.law.param(k).default if k in self.law.param_names else \
+            self.law.setting(k).value
+
+    def values(self, u: np.ndarray) -> dict[str, float]:
+        """Parameter values for a point ``u`` of the search box."""
+        out = {}
+        for k, uk in zip(self.names, u):
+            _a, _b, scale = self._box(k)
+            lo, hi = self.bounds[k]
+            out[k] = float(min(max(10.0 ** uk if scale == "log" else uk, lo), hi))
+        return out
+
+    def cost(self, u: np.ndarray) -> float:
+        vals = {**self.held, **self.values(u)}
+        with np.errstate(all="ignore"):
+            model = np.broadcast_to(np.asarray(self.law.evaluate(self.x, vals), float),
+                                    self.y.shape)
+        r = (model - self.y) * (self.w if self.w is not None else 1.0)
+        c = float(np.sum(r * r))
+        return c if math.isfinite(c) else 1e300
+
+    def search(self) -> tuple[dict[str, float] | None, tuple[str, ...]]:
+        """The best point found and the parameters it put exactly on a bound."""
+        from scipy.optimize import differential_evolution
+
+        box = [self._box(k)[:2] for k in self.names]
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                sol = differential_evolution(self.cost, box, seed=self.seed, maxiter=300,
+                                             popsize=15, tol=1e-8, polish=False)
+        except (ValueError, FloatingPointError, np.linalg.LinAlgError):
+            return None, ()
+        if not math.isfinite(sol.fun) or sol.fun >= 1e300:
+            return None, ()
+        vals = {**self.guess, **self.values(sol.x)}
+        pinned = tuple(k for k in self.names if vals[k] in self.bounds[k])
+        return vals, pinned
+
+
 def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.ndarray:
     """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``.
 
@@ -789,12 +876,14 @@ def fit(
     bounds = {p.name: p.bounds for p in law.params}
     bounds.update({k: law.setting(k).bounds for k in freed})
 
-    def make_params(start: Mapping[str, float]) -> Any:
+    def make_params(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
         params = lmfit.Parameters()
         for k in list(law.param_names) + list(freed):
             lo, hi = bounds[k]
             if k in fix:
                 params.add(k, value=float(fix[k]), vary=False)
+            elif k in pinned:  # held exactly at the bound the global stage found
+                params.add(k, value=float(start[k]), vary=False)
             else:
                 params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
         return params
@@ -812,12 +901,14 @@ def fit(
 
     max_nfev = 300 * (len(vary_names) + 1)
 
-    def run(start: Mapping[str, float]) -> None:
-        nonlocal best
+    best_pinned: tuple[str, ...] = ()
+
+    def run(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
+        nonlocal best, best_pinned
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                res = model.fit(y, make_params(start), weights=w, method=method,
+                res = model.fit(y, make_params(start, pinned), weights=w, method=method,
                                 max_nfev=max_nfev, **kwargs)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
             errors.append(str(exc))
@@ -826,7 +917,7 @@ def fit(
             return
         finals.append(float(res.chisqr))
         if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
-            best = res
+            best, best_pinned = res, pinned
 
     for start in _starts(law, guess, vary_names):
         run(start)
@@ -836,12 +927,24 @@ def fit(
     if not law.linear and (spread > 1e-6 or best is None or n_random_forced):
         for start in _random_starts(law, guess, vary_names, n_random, rng):
             run(start)
+    stage = _GlobalStage(law_for_model, {**settings, **fix}, vary_names, bounds, guess, x, y,
+                         w, seed)
+    if global_stage == "on" or (global_stage == "auto" and stage.wanted(best, finals)):
+        start, pinned = stage.search()
+        if start is not None:
+            run(start, pinned)
+            if pinned:  # the bound may be a limit the polish should also leave
+                run(start)
+            notes.append(f"global stage: differential evolution over {len(vary_names)} "
+                         "transformed parameters, then the local polish"
+                         + (f" (with {', '.join(pinned)} held at the bound it reached)"
+                            if pinned and best_pinned else ""))
     if best is None:
         raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
                        f"finite result{(' (' + errors[0] + ')') if errors else ''}")
     # --------------------------------------------------------- diagnostics
     warn_msgs: list[str] = []
-    vary = [k for k in vary_names]
+    vary = [k for k in vary_names if k not in best_pinned]
     values = {k: float(best.params[k].value) for k in list(law.param_names) + list(freed)}
     full_values = {**settings, **values}
 
@@ -874,7 +977,7 @@ def fit(
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")
 
-    n, k = y.size, len(vary)
+    n, k = y.size, len(vary_names)
     dof = n - k
     tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
     cov_names = list(best.var_names) if best.covar is not None else []
@@ -884,6 +987,12 @@ def fit(
         par = best.params[name]
         if name in fix:
             estimates[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
+            continue
+        if name in best_pinned:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit)
+            warn_msgs.append(f"no standard error for {name}: the global stage found the best "
+                             f"fit with {name} exactly at its bound, where the law changes "
+                             "form (the fit is not differentiable there)")
             continue
         se = par.stderr
         ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
