@@ -161,8 +161,6 @@ class Structure:
 
 def _runs_p(e: np.ndarray) -> tuple[float, float]:
     """Number of sign runs and its one-sided p (too few runs) by the normal approximation."""
-    from scipy import stats
-
     s = np.sign(e)
     s = s[s != 0]
     n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
@@ -174,20 +172,23 @@ def _runs_p(e: np.ndarray) -> tuple[float, float]:
     var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
     if var <= 0:
         return float(runs), math.nan
-    return float(runs), float(stats.norm.cdf((runs - mean) / math.sqrt(var)))
+    return float(runs), _norm_cdf((runs - mean) / math.sqrt(var))
 
 
 def _lag1_p(e: np.ndarray) -> tuple[float, float]:
     """Lag-1 autocorrelation and its one-sided p (positive correlation) under independence."""
-    from scipy import stats
-
     d = e - e.mean()
     den = float(np.sum(d**2))
     if den <= 0:
         return math.nan, math.nan
     r1 = float(np.sum(d[1:] * d[:-1]) / den)
     n = e.size
-    return r1, float(stats.norm.sf((r1 + 1.0 / n) * math.sqrt(n)))
+    return r1, _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
+
+
+def _norm_cdf(z: float) -> float:
+    """Standard normal distribution function (math.erfc: no SciPy call on the fit path)."""
+    return 0.5 * math.erfc(-z / math.sqrt(2.0))
 
 
 def residual_structure(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
