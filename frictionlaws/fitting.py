@@ -670,8 +670,8 @@ class _GlobalStage:
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                sol = differential_evolution(self.cost, box, seed=self.seed, maxiter=300,
-                                             popsize=15, tol=1e-8, polish=False)
+                sol = differential_evolution(self.cost, box, seed=self.seed, maxiter=200,
+                                             popsize=10, tol=1e-5, polish=False)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError):
             return None, ()
         if not math.isfinite(sol.fun) or sol.fun >= 1e300:
@@ -782,7 +782,8 @@ def fit(
         adds 6 random starts only when those end at different minima; giving
         ``starts`` forces that many random starts.
     seed : int
-        Seed of the random starts (results are reproducible).
+        Seed of the random starts, the global stage and the bootstrap (results are
+        reproducible).
     on_invalid : {"error", "drop"}
         What to do with rows where the law is singular (v = 0 in a log-v law):
         raise a clear error, or drop them and say so in the result.
