@@ -1169,10 +1169,12 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                                       "statistic": structure.statistic,
                                       "p_value": structure.p_value,
                                       "n_tests": structure.n_tests}
-    if method == "asymptotic" or inp.non_id or not inp.vary:
+    if method == "asymptotic" or not inp.vary or (inp.non_id and method == "sandwich"):
         if method != "asymptotic":
             warn_msgs.append(f"{method} standard errors need every fitted parameter to be "
-                             "identifiable; the asymptotic ones (where available) are shown")
+                             "identifiable; the asymptotic ones (where available) are shown"
+                             + ("; the bootstrap gives those of the identifiable ones"
+                                if method == "sandwich" else ""))
             info["method"] = "asymptotic"
     elif method == "sandwich":
         _apply_sandwich(inp, estimates, derived, corr, warn_msgs)
@@ -1216,6 +1218,8 @@ def _set_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate], se: np.n
     from dataclasses import replace
 
     for j, k in enumerate(inp.vary):
+        if k in inp.non_id:  # withheld whatever the method
+            continue
         if math.isfinite(se[j]) and np.all(np.isfinite(ci[j])):
             estimates[k] = replace(estimates[k], stderr=float(se[j]),
                                    ci95=(float(ci[j, 0]), float(ci[j, 1])))
@@ -1265,9 +1269,9 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     se, ci, used = intervals(boot.samples, theta, boot.jackknife, kind=opts["interval"])
     _set_errors(inp, estimates, se, ci)
     ok = np.all(np.isfinite(boot.samples), axis=1)
-    if ok.sum() > len(inp.vary):
+    if ok.sum() > len(inp.vary) and not inp.non_id:
         _set_corr(inp.vary, np.cov(boot.samples[ok].T).reshape(len(inp.vary), -1), corr)
-    if inp.law.derived:
+    if inp.law.derived and not inp.non_id:
         funcs = {d.name: (lambda vals, d=d: d.func(_numpy_ns(), **vals))
                  for d in inp.law.derived}
         hat = np.array([derived[k]["value"] for k in funcs], float)

@@ -166,6 +166,20 @@ def test_bad_uncertainty_options_are_refused(kw, option) -> None:
     assert exc.value.option == option
 
 
+def test_bootstrap_reports_the_identifiable_parameters_only() -> None:
+    asym = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
+    boot = fl.fit("savkoor", "thesis-steel", on_invalid="drop", uncertainty="bootstrap",
+                  n_boot=200)
+    assert boot.uncertainty["method"] == "bootstrap"
+    assert boot.non_identifiable and boot.non_identifiable == asym.non_identifiable
+    for name in boot.non_identifiable:
+        assert boot.params[name].stderr is None
+    assert boot.params["n"].stderr > 1.2 * asym.params["n"].stderr
+    sandwich = fl.fit("savkoor", "thesis-steel", on_invalid="drop", uncertainty="sandwich")
+    assert sandwich.uncertainty["method"] == "asymptotic"
+    assert any("the bootstrap gives" in w for w in sandwich.warnings)
+
+
 # ------------------------------------------------------------------ global stage
 
 
