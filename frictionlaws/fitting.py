@@ -81,6 +81,8 @@ class FitData:
     weights: np.ndarray | None = None
     notes: list[str] = field(default_factory=list)
     row_labels: np.ndarray | None = None
+    #: A condition label per row (the dataset's ``condition_id`` column), for the bootstrap.
+    conditions: np.ndarray | None = None
 
     @property
     def n(self) -> int:
@@ -96,7 +98,8 @@ class FitData:
         return FitData(
             {k: v[mask] for k, v in self.arrays.items()}, self.name, self.source,
             None if self.weights is None else self.weights[mask], list(self.notes),
-            None if self.row_labels is None else self.row_labels[mask])
+            None if self.row_labels is None else self.row_labels[mask],
+            None if self.conditions is None else self.conditions[mask])
 
     def ranges(self) -> dict[str, tuple[float, float]]:
         """(min, max) of every variable present, in SI."""
@@ -124,6 +127,9 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
         labels = getattr(ds, "row_labels", None)
         fd.row_labels = np.asarray(labels) if labels is not None else None
+        frame = getattr(ds, "frame", None)
+        if frame is not None and CONDITION_COLUMN in frame.columns:
+            fd.conditions = frame[CONDITION_COLUMN].astype(str).to_numpy()
     _check_magnitudes(fd)
     if isinstance(weights, str):
         if weights != "auto":
@@ -141,6 +147,9 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
 #: Columns that name a group of rows (counter-surface, compound...); a pooled fit over
 #: several of their values is refused.
 GROUP_COLUMNS = ("surface", "compound", "rig", "condition", "material", "counter_surface")
+
+#: A column naming each row's test condition (repeats share it): the bootstrap's unit.
+CONDITION_COLUMN = "condition_id"
 
 #: Lower limits of the arrays given to a fit: (limit, inclusive).
 _ARRAY_LIMITS = {"mu": (0.0, True), "p": (0.0, True), "F_N": (0.0, True), "T": (0.0, False)}
@@ -355,6 +364,7 @@ class FitResult:
     data: dict[str, Any]
     notes: list[str] = field(default_factory=list)
     provenance: dict[str, Any] = field(default_factory=dict)
+    uncertainty: dict[str, Any] = field(default_factory=dict)
     lmfit_result: Any = None
     residual: np.ndarray | None = None
     best_fit: np.ndarray | None = None
@@ -411,6 +421,7 @@ class FitResult:
             "warnings": list(self.warnings),
             "non_identifiable": list(self.non_identifiable),
             "notes": list(self.notes),
+            "uncertainty": dict(self.uncertainty),
             "data": self.data,
             "provenance": self.provenance,
         }
@@ -476,11 +487,16 @@ class FitResult:
         for k, v in self.settings.items():
             unit = self.law.setting(k).unit if any(s.name == k for s in self.law.settings) else ""
             lines.append(f"{k:<10} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
+        if self.uncertainty.get("method"):
+            lines.append(f"standard errors: {_describe_uncertainty(self.uncertainty)}")
         if self.derived:
             lines.append("")
             lines.append("derived quantities:")
             for k, dv in self.derived.items():
                 se = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
+                ci = dv.get("ci95")
+                se += f" [{_g(ci[0])}, {_g(ci[1])}]" if isinstance(ci, list) and len(ci) == 2 \
+                    else ""
                 lines.append(f"  {k} = {_g(dv['value'])}{se} {dv.get('unit') or '-'}"
                              f"  ({dv.get('meaning', '')})")
         m = self.metrics
@@ -501,6 +517,17 @@ class FitResult:
 
     def _si_note(self) -> str:
         return ", ".join(f"{v} in {VARIABLES[v].unit or '-'}" for v in self.law.variables) or "-"
+
+
+def _describe_uncertainty(info: Mapping[str, Any]) -> str:
+    """One line saying how the standard errors and intervals were obtained."""
+    method = info.get("method")
+    if method == "bootstrap":
+        return (f"bootstrap ({info.get('n_boot')} resamples of {info.get('conditions')} "
+                f"conditions, seed {info.get('seed')}; 95 % {info.get('interval')} intervals)")
+    if method == "sandwich":
+        return "sandwich (HC3, heteroskedasticity-robust; 95 % t intervals)"
+    return "asymptotic (covariance of the fit scaled by the reduced chi-square; 95 % t intervals)"
 
 
 def _g(x: float | None) -> str:
@@ -565,6 +592,93 @@ def _clip(value: float, lo: float, hi: float) -> float:
     if math.isfinite(hi) and value >= hi:
         value = hi - eps if span else hi
     return value
+
+
+@dataclass
+class _GlobalStage:
+    """Bounded differential evolution on transformed parameters (the global stage of a fit).
+
+    Each parameter is searched on a finite box: two-sided bounds linearly (in log10
+    when both are positive and far apart), positive one-sided ones in log10 over eight
+    decades around the guess, others linearly over +/- 10 typical sizes.  Two-sided
+    boxes reach 5 % beyond each bound and are clipped back, so a bound is reachable
+    exactly (laws such as Wriggers' change form there).
+    """
+
+    law: Law
+    held: dict[str, float]
+    names: list[str]
+    bounds: dict[str, tuple[float, float]]
+    guess: dict[str, float]
+    x: dict[str, np.ndarray]
+    y: np.ndarray
+    w: np.ndarray | None
+    seed: int
+
+    def wanted(self, best: Any, finals: list[float]) -> bool:
+        """True when the local starts end worse than the mean of mu or at different minima."""
+        if self.law.linear or best is None:
+            return not self.law.linear
+        fitted = np.asarray(best.best_fit, float)
+        ss_tot = float(np.sum((self.y - self.y.mean()) ** 2))
+        if ss_tot > 0 and float(np.sum((self.y - fitted) ** 2)) > ss_tot:
+            return True
+        rel = (np.asarray(finals) - min(finals)) / max(min(finals), 1e-300)
+        return bool(np.mean(rel > 1e-3) > 0.5)  # most starts miss the best basin
+
+    def _box(self, k: str) -> tuple[float, float, str]:
+        lo, hi = self.bounds[k]
+        ref = abs(self.guess.get(k, 0.0)) or abs(self._default(k)) or 1.0
+        if math.isfinite(lo) and math.isfinite(hi):
+            if lo > 0 and hi / lo > 1e3:
+                span = math.log10(hi / lo)
+                return math.log10(lo) - 0.05 * span, math.log10(hi) + 0.05 * span, "log"
+            return lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), "lin"
+        if math.isfinite(lo) and lo >= 0:
+            c = math.log10(max(ref, lo * 10, 1e-300))
+            return c - 4.0, c + 4.0, "log"
+        c = self.guess.get(k, 0.0)
+        return c - 10 * ref, c + 10 * ref, "lin"
+
+    def _default(self, k: str) -> float:
+        return self.law.param(k).default if k in self.law.param_names else \
+            self.law.setting(k).value
+
+    def values(self, u: np.ndarray) -> dict[str, float]:
+        """Parameter values for a point ``u`` of the search box."""
+        out = {}
+        for k, uk in zip(self.names, u):
+            _a, _b, scale = self._box(k)
+            lo, hi = self.bounds[k]
+            out[k] = float(min(max(10.0 ** uk if scale == "log" else uk, lo), hi))
+        return out
+
+    def cost(self, u: np.ndarray) -> float:
+        vals = {**self.held, **self.values(u)}
+        with np.errstate(all="ignore"):
+            model = np.broadcast_to(np.asarray(self.law.evaluate(self.x, vals), float),
+                                    self.y.shape)
+        r = (model - self.y) * (self.w if self.w is not None else 1.0)
+        c = float(np.sum(r * r))
+        return c if math.isfinite(c) else 1e300
+
+    def search(self) -> tuple[dict[str, float] | None, tuple[str, ...]]:
+        """The best point found and the parameters it put exactly on a bound."""
+        from scipy.optimize import differential_evolution
+
+        box = [self._box(k)[:2] for k in self.names]
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                sol = differential_evolution(self.cost, box, seed=self.seed, maxiter=200,
+                                             popsize=10, tol=1e-5, polish=False)
+        except (ValueError, FloatingPointError, np.linalg.LinAlgError):
+            return None, ()
+        if not math.isfinite(sol.fun) or sol.fun >= 1e300:
+            return None, ()
+        vals = {**self.guess, **self.values(sol.x)}
+        pinned = tuple(k for k in self.names if vals[k] in self.bounds[k])
+        return vals, pinned
 
 
 def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.ndarray:
@@ -636,6 +750,11 @@ def fit(
     units: Mapping[str, str] | None = None,
     area: Any = None,
     method: str = "least_squares",
+    uncertainty: str = "asymptotic",
+    n_boot: int = 1000,
+    n_jobs: int = 1,
+    interval: str = "bca",
+    global_stage: str = "auto",
 ) -> FitResult:
     """Fit ``law`` to ``data`` with lmfit.
 
@@ -663,7 +782,8 @@ def fit(
         adds 6 random starts only when those end at different minima; giving
         ``starts`` forces that many random starts.
     seed : int
-        Seed of the random starts (results are reproducible).
+        Seed of the random starts, the global stage and the bootstrap (results are
+        reproducible).
     on_invalid : {"error", "drop"}
         What to do with rows where the law is singular (v = 0 in a log-v law):
         raise a clear error, or drop them and say so in the result.
@@ -671,6 +791,22 @@ def fit(
         Passed to :func:`frictionlaws.io.load_dataset` when ``data`` is a file.
     method : str
         lmfit minimisation method.
+    uncertainty : {"asymptotic", "sandwich", "bootstrap"}
+        How standard errors and intervals are obtained: the covariance of the fit
+        (assumes the law is right and the scatter even), the HC3 sandwich
+        (robust to uneven scatter), or a bootstrap resampling whole conditions
+        (robust to a law that misses a trend; slower).  Derived quantities get
+        their errors by the same method.  See :mod:`frictionlaws.uncertainty`.
+    n_boot : int
+        Bootstrap replicates (20..100000), for ``uncertainty="bootstrap"``.
+    n_jobs : int
+        joblib workers for the bootstrap (1: in this process; -1: one per core).
+    interval : {"bca", "percentile"}
+        Bootstrap interval kind.
+    global_stage : {"auto", "on", "off"}
+        A bounded differential-evolution search on the transformed parameters
+        before a local polish: ``"auto"`` runs it only when the local starts end
+        worse than the mean of mu or at different minima.
 
     Returns
     -------
@@ -688,6 +824,12 @@ def fit(
 
     law = get_law(law)
     _check_options(method, starts, seed, on_invalid)
+    from .uncertainty import check_uncertainty_options
+
+    check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
+    if global_stage not in ("auto", "on", "off"):
+        raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",
+                         option="global_stage")
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
     fd, notes = _check_data_for_law(law, fd, on_invalid)
     notes = list(fd.notes) + notes
@@ -735,12 +877,14 @@ def fit(
     bounds = {p.name: p.bounds for p in law.params}
     bounds.update({k: law.setting(k).bounds for k in freed})
 
-    def make_params(start: Mapping[str, float]) -> Any:
+    def make_params(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
         params = lmfit.Parameters()
         for k in list(law.param_names) + list(freed):
             lo, hi = bounds[k]
             if k in fix:
                 params.add(k, value=float(fix[k]), vary=False)
+            elif k in pinned:  # held exactly at the bound the global stage found
+                params.add(k, value=float(start[k]), vary=False)
             else:
                 params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
         return params
@@ -758,12 +902,14 @@ def fit(
 
     max_nfev = 300 * (len(vary_names) + 1)
 
-    def run(start: Mapping[str, float]) -> None:
-        nonlocal best
+    best_pinned: tuple[str, ...] = ()
+
+    def run(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
+        nonlocal best, best_pinned
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                res = model.fit(y, make_params(start), weights=w, method=method,
+                res = model.fit(y, make_params(start, pinned), weights=w, method=method,
                                 max_nfev=max_nfev, **kwargs)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
             errors.append(str(exc))
@@ -772,7 +918,7 @@ def fit(
             return
         finals.append(float(res.chisqr))
         if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
-            best = res
+            best, best_pinned = res, pinned
 
     for start in _starts(law, guess, vary_names):
         run(start)
@@ -782,12 +928,24 @@ def fit(
     if not law.linear and (spread > 1e-6 or best is None or n_random_forced):
         for start in _random_starts(law, guess, vary_names, n_random, rng):
             run(start)
+    stage = _GlobalStage(law_for_model, {**settings, **fix}, vary_names, bounds, guess, x, y,
+                         w, seed)
+    if global_stage == "on" or (global_stage == "auto" and stage.wanted(best, finals)):
+        start, pinned = stage.search()
+        if start is not None:
+            run(start, pinned)
+            if pinned:  # the bound may be a limit the polish should also leave
+                run(start)
+            notes.append(f"global stage: differential evolution over {len(vary_names)} "
+                         "transformed parameters, then the local polish"
+                         + (f" (with {', '.join(pinned)} held at the bound it reached)"
+                            if pinned and best_pinned else ""))
     if best is None:
         raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
                        f"finite result{(' (' + errors[0] + ')') if errors else ''}")
     # --------------------------------------------------------- diagnostics
     warn_msgs: list[str] = []
-    vary = [k for k in vary_names]
+    vary = [k for k in vary_names if k not in best_pinned]
     values = {k: float(best.params[k].value) for k in list(law.param_names) + list(freed)}
     full_values = {**settings, **values}
 
@@ -820,7 +978,7 @@ def fit(
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")
 
-    n, k = y.size, len(vary)
+    n, k = y.size, len(vary_names)
     dof = n - k
     tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
     cov_names = list(best.var_names) if best.covar is not None else []
@@ -830,6 +988,12 @@ def fit(
         par = best.params[name]
         if name in fix:
             estimates[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
+            continue
+        if name in best_pinned:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit)
+            warn_msgs.append(f"no standard error for {name}: the global stage found the best "
+                             f"fit with {name} exactly at its bound, where the law changes "
+                             "form (the fit is not differentiable there)")
             continue
         se = par.stderr
         ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
@@ -900,7 +1064,12 @@ def fit(
         warn_msgs.append(f"{count} data rows lie outside the law's valid domain of {var} "
                          f"({_fmt_range(var, lo, hi)})")
 
-    derived = _derived(law, full_values, vary, best, non_id)
+    derived = _derived(law, full_values, cov_names,
+                       None if best.covar is None else np.asarray(best.covar), non_id)
+    unc_info = _robust_errors(
+        _ErrorInputs(law, fd, x, y, w, vary, full_values, bounds, jac, resid, non_id, tval),
+        estimates, derived, corr, warn_msgs,
+        dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval, seed=seed))
     return FitResult(
         law=law,
         params=estimates,
@@ -916,6 +1085,7 @@ def fit(
               "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
         notes=notes,
         provenance=_provenance(),
+        uncertainty=unc_info,
         lmfit_result=best,
         residual=resid,
         best_fit=fitted,
@@ -923,14 +1093,17 @@ def fit(
     )
 
 
-def _derived(law: Law, values: dict[str, float], vary: list[str], res: Any,
+def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarray | None,
              non_id: list[str]) -> dict[str, dict[str, Any]]:
-    """Derived quantities with uncertainties propagated from the covariance (delta method)."""
+    """Derived quantities with uncertainties propagated from ``cov`` (delta method).
+
+    ``names`` are the parameters (in ``cov``'s order); without a covariance the
+    values are given without standard errors.
+    """
     out: dict[str, dict[str, Any]] = {}
     if not law.derived:
         return out
-    names = list(res.var_names) if res.covar is not None else []
-    cov = np.asarray(res.covar) if res.covar is not None else None
+    names = list(names) if cov is not None else []
     for d in law.derived:
         def f(theta: np.ndarray, d=d) -> float:
             vals = dict(values)
@@ -953,6 +1126,170 @@ def _derived(law: Law, values: dict[str, float], vary: list[str], res: Any,
             se = math.sqrt(var) if var >= 0 and math.isfinite(var) else None
         out[d.name] = {"value": value, "stderr": se, "unit": d.unit, "meaning": d.meaning}
     return out
+
+
+@dataclass
+class _ErrorInputs:
+    """What the robust error methods need from a finished fit."""
+
+    law: Law
+    fd: FitData
+    x: dict[str, np.ndarray]
+    y: np.ndarray
+    w: np.ndarray | None
+    vary: list[str]
+    values: dict[str, float]
+    bounds: dict[str, tuple[float, float]]
+    jac: np.ndarray
+    resid: np.ndarray
+    non_id: list[str]
+    tval: float
+
+    @property
+    def weighted_resid(self) -> np.ndarray:
+        return self.resid * (self.w if self.w is not None else 1.0)
+
+
+def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
+                   derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
+                   warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
+    """Replace the asymptotic errors by the requested method's; warn when they are too narrow.
+
+    ``estimates``, ``derived``, ``corr`` and ``warn_msgs`` are updated in place; the
+    returned record says which method was used (kept by :meth:`FitResult.to_dict`).
+    """
+    from .uncertainty import residual_structure
+
+    method = opts["method"]
+    info: dict[str, Any] = {"method": method}
+    asym = {k: estimates[k].stderr for k in inp.vary if k in estimates}
+    structure = residual_structure(inp.weighted_resid, inp.fd.arrays, _condition_vars(inp.fd))
+    if structure is not None:
+        info["residual_structure"] = {"variable": structure.variable, "test": structure.test,
+                                      "statistic": structure.statistic,
+                                      "p_value": structure.p_value,
+                                      "n_tests": structure.n_tests}
+    if method == "asymptotic" or not inp.vary or (inp.non_id and method == "sandwich"):
+        if method != "asymptotic":
+            warn_msgs.append(f"{method} standard errors need every fitted parameter to be "
+                             "identifiable; the asymptotic ones (where available) are shown"
+                             + ("; the bootstrap gives those of the identifiable ones"
+                                if method == "sandwich" else ""))
+            info["method"] = "asymptotic"
+    elif method == "sandwich":
+        _apply_sandwich(inp, estimates, derived, corr, warn_msgs)
+    else:
+        info.update(_apply_bootstrap(inp, estimates, derived, corr, warn_msgs, opts))
+    if info["method"] != "bootstrap" and structure is not None and structure.significant:
+        warn_msgs.append(
+            f"{structure.describe()}: the law misses a trend, so the {info['method']} "
+            "standard errors are likely too narrow; the bootstrap method (uncertainty "
+            "'bootstrap'), which resamples whole conditions, gives honest ones")
+    _warn_if_narrow(info["method"], asym, estimates, warn_msgs)
+    info["asymptotic_stderr"] = asym
+    return info
+
+
+def _condition_vars(fd: FitData) -> list[str]:
+    """The variables that define a test condition: every one the data hold, in order."""
+    return [v for v in VARIABLES if v in fd.arrays]
+
+
+def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
+                    estimates: Mapping[str, ParamEstimate], warn_msgs: list[str]) -> None:
+    """Warn when a robust method's errors exceed the asymptotic ones by > NARROW_RATIO."""
+    from .uncertainty import NARROW_RATIO
+
+    if method == "asymptotic":
+        return
+    ratios = {k: estimates[k].stderr / a for k, a in asym.items()
+              if a and estimates[k].stderr is not None and a > 0}
+    wide = {k: r for k, r in ratios.items() if r > NARROW_RATIO}
+    if wide:
+        shown = ", ".join(f"{k} x{r:.2g}" for k, r in wide.items())
+        warn_msgs.append(f"the {method} standard errors exceed the asymptotic ones by more "
+                         f"than {NARROW_RATIO}x ({shown}): the asymptotic errors are too "
+                         f"narrow for these data; the {method} values are reported")
+
+
+def _set_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate], se: np.ndarray,
+                ci: np.ndarray) -> None:
+    """Store new standard errors and intervals of the fitted parameters."""
+    from dataclasses import replace
+
+    for j, k in enumerate(inp.vary):
+        if k in inp.non_id:  # withheld whatever the method
+            continue
+        if math.isfinite(se[j]) and np.all(np.isfinite(ci[j])):
+            estimates[k] = replace(estimates[k], stderr=float(se[j]),
+                                   ci95=(float(ci[j, 0]), float(ci[j, 1])))
+
+
+def _set_corr(names: list[str], cov: np.ndarray, corr: dict[str, dict[str, float]]) -> None:
+    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
+    with np.errstate(all="ignore"):
+        cm = cov / np.outer(sd, sd)
+    corr.clear()
+    for i, a in enumerate(names):
+        corr[a] = {b: float(cm[i, j]) for j, b in enumerate(names)}
+
+
+def _apply_sandwich(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
+                    derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
+                    warn_msgs: list[str]) -> None:
+    """HC3 sandwich errors for the parameters and (delta method) the derived quantities."""
+    from .uncertainty import sandwich_cov
+
+    cov = sandwich_cov(inp.jac, inp.weighted_resid)
+    if cov is None:
+        warn_msgs.append("the sandwich covariance could not be computed (singular Jacobian); "
+                         "the asymptotic standard errors are shown")
+        return
+    se = np.sqrt(np.clip(np.diag(cov), 0, None))
+    theta = np.array([inp.values[k] for k in inp.vary])
+    ci = np.column_stack([theta - inp.tval * se, theta + inp.tval * se])
+    _set_errors(inp, estimates, se, ci)
+    _set_corr(inp.vary, cov, corr)
+    derived.update(_derived(inp.law, inp.values, inp.vary, cov, inp.non_id))
+
+
+def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
+                     derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
+                     warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
+    """Condition-resampling bootstrap errors and intervals, parameters and derived alike."""
+    from .uncertainty import Refit, bootstrap, condition_ids, derived_samples, intervals
+
+    lower = np.array([inp.bounds[k][0] for k in inp.vary], float)
+    upper = np.array([inp.bounds[k][1] for k in inp.vary], float)
+    refit = Refit(inp.law, dict(inp.values), list(inp.vary), lower, upper, inp.x, inp.y, inp.w)
+    groups = condition_ids(inp.fd.arrays, _condition_vars(inp.fd), inp.fd.conditions)
+    theta = np.array([inp.values[k] for k in inp.vary])
+    boot = bootstrap(refit, theta, groups, n_boot=opts["n_boot"], seed=opts["seed"],
+                     n_jobs=opts["n_jobs"])
+    se, ci, used = intervals(boot.samples, theta, boot.jackknife, kind=opts["interval"])
+    _set_errors(inp, estimates, se, ci)
+    ok = np.all(np.isfinite(boot.samples), axis=1)
+    if ok.sum() > len(inp.vary) and not inp.non_id:
+        _set_corr(inp.vary, np.cov(boot.samples[ok].T).reshape(len(inp.vary), -1), corr)
+    if inp.law.derived and not inp.non_id:
+        funcs = {d.name: (lambda vals, d=d: d.func(_numpy_ns(), **vals))
+                 for d in inp.law.derived}
+        hat = np.array([derived[k]["value"] for k in funcs], float)
+        dse, dci, _ = intervals(derived_samples(funcs, inp.values, inp.vary, boot.samples),
+                                hat, derived_samples(funcs, inp.values, inp.vary,
+                                                     boot.jackknife), kind=opts["interval"])
+        for j, k in enumerate(funcs):
+            finite = math.isfinite(dse[j]) and bool(np.all(np.isfinite(dci[j])))
+            derived[k] = {**derived[k], "stderr": float(dse[j]) if finite else None,
+                          "ci95": [float(dci[j, 0]), float(dci[j, 1])] if finite else None}
+    if boot.failed > 0.1 * opts["n_boot"]:
+        warn_msgs.append(f"{boot.failed} of {opts['n_boot']} bootstrap refits failed; the "
+                         "bootstrap errors rest on the others")
+    if boot.n_groups < 8:
+        warn_msgs.append(f"the bootstrap resamples only {boot.n_groups} conditions: its "
+                         "errors and intervals are coarse")
+    return {"n_boot": opts["n_boot"], "seed": opts["seed"], "interval": used,
+            "conditions": boot.n_groups, "failed": boot.failed}
 
 
 def _numpy_ns() -> Any:
@@ -1020,7 +1357,20 @@ def load_result(path: str | Path) -> FitResult:
         warnings=[str(w) for w in _list(doc, "warnings")],
         non_identifiable=[str(w) for w in _list(doc, "non_identifiable")],
         derived=_obj(doc, "derived"), data=_obj(doc, "data"),
-        notes=[str(w) for w in _list(doc, "notes")], provenance=_obj(doc, "provenance"))
+        notes=[str(w) for w in _list(doc, "notes")], provenance=_obj(doc, "provenance"),
+        uncertainty=_loaded_uncertainty(doc, str(path)))
+
+
+def _loaded_uncertainty(doc: Mapping[str, Any], file: str) -> dict[str, Any]:
+    """The saved ``uncertainty`` record; its method must be a known one."""
+    from .uncertainty import UNCERTAINTY_METHODS
+
+    info = _obj(doc, "uncertainty")
+    method = info.get("method")
+    if info and method not in UNCERTAINTY_METHODS:
+        raise InputError(f"uncertainty.method must be one of {', '.join(UNCERTAINTY_METHODS)}, "
+                         f"got {method!r:.40}", file=file)
+    return info
 
 
 def _refuse_constant(name: str) -> float:

@@ -132,6 +132,9 @@ def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
     data = args.data if isinstance(args.data, list) else [args.data]
     if len(data) != 1:
         raise InputError("a shared-parameter fit takes one dataset (its groups share)")
+    if fit_kwargs.get("uncertainty", "asymptotic") != "asymptotic":
+        raise InputError("--uncertainty is not used with --shared (the shared fit reports "
+                         "asymptotic errors); remove it")
     res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
                      weights=fit_kwargs.get("weights", "auto"), load_options=load)
     if args.out:

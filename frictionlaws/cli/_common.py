@@ -191,7 +191,37 @@ def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
     p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
                    help="extra random starts for non-linear laws, 0 to 1000 (default 6)")
     p.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
-                   help=f"seed of the random starts, 0 to {SEED_MAX} (default 0)")
+                   help=f"seed of the random starts and the bootstrap, 0 to {SEED_MAX} "
+                        "(default 0)")
+    p.add_argument("--uncertainty", choices=("asymptotic", "sandwich", "bootstrap"),
+                   default="asymptotic",
+                   help="standard errors: asymptotic (fit covariance, default, fast), "
+                        "sandwich (HC3, robust to uneven scatter) or bootstrap (resamples "
+                        "whole test conditions; robust to a law that misses a trend)")
+    p.add_argument("--boot", type=bounded_int(20, 100_000), default=1000, metavar="N",
+                   help="bootstrap replicates, 20 to 100000 (default 1000; with "
+                        "--uncertainty bootstrap)")
+    p.add_argument("--boot-jobs", type=_boot_jobs, default=1, metavar="N",
+                   help="worker processes for the bootstrap refits (default 1; -1 = one "
+                        "per core; with --uncertainty bootstrap)")
+    p.add_argument("--boot-interval", choices=("bca", "percentile"), default="bca",
+                   help="bootstrap interval: bca (bias-corrected, accelerated; default) or "
+                        "percentile (with --uncertainty bootstrap)")
+
+
+#: Bootstrap-only options (argparse dests), refused with another --uncertainty.
+BOOT_OPTIONS = ("boot", "boot_jobs", "boot_interval")
+
+
+def _boot_jobs(text: str) -> int:
+    """``--boot-jobs``: -1 or 1..1024."""
+    s = str(text).strip()
+    if s == "-1":
+        return -1
+    return bounded_int(1, 1024)(s)
+
+
+_boot_jobs.__name__ = "integer"
 
 
 def add_progress_option(p: argparse.ArgumentParser | Any) -> None:
@@ -291,7 +321,14 @@ def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
 
 def fit_kwargs(args: argparse.Namespace) -> dict[str, Any]:
     """Keyword arguments for :func:`frictionlaws.fitting.fit` from the fit options."""
+    uncertainty = getattr(args, "uncertainty", "asymptotic")
+    if uncertainty != "bootstrap":
+        refuse_unused(args, BOOT_OPTIONS, f"with --uncertainty {uncertainty}")
     return {
+        "uncertainty": uncertainty,
+        "n_boot": getattr(args, "boot", 1000),
+        "n_jobs": getattr(args, "boot_jobs", 1),
+        "interval": getattr(args, "boot_interval", "bca"),
         "fix": parse_floats(args.fix, "--fix"),
         "free": parse_names(args.free, "--free"),
         "weights": "auto" if args.weights == "auto" else None,

@@ -37,7 +37,7 @@ __all__ = ["add_parser", "run"]
 
 #: Options that only mean something with --fit.
 _FIT_ONLY = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "map", "data_units",
-             "area", "by")
+             "area", "by", "uncertainty", "boot", "boot_jobs", "boot_interval")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:

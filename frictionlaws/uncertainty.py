@@ -1,0 +1,414 @@
+"""Standard errors that survive model error: sandwich, bootstrap, residual checks.
+
+The asymptotic standard errors of :func:`frictionlaws.fitting.fit` assume the
+law is right and the scatter homoskedastic.  This module supplies the two
+alternatives a fit may ask for (``uncertainty=``):
+
+``"sandwich"``
+    The heteroskedasticity-robust (HC3) covariance
+    ``(J'J)^-1 J' diag(e_i^2 / (1 - h_i)^2) J (J'J)^-1`` with the Jacobian ``J``
+    of the (weighted) residuals at the optimum and the leverages ``h_i``.
+``"bootstrap"``
+    A seeded bootstrap that resamples whole *conditions* (rows with the same
+    variables, or the dataset's ``condition_id`` column), refits each replicate
+    from the optimum (in parallel with joblib when ``n_jobs`` > 1) and reports
+    the replicates' standard deviation with BCa (or percentile) intervals, for
+    the parameters and the law's derived quantities alike.
+
+:func:`residual_structure` tests residuals ordered by each variable (a runs test
+of their signs and their lag-1 autocorrelation); structure there means the law
+misses a trend and the asymptotic errors are too narrow.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .errors import InputError
+
+__all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
+           "check_uncertainty_options", "condition_ids", "sandwich_cov",
+           "residual_structure", "Refit", "BootstrapResult", "bootstrap", "intervals"]
+
+#: Uncertainty methods of a fit.
+UNCERTAINTY_METHODS = ("asymptotic", "sandwich", "bootstrap")
+#: Bootstrap interval kinds.
+INTERVALS = ("bca", "percentile")
+#: A robust/asymptotic standard-error ratio above which the asymptotic errors are too narrow.
+NARROW_RATIO = 1.5
+#: Family-wise level of the residual-structure tests (Bonferroni over the tests made).
+STRUCTURE_ALPHA = 0.05
+#: Largest number of bootstrap replicates.
+MAX_BOOT = 100_000
+
+
+def check_uncertainty_options(uncertainty: Any, n_boot: Any, n_jobs: Any,
+                              interval: Any) -> None:
+    """Refuse unknown methods and nonsense counts with an :class:`InputError`.
+
+    Parameters
+    ----------
+    uncertainty : str
+        One of :data:`UNCERTAINTY_METHODS`.
+    n_boot : int
+        Bootstrap replicates, 20..100000.
+    n_jobs : int
+        joblib workers: -1 (one per core) or 1..1024.
+    interval : str
+        One of :data:`INTERVALS`.
+    """
+    if uncertainty not in UNCERTAINTY_METHODS:
+        raise InputError(f"uncertainty must be one of {', '.join(UNCERTAINTY_METHODS)}, "
+                         f"not {uncertainty!r}", option="uncertainty")
+    if isinstance(n_boot, bool) or not isinstance(n_boot, (int, np.integer)) or not (
+            20 <= n_boot <= MAX_BOOT):
+        raise InputError(f"n_boot must be a whole number 20..{MAX_BOOT}, not {n_boot!r}",
+                         option="n_boot")
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or not (
+            n_jobs == -1 or 1 <= n_jobs <= 1024):
+        raise InputError(f"n_jobs must be -1 or a whole number 1..1024, not {n_jobs!r}",
+                         option="n_jobs")
+    if interval not in INTERVALS:
+        raise InputError(f"interval must be one of {', '.join(INTERVALS)}, not {interval!r}",
+                         option="interval")
+
+
+def condition_ids(arrays: Mapping[str, np.ndarray], variables: Sequence[str],
+                  conditions: np.ndarray | None = None) -> np.ndarray:
+    """One integer per row naming its condition.
+
+    Parameters
+    ----------
+    arrays : mapping of str to ndarray
+        The fit's arrays (SI).
+    variables : sequence of str
+        The variables that define a condition (the law's, or every variable present).
+    conditions : ndarray, optional
+        An explicit condition label per row (a dataset's ``condition_id`` column); it wins.
+
+    Returns
+    -------
+    ndarray of int
+        Rows with equal ids belong to the same condition.
+    """
+    if conditions is not None:
+        return np.unique(np.asarray(conditions).astype(str), return_inverse=True)[1]
+    n = int(np.asarray(arrays["mu"]).size)
+    cols = [np.asarray(arrays[v], float) for v in variables if v in arrays]
+    if not cols:
+        return np.arange(n)
+    table = np.column_stack(cols)
+    return np.unique(table, axis=0, return_inverse=True)[1].ravel()
+
+
+def sandwich_cov(jac: np.ndarray, resid: np.ndarray) -> np.ndarray | None:
+    """HC3 sandwich covariance from the residual Jacobian and the residuals.
+
+    Parameters
+    ----------
+    jac : ndarray, shape (n, k)
+        Jacobian of the (weighted) model values with respect to the parameters.
+    resid : ndarray, shape (n,)
+        (Weighted) residuals at the optimum.
+
+    Returns
+    -------
+    ndarray or None
+        The k x k covariance, or None when ``J'J`` is singular or not finite.
+    """
+    if not np.all(np.isfinite(jac)) or not np.all(np.isfinite(resid)):
+        return None
+    jtj = jac.T @ jac
+    if np.linalg.matrix_rank(jtj) < jtj.shape[0]:
+        return None
+    bread = np.linalg.inv(jtj)
+    lev = np.einsum("ij,jk,ik->i", jac, bread, jac)
+    lev = np.clip(lev, 0.0, 1.0 - 1e-8)
+    e2 = (resid / (1.0 - lev)) ** 2
+    meat = (jac * e2[:, None]).T @ jac
+    return bread @ meat @ bread
+
+
+@dataclass(frozen=True)
+class Structure:
+    """The strongest sign of residual structure found by :func:`residual_structure`."""
+
+    variable: str
+    test: str
+    statistic: float
+    p_value: float
+    n_tests: int
+
+    @property
+    def significant(self) -> bool:
+        """Bonferroni-adjusted p below :data:`STRUCTURE_ALPHA`."""
+        return self.p_value * self.n_tests < STRUCTURE_ALPHA
+
+    def describe(self) -> str:
+        """One phrase for a warning."""
+        what = ("too few sign runs" if self.test == "runs" else "lag-1 autocorrelation")
+        return (f"residuals ordered by {self.variable} show structure ({what} "
+                f"{self.statistic:.3g}, p = {self.p_value:.2g} before, "
+                f"{min(1.0, self.p_value * self.n_tests):.2g} after correction for "
+                f"{self.n_tests} tests)")
+
+
+def _runs_p(e: np.ndarray) -> tuple[float, float]:
+    """Number of sign runs and its one-sided p (too few runs) by the normal approximation."""
+    s = np.sign(e)
+    s = s[s != 0]
+    n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
+    if n1 == 0 or n2 == 0:
+        return math.nan, math.nan
+    runs = 1 + int(np.sum(s[1:] != s[:-1]))
+    n = n1 + n2
+    mean = 2.0 * n1 * n2 / n + 1.0
+    var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
+    if var <= 0:
+        return float(runs), math.nan
+    return float(runs), _norm_cdf((runs - mean) / math.sqrt(var))
+
+
+def _lag1_p(e: np.ndarray) -> tuple[float, float]:
+    """Lag-1 autocorrelation and its one-sided p (positive correlation) under independence."""
+    d = e - e.mean()
+    den = float(np.sum(d**2))
+    if den <= 0:
+        return math.nan, math.nan
+    r1 = float(np.sum(d[1:] * d[:-1]) / den)
+    n = e.size
+    return r1, _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
+
+
+def _norm_cdf(z: float) -> float:
+    """Standard normal distribution function (math.erfc: no SciPy call on the fit path)."""
+    return 0.5 * math.erfc(-z / math.sqrt(2.0))
+
+
+def residual_structure(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
+                       variables: Sequence[str]) -> Structure | None:
+    """The strongest residual structure along any variable (None with too few rows).
+
+    For each variable taking at least two values the rows are ordered by it
+    (ties by the other variables) and two tests are made: a Wald-Wolfowitz runs
+    test of the residual signs and the lag-1 autocorrelation.  The smallest p
+    is returned with the number of tests for a Bonferroni correction.
+    """
+    resid = np.asarray(resid, float)
+    if resid.size < 8 or not np.all(np.isfinite(resid)):
+        return None
+    found: list[tuple[float, str, str, float]] = []
+    present = [v for v in variables if v in arrays and np.unique(arrays[v]).size >= 2]
+    for var in present:
+        others = [np.asarray(arrays[o], float) for o in reversed(present) if o != var]
+        order = np.lexsort([*others, np.asarray(arrays[var], float)])
+        e = resid[order]
+        runs, p_runs = _runs_p(e)
+        r1, p_lag = _lag1_p(e)
+        if math.isfinite(p_runs):
+            found.append((p_runs, var, "runs", runs))
+        if math.isfinite(p_lag):
+            found.append((p_lag, var, "lag1", r1))
+    if not found:
+        return None
+    p, var, test, stat = min(found)
+    return Structure(var, test, stat, p, len(found))
+
+
+@dataclass
+class Refit:
+    """Everything a bootstrap replicate needs to refit the law (picklable for joblib).
+
+    ``evaluate(values)`` is not stored; the law and its fixed values are, so a
+    worker process rebuilds the model values itself.
+    """
+
+    law: Any
+    fixed: dict[str, float]
+    vary: list[str]
+    lower: np.ndarray
+    upper: np.ndarray
+    x: dict[str, np.ndarray]
+    y: np.ndarray
+    w: np.ndarray | None
+
+    def model(self, theta: np.ndarray, x: Mapping[str, np.ndarray], n: int) -> np.ndarray:
+        """Model values at variables ``x`` (``n`` rows) for parameters ``theta``."""
+        vals = dict(self.fixed)
+        vals.update(zip(self.vary, (float(t) for t in theta)))
+        with np.errstate(all="ignore"):
+            out = self.law.evaluate(x, vals)
+        return np.broadcast_to(np.asarray(out, float), (n,))
+
+    def solve(self, theta0: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """Least-squares parameters on ``rows`` started from ``theta0`` (NaN on failure)."""
+        from scipy.optimize import least_squares
+
+        w = 1.0 if self.w is None else self.w[rows]
+        y = self.y[rows]
+        x = {k: v[rows] for k, v in self.x.items()}
+
+        def resid(theta: np.ndarray) -> np.ndarray:
+            r = (self.model(theta, x, rows.size) - y) * w
+            return np.where(np.isfinite(r), r, 1e100)
+
+        span = np.where(np.isfinite(self.upper - self.lower), self.upper - self.lower, 0.0)
+        start = np.clip(theta0, self.lower + 1e-9 * span, self.upper - 1e-9 * span)
+        start = np.where(start <= self.lower, self.lower + np.abs(self.lower) * 1e-9 + 1e-300,
+                         start)
+        scale = np.maximum(np.abs(start), 1e-12)
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                sol = least_squares(resid, start, bounds=(self.lower, self.upper),
+                                    x_scale=scale, max_nfev=200 * (start.size + 1))
+        except (ValueError, FloatingPointError, np.linalg.LinAlgError):
+            return np.full(theta0.size, np.nan)
+        return sol.x if np.all(np.isfinite(sol.fun)) and np.max(np.abs(sol.fun)) < 1e99 \
+            else np.full(theta0.size, np.nan)
+
+
+def _solve_many(refit: Refit, theta0: np.ndarray, rows_list: list[np.ndarray]
+                ) -> np.ndarray:
+    return np.array([refit.solve(theta0, rows) for rows in rows_list])
+
+
+@dataclass
+class BootstrapResult:
+    """Replicate parameters (B x k), leave-one-condition-out ones (G x k), failures."""
+
+    samples: np.ndarray
+    jackknife: np.ndarray
+    n_groups: int
+    failed: int
+
+
+def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: int,
+              seed: int, n_jobs: int = 1) -> BootstrapResult:
+    """Refit on ``n_boot`` resamples of whole conditions (and the G jackknife sets).
+
+    Parameters
+    ----------
+    refit : Refit
+        The problem.
+    theta0 : ndarray
+        The optimum, each replicate's start.
+    groups : ndarray of int
+        Condition id per row (:func:`condition_ids`).
+    n_boot, seed : int
+        Replicates and the seed that makes them reproducible.
+    n_jobs : int
+        joblib workers (1: in this process).
+    """
+    members = [np.flatnonzero(groups == g) for g in np.unique(groups)]
+    n_groups = len(members)
+    rng = np.random.default_rng(seed)
+    draws = rng.integers(0, n_groups, size=(n_boot, n_groups))
+    rows_list = [np.concatenate([members[g] for g in d]) for d in draws]
+    jack_rows = [np.concatenate([m for j, m in enumerate(members) if j != g])
+                 for g in range(n_groups)]
+    all_rows = rows_list + jack_rows
+    if n_jobs == 1:
+        out = _solve_many(refit, theta0, all_rows)
+    else:
+        from joblib import Parallel, cpu_count, delayed
+
+        workers = min(cpu_count() if n_jobs == -1 else n_jobs, len(all_rows))
+        chunks = [all_rows[i::workers] for i in range(workers)]
+        parts = Parallel(n_jobs=workers)(delayed(_solve_many)(refit, theta0, c) for c in chunks)
+        out = np.empty((len(all_rows), theta0.size))
+        for i, part in enumerate(parts):
+            out[i::workers] = part
+    samples, jack = out[:n_boot], out[n_boot:]
+    failed = int(np.sum(~np.all(np.isfinite(samples), axis=1)))
+    return BootstrapResult(samples, jack, n_groups, failed)
+
+
+def intervals(samples: np.ndarray, hat: np.ndarray, jack: np.ndarray, *,
+              kind: str = "bca", level: float = 0.95) -> tuple[np.ndarray, np.ndarray, str]:
+    """Standard errors and (low, high) intervals per column of ``samples``.
+
+    Parameters
+    ----------
+    samples : ndarray, shape (B, m)
+        Bootstrap replicates of m statistics (rows with NaN are dropped per column).
+    hat : ndarray, shape (m,)
+        The statistics on the full data.
+    jack : ndarray, shape (G, m)
+        Leave-one-condition-out values (BCa acceleration).
+    kind : {"bca", "percentile"}
+        BCa falls back to percentile for a column where it cannot be computed.
+
+    Returns
+    -------
+    (stderr, ci, kind_used)
+        ``ci`` has shape (m, 2); ``kind_used`` is ``"bca"``, ``"percentile"`` or
+        ``"bca/percentile"`` when some columns fell back.
+    """
+    from scipy import stats
+
+    m = samples.shape[1]
+    se = np.full(m, np.nan)
+    ci = np.full((m, 2), np.nan)
+    alpha = (1.0 - level) / 2.0
+    used = set()
+    for j in range(m):
+        s = samples[:, j]
+        s = s[np.isfinite(s)]
+        if s.size < 10:
+            continue
+        se[j] = float(np.std(s, ddof=1))
+        qs = np.array([alpha, 1.0 - alpha])
+        if kind == "bca":
+            adj = _bca_levels(s, float(hat[j]), jack[:, j], qs, stats)
+            if adj is not None:
+                qs = adj
+                used.add("bca")
+            else:
+                used.add("percentile")
+        else:
+            used.add("percentile")
+        ci[j] = np.quantile(s, qs)
+    return se, ci, "/".join(sorted(used, reverse=True)) or kind
+
+
+def _bca_levels(s: np.ndarray, hat: float, jack: np.ndarray, qs: np.ndarray,
+                stats: Any) -> np.ndarray | None:
+    """BCa-adjusted quantile levels (None when bias or acceleration is not finite)."""
+    frac = float(np.mean(s < hat)) + 0.5 * float(np.mean(s == hat))
+    if not 0.0 < frac < 1.0:
+        return None
+    z0 = float(stats.norm.ppf(frac))
+    jack = jack[np.isfinite(jack)]
+    if jack.size < 3:
+        return None
+    d = jack.mean() - jack
+    den = 6.0 * float(np.sum(d**2)) ** 1.5
+    acc = float(np.sum(d**3)) / den if den > 0 else 0.0
+    z = stats.norm.ppf(qs)
+    adj = stats.norm.cdf(z0 + (z0 + z) / (1.0 - acc * (z0 + z)))
+    return adj if np.all(np.isfinite(adj)) else None
+
+
+def derived_samples(funcs: Mapping[str, Callable[[dict[str, float]], float]],
+                    fixed: Mapping[str, float], vary: Sequence[str],
+                    thetas: np.ndarray) -> np.ndarray:
+    """Derived quantities (columns, in ``funcs`` order) for each parameter row."""
+    out = np.full((thetas.shape[0], len(funcs)), np.nan)
+    for i, theta in enumerate(thetas):
+        if not np.all(np.isfinite(theta)):
+            continue
+        vals = {**fixed, **dict(zip(vary, (float(t) for t in theta)))}
+        for j, f in enumerate(funcs.values()):
+            with np.errstate(all="ignore"):
+                try:
+                    out[i, j] = float(f(vals))
+                except (ValueError, ZeroDivisionError, OverflowError):
+                    pass
+    return out

@@ -1,0 +1,254 @@
+"""Uncertainty methods of a fit (asymptotic, sandwich, bootstrap) and the global stage."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from scipy.optimize import least_squares
+
+import frictionlaws as fl
+from frictionlaws.cli import main
+from frictionlaws.errors import InputError
+from frictionlaws.fitting import load_result
+from frictionlaws.io import load_dataset
+from frictionlaws.uncertainty import condition_ids, residual_structure, sandwich_cov
+
+
+def _thesis_steel() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    frame = load_dataset("thesis-steel").frame
+    return (frame["p"].to_numpy(float), frame["v"].to_numpy(float),
+            frame["mu"].to_numpy(float))
+
+
+def _case_resampling_se_a(n_boot: int = 1000, seed: int = 12345) -> float:
+    """SE(a) of mu = 1/(a + b p) by naive case resampling, written out here."""
+    p, _v, mu = _thesis_steel()
+    p_mpa = p * 1e-6
+    rng = np.random.default_rng(seed)
+    a_values = []
+    for _ in range(n_boot):
+        i = rng.integers(0, p.size, p.size)
+        sol = least_squares(lambda t, i=i: 1.0 / (t[0] + t[1] * p_mpa[i]) - mu[i], [0.15, 4.7])
+        a_values.append(sol.x[0])
+    return float(np.std(a_values, ddof=1))
+
+
+@pytest.fixture(scope="module")
+def boot_result() -> fl.FitResult:
+    return fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=1000, seed=3)
+
+
+def test_thesis_steel_rows_are_distinct_conditions() -> None:
+    p, v, _mu = _thesis_steel()
+    assert len(set(zip(p, v))) == p.size  # so condition resampling = case resampling
+
+
+def test_bootstrap_se_matches_an_independent_case_resampling(boot_result) -> None:
+    ref = _case_resampling_se_a()
+    se = boot_result.params["a"].stderr
+    assert abs(se / ref - 1) < 0.2, (se, ref)
+    asym = boot_result.uncertainty["asymptotic_stderr"]["a"]
+    assert se > 1.5 * asym
+    assert boot_result.uncertainty["method"] == "bootstrap"
+    assert boot_result.uncertainty["conditions"] == 19
+    assert any("exceed the asymptotic" in w for w in boot_result.warnings)
+
+
+def test_bootstrap_propagates_to_derived_quantities() -> None:
+    res = fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=400,
+                 interval="percentile")
+    lo, hi = res.params["a"].ci95
+    mu0 = res.derived["mu_0"]
+    # mu_0 = 1/a is monotone: percentile intervals map through it
+    assert mu0["ci95"][0] == pytest.approx(1 / hi, rel=0.03)
+    assert mu0["ci95"][1] == pytest.approx(1 / lo, rel=0.03)
+    assert mu0["stderr"] > 1.3 * fl.fit("thirion", "thesis-steel").derived["mu_0"]["stderr"]
+    assert res.uncertainty["interval"] == "percentile"
+
+
+def test_bootstrap_is_seeded_and_parallel_gives_the_same_numbers() -> None:
+    one = fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=40, seed=7)
+    again = fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=40, seed=7)
+    par = fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=40, seed=7,
+                 n_jobs=2)
+    other = fl.fit("thirion", "thesis-steel", uncertainty="bootstrap", n_boot=40, seed=8)
+    assert one.params["a"].stderr == again.params["a"].stderr
+    assert par.params["a"].stderr == pytest.approx(one.params["a"].stderr, rel=1e-9)
+    assert other.params["a"].stderr != one.params["a"].stderr
+
+
+def test_asymptotic_default_warns_on_thesis_steel_and_names_the_bootstrap() -> None:
+    res = fl.fit("thirion", "thesis-steel")
+    assert res.uncertainty["method"] == "asymptotic"
+    msgs = [w for w in res.warnings if "show structure" in w]
+    assert msgs and "bootstrap" in msgs[0]
+    assert "warning: residuals ordered by" in res.report()
+
+
+def test_no_structure_warning_for_a_law_that_fits() -> None:
+    rng = np.random.default_rng(0)
+    p = np.tile(np.linspace(0.03e6, 0.25e6, 10), 2)
+    v = np.repeat([0.5, 1.5], 10)
+    mu = 1 / (0.15 + 4.7e-6 * p) * (1 + 0.02 * rng.standard_normal(p.size))
+    res = fl.fit("thirion", {"mu": mu, "p": p, "v": v})
+    assert not any("show structure" in w for w in res.warnings)
+    s = residual_structure(res.residual, {"p": p, "v": v}, ["p", "v"])
+    assert s is not None and not s.significant
+
+
+def test_sandwich_is_hc3_of_the_linear_least_squares() -> None:
+    rng = np.random.default_rng(4)
+    p = np.tile(np.linspace(0.03e6, 0.25e6, 8), 3)
+    v = np.repeat([0.1, 1.0, 2.5], 8)
+    mu = 1.2 - 2e-6 * p + 0.1 * v + 0.02 * (1 + 4 * v) * rng.standard_normal(p.size)
+    res = fl.fit("thesis-poly2", {"mu": mu, "p": p, "v": v}, uncertainty="sandwich")
+    x = np.column_stack([np.ones_like(p), 1e-6 * p, 1e-12 * p**2, v, v**2])
+    beta, *_ = np.linalg.lstsq(x, mu, rcond=None)
+    e = mu - x @ beta
+    bread = np.linalg.inv(x.T @ x)
+    h = np.sum((x @ bread) * x, axis=1)
+    hc3 = bread @ (x.T * (e / (1 - h)) ** 2) @ x @ bread
+    se = np.sqrt(np.diag(hc3))
+    got = [res.params[k].stderr for k in ("a0", "a1", "a2", "a3", "a4")]
+    np.testing.assert_allclose(got, se, rtol=1e-4)
+    assert res.uncertainty["method"] == "sandwich"
+    assert "sandwich (HC3" in res.report()
+
+
+def test_sandwich_cov_refuses_a_singular_jacobian() -> None:
+    jac = np.column_stack([np.ones(5), np.ones(5)])
+    assert sandwich_cov(jac, np.arange(5.0)) is None
+
+
+def test_conditions_group_repeats_and_a_condition_column(tmp_path) -> None:
+    arrays = {"mu": np.ones(6), "p": np.array([1, 1, 2, 2, 3, 3.0]), "v": np.ones(6)}
+    assert len(set(condition_ids(arrays, ["p", "v"]))) == 3
+    ids = condition_ids(arrays, ["p", "v"], np.array(list("aabbbc")))
+    assert ids.tolist() == [0, 0, 1, 1, 1, 2]
+    path = tmp_path / "runs.csv"
+    rows = ["mu,p [MPa],condition_id"] + [
+        f"{1 / (0.15 + 4.7 * pp) * (1 + 0.01 * k):.5f},{pp},c{j}"
+        for j, pp in enumerate([0.03, 0.06, 0.09, 0.12, 0.15, 0.18, 0.21, 0.24, 0.27])
+        for k in (-1, 0, 1)]
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    res = fl.fit("thirion", path, uncertainty="bootstrap", n_boot=40)
+    assert res.uncertainty["conditions"] == 9
+
+
+def test_the_method_survives_to_dict_save_and_load(tmp_path, boot_result) -> None:
+    doc = json.loads(boot_result.to_json())
+    assert doc["uncertainty"]["method"] == "bootstrap"
+    path = boot_result.save(tmp_path / "fit.json")
+    back = load_result(path)
+    assert back.uncertainty["method"] == "bootstrap"
+    assert back.params["a"].stderr == pytest.approx(boot_result.params["a"].stderr)
+    assert "bootstrap (1000 resamples of 19 conditions" in back.report()
+    doc["uncertainty"]["method"] = "jackknife"
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(doc), encoding="utf-8")
+    with pytest.raises(InputError, match="uncertainty.method"):
+        load_result(bad)
+
+
+@pytest.mark.parametrize("kw, option", [
+    ({"uncertainty": "jackknife"}, "uncertainty"),
+    ({"n_boot": 5}, "n_boot"),
+    ({"n_boot": True}, "n_boot"),
+    ({"n_jobs": 0}, "n_jobs"),
+    ({"interval": "normal"}, "interval"),
+    ({"global_stage": "maybe"}, "global_stage"),
+])
+def test_bad_uncertainty_options_are_refused(kw, option) -> None:
+    with pytest.raises(InputError) as exc:
+        fl.fit("thirion", "thesis-steel", **kw)
+    assert exc.value.option == option
+
+
+def test_bootstrap_reports_the_identifiable_parameters_only() -> None:
+    asym = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
+    boot = fl.fit("savkoor", "thesis-steel", on_invalid="drop", uncertainty="bootstrap",
+                  n_boot=200)
+    assert boot.uncertainty["method"] == "bootstrap"
+    assert boot.non_identifiable and boot.non_identifiable == asym.non_identifiable
+    for name in boot.non_identifiable:
+        assert boot.params[name].stderr is None
+    assert boot.params["n"].stderr > 1.2 * asym.params["n"].stderr
+    sandwich = fl.fit("savkoor", "thesis-steel", on_invalid="drop", uncertainty="sandwich")
+    assert sandwich.uncertainty["method"] == "asymptotic"
+    assert any("the bootstrap gives" in w for w in sandwich.warnings)
+
+
+# ------------------------------------------------------------------ global stage
+
+
+def test_wriggers_reaches_the_good_fit_from_the_default_call() -> None:
+    res = fl.fit("wriggers", "thesis-steel")
+    assert res.metrics["r2"] >= 0.9
+    assert res.success
+    assert any("global stage" in n for n in res.notes)
+    off = fl.fit("wriggers", "thesis-steel", global_stage="off")
+    assert off.metrics["r2"] < 0.9  # the stage, not the local starts, finds it
+
+
+def test_well_converging_fits_skip_the_global_stage() -> None:
+    for law in ("thirion", "savkoor", "huemer"):
+        res = fl.fit(law, "thesis-steel", on_invalid="drop")
+        assert not any("global stage" in n for n in res.notes), law
+
+
+def test_global_stage_on_keeps_a_good_fit() -> None:
+    auto = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
+    on = fl.fit("savkoor", "thesis-steel", global_stage="on", on_invalid="drop")
+    assert on.metrics["r2"] >= auto.metrics["r2"] - 1e-9
+
+
+# ------------------------------------------------------------------------- CLI
+
+
+def test_cli_fit_wriggers_default(capsys) -> None:
+    code = main(["fit", "--law", "wriggers", "thesis-steel", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0 and doc["metrics"]["r2"] >= 0.9
+
+
+def test_cli_uncertainty_bootstrap(capsys) -> None:
+    code = main(["fit", "--law", "thirion", "thesis-steel", "--uncertainty", "bootstrap",
+                 "--boot", "60", "--boot-interval", "percentile", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert doc["uncertainty"]["method"] == "bootstrap"
+    assert doc["uncertainty"]["n_boot"] == 60
+    assert doc["uncertainty"]["interval"] == "percentile"
+
+
+def test_cli_sandwich_report(capsys) -> None:
+    code = main(["fit", "--law", "thirion", "thesis-steel", "--uncertainty", "sandwich"])
+    out = capsys.readouterr().out
+    assert code == 0 and "standard errors: sandwich" in out
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (["--boot", "100"], "--boot"),
+    (["--uncertainty", "sandwich", "--boot-jobs", "2"], "--boot-jobs"),
+    (["--boot-interval", "percentile"], "--boot-interval"),
+    (["--uncertainty", "bootstrap", "--boot", "5"], "--boot"),
+    (["--uncertainty", "jackknife"], "--uncertainty"),
+    (["--uncertainty", "bootstrap", "--boot-jobs", "0"], "--boot-jobs"),
+])
+def test_cli_bootstrap_options_are_checked(capsys, argv, fragment) -> None:
+    code = main(["fit", "--law", "thirion", "thesis-steel", *argv])
+    err = capsys.readouterr().err
+    assert code == 2 and fragment in err
+
+
+def test_cli_shared_refuses_uncertainty(capsys, tmp_path) -> None:
+    path = tmp_path / "temps.csv"
+    path.write_text("mu,p [MPa],T [degC]\n" + "\n".join(
+        f"{1 / (0.15 + 4.7 * p) * (1 + 0.01 * T / 20):.4f},{p},{T}"
+        for T in (20, 40) for p in (0.03, 0.06, 0.09, 0.12)) + "\n", encoding="utf-8")
+    code = main(["fit", "--law", "thirion", str(path), "--by", "T", "--shared", "b",
+                 "--uncertainty", "sandwich"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--uncertainty" in err
