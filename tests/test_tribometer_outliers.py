@@ -100,6 +100,8 @@ def test_pooled_rule_keeps_the_majority_and_refuses_bad_input():
     conds.append(np.array([1.0, 1.0, 2.0, 2.0]))  # two pairs: at most one may go
     res = pooled_outliers(conds)
     assert len(res.flagged[-1]) == 1
+    flat = pooled_outliers([np.array([1.0, 1.0, 1.0, 1.3])] * 3)
+    assert not flat.pooled and flat.flagged == [[], [], []]  # no scatter: nothing to pool
     few = pooled_outliers([np.array([1.0, 1.01, 1.5])])
     assert not few.pooled and few.pool < MIN_POOL and few.flagged == [[]]
     with pytest.raises(InputError, match="positive"):

@@ -31,8 +31,8 @@ The pooled rule
     simulation's own noise), so a condition without an outlier is flagged with
     probability at most ``alpha`` whatever the number of repeats.  Conditions
     with 2 records are not tested and do not enter the scale.  With fewer than
-    :data:`MIN_POOL` inner deviations in the campaign the scatter cannot be
-    pooled; the caller then falls back to Grubbs.
+    :data:`MIN_POOL` inner deviations in the campaign (or a pooled scatter of
+    zero) the scatter cannot be pooled; the caller then falls back to Grubbs.
 
 :func:`outlier_power` measures the power and the false-alarm rate of both
 rules by a seeded Monte-Carlo simulation (the table in the user guide).
@@ -193,6 +193,8 @@ def pooled_outliers(conditions: Sequence[Sequence[float] | np.ndarray],
     groups = {n: np.stack([values[i] for i in tested if values[i].size == n])[None]
               for n in sizes}
     z, sigma = _scores(groups)
+    if not sigma[0] > 0:  # identical repeats: no scatter to measure departures against
+        return PooledResult(math.nan, pool, nan_z, [math.nan] * len(values), nothing)
     layout = tuple((n, groups[n].shape[1]) for n in sizes)
     t = pooled_thresholds(layout, float(alpha))
     seen = dict.fromkeys(sizes, 0)
