@@ -37,9 +37,9 @@ COLUMNS = ["pooled +20%", "pooled +30%", "pooled +50%", "pooled false alarms",
            "grubbs +20%", "grubbs +30%", "grubbs +50%", "grubbs false alarms"]
 
 
-def _doc_table() -> dict[int, list[float]]:
+def _doc_table(title: str = "Outlier power table\n") -> dict[int, list[float]]:
     text = DOC.read_text(encoding="utf-8")
-    block = text[text.index(".. list-table:: Outlier power table"):]
+    block = text[text.index(f".. list-table:: {title}"):]
     block = block[:block.index("\n\n", block.index("   * - 3"))]
     rows: dict[int, list[float]] = {}
     for chunk in block.split("   * - ")[2:]:
@@ -61,6 +61,17 @@ def test_power_table_in_docs_is_the_seeded_monte_carlo():
     # and the pooled rule is far better than Grubbs at few repeats
     assert table[4][COLUMNS.index("grubbs +30%")] < 0.5
     assert table[3][COLUMNS.index("pooled +30%")] > 0.9
+
+
+def test_power_table_with_an_outlier_in_every_condition():
+    table = _doc_table("Outlier power table, an outlier in every condition\n")
+    cols = [c for c in COLUMNS if "false" not in c]
+    assert sorted(table) == [3, 4, 5, 6, 7]
+    for n, documented in table.items():
+        measured = outlier_power(n, trials=1000, seed=14, every_condition=True)
+        assert [measured[c] for c in cols] == pytest.approx(documented, abs=0.0015), n
+    assert table[4][cols.index("pooled +30%")] >= 0.9  # a bad pin throughout is caught
+    assert table[3][cols.index("pooled +30%")] < 0.9  # the documented weakness is real
 
 
 def test_false_alarms_hold_for_other_layouts_and_seeds():

@@ -233,14 +233,18 @@ def _grubbs_flags(x: np.ndarray, alpha: float) -> np.ndarray:
 
 def outlier_power(n: int, shifts: Sequence[float] = (0.2, 0.3, 0.5), *,
                   scatter: float = 0.02, conditions: int = 8, trials: int = 1000,
-                  alpha: float = 0.01, seed: int = 0) -> dict[str, float]:
+                  alpha: float = 0.01, seed: int = 0, every_condition: bool = False
+                  ) -> dict[str, float]:
     """Seeded Monte-Carlo power and false-alarm rate of the pooled rule and of Grubbs.
 
     A simulated campaign has ``conditions`` conditions of ``n`` records with
     relative normal scatter ``scatter`` about levels spread over 0.3..2.0.
     For the power, one record of one condition is multiplied by ``1 + shift``
-    (a single outlier in the campaign); the false-alarm rate is the fraction
-    of conditions without an outlier in which some record is flagged.
+    (a single outlier in the campaign), or one record of every condition with
+    ``every_condition`` (a bad pin in each condition: the hardest case for the
+    pooled scale); the power is the fraction of outliers dropped.  The
+    false-alarm rate is the fraction of conditions without an outlier in which
+    some record is flagged.
 
     Parameters
     ----------
@@ -250,6 +254,8 @@ def outlier_power(n: int, shifts: Sequence[float] = (0.2, 0.3, 0.5), *,
         Relative outlier sizes (0.3: +30 %).
     scatter, conditions, trials, alpha, seed
         Simulation settings; ``alpha`` is passed to both rules.
+    every_condition : bool
+        Put an outlier in every condition instead of one.
 
     Returns
     -------
@@ -268,8 +274,10 @@ def outlier_power(n: int, shifts: Sequence[float] = (0.2, 0.3, 0.5), *,
     z, _ = _scores({n: x})
     out["pooled false alarms"] = float(np.mean(z[n].max(axis=-1) > t))
     out["grubbs false alarms"] = float(np.mean(_grubbs_flags(x, alpha) >= 0))
-    which = rng.integers(0, conditions, trials)
-    rows = np.arange(trials)
+    if every_condition:
+        rows, which = np.indices((trials, conditions)).reshape(2, -1)
+    else:
+        rows, which = np.arange(trials), rng.integers(0, conditions, trials)
     for shift in shifts:
         bad = x.copy()
         bad[rows, which, 0] *= 1.0 + shift
