@@ -113,7 +113,8 @@ plt.show()
 # coefficient follows Thirion's law with a = 0.15 and b = 4.7e-6 1/Pa (close to the thesis'
 # steel data). ``process_records`` processes the records in memory, averages each
 # condition, gives the standard deviation and the 95 % Student-t interval, and drops
-# outliers by a Grubbs test.
+# outliers: a record far from its condition's median in units of the record-to-record
+# scatter pooled over the campaign (the summary prints the rule used).
 A_TRUE, B_TRUE = 0.15, 4.7e-6
 truth_mu = {kg: 1.0 / (A_TRUE + B_TRUE * kg * rig.g / rig.contact_area)
             for kg in (1.0, 2.0, 3.0, 5.0, 8.0)}

@@ -287,6 +287,28 @@ def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> di
     return out
 
 
+def _neutral_fixes(law: Law, fd: FitData, fix: Mapping[str, float], notes: list[str]
+                   ) -> dict[str, float]:
+    """Parameters fixed at their neutral value because their optional variable is absent.
+
+    The law's declaration says which (``Law.optional_variables``); a note says
+    so.  A parameter fixed by the caller to another value is refused: without
+    the variable it cannot act.
+    """
+    out = law.neutral_fixes(fd.variables)
+    for var, pname in ((v, law.optional_variables[v][0]) for v in law.optional_variables
+                       if v not in fd.variables):
+        neutral = out[pname]
+        if pname in fix and fix[pname] != neutral:
+            raise InputError(
+                f"data '{fd.name}' have no {var} ({law.meaning(var)}), so law '{law.id}' "
+                f"can only be fitted with {pname} = {neutral:g} (where {var} drops out); "
+                f"{pname} was fixed to {fix[pname]:g}", option="fix")
+        notes.append(f"the data have no {var} ({law.meaning(var)}): {pname} fixed at "
+                     f"{neutral:g}, where {var} drops out of law '{law.id}'")
+    return out
+
+
 def _row_names(fd: FitData, idx: np.ndarray) -> str:
     labels = fd.row_labels if fd.row_labels is not None else np.arange(1, fd.n + 1)
     shown = ", ".join(str(labels[i]) for i in idx[:8])
@@ -305,7 +327,7 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
         b = x <= floor
         if b.any():
             bad |= b
-            reasons.append(f"{var} = 0 ({VARIABLES[var].meaning}), where law '{law.id}' "
+            reasons.append(f"{var} = 0 ({law.meaning(var)}), where law '{law.id}' "
                            f"is singular (it uses log or a negative power of {var})")
     if bad.any():
         idx = np.flatnonzero(bad)
@@ -843,11 +865,12 @@ def fit(
             raise InputError(f"law '{law.id}' has no setting '{k}' to free "
                              f"(settings: {', '.join(setting_names) or 'none'})")
     fix = _check_fix(law, fix, setting_names)
+    fix.update(_neutral_fixes(law, fd, fix, notes))
     freed = tuple(k for k in free if k in setting_names)
     settings = {k: float(fix.get(k, v)) for k, v in law.setting_values.items() if k not in freed}
 
-    x = {k: fd.arrays[k] for k in law.variables}
     y = fd.arrays["mu"]
+    x = {k: fd.arrays[k] if k in fd.arrays else np.zeros_like(y) for k in law.variables}
     guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
     guess = law.initial_guess(guess_data)
     for k in freed:
@@ -963,7 +986,7 @@ def fit(
                        for k in vary])
     jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
-    for var in law.variables:
+    for var in (v for v in law.variables if v in fd.arrays):
         xs = np.unique(fd.arrays[var])
         if xs.size == 1:
             warn_msgs.append(

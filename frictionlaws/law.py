@@ -236,6 +236,17 @@ class Law:
         True when the law is linear in its parameters (closed-form fit).
     aliases : tuple of str
         Other names the registry accepts.
+    optional_variables : dict
+        Variable name -> (parameter name, neutral value): the variable may be
+        left out when that parameter has its neutral value, where the variable
+        drops out of the formula (Burckhardt's vehicle speed ``v`` with
+        ``c4 = 0``).  Evaluation without it, fits to data without it (the
+        parameter is then fixed at its neutral value), comparison and export
+        follow from this one entry.
+    variable_meanings : dict
+        Variable name -> what the variable is *in this law* when it differs
+        from the generic meaning in :data:`VARIABLES` (Burckhardt's ``v`` is the
+        vehicle speed, not the sliding velocity).
     strict_domain : bool
         The law means nothing outside :attr:`domain` (a polynomial valid only over
         its measured box, a pre-peak slip law): ``law(...)`` refuses variables outside
@@ -264,6 +275,8 @@ class Law:
     admissible: Callable[[Mapping[str, float]], str | None] | None = None
     linear: bool = False
     aliases: tuple[str, ...] = ()
+    optional_variables: Mapping[str, tuple[str, float]] = field(default_factory=dict)
+    variable_meanings: Mapping[str, str] = field(default_factory=dict)
     strict_domain: bool = False
     description: str = ""
     notes: str = ""
@@ -280,6 +293,7 @@ class Law:
         clash = set(names) & set(VARIABLES)
         if clash:
             raise ValueError(f"law {self.id}: names clash with variables {clash}")
+        self._check_optional_variables()
         for name, preset in self.presets.items():
             missing = {p.name for p in self.params if not p.optional} - set(preset)
             extra = set(preset) - set(names)
@@ -289,7 +303,59 @@ class Law:
                     f"or unknown {sorted(extra)}"
                 )
 
+    def _check_optional_variables(self) -> None:
+        for var, (pname, neutral) in self.optional_variables.items():
+            if var not in self.variables:
+                raise ValueError(f"law {self.id}: optional variable {var!r} is not a variable")
+            decl = next((p for p in self.params if p.name == pname), None)
+            if decl is None:
+                raise ValueError(f"law {self.id}: optional variable {var!r} names unknown "
+                                 f"parameter {pname!r}")
+            if not decl.bounds[0] <= neutral <= decl.bounds[1]:
+                raise ValueError(f"law {self.id}: neutral value {neutral!r} of {pname!r} is "
+                                 "outside its bounds")
+        unknown = set(self.variable_meanings) - set(self.variables)
+        if unknown:
+            raise ValueError(f"law {self.id}: meanings given for unknown variables "
+                             f"{sorted(unknown)}")
+
     # ------------------------------------------------------------------ names
+    def meaning(self, variable: str) -> str:
+        """What ``variable`` is in this law (its own wording, else the generic one)."""
+        return self.variable_meanings.get(variable, VARIABLES[variable].meaning)
+
+    def required_variables(self, params: Mapping[str, float] | None = None) -> tuple[str, ...]:
+        """The variables an evaluation needs.
+
+        Parameters
+        ----------
+        params : mapping, optional
+            Parameter values; an optional variable whose parameter has its
+            neutral value here is not needed.  Without it, only the
+            variables that are never optional.
+        """
+        out = []
+        for var in self.variables:
+            opt = self.optional_variables.get(var)
+            if opt is not None and (params is None or params.get(opt[0]) == opt[1]):
+                continue
+            out.append(var)
+        return tuple(out)
+
+    def neutral_fixes(self, available: set[str] | Mapping[str, Any]) -> dict[str, float]:
+        """Parameters to fix at their neutral value because their optional variable is absent."""
+        return {pname: neutral for var, (pname, neutral) in self.optional_variables.items()
+                if var not in available}
+
+    def _fill_optional(self, variables: Mapping[str, Any], params: Mapping[str, float]
+                       ) -> dict[str, Any]:
+        """``variables`` plus absent optional variables (0) whose parameter is neutral."""
+        out = dict(variables)
+        for var, (pname, neutral) in self.optional_variables.items():
+            if var not in out and params.get(pname) == neutral:
+                out[var] = 0.0
+        return out
+
     @property
     def param_names(self) -> tuple[str, ...]:
         """Names of the fitted parameters, in declaration order."""
@@ -464,9 +530,7 @@ class Law:
         """
         missing = [v for v in self.variables if v not in variables]
         if missing:
-            what = ", ".join(f"{VARIABLES[m].meaning} [{VARIABLES[m].unit or '-'}]"
-                             for m in missing)
-            raise InputError(f"law '{self.id}' needs variable(s) {', '.join(missing)} ({what})")
+            self._refuse_missing(missing, params)
         unknown = set(variables) - set(VARIABLES)
         if unknown:
             raise InputError(f"unknown variable(s) {sorted(unknown)}; known: {list(VARIABLES)}")
@@ -477,7 +541,8 @@ class Law:
                      for k, v in variables.items()}
             self.evaluate(plain, params)  # the same checks, on the bare arrays
             return evaluate_labelled(self, variables, params)
-        kw = {k: self._prepare(k, variables[k]) for k in self.variables}
+        full = self._fill_optional(variables, params)
+        kw = {k: self._prepare(k, full[k]) for k in self.variables}
         kw.update(params)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             out = self.formula(NUMPY, **kw)
@@ -492,6 +557,21 @@ class Law:
             if _is_series(x):
                 return type(x)(out, index=x.index, name="mu")
         return out
+
+    def _refuse_missing(self, missing: list[str], params: Mapping[str, float]) -> None:
+        """Raise for absent variables, unless each is optional with a neutral parameter."""
+        needed = [m for m in missing if m in self.required_variables(params)]
+        if not needed:
+            return
+        parts = []
+        for m in needed:
+            text = f"{m} ({self.meaning(m)} [{VARIABLES[m].unit or '-'}])"
+            if m in self.optional_variables:
+                pname, neutral = self.optional_variables[m]
+                text += (f", optional only when {pname} = {neutral:g} (here {pname} = "
+                         f"{params.get(pname, math.nan):g})")
+            parts.append(text)
+        raise InputError(f"law '{self.id}' needs variable(s) {'; '.join(parts)}")
 
     def __call__(self, **kwargs: Any) -> Any:
         """Evaluate the law: ``law(p=p, v=v, a=1.0, b=2e-6)``.
@@ -558,7 +638,8 @@ class Law:
         """A plain vectorised function of the law's variables with fixed parameters.
 
         The returned callable takes the variables positionally in the order
-        of :attr:`variables` (or by keyword), applies the floors and calls the
+        of :attr:`variables` (or by keyword; an optional variable whose
+        parameter is neutral may be left out), applies the floors and calls the
         formula directly: no checking, negligible overhead.
         """
         params = self.resolve(values, preset)
@@ -566,9 +647,12 @@ class Law:
         names = self.variables
         floors = dict(self.floors)
 
+        fill = self._fill_optional
+
         def bound(*args: Any, **kwargs: Any) -> Any:
             kw = dict(zip(names, args))
             kw.update(kwargs)
+            kw = fill(kw, params)
             if "v" in kw:
                 kw["v"] = np.abs(kw["v"])
             for k, f in floors.items():
@@ -675,13 +759,13 @@ class Law:
 
     def require_variables(self, available: set[str], what: str = "the data") -> None:
         """Raise a clear error when ``available`` lacks a variable this law needs."""
-        missing = [v for v in self.variables if v not in available]
+        missing = [v for v in self.required_variables() if v not in available]
         if missing:
             fam = ("a slip law (tyre, rolling wheel) needs the slip ratio s; "
                    "pure-sliding tribometer data cannot determine it"
                    if self.family == "slip" and "s" in missing else
                    f"{self.family} law needs " + ", ".join(
-                       f"{m} ({VARIABLES[m].meaning})" for m in missing))
+                       f"{m} ({self.meaning(m)})" for m in missing))
             raise DomainError(
                 f"law '{self.id}' cannot be fitted to {what}: {fam}; "
                 f"available: {', '.join(sorted(available)) or 'none'}"
@@ -695,6 +779,9 @@ class Law:
             "aliases": list(self.aliases),
             "family": self.family,
             "variables": {v: VARIABLES[v].unit for v in self.variables},
+            "variable_meanings": {v: self.meaning(v) for v in self.variables},
+            "optional_variables": {v: {"parameter": p, "neutral": n}
+                                   for v, (p, n) in self.optional_variables.items()},
             "params": [
                 {"name": p.name, "unit": p.unit, "default": p.default,
                  "bounds": [_jsonable(b) for b in p.bounds], "meaning": p.meaning,

@@ -185,6 +185,17 @@ def _var_info(name: str) -> tuple[str, str, str]:
     return var.meaning, var.unit, var.display_unit
 
 
+def _variable_entry(law: Any, v: str) -> str:
+    """A variable in the catalogue: unit, and the law's own meaning when it has one."""
+    text = f"{v} [{_var_info(v)[1] or '–'}]"
+    own = getattr(law, "variable_meanings", {}).get(v)
+    opt = getattr(law, "optional_variables", {}).get(v)
+    extra = [escape(own)] if own else []
+    if opt:
+        extra.append(f"optional when {opt[0]} = {_num(opt[1])}")
+    return text + (f" ({'; '.join(extra)})" if extra else "")
+
+
 def _to_display(name: str, values: np.ndarray) -> tuple[np.ndarray, str]:
     """Convert SI values of variable ``name`` to its display unit (via pint)."""
     _, si, disp = _var_info(name)
@@ -431,8 +442,7 @@ def law_page(law: Any, image: str | None = None) -> str:
     if law.aliases:
         meta.append("**aliases** " + ", ".join(f"``{a}``" for a in law.aliases))
     if law.variables:
-        meta.append("**variables** " + ", ".join(
-            f"{v} [{_var_info(v)[1] or '–'}]" for v in law.variables))
+        meta.append("**variables** " + ", ".join(_variable_entry(law, v) for v in law.variables))
     else:
         meta.append("**variables** none (constant)")
     meta.append(f"**evidence** {escape(law.evidence)}")

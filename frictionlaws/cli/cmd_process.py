@@ -16,7 +16,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "load [kg] or load [N], surface, optional condition, mode, window_start [s], "
         "window_end [s], direction) with a rig description (TOML): filter, subtract the "
         "offsets, find the steady window, average the repeats of each condition, drop "
-        "outliers (Grubbs), and write a dataset with mu, mu_std, n, 95 % Student-t "
+        "outliers (by default a record far from its condition's median in units of the "
+        "record-to-record scatter pooled over the campaign; Grubbs on request in the rig), "
+        "print the rule used, and write a dataset with mu, mu_std, n, 95 % Student-t "
         "intervals, p, v, s and F_N, ready for 'fit' and 'compare'. Unusable records are "
         "reported with the reason and the rest processed.")
     p.add_argument("manifest", metavar="MANIFEST", help="manifest CSV, one row per record")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import re
+from typing import Any
 
 from ._common import add_json_option, print_json
 
@@ -31,9 +32,8 @@ def describe(law_name: str) -> str:
     out.append(f"formula: {law.pretty()}")
     if law.description:
         out.append(f"description: {law.description}")
-    out.append("variables: " + (", ".join(
-        f"{v} [{VARIABLES[v].unit or '-'}] ({VARIABLES[v].meaning})" for v in law.variables)
-        or "none (constant)"))
+    out.append("variables: " + (", ".join(_variable_text(law, v) for v in law.variables)
+                                or "none (constant)"))
     out.append("parameters:")
     for p in law.params:
         lo, hi = p.bounds
@@ -89,3 +89,14 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(describe(args.law))
     return 0
+
+
+def _variable_text(law: Any, v: str) -> str:
+    """One variable for ``show``: unit, this law's meaning, when it may be left out."""
+    from frictionlaws.law import VARIABLES
+
+    text = f"{v} [{VARIABLES[v].unit or '-'}] ({law.meaning(v)}"
+    if v in law.optional_variables:
+        pname, neutral = law.optional_variables[v]
+        text += f"; optional when {pname} = {neutral:g}"
+    return text + ")"

@@ -127,7 +127,7 @@ def cross_validate(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarr
             if step:
                 step()
             continue
-        xs = {k: data.arrays[k][test] for k in law.variables}
+        xs = {k: data.arrays[k][test] for k in law.variables if k in data.arrays}
         with np.errstate(all="ignore"):
             p = np.asarray(law.evaluate(xs, res.values), float)
         p = np.broadcast_to(p, (int(test.sum()),))

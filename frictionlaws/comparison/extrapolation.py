@@ -531,7 +531,7 @@ def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
 
         return HoldoutResult(split.variable, n_tr, n_te, math.nan, math.nan, test=test,
                              error=error_text(exc))
-    xs = {k: data.arrays[k][test] for k in law.variables}
+    xs = {k: data.arrays[k][test] for k in law.variables if k in data.arrays}
     with np.errstate(all="ignore"):
         pred = np.broadcast_to(np.asarray(law.evaluate(xs, res.values), float), (n_te,))
     err = data.arrays["mu"][test] - pred
@@ -642,7 +642,8 @@ def scan_plausibility(law: Law, values: Mapping[str, float], data: FitData, desi
     variables = design.complete(dict(zip(dims, grids)))
     shape = tuple(a.size for a in axes)
     with np.errstate(all="ignore"):
-        mu = np.asarray(law.evaluate({k: variables[k] for k in law.variables}, values), float)
+        used = {k: variables[k] for k in law.variables if k in variables}
+        mu = np.asarray(law.evaluate(used, values), float)
     mu = np.broadcast_to(mu, shape).copy() if shape else np.atleast_1d(mu)
     ranges = {k: (float(np.min(data.arrays[k])), float(np.max(data.arrays[k])))
               for k in dims}
@@ -781,7 +782,7 @@ def evaluate_on(law: Law, values: Mapping[str, float], design: Design,
     """Evaluate at ``points`` with derived variables filled in from their drivers."""
     full = design.complete(points)
     with np.errstate(all="ignore"):
-        out = law.evaluate({k: full[k] for k in law.variables}, values)
+        out = law.evaluate({k: full[k] for k in law.variables if k in full}, values)
     shape = np.broadcast_shapes(*[np.shape(v) for v in points.values()]) if points else ()
     return np.broadcast_to(np.asarray(out, float), shape)
 

@@ -52,9 +52,8 @@ def table_columns(variables: tuple[str, ...]) -> tuple[list[str], list[str]]:
 
 def write_abaqus(job: Job) -> Written:
     """``*FRICTION`` with mu tabulated against slip rate, pressure, temperature, fields."""
-    law = job.law
-    cols, fields = table_columns(law.variables)
-    axes_vars = [c for c in cols if c in law.variables]
+    cols, fields = table_columns(job.variables)
+    axes_vars = [c for c in cols if c in job.variables]
     grid, err, how = job.make_grid(axes_vars, "abaqus")
     mu = tabulated(job, grid)
     model = dict(zip(grid.names, model_axes(job, grid), strict=True))
@@ -64,7 +63,7 @@ def write_abaqus(job: Job) -> Written:
     colspec = ["mu"] + [
         (f"{_COLUMN[c]} ({c} [{job.units.label(c)}])" if c in _COLUMN else
          f"field {fields.index(c) + 1} ({c} [{job.units.label(c)}])")
-        + ("" if c in law.variables else ": single value 0, mu does not depend on it")
+        + ("" if c in job.variables else ": single value 0, mu does not depend on it")
         for c in cols]
     body.append("data lines: " + ", ".join(colspec))
     if cols:

@@ -29,12 +29,12 @@ def _num(x: float) -> str:
 def write_ansys(job: Job) -> Written:
     """``TB,FRIC,MAT,,,ISO`` with nested ``TBFIELD`` blocks and ``TBDATA,1,mu``."""
     law = job.law
-    bad = [v for v in law.variables if v not in _FIELD]
+    bad = [v for v in job.variables if v not in _FIELD]
     if bad:
         raise InputError(
             f"ansys: law '{law.id}' depends on {', '.join(bad)}; TB,FRIC fields are "
             "NPRES (pressure), SLRV (sliding velocity) and TEMP only")
-    names = [v for v in _ORDER if v in law.variables]
+    names = [v for v in _ORDER if v in job.variables]
     grid, err, how = job.make_grid(names, "ansys")
     mu = tabulated(job, grid)
     axes = model_axes(job, grid)

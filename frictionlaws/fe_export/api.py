@@ -22,7 +22,7 @@ __all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
 
 def _fortran(fmt: str) -> Callable[[Job], Written]:
     def write(job: Job) -> Written:
-        from .fortran import FIELD_VARIABLES, fortran_source, routine_name
+        from .fortran import FIELD_VARIABLES, fortran_source, input_deck, routine_name
 
         law = job.law
         fields = [v for v in law.variables if v in FIELD_VARIABLES]
@@ -38,9 +38,10 @@ def _fortran(fmt: str) -> Callable[[Job], Written]:
                 "slipData(nBlock,6) with the slip-rate magnitude in slipData(k,1); check it "
                 "against your release (older releases pass fCoef(nBlock), "
                 "fCoefDeriv(nBlock,3), slipRate(nBlock), as VFRIC_COEF does)",
-                "out: fCoef(k,1) = fCoef(k,2) = mu (isotropic); fCoefDeriv(k,1..3,j) = "
-                f"d mu/d slip rate [1/({u.label('v')})], d mu/d pressure "
-                f"[1/{u.label('p')}], d mu/d temperature [1/{u.label('T')}]; other slots 0",
+                "out: fCoef(k,1) = mu; fCoefDeriv(k,1..3,1) = d mu/d slip rate "
+                f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
+                f"temperature [1/{u.label('T')}], slots 4..20 0; isotropic friction: "
+                "fCoef(k,2) and fCoefDeriv(k,:,2) are left alone, as the manual asks",
             ]
         elif fmt == "abaqus-vfric-coef":
             body += [
@@ -62,7 +63,7 @@ def _fortran(fmt: str) -> Callable[[Job], Written]:
         for i, v in enumerate(fld):
             src = (f"preDefSlv(k,{i + 1})" if fmt == "abaqus-vfric"
                    else f"fieldAvg(k,{i + 1})")
-            body.append(f"field variable {i + 1} = {v} ({VARIABLES[v].meaning}) "
+            body.append(f"field variable {i + 1} = {v} ({law.meaning(v)}) "
                         f"[{u.label(v)}], read from {src}; the analysis stops if it is "
                         "missing")
         if "T" in law.variables:
@@ -76,6 +77,13 @@ def _fortran(fmt: str) -> Callable[[Job], Written]:
             "include's precision",
             "use: abaqus job=<job> user=<this file>",
         ]
+        deck, deck_notes = input_deck(law, fmt)
+        instructions = [
+            "input deck: Abaqus calls this routine only when the surface interaction says "
+            "so; without *FRICTION, USER=... it silently uses other friction. Keyword lines, "
+            "in this order (<...>: yours):", *(f"  {line}" for line in deck),
+            *(f"deck: {note}" for note in deck_notes)]
+        body += instructions
         if job.specs:
             job.domain_warnings()
             body += job.box_lines()
@@ -83,8 +91,9 @@ def _fortran(fmt: str) -> Callable[[Job], Written]:
                           "the subroutine evaluates the law itself at any input (check the "
                           "law's domain)")
         text = fortran_source(law, job.values, fmt, job.units, head)
-        return Written(text, exact=True, summary=body[:1],
-                       details={"routine": routine_name(law)})
+        return Written(text, exact=True, summary=body[:1] + instructions,
+                       details={"routine": routine_name(law), "input_deck": deck,
+                                "input_deck_notes": deck_notes})
 
     return write
 

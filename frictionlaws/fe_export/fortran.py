@@ -5,7 +5,7 @@ Three interfaces are written, in fixed-form Fortran as Abaqus compiles it:
 * ``abaqus-fric-coef``: ``FRIC_COEF`` (Abaqus/Standard, interface of 2017 and
   later releases: ``fCoef(nBlock,2)``, ``fCoefDeriv(nBlock,20,2)``,
   ``slipData(nBlock,6)``), returning mu and its derivatives with respect to
-  slip rate, pressure and temperature;
+  slip rate, pressure and temperature (first direction only: isotropic);
 * ``abaqus-vfric-coef``: ``VFRIC_COEF`` (Abaqus/Explicit general contact),
   mu and the three derivatives;
 * ``abaqus-vfric``: ``VFRIC`` (Abaqus/Explicit contact pairs), returning the
@@ -23,6 +23,14 @@ use implicit typing (a name starting with i..n is an INTEGER: an exponent
 explicitly (REAL*8 or INTEGER); its real arguments keep the include's real kind
 (single or double precision Explicit both work).
 
+The header comment (and the CLI's notes) state the input-deck lines the
+routine needs (:func:`input_deck`): ``*SURFACE INTERACTION`` with
+``*FRICTION, USER=COEFFICIENT, PROPERTIES=0`` (``FRIC_COEF``, ``VFRIC_COEF``)
+or ``*FRICTION, USER, DEPVAR=0, PROPERTIES=0`` (``VFRIC``), and the contact
+that uses it; without them Abaqus never calls the routine.  ``FRIC_COEF``
+defines the first direction only: for isotropic friction ``fCoef(k,2)`` and
+``fCoefDeriv(k,:,2)`` are left alone, as the manual asks.
+
 Variables other than p, v and T (the slip ratio ``s``, the normal load
 ``F_N``) are read from field variables, in the order the law lists them; in
 ``VFRIC`` the normal load is the nodal normal force.
@@ -38,7 +46,8 @@ from typing import Any
 from ..errors import InputError
 from ..law import Law
 
-__all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES"]
+__all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES",
+           "input_deck", "interaction_name"]
 
 #: Export format -> Abaqus routine name.
 FORTRAN_FORMATS = {
@@ -211,6 +220,72 @@ def routine_name(law: Law) -> str:
     if len(base) > 31:
         base = base[:24] + f"_{zlib.crc32(law.id.encode()) % 100000:05d}"
     return base
+
+
+def interaction_name(law: Law) -> str:
+    """The surface-interaction name the deck instructions use: ``FRL_<ID>`` (at most 80)."""
+    return routine_name(law).upper()[:80]
+
+
+def input_deck(law: Law, fmt: str) -> tuple[list[str], list[str]]:
+    """The Abaqus input lines a deck needs for the routine of ``fmt``, and notes.
+
+    Without ``*FRICTION, USER=...`` in the surface interaction Abaqus never
+    calls the routine and silently uses other friction.  The routines keep
+    no state variables and take no properties (the law's parameters are
+    compiled in), so ``PROPERTIES=0`` (no data lines follow) and, for
+    ``VFRIC`` (the only one of the three with state variables),
+    ``DEPVAR=0``.
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+    fmt : str
+        One of :data:`FORTRAN_FORMATS`.
+
+    Returns
+    -------
+    lines : list of str
+        Keyword and data lines in deck order (``<...>`` marks what the user
+        supplies): model data first, then the step where the contact is
+        step data (Abaqus/Explicit).
+    notes : list of str
+        What else the deck must define (temperatures, field variables).
+    """
+    if fmt not in FORTRAN_FORMATS:
+        raise InputError(f"unknown Fortran format '{fmt}'")
+    name = interaction_name(law)
+    friction = {"abaqus-fric-coef": "*FRICTION, USER=COEFFICIENT, PROPERTIES=0",
+                "abaqus-vfric-coef": "*FRICTION, USER=COEFFICIENT, PROPERTIES=0",
+                "abaqus-vfric": "*FRICTION, USER, DEPVAR=0, PROPERTIES=0"}[fmt]
+    lines = [f"*SURFACE INTERACTION, NAME={name}", friction]
+    if fmt == "abaqus-fric-coef":
+        lines += [f"*CONTACT PAIR, INTERACTION={name}", "<slave surface>, <master surface>"]
+    else:
+        lines += ["*STEP", "*DYNAMIC, EXPLICIT", ", <time period>"]
+        if fmt == "abaqus-vfric-coef":
+            lines += ["*CONTACT", "*CONTACT INCLUSIONS, ALL EXTERIOR",
+                      "*CONTACT PROPERTY ASSIGNMENT", f" ,  , {name}"]
+        else:
+            lines += [f"*CONTACT PAIR, INTERACTION={name}", "<slave surface>, <master surface>"]
+        lines += ["*END STEP"]
+    notes = []
+    if fmt == "abaqus-fric-coef":
+        notes.append(f"general contact instead of a pair: *CONTACT, *CONTACT INCLUSIONS, "
+                     f"*CONTACT PROPERTY ASSIGNMENT with ' ,  , {name}'")
+    if "T" in law.variables:
+        notes.append("the law needs the temperature at the contact: define it "
+                     "(*INITIAL CONDITIONS, TYPE=TEMPERATURE, *TEMPERATURE or a coupled "
+                     "analysis), else the routine stops the analysis")
+    fields = _field_index(law)
+    if fmt == "abaqus-vfric":
+        fields = {k: j + 1 for j, k in enumerate(k for k in fields if k != "F_N")}
+    for var, i in fields.items():
+        notes.append(f"field variable {i} = {var}: define it (*INITIAL CONDITIONS, "
+                     f"TYPE=FIELD, VARIABLE={i} or *FIELD, VARIABLE={i}), else the routine "
+                     "stops the analysis")
+    return lines, notes
 
 
 def _unique(names: Mapping[str, str]) -> dict[str, str]:
@@ -435,19 +510,16 @@ def _fric_coef(law: Law, units: Any, name: str) -> list[str]:
         "      do kk = 1, nBlock",
         *_inputs(law, src),
         *_stmt(f"call {name}(zp, zv, zt, zfn, zs, zmu, zdmu)", 9),
-        "         do jj = 1, 2",
-        "            fCoef(kk,jj) = zmu",
-        "         end do",
-        "         do jj = 1, 20",
+        "C        isotropic friction: only the first direction is defined;",
+        "C        fCoef(kk,2) and fCoefDeriv(kk,:,2) are left alone (manual)",
+        "         fCoef(kk,1) = zmu",
+        "         do jj = 4, 20",
         "            fCoefDeriv(kk,jj,1) = 0.0d0",
-        "            fCoefDeriv(kk,jj,2) = 0.0d0",
         "         end do",
-        "         do jj = 1, 2",
-        "C           d mu / d slip rate, d pressure, d temperature (model units)",
-        "            fCoefDeriv(kk,1,jj) = zdmu(2) * u_v",
-        "            fCoefDeriv(kk,2,jj) = zdmu(1) * u_p",
-        "            fCoefDeriv(kk,3,jj) = zdmu(3) * u_t",
-        "         end do",
+        "C        d mu / d slip rate, d pressure, d temperature (model units)",
+        "         fCoefDeriv(kk,1,1) = zdmu(2) * u_v",
+        "         fCoefDeriv(kk,2,1) = zdmu(1) * u_p",
+        "         fCoefDeriv(kk,3,1) = zdmu(3) * u_t",
         "      end do",
         "      return",
         "      end",

@@ -116,6 +116,12 @@ class Job:
     warnings: list[str] = field(default_factory=list)
 
     @functools.cached_property
+    def variables(self) -> tuple[str, ...]:
+        """The law's variables the export depends on: an optional variable whose
+        parameter has its neutral value (Burckhardt's ``v`` with ``c4 = 0``) is left out."""
+        return self.law.required_variables(self.values)
+
+    @functools.cached_property
     def func(self) -> Callable[..., Any]:
         """The law as a fast vectorised function of its variables (SI)."""
         return self.law.bind(self.values)
@@ -126,7 +132,7 @@ class Job:
         if missing:
             raise InputError(
                 f"{what}: law '{self.law.id}' depends on "
-                + ", ".join(f"{m} ({VARIABLES[m].meaning})" for m in missing)
+                + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
                 + "; give its range: " + " ".join(CLI_BOX_HINT[m] for m in missing)
                 + " (API: box={" + ", ".join(f"'{m}': (min, max)" for m in missing) + "})")
         return [self.specs[n] for n in names]
@@ -245,7 +251,7 @@ class Job:
                 return []
             return ["box: " + "; ".join(
                 f"{n} {self.model(n, s.lo)} .. {self.model(n, s.hi)}"
-                for n, s in self.specs.items() if n in self.law.variables)]
+                for n, s in self.specs.items() if n in self.variables)]
         parts = []
         for name, pts in zip(grid.names, grid.points, strict=True):
             sp = _spacing_label(pts)
@@ -276,7 +282,7 @@ class Job:
     def domain_warnings(self) -> None:
         """Warn when the box leaves the law's domain or the fitted data's range."""
         for name, spec in self.specs.items():
-            if name not in self.law.variables:
+            if name not in self.variables:
                 continue
             dom = self.law.domain.get(name)
             if dom and (spec.lo < dom[0] * (1 - 1e-9) - 1e-300 or spec.hi > dom[1] * (1 + 1e-9)):
@@ -292,14 +298,24 @@ class Job:
                     f"({self.model(name, rng[0])} .. {self.model(name, rng[1])}): "
                     "extrapolation of the fit")
         for name, spec in self.specs.items():
-            if name in self.law.variables and spec.single:
+            if name in self.variables and spec.single:
                 self.warnings.append(
                     f"{name} has a single value ({self.model(name, spec.lo)}): the file holds mu "
                     f"at that {name} for every {name} the model reaches")
         for name in self.specs:
-            if name not in self.law.variables:
+            if name not in self.variables:
                 self.warnings.append(f"law '{self.law.id}' does not depend on {name}: "
                                      "its range is ignored")
+
+    def _dropped_lines(self) -> list[str]:
+        """Optional variables the export leaves out, and why (their parameter is neutral)."""
+        out = []
+        for var in self.law.variables:
+            if var not in self.variables:
+                pname, neutral = self.law.optional_variables[var]
+                out.append(f"{var} ({self.law.meaning(var)}) left out: it drops out of the law "
+                           f"at {pname} = {neutral:g}")
+        return out
 
     def header(self, title: str, body: Sequence[str], outside: str | None) -> list[str]:
         """The header lines every exported file starts with."""
@@ -316,7 +332,8 @@ class Job:
             f"formula: {formula}",
             *self.param_lines(),
             f"parameters from: {self.source}",
-            f"units: {self.units.describe(law.variables)}",
+            f"units: {self.units.describe(self.variables)}",
+            *self._dropped_lines(),
             *body,
         ]
         if outside:

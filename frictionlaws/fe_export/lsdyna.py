@@ -105,7 +105,7 @@ def _guard_values(mu: np.ndarray, x: np.ndarray, axis: int) -> np.ndarray:
 def write_lsdyna(job: Job) -> Written:
     """FS/FD/DC when exact, else ``FS = 2`` with ``*DEFINE_TABLE`` / ``*DEFINE_CURVE``."""
     law = job.law
-    bad = [v for v in law.variables if v not in ("p", "v")]
+    bad = [v for v in job.variables if v not in ("p", "v")]
     form, _ = exp_decay_form(law, job.values)
     if form is not None:
         scale, _ = job.units.affine("v")
@@ -141,7 +141,7 @@ def write_lsdyna(job: Job) -> Written:
             f"lsdyna: law '{law.id}' depends on {', '.join(bad)}; LS-DYNA friction tables "
             "(FS = 2) give mu against pressure and sliding velocity only. Use an Abaqus "
             "format, or a law of p and v")
-    names = [v for v in ("p", "v") if v in law.variables]
+    names = [v for v in ("p", "v") if v in job.variables]
     grid, err, how = job.make_grid(names, "lsdyna")
     mu = tabulated(job, grid)
     if "p" not in grid.names:

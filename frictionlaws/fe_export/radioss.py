@@ -128,7 +128,7 @@ def _card(job: Job, ifric: int, c: dict[str, float], title: str) -> list[str]:
 def write_radioss(job: Job) -> Written:
     """Ifric 1 or 4 exactly when the law allows, else Ifric 1 fitted over the box."""
     law = job.law
-    bad = [v for v in law.variables if v not in ("p", "v")]
+    bad = [v for v in job.variables if v not in ("p", "v")]
     if bad:
         raise InputError(
             f"radioss: law '{law.id}' depends on {', '.join(bad)}; Radioss friction laws "
@@ -161,7 +161,7 @@ def write_radioss(job: Job) -> Written:
         lines = commented(head, "# ") + _card(job, 4, c, f"frictionlaws {law.id} (exact)")
         return Written("\n".join(lines) + "\n", exact=True, summary=body[-2:-1],
                        details={"ifric": 4, "coefficients": c})
-    names = [v for v in ("p", "v") if v in law.variables]
+    names = [v for v in ("p", "v") if v in job.variables]
     c, err, grid = fit_ifric1(job, names)
     where = ", ".join(f"{k} = {job.model(k, v)}" for k, v in err.where.items())
     summary = [

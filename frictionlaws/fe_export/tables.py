@@ -27,7 +27,7 @@ def _num(x: float) -> str:
 
 
 def _grid(job: Job, what: str):
-    names = [v for v in _ORDER if v in job.law.variables]
+    names = [v for v in _ORDER if v in job.variables]
     grid, err, how = job.make_grid(names, what)
     return grid, err, how, tabulated(job, grid)
 

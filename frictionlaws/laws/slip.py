@@ -264,6 +264,8 @@ register(Law(
     formula=_burckhardt,
     guess=_burckhardt_guess,
     presets=BURCKHARDT_ROADS,
+    optional_variables={"v": ("c4", 0.0)},
+    variable_meanings={"v": "vehicle (wheel-centre) speed"},
     domain=SLIP,
     derived=(
         Derived("s_peak", "", "slip of the maximum of mu over s = 0..1 at v = 0 "
@@ -286,7 +288,9 @@ register(Law(
     "road presets have c4 = 0. Peaks (slip/mu): asphalt dry 0.170/1.17 (mu(1) = 0.76), "
     "asphalt wet 0.131/0.80, concrete dry 0.160/1.09, cobblestone dry 0.400/1.00, "
     "cobblestone wet 0.140/0.38, snow 0.060/0.19, ice no interior peak (mu rises to "
-    "c1 = 0.05). With a single speed c4 cannot be determined: fix it (fix={'c4': 0}).",
+    "c1 = 0.05). With a single speed c4 cannot be determined: fix it (fix={'c4': 0}). v is "
+    "optional when c4 = 0: slip-only (s, mu) data are fitted with c4 fixed at 0, and "
+    "law(s=..., preset=...) needs no v.",
 ))
 
 # ------------------------------------------------------------- burckhardt-sqrt

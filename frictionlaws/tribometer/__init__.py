@@ -28,6 +28,7 @@ from .calibration import (
     internal_torque_from_runs,
     system_error_from_weights,
 )
+from .outliers import outlier_power, pooled_outliers
 from .process import (
     Campaign,
     ConditionResult,
@@ -55,6 +56,8 @@ __all__ = [
     "grubbs",
     "internal_torque_from_runs",
     "load_rig",
+    "outlier_power",
+    "pooled_outliers",
     "process_campaign",
     "process_record",
     "process_records",

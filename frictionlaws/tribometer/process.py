@@ -43,16 +43,23 @@ Per condition
     normally about it (repeat-to-repeat scatter dominates the in-record noise).
 
 Outlier rule
-    Two-sided Grubbs test on the record means of a condition with at least 4
-    usable records (so that 3 remain; with 3 the test can only flag a record
-    because the other two happen to agree closely), significance ``alpha``
-    (rig ``[outliers] alpha``, default 0.01), applied once: the record with
-    the largest ``G = |x - mean| / sd`` is dropped when ``G`` exceeds the
-    critical value
+    ``[outliers] rule`` of the rig.  ``"pooled"`` (default): the
+    record-to-record scatter, relative to each condition's median, is pooled
+    robustly over the campaign's conditions and a record departing from its
+    condition's median by more than a calibrated threshold in pooled-scatter
+    units is dropped (conditions of 3 or more records; at most a minority of a
+    condition; a good condition loses a record with probability at most
+    ``alpha``); see :mod:`.outliers`.  It works at the rig's 3..7 repeats, where
+    Grubbs cannot.  A campaign too small to pool a scatter falls back to
+    Grubbs.  ``"grubbs"``: the two-sided Grubbs test on the record means of a
+    condition with at least 4 usable records (so that 3 remain), significance
+    ``alpha`` (default 0.01), applied once: the record with the largest
+    ``G = |x - mean| / sd`` is dropped when ``G`` exceeds the critical value
     ``(n - 1) / sqrt(n) * sqrt(t^2 / (n - 2 + t^2))`` with ``t`` the
     ``1 - alpha / (2 n)`` quantile of Student's t with ``n - 2`` degrees of
-    freedom.  The dropped record is reported with its ``G`` and the critical
-    value.  ``[outliers] rule = "none"`` keeps every record.
+    freedom.  ``"none"`` keeps every record.  A dropped record is reported with
+    its statistic and threshold; the rule used, with its figures, is printed in
+    the summary and written to the outputs' provenance.
 
 Unusable records
     A missing or unreadable file, wrong columns or units, NaNs, a time base
@@ -346,6 +353,7 @@ class RecordResult:
     disc_speed: float = math.nan
     pin_speed: float = math.nan
     grubbs_g: float = math.nan
+    outlier_z: float = math.nan
     notes: list[str] = field(default_factory=list)
     explicit_condition: bool = False
 
@@ -672,11 +680,100 @@ def _auto_conditions(results: list[RecordResult], step: float) -> None:
                 r.condition = only
 
 
+def _grubbs_condition(usable: list[RecordResult], alpha: float, label: str
+                      ) -> list[RecordResult]:
+    """Grubbs on one condition's usable records: the dropped record (status and reason set)."""
+    if len(usable) < GRUBBS_MIN:
+        return []
+    mus = np.array([r.mu for r in usable])
+    idx, g, g_crit = grubbs(mus, alpha)
+    for r, gi in zip(usable, np.abs(mus - mus.mean()) / (mus.std(ddof=1) or 1.0), strict=True):
+        r.grubbs_g = float(gi)
+    if idx is None:
+        return []
+    bad = usable[idx]
+    bad.status = "outlier"
+    rest = np.delete(mus, idx)
+    bad.reason = (f"outlier ({label}, alpha = {alpha:g}): mu = {bad.mu:.4g} vs "
+                  f"{rest.mean():.4g} +/- {rest.std(ddof=1):.2g} of the other {rest.size} "
+                  f"records; G = {g:.4f} > {g_crit:.4f}")
+    return [bad]
+
+
+def _pooled_conditions(groups: list[tuple[str, list[RecordResult]]], alpha: float
+                       ) -> tuple[dict[str, list[RecordResult]], str] | None:
+    """The pooled rule over the campaign; None when the scatter cannot be pooled."""
+    from .outliers import pooled_outliers
+
+    res = pooled_outliers([[r.mu for r in recs] for _, recs in groups], alpha)
+    if not res.pooled:
+        return None
+    out: dict[str, list[RecordResult]] = {}
+    for (name, recs), z, t, flagged in zip(groups, res.z, res.threshold, res.flagged,
+                                           strict=True):
+        for r, zi in zip(recs, z, strict=True):
+            r.outlier_z = float(zi)
+        if not flagged:
+            continue
+        med = float(np.median([r.mu for r in recs]))
+        for j in flagged:
+            bad = recs[j]
+            bad.status = "outlier"
+            bad.reason = (f"outlier (pooled scatter, alpha = {alpha:g}): mu = {bad.mu:.4g} is "
+                          f"{100 * (bad.mu / med - 1):+.1f} % from the condition's median "
+                          f"{med:.4g}, z = {bad.outlier_z:.2f} pooled scatters > threshold "
+                          f"{t:.2f} for {len(recs)} records")
+        out[name] = [recs[j] for j in flagged]
+    sizes = sorted({len(recs) for _, recs in groups if len(recs) >= 3})
+    thr = ", ".join(f"t_{n} = {t:.2f}" for n, t in zip(
+        sizes, [next(t for (_, rr), t in zip(groups, res.threshold, strict=True)
+                     if len(rr) == n) for n in sizes], strict=True))
+    text = (f"pooled (a record departing from its condition's median by more than t_n "
+            f"pooled relative scatters is dropped; scatter {100 * res.sigma:.3g} % pooled "
+            f"robustly from {res.pool} deviations of the conditions with 3 or more records; "
+            f"thresholds calibrated for a false-alarm probability <= {alpha:g} per condition: "
+            f"{thr})")
+    return out, text
+
+
+def _outlier_decisions(groups: list[tuple[str, list[RecordResult]]], rig: Rig
+                       ) -> tuple[dict[str, list[RecordResult]], str]:
+    """Apply the rig's outlier rule: the dropped records per condition and the rule used."""
+    rule, alpha = rig.outliers.rule, rig.outliers.alpha
+    grubbs_text = (f"grubbs (two-sided Grubbs, alpha = {alpha:g}, once per condition of 4 or "
+                   "more records)")
+    if rule == "none":
+        return {}, "none (every usable record kept)"
+    if rule == "pooled":
+        pooled = _pooled_conditions(groups, alpha)
+        if pooled is not None:
+            return pooled
+        grubbs_text = (f"grubbs as the fallback of the pooled rule (too few repeats to pool a "
+                       f"scatter: fewer than {_min_pool()} deviations from conditions of 3 or "
+                       f"more records); two-sided, alpha = {alpha:g}, once per condition of 4 "
+                       "or more records")
+    label = "Grubbs" if rule == "grubbs" else "Grubbs, fallback of the pooled rule"
+    out = {name: d for name, recs in groups if (d := _grubbs_condition(recs, alpha, label))}
+    return out, grubbs_text
+
+
+def _min_pool() -> int:
+    from .outliers import MIN_POOL
+
+    return MIN_POOL
+
+
 def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
-              ) -> list[ConditionResult]:
+              ) -> tuple[list[ConditionResult], str]:
     """Group records into conditions, apply the outlier rule, compute the statistics.
 
     Sets ``status`` to ``"outlier"`` on records dropped by the rule.
+
+    Returns
+    -------
+    conditions : list of ConditionResult
+    rule : str
+        The outlier rule used, with its settings and figures (for reports).
     """
     _auto_conditions(results, rig.group_speed_step)
     order: list[str] = []
@@ -687,28 +784,17 @@ def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
         if r.condition not in by:
             order.append(r.condition)
         by.setdefault(r.condition, []).append(r)
+    decisions, rule_text = _outlier_decisions([(k, [r for r in by[k] if r.usable])
+                                               for k in order], rig)
     out = []
     for name in order:
         members = by[name]
         usable = [r for r in members if r.usable]
         unusable = [(r.file, r.reason) for r in members if not r.usable]
         notes: list[str] = []
-        outliers: list[tuple[str, str]] = []
-        if rig.outliers.rule == "grubbs" and len(usable) >= GRUBBS_MIN:
-            mus = np.array([r.mu for r in usable])
-            idx, g, g_crit = grubbs(mus, rig.outliers.alpha)
-            for r, gi in zip(usable, np.abs(mus - mus.mean()) / (mus.std(ddof=1) or 1.0),
-                             strict=True):
-                r.grubbs_g = float(gi)
-            if idx is not None:
-                bad = usable[idx]
-                bad.status = "outlier"
-                rest = np.delete(mus, idx)
-                bad.reason = (f"outlier (Grubbs, alpha = {rig.outliers.alpha:g}): mu = "
-                              f"{bad.mu:.4g} vs {rest.mean():.4g} +/- {rest.std(ddof=1):.2g} of "
-                              f"the other {rest.size} records; G = {g:.4f} > {g_crit:.4f}")
-                outliers.append((bad.file, bad.reason))
-                usable = [r for r in usable if r is not bad]
+        dropped = decisions.get(name, [])
+        outliers = [(r.file, r.reason) for r in dropped]
+        usable = [r for r in usable if all(r is not d for d in dropped)]
         if not usable:
             out.append(ConditionResult(name, members[0].surface, members[0].mode, 0, math.nan,
                                        math.nan, (math.nan, math.nan), math.nan, math.nan,
@@ -747,7 +833,7 @@ def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
             pin_speed=float(np.mean([r.pin_speed for r in usable])),
             load_text=usable[0].load_text, files=[r.file for r in usable], outliers=outliers,
             unusable=unusable, notes=notes, written=written))
-    return out
+    return out, rule_text
 
 
 # --------------------------------------------------------------------------- campaign
@@ -761,6 +847,7 @@ class Campaign:
     source: str = "<memory>"
     notes: list[str] = field(default_factory=list)
     min_repeats: int = 2
+    outlier_rule: str = ""
 
     @property
     def used(self) -> list[RecordResult]:
@@ -833,7 +920,8 @@ class Campaign:
                 "window_start [s]": r.window_start, "window_end [s]": r.window_end,
                 "window_source": r.window_source, "cutoff [Hz]": r.cutoff,
                 "cutoff_source": r.cutoff_source, "fs [Hz]": r.fs, "duration [s]": r.duration,
-                "samples": r.n_samples, "grubbs_G": r.grubbs_g, "notes": "; ".join(r.notes)})
+                "samples": r.n_samples, "grubbs_G": r.grubbs_g,
+                "outlier_z": r.outlier_z, "notes": "; ".join(r.notes)})
         return pd.DataFrame(rows)
 
     def _provenance(self) -> list[str]:
@@ -845,9 +933,7 @@ class Campaign:
             f"{len(self.unusable)} unusable (see the per-record table)",
             "mu: mean of the record means of a condition; mu_std: their sample standard "
             "deviation; mu_ci95_low/high: 95 % Student-t interval of the mean; n: records used",
-            f"outlier rule: {self.rig.outliers.rule}"
-            + (f" (two-sided Grubbs, alpha = {self.rig.outliers.alpha:g}, once per condition)"
-               if self.rig.outliers.rule == "grubbs" else ""),
+            f"outlier rule: {self.outlier_rule or self.rig.outliers.rule}",
         ]
 
     def write_dataset(self, path: str | os.PathLike[str]) -> Path:
@@ -856,14 +942,16 @@ class Campaign:
 
     def write_records(self, path: str | os.PathLike[str]) -> Path:
         """Write the per-record table as CSV."""
-        return _write_csv(path, self.records_frame(), self._provenance()[:2])
+        prov = self._provenance()
+        return _write_csv(path, self.records_frame(), prov[:2] + prov[3:])
 
     def summary_lines(self, *, short: bool = False) -> list[str]:
         """Lines of the summary: counts, unusable records, outliers, conditions not written."""
         written = [c for c in self.conditions if c.written]
         lines = [f"{len(self.records)} records: {len(self.used)} used, "
                  f"{len(self.outliers)} dropped as outliers, {len(self.unusable)} unusable; "
-                 f"{len(written)} conditions in the dataset"]
+                 f"{len(written)} conditions in the dataset",
+                 f"outlier rule: {self.outlier_rule or self.rig.outliers.rule}"]
         if short:
             for r in self.unusable:
                 lines.append(f"unusable record {r.file}: {r.reason}")
@@ -1054,8 +1142,8 @@ def process_campaign(
     entries, notes = read_manifest(manifest, rig)
     plots_dir = _plots_dir(plots)
     results = _run(entries, rig, None, _jobs(jobs, len(entries)), progress, plots_dir)
-    conditions = summarise(results, rig, min_repeats=min_repeats)
-    camp = Campaign(results, conditions, rig, os.fspath(manifest), notes, min_repeats)
+    conditions, rule = summarise(results, rig, min_repeats=min_repeats)
+    camp = Campaign(results, conditions, rig, os.fspath(manifest), notes, min_repeats, rule)
     if plots_dir is not None:
         _summary_plot(camp, plots_dir)
     return camp
@@ -1086,8 +1174,8 @@ def process_records(
     entries = [replace(e, path="") for e in entries]
     plots_dir = _plots_dir(plots)
     results = _run(entries, rig, records, 1, progress, plots_dir)
-    conditions = summarise(results, rig, min_repeats=min_repeats)
-    camp = Campaign(results, conditions, rig, "<memory>", notes, min_repeats)
+    conditions, rule = summarise(results, rig, min_repeats=min_repeats)
+    camp = Campaign(results, conditions, rig, "<memory>", notes, min_repeats, rule)
     if plots_dir is not None:
         _summary_plot(camp, plots_dir)
     return camp

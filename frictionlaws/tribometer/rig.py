@@ -33,7 +33,7 @@ dimensional value is a string with its unit, parsed with pint through
     min_mu = 0.02
 
     [outliers]
-    rule = "grubbs"               # or "none"
+    rule = "pooled"               # or "grubbs" or "none"
     alpha = 0.01
 
     [grouping]
@@ -163,17 +163,27 @@ class OutlierSettings:
 
     Attributes
     ----------
-    rule : {"grubbs", "none"}
-        ``"grubbs"``: the two-sided Grubbs test at significance ``alpha``,
-        applied once per condition (at most one record dropped) and only when
-        the condition has at least 4 usable records.  ``"none"``: keep all.
+    rule : {"pooled", "grubbs", "none"}
+        ``"pooled"`` (default): the record-to-record scatter is pooled robustly
+        over the campaign's conditions (relative to each condition's median) and
+        a record departing from its condition's median by more than a threshold
+        in pooled-scatter units is dropped (conditions of 3 or more records;
+        :mod:`frictionlaws.tribometer.outliers`).  It detects a +30 % record
+        among 4 repeats with 2 % scatter almost always, where Grubbs does a
+        third of the time.  A campaign too small to pool a scatter falls back
+        to Grubbs, with a note.  ``"grubbs"``: the two-sided Grubbs test at
+        significance ``alpha``, applied once per condition (at most one record
+        dropped) and only when the condition has at least 4 usable records.
+        ``"none"``: keep all.
     alpha : float
-        Significance level of the Grubbs test.  The default 0.01 drops a good
-        record in about 1 % of normal conditions; 0.05 detects outliers more
-        often but lowers the coverage of the confidence intervals.
+        Pooled rule: the largest probability that a condition without an
+        outlier loses a record (the thresholds are calibrated for it).  Grubbs:
+        its significance level.  The default 0.01 drops a good record in at
+        most 1 % of normal conditions; 0.05 detects outliers more often but
+        lowers the coverage of the confidence intervals.
     """
 
-    rule: str = "grubbs"
+    rule: str = "pooled"
     alpha: float = 0.01
 
 
@@ -288,6 +298,8 @@ class Rig:
         }
 
 
+#: The outlier rules a rig may name.
+OUTLIER_RULES = ("pooled", "grubbs", "none")
 _WINDOW_FRACTIONS = {"speed_tolerance", "level_tolerance", "noise_factor", "min_mu",
                      "start_tolerance"}
 _TOP_KEYS = {"track_radius", "pin_diameter", "contact_area", "system_error", "g",
@@ -500,10 +512,10 @@ def rig_from_dict(data: Mapping[str, Any], *, source: str = "<dict>") -> Rig:
     if "outliers" in data:
         ot = data["outliers"]
         _check_keys(ot, {"rule", "alpha"}, src, "outliers")
-        rule = str(ot.get("rule", "grubbs")).strip().lower()
-        if rule not in ("grubbs", "none"):
-            raise InputError(f"'outliers.rule' = {ot.get('rule')!r}; expected 'grubbs' or "
-                             "'none'", file=src)
+        rule = str(ot.get("rule", "pooled")).strip().lower()
+        if rule not in OUTLIER_RULES:
+            raise InputError(f"'outliers.rule' = {ot.get('rule')!r}; expected one of "
+                             f"{', '.join(OUTLIER_RULES)}", file=src)
         out = OutlierSettings(rule=rule, alpha=_number(ot, "alpha", src, "outliers.", 0.01,
                                                        1e-6, 0.5))
 
