@@ -321,7 +321,18 @@ class Law:
 
     # ------------------------------------------------------------------ names
     def meaning(self, variable: str) -> str:
-        """What ``variable`` is in this law (its own wording, else the generic one)."""
+        """Return what ``variable`` is in this law (its own wording, else the generic one).
+
+        Parameters
+        ----------
+        variable : str
+            A variable name (``"p"``, ``"v"``, ``"T"``, ``"F_N"``, ``"s"``).
+
+        Returns
+        -------
+        str
+            E.g. ``"contact pressure"``; burckhardt's ``v`` is the vehicle speed.
+        """
         return self.variable_meanings.get(variable, VARIABLES[variable].meaning)
 
     def required_variables(self, params: Mapping[str, float] | None = None) -> tuple[str, ...]:
@@ -333,6 +344,11 @@ class Law:
             Parameter values; an optional variable whose parameter has its
             neutral value here is not needed.  Without it, only the
             variables that are never optional.
+
+        Returns
+        -------
+        tuple of str
+            The variable names, in the law's order.
         """
         out = []
         for var in self.variables:
@@ -343,7 +359,18 @@ class Law:
         return tuple(out)
 
     def neutral_fixes(self, available: set[str] | Mapping[str, Any]) -> dict[str, float]:
-        """Parameters to fix at their neutral value because their optional variable is absent."""
+        """Return the parameters to fix at their neutral value (their variable is absent).
+
+        Parameters
+        ----------
+        available : set of str or mapping
+            The variables the data have.
+
+        Returns
+        -------
+        dict
+            Parameter name -> neutral value, for every optional variable not available.
+        """
         return {pname: neutral for var, (pname, neutral) in self.optional_variables.items()
                 if var not in available}
 
