@@ -1131,10 +1131,9 @@ def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarr
         def f(theta: np.ndarray, d=d) -> float:
             vals = dict(values)
             vals.update(dict(zip(names, theta)))
-            with np.errstate(all="ignore"):
-                return float(d.func(_numpy_ns(), **vals))
-        value = f(np.array([values[k] for k in names])) if names else float(
-            d.func(_numpy_ns(), **values))
+            return d.value(vals, _numpy_ns())
+        value = f(np.array([values[k] for k in names])) if names else d.value(
+            values, _numpy_ns())
         se = None
         if cov is not None and not non_id and math.isfinite(value):
             theta = np.array([values[k] for k in names])
@@ -1295,7 +1294,7 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     if ok.sum() > len(inp.vary) and not inp.non_id:
         _set_corr(inp.vary, np.cov(boot.samples[ok].T).reshape(len(inp.vary), -1), corr)
     if inp.law.derived and not inp.non_id:
-        funcs = {d.name: (lambda vals, d=d: d.func(_numpy_ns(), **vals))
+        funcs = {d.name: (lambda vals, d=d: d.value(vals, _numpy_ns()))
                  for d in inp.law.derived}
         hat = np.array([derived[k]["value"] for k in funcs], float)
         dse, dci, _ = intervals(derived_samples(funcs, inp.values, inp.vary, boot.samples),

@@ -133,6 +133,28 @@ class Derived:
     meaning: str
     func: Callable[..., Any]
 
+    def value(self, params: Mapping[str, float], ns: Any = None) -> float:
+        """Evaluate at ``params``: a division by zero gives inf or nan, never an error.
+
+        Parameters
+        ----------
+        params : mapping
+            Parameter and setting values (SI).
+        ns : namespace, optional
+            The math namespace (default: NumPy's).
+
+        Returns
+        -------
+        float
+            The value; ``inf``/``nan`` where the formula has a pole (e.g. 1/b at b = 0).
+        """
+        vals = {k: np.float64(v) for k, v in params.items()}
+        with np.errstate(all="ignore"):
+            try:
+                return float(self.func(NUMPY if ns is None else ns, **vals))
+            except (ZeroDivisionError, OverflowError):
+                return math.nan
+
 
 def _sympy_log10(x: Any) -> Any:
     import sympy
@@ -834,8 +856,7 @@ class Law:
         """Evaluate the derived quantities for complete ``params``."""
         out = {}
         for d in self.derived:
-            with np.errstate(all="ignore"):
-                out[d.name] = float(d.func(NUMPY, **params))
+            out[d.name] = d.value(params)
         return out
 
     def __repr__(self) -> str:

@@ -276,3 +276,21 @@ def test_temperature_aware_variant_by_name():
     log_aT = -8.86 * 10 / (101.6 + 10)
     assert law(p=1e5, v=0.3, T=T_ref + 10, **params) == pytest.approx(
         base(p=1e5, v=0.3 * 10**log_aT, **params), rel=1e-12)
+
+
+@pytest.mark.parametrize("law", list_laws(), ids=lambda law: law.id)
+def test_derived_quantities_at_every_finite_bound_never_raise(law):
+    """A parameter held at a bound (``--fix b=0``) gives inf/nan derived values, no error."""
+    base = law.resolve(CASES[law.id].params)
+    for p in law.params:
+        for bound in p.bounds:
+            if math.isfinite(bound):
+                values = law.derived_values({**base, p.name: bound})
+                assert set(values) == {d.name for d in law.derived}
+
+
+def test_fit_with_a_parameter_fixed_at_a_pole_of_a_derived_quantity(capsys):
+    from frictionlaws.cli import main
+
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--fix", "b=0"]) == 0
+    assert "tau_sat = n/a" in capsys.readouterr().out
