@@ -47,6 +47,10 @@ V_MIN = 1e-9
 P_MIN = 1.0
 #: Floor applied to the normal load in laws singular at F_N = 0 [N].
 F_MIN = 1e-6
+#: Largest friction coefficient the library writes (FE decks) or reports as a tyre's
+#: peak.  Rubber on dry rough surfaces reaches 3 to 4; more is a unit or parameter
+#: error (mu_k = 9495 from an extrapolated fit, mu0 = 1e6 typed by hand).
+MU_MAX = 10.0
 
 
 @dataclass(frozen=True)

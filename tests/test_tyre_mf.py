@@ -472,3 +472,23 @@ def test_property_file_encodings_follow_the_one_rule(tmp_path):
     nul.write_bytes(TIR_SNIPPET.encode() + b"$ padding\n" * 1000 + b"PCX2 = \x001\n")
     with pytest.raises(InputError, match="NUL byte"):
         MagicFormula.from_file(nul)
+
+
+def test_pressure_outside_the_file_range_warns_and_nonsense_peaks_are_refused(tmp_path):
+    """An INFLPRES outside PRESMIN..PRESMAX is extrapolation (warned); a pressure or a
+    coefficient that makes the peak friction <= 0 is refused, never reported."""
+    src = FILES[1].with_name(FILES[1].stem + ".converted.tir").read_text()
+    lines = src.splitlines()
+
+    def variant(key, value):
+        out = [f"{key} = {value}" if ln.split("=")[0].strip() == key else ln for ln in lines]
+        path = tmp_path / f"{key}_{value}.tir"
+        path.write_text("\n".join(out) + "\n")
+        return path
+
+    with pytest.warns(ExtrapolationWarning, match="pressure"):
+        MagicFormula.from_file(variant("INFLPRES", "260")).summary()
+    for key, value in (("INFLPRES", "2600000"), ("PDX1", "-1.1632"), ("LMUX", "0")):
+        with pytest.raises(InputError, match="is not a friction coefficient"):
+            MagicFormula.from_file(variant(key, value)).summary()
+        assert main(["tyre", "mf", str(variant(key, value))]) == 2

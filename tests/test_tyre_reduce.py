@@ -93,3 +93,16 @@ def test_reduce_errors(mf62):
         reduce_mf(mf62, "pacejka", fz=4000.0, side="sideways")
     with pytest.raises(InputError, match="n must be"):
         reduce_mf(mf62, "pacejka", fz=4000.0, n=3)
+
+
+def test_cli_reduction_worse_than_the_mean_exits_1_and_saves_nothing(tmp_path, capsys):
+    from frictionlaws.cli import main
+
+    tir = (Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+           / "MagicFormula61_Parameters.converted.tir")
+    save = tmp_path / "r.json"
+    code = main(["tyre", "reduce", str(tir), "--load", "4", "--law", "burckhardt-sqrt",
+                 "--slip-max", "1e-9", "--save", str(save)])
+    assert code == 1
+    assert "did not converge" in capsys.readouterr().err
+    assert not save.exists()

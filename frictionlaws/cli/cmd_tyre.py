@@ -411,6 +411,11 @@ def _run_reduce(args: argparse.Namespace) -> int:
     mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
+    if not red.fit.success:  # as fit: a failed reduction is reported, not saved (exit 1)
+        print(red.report())
+        print(f"error: the reduction did not converge ({red.fit.message}); nothing saved",
+              file=sys.stderr)
+        return 1
     if args.save:
         red.fit.save(args.save)
     if args.json:

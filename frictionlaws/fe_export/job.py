@@ -19,16 +19,14 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..law import VARIABLES, Law
+from ..law import MU_MAX, VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
 
 #: Points at which the law is checked in the box before export (spread over the axes).
 _BOX_SAMPLES = 200_000
-#: Largest friction coefficient an export writes.  Rubber on dry rough surfaces
-#: reaches 3 to 4; a larger value in a deck is a unit or parameter error (mu_k = 9495
-#: from extrapolated fits, mu0 = 1e6 typed by hand).
-MU_EXPORT_MAX = 10.0
+#: Largest friction coefficient an export writes (see :data:`frictionlaws.law.MU_MAX`).
+MU_EXPORT_MAX = MU_MAX
 
 __all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
 

@@ -105,6 +105,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ExtrapolationWarning, InputError
+from ..law import MU_MAX
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
@@ -422,9 +423,26 @@ class MagicFormula:
         if gamma.ndim or gamma != 0.0:
             self._check("gamma", gamma)
             self._warn_range("gamma", gamma)
-        if pressure is not None:
-            self._warn_range("pressure", np.asarray(float(pressure)))
+        used = self.pressure if pressure is None else pressure  # the file's INFLPRES too
+        if used is not None:
+            self._warn_range("pressure", np.asarray(float(used)))
         return fz, gamma, self._dpi(pressure)
+
+    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: float) -> None:
+        """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX)."""
+        bad = ~((np.asarray(mu) > 0) & (np.asarray(mu) <= MU_MAX))
+        if not np.any(bad):
+            return
+        i = int(np.flatnonzero(np.broadcast_to(bad, np.shape(bad) or (1,)).ravel())[0])
+        mu_i = float(np.ravel(mu)[i] if np.ndim(mu) else mu)
+        fz_i = float(np.ravel(np.broadcast_to(fz, np.shape(mu) or (1,)))[i])
+        p = self.nominal_pressure * (1 + dpi) if self.nominal_pressure else None
+        at = f"F_z = {fz_i:g} N" + (f", inflation {p / 1e6:.4g} MPa" if p else "")
+        raise InputError(
+            f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
+            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); check the "
+            "inflation pressure against the file's range and the PD*/LMU* coefficients",
+            file=self.source)
 
     # ------------------------------------------------------ factors (x, y)
     def _long(self, fz: Any, gamma: Any, dpi: float) -> MFCoefficients:
@@ -433,6 +451,7 @@ class MagicFormula:
         g = np.sin(gamma) if self._six else gamma * c("LGAX")
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
+        self._check_peak("mu_x", mu, fz, dpi)
         D = mu * fz
         C = c("PCX1") * c("LCX")
         K = (fz * (c("PKX1") + c("PKX2") * dfz) * np.exp(c("PKX3") * dfz)
@@ -476,6 +495,7 @@ class MagicFormula:
             S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g
             S_V = (fz * ((c("PVY1") + c("PVY2") * dfz) * c("LVY")
                          + (c("PVY3") + c("PVY4") * dfz) * g) * self.lmuy_prime)
+        self._check_peak("mu_y", mu, fz, dpi)
         D = mu * fz
         B = K / (C * D + EPS)
         return MFCoefficients(B, C, D, E_a, E_b, K, S_H, S_V, mu)
@@ -703,6 +723,8 @@ class MagicFormula:
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
                                              1.5 * self.fnomin], float))
+        if self.pressure is not None:  # the loads are this summary's choice, not the pressure
+            self._warn_range("pressure", np.asarray(self.pressure))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ExtrapolationWarning)
             lon = self.longitudinal(loads)
