@@ -1342,14 +1342,16 @@ def load_result(path: str | Path) -> FitResult:
     value is checked: numbers where numbers belong, known names, values within the
     law's bounds; anything else is an :class:`InputError` naming the file and key.
     """
+    from . import jsonio
     from .outputs import check_input_file
 
     path = check_input_file(path, "params file")
     try:
-        doc = json.loads(path.read_text(encoding="utf-8"),
-                         parse_constant=_refuse_constant)
-    except (UnicodeDecodeError, json.JSONDecodeError, ValueError) as exc:
+        doc = jsonio.loads(path.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise InputError(f"not a JSON file ({exc})", file=str(path)) from None
+    except ValueError as exc:
+        raise InputError(str(exc), file=str(path)) from None
     if not isinstance(doc, dict) or "law" not in doc or "params" not in doc:
         raise InputError("expected a JSON object with 'law' and 'params'", file=str(path))
     if doc.get("format", RESULT_FORMAT) != RESULT_FORMAT:
@@ -1395,8 +1397,6 @@ def _loaded_uncertainty(doc: Mapping[str, Any], file: str) -> dict[str, Any]:
     return info
 
 
-def _refuse_constant(name: str) -> float:
-    raise ValueError(f"{name} is not a number JSON allows")
 
 
 def _list(doc: Mapping[str, Any], key: str) -> list[Any]:

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["to_jsonable", "dumps", "bound_to_json", "bound_from_json"]
+__all__ = ["to_jsonable", "dumps", "loads", "bound_to_json", "bound_from_json"]
 
 
 def _number(x: float) -> float | None:
@@ -73,3 +73,41 @@ def bound_from_json(x: Any) -> float:
     if isinstance(x, bool) or not isinstance(x, (int, float)):
         raise ValueError(f"a bound must be a number or 'inf'/'-inf', got {x!r}")
     return float(x)
+
+
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise ValueError(f"key '{key}' is given twice in one object; keep one")
+        out[key] = value
+    return out
+
+
+def _no_constant(name: str) -> Any:
+    raise ValueError(f"{name} is not a JSON number (strict JSON has no NaN or Infinity; "
+                     "write null)")
+
+
+def loads(text: str) -> Any:
+    """Parse strict JSON: the one JSON reader of input files.
+
+    A key given twice in one object, and ``NaN``/``Infinity``, are refused (Python's
+    parser keeps the last duplicate silently and accepts the constants).
+
+    Parameters
+    ----------
+    text : str
+        The JSON text.
+
+    Returns
+    -------
+    Any
+        The decoded document.
+
+    Raises
+    ------
+    ValueError
+        ``json.JSONDecodeError`` (with line and column) or a duplicate key or constant.
+    """
+    return json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)

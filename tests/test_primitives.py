@@ -171,3 +171,21 @@ def test_dataset_cells_go_through_the_one_number_parser(tmp_path, cell):
     with pytest.raises(InputError, match=r"column 'p \[MPa\]', row 2") as exc:
         load_dataset(path)
     assert str(path) in str(exc.value)
+
+
+@pytest.mark.parametrize("text", [
+    '{"law": "thirion", "params": {"a": 0.5, "a": 0.9, "b": 1e-6}}',
+    '{"law": "thirion", "params": {"a": 0.5, "b": 1e-6}, "params": {"a": 0.9, "b": 1e-6}}',
+])
+def test_duplicate_json_keys_are_refused_in_params_and_property_files(tmp_path, text):
+    """The one JSON reader refuses a key given twice (Python keeps the last silently)."""
+    from frictionlaws.errors import InputError
+    from frictionlaws.fitting import load_result
+    from frictionlaws.tyre.tir import read_json
+
+    path = tmp_path / "params.json"
+    path.write_text(text)
+    with pytest.raises(InputError, match="given twice"):
+        load_result(path)
+    with pytest.raises(InputError, match="given twice"):
+        read_json('{"MODEL": {"FITTYP": 61, "FITTYP": 62}}')

@@ -350,9 +350,13 @@ def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> Pro
     """Read the JSON variant (a text or an already decoded mapping)."""
     if isinstance(text, str):
         try:
-            doc = json.loads(text)
+            from .. import jsonio
+
+            doc = jsonio.loads(text)
         except json.JSONDecodeError as exc:
             raise InputError(f"not valid JSON: {exc.msg}", file=source, row=exc.lineno) from None
+        except ValueError as exc:
+            raise InputError(str(exc), file=source) from None
     else:
         doc = text
     if not isinstance(doc, Mapping):
