@@ -910,11 +910,32 @@ def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
     )
 
 
-def _column_numbers(table: _Table, j: int) -> np.ndarray:
-    """The numbers of column ``j`` (NaN where empty); text and infinities refused."""
+_THOUSANDS = re.compile(r"[-+]?\d{1,3}(\.\d{3})+")
+_COMMA_DECIMAL = re.compile(r"\d,\d")
+
+
+def _uses_decimal_commas(table: _Table) -> bool:
+    """True when the file writes decimal commas somewhere (not only its delimiter)."""
+    return table.decimal_comma and any(
+        isinstance(c, str) and _COMMA_DECIMAL.search(c) for col in table.columns for c in col)
+
+
+def _column_numbers(table: _Table, j: int, commas: bool = False) -> np.ndarray:
+    """The numbers of column ``j`` (NaN where empty); text and infinities refused.
+
+    With ``commas`` (the file writes decimal commas), ``1.200`` is ambiguous (a
+    thousands separator or a decimal point) and refused.
+    """
     col = table.headers[j]
     out = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
+        if commas and isinstance(cell, str) and _THOUSANDS.fullmatch(cell.strip()):
+            raise InputError(
+                f"value '{cell.strip()}'{_where(table, i)} is ambiguous in a file with "
+                f"decimal commas: a thousands separator ({cell.strip().replace('.', '')}) "
+                f"or a decimal point ({cell.strip().replace('.', ',')})? Write it without "
+                "the point, or with a decimal comma", file=table.source, column=col,
+                row=_row_label(table, i))
         x = _to_float(cell, table.decimal_comma)
         if x is None:
             raise _not_a_number(table, cell, i, col)
@@ -929,9 +950,10 @@ def _numbers(table: _Table, assigned: Mapping[str, int], explicit: set[str],
              unit_of: dict[str, str], notes: list[str]) -> dict[str, np.ndarray]:
     """Numeric columns as written; an empty optional column is ignored with a note."""
     values: dict[str, np.ndarray] = {}
+    commas = _uses_decimal_commas(table)
     for canon in [c for c in CANONICAL if c in assigned and c != "surface"]:
         col = table.headers[assigned[canon]]
-        out = _column_numbers(table, assigned[canon])
+        out = _column_numbers(table, assigned[canon], commas)
         if np.isnan(out).all():
             if canon == "mu" or canon in explicit:
                 raise InputError(f"column is empty (every cell is empty or NaN); "

@@ -655,3 +655,17 @@ def test_overflow_in_unit_conversion_is_refused_with_its_row(tmp_path):
         with pytest.raises(InputError, match="overflows when converted to SI") as info:
             io.load_dataset(path)
     assert info.value.row == 3 and info.value.column == "p [GPa]"
+
+
+@pytest.mark.parametrize("delimiter", [";", "\t"])
+def test_a_thousands_point_in_a_decimal_comma_file_is_refused(tmp_path, delimiter):
+    """'1.200' beside '0,5' could be 1200 or 1.2: refused with its row, never guessed."""
+    path = tmp_path / "mixed.csv"
+    rows = ["mu", "p [kPa]"], ["0,5", "100"], ["0,4", "1.200"], ["0,3", "300"]
+    path.write_text("\n".join(delimiter.join(r) for r in rows) + "\n")
+    with pytest.raises(InputError, match="ambiguous in a file with decimal commas") as info:
+        io.load_dataset(path)
+    assert info.value.row == 3
+    # points only: one convention, read as written
+    path.write_text(path.read_text().replace(",", "."))
+    assert io.load_dataset(path).frame["p"].tolist() == [1e5, 1.2e3, 3e5]
