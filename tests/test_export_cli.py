@@ -195,3 +195,26 @@ def test_export_refuses_mu_no_deck_should_hold(tmp_path, capsys, argv, message):
     assert main(["export", *argv, "-o", str(out)]) == 2
     assert message in capsys.readouterr().err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("flag,value", [("--lsdyna-table-id", "-5"),
+                                        ("--lsdyna-table-id", "99999999999"),
+                                        ("--ansys-mat", "0"), ("--radioss-id", "-7")])
+def test_solver_ids_outside_their_fields_are_refused(tmp_path, capsys, flag, value):
+    out = tmp_path / "deck.k"
+    code = main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "lsdyna",
+                 "--p", "0.01MPa:0.5MPa:5", "-o", str(out), flag, value])
+    assert code == 2 and not out.exists()
+    assert "whole number from" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("options,message", [({"ansys_mat": 1.5}, "whole number"),
+                                             ({"bogus": 1}, "unknown export option"),
+                                             ({"lsdyna_table_id": "abc"}, "whole number")])
+def test_api_export_options_are_checked(options, message):
+    from frictionlaws.errors import InputError
+    from frictionlaws.fe_export import export
+
+    with pytest.raises(InputError, match=message):
+        export("thirion", {"a": 0.3, "b": 3e-6}, "ansys", box={"p": (1e4, 5e5)},
+               options=options)

@@ -86,10 +86,12 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     s = p.add_argument_group("solver options")
     s.add_argument("--lsdyna-contact", metavar="SSID,MSID[,SSTYP,MSTYP]",
                    help="LS-DYNA contact card 1 ids (default 1,2,3,3: part ids 1 and 2)")
-    s.add_argument("--lsdyna-table-id", type=int, default=1000, metavar="ID",
+    s.add_argument("--lsdyna-table-id", type=bounded_int(1, 99_999_999), default=1000,
+                   metavar="ID",
                    help="LS-DYNA *DEFINE_TABLE id (curves follow: ID+1, ...)")
-    s.add_argument("--ansys-mat", type=int, default=1, metavar="MAT", help="Ansys material id")
-    s.add_argument("--radioss-id", type=int, default=1, metavar="ID",
+    s.add_argument("--ansys-mat", type=bounded_int(1, 99_999_999), default=1, metavar="MAT",
+                   help="Ansys material id")
+    s.add_argument("--radioss-id", type=bounded_int(1, 99_999_999), default=1, metavar="ID",
                    help="Radioss /FRICTION id")
     return p
 

@@ -108,6 +108,48 @@ def _lazy(module: str, name: str) -> Callable[[Job], Written]:
 
 
 #: Format name -> (writer, one-line description, needs a box).
+#: Format options and the whole numbers each may take: ids are positive and fit the
+#: solvers' 10-column integer fields; LS-DYNA surface types are 0..9.
+OPTIONS: dict[str, tuple[int, int]] = {
+    "lsdyna_ssid": (1, 99_999_999), "lsdyna_msid": (1, 99_999_999),
+    "lsdyna_sstyp": (0, 9), "lsdyna_mstyp": (0, 9), "lsdyna_table_id": (1, 99_999_999),
+    "ansys_mat": (1, 99_999_999), "radioss_id": (1, 99_999_999),
+}
+
+
+def check_options(options: Mapping[str, Any] | None) -> dict[str, int]:
+    """Check format options: known names, whole numbers in their ranges (:data:`OPTIONS`).
+
+    Parameters
+    ----------
+    options : mapping or None
+        Option name -> value.
+
+    Returns
+    -------
+    dict
+        The options as ints.
+
+    Raises
+    ------
+    InputError
+        An unknown name, or a value that is not a whole number in its range.
+    """
+    out = {}
+    for name, value in (options or {}).items():
+        if name not in OPTIONS:
+            raise InputError(f"unknown export option '{name}'; options: {', '.join(OPTIONS)}",
+                             option="options")
+        lo, hi = OPTIONS[name]
+        ok = (not isinstance(value, bool) and isinstance(value, (int, np.integer))
+              and lo <= value <= hi)
+        if not ok:
+            raise InputError(f"export option {name} must be a whole number from {lo} to {hi}, "
+                             f"got {value!r}", option="options")
+        out[name] = int(value)
+    return out
+
+
 #: Table formats that write a formula card instead when the law has the solver's form
 #: (LS-DYNA FS/FD/DC, Radioss Ifric 1/4): the law is checked where the solver evaluates it.
 _FORMULA_CARDS = ("lsdyna", "radioss")
@@ -412,7 +454,7 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     specs = make_specs(box, system, spacing)
     job = Job(law=law_obj, values=values, fmt=format, units=system, specs=specs, tol=tol,
               max_rows=int(max_rows), source=source or src, fit=fit,
-              options=dict(options or {}))
+              options=check_options(options))
     if message:
         job.warnings.append(f"parameters not admissible: {message}")
     if fit is not None:
