@@ -163,9 +163,9 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
     try:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
-    except InputError as exc:
-        return [{"dataset": str(job.source), "group": {}, "law": law, "error": str(exc)}
-                for law in job.laws]
+    except InputError as exc:  # the input itself: marked, so a front end can say so
+        return [{"dataset": str(job.source), "group": {}, "law": law, "error": str(exc),
+                 "input_error": True} for law in job.laws]
     records = []
     for (key, mask), law in itertools.product(groups, job.laws):
         record: dict[str, Any] = {"dataset": ds.name, "source": str(ds.source),

@@ -240,3 +240,14 @@ def test_cli_fit_campaign_and_shared(tmp_path, capsys):
     assert main(["fit", "--law", "thirion", str(data), "--shared", "b"]) == 2
     assert main(["fit", "--law", "thirion", str(data), "--by", "T", "--save",
                  str(tmp_path / "x.json")]) == 2
+
+
+def test_campaign_of_only_bad_input_exits_2(capsys):
+    """A grouping column no dataset has is bad input (exit 2), not failed fits (exit 1)."""
+    from frictionlaws.cli import main
+
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--by", "nosuchcol"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no column nosuchcol" in err[0]
+    assert main(["fit", "--law", "thirion", "-", "-"]) == 2
+    assert "more than once" in capsys.readouterr().err

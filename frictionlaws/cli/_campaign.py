@@ -66,7 +66,11 @@ def split_names(items: list[str]) -> list[str]:
 
 def wants_campaign(args: argparse.Namespace) -> bool:
     """True when the command must run as a campaign (several datasets, a directory, groups)."""
+    from frictionlaws.errors import InputError
+
     data = args.data if isinstance(args.data, list) else [args.data]
+    if data.count("-") > 1:
+        raise InputError("'-' (standard input) is given more than once; it can be read once")
     return (len(data) > 1 or any(Path(d).is_dir() for d in data) or bool(args.by)
             or bool(getattr(args, "shared", [])))
 
@@ -121,7 +125,17 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
         print(f"{len(camp)} fits written to {camp.path}; {len(camp.errors)} failed")
         for rec in camp.errors:
             print(f"error: {rec['dataset']} {rec['law']}: {rec['error']}", file=sys.stderr)
+    _refuse_if_only_input_errors(camp)
     return 1 if camp.errors else 0
+
+
+def _refuse_if_only_input_errors(camp: Any) -> None:
+    """Every dataset failed to load or group: bad input (exit 2), not failed fits."""
+    from frictionlaws.errors import InputError
+
+    errors = camp.errors
+    if errors and len(errors) == len(camp) and all(r.get("input_error") for r in errors):
+        raise InputError(errors[0]["error"])
 
 
 def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],

@@ -42,7 +42,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "number for p and v, or e.g. p=0.3,v=0.2; 0 for none (default 0.3)")
     p.add_argument("--seed", type=int, default=0,
                    help="seed of the folds and of the fits' random starts (default 0)")
-    p.add_argument("--starts", type=int, default=None, metavar="N",
+    p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
                    help="random starts per non-linear fit (default: the fitter's rule)")
     p.add_argument("--weights", choices=("auto", "none"), default="auto",
                    help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
