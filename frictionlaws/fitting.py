@@ -140,6 +140,10 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
         w = np.asarray(weights, float)
         if w.shape != fd.arrays["mu"].shape or np.any(~np.isfinite(w)) or np.any(w < 0):
             raise InputError("weights must be finite, non-negative and one per row")
+        if np.count_nonzero(w) < 2:
+            raise InputError(f"only {np.count_nonzero(w)} of {w.size} rows have a "
+                             "weight > 0; a fit needs at least two weighted rows",
+                             option="weights")
         fd.weights = w
     return fd
 

@@ -177,3 +177,13 @@ def test_mapping_input_validation():
         fit("thirion", {"p": np.array([1.0, np.nan, 2.0]), "mu": np.ones(3)})
     with pytest.raises(InputError, match="at least as many rows"):
         fit("thirion", {"p": np.array([1e5]), "mu": np.ones(1)})
+
+
+@pytest.mark.parametrize("nonzero", [0, 1])
+def test_weights_that_leave_fewer_than_two_rows_are_refused(nonzero):
+    from frictionlaws.errors import InputError
+
+    w = np.zeros(19)
+    w[:nonzero] = 1.0
+    with pytest.raises(InputError, match="at least two weighted rows"):
+        fit("thirion", "thesis-steel", weights=w)
