@@ -375,3 +375,18 @@ def test_print_completion_bash() -> None:
     assert "compgen" in res.out or "complete" in res.out
     for word in ("fit", "export", "--progress"):
         assert word in res.out
+
+
+@pytest.mark.parametrize("argv", [
+    ["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "abaqus",
+     "--p", "0.01:0.5", "--units", "mm-N-s,p=MPa,p=kPa"],
+    ["compare", "thesis-steel", "--laws", "thirion,denny", "--holdout", "p=0.3,p=0.2"],
+])
+def test_a_name_given_twice_inside_one_option_value_is_refused(tmp_path, capsys, argv):
+    """Not only repeated flags: VAR=... lists inside one value keep each name once."""
+    from frictionlaws.cli import main
+
+    if argv[0] == "export":
+        argv = [*argv, "-o", str(tmp_path / "deck.inp")]
+    assert main(argv) == 2
+    assert "twice" in capsys.readouterr().err

@@ -413,6 +413,9 @@ def parse_holdout(spec: Any) -> dict[str, float]:
                     raise InputError(f"--holdout: expected FRACTION or VAR=FRACTION,..., "
                                      f"got '{part.strip()}'")
                 k, v = (s.strip() for s in part.split("=", 1))
+                if k in items:
+                    raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
+                                     "give each variable once")
                 items[k] = v
     out = {}
     for k, v in items.items():

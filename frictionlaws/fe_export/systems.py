@@ -129,6 +129,7 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
         base = _ALIASES[key]
         parts = parts[1:]
     units = dict(SYSTEMS[base])
+    given: set[str] = set()
     for part in parts:
         if "=" not in part:
             raise InputError(f"unit system '{text}': expected VAR=UNIT after the name, "
@@ -137,6 +138,10 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
         if var not in VARIABLES:
             raise InputError(f"unit system '{text}': unknown variable '{var}' "
                              f"(variables: {', '.join(VARIABLES)})")
+        if var in given:
+            raise InputError(f"unit system '{text}': the unit of {var} is given twice; "
+                             "give it once")
+        given.add(var)
         check_unit(unit, var, column=var)
         units[var] = unit
     name = base if not parts else f"{base}," + ",".join(parts)
