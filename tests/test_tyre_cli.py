@@ -133,3 +133,11 @@ def test_reduce_command(capsys, tmp_path):
     assert code == 0
     d = json.loads(out)
     assert d["load_N"] == 5000.0 and d["errors"]["rmse"] > 0
+
+
+def test_cornering_refuses_fit_options_without_fit(capsys):
+    from frictionlaws.cli import main
+
+    assert main(["tyre", "cornering", "--law", "thirion", "--set", "a=0.2,b=3e-6",
+                 "--fix", "a=0.2"]) == 2
+    assert "--fix is not used without --fit" in capsys.readouterr().err

@@ -177,6 +177,11 @@ def add_data_options(p: argparse.ArgumentParser | Any) -> None:
                    help="nominal contact area to derive p from F_N, e.g. '314.16 mm^2'")
 
 
+#: The destinations :func:`add_fit_options` creates: options that only apply to a fit.
+FIT_OPTIONS = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "uncertainty",
+               "boot", "boot_jobs", "boot_interval")
+
+
 def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
     """Options that control a fit (``--fix``, ``--free``, weights, starts, seed)."""
     p.add_argument("--fix", metavar="NAME=VALUE,...", action=MergeAssignments,

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ._common import add_json_option, bounded_int
+from ._common import FIT_OPTIONS, add_json_option, bounded_int
 
 _FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
             "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
@@ -36,8 +36,7 @@ abaqus-vfric (Fortran user subroutines; no box needed).
 __all__ = ["add_parser", "run"]
 
 #: Options that only mean something with --fit.
-_FIT_ONLY = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "map", "data_units",
-             "area", "by", "uncertainty", "boot", "boot_jobs", "boot_interval")
+_FIT_ONLY = (*FIT_OPTIONS, "map", "data_units", "area", "by")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:

@@ -285,7 +285,7 @@ def _run_cornering(args: argparse.Namespace) -> int:
     from frictionlaws.errors import ExtrapolationWarning, InputError
     from frictionlaws.tyre.brush import BrushModel
 
-    from ._common import fit_kwargs
+    from ._common import FIT_OPTIONS, fit_kwargs, refuse_unused
 
     loads = parse_loads(args.loads, args.load_unit)
     try:
@@ -295,6 +295,8 @@ def _run_cornering(args: argparse.Namespace) -> int:
                          "e.g. 1,2,3") from None
     tyre = _tyre(args)
     notes: list[str] = []
+    if not args.fit:
+        refuse_unused(args, (*FIT_OPTIONS, "map", "units", "area"), "without --fit")
     if args.params:
         from frictionlaws.fitting import load_result
         from frictionlaws.registry import get_law
