@@ -37,6 +37,7 @@ import csv
 import math
 import os
 import re
+import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -100,7 +101,9 @@ _SPREADSHEET_ERROR = re.compile(
 
 
 def _norm(name: str) -> str:
-    return re.sub(r"[\s_\-]+", " ", name.strip().lower()).strip()
+    # NFKC: the micro sign typed by keyboards (U+00B5) reads as the Greek mu (U+03BC)
+    text = unicodedata.normalize("NFKC", name)
+    return re.sub(r"[\s_\-]+", " ", text.strip().lower()).strip()
 
 
 _ALIAS_LOOKUP: dict[str, str] = {}

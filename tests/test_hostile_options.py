@@ -390,3 +390,20 @@ def test_a_name_given_twice_inside_one_option_value_is_refused(tmp_path, capsys,
         argv = [*argv, "-o", str(tmp_path / "deck.inp")]
     assert main(argv) == 2
     assert "twice" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("argv", "reason"), [
+    (["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "csv",
+      "--p", "-0.5MPa:0.01MPa"], "must not be negative"),
+    (["tyre", "cornering", "--law", "coulomb", "--set", "mu0=0.9", "--angles", "-1,1"],
+     "slip angles must be in (0, 90)"),
+])
+def test_values_starting_with_a_minus_reach_the_check_that_explains_them(tmp_path, capsys,
+                                                                        argv, reason):
+    """argparse would say 'expected one argument'; the real reason is given instead."""
+    from frictionlaws.cli import main
+
+    if argv[0] == "export":
+        argv = [*argv, "-o", str(tmp_path / "t.csv")]
+    assert main(argv) == 2
+    assert reason in capsys.readouterr().err

@@ -669,3 +669,9 @@ def test_a_thousands_point_in_a_decimal_comma_file_is_refused(tmp_path, delimite
     # points only: one convention, read as written
     path.write_text(path.read_text().replace(",", "."))
     assert io.load_dataset(path).frame["p"].tolist() == [1e5, 1.2e3, 3e5]
+
+
+def test_the_micro_sign_header_reads_as_mu(tmp_path):
+    path = tmp_path / "micro.csv"
+    path.write_text("\u00b5,p [MPa]\n0.5,0.1\n0.4,0.2\n", encoding="utf-8")
+    assert io.load_dataset(path).frame["mu"].tolist() == [0.5, 0.4]

@@ -309,9 +309,43 @@ def _strict_json_stdout(enabled: bool) -> Iterator[None]:
 # ------------------------------------------------------------------------- main
 
 
+def _value_options(parser: argparse.ArgumentParser) -> set[str]:
+    """Every option string (of every command) that takes one value."""
+    out: set[str] = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                out |= _value_options(sub)
+        elif action.option_strings and action.nargs is None and action.type is not bool \
+                and not isinstance(action, (argparse._StoreConstAction,
+                                            argparse._StoreTrueAction,
+                                            argparse._HelpAction)):
+            out.update(action.option_strings)
+    return out
+
+
+_NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d)")
+
+
+def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """``--p -0.5MPa:1MPa`` -> ``--p=-0.5MPa:1MPa``.
+
+    argparse takes a value starting with '-' for an option unless it is a plain
+    number; ranges and lists with units (``-0.5MPa:...``, ``-1,1``) are values.
+    """
+    takes = _value_options(parser)
+    out: list[str] = []
+    for token in argv:
+        if out and out[-1] in takes and _NEGATIVE_VALUE.match(token):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
     try:
-        return parser.parse_args(argv)
+        return parser.parse_args(_join_negative_values(parser, argv))
     except UsageError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 2

@@ -315,6 +315,9 @@ class MagicFormula:
             ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
             class documentation).
         """
+        if not isinstance(path, (str, Path)):
+            raise InputError(f"expected the path of a property file (or a packaged example "
+                             f"name), got {type(path).__name__}")
         p = Path(path)
         if not p.exists():
             packaged = _packaged_example(str(path))

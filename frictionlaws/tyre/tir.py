@@ -329,9 +329,9 @@ def read_property_file(path: str | Path) -> PropertyFile:
     InputError
         File missing, unreadable or malformed (with the line number).
     """
+    if not isinstance(path, (str, Path)):
+        raise InputError(f"expected the path of a property file, got {type(path).__name__}")
     path = Path(path)
-    if not path.is_file():
-        raise InputError("property file not found", file=str(path))
     from ..io import decode_text
     from ..outputs import check_input_file
 
