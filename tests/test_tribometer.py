@@ -613,3 +613,20 @@ def test_lowpass_equals_scipy_sosfiltfilt():
                                    rtol=1e-10, atol=1e-10)
         stacked = lowpass(np.vstack([x, 2 * x]), 1000.0, cutoff)
         np.testing.assert_allclose(stacked[1], 2 * signal.sosfiltfilt(sos, x), atol=1e-9)
+
+
+def test_record_with_a_repeated_header_is_refused(tmp_path):
+    path = tmp_path / "dup.csv"
+    path.write_text("time [s],torque [N m],torque [N m],disc_speed [rpm]\n"
+                    + "0.1,2,3,4\n" * 10)
+    with pytest.raises(InputError, match="duplicate column") as info:
+        read_record(path)
+    assert info.value.column == "torque [N m]"
+
+
+def test_process_and_fit_refuse_output_names_they_cannot_honour(tmp_path, capsys):
+    assert main(["process", str(tmp_path / "m.csv"), "--rig", str(tmp_path / "r.toml"),
+                 "-o", str(tmp_path / "x.json")]) == 2
+    assert "give a .csv name" in capsys.readouterr().err
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--save", "-"]) == 2
+    assert "--save needs a file name" in capsys.readouterr().err

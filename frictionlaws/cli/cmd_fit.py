@@ -40,6 +40,9 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         raise InputError("--out writes a campaign table; for one fit use --save")
     data = args.data[0]
+    if args.save == "-":
+        raise InputError("--save needs a file name ('-' is not one here; --json prints the "
+                         "result on stdout)")
     if args.save:
         from pathlib import Path
 

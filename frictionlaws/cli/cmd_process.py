@@ -46,6 +46,8 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.tribometer.rig import load_rig
 
     out = Path(args.output)
+    if out.suffix.lower() != ".csv":
+        raise InputError(f"-o {args.output}: the dataset is written as CSV; give a .csv name")
     records_out = (Path(args.records_out) if args.records_out
                    else out.with_name(f"{out.stem}_records.csv"))
     # every output is checked before any work: not an input, a writable file

@@ -37,6 +37,7 @@ header is row 1); :mod:`~frictionlaws.tribometer.process` turns it into an
 
 from __future__ import annotations
 
+import csv
 import functools
 import io
 import os
@@ -246,6 +247,18 @@ def _factor(kind: str, unit: str | None, header: str, src: str) -> float:
     return _si_factor(kind, unit.strip())
 
 
+def _refuse_duplicate_headers(text: str, src: str) -> None:
+    """pandas renames a repeated header ('torque [N m].1'): refuse it instead."""
+    line = next((ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
+    seen: set[str] = set()
+    for cell in next(csv.reader([line])) if line else []:
+        name = cell.strip()
+        if name in seen:
+            raise InputError("duplicate column (two columns have the same header); keep one",
+                             file=src, column=name)
+        seen.add(name)
+
+
 def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> Record:
     """Read one raw record CSV into SI units and validate it.
 
@@ -297,6 +310,7 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
     except (pd.errors.ParserError, ValueError) as exc:
         raise InputError(f"cannot be read as CSV: {' '.join(str(exc).split())}",
                          file=src) from None
+    _refuse_duplicate_headers(text, src)
     headers = [str(c) for c in frame.columns]
     found: dict[str, int] = {}
     units: dict[str, str] = {}
