@@ -218,3 +218,12 @@ def test_api_export_options_are_checked(options, message):
     with pytest.raises(InputError, match=message):
         export("thirion", {"a": 0.3, "b": 3e-6}, "ansys", box={"p": (1e4, 5e5)},
                options=options)
+
+
+def test_radioss_approximation_that_misses_the_tolerance_is_refused(tmp_path, capsys):
+    out = tmp_path / "r.rad"
+    argv = ["export", "--law", "thirion", "--set", "a=0.15,b=4e-6", "--format", "radioss",
+            "--p", "0.01MPa:0.5MPa", "-o", str(out)]
+    assert main([*argv, "--tol", "0.01"]) == 2
+    assert "more than the tolerance 0.01" in capsys.readouterr().err and not out.exists()
+    assert main(argv) == 0 and "APPROXIMATION" in out.read_text()

@@ -163,6 +163,12 @@ def write_radioss(job: Job) -> Written:
                        details={"ifric": 4, "coefficients": c})
     names = [v for v in ("p", "v") if v in job.variables]
     c, err, grid = fit_ifric1(job, names)
+    if job.tol is not None and err.max_abs > job.tol:
+        raise InputError(
+            f"radioss: the best Ifric 1 quadratic for law '{law.id}' is off by up to "
+            f"{err.max_abs:.3g} in mu over the box, more than the tolerance {job.tol:g}; "
+            "nothing was written (narrow the box, or use a table format: lsdyna, abaqus, "
+            "ansys)")
     where = ", ".join(f"{k} = {job.model(k, v)}" for k, v in err.where.items())
     summary = [
         *job.box_lines(grid)[:1],
