@@ -1025,7 +1025,9 @@ def fit(
         se = par.stderr
         ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
         if ok:
-            ci = (values[name] - tval * se, values[name] + tval * se)
+            limits = (law.setting(name) if name in freed else law.param(name)).bounds
+            ci = _clip_interval(name, (values[name] - tval * se, values[name] + tval * se),
+                                limits, warn_msgs)
             estimates[name] = ParamEstimate(name, values[name], float(se), ci, unit)
         else:
             estimates[name] = ParamEstimate(name, values[name], None, None, unit,
@@ -1236,6 +1238,18 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
         warn_msgs.append(f"the {method} standard errors exceed the asymptotic ones by more "
                          f"than {NARROW_RATIO}x ({shown}): the asymptotic errors are too "
                          f"narrow for these data; the {method} values are reported")
+
+
+def _clip_interval(name: str, ci: tuple[float, float], bounds: tuple[float, float],
+                   warn_msgs: list[str]) -> tuple[float, float]:
+    """A symmetric interval cut at the parameter's bounds, with a warning when cut."""
+    lo, hi = max(ci[0], bounds[0]), min(ci[1], bounds[1])
+    if (lo, hi) != tuple(ci):
+        warn_msgs.append(
+            f"the 95 % interval of {name} ({ci[0]:.4g} .. {ci[1]:.4g}) reaches past its "
+            f"bounds [{bounds[0]:g}, {bounds[1]:g}] and is shown cut there: the symmetric "
+            "interval describes this fit poorly; uncertainty 'bootstrap' gives a better one")
+    return float(lo), float(hi)
 
 
 def _set_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate], se: np.ndarray,

@@ -187,3 +187,13 @@ def test_weights_that_leave_fewer_than_two_rows_are_refused(nonzero):
     w[:nonzero] = 1.0
     with pytest.raises(InputError, match="at least two weighted rows"):
         fit("thirion", "thesis-steel", weights=w)
+
+
+def test_intervals_are_cut_at_the_parameter_bounds_with_a_warning():
+    """mu rising with p: thirion's b sits at 0 and a's symmetric interval goes negative."""
+    data = {"mu": np.array([0.3, 0.4, 0.5, 0.6]), "p": np.array([1e5, 2e5, 3e5, 4e5])}
+    res = fit("thirion", data)
+    for name, p in res.params.items():
+        lo, hi = get_law("thirion").param(name).bounds
+        assert p.ci95 is None or lo <= p.ci95[0] <= p.ci95[1] <= hi, name
+    assert any("reaches past its bounds" in w for w in res.warnings)
