@@ -407,3 +407,16 @@ def test_values_starting_with_a_minus_reach_the_check_that_explains_them(tmp_pat
         argv = [*argv, "-o", str(tmp_path / "t.csv")]
     assert main(argv) == 2
     assert reason in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv", [
+    ["fit", "--law", "thirion", "thesis-steel", "--jobs", "2"],
+    ["fit", "--law", "thirion", "thesis-steel", "--scheduler", "tcp://127.0.0.1:1"],
+    ["compare", "thesis-steel", "--laws", "thirion,coulomb", "--jobs", "2"],
+    ["tyre", "thesis", "--laws", ""],
+])
+def test_options_that_cannot_apply_are_refused(capsys, argv):
+    from frictionlaws.cli import main
+
+    assert main(argv) == 2
+    assert capsys.readouterr().err.startswith("error: ")

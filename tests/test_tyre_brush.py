@@ -368,3 +368,13 @@ def test_brush_tyre_refuses_a_load_whose_patch_outgrows_the_wheel(contact):
         tyre.half_length(1e12)
     assert main(["tyre", "cornering", "--law", "coulomb", "--set", "mu0=0.9",
                  "--loads", "1e9:1e9:1"]) == 2
+
+
+def test_zero_friction_gives_no_stiffness_and_an_undefined_ratio(capsys):
+    import warnings as _w
+
+    with _w.catch_warnings():
+        _w.simplefilter("error")
+        res = BrushModel("coulomb", {"mu0": 0.0}).cornering([2000.0, 6500.0])
+    assert np.all(res.cs_kN_per_deg == 0) and math.isnan(res.ratio())
+    assert "n/a" in res.table()

@@ -64,6 +64,14 @@ def split_names(items: list[str]) -> list[str]:
     return out
 
 
+def refuse_campaign_options(args: argparse.Namespace) -> None:
+    """One dataset and no groups: the options that spread work are an error, not ignored."""
+    from ._common import refuse_unused
+
+    refuse_unused(args, ("jobs", "scheduler"),
+                  "with one dataset and no --by (they spread several datasets or groups)")
+
+
 def wants_campaign(args: argparse.Namespace) -> bool:
     """True when the command must run as a campaign (several datasets, a directory, groups)."""
     from frictionlaws.errors import InputError

@@ -6,7 +6,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from ._campaign import add_campaign_options, campaign_progress, split_names, wants_campaign
+from ._campaign import (
+    add_campaign_options,
+    campaign_progress,
+    refuse_campaign_options,
+    split_names,
+    wants_campaign,
+)
 from ._common import add_data_options, bounded_int, data_kwargs, progress_value
 
 __all__ = ["add_parser", "run"]
@@ -78,6 +84,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         raise InputError("--out writes a campaign table; for one comparison use --json or "
                          "--report")
+    refuse_campaign_options(args)
     return _run_one(args, args.data[0])
 
 

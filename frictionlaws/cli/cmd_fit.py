@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import argparse
 
-from ._campaign import add_campaign_options, run_fit_campaign, wants_campaign
+from ._campaign import (
+    add_campaign_options,
+    refuse_campaign_options,
+    run_fit_campaign,
+    wants_campaign,
+)
 from ._common import add_data_options, add_fit_options, fit_kwargs, run_fit
 
 __all__ = ["add_parser", "run"]
@@ -39,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
         return run_fit_campaign(args, fit_kwargs(args))
     if args.out:
         raise InputError("--out writes a campaign table; for one fit use --save")
+    refuse_campaign_options(args)
     data = args.data[0]
     if args.save == "-":
         raise InputError("--save needs a file name ('-' is not one here; --json prints the "

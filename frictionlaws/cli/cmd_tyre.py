@@ -350,6 +350,10 @@ def _run_thesis(args: argparse.Namespace) -> int:
     from frictionlaws.tyre.thesis import thesis_comparison
 
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
+    if not laws:
+        from frictionlaws.errors import InputError
+
+        raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
         comp = thesis_comparison(laws=laws, dataset=args.data, tyre=_tyre(args))

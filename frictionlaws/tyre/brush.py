@@ -404,6 +404,8 @@ class CorneringResult:
         """CS(high)/CS(low) for loads [N] in the result (default: last over first)."""
         i = 0 if low is None else _index_of(self.loads, low)
         j = -1 if high is None else _index_of(self.loads, high)
+        if not self.cs[i] > 0:  # no friction, no stiffness: the ratio is undefined
+            return math.nan
         return float(self.cs[j] / self.cs[i])
 
     def to_dict(self) -> dict[str, Any]:
@@ -440,8 +442,10 @@ class CorneringResult:
                 f"{self.cs_origin_kN_per_deg[i]:>12.4f}  {2000 * self.half_length[i]:>7.1f}  "
                 f"{self.mean_pressure[i] / 1e6:>12.4f}  {self.peak_pressure[i] / 1e6:>11.4f}  "
                 + "  ".join(f"{f / 1000:>11.4f}" for f in self.fy[i]))
+        ratio = self.ratio()
         lines.append(f"CS({self.loads[-1] / 1000:g} kN) / CS({self.loads[0] / 1000:g} kN) = "
-                     f"{self.ratio():.3f}")
+                     + (f"{ratio:.3f}" if math.isfinite(ratio)
+                        else "n/a (no cornering stiffness at the lowest load)"))
         lines.extend(f"warning: {w}" for w in self.warnings)
         return "\n".join(lines)
 
