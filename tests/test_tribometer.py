@@ -630,3 +630,22 @@ def test_process_and_fit_refuse_output_names_they_cannot_honour(tmp_path, capsys
     assert "give a .csv name" in capsys.readouterr().err
     assert main(["fit", "--law", "thirion", "thesis-steel", "--save", "-"]) == 2
     assert "--save needs a file name" in capsys.readouterr().err
+
+
+def test_a_condition_label_over_two_surfaces_is_not_averaged(tmp_path):
+    """Records of steel and glass under one label: reported, never written as one row."""
+    import shutil
+
+    rig = synthetic_rig()
+    conds = [ConditionSpec("steel 2 kg", "steel", 2.0, 1.9, 3, 331.0, -120.0),
+             ConditionSpec("S400 3 kg", "sandpaper 400", 3.0, 1.0, 3, 331.0, -120.0)]
+    truth = make_campaign(tmp_path / "camp", conds, rig=rig, seed=5, record_kwargs=SHORT)
+    records = truth.directory / "records"
+    shutil.copy(records / "steel_2_kg_01.csv", records / "glass.csv")
+    with truth.manifest.open("a") as fh:
+        fh.write("records/glass.csv,2,glass,steel 2 kg,steady\n")
+    camp = process_campaign(truth.manifest, rig, jobs=1, progress=False)
+    by = {c.condition: c for c in camp.conditions}
+    assert not by["steel 2 kg"].written and by["S400 3 kg"].written
+    assert any("surfaces (glass, steel)" in n for n in by["steel 2 kg"].notes)
+    assert set(camp.dataset_frame()["condition"]) == {"S400 3 kg"}

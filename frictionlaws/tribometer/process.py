@@ -807,20 +807,23 @@ def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
         loads = {round(r.load, 9) for r in usable}
         surfaces = {r.surface for r in usable}
         modes = {r.mode for r in usable}
+        mixed = []  # one condition is one surface, one load, one mode: never averaged
         if len(loads) > 1:
-            texts = ", ".join(sorted({r.load_text for r in usable}))
-            notes.append(f"records have different loads ({texts}); the mean load is used")
+            mixed.append(f"loads ({', '.join(sorted({r.load_text for r in usable}))})")
         if len(surfaces) > 1:
-            notes.append(f"records have different surfaces ({', '.join(sorted(surfaces))})")
+            mixed.append(f"surfaces ({', '.join(sorted(surfaces))})")
         if len(modes) > 1:
-            notes.append(f"records have different modes ({', '.join(sorted(modes))})")
+            mixed.append(f"modes ({', '.join(sorted(modes))})")
+        if mixed:
+            notes.append(f"records of different {' and '.join(mixed)} share the condition "
+                         f"label '{name}': not written (give each its own condition)")
         vs = np.array([r.v for r in usable])
         if vs.size > 1 and np.ptp(vs) > max(0.05 * np.mean(vs), rig.group_speed_step
                                             * rig.track_radius):
             notes.append(f"sliding velocities differ between records ({vs.min():.3g} .. "
                          f"{vs.max():.3g} m/s); the mean is used")
-        written = len(usable) >= min_repeats
-        if not written:
+        written = len(usable) >= min_repeats and not mixed
+        if len(usable) < min_repeats:
             notes.append(f"{len(usable)} usable record(s), fewer than min_repeats = "
                          f"{min_repeats}: not written to the dataset")
         F = float(np.mean([r.load for r in usable]))
