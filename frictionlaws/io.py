@@ -897,8 +897,25 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
     return unit_of
 
 
+def _shown(text: str, width: int = 40) -> str:
+    """A cell as quoted in a message: long values cut, so one line stays one line."""
+    return text if len(text) <= width else f"{text[:width - 10]}...{text[-7:]} " \
+        f"({len(text)} characters)"
+
+
+def _overflows(text: str) -> bool:
+    try:
+        return math.isinf(float(text.replace(",", ".")))
+    except (ValueError, OverflowError):
+        return False
+
+
 def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
     text = str(cell).strip()
+    if _overflows(text):
+        return InputError(f"value '{_shown(text)}'{_where(table, i)} overflows a double "
+                          "(beyond 1.8e308): not a measured value", file=table.source,
+                          column=column, row=_row_label(table, i))
     others = [_DELIMITER_NAMES[d] for d in _DELIMITERS if d in text and d != table.delimiter]
     hint = (f" (it contains {others[0]}: does this row use another delimiter "
             f"than the header's {_DELIMITER_NAMES.get(table.delimiter or '')}?)"
@@ -906,7 +923,7 @@ def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
     if table.delimiter == "," and re.fullmatch(r"[-+]?\d+,\d+", text):
         hint = " (a decimal comma needs ';' or tab as the delimiter)"
     return InputError(
-        f"non-numeric value '{text}'{_where(table, i)}; expected "
+        f"non-numeric value '{_shown(text)}'{_where(table, i)}; expected "
         f"a number{' (decimal comma or point)' if table.decimal_comma else ''} "
         f"or an empty cell{hint}",
         file=table.source, column=column, row=_row_label(table, i),

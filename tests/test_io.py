@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -675,3 +676,16 @@ def test_the_micro_sign_header_reads_as_mu(tmp_path):
     path = tmp_path / "micro.csv"
     path.write_text("\u00b5,p [MPa]\n0.5,0.1\n0.4,0.2\n", encoding="utf-8")
     assert io.load_dataset(path).frame["mu"].tolist() == [0.5, 0.4]
+
+
+@pytest.mark.parametrize(("cell", "message"), [
+    ("1e400", "overflows a double"),
+    ("9" * 5000, "(5000 characters)' overflows a double"),
+    ("abc" + "x" * 100, "(103 characters)'; expected a number"),
+])
+def test_overflowing_and_long_cells_are_named_shortly(tmp_path, cell, message):
+    path = tmp_path / "cells.csv"
+    path.write_text(f"mu,p [MPa]\n0.5,{cell}\n0.4,0.2\n")
+    with pytest.raises(InputError, match=re.escape(message)) as info:
+        io.load_dataset(path)
+    assert len(str(info.value)) < 300
