@@ -240,6 +240,11 @@ def _check_policy(parsed: Any, text: str, kind: Quantity, *, column: str | None,
         raise InputError(
             f"unit '{text}' is an angle, expected {kind.what} (e.g. {_examples(kind)})",
             file=file, column=column)
+    if kind.si == "Hz" and "radian" in str(ureg.get_root_units(parsed)[1]):
+        raise InputError(
+            f"unit '{text}' is an angular velocity (a revolution is 2 pi rad, so rpm to Hz "
+            f"is ambiguous), expected {kind.what} (e.g. {_examples(kind)})",
+            file=file, column=column)
     if kind.si == "K" and "delta_" in str(parsed):
         raise InputError(
             f"unit '{text}' is a temperature difference, expected {kind.what} "

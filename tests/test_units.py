@@ -202,6 +202,8 @@ def test_registry_is_built_once() -> None:
     ("arcmin", "mu", "is an angle"),
     ("delta_degC", "T", "is a temperature difference"),
     ("delta_degF", "T", "is a temperature difference"),
+    ("rpm", "frequency", "is an angular velocity"),
+    ("rad/s", "frequency", "is an angular velocity"),
 ])
 def test_units_pint_calls_compatible_but_mean_something_else(unit, quantity, message):
     """One unit policy: angles are not mu or slip; a temperature difference is not T."""
