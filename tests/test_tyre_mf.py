@@ -492,3 +492,17 @@ def test_pressure_outside_the_file_range_warns_and_nonsense_peaks_are_refused(tm
         with pytest.raises(InputError, match="is not a friction coefficient"):
             MagicFormula.from_file(variant(key, value)).summary()
         assert main(["tyre", "mf", str(variant(key, value))]) == 2
+
+
+def test_a_missing_section_header_and_an_inverted_range_are_refused(tmp_path):
+    src = FILES[1].with_name(FILES[1].stem + ".converted.tir").read_text().splitlines()
+    no_header = tmp_path / "no_header.tir"
+    no_header.write_text("\n".join(ln for ln in src
+                                   if ln.strip() != "[LONGITUDINAL_COEFFICIENTS]") + "\n")
+    with pytest.raises(InputError, match=r"PCX1 belongs to \[LONGITUDINAL_COEFFICIENTS\]"):
+        MagicFormula.from_file(no_header)
+    inverted = tmp_path / "inverted.tir"
+    inverted.write_text("\n".join("FZMAX = -5" if ln.startswith("FZMAX") else ln
+                                  for ln in src) + "\n")
+    with pytest.raises(InputError, match="is not a range"):
+        MagicFormula.from_file(inverted)

@@ -214,6 +214,11 @@ class PropertyFile:
                                      file=self.path, row=row)
                 if key in known:
                     continue
+                home = next((other for other, names in MF_KEYS.items() if key in names), None)
+                if home is not None:
+                    raise InputError(
+                        f"[{sec}] {key} belongs to [{home}]: is the [{home}] header missing "
+                        "above it?", file=self.path, row=row)
                 near = [k for k in difflib.get_close_matches(key, known, n=3, cutoff=0.75)
                         if k not in entries]
                 if near:
