@@ -379,11 +379,11 @@ class MagicFormula:
                 limits[name] = ((pf.si(sec, lo), pf.si(sec, hi)) if kind
                                 else (pf.number(sec, lo), pf.number(sec, hi)))
                 low, high = limits[name]
-                if not low < high or (kind and low < 0):
+                if not low <= high or (kind and low < 0):
                     raise InputError(
                         f"[{sec}] {lo} .. {hi} = {pf.text(sec, lo)} .. {pf.text(sec, hi)} is "
                         "not a range" + (" of positive values" if kind else "")
-                        + " (MIN must be below MAX)", file=pf.path,
+                        + " (MIN must not be above MAX)", file=pf.path,
                         row=pf.lines.get((sec, hi)))
         name = str(pf.metadata.get("Name") or Path(pf.path).stem)
         return cls(coeffs, fnomin=fnomin, version=version,
