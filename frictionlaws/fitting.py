@@ -21,6 +21,7 @@ the reduced chi-square as lmfit does); the 95 % intervals use Student's t with
 
 from __future__ import annotations
 
+import functools
 import inspect
 import json
 import math
@@ -1338,7 +1339,9 @@ def _numpy_ns() -> Any:
     return NUMPY
 
 
-def _provenance() -> dict[str, Any]:
+@functools.lru_cache(maxsize=1)
+def _versions() -> tuple[tuple[str, str], ...]:
+    """Versions of the packages a result depends on (read once: metadata is slow)."""
     from importlib.metadata import PackageNotFoundError, version
 
     def ver(pkg: str) -> str:
@@ -1349,8 +1352,13 @@ def _provenance() -> dict[str, Any]:
 
     from . import __version__
 
-    return {"frictionlaws": __version__, "lmfit": ver("lmfit"), "numpy": ver("numpy"),
-            "created": datetime.now(timezone.utc).isoformat(timespec="seconds")}
+    return (("frictionlaws", __version__), ("lmfit", ver("lmfit")),
+            ("numpy", ver("numpy")))
+
+
+def _provenance() -> dict[str, Any]:
+    versions = dict(_versions())
+    return {**versions, "created": datetime.now(timezone.utc).isoformat(timespec="seconds")}
 
 
 def load_result(path: str | Path) -> FitResult:
