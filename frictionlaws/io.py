@@ -496,11 +496,15 @@ def decode_text(raw: bytes, source: str, what: str = "CSV file") -> tuple[str, s
     note : str or None
         Set when the file was not UTF-8, to be shown to the user.
     """
-    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
-        try:
-            return raw.decode("utf-16"), None
-        except UnicodeDecodeError:
-            pass
+    raw = raw.rstrip(b"\x1a")  # a DOS end-of-file mark (Ctrl-Z) is not content
+    for bom, codec in ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"),
+                       (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16")):
+        if raw.startswith(bom):
+            try:
+                return raw.decode(codec), None
+            except UnicodeDecodeError:
+                raise InputError(f"starts with a {codec.upper()} byte-order mark but does not "
+                                 f"decode as {codec.upper()}", file=source) from None
     head = raw[:8192]
     controls = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
     if b"\x00" in head or controls > max(2, len(head) // 20):

@@ -689,3 +689,13 @@ def test_overflowing_and_long_cells_are_named_shortly(tmp_path, cell, message):
     with pytest.raises(InputError, match=re.escape(message)) as info:
         io.load_dataset(path)
     assert len(str(info.value)) < 300
+
+
+@pytest.mark.parametrize("encode", [lambda t: t.encode("utf-32"),
+                                    lambda t: t.encode("utf-16"),
+                                    lambda t: t.encode() + b"\x1a"],
+                         ids=["utf-32", "utf-16", "ctrl-z"])
+def test_encodings_by_byte_order_mark_and_a_dos_end_mark(tmp_path, encode):
+    path = tmp_path / "enc.csv"
+    path.write_bytes(encode("mu,p [MPa]\n0.5,0.1\n0.4,0.2\n"))
+    assert io.load_dataset(path).frame["mu"].tolist() == [0.5, 0.4]
