@@ -141,3 +141,18 @@ def test_cornering_refuses_fit_options_without_fit(capsys):
     assert main(["tyre", "cornering", "--law", "thirion", "--set", "a=0.2,b=3e-6",
                  "--fix", "a=0.2"]) == 2
     assert "--fix is not used without --fit" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--load", "0"], "--load '0': loads must be positive"),
+    (["--load", "4", "--load-unit", "m"], "--load-unit m: unit 'm' is a length"),
+])
+def test_reduce_load_errors_name_the_flag_typed(capsys, argv, message):
+    from pathlib import Path
+
+    from frictionlaws.cli import main
+
+    tir = (Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+           / "MagicFormula61_Parameters.converted.tir")
+    assert main(["tyre", "reduce", str(tir), *argv]) == 2
+    assert message in capsys.readouterr().err

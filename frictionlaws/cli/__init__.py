@@ -71,6 +71,7 @@ OPTION_FLAGS = {
     "params": "--set",
     "preset": "--preset",
     "folds": "--folds",
+    "mu_limits": "--mu-min/--mu-max",
     "holdout": "--holdout",
     "jobs": "--jobs",
     "by": "--by",

@@ -169,7 +169,7 @@ def _tyre_options(p: argparse.ArgumentParser) -> None:
 # --------------------------------------------------------------------- helpers
 
 
-def parse_loads(text: str, unit: str) -> Any:
+def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     """``"2:6.5:0.5"`` or ``"2,3,4"`` in ``unit`` -> loads in N (numpy array)."""
     import numpy as np
 
@@ -178,27 +178,30 @@ def parse_loads(text: str, unit: str) -> Any:
 
     text = (text or "").strip()
     if not text:
-        raise InputError("--loads is empty; expected START:STOP:STEP or A,B,C")
+        raise InputError(f"{flag} is empty; expected START:STOP:STEP or A,B,C")
     try:
         parts = [float(x) for x in text.replace(":", ",").split(",") if x.strip()]
     except ValueError:
-        raise InputError(f"--loads '{text}': expected START:STOP:STEP or A,B,C "
+        raise InputError(f"{flag} '{text}': expected START:STOP:STEP or A,B,C "
                          "(numbers)") from None
     if ":" in text:
         if len(parts) != 3 or text.count(":") != 2:
-            raise InputError(f"--loads '{text}': expected START:STOP:STEP")
+            raise InputError(f"{flag} '{text}': expected START:STOP:STEP")
         start, stop, step = parts
         if not step > 0 or stop < start:
-            raise InputError(f"--loads '{text}': expected START <= STOP and STEP > 0")
+            raise InputError(f"{flag} '{text}': expected START <= STOP and STEP > 0")
         count = int(np.floor((stop - start) / step + 1e-9)) + 1
         if count > _MAX_LOADS:
-            raise InputError(f"--loads '{text}' gives {count} loads (at most {_MAX_LOADS})")
+            raise InputError(f"{flag} '{text}' gives {count} loads (at most {_MAX_LOADS})")
         values = start + step * np.arange(count)
     else:
         values = np.array(parts)
-    loads = np.asarray(to_si(values, unit, "F_N", column="--loads"), dtype=float)
+    try:
+        loads = np.asarray(to_si(values, unit, "F_N"), dtype=float)
+    except InputError as exc:
+        raise InputError(f"--load-unit {unit}: {exc}") from None
     if loads.size == 0 or not np.all(np.isfinite(loads)) or np.any(loads <= 0):
-        raise InputError(f"--loads '{text}': loads must be positive")
+        raise InputError(f"{flag} '{text}': loads must be positive")
     return loads
 
 
@@ -405,7 +408,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
     from frictionlaws.errors import InputError
     from frictionlaws.tyre.reduce import reduce_mf
 
-    loads = parse_loads(args.load, args.load_unit)
+    loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:

@@ -457,7 +457,8 @@ def compare(
         raise InputError(f"folds must be at least 2, not {folds}", option="folds")
     lims = tuple(float(x) for x in mu_limits)
     if len(lims) != 2 or not lims[0] < lims[1]:
-        raise InputError(f"mu_limits must be (low, high) with low < high, not {mu_limits!r}")
+        raise InputError(f"the plausible range of mu must have low < high, got {lims}",
+                         option="mu_limits")
     notes: list[str] = []
     if folds > fd.n:
         notes.append(f"{folds} folds asked for but the data have {fd.n} rows: "
