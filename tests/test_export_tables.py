@@ -221,6 +221,8 @@ def run_case(fmt, case, tmp_path):
     system = unit_system(units)
     specs = {k: parse_range(k, v, system) for k, v in box.items()}
     path = tmp_path / f"out.{fmt}"
+    if fmt == "radioss":  # an approximation stated by its error; a missed tol is refused
+        tol = None        # (test_radioss_approximation_that_misses_the_tolerance_is_refused)
     res = export(law_id, values, fmt, specs, preset=preset, units=units, tol=tol, path=path)
     text = path.read_text()
     assert text == res.text
