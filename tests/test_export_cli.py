@@ -227,3 +227,16 @@ def test_radioss_approximation_that_misses_the_tolerance_is_refused(tmp_path, ca
     assert main([*argv, "--tol", "0.01"]) == 2
     assert "more than the tolerance 0.01" in capsys.readouterr().err and not out.exists()
     assert main(argv) == 0 and "APPROXIMATION" in out.read_text()
+
+
+def test_a_range_the_law_does_not_use_is_refused_in_the_api_and_named_on_the_cli(tmp_path,
+                                                                                  capsys):
+    from frictionlaws.errors import InputError
+    from frictionlaws.fe_export import export
+
+    with pytest.raises(InputError, match="does not depend on v") as info:
+        export("thirion", {"a": 0.3, "b": 3e-6}, "csv", box={"p": (1e4, 5e5), "v": (0, 1)})
+    assert info.value.option == "box.v"
+    assert main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "csv",
+                 "--p", "0.01:0.5", "--v", "0:1", "-o", str(tmp_path / "x.csv")]) == 2
+    assert capsys.readouterr().err.startswith("error: --v: law 'thirion' does not depend on v")

@@ -161,7 +161,6 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("--fit needs --law")
         if values:
             raise InputError("--set cannot be combined with --fit (hold values with --fix)")
-        _refuse_unused_ranges(law, box)
         return _export_groups(args, law, box, system)
     elif args.fit:
         if not law:
@@ -190,7 +189,6 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("give the parameters: --preset NAME, --params FILE.json, "
                              "--fit DATA or --set NAME=VALUE,...")
         params = values or None
-    _refuse_unused_ranges(law or getattr(params, "law", None), box)
     res = export(law, params, args.format, box, preset=args.preset, units=system, tol=args.tol,
                  path=None if args.output == "-" else args.output, max_rows=args.max_rows,
                  source=source, options=_options(args))
@@ -270,18 +268,3 @@ def _check_files(args: argparse.Namespace) -> None:
 
     inputs = [x for x in (args.params, args.fit) if x and Path(x).exists()]
     check_outputs([args.output], inputs=inputs)
-
-
-def _refuse_unused_ranges(law: object, box: dict) -> None:
-    """A range given for a variable the law does not use is an error, not ignored."""
-    if law is None:
-        return
-    from frictionlaws import get_law
-    from frictionlaws.errors import InputError
-
-    law_obj = get_law(law)  # type: ignore[arg-type]
-    unused = [v for v in box if v not in law_obj.variables]
-    if unused:
-        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)}: remove "
-                         + " ".join(f"--{v}" for v in unused)
-                         + f" (its variables: {', '.join(law_obj.variables) or 'none'})")

@@ -452,6 +452,11 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     message = law_obj.check_admissible(values)
     system = unit_system(units)
     specs = make_specs(box, system, spacing)
+    unused = [v for v in specs if v not in law_obj.variables]
+    if unused:  # a range the law cannot use is an error, not ignored
+        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)} (its "
+                         f"variables: {', '.join(law_obj.variables) or 'none'}); remove the "
+                         "range", option=f"box.{unused[0]}")
     job = Job(law=law_obj, values=values, fmt=format, units=system, specs=specs, tol=tol,
               max_rows=int(max_rows), source=source or src, fit=fit,
               options=check_options(options))
