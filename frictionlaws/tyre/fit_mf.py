@@ -444,11 +444,20 @@ def _template(template: str | Path | PropertyFile | None, version: str) -> Prope
         p = _packaged_example(EXAMPLES[name[version]])
         if p is None:
             raise InputError("the packaged template property files are missing")
-        return read_property_file(p)
+        return _packaged(p)
     p = Path(template)
-    if not p.exists() and _packaged_example(str(template)) is not None:
-        p = _packaged_example(str(template))  # type: ignore[assignment]
+    if not p.exists():
+        packaged = _packaged_example(str(template))
+        if packaged is not None:
+            return _packaged(packaged)
     return read_property_file(p)
+
+
+def _packaged(path: Path) -> PropertyFile:
+    """A packaged example, named by its file name (not where pip installed it)."""
+    pf = read_property_file(path)
+    pf.path = f"packaged:{path.name}"
+    return pf
 
 
 def _nominal_pressure(pf: PropertyFile, data: TyreData, notes: list[str]) -> float | None:

@@ -319,11 +319,13 @@ class MagicFormula:
             raise InputError(f"expected the path of a property file (or a packaged example "
                              f"name), got {type(path).__name__}")
         p = Path(path)
+        pf = None
         if not p.exists():
             packaged = _packaged_example(str(path))
-            if packaged is not None:
-                p = packaged
-        pf = read_property_file(p)
+            if packaged is not None:  # named as packaged, not where pip installed it
+                pf = read_property_file(packaged)
+                pf.path = f"packaged:{packaged.name}"
+        pf = pf or read_property_file(p)
         return cls.from_property_file(pf, version=version, pressure=pressure, **options)
 
     @classmethod
