@@ -25,8 +25,6 @@ from .systems import UnitSystem
 
 #: Points at which the law is checked in the box before export (spread over the axes).
 _BOX_SAMPLES = 200_000
-#: Largest friction coefficient an export writes (see :data:`frictionlaws.law.MU_MAX`).
-MU_EXPORT_MAX = MU_MAX
 
 __all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
 
@@ -173,7 +171,7 @@ class Job:
         with np.errstate(all="ignore"):
             mu = np.asarray(self.func(**dict(zip(names, mesh))), dtype=float)
         mu = np.broadcast_to(mu, mesh[0].shape) if mesh else np.atleast_1d(mu)
-        bad = ~np.isfinite(mu) | (mu < 0) | (mu > MU_EXPORT_MAX)
+        bad = ~np.isfinite(mu) | (mu < 0) | (mu > MU_MAX)
         if not bad.any():
             return
         idx = tuple(int(i) for i in np.argwhere(bad)[0])
@@ -181,24 +179,24 @@ class Job:
         value = mu[idx] if mu.ndim else float(mu)
         raise InputError(
             f"law '{self.law.id}' gives mu = {value:.4g} at {where or 'every point'}: "
-            f"a friction coefficient must be finite and in 0..{MU_EXPORT_MAX:g} everywhere in "
+            f"a friction coefficient must be finite and in 0..{MU_MAX:g} everywhere in "
             "the exported box; nothing was written (narrow the box or check the parameters)")
 
     def check_levels(self, levels: Mapping[str, float]) -> None:
         """Refuse friction levels of a formula card (``mu_s``, ``mu_k``...) outside
-        0..:data:`MU_EXPORT_MAX`: the solver reaches them at some slip rate."""
+        0..:data:`frictionlaws.law.MU_MAX`: the solver reaches them at some slip rate."""
         for name, value in levels.items():
-            if not (math.isfinite(value) and 0 <= value <= MU_EXPORT_MAX):
+            if not (math.isfinite(value) and 0 <= value <= MU_MAX):
                 raise InputError(
                     f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
-                    f"a friction coefficient in 0..{MU_EXPORT_MAX:g}; nothing was written "
+                    f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
                     "(check the parameters; a fit that cannot determine them needs --fix)")
 
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
 
         The box given for a variable, else the law's typical range, is sampled as for
-        tables: mu must be finite and in 0..:data:`MU_EXPORT_MAX` there.  With ``code``
+        tables: mu must be finite and in 0..:data:`frictionlaws.law.MU_MAX` there.  With ``code``
         (a user subroutine, evaluated wherever the simulation goes) a law with a strict
         domain is refused: only a table holds its ends.
         """
