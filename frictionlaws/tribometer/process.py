@@ -98,6 +98,9 @@ __all__ = [
     "process_record",
     "process_campaign",
     "process_records",
+    "process_many",
+    "manifest_names",
+    "write_tables",
     "grubbs",
     "student_interval",
     "SATURATION_FRACTION",
@@ -204,18 +207,32 @@ def _cell(value: Any) -> str:
     return str(value).strip()
 
 
-def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src: str,
-             base: Path, rig: Rig) -> tuple[list[ManifestEntry], list[str]]:
-    from ..units import parse_unit, unit_registry
+@dataclass(frozen=True)
+class _Layout:
+    """Where each manifest column is and how its cells convert to SI."""
 
+    headers: list[str]
+    found: dict[str, int]
+    src: str
+    base: Path
+    load_unit: str
+    load_factor: float  # N per unit of the load column
+    win_factor: dict[str, float]  # s per unit of window_start / window_end
+
+    def header(self, key: str) -> str:
+        return self.headers[self.found[key]]
+
+
+def _locate_columns(headers: list[str], src: str
+                    ) -> tuple[dict[str, int], dict[str, str | None], list[str]]:
+    """Column index and unit of each manifest column; the headers that are ignored."""
     found: dict[str, int] = {}
     units: dict[str, str | None] = {}
     ignored: list[str] = []
     for j, h in enumerate(headers):
         name, unit = split_header(h)
         key = _norm(name)
-        if key == "f_n":
-            key = "load"
+        key = "load" if key == "f_n" else key
         if key not in _MANIFEST_COLUMNS:
             if h.strip():
                 ignored.append(h)
@@ -233,89 +250,124 @@ def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src:
                 f"load [N]), surface and optionally condition, mode, window_start [s], "
                 f"window_end [s], direction (e.g. '{example}'; found: "
                 f"{', '.join(headers) or 'none'})", file=src)
-    load_h = headers[found["load"]]
-    load_unit = units["load"]
-    if not load_unit:
+    return found, units, ignored
+
+
+def _load_factor(unit: str | None, header: str, rig: Rig, src: str) -> tuple[float, bool]:
+    """Newtons per unit of the load column, and whether the column holds masses."""
+    from ..units import parse_unit, unit_registry
+
+    if not unit:
         raise InputError("the load column has no unit; write 'load [kg]' for dead weights or "
-                         "'load [N]' for a force", file=src, column=load_h)
-    parsed = parse_unit(load_unit, "F_N", column=load_h, file=src)
+                         "'load [N]' for a force", file=src, column=header)
+    parsed = parse_unit(unit, "F_N", column=header, file=src)
     ureg = unit_registry()
-    is_mass = parsed.dimensionality == ureg.kilogram.dimensionality
-    load_factor = (float(ureg.Quantity(1.0, parsed).to("kg").magnitude) * rig.g if is_mass
-                   else float(ureg.Quantity(1.0, parsed).to("N").magnitude))
-    win_factor: dict[str, float] = {}
+    if parsed.dimensionality == ureg.kilogram.dimensionality:
+        return float(ureg.Quantity(1.0, parsed).to("kg").magnitude) * rig.g, True
+    return float(ureg.Quantity(1.0, parsed).to("N").magnitude), False
+
+
+def _window_factors(found: dict[str, int], units: dict[str, str | None],
+                    headers: list[str], src: str) -> dict[str, float]:
+    """Seconds per unit of the window columns present."""
+    from ..units import parse_unit, unit_registry
+
+    out: dict[str, float] = {}
     for key in ("window_start", "window_end"):
-        if key in found:
-            u = units[key]
-            h = headers[found[key]]
-            if not u:
-                raise InputError(f"the {key} column has no unit; write '{key} [s]'",
-                                 file=src, column=h)
-            win_factor[key] = float(ureg.Quantity(1.0, parse_unit(u, "time", column=h,
-                                                                   file=src)).to("s").magnitude)
+        if key not in found:
+            continue
+        u, h = units[key], headers[found[key]]
+        if not u:
+            raise InputError(f"the {key} column has no unit; write '{key} [s]'",
+                             file=src, column=h)
+        q = unit_registry().Quantity(1.0, parse_unit(u, "time", column=h, file=src))
+        out[key] = float(q.to("s").magnitude)
+    return out
+
+
+def _entries(headers: list[str], columns: list[list[Any]], rows: list[int], src: str,
+             base: Path, rig: Rig) -> tuple[list[ManifestEntry], list[str]]:
+    found, units, ignored = _locate_columns(headers, src)
+    load_h = headers[found["load"]]
+    factor, is_mass = _load_factor(units["load"], load_h, rig, src)
+    layout = _Layout(headers, found, src, base, str(units["load"]), factor,
+                     _window_factors(found, units, headers, src))
     notes = []
     if ignored:
         notes.append(f"manifest columns ignored: {', '.join(ignored)}")
     if is_mass:
         notes.append(f"loads given as a mass ('{load_h}') are dead weights: F_N = m * g with "
                      f"g = {rig.g:g} m/s^2 from the rig")
-    entries: list[ManifestEntry] = []
     seen: dict[str, int] = {}
+    entries = []
     for i, row in enumerate(rows):
-        def get(key: str, i: int = i) -> str:
-            return _cell(columns[found[key]][i]) if key in found else ""
-
-        file = get("file")
-        errors: list[str] = []
-        load = math.nan
-        text = get("load")
-        try:
-            load = _number(text) * load_factor
-        except ValueError as exc:
-            errors.append(f"column '{load_h}': load {exc}")
-        else:
-            if not (load > 0 and math.isfinite(load)):
-                errors.append(f"column '{load_h}': load must be > 0, got '{text}'")
-        if not file:
-            errors.append("column 'file' is empty")
-        surface = get("surface")
-        if not surface:
-            errors.append("column 'surface' is empty")
-        mode = get("mode").lower() or "steady"
-        if mode not in MODES:
-            errors.append(f"column 'mode': '{get('mode')}' is not one of steady, initial")
-        direction = get("direction").lower() or "signed"
-        if direction not in DIRECTIONS:
-            errors.append(f"column 'direction': '{get('direction')}' is not one of "
-                          f"{', '.join(DIRECTIONS)}")
-        window: dict[str, float | None] = {}
-        for key in ("window_start", "window_end"):
-            cell = get(key)
-            window[key] = None
-            if cell:
-                try:
-                    window[key] = _number(cell) * win_factor[key]
-                except ValueError as exc:
-                    errors.append(f"column '{headers[found[key]]}': {exc}")
-        ws, we = window["window_start"], window["window_end"]
-        if ws is not None and we is not None and not we > ws:
-            errors.append(f"window_end ({we:g} s) must be after window_start ({ws:g} s)")
-        path = str((base / file).resolve()) if file else ""
-        if file:
-            if path in seen:
-                errors.append(f"file listed twice (also in manifest row {seen[path]})")
-            else:
-                seen[path] = row
-        condition = get("condition") or None
-        error = None
-        if errors:
-            error = f"manifest '{src}' row {row}: " + "; ".join(errors)
-        entries.append(ManifestEntry(
-            row=row, file=file, path=path, load=load,
-            load_text=f"{text} {load_unit}".strip(), surface=surface, condition=condition,
-            mode=mode if mode in MODES else "steady", window_start=ws, window_end=we,
-            direction=direction if direction in DIRECTIONS else "signed", error=error))
+        cells = {key: _cell(columns[j][i]) for key, j in found.items()}
+        entries.append(_entry(cells, row, layout, seen))
     return entries, notes
+
+
+def _entry(cells: dict[str, str], row: int, layout: _Layout, seen: dict[str, int]
+           ) -> ManifestEntry:
+    """One manifest row checked; its problems are collected into ``error``."""
+    def get(key: str) -> str:
+        return cells.get(key, "")
+
+    errors: list[str] = []
+    load = _row_load(get("load"), layout, errors)
+    file = get("file")
+    for key in ("file", "surface"):
+        if not get(key):
+            errors.append(f"column '{key}' is empty")
+    mode = _choice(get("mode"), "mode", MODES, errors)
+    direction = _choice(get("direction"), "direction", DIRECTIONS, errors)
+    ws = _row_window("window_start", get("window_start"), layout, errors)
+    we = _row_window("window_end", get("window_end"), layout, errors)
+    if ws is not None and we is not None and not we > ws:
+        errors.append(f"window_end ({we:g} s) must be after window_start ({ws:g} s)")
+    path = str((layout.base / file).resolve()) if file else ""
+    if path in seen:
+        errors.append(f"file listed twice (also in manifest row {seen[path]})")
+    elif path:
+        seen[path] = row
+    error = f"manifest '{layout.src}' row {row}: " + "; ".join(errors) if errors else None
+    return ManifestEntry(
+        row=row, file=file, path=path, load=load,
+        load_text=f"{get('load')} {layout.load_unit}".strip(), surface=get("surface"),
+        condition=get("condition") or None, mode=mode, window_start=ws, window_end=we,
+        direction=direction, error=error)
+
+
+def _row_load(text: str, layout: _Layout, errors: list[str]) -> float:
+    """The load of one row in N (NaN with an error when it is not a positive number)."""
+    header = layout.header("load")
+    try:
+        load = _number(text) * layout.load_factor
+    except ValueError as exc:
+        errors.append(f"column '{header}': load {exc}")
+        return math.nan
+    if not (load > 0 and math.isfinite(load)):
+        errors.append(f"column '{header}': load must be > 0, got '{text}'")
+    return load
+
+
+def _choice(cell: str, key: str, allowed: tuple[str, ...], errors: list[str]) -> str:
+    """A cell that must be one of ``allowed`` (empty: the first); bad: an error, the first."""
+    value = cell.lower() or allowed[0]
+    if value in allowed:
+        return value
+    errors.append(f"column '{key}': '{cell}' is not one of {', '.join(allowed)}")
+    return allowed[0]
+
+
+def _row_window(key: str, cell: str, layout: _Layout, errors: list[str]) -> float | None:
+    """A window end from the manifest in s, or None when the cell is empty (or bad)."""
+    if not cell:
+        return None
+    try:
+        return _number(cell) * layout.win_factor[key]
+    except ValueError as exc:
+        errors.append(f"column '{layout.header(key)}': {exc}")
+        return None
 
 
 # --------------------------------------------------------------------------- per record
@@ -451,20 +503,39 @@ def _base_result(entry: ManifestEntry) -> RecordResult:
 
 def _process(rec: Record, entry: ManifestEntry, rig: Rig, res: RecordResult,
              box: dict[str, _Signals] | None) -> None:
-    from scipy.ndimage import uniform_filter1d
-
     st = rig.window
-    src = rec.source
     res.n_samples = len(rec)
-    res.fs = fs = rec.fs
+    res.fs = rec.fs
     res.duration = rec.duration
     if res.duration < st.min_duration:
         raise InputError(f"too short: {res.duration:.3g} s of data (min_duration "
-                         f"{st.min_duration:g} s)", file=src)
-    time = rec.time
-    raw = rec.torque
+                         f"{st.min_duration:g} s)", file=rec.source)
     disc, pin = _apply_direction(rec, entry.direction)
-    # cut-off and filtering
+    mu, speeds = _friction(rec, rig, res, disc, pin, entry.load)
+    if box is not None:  # kept for the diagnostic plot, even if no window is found
+        box["signals"] = _Signals(rec.time, rec.torque, speeds[2], mu, None, None)
+    win = _window(rec, entry, rig, res, mu, speeds[:2], box)
+    if box is not None:
+        box["signals"].window = win
+    sl = win.slice()
+    res.window_start, res.window_end = float(rec.time[win.start]), float(rec.time[win.stop - 1])
+    _check_saturation(rec, rig, res, sl)
+    vals = mu[sl]
+    res.mu = float(np.mean(vals))
+    res.mu_window_std = float(np.std(vals, ddof=1)) if vals.size > 1 else math.nan
+    if not res.mu >= st.min_mu:
+        raise NoWindow(f"no friction: mu = {res.mu:.3g} in the window is below min_mu = "
+                       f"{st.min_mu:g}: pin not in contact, or offsets wrong?")
+    _kinematics(res, rig, float(np.mean(disc[sl])), float(np.mean(pin[sl])), entry.load)
+    res.status = "used"
+
+
+def _friction(rec: Record, rig: Rig, res: RecordResult, disc: np.ndarray, pin: np.ndarray,
+              load: float) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Filter the torque, subtract the offsets: mu, and (disc, pin, torque) filtered."""
+    from scipy.ndimage import uniform_filter1d
+
+    fs, raw = rec.fs, rec.torque
     if rig.filter.cutoff is None:
         info = auto_cutoff(raw, fs, rig.filter)
         res.cutoff, res.cutoff_source = info.cutoff, f"auto ({info.limited_by})"
@@ -472,81 +543,82 @@ def _process(rec: Record, entry: ManifestEntry, rig: Rig, res: RecordResult,
         res.cutoff, res.cutoff_source = rig.filter.cutoff, "rig"
     if not res.cutoff < 0.5 * fs:
         raise InputError(f"filter cut-off {res.cutoff:g} Hz is not below the Nyquist frequency "
-                         f"{0.5 * fs:g} Hz of this record", file=src)
+                         f"{0.5 * fs:g} Hz of this record", file=rec.source)
     filtered = lowpass(raw, fs, res.cutoff, rig.filter.order)
     m = max(1, int(round(fs / res.cutoff)))
     disc_f = uniform_filter1d(disc, m, mode="nearest")
     pin_f = uniform_filter1d(pin, m, mode="nearest")
-    # offsets -> friction torque -> mu
     friction = filtered - rig.system_error - rig.internal_torque(disc_f)
-    mu = friction / (rig.track_radius * entry.load)
-    if box is not None:  # kept for the diagnostic plot, even if no window is found
-        box["signals"] = _Signals(time, raw, filtered, mu, None, None)
-    # window
-    segment: tuple[int, int] | None = None
-    win: Window | None = None
+    return friction / (rig.track_radius * load), (disc_f, pin_f, filtered)
+
+
+def _window(rec: Record, entry: ManifestEntry, rig: Rig, res: RecordResult, mu: np.ndarray,
+            speeds: tuple[np.ndarray, np.ndarray], box: dict[str, _Signals] | None) -> Window:
+    """The averaging window: automatic, from the manifest, or one end from each."""
+    time, fs = rec.time, rec.fs
     ws, we = entry.window_start, entry.window_end
-    if ws is not None or we is not None:
-        for name, value in (("window_start", ws), ("window_end", we)):
-            if value is not None and not (time[0] <= value <= time[-1]):
-                raise InputError(f"{name} {value:g} s from the manifest (row {entry.row}) is "
-                                 f"outside the record ({time[0]:g} .. {time[-1]:g} s)",
-                                 file=src)
-    if ws is None or we is None:  # at least one end from the automatic detection
-        a, b, seg_notes = speed_segment([disc_f, pin_f], st.speed_tolerance,
-                                        step=max(1, int(fs // 200)))
-        segment = (a, b)
-        if box is not None:
-            box["signals"].segment = segment
-        res.notes.extend(seg_notes)
-        win = find_window(mu, fs, segment, st, entry.mode)
-        res.notes.extend(win.notes)
-    if ws is not None or we is not None:
-        s0 = int(np.searchsorted(time, ws)) if ws is not None else win.start  # type: ignore
-        e0 = (int(np.searchsorted(time, we, side="right")) if we is not None
-              else win.stop)  # type: ignore[union-attr]
-        if e0 - s0 < 2:
-            raise InputError(f"the window from the manifest (row {entry.row}) holds fewer than "
-                             "2 samples", file=src)
-        res.window_source = ("manifest" if ws is not None and we is not None
-                             else "manifest start" if ws is not None else "manifest end")
-        win = Window(s0, e0, segment or (0, len(rec)), None, None, ())
-    else:
-        res.window_source = "auto"
-    assert win is not None
+    for name, value in (("window_start", ws), ("window_end", we)):
+        if value is not None and not (time[0] <= value <= time[-1]):
+            raise InputError(f"{name} {value:g} s from the manifest (row {entry.row}) is "
+                             f"outside the record ({time[0]:g} .. {time[-1]:g} s)",
+                             file=rec.source)
+    if ws is not None and we is not None:
+        return _manifest_window(rec, entry, res, ws, we, None, (0, len(rec)))
+    a, b, seg_notes = speed_segment(list(speeds), rig.window.speed_tolerance,
+                                    step=max(1, int(fs // 200)))
     if box is not None:
-        box["signals"].window = win
-    sl = win.slice()
-    res.window_start, res.window_end = float(time[win.start]), float(time[win.stop - 1])
-    # saturation
-    k, what = _saturation(raw, rig, sl)
+        box["signals"].segment = (a, b)
+    res.notes.extend(seg_notes)
+    auto = find_window(mu, fs, (a, b), rig.window, entry.mode)
+    res.notes.extend(auto.notes)
+    if ws is None and we is None:
+        res.window_source = "auto"
+        return auto
+    return _manifest_window(rec, entry, res, ws, we, auto, (a, b))
+
+
+def _manifest_window(rec: Record, entry: ManifestEntry, res: RecordResult, ws: float | None,
+                     we: float | None, auto: Window | None, segment: tuple[int, int]
+                     ) -> Window:
+    """The window with the manifest's ends (a missing end taken from ``auto``)."""
+    s0 = int(np.searchsorted(rec.time, ws)) if ws is not None else None
+    e0 = int(np.searchsorted(rec.time, we, side="right")) if we is not None else None
+    if auto is not None:
+        s0 = auto.start if s0 is None else s0
+        e0 = auto.stop if e0 is None else e0
+    assert s0 is not None and e0 is not None
+    if e0 - s0 < 2:
+        raise InputError(f"the window from the manifest (row {entry.row}) holds fewer than "
+                         "2 samples", file=rec.source)
+    res.window_source = ("manifest" if ws is not None and we is not None
+                         else "manifest start" if ws is not None else "manifest end")
+    return Window(s0, e0, segment, None, None, ())
+
+
+def _check_saturation(rec: Record, rig: Rig, res: RecordResult, sl: slice) -> None:
+    """Saturation inside the window makes the record unusable; outside it, a note."""
+    k, what = _saturation(rec.torque, rig, sl)
     if k:
         unit = rec.units.get("torque")
-        raise InputError(f"sensor saturation inside the window: {what}", file=src,
+        raise InputError(f"sensor saturation inside the window: {what}", file=rec.source,
                          column=f"torque [{unit}]" if unit else "torque")
-    k_all, what_all = _saturation(raw, rig, slice(None))
+    k_all, what_all = _saturation(rec.torque, rig, slice(None))
     if k_all:
         res.notes.append(f"sensor saturation outside the window: {what_all}")
-    # results
-    vals = mu[sl]
-    res.mu = float(np.mean(vals))
-    res.mu_window_std = float(np.std(vals, ddof=1)) if vals.size > 1 else math.nan
-    if not res.mu >= st.min_mu:
-        raise NoWindow(f"no friction: mu = {res.mu:.3g} in the window is below min_mu = "
-                       f"{st.min_mu:g}: pin not in contact, or offsets wrong?")
-    wd = float(np.mean(disc[sl]))
-    wp = float(np.mean(pin[sl]))
+
+
+def _kinematics(res: RecordResult, rig: Rig, wd: float, wp: float, load: float) -> None:
+    """Sliding velocity, slip ratio and pressure from the window's mean speeds."""
     rel = abs(wp - wd)
     res.disc_speed, res.pin_speed = wd, wp
     res.v = rig.track_radius * rel
     top = max(abs(wp), abs(wd))
     res.s = rel / top if top > 0 else math.nan
-    res.p = entry.load / rig.contact_area
+    res.p = load / rig.contact_area
     rng = rig.internal_range_rpm()
     if rng is not None and not rng[0] * 0.999 <= abs(wd) / RPM <= rng[1] * 1.001:
         res.notes.append(f"disc speed {abs(wd) / RPM:.4g} rpm is outside the internal-torque "
                          f"table ({rng[0]:g} .. {rng[1]:g} rpm): its end value was used")
-    res.status = "used"
 
 
 # --------------------------------------------------------------------------- statistics
@@ -648,36 +720,41 @@ def _clusters(values: np.ndarray, step: float) -> np.ndarray:
 
 
 def _auto_conditions(results: list[RecordResult], step: float) -> None:
+    """Label records without a manifest condition by surface, mode, load and speeds."""
     groups: dict[tuple[str, str, float], list[RecordResult]] = {}
     for r in results:
         if r.explicit_condition or not math.isfinite(r.load):
             continue
         groups.setdefault((r.surface, r.mode, round(r.load, 9)), []).append(r)
-    for (_surface, _mode, _), members in groups.items():
+    for members in groups.values():
         usable = [r for r in members if r.usable]
         if not usable:
             continue
-        disc = np.array([r.disc_speed for r in usable])
-        pin = np.array([r.pin_speed for r in usable])
-        ld = _clusters(disc, step)
-        labels: dict[tuple[int, int], list[RecordResult]] = {}
-        for c in np.unique(ld):
-            idx = np.flatnonzero(ld == c)
-            lp = _clusters(pin[idx], step)
-            for k, i in zip(lp, idx, strict=True):
-                labels.setdefault((int(c), int(k)), []).append(usable[i])
-        for recs in labels.values():
+        labels = _speed_clusters(usable, step)
+        for recs in labels:
             d = float(np.mean([r.disc_speed for r in recs])) / RPM
             pp = float(np.mean([r.pin_speed for r in recs])) / RPM
             name = (f"{recs[0].surface} | {recs[0].load_text} | disc {d:.0f} rpm, "
                     f"pin {pp:.0f} rpm | {recs[0].mode}")
             for r in recs:
                 r.condition = name
-        unusable = [r for r in members if not r.usable]
-        if len(labels) == 1:
-            only = next(iter(labels.values()))[0].condition
-            for r in unusable:
-                r.condition = only
+        if len(labels) == 1:  # an unusable record can only belong to the one condition
+            for r in members:
+                if not r.usable:
+                    r.condition = labels[0][0].condition
+
+
+def _speed_clusters(usable: list[RecordResult], step: float) -> list[list[RecordResult]]:
+    """Records clustered by disc speed, then by pin speed (gaps wider than ``step``)."""
+    disc = np.array([r.disc_speed for r in usable])
+    pin = np.array([r.pin_speed for r in usable])
+    ld = _clusters(disc, step)
+    labels: dict[tuple[int, int], list[RecordResult]] = {}
+    for c in np.unique(ld):
+        idx = np.flatnonzero(ld == c)
+        for k, i in zip(_clusters(pin[idx], step), idx, strict=True):
+            labels.setdefault((int(c), int(k)), []).append(usable[i])
+    return list(labels.values())
 
 
 def _grubbs_condition(usable: list[RecordResult], alpha: float, label: str
@@ -769,74 +846,85 @@ def summarise(results: list[RecordResult], rig: Rig, *, min_repeats: int = 2
 
     Sets ``status`` to ``"outlier"`` on records dropped by the rule.
 
+    Parameters
+    ----------
+    results : list of RecordResult
+        The processed records of one campaign (their ``condition`` is set here
+        when the manifest gave none).
+    rig : Rig
+        The rig (outlier rule, speed step of the automatic grouping, contact area).
+    min_repeats : int
+        Conditions with fewer usable records are not written.
+
     Returns
     -------
     conditions : list of ConditionResult
+        One per condition, in the order the conditions first appear.
     rule : str
         The outlier rule used, with its settings and figures (for reports).
     """
     _auto_conditions(results, rig.group_speed_step)
-    order: list[str] = []
     by: dict[str, list[RecordResult]] = {}
     for r in results:
-        if not r.condition:
-            continue
-        if r.condition not in by:
-            order.append(r.condition)
-        by.setdefault(r.condition, []).append(r)
-    decisions, rule_text = _outlier_decisions([(k, [r for r in by[k] if r.usable])
-                                               for k in order], rig)
-    out = []
-    for name in order:
-        members = by[name]
-        usable = [r for r in members if r.usable]
-        unusable = [(r.file, r.reason) for r in members if not r.usable]
-        notes: list[str] = []
-        dropped = decisions.get(name, [])
-        outliers = [(r.file, r.reason) for r in dropped]
-        usable = [r for r in usable if all(r is not d for d in dropped)]
-        if not usable:
-            out.append(ConditionResult(name, members[0].surface, members[0].mode, 0, math.nan,
-                                       math.nan, (math.nan, math.nan), math.nan, math.nan,
-                                       math.nan, members[0].load, math.nan, math.nan,
-                                       members[0].load_text, [], outliers, unusable,
-                                       ["no usable record"], written=False))
-            continue
-        mus = [r.mu for r in usable]
-        mean, sd, lo, hi = student_interval(mus)
-        loads = {round(r.load, 9) for r in usable}
-        surfaces = {r.surface for r in usable}
-        modes = {r.mode for r in usable}
-        mixed = []  # one condition is one surface, one load, one mode: never averaged
-        if len(loads) > 1:
-            mixed.append(f"loads ({', '.join(sorted({r.load_text for r in usable}))})")
-        if len(surfaces) > 1:
-            mixed.append(f"surfaces ({', '.join(sorted(surfaces))})")
-        if len(modes) > 1:
-            mixed.append(f"modes ({', '.join(sorted(modes))})")
-        if mixed:
-            notes.append(f"records of different {' and '.join(mixed)} share the condition "
-                         f"label '{name}': not written (give each its own condition)")
-        vs = np.array([r.v for r in usable])
-        if vs.size > 1 and np.ptp(vs) > max(0.05 * np.mean(vs), rig.group_speed_step
-                                            * rig.track_radius):
-            notes.append(f"sliding velocities differ between records ({vs.min():.3g} .. "
-                         f"{vs.max():.3g} m/s); the mean is used")
-        written = len(usable) >= min_repeats and not mixed
-        if len(usable) < min_repeats:
-            notes.append(f"{len(usable)} usable record(s), fewer than min_repeats = "
-                         f"{min_repeats}: not written to the dataset")
-        F = float(np.mean([r.load for r in usable]))
-        out.append(ConditionResult(
-            condition=name, surface=usable[0].surface if len(surfaces) == 1
-            else "/".join(sorted(surfaces)), mode=usable[0].mode, n=len(usable), mu=mean,
-            mu_std=sd, ci95=(lo, hi), p=F / rig.contact_area,
-            v=float(np.mean(vs)), s=float(np.mean([r.s for r in usable])), F_N=F,
-            disc_speed=float(np.mean([r.disc_speed for r in usable])),
-            pin_speed=float(np.mean([r.pin_speed for r in usable])),
-            load_text=usable[0].load_text, files=[r.file for r in usable], outliers=outliers,
-            unusable=unusable, notes=notes, written=written))
+        if r.condition:
+            by.setdefault(r.condition, []).append(r)
+    decisions, rule_text = _outlier_decisions(
+        [(k, [r for r in members if r.usable]) for k, members in by.items()], rig)
+    out = [_condition(name, members, decisions.get(name, []), rig, min_repeats)
+           for name, members in by.items()]
     return out, rule_text
+
+
+def _condition(name: str, members: list[RecordResult], dropped: list[RecordResult], rig: Rig,
+               min_repeats: int) -> ConditionResult:
+    """The statistics of one condition, without the records the outlier rule dropped."""
+    unusable = [(r.file, r.reason) for r in members if not r.usable]
+    outliers = [(r.file, r.reason) for r in dropped]
+    usable = [r for r in members if r.usable and all(r is not d for d in dropped)]
+    first = members[0]
+    if not usable:
+        return ConditionResult(name, first.surface, first.mode, 0, math.nan, math.nan,
+                               (math.nan, math.nan), math.nan, math.nan, math.nan, first.load,
+                               math.nan, math.nan, first.load_text, [], outliers, unusable,
+                               ["no usable record"], written=False)
+    mean, sd, lo, hi = student_interval([r.mu for r in usable])
+    notes = _mixed_notes(name, usable)
+    mixed = bool(notes)
+    vs = np.array([r.v for r in usable])
+    if vs.size > 1 and np.ptp(vs) > max(0.05 * np.mean(vs), rig.group_speed_step
+                                        * rig.track_radius):
+        notes.append(f"sliding velocities differ between records ({vs.min():.3g} .. "
+                     f"{vs.max():.3g} m/s); the mean is used")
+    if len(usable) < min_repeats:
+        notes.append(f"{len(usable)} usable record(s), fewer than min_repeats = "
+                     f"{min_repeats}: not written to the dataset")
+    F = float(np.mean([r.load for r in usable]))
+    surfaces = sorted({r.surface for r in usable})
+    return ConditionResult(
+        condition=name, surface="/".join(surfaces), mode=usable[0].mode, n=len(usable),
+        mu=mean, mu_std=sd, ci95=(lo, hi), p=F / rig.contact_area, v=float(np.mean(vs)),
+        s=float(np.mean([r.s for r in usable])), F_N=F,
+        disc_speed=float(np.mean([r.disc_speed for r in usable])),
+        pin_speed=float(np.mean([r.pin_speed for r in usable])),
+        load_text=usable[0].load_text, files=[r.file for r in usable], outliers=outliers,
+        unusable=unusable, notes=notes, written=len(usable) >= min_repeats and not mixed)
+
+
+def _mixed_notes(name: str, usable: list[RecordResult]) -> list[str]:
+    """One condition is one surface, one load, one mode: a note when records differ."""
+    mixed = []
+    if len({round(r.load, 9) for r in usable}) > 1:
+        mixed.append(f"loads ({', '.join(sorted({r.load_text for r in usable}))})")
+    surfaces = {r.surface for r in usable}
+    if len(surfaces) > 1:
+        mixed.append(f"surfaces ({', '.join(sorted(surfaces))})")
+    modes = {r.mode for r in usable}
+    if len(modes) > 1:
+        mixed.append(f"modes ({', '.join(sorted(modes))})")
+    if not mixed:
+        return []
+    return [f"records of different {' and '.join(mixed)} share the condition label "
+            f"'{name}': not written (give each its own condition)"]
 
 
 # --------------------------------------------------------------------------- campaign
@@ -941,26 +1029,49 @@ class Campaign:
 
     def write_dataset(self, path: str | os.PathLike[str]) -> Path:
         """Write the dataset CSV (foundation schema, units in headers, provenance as ``#``)."""
-        return _write_csv(path, self.dataset_frame(), self._provenance())
+        return write_tables([(path, self.dataset_text())])[0]
 
     def write_records(self, path: str | os.PathLike[str]) -> Path:
         """Write the per-record table as CSV."""
+        return write_tables([(path, self.records_text())])[0]
+
+    def dataset_text(self) -> str:
+        """The dataset CSV that :meth:`write_dataset` writes, as text."""
+        return _csv_text(self.dataset_frame(), self._provenance())
+
+    def records_text(self) -> str:
+        """The per-record CSV that :meth:`write_records` writes, as text."""
         prov = self._provenance()
-        return _write_csv(path, self.records_frame(), prov[:2] + prov[3:])
+        return _csv_text(self.records_frame(), prov[:2] + prov[3:])
 
     def summary_lines(self, *, short: bool = False) -> list[str]:
-        """Lines of the summary: counts, unusable records, outliers, conditions not written."""
+        """Lines of the summary.
+
+        Parameters
+        ----------
+        short : bool
+            Only the counts, the rule and one line per unusable or dropped record
+            (the form kept in a dataset's notes).
+
+        Returns
+        -------
+        list of str
+            Counts, the outlier rule, unusable records, outliers, conditions not
+            written, notes of conditions and records.
+        """
         written = [c for c in self.conditions if c.written]
         lines = [f"{len(self.records)} records: {len(self.used)} used, "
                  f"{len(self.outliers)} dropped as outliers, {len(self.unusable)} unusable; "
                  f"{len(written)} conditions in the dataset",
                  f"outlier rule: {self.outlier_rule or self.rig.outliers.rule}"]
         if short:
-            for r in self.unusable:
-                lines.append(f"unusable record {r.file}: {r.reason}")
-            for r in self.outliers:
-                lines.append(f"outlier {r.file} ({r.condition}): {r.reason}")
+            lines += [f"unusable record {r.file}: {r.reason}" for r in self.unusable]
+            lines += [f"outlier {r.file} ({r.condition}): {r.reason}" for r in self.outliers]
             return lines
+        return lines + self._record_lines() + self._condition_lines() + self._note_lines()
+
+    def _record_lines(self) -> list[str]:
+        lines = []
         if self.unusable:
             lines.append("unusable records:")
             lines += [f"  {r.file}: {r.reason}" for r in self.unusable]
@@ -971,14 +1082,22 @@ class Campaign:
         if unassigned:
             lines.append(f"{len(unassigned)} unusable record(s) could not be assigned to a "
                          "condition (no 'condition' column and no measured speeds)")
+        return lines
+
+    def _condition_lines(self) -> list[str]:
+        lines = []
         not_written = [c for c in self.conditions if not c.written]
         if not_written:
             lines.append("conditions not in the dataset:")
             lines += [f"  {c.condition}: {'; '.join(c.notes)}" for c in not_written]
-        other = [(c.condition, note) for c in written for note in c.notes]
+        other = [(c.condition, note) for c in self.conditions if c.written for note in c.notes]
         if other:
             lines.append("condition notes:")
             lines += [f"  {name}: {note}" for name, note in other]
+        return lines
+
+    def _note_lines(self) -> list[str]:
+        lines = []
         rec_notes = [(r.file, n) for r in self.records for n in r.notes
                      if not n.startswith("window ends")]
         if rec_notes:
@@ -986,11 +1105,73 @@ class Campaign:
             lines += [f"  {f}: {n}" for f, n in rec_notes[:20]]
             if len(rec_notes) > 20:
                 lines.append(f"  ... {len(rec_notes) - 20} more in the per-record table")
-        lines += [f"note: {n}" for n in self.notes]
-        return lines
+        return lines + [f"note: {n}" for n in self.notes]
 
     def summary(self) -> str:
+        """Return the summary as text (:meth:`summary_lines` joined).
+
+        Returns
+        -------
+        str
+            One line per item of :meth:`summary_lines`.
+        """
         return "\n".join(self.summary_lines())
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the campaign as JSON-able data in SI units.
+
+        Returns
+        -------
+        dict
+            ``manifest``, ``rig``, ``min_repeats``, ``outlier_rule``, ``counts``
+            (records, used, outliers, unusable, conditions written), ``units``
+            (the SI unit of every quantity below), ``conditions`` (one dict per
+            condition: statistics, whether it is in the dataset, its records and
+            notes), ``records`` (one dict per record: status, reason, mu, window,
+            filter, speeds) and ``notes``.  Missing numbers are NaN (written as
+            ``null`` by :func:`frictionlaws.jsonio.dumps`).
+        """
+        return {
+            "manifest": self.source, "rig": self.rig.source, "min_repeats": self.min_repeats,
+            "outlier_rule": self.outlier_rule or self.rig.outliers.rule,
+            "counts": {"records": len(self.records), "used": len(self.used),
+                       "outliers": len(self.outliers), "unusable": len(self.unusable),
+                       "conditions_written": sum(c.written for c in self.conditions)},
+            "units": dict(JSON_UNITS),
+            "conditions": [_condition_dict(c) for c in self.conditions],
+            "records": [_record_dict(r) for r in self.records],
+            "notes": list(self.notes)}
+
+
+#: SI unit of each quantity in :meth:`Campaign.to_dict` (``1``: dimensionless).
+JSON_UNITS = {"mu": "1", "mu_std": "1", "mu_ci95": "1", "mu_window_std": "1", "p": "Pa",
+              "v": "m/s", "s": "1", "F_N": "N", "load": "N", "disc_speed": "rad/s",
+              "pin_speed": "rad/s", "window_start": "s", "window_end": "s", "cutoff": "Hz",
+              "fs": "Hz", "duration": "s"}
+
+
+def _condition_dict(c: ConditionResult) -> dict[str, Any]:
+    return {"condition": c.condition, "surface": c.surface, "mode": c.mode,
+            "written": c.written, "n": c.n, "mu": c.mu, "mu_std": c.mu_std,
+            "mu_ci95": list(c.ci95), "p": c.p, "v": c.v, "s": c.s, "F_N": c.F_N,
+            "disc_speed": c.disc_speed, "pin_speed": c.pin_speed, "load_text": c.load_text,
+            "files": list(c.files),
+            "outliers": [{"file": f, "reason": why} for f, why in c.outliers],
+            "unusable": [{"file": f, "reason": why} for f, why in c.unusable],
+            "notes": list(c.notes)}
+
+
+def _record_dict(r: RecordResult) -> dict[str, Any]:
+    return {"file": r.file, "manifest_row": r.row, "condition": r.condition,
+            "surface": r.surface, "mode": r.mode, "status": r.status, "reason": r.reason,
+            "mu": r.mu, "mu_window_std": r.mu_window_std, "load": r.load,
+            "load_text": r.load_text, "p": r.p, "v": r.v, "s": r.s,
+            "disc_speed": r.disc_speed, "pin_speed": r.pin_speed,
+            "window_start": r.window_start, "window_end": r.window_end,
+            "window_source": r.window_source, "cutoff": r.cutoff,
+            "cutoff_source": r.cutoff_source, "fs": r.fs, "duration": r.duration,
+            "samples": r.n_samples, "grubbs_G": r.grubbs_g, "outlier_z": r.outlier_z,
+            "notes": list(r.notes)}
 
 
 def _fmt(value: Any) -> str:
@@ -1003,35 +1184,70 @@ def _fmt(value: Any) -> str:
     return str(value)
 
 
-def _write_csv(path: str | os.PathLike[str], frame: Any, comments: list[str]) -> Path:
+def _csv_text(frame: Any, comments: list[str]) -> str:
     import csv
+    import io
+
+    buf = io.StringIO()
+    for c in comments:
+        buf.write(f"# {c}\n")
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(list(frame.columns))
+    for row in frame.itertuples(index=False):
+        w.writerow([_fmt(v) for v in row])
+    return buf.getvalue()
+
+
+def write_tables(tables: Sequence[tuple[str | os.PathLike[str], str]]) -> list[Path]:
+    """Write several text files together: all of them or, on any failure, none.
+
+    Each file is written to a temporary file beside its target; the temporary
+    files are renamed into place only when every one has been written.
+
+    Parameters
+    ----------
+    tables : sequence of (path, text)
+        The files and their contents.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The paths written, in the order given.
+
+    Raises
+    ------
+    InputError
+        When a directory is missing, or a target is an input or a directory;
+        nothing is written then.
+    """
+    import contextlib
 
     from ..outputs import atomic_write
 
-    out = Path(path)
-    if out.parent and not out.parent.exists():
-        raise InputError("the output directory does not exist", file=str(out))
-    with atomic_write(out, newline="") as fh:
-        for c in comments:
-            fh.write(f"# {c}\n")
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(list(frame.columns))
-        for row in frame.itertuples(index=False):
-            w.writerow([_fmt(v) for v in row])
-    return out
+    paths = [Path(p) for p, _ in tables]
+    for out in paths:
+        if str(out.parent) and not out.parent.exists():
+            raise InputError("the output directory does not exist", file=str(out))
+    with contextlib.ExitStack() as stack:
+        for out, (_, text) in zip(paths, tables, strict=True):
+            stack.enter_context(atomic_write(out, newline="")).write(text)
+    return paths
 
 
 # --------------------------------------------------------------------------- drivers
-_WORKER: dict[str, Any] = {}
+@dataclass(frozen=True)
+class _Chunk:
+    """Records to process in one unit of work: plain, picklable data only."""
+
+    rig: Rig
+    entries: tuple[ManifestEntry, ...]
+    plots: tuple[str | None, ...]
 
 
-def _init_worker(rig: Rig, plots: str | None) -> None:
-    _WORKER["rig"] = rig
-    _WORKER["plots"] = plots
-
-
-def _run_entry(entry: ManifestEntry) -> RecordResult:
-    return _handle(entry, _WORKER["rig"], _WORKER["plots"], None)
+def _run_chunk(chunk: _Chunk) -> list[RecordResult]:
+    """Read and process the records of a chunk (a worker's unit of work)."""
+    return [_handle(e, chunk.rig, plots, None)
+            for e, plots in zip(chunk.entries, chunk.plots, strict=True)]
 
 
 def _handle(entry: ManifestEntry, rig: Rig, plots: str | None,
@@ -1067,34 +1283,57 @@ def _progress(total: int, progress: bool | None, desc: str) -> Any:
                 unit="record", desc=desc, file=sys.stderr, leave=False)
 
 
-def _run(entries: list[ManifestEntry], rig: Rig, records: Sequence[Record] | None,
-         jobs: int, progress: bool | None, plots: str | None) -> list[RecordResult]:
-    results: list[RecordResult] = []
-    bar = _progress(len(entries), progress, "processing")
-    try:
-        if jobs > 1 and records is None and len(entries) >= 4 * jobs:
-            from concurrent.futures import ProcessPoolExecutor
+def _workers(jobs: int | None) -> int:
+    """``jobs`` as the campaign runner takes it: None or 0 (one per CPU) become -1."""
+    return -1 if jobs is None or jobs == 0 else jobs
 
-            chunk = max(1, min(16, len(entries) // (8 * jobs)))
-            with ProcessPoolExecutor(max_workers=jobs, initializer=_init_worker,
-                                     initargs=(rig, plots)) as ex:
-                for res in ex.map(_run_entry, entries, chunksize=chunk):
-                    results.append(res)
-                    bar.update(1)
-        else:
-            for i, entry in enumerate(entries):
-                rec = records[i] if records is not None else None
-                results.append(_handle(entry, rig, plots, rec))
-                bar.update(1)
+
+def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int | None,
+               scheduler: str | None, progress: bool | None) -> list[RecordResult]:
+    """Process records read from files, on the campaign runner (serial, joblib or Dask).
+
+    The results are in the order of ``work`` and do not depend on how the work ran.
+    """
+    from ..campaign import SCHEDULER_ENV, _check_jobs, _chunk_size, iter_parallel
+
+    jobs = _workers(jobs)
+    _check_jobs(jobs)
+    remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
+    workers = (os.cpu_count() or 1) if jobs == -1 else jobs
+    if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
+        jobs = 1
+    size = _chunk_size(len(work), jobs, scheduler)
+    chunks = (_Chunk(rig, tuple(e for e, _ in part), tuple(p for _, p in part))
+              for part in (work[i:i + size] for i in range(0, len(work), size)))
+    results: list[RecordResult] = []
+    bar = _progress(len(work), progress, "processing")
+    try:
+        for part in iter_parallel(_run_chunk, chunks, jobs=jobs, scheduler=scheduler):
+            results.extend(part)
+            bar.update(len(part))
     finally:
         bar.close()
     return results
 
 
-def _jobs(jobs: int | None, n: int) -> int:
-    if jobs is None or jobs <= 0:
-        jobs = os.cpu_count() or 1
-    return max(1, min(jobs, n))
+def _run_memory(entries: list[ManifestEntry], rig: Rig, records: Sequence[Record],
+                progress: bool | None, plots: str | None) -> list[RecordResult]:
+    """Process records held in memory, in this process."""
+    results: list[RecordResult] = []
+    bar = _progress(len(entries), progress, "processing")
+    try:
+        for entry, rec in zip(entries, records, strict=True):
+            results.append(_handle(entry, rig, plots, rec))
+            bar.update(1)
+    finally:
+        bar.close()
+    return results
+
+
+def _check_min_repeats(min_repeats: int) -> None:
+    if min_repeats < 2:
+        raise InputError(f"min_repeats must be at least 2 (a standard deviation needs two "
+                         f"records), got {min_repeats}")
 
 
 def process_campaign(
@@ -1105,6 +1344,7 @@ def process_campaign(
     progress: bool | None = None,
     plots: str | os.PathLike[str] | None = None,
     min_repeats: int = 2,
+    scheduler: str | None = None,
 ) -> Campaign:
     """Process every record of a manifest into per-record and per-condition results.
 
@@ -1115,7 +1355,8 @@ def process_campaign(
     rig : Rig or path
         A :class:`Rig` or the path of its TOML description.
     jobs : int, optional
-        Worker processes (``None`` or 0: one per CPU).  Results do not depend on it.
+        Worker processes: 1 (default) serial, N > 1 that many, ``-1``, ``0`` or
+        ``None`` one per CPU.  Results do not depend on it.
     progress : bool, optional
         Show a progress bar on stderr; ``None`` (default): only when stderr is a
         terminal.
@@ -1124,10 +1365,16 @@ def process_campaign(
     min_repeats : int
         Conditions with fewer usable records are not written to the dataset
         (at least 2: a standard deviation needs two).
+    scheduler : str, optional
+        A Dask scheduler address: the records are processed on that cluster (see
+        :func:`frictionlaws.campaign.iter_parallel`; the record files must be
+        readable by its workers).
 
     Returns
     -------
     Campaign
+        The per-record results, the conditions with their statistics, the notes
+        and the outlier rule used.
 
     Raises
     ------
@@ -1135,21 +1382,143 @@ def process_campaign(
         For a bad manifest or rig (problems of single records are reported in
         the results instead).
     """
+    return process_many([manifest], rig, jobs=jobs, progress=progress, plots=plots,
+                        min_repeats=min_repeats, scheduler=scheduler, plot_dirs="flat")[0]
+
+
+def process_many(
+    manifests: Sequence[str | os.PathLike[str]],
+    rig: Rig | str | os.PathLike[str],
+    *,
+    jobs: int | None = 1,
+    progress: bool | None = None,
+    plots: str | os.PathLike[str] | None = None,
+    min_repeats: int = 2,
+    scheduler: str | None = None,
+    plot_dirs: str = "per-manifest",
+) -> list[Campaign]:
+    """Process several manifests with one rig: one :class:`Campaign` per manifest.
+
+    Every manifest is read and checked before any record is processed.  The
+    records of all manifests are then processed as one stream of work, serially,
+    on local processes (``jobs``) or on a Dask cluster (``scheduler``), the way
+    :func:`frictionlaws.campaign.fit_many` runs many datasets; each manifest's
+    conditions and outlier rule are then computed from its own records only, so
+    each result equals :func:`process_campaign` of that manifest alone.
+
+    Parameters
+    ----------
+    manifests : sequence of str or path
+        The manifest CSVs; the same file may not be given twice.
+    rig : Rig or path
+        The rig of every manifest.
+    jobs, progress, min_repeats, scheduler
+        As in :func:`process_campaign`.
+    plots : str or path, optional
+        Directory for diagnostic plots.
+    plot_dirs : {"per-manifest", "flat"}
+        ``per-manifest`` (default): each manifest's plots go to a subdirectory
+        named by :func:`manifest_names`; ``flat``: all in ``plots`` (one manifest).
+
+    Returns
+    -------
+    list of Campaign
+        In the order of ``manifests``.
+
+    Raises
+    ------
+    InputError
+        For a bad rig, a manifest given twice, or a bad manifest (naming it);
+        nothing is processed then.
+    """
     if not isinstance(rig, Rig):
         from .rig import load_rig
 
         rig = load_rig(rig)
-    if min_repeats < 2:
-        raise InputError(f"min_repeats must be at least 2 (a standard deviation needs two "
-                         f"records), got {min_repeats}")
-    entries, notes = read_manifest(manifest, rig)
-    plots_dir = _plots_dir(plots)
-    results = _run(entries, rig, None, _jobs(jobs, len(entries)), progress, plots_dir)
+    _check_min_repeats(min_repeats)
+    names = manifest_names(manifests)
+    read = [read_manifest(m, rig) for m in manifests]
+    dirs = _plot_dirs(plots, names, plot_dirs)
+    work = [(e, d) for (entries, _), d in zip(read, dirs, strict=True) for e in entries]
+    results = iter(_run_files(work, rig, jobs, scheduler, progress))
+    camps = []
+    for m, (entries, notes), d in zip(manifests, read, dirs, strict=True):
+        mine = [next(results) for _ in entries]
+        camps.append(_campaign(mine, rig, os.fspath(m), notes, min_repeats, d))
+    return camps
+
+
+def _campaign(results: list[RecordResult], rig: Rig, source: str, notes: list[str],
+              min_repeats: int, plots_dir: str | None) -> Campaign:
     conditions, rule = summarise(results, rig, min_repeats=min_repeats)
-    camp = Campaign(results, conditions, rig, os.fspath(manifest), notes, min_repeats, rule)
+    camp = Campaign(results, conditions, rig, source, notes, min_repeats, rule)
     if plots_dir is not None:
         _summary_plot(camp, plots_dir)
     return camp
+
+
+def _plot_dirs(plots: str | os.PathLike[str] | None, names: list[str], layout: str
+               ) -> list[str | None]:
+    if layout not in ("per-manifest", "flat"):
+        raise InputError(f"plot_dirs must be 'per-manifest' or 'flat', got {layout!r}")
+    if plots is None:
+        return [None] * len(names)
+    if layout == "flat":
+        if len(names) > 1:
+            raise InputError("several manifests need a plot directory each: use "
+                             "plot_dirs='per-manifest'")
+        return [_plots_dir(plots)]
+    return [_plots_dir(Path(plots) / name) for name in names]
+
+
+def manifest_names(manifests: Sequence[str | os.PathLike[str]]) -> list[str]:
+    """Short, distinct names for manifests: the file stem, or parent and stem when
+    two stems are the same (``week1/manifest.csv`` -> ``week1_manifest``).
+
+    Parameters
+    ----------
+    manifests : sequence of str or path
+        The manifest files.
+
+    Returns
+    -------
+    list of str
+        One name per manifest, in order; used for output files and plot folders.
+
+    Raises
+    ------
+    InputError
+        When no manifest is given, one is given twice (the same file, also
+        through a link), or two names still collide (naming both files).
+    """
+    if not manifests:
+        raise InputError("no manifest given")
+    paths = [Path(m) for m in manifests]
+    _refuse_repeats(paths)
+    stems = [p.stem for p in paths]
+    names = [f"{p.resolve().parent.name}_{p.stem}" if stems.count(p.stem) > 1 else p.stem
+             for p in paths]
+    seen: dict[str, Path] = {}
+    for name, p in zip(names, paths, strict=True):
+        key = name.casefold()  # outputs may land on a case-insensitive file system
+        if key in seen:
+            raise InputError(f"manifests '{seen[key]}' and '{p}' would write outputs of the "
+                             f"same name '{name}': rename one, or process them separately",
+                             file=str(p))
+        seen[key] = p
+    return names
+
+
+def _refuse_repeats(paths: list[Path]) -> None:
+    """A manifest given twice (same path, or the same file through a link) is refused."""
+    for i, p in enumerate(paths):
+        for q in paths[:i]:
+            same = os.path.realpath(p) == os.path.realpath(q)
+            if not same and p.exists() and q.exists():
+                same = os.path.samefile(p, q)
+            if same:
+                raise InputError(f"the manifest is given twice ('{q}' and '{p}'); give it "
+                                 "once", file=str(p))
 
 
 def process_records(
@@ -1169,19 +1538,19 @@ def process_records(
     """
     if len(records) != len(manifest):
         raise InputError(f"{len(records)} records but {len(manifest)} manifest rows")
-    if manifest and isinstance(manifest[0], ManifestEntry):
-        entries = list(manifest)  # type: ignore[arg-type]
-        notes: list[str] = []
+    _check_min_repeats(min_repeats)
+    notes: list[str] = []
+    if manifest and all(isinstance(m, ManifestEntry) for m in manifest):
+        entries = [m for m in manifest if isinstance(m, ManifestEntry)]
     else:
-        entries, notes = manifest_from_rows(manifest, rig)  # type: ignore[arg-type]
+        rows = [m for m in manifest if isinstance(m, Mapping)]
+        if len(rows) != len(manifest):
+            raise InputError("manifest rows must all be dicts or all be ManifestEntry objects")
+        entries, notes = manifest_from_rows(rows, rig)
     entries = [replace(e, path="") for e in entries]
     plots_dir = _plots_dir(plots)
-    results = _run(entries, rig, records, 1, progress, plots_dir)
-    conditions, rule = summarise(results, rig, min_repeats=min_repeats)
-    camp = Campaign(results, conditions, rig, "<memory>", notes, min_repeats, rule)
-    if plots_dir is not None:
-        _summary_plot(camp, plots_dir)
-    return camp
+    results = _run_memory(entries, rig, records, progress, plots_dir)
+    return _campaign(results, rig, "<memory>", notes, min_repeats, plots_dir)
 
 
 def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
@@ -1189,7 +1558,7 @@ def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
         return None
     from ..io import output_dir
 
-    return str(output_dir(plots, "plots directory"))
+    return str(output_dir(os.fspath(plots), "plots directory"))
 
 
 def _summary_plot(camp: Campaign, plots_dir: str) -> None:
