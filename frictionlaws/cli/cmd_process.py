@@ -1,10 +1,24 @@
-"""``frictionlaws process``: raw tribometer records -> a friction dataset with intervals."""
+"""``frictionlaws process``: raw tribometer records -> friction datasets with intervals.
+
+One manifest writes one dataset (``-o DATASET.csv``) or, given a directory
+(``-o DIR``), ``DIR/NAME.csv``.  Several manifests need a directory: each
+writes ``DIR/NAME.csv`` and ``DIR/NAME_records.csv`` with ``NAME`` from
+:func:`frictionlaws.tribometer.process.manifest_names`.  All records of all
+manifests run as one stream of work on the campaign runner (``--jobs``,
+``--scheduler``, ``--progress``), the way ``fit`` and ``compare`` run many
+datasets; every manifest's result equals processing it alone.  Outputs are
+checked before any work and written together at the end: all of them or none.
+"""
 
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
-from ._common import add_progress_option, bounded_int, progress_value
+from ._campaign import _jobs
+from ._common import add_json_option, add_progress_option, bounded_int, progress_value
 
 __all__ = ["add_parser", "run"]
 
@@ -12,7 +26,7 @@ __all__ = ["add_parser", "run"]
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
         "process", help="process raw tribometer records into a dataset",
-        description="Process the raw torque records listed in a manifest CSV (file, "
+        description="Process the raw torque records listed in manifest CSVs (file, "
         "load [kg] or load [N], surface, optional condition, mode, window_start [s], "
         "window_end [s], direction) with a rig description (TOML): filter, subtract the "
         "offsets, find the steady window, average the repeats of each condition, drop "
@@ -20,52 +34,186 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "record-to-record scatter pooled over the campaign; Grubbs on request in the rig), "
         "print the rule used, and write a dataset with mu, mu_std, n, 95 % Student-t "
         "intervals, p, v, s and F_N, ready for 'fit' and 'compare'. Unusable records are "
-        "reported with the reason and the rest processed.")
-    p.add_argument("manifest", metavar="MANIFEST", help="manifest CSV, one row per record")
+        "reported with the reason and the rest processed. Several manifests are processed "
+        "together (each as if alone) into a directory: DIR/NAME.csv and "
+        "DIR/NAME_records.csv per manifest.")
+    p.add_argument("manifest", metavar="MANIFEST", nargs="+",
+                   help="manifest CSV, one row per record (several: one dataset each)")
     p.add_argument("--rig", required=True, metavar="RIG.toml", help="rig description (TOML)")
-    p.add_argument("-o", "--output", required=True, metavar="DATASET.csv",
-                   help="dataset to write (one row per condition)")
+    p.add_argument("-o", "--output", required=True, metavar="DATASET.csv|DIR",
+                   help="dataset to write (one row per condition), or a directory that "
+                        "receives NAME.csv and NAME_records.csv per manifest (created if "
+                        "missing; needed for several manifests)")
     p.add_argument("--records-out", metavar="RECORDS.csv",
-                   help="per-record table (default: DATASET_records.csv next to the dataset)")
+                   help="per-record table (default: DATASET_records.csv next to the dataset; "
+                        "only with -o DATASET.csv)")
     p.add_argument("--plots", metavar="DIR",
-                   help="write diagnostic plots (raw, filtered, window) for every record")
-    p.add_argument("--jobs", type=bounded_int(0, 1024), default=0, metavar="N",
-                   help="worker processes (default 0: one per CPU; 0..1024)")
-    p.add_argument("--min-repeats", type=int, default=2, metavar="N",
+                   help="write diagnostic plots (raw, filtered, window) for every record "
+                        "(several manifests: one subdirectory NAME each)")
+    p.add_argument("--jobs", type=_jobs, default=-1, metavar="N",
+                   help="worker processes for the records (default -1: one per core; 1 = "
+                        "serial; 1..1024)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="process the records on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
+                        "(default: $FRICTIONLAWS_SCHEDULER; the record files must be "
+                        "readable by its workers; needs the 'dask' extra)")
+    p.add_argument("--min-repeats", type=bounded_int(2, 10_000), default=2, metavar="N",
                    help="conditions with fewer usable records are not written (default 2)")
     add_progress_option(p)
+    add_json_option(p)
     return p
 
 
-def run(args: argparse.Namespace) -> int:
-    from pathlib import Path
+@dataclass(frozen=True)
+class _Target:
+    """Where one manifest's outputs go."""
 
+    manifest: str
+    dataset: Path
+    records: Path
+
+
+def _plan(args: argparse.Namespace, names: list[str]) -> tuple[list[_Target], Path | None]:
+    """The output files of every manifest, and the output directory (None: -o is a file)."""
     from frictionlaws.errors import InputError
-    from frictionlaws.outputs import check_outputs
-    from frictionlaws.tribometer.process import process_campaign
-    from frictionlaws.tribometer.rig import load_rig
 
     out = Path(args.output)
-    if out.suffix.lower() != ".csv":
-        raise InputError(f"-o {args.output}: the dataset is written as CSV; give a .csv name")
-    records_out = (Path(args.records_out) if args.records_out
+    as_dir = out.is_dir() or str(args.output).endswith(("/", "\\")) or not out.suffix
+    if not as_dir and out.suffix.lower() != ".csv":
+        raise InputError(f"-o {args.output}: the dataset is written as CSV; give a .csv name "
+                         "(or a directory)")
+    if not as_dir:
+        if len(args.manifest) > 1:
+            raise InputError(f"-o {args.output}: {len(args.manifest)} manifests write one "
+                             "dataset each; give -o a directory")
+        records = (Path(args.records_out) if args.records_out
                    else out.with_name(f"{out.stem}_records.csv"))
-    # every output is checked before any work: not an input, a writable file
-    check_outputs([out, records_out], dirs=[args.plots], inputs=[args.manifest, args.rig])
+        return [_Target(args.manifest[0], out, records)], None
+    if args.records_out:
+        raise InputError("--records-out names one file: it is used with -o DATASET.csv; with "
+                         "-o DIR the per-record tables are DIR/NAME_records.csv")
+    return [_Target(m, out / f"{name}.csv", out / f"{name}_records.csv")
+            for m, name in zip(args.manifest, names, strict=True)], out
+
+
+def _refuse_collisions(targets: list[_Target]) -> None:
+    """Two outputs with one name (also differing in case only) name both manifests."""
+    import os
+
+    from frictionlaws.errors import InputError
+
+    seen: dict[str, tuple[str, str]] = {}
+    for t in targets:
+        for role, path in (("dataset", t.dataset), ("per-record table", t.records)):
+            key = os.path.normcase(os.path.abspath(path)).casefold()
+            if key in seen:
+                other_role, other = seen[key]
+                raise InputError(f"outputs collide: {path} would be the {role} of '{t.manifest}' "
+                                 f"and the {other_role} of '{other}'; rename a manifest or "
+                                 "process them separately", file=str(path))
+            seen[key] = (role, t.manifest)
+
+
+def _check_before_work(args: argparse.Namespace, targets: list[_Target],
+                       out_dir: Path | None) -> None:
+    from frictionlaws.outputs import check_outputs
+
+    _refuse_collisions(targets)
+    inputs = [*args.manifest, args.rig]
+    files = [p for t in targets for p in (t.dataset, t.records)]
+    if out_dir is None or out_dir.is_dir():
+        check_outputs(files, dirs=[args.plots], inputs=inputs)
+    else:  # files in a directory still to be created cannot be inputs or directories
+        check_outputs(dirs=[out_dir, args.plots], inputs=inputs)
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.tribometer.process import manifest_names, process_many
+    from frictionlaws.tribometer.rig import load_rig
+
+    names = manifest_names(args.manifest)  # refuses a manifest given twice
+    targets, out_dir = _plan(args, names)
+    _check_before_work(args, targets, out_dir)
     rig = load_rig(args.rig)
-    camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=progress_value(args),
-                            plots=args.plots, min_repeats=args.min_repeats)
-    check_outputs([out, records_out], inputs=[r.file for r in camp.records if r.file])
-    if not any(c.written for c in camp.conditions):
-        print(camp.summary())
-        raise InputError(
-            f"no condition has {args.min_repeats} or more usable records: no dataset written, "
-            "nothing written at all (the reasons are in the summary above)", file=args.manifest)
-    camp.write_records(records_out)
-    camp.write_dataset(out)
-    print(camp.summary())
-    print(f"per-record table: {records_out}")
-    if args.plots:
-        print(f"plots: {args.plots}")
-    print(f"dataset: {out}")
+    camps = process_many(args.manifest, rig, jobs=args.jobs, scheduler=args.scheduler,
+                         progress=progress_value(args), plots=args.plots,
+                         min_repeats=args.min_repeats,
+                         plot_dirs="flat" if len(args.manifest) == 1 else "per-manifest")
+    empty = [t.manifest for t, c in zip(targets, camps, strict=True)
+             if not any(cond.written for cond in c.conditions)]
+    if empty:
+        _report(args, targets, camps, written=False)
+        _refuse_empty(args, empty)
+    _write(targets, camps, out_dir)
+    _report(args, targets, camps, written=True)
     return 0
+
+
+def _refuse_empty(args: argparse.Namespace, empty: list[str]) -> None:
+    from frictionlaws.errors import InputError
+
+    where = f"manifests {', '.join(empty)}: " if len(empty) > 1 else ""
+    raise InputError(
+        f"{where}no condition has {args.min_repeats} or more usable records: no dataset "
+        "written, nothing written at all (the reasons are in the summary above)",
+        file=empty[0] if len(empty) == 1 else None)
+
+
+def _write(targets: list[_Target], camps: list[Any], out_dir: Path | None) -> None:
+    """Write every dataset and per-record table together; on failure, none of them."""
+    from frictionlaws.outputs import check_outputs
+    from frictionlaws.tribometer.process import write_tables
+
+    created = out_dir is not None and not out_dir.exists()
+    if not created:
+        check_outputs([p for t in targets for p in (t.dataset, t.records)],
+                      inputs=[f for c in camps for f in c.record_files()])
+    if out_dir is not None:
+        from frictionlaws.io import output_dir
+
+        output_dir(out_dir)
+    tables = [(p, text) for t, c in zip(targets, camps, strict=True)
+              for p, text in ((t.records, c.records_text()), (t.dataset, c.dataset_text()))]
+    try:
+        write_tables(tables)
+    except BaseException:
+        if created and out_dir is not None:
+            import contextlib
+
+            with contextlib.suppress(OSError):
+                out_dir.rmdir()  # only when still empty
+        raise
+
+
+def _report(args: argparse.Namespace, targets: list[_Target], camps: list[Any], *,
+            written: bool) -> None:
+    """The summaries as text, or (``--json``) one strict JSON document."""
+    if args.json:
+        from frictionlaws import jsonio
+
+        docs = []
+        for t, c in zip(targets, camps, strict=True):
+            outputs = ({"dataset": str(t.dataset), "records": str(t.records),
+                        "plots": _plots_of(args, t, targets)} if written else None)
+            docs.append({**c.to_dict(), "outputs": outputs})
+        print(jsonio.dumps({"written": written, "manifests": docs}))
+        return
+    several = len(targets) > 1
+    for t, c in zip(targets, camps, strict=True):
+        if several:
+            print(f"== {t.manifest}")
+        print(c.summary())
+        if written:
+            print(f"per-record table: {t.records}")
+            if args.plots:
+                print(f"plots: {_plots_of(args, t, targets)}")
+            print(f"dataset: {t.dataset}")
+
+
+def _plots_of(args: argparse.Namespace, target: _Target, targets: list[_Target]
+              ) -> str | None:
+    if not args.plots:
+        return None
+    if len(targets) == 1:
+        return str(args.plots)
+    return str(Path(args.plots) / target.dataset.stem)

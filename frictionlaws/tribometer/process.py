@@ -952,6 +952,19 @@ class Campaign:
     def unusable(self) -> list[RecordResult]:
         return [r for r in self.records if r.status == "unusable"]
 
+    def record_files(self) -> list[Path]:
+        """The record files the manifest names, resolved (paths are relative to it).
+
+        Returns
+        -------
+        list of pathlib.Path
+            One per record with a file name; empty for records held in memory.
+        """
+        if self.source == "<memory>":
+            return []
+        base = Path(self.source).resolve().parent
+        return [(base / r.file).resolve() for r in self.records if r.file]
+
     def dataset_frame(self) -> Any:
         """The per-condition dataset with display-unit headers (what ``write_dataset`` writes).
 
