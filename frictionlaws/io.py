@@ -415,6 +415,95 @@ class Dataset:
         return {"name": self.name, "source": self.source, "rows": len(self),
                 "columns": cols, "notes": list(self.notes), "provenance": self.provenance}
 
+    @classmethod
+    def from_frame(cls, frame: pd.DataFrame, *,
+                   mapping: Mapping[str, str] | str | None = None,
+                   units: Mapping[str, str] | str | None = None,
+                   area: str | float | None = None, name: str = "dataframe") -> Dataset:
+        """Build a dataset from a :class:`pandas.DataFrame`, checked as a CSV file is.
+
+        Column names follow the CSV schema: canonical names or aliases, with the
+        unit in square brackets (``p [MPa]``, ``T [degC]``); a column without a
+        unit in its name is taken as SI (``p`` in Pa) unless ``units`` says
+        otherwise.  :meth:`to_frame` writes this form, so
+        ``Dataset.from_frame(ds.to_frame())`` gives ``ds`` back.
+
+        Parameters
+        ----------
+        frame : pandas.DataFrame
+            One row per measurement.
+        mapping : dict or str, optional
+            Canonical column -> the frame's column, e.g. ``{"mu": "FC"}``.
+        units : dict or str, optional
+            Units of columns whose name carries none, e.g. ``{"p": "MPa"}``.
+        area : str or float, optional
+            Nominal contact area (``"314.16 mm^2"`` or m^2) to derive ``p`` from
+            ``F_N``.
+        name : str
+            Short name of the dataset (used in reports).
+
+        Returns
+        -------
+        Dataset
+            The data in canonical SI columns; its ``source`` is ``<DataFrame>``.
+
+        Raises
+        ------
+        InputError
+            As :func:`load_dataset` for a file: a non-numeric, negative or
+            non-finite value names its column and row (the row's position in the
+            frame, from 0); a wrong unit, a missing ``mu`` column, a bad mapping or
+            no row left are refused too.
+        """
+        if not isinstance(frame, pd.DataFrame):
+            raise InputError(f"Dataset.from_frame takes a pandas DataFrame, got "
+                             f"{type(frame).__name__}")
+        if isinstance(mapping, str):
+            mapping = parse_mapping(mapping)
+        if isinstance(units, str):
+            units = parse_units(units)
+        return _build(_table_from_frame(frame, "<DataFrame>"), name, mapping, units, area, None)
+
+    def to_frame(self, units: str = "si") -> pd.DataFrame:
+        """Return the data as a DataFrame whose column names carry their units.
+
+        Parameters
+        ----------
+        units : {"si", "display"}
+            ``si`` (default): values in SI with SI units in the names (``p [Pa]``,
+            ``v [m/s]``, ``T [K]``, ``F_N [N]``); ``display``: the units
+            :meth:`to_csv` writes (``p [MPa]``, ``T [degC]``).  Dimensionless
+            columns (``mu``, ``s``, ``mu_std``, ``n``) and ``surface`` carry no
+            unit.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The canonical columns present, in the CSV schema's order; a copy.
+            ``attrs`` holds ``name``, ``source`` and ``units`` (column -> unit).
+            :meth:`from_frame` reads it back.
+
+        Raises
+        ------
+        InputError
+            For ``units`` other than ``"si"`` or ``"display"``.
+        """
+        if units not in ("si", "display"):
+            raise InputError(f"units must be 'si' or 'display', got {units!r}")
+        out = pd.DataFrame(index=range(len(self)))
+        given: dict[str, str] = {}
+        for c in (c for c in CANONICAL if c in self.frame.columns):
+            if c == "surface" or c not in _units.QUANTITIES:
+                out[c] = self.frame[c].to_numpy(copy=True)
+                continue
+            unit = _units.si_unit(c) if units == "si" else _units.display_unit(c)
+            vals = self.frame[c].to_numpy(dtype=float)
+            out[_units.header(c, unit)] = (vals.copy() if units == "si"
+                                           else _units.from_si(vals, unit, c))
+            given[c] = unit
+        out.attrs.update(name=self.name, source=self.source, units=given)
+        return out
+
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write the dataset to a CSV file in the canonical schema.
 
