@@ -33,9 +33,6 @@ IGNORED = frozenset({"SA01", "EX01", "ES01", "GL08"})
 PENDING_MODULES = (
     "frictionlaws.law",
     "frictionlaws.fitting",
-    "frictionlaws.tyre.magic_formula",
-    "frictionlaws.tyre.reduce",
-    "frictionlaws.tribometer.process",
 )
 
 #: Public objects whose docstrings still fail validation.  Remove a name when its
@@ -74,20 +71,6 @@ KNOWN_FAILURES = frozenset({
     "frictionlaws.law.Law.symbols",  # RT01
     "frictionlaws.law.Law.typical_range",  # PR01, RT01
     "frictionlaws.law.Setting",  # PR01: the dataclass fields are not Parameters
-    # frictionlaws/tribometer/process.py
-    "frictionlaws.tribometer.process.process_campaign",  # RT03
-    # frictionlaws/tyre/magic_formula.py
-    "frictionlaws.tyre.magic_formula.MagicFormula.cornering_stiffness",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.fx0",  # RT03
-    "frictionlaws.tyre.magic_formula.MagicFormula.fy0",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.lateral",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.longitudinal",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.mu_x_peak",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.mu_y_peak",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.slip_stiffness",  # PR01, RT01
-    "frictionlaws.tyre.magic_formula.MagicFormula.summary",  # PR01, RT01
-    # frictionlaws/tyre/reduce.py
-    "frictionlaws.tyre.reduce.reduce_mf",  # RT03
 })
 
 

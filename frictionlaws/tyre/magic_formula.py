@@ -95,12 +95,14 @@ INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -198,6 +200,169 @@ def _version_of(pf: PropertyFile) -> tuple[str, str]:
     return "5.2", "no FITTYP; the MF 5.2 / PAC2002 equations were assumed"
 
 
+def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
+                       loads_above_fzmax: str, source: str) -> None:
+    """Refuse an unknown version or convention, naming the allowed values."""
+    if version not in MF_VERSIONS:
+        raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
+                         f"{', '.join(MF_VERSIONS)}", file=source)
+    for what, value, allowed in (("slip_angle", slip_angle, SLIP_ANGLE_INPUTS),
+                                 ("friction_scaling", friction_scaling, FRICTION_SCALINGS),
+                                 ("loads_above_fzmax", loads_above_fzmax, LOADS_ABOVE_FZMAX)):
+        if value not in allowed:
+            raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
+                             file=source)
+
+
+def _checked_coefficients(coefficients: Mapping[str, float], fnomin: float, source: str
+                          ) -> dict[str, float]:
+    """The coefficients by upper-case name, all finite; FNOMIN a positive load."""
+    if not (math.isfinite(fnomin) and fnomin > 0):
+        raise InputError(f"FNOMIN must be a positive load in N, got {fnomin}", file=source)
+    out = {k.upper(): float(v) for k, v in coefficients.items()}
+    for k, v in out.items():
+        if not math.isfinite(v):
+            raise InputError(f"coefficient {k} is not finite", file=source)
+    return out
+
+
+def _positive_or_none(value: float | None, what: str, source: str) -> float | None:
+    """A pressure [Pa]: None, or a positive finite number."""
+    if value is None:
+        return None
+    x = float(value)
+    if not (math.isfinite(x) and x > 0):
+        raise InputError(f"{what} must be a positive number of Pa, got {x:g}", file=source)
+    return x
+
+
+def _pure_slip_coefficients(pf: PropertyFile) -> dict[str, float]:
+    """Scaling, longitudinal and lateral coefficients; the pure-slip ones must be there."""
+    coeffs = pf.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
+                             "LATERAL_COEFFICIENTS")
+    for need in ("PCX1", "PDX1", "PKX1", "PCY1", "PDY1", "PKY1"):
+        if need not in coeffs:
+            sec = "LONGITUDINAL" if "X" in need[2:] else "LATERAL"
+            raise InputError(f"[{sec}_COEFFICIENTS] {need} is missing: not a Magic "
+                             "Formula property file?", file=pf.path)
+    return coeffs
+
+
+def _file_pressures(pf: PropertyFile, notes: list[str]) -> tuple[float | None, float | None]:
+    """Inflation and nominal pressure [Pa] of the file (MF 6.x or PAC2002 keys).
+
+    When only one of them is given it stands for both (dpi = 0), with a note.
+    """
+    p_i = p_nom = None
+    for sec, key, nom in (("OPERATING_CONDITIONS", "INFLPRES", "NOMPRES"),
+                          ("TIRE_CONDITIONS", "IP", "IP_NOM")):
+        if pf.has(sec, key) or pf.has(sec, nom):
+            p_i = pf.si(sec, key) if pf.has(sec, key) else None
+            p_nom = pf.si(sec, nom) if pf.has(sec, nom) else None
+            break
+    if p_nom is None and p_i is not None:
+        p_nom = p_i
+        notes.append("no nominal pressure in the file: the inflation pressure is taken "
+                     "as nominal (dpi = 0)")
+    if p_i is None and p_nom is not None:
+        p_i = p_nom
+        notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
+                     "pressure is used (dpi = 0); pass pressure= to evaluate at another")
+    return p_i, p_nom
+
+
+#: Validity ranges of a property file: name, section, MIN key, MAX key, and whether the
+#: values carry a unit (load, pressure) or are plain numbers (slips and angles, rad).
+_RANGES = (("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
+           ("kappa", "LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", False),
+           ("alpha", "SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", False),
+           ("gamma", "INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", False),
+           ("pressure", "INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", True))
+
+
+def _file_limits(pf: PropertyFile) -> dict[str, tuple[float, float]]:
+    """The file's validity ranges in SI; a range with MIN above MAX is refused."""
+    limits = {}
+    for name, sec, lo, hi, kind in _RANGES:
+        if not (pf.has(sec, lo) and pf.has(sec, hi)):
+            continue
+        low, high = ((pf.si(sec, lo), pf.si(sec, hi)) if kind
+                     else (pf.number(sec, lo), pf.number(sec, hi)))
+        if not low <= high or (kind and low < 0):
+            raise InputError(
+                f"[{sec}] {lo} .. {hi} = {pf.text(sec, lo)} .. {pf.text(sec, hi)} is "
+                "not a range" + (" of positive values" if kind else "")
+                + " (MIN must not be above MAX)", file=pf.path, row=pf.lines.get((sec, hi)))
+        limits[name] = (low, high)
+    return limits
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callable[[_F], _F]:
+    """Let a method take :class:`xarray.DataArray` inputs and keep their dimensions.
+
+    ``arrays`` are the method's array arguments; ``outputs`` give each result's
+    (name, unit, long name).  When any of those arguments is a DataArray, the
+    method runs through :func:`xarray.apply_ufunc` on the bare arrays: the
+    result is a DataArray (a tuple of them for several outputs) with the
+    broadcast dimensions and the coordinates of the inputs.  Otherwise the method
+    runs as it is.
+    """
+    def wrap(method: _F) -> _F:
+        signature = inspect.signature(method)
+
+        @functools.wraps(method)
+        def inner(self: MagicFormula, *args: Any, **kwargs: Any) -> Any:
+            bound = signature.bind(self, *args, **kwargs)
+            bound.apply_defaults()
+            values = bound.arguments
+            labelled = [n for n in arrays if _is_labelled(values[n])]
+            if not labelled:
+                return method(self, *args, **kwargs)
+            return _apply_labelled(method, self, values, arrays, labelled, outputs)
+
+        return inner  # type: ignore[return-value]
+
+    return wrap
+
+
+def _is_labelled(x: Any) -> bool:
+    from ..interop import is_labelled
+
+    return is_labelled(x)
+
+
+def _apply_labelled(method: Callable[..., Any], mf: MagicFormula, values: dict[str, Any],
+                    arrays: tuple[str, ...], labelled: list[str],
+                    outputs: tuple[tuple[str, str, str], ...]) -> Any:
+    """``method`` evaluated by :func:`xarray.apply_ufunc` over its DataArray arguments."""
+    import xarray as xr
+
+    plain = [n for n in arrays if n not in labelled and np.ndim(values[n]) > 0]
+    if plain:
+        raise InputError(f"{', '.join(plain)} must be DataArrays too when "
+                         f"{', '.join(labelled)} are (or scalars): plain arrays have no "
+                         "dimension names to broadcast by")
+
+    def bare(*data: Any) -> Any:
+        kw = {k: v for k, v in values.items() if k != "self"}
+        kw.update(zip(labelled, data, strict=True))
+        shape = np.broadcast_shapes(*(np.shape(x) for x in data))
+        out = method(mf, **kw)
+        if len(outputs) == 1:
+            return np.broadcast_to(np.asarray(out, dtype=float), shape).copy()
+        return tuple(np.broadcast_to(np.asarray(o, dtype=float), shape).copy() for o in out)
+
+    result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
+                            output_core_dims=[[] for _ in outputs])
+    named = [r.rename(name).assign_attrs(units=unit, long_name=long)
+             for r, (name, unit, long) in zip(
+                 result if len(outputs) > 1 else (result,), outputs, strict=True)]
+    return named[0] if len(outputs) == 1 else tuple(named)
+
+
 class MagicFormula:
     """Pure-slip Magic Formula of one tyre (PAC2002 / MF 5.2 or MF 6.1/6.2).
 
@@ -243,35 +408,16 @@ class MagicFormula:
                  notes: list[str] | None = None, slip_angle: str = "tan_alpha",
                  friction_scaling: str = "degressive",
                  loads_above_fzmax: str = "extrapolate") -> None:
-        if version not in MF_VERSIONS:
-            raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
-                             f"{', '.join(MF_VERSIONS)}", file=source)
-        for what, value, allowed in (("slip_angle", slip_angle, SLIP_ANGLE_INPUTS),
-                                     ("friction_scaling", friction_scaling, FRICTION_SCALINGS),
-                                     ("loads_above_fzmax", loads_above_fzmax,
-                                      LOADS_ABOVE_FZMAX)):
-            if value not in allowed:
-                raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
-                                 file=source)
+        _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, source)
         self.slip_angle = slip_angle
         self.friction_scaling = friction_scaling
         self.loads_above_fzmax = loads_above_fzmax
-        if not (math.isfinite(fnomin) and fnomin > 0):
-            raise InputError(f"FNOMIN must be a positive load in N, got {fnomin}", file=source)
-        self.coefficients = {k.upper(): float(v) for k, v in coefficients.items()}
-        for k, v in self.coefficients.items():
-            if not math.isfinite(v):
-                raise InputError(f"coefficient {k} is not finite", file=source)
+        self.coefficients = _checked_coefficients(coefficients, fnomin, source)
         self.fnomin = float(fnomin)
         self.version = version
-        self.pressure = None if pressure is None else float(pressure)
-        self.nominal_pressure = None if nominal_pressure is None else float(nominal_pressure)
-        if self.nominal_pressure is not None and not (
-                math.isfinite(self.nominal_pressure) and self.nominal_pressure > 0):
-            raise InputError("the nominal inflation pressure must be positive", file=source)
-        if self.pressure is not None and not (math.isfinite(self.pressure) and self.pressure > 0):
-            raise InputError(f"the inflation pressure must be a positive number of Pa, got "
-                             f"{self.pressure:g}", file=source)
+        self.pressure = _positive_or_none(pressure, "the inflation pressure", source)
+        self.nominal_pressure = _positive_or_none(nominal_pressure,
+                                                  "the nominal inflation pressure", source)
         self.limits = dict(limits or {})
         self.name = name
         self.source = source
@@ -333,8 +479,28 @@ class MagicFormula:
                            pressure: float | None = None, **options: str) -> MagicFormula:
         """Build from an already read :class:`~frictionlaws.tyre.tir.PropertyFile`.
 
-        ``options`` are passed to the constructor (``slip_angle``,
-        ``friction_scaling``, ``loads_above_fzmax``).
+        Parameters
+        ----------
+        pf : PropertyFile
+            The property file.
+        version : {"5.2", "6.1", "6.2"}, optional
+            Override the equation set detected from ``FITTYP``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's INFLPRES / IP).
+        **options : str
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
+            class documentation).
+
+        Returns
+        -------
+        MagicFormula
+            The tyre, with notes of how the version and the pressures were decided.
+
+        Raises
+        ------
+        InputError
+            For a missing FNOMIN or pure-slip coefficient, an unknown version, an
+            angle unit other than radians, or a range whose MIN is above its MAX.
         """
         pf.check_angle_unit()
         notes = pf.check_coefficients()
@@ -346,52 +512,13 @@ class MagicFormula:
                              f"{', '.join(MF_VERSIONS)}", file=pf.path)
         if not pf.has("VERTICAL", "FNOMIN"):
             raise InputError("[VERTICAL] FNOMIN (nominal load) is missing", file=pf.path)
-        fnomin = pf.si("VERTICAL", "FNOMIN")
-        coeffs = pf.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
-                                 "LATERAL_COEFFICIENTS")
-        for need in ("PCX1", "PDX1", "PKX1", "PCY1", "PDY1", "PKY1"):
-            if need not in coeffs:
-                sec = "LONGITUDINAL" if "X" in need[2:] else "LATERAL"
-                raise InputError(f"[{sec}_COEFFICIENTS] {need} is missing: not a Magic "
-                                 "Formula property file?", file=pf.path)
-        p_i = p_nom = None
-        for sec, key, nom in (("OPERATING_CONDITIONS", "INFLPRES", "NOMPRES"),
-                              ("TIRE_CONDITIONS", "IP", "IP_NOM")):
-            if pf.has(sec, key) or pf.has(sec, nom):
-                p_i = pf.si(sec, key) if pf.has(sec, key) else None
-                p_nom = pf.si(sec, nom) if pf.has(sec, nom) else None
-                break
-        if p_nom is None and p_i is not None:
-            p_nom = p_i
-            notes.append("no nominal pressure in the file: the inflation pressure is taken "
-                         "as nominal (dpi = 0)")
-        if p_i is None and p_nom is not None:
-            p_i = p_nom
-            notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
-                         "pressure is used (dpi = 0); pass pressure= to evaluate at "
-                         "another")
-        limits = {}
-        for name, sec, lo, hi, kind in (
-                ("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
-                ("kappa", "LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", False),
-                ("alpha", "SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", False),
-                ("gamma", "INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", False),
-                ("pressure", "INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", True)):
-            if pf.has(sec, lo) and pf.has(sec, hi):
-                limits[name] = ((pf.si(sec, lo), pf.si(sec, hi)) if kind
-                                else (pf.number(sec, lo), pf.number(sec, hi)))
-                low, high = limits[name]
-                if not low <= high or (kind and low < 0):
-                    raise InputError(
-                        f"[{sec}] {lo} .. {hi} = {pf.text(sec, lo)} .. {pf.text(sec, hi)} is "
-                        "not a range" + (" of positive values" if kind else "")
-                        + " (MIN must not be above MAX)", file=pf.path,
-                        row=pf.lines.get((sec, hi)))
+        coeffs = _pure_slip_coefficients(pf)
+        p_i, p_nom = _file_pressures(pf, notes)
         name = str(pf.metadata.get("Name") or Path(pf.path).stem)
-        return cls(coeffs, fnomin=fnomin, version=version,
+        return cls(coeffs, fnomin=pf.si("VERTICAL", "FNOMIN"), version=version,
                    pressure=pressure if pressure is not None else p_i,
-                   nominal_pressure=p_nom, limits=limits, name=name, source=pf.path,
-                   notes=notes, **options)
+                   nominal_pressure=p_nom, limits=_file_limits(pf), name=name,
+                   source=pf.path, notes=notes, **options)
 
     # ------------------------------------------------------------- helpers
     def _dpi(self, pressure: float | None) -> float:
@@ -515,19 +642,51 @@ class MagicFormula:
     # -------------------------------------------------------------- public
     def longitudinal(self, fz: Any, gamma: Any = 0.0,
                      pressure: float | None = None) -> MFCoefficients:
-        """The longitudinal factors B_x, C_x, D_x, E_x, K_x, S_Hx, S_Vx at load ``fz`` [N]."""
+        """Return the longitudinal factors B_x, C_x, D_x, E_x, K_x, S_Hx, S_Vx at a load.
+
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        MFCoefficients
+            The factors (arrays shaped like the broadcast inputs): ``K`` is the
+            slip stiffness [N], ``D`` the peak [N], ``S_H`` a slip-ratio shift [-],
+            ``S_V`` a force shift [N], ``mu`` the peak coefficient [-].
+        """
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return self._long(fz, gamma, dpi)
 
     def lateral(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None
                 ) -> MFCoefficients:
-        """The lateral factors B_y, C_y, D_y, E_y, K_y, S_Hy, S_Vy at load ``fz`` [N].
+        """Return the lateral factors B_y, C_y, D_y, E_y, K_y, S_Hy, S_Vy at a load.
 
-        ``K_y`` is the cornering stiffness [N/rad] and ``S_Hy`` a shift of tan(alpha).
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        MFCoefficients
+            The factors (arrays shaped like the broadcast inputs): ``K`` is the
+            cornering stiffness [N/rad], ``D`` the peak [N], ``S_H`` a shift of
+            tan(alpha), ``S_V`` a force shift [N], ``mu`` the peak coefficient [-].
         """
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return self._lat(fz, gamma, dpi)
 
+    @_labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
     def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Pure longitudinal force F_x0 [N].
 
@@ -544,7 +703,9 @@ class MagicFormula:
 
         Returns
         -------
-        float or numpy.ndarray
+        float, numpy.ndarray or xarray.DataArray
+            F_x0 [N], broadcast over the inputs; a DataArray (named ``F_x0``, with
+            the inputs' dimensions and coordinates) when an input is one.
         """
         kappa = self._check("kappa", kappa)
         self._warn_range("kappa", kappa)
@@ -553,11 +714,29 @@ class MagicFormula:
         out = mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
         return float(out) if np.ndim(out) == 0 else out
 
+    @_labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
     def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
-        """Pure lateral force F_y0 [N] at slip angle ``alpha`` [rad] and load ``fz`` [N].
+        """Pure lateral force F_y0 [N].
 
-        The slip enters as tan(alpha) (see the module notes); ``gamma`` is the
-        inclination angle [rad].
+        The slip enters as tan(alpha) or alpha (the ``slip_angle`` convention, see
+        the module notes).
+
+        Parameters
+        ----------
+        alpha : array-like
+            Slip angle [rad], strictly between -pi/2 and pi/2.
+        fz : array-like
+            Vertical load [N] (> 0); broadcast against ``alpha``.
+        gamma : array-like
+            Inclination (camber) angle [rad].
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float, numpy.ndarray or xarray.DataArray
+            F_y0 [N], broadcast over the inputs; a DataArray (named ``F_y0``, with
+            the inputs' dimensions and coordinates) when an input is one.
         """
         alpha_s = self._alpha_star(alpha)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
@@ -578,6 +757,7 @@ class MagicFormula:
         """Camber as the combined-slip terms use it: sin(gamma) (6.x) or gamma LGAY (5.2)."""
         return np.sin(gamma) if self._six else gamma * self._c("LGAY")
 
+    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
     def weight_x(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0) -> Any:
         """Combined-slip weighting G_xa of F_x (= 1 at alpha = 0), eqs. (4.E50)-(4.E57).
 
@@ -613,6 +793,8 @@ class MagicFormula:
         out = _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
         return float(out) if np.ndim(out) == 0 else out
 
+    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
+               ("S_Vyk", "N", "slip-induced lateral force shift"))
     def weight_y(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
                  pressure: float | None = None) -> tuple[Any, Any]:
         """Combined-slip weighting G_yk of F_y and the shift S_Vyk [N], eqs. (4.E58)-(4.E67).
@@ -659,6 +841,7 @@ class MagicFormula:
         S_V = D_V * np.sin(c("RVY5") * np.arctan(c("RVY6") * kappa)) * c("LVYKA")
         return G, S_V
 
+    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
     def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
            pressure: float | None = None) -> Any:
         """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
@@ -676,13 +859,15 @@ class MagicFormula:
 
         Returns
         -------
-        float or numpy.ndarray
-            Equal to :meth:`fx0` where ``alpha = 0``.
+        float, numpy.ndarray or xarray.DataArray
+            F_x [N]; equal to :meth:`fx0` where ``alpha = 0``; a DataArray when an
+            input is one.
         """
         out = (np.asarray(self.weight_x(kappa, alpha, fz, gamma))
                * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
         return float(out) if np.ndim(out) == 0 else out
 
+    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
     def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
            pressure: float | None = None) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
@@ -702,36 +887,114 @@ class MagicFormula:
 
         Returns
         -------
-        float or numpy.ndarray
-            F_y [N].
+        float, numpy.ndarray or xarray.DataArray
+            F_y [N]; a DataArray when an input is one.
         """
         G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
 
+    @_labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
     def mu_x_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
-        """Peak longitudinal friction coefficient mu_x = D_x / F_z [-]."""
+        """Peak longitudinal friction coefficient mu_x = D_x / F_z [-].
+
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float, numpy.ndarray or xarray.DataArray
+            The peak coefficient mu_x [-] per load; a DataArray when an input is one.
+        """
         mu = self.longitudinal(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
+    @_labelled(("fz", "gamma"), ("mu_y_peak", "1", "peak lateral friction coefficient"))
     def mu_y_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
-        """Peak lateral friction coefficient mu_y = D_y / F_z [-]."""
+        """Peak lateral friction coefficient mu_y = D_y / F_z [-].
+
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float, numpy.ndarray or xarray.DataArray
+            The peak coefficient mu_y [-] per load; a DataArray when an input is one.
+        """
         mu = self.lateral(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
+    @_labelled(("fz", "gamma"), ("K_x", "N", "longitudinal slip stiffness"))
     def slip_stiffness(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
-        """Longitudinal slip stiffness K_x = dF_x0/dkappa at the shifted origin [N]."""
+        """Longitudinal slip stiffness K_x = dF_x0/dkappa at the shifted origin [N].
+
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float, numpy.ndarray or xarray.DataArray
+            K_x [N per unit slip] per load; a DataArray when an input is one.
+        """
         K = self.longitudinal(fz, gamma, pressure).K
         return float(K) if np.ndim(K) == 0 else K
 
+    @_labelled(("fz", "gamma"), ("K_y", "N/rad", "cornering stiffness"))
     def cornering_stiffness(self, fz: Any, gamma: Any = 0.0,
                             pressure: float | None = None) -> Any:
-        """Cornering stiffness K_y = dF_y0/d(tan alpha) at the shifted origin [N/rad]."""
+        """Cornering stiffness K_y = dF_y0/d(tan alpha) at the shifted origin [N/rad].
+
+        Parameters
+        ----------
+        fz : array-like
+            Vertical load [N] (> 0).
+        gamma : array-like
+            Inclination (camber) angle [rad], broadcast with ``fz``.
+        pressure : float, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float, numpy.ndarray or xarray.DataArray
+            K_y [N/rad] per load; a DataArray when an input is one.
+        """
         K = self.lateral(fz, gamma, pressure).K
         return float(K) if np.ndim(K) == 0 else K
 
     def summary(self, loads: Any = None) -> dict[str, Any]:
-        """A JSON-able summary: version, nominal load, peaks and stiffnesses at ``loads`` [N]."""
+        """Summarise the tyre as JSON-able data.
+
+        Parameters
+        ----------
+        loads : array-like, optional
+            Vertical loads [N] at which the peaks and stiffnesses are given
+            (default: 0.5, 1 and 1.5 times FNOMIN).
+
+        Returns
+        -------
+        dict
+            Name, source, version, FNOMIN [N], pressures [Pa], the conventions, the
+            file's limits (SI), and at each load the peak coefficients mu_x, mu_y
+            [-] and the stiffnesses K_x [N], K_y [N/rad]; the keys name the units.
+        """
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
                                              1.5 * self.fnomin], float))

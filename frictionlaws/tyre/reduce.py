@@ -159,38 +159,29 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
     Returns
     -------
     Reduction
+        The fitted law with its parameters and standard errors, the sampled
+        curves, the fit error in mu (RMSE, largest error, R^2), both peaks, the
+        exact ``pacejka`` equivalent when the law is ``pacejka``, and notes
+        (extrapolation warnings of the Magic Formula, fixed parameters).
+
+    Raises
+    ------
+    InputError
+        For a law that is not a slip law or needs other variables, a bad load,
+        slip range, point count or side, or an unreadable property file.
     """
     from ..fitting import fit as run_fit
-    from ..registry import get_law
 
-    if isinstance(mf, str):
-        mf = MagicFormula.from_file(mf)
-    if not isinstance(mf, MagicFormula):
-        raise InputError("mf must be a MagicFormula or a property file path")
-    the_law = get_law(law)
-    if the_law.family != "slip":
-        raise InputError(f"law '{the_law.id}' is a {the_law.family} law; a Magic Formula "
-                         "curve is mu against the slip ratio: use a slip law (pacejka, "
-                         "burckhardt, burckhardt-sqrt, kiencke-daiss, germann)")
-    extra = [v for v in the_law.variables if v not in ("s", "v")]
-    if extra:
-        raise InputError(f"law '{the_law.id}' needs {', '.join(extra)}, which a pure-slip "
-                         "Magic Formula curve does not provide")
-    if not (isinstance(n, int) and n >= 10):
-        raise InputError(f"n must be an integer >= 10, got {n!r}")
-    if not (0 < slip_max <= 1):
-        raise InputError(f"slip_max must lie in (0, 1], got {slip_max!r}")
-    fz = float(fz)
-    if not (math.isfinite(fz) and fz > 0):
-        raise InputError(f"fz must be a positive load [N], got {fz!r}")
+    mf = _as_mf(mf)
+    the_law = _slip_law(law)
+    fz = _check_request(n, slip_max, fz)
     slip = np.linspace(0.0, slip_max, n)
-    notes: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ExtrapolationWarning)
         mu_mf = mf_slip_curve(mf, fz, slip, side=side, gamma=gamma, pressure=pressure)
         expected = (equivalent_pacejka(mf, fz, side=side, gamma=gamma, pressure=pressure)
                     if the_law.id == "pacejka" else None)
-    notes.extend(dict.fromkeys(str(w.message) for w in caught))
+    notes = list(dict.fromkeys(str(w.message) for w in caught))
     data: dict[str, Any] = {"mu": mu_mf, "s": slip}
     fix = dict(fix or {})
     if "v" in the_law.variables:
@@ -205,14 +196,55 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
                            if not w.startswith("the data have a single value of v")]
     mu_law = np.asarray(result.law.evaluate(
         {k: v for k, v in data.items() if k != "mu"}, result.values), dtype=float)
+    return Reduction(law=the_law.id, mf_name=mf.name or mf.source, fz=fz, side=side,
+                     fit=result, slip=slip, mu_mf=mu_mf, mu_law=mu_law,
+                     errors=_fit_errors(slip, mu_mf, mu_law), expected=expected, notes=notes)
+
+
+def _as_mf(mf: MagicFormula | str) -> MagicFormula:
+    """The tyre itself, or read from a property file path / packaged example name."""
+    if isinstance(mf, str):
+        return MagicFormula.from_file(mf)
+    if not isinstance(mf, MagicFormula):
+        raise InputError("mf must be a MagicFormula or a property file path")
+    return mf
+
+
+def _slip_law(law: str) -> Any:
+    """The registered law ``law``, refused unless it is a slip law of ``s`` (and ``v``)."""
+    from ..registry import get_law
+
+    the_law = get_law(law)
+    if the_law.family != "slip":
+        raise InputError(f"law '{the_law.id}' is a {the_law.family} law; a Magic Formula "
+                         "curve is mu against the slip ratio: use a slip law (pacejka, "
+                         "burckhardt, burckhardt-sqrt, kiencke-daiss, germann)")
+    extra = [v for v in the_law.variables if v not in ("s", "v")]
+    if extra:
+        raise InputError(f"law '{the_law.id}' needs {', '.join(extra)}, which a pure-slip "
+                         "Magic Formula curve does not provide")
+    return the_law
+
+
+def _check_request(n: Any, slip_max: Any, fz: Any) -> float:
+    """Check the sampling (``n`` points up to ``slip_max``) and return the load as a float."""
+    if not (isinstance(n, int) and n >= 10):
+        raise InputError(f"n must be an integer >= 10, got {n!r}")
+    if not (0 < slip_max <= 1):
+        raise InputError(f"slip_max must lie in (0, 1], got {slip_max!r}")
+    load = float(fz)
+    if not (math.isfinite(load) and load > 0):
+        raise InputError(f"fz must be a positive load [N], got {fz!r}")
+    return load
+
+
+def _fit_errors(slip: np.ndarray, mu_mf: np.ndarray, mu_law: np.ndarray) -> dict[str, float]:
+    """RMSE, largest error and R^2 of the law against the Magic Formula, and both peaks."""
     resid = mu_law - mu_mf
     i_mf, i_law = int(np.argmax(mu_mf)), int(np.argmax(mu_law))
     ss_tot = float(np.sum((mu_mf - mu_mf.mean()) ** 2))
-    errors = {"rmse": float(np.sqrt(np.mean(resid**2))),
-              "max_abs": float(np.max(np.abs(resid))),
-              "r2": 1.0 - float(np.sum(resid**2)) / ss_tot if ss_tot > 0 else float("nan"),
-              "mu_peak_mf": float(mu_mf[i_mf]), "s_peak_mf": float(slip[i_mf]),
-              "mu_peak_law": float(mu_law[i_law]), "s_peak_law": float(slip[i_law])}
-    return Reduction(law=the_law.id, mf_name=mf.name or mf.source, fz=fz, side=side,
-                     fit=result, slip=slip, mu_mf=mu_mf, mu_law=mu_law, errors=errors,
-                     expected=expected, notes=notes)
+    return {"rmse": float(np.sqrt(np.mean(resid**2))),
+            "max_abs": float(np.max(np.abs(resid))),
+            "r2": 1.0 - float(np.sum(resid**2)) / ss_tot if ss_tot > 0 else float("nan"),
+            "mu_peak_mf": float(mu_mf[i_mf]), "s_peak_mf": float(slip[i_mf]),
+            "mu_peak_law": float(mu_law[i_law]), "s_peak_law": float(slip[i_law])}
