@@ -1058,7 +1058,7 @@ class Campaign:
         return _csv_text(self.records_frame(), prov[:2] + prov[3:])
 
     def summary_lines(self, *, short: bool = False) -> list[str]:
-        """Lines of the summary.
+        """Return the lines of the summary.
 
         Parameters
         ----------
@@ -1425,10 +1425,16 @@ def process_many(
         The manifest CSVs; the same file may not be given twice.
     rig : Rig or path
         The rig of every manifest.
-    jobs, progress, min_repeats, scheduler
-        As in :func:`process_campaign`.
+    jobs : int, optional
+        Worker processes, as in :func:`process_campaign`.
+    progress : bool, optional
+        Progress bar on stderr (``None``: only on a terminal).
     plots : str or path, optional
         Directory for diagnostic plots.
+    min_repeats : int
+        As in :func:`process_campaign`, for every manifest.
+    scheduler : str, optional
+        A Dask scheduler address, as in :func:`process_campaign`.
     plot_dirs : {"per-manifest", "flat"}
         ``per-manifest`` (default): each manifest's plots go to a subdirectory
         named by :func:`manifest_names`; ``flat``: all in ``plots`` (one manifest).
@@ -1485,8 +1491,10 @@ def _plot_dirs(plots: str | os.PathLike[str] | None, names: list[str], layout: s
 
 
 def manifest_names(manifests: Sequence[str | os.PathLike[str]]) -> list[str]:
-    """Short, distinct names for manifests: the file stem, or parent and stem when
-    two stems are the same (``week1/manifest.csv`` -> ``week1_manifest``).
+    """Give manifests short, distinct names for their outputs.
+
+    The name is the file stem, or parent and stem when two stems are the same
+    (``week1/manifest.csv`` -> ``week1_manifest``).
 
     Parameters
     ----------
