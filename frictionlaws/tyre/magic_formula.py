@@ -315,6 +315,8 @@ def _labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callab
 
         @functools.wraps(method)
         def inner(self: MagicFormula, *args: Any, **kwargs: Any) -> Any:
+            if not any(map(_is_labelled, (*args, *kwargs.values()))):
+                return method(self, *args, **kwargs)  # the fast path: no DataArray
             bound = signature.bind(self, *args, **kwargs)
             bound.apply_defaults()
             values = bound.arguments
@@ -329,9 +331,15 @@ def _labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callab
 
 
 def _is_labelled(x: Any) -> bool:
-    from ..interop import is_labelled
+    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.interop`)."""
+    return _interop().is_labelled(x)
 
-    return is_labelled(x)
+
+@functools.lru_cache(maxsize=1)
+def _interop() -> Any:
+    from .. import interop
+
+    return interop
 
 
 def _apply_labelled(method: Callable[..., Any], mf: MagicFormula, values: dict[str, Any],
