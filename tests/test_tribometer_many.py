@@ -142,6 +142,7 @@ def test_one_manifest_without_a_dataset_stops_them_all(two, tmp_path, capsys):
     ("colliding outputs", "outputs collide"),
     ("output is an input", "also an input"),
     ("names differ in case only", "same name"),
+    ("standard output", "not standard output"),
 ])
 def test_refusals_exit_2_before_any_work(two, tmp_path, capsys, case, match):
     m1, m2, rig = two
@@ -162,6 +163,9 @@ def test_refusals_exit_2_before_any_work(two, tmp_path, capsys, case, match):
         for name in ("a.csv", "a_records.csv"):
             (tmp_path / name).write_bytes(m1.read_bytes())
         manifests = [str(tmp_path / "a.csv"), str(tmp_path / "a_records.csv")]
+    elif case == "standard output":
+        out = Path("-")
+        manifests = [str(m1)]
     elif case == "output is an input":
         out = m1.parent  # week1/manifest.csv would be overwritten
         manifests = [str(m1)]

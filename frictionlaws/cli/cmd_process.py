@@ -77,6 +77,9 @@ def _plan(args: argparse.Namespace, names: list[str]) -> tuple[list[_Target], Pa
     """The output files of every manifest, and the output directory (None: -o is a file)."""
     from frictionlaws.errors import InputError
 
+    if str(args.output).strip() == "-":
+        raise InputError("-o -: process writes a dataset file (or a directory of them), not "
+                         "standard output; --json prints the results on standard output")
     out = Path(args.output)
     as_dir = out.is_dir() or str(args.output).endswith(("/", "\\")) or not out.suffix
     if not as_dir and out.suffix.lower() != ".csv":
