@@ -32,7 +32,7 @@ import io
 import re
 import sys
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
@@ -170,13 +170,22 @@ def _clean(text: str) -> str:
     return _one_line(_PATH.sub("<library>", str(text)))
 
 
+def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:
+    """How this command names a library argument: its flag (``"mapping"`` -> ``--map``)."""
+    flags = dict(OPTION_FLAGS)
+    flags.update(getattr(args, "_option_flags", None) or {})
+
+    def label(option: str) -> str:
+        return flags.get(option, "--" + option.replace("_", "-"))
+
+    return label
+
+
 def _input_message(exc: Exception, args: argparse.Namespace | None) -> str:
-    option = getattr(exc, "option", None)
+    """A library error in the CLI's words: its arguments and settings named as flags."""
     compose = getattr(exc, "compose", None)
-    if option and callable(compose):
-        flags = dict(OPTION_FLAGS)
-        flags.update(getattr(args, "_option_flags", None) or {})
-        return _one_line(compose(flags.get(option, "--" + option.replace("_", "-"))))
+    if callable(compose):
+        return _one_line(compose(label=flag_label(args)))
     return _one_line(str(exc))
 
 

@@ -561,10 +561,7 @@ def data_source(data: str) -> Iterator[str]:
         try:
             yield path
         except InputError as exc:  # name standard input, not the private copy
-            if exc.file == path:
-                exc.file = "<stdin>"
-            exc.bare_message = exc.bare_message.replace(path, "<stdin>")
-            exc.args = (exc.compose(),)
+            exc.replace_text(path, "<stdin>")
             raise
 
 

@@ -254,9 +254,36 @@ class ExportResult:
 def _check_range(var: str, lo: float, hi: float) -> None:
     if var in ("p", "v", "F_N") and lo < 0:
         raise InputError(f"range of {var} ({VARIABLES[var].meaning}) must not be negative, "
-                         f"got MIN {lo:g} {VARIABLES[var].unit} (SI)")
+                         f"got MIN {lo:g} {VARIABLES[var].unit} (SI)", option=f"box.{var}")
     if var == "T" and lo <= 0:
-        raise InputError(f"range of T must be above 0 K, got MIN {lo:g} K (SI)")
+        raise InputError(f"range of T must be above 0 K, got MIN {lo:g} K (SI)",
+                         option="box.T")
+
+
+#: An example range per variable: bare numbers in the export's unit system, or with units.
+_RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
+                   "v": "0:2:21 or 1e-3m/s:10m/s:30", "T": "253.15:353.15:5 or 20degC:80degC:7",
+                   "F_N": "10:500:12 or 1N:1kN", "s": "0:1:41"}
+
+
+def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
+    """One bound of a range: a number in the unit system or a quantity with its unit."""
+    from ..units import parse_quantity
+
+    s = s.strip()
+    if not s:
+        raise InputError(f"'{text}': empty bound; expected MIN:MAX[:N], e.g. "
+                         f"{_RANGE_EXAMPLES[var]}", option=f"box.{var}")
+    try:
+        x = float(s)
+    except ValueError:
+        try:
+            return parse_quantity(s, var, what=var)
+        except InputError as exc:
+            raise InputError(f"'{text}': {exc.bare_message}", option=f"box.{var}") from None
+    if not math.isfinite(x):
+        raise InputError(f"'{text}': bounds must be finite", option=f"box.{var}")
+    return float(system.to_si(var, x))
 
 
 def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
@@ -264,45 +291,58 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
     """Parse ``MIN:MAX[:N]`` for variable ``var``.
 
     Bare numbers are in ``units`` (the export's unit system); a bound may carry
-    its own unit, e.g. ``"10kPa:0.5MPa:20"`` or ``"20degC:80degC"``.
+    its own unit, e.g. ``"10kPa:0.5MPa:20"`` or ``"20degC:80degC"``.  This is the
+    one range grammar of the package (``N`` points, both ends included).
 
     Raises
     ------
     InputError
-        With the option name, the text and an example, when malformed.
+        With ``option="box.<var>"``, the text and an example, when malformed.
     """
-    from ..units import parse_quantity
-
     system = unit_system(units)
-    opt = f"--{var}"
     parts = str(text).split(":")
-    example = {"p": "0.01:0.5:20 (in the --units system) or 10kPa:0.5MPa:20",
-               "v": "0:2:21 or 1e-3m/s:10m/s:30", "T": "253.15:353.15:5 or 20degC:80degC:7",
-               "F_N": "10:500:12 or 1N:1kN", "s": "0:1:41"}[var]
     if len(parts) not in (2, 3):
-        raise InputError(f"{opt} '{text}': expected MIN:MAX or MIN:MAX:N, e.g. {opt} {example}")
-
-    def bound(s: str) -> float:
-        s = s.strip()
-        if not s:
-            raise InputError(f"{opt} '{text}': empty bound; expected MIN:MAX[:N], e.g. "
-                             f"{opt} {example}")
-        try:
-            x = float(s)
-        except ValueError:
-            return parse_quantity(s, var, what=opt)
-        if not math.isfinite(x):
-            raise InputError(f"{opt} '{text}': bounds must be finite")
-        return float(system.to_si(var, x))
-
-    lo, hi = bound(parts[0]), bound(parts[1])
+        raise InputError(f"'{text}': expected MIN:MAX or MIN:MAX:N, e.g. "
+                         f"{_RANGE_EXAMPLES[var]}", option=f"box.{var}")
+    lo, hi = (_range_bound(var, x, text, system) for x in parts[:2])
     n = None
     if len(parts) == 3:
         try:
             n = int(parts[2].strip())
         except ValueError:
-            raise InputError(f"{opt} '{text}': N must be a whole number of points, got "
-                             f"'{parts[2].strip()}'") from None
+            raise InputError(f"'{text}': N must be a whole number of points, got "
+                             f"'{parts[2].strip()}'", option=f"box.{var}") from None
+    _check_range(var, lo, hi)
+    return AxisSpec(var, lo, hi, n, spacing)
+
+
+def _check_spacing(spacing: Mapping[str, str]) -> None:
+    for k, s in spacing.items():
+        if k not in VARIABLES:
+            raise InputError(f"spacing for unknown variable '{k}' (variables: "
+                             f"{', '.join(VARIABLES)})", option="spacing")
+        if s not in ("lin", "log", "auto"):
+            raise InputError(f"spacing of {k} must be lin or log, got '{s}'", option="spacing")
+
+
+def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
+    """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
+    from ..units import parse_quantity
+
+    if isinstance(spec, AxisSpec):
+        return spec
+    if isinstance(spec, str):
+        return parse_range(var, spec, units, spacing)
+    seq = list(spec)
+    if len(seq) not in (2, 3):
+        raise InputError(f"expected (min, max) or (min, max, n), got {spec!r}",
+                         option=f"box.{var}")
+    lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
+    n = None
+    if len(seq) == 3 and seq[2] is not None:
+        if int(seq[2]) != seq[2]:
+            raise InputError(f"n must be a whole number, got {seq[2]!r}", option=f"box.{var}")
+        n = int(seq[2])
     _check_range(var, lo, hi)
     return AxisSpec(var, lo, hi, n, spacing)
 
@@ -310,41 +350,17 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
 def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
                spacing: Mapping[str, str] | None = None) -> dict[str, AxisSpec]:
     """Ranges from an API ``box``: SI tuples ``(min, max[, n])``, quantity strings, text."""
-    from ..units import parse_quantity
-
     spacing = dict(spacing or {})
-    for k, s in spacing.items():
-        if k not in VARIABLES:
-            raise InputError(f"spacing for unknown variable '{k}' (variables: "
-                             f"{', '.join(VARIABLES)})")
-        if s not in ("lin", "log", "auto"):
-            raise InputError(f"spacing of {k} must be lin or log, got '{s}'")
+    _check_spacing(spacing)
     out: dict[str, AxisSpec] = {}
     for var, spec in (box or {}).items():
         if var not in VARIABLES:
-            raise InputError(f"box: unknown variable '{var}' (variables: "
-                             f"{', '.join(VARIABLES)})")
-        sp = spacing.get(var, "auto")
-        if isinstance(spec, AxisSpec):
-            out[var] = spec
-        elif isinstance(spec, str):
-            out[var] = parse_range(var, spec, units, sp)
-        else:
-            seq = list(spec)
-            if len(seq) not in (2, 3):
-                raise InputError(f"box['{var}']: expected (min, max) or (min, max, n), "
-                                 f"got {spec!r}")
-            lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
-            n = None
-            if len(seq) == 3 and seq[2] is not None:
-                if int(seq[2]) != seq[2]:
-                    raise InputError(f"box['{var}']: n must be a whole number, got {seq[2]!r}")
-                n = int(seq[2])
-            _check_range(var, lo, hi)
-            out[var] = AxisSpec(var, lo, hi, n, sp)
+            raise InputError(f"unknown variable '{var}' (variables: {', '.join(VARIABLES)})",
+                             option="box")
+        out[var] = _axis(var, spec, units, spacing.get(var, "auto"))
     for var in spacing:
         if var not in out:
-            raise InputError(f"spacing given for {var} but no range (--{var} MIN:MAX[:N])")
+            raise InputError(f"spacing given for {var} but no range", option=f"box.{var}")
     return out
 
 
