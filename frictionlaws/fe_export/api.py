@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -16,6 +16,9 @@ from .fortran import FORTRAN_FORMATS
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
+
+if TYPE_CHECKING:
+    from ..bound import BoundLaw
 
 __all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
 
@@ -367,37 +370,68 @@ def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
 # ------------------------------------------------------------------ export
 
 
-def _values(law: Law | str | None, params: Any, preset: str | None
-            ) -> tuple[Law, dict[str, float], Any, str]:
-    from ..registry import get_law
+def _bound(law: Law | BoundLaw | str | None, params: Any, preset: str | None) -> BoundLaw:
+    """The law and its values: a BoundLaw given as ``law`` or ``params``, or bound here."""
+    from ..bound import BoundLaw, as_bound, freeze
 
-    fit = None
-    if params is not None and hasattr(params, "values") and hasattr(params, "law") \
-            and not isinstance(params, Mapping):
-        fit = params
-        fit_law = params.law
-        if law is not None and get_law(law).id != fit_law.id:
-            raise InputError(f"the parameters are for law '{fit_law.id}', not "
-                             f"'{get_law(law).id}'")
-        law_obj = fit_law
-        values = dict(params.values)
-        source = "fit result" + (f" ({params.message})" if getattr(params, "message", "")
-                                 else "")
-    else:
-        if law is None:
-            raise InputError("no law given")
-        law_obj = get_law(law)
-        values = law_obj.resolve(params, preset)
-        parts = ([f"preset '{preset}'"] if preset else []) + (["given values"] if params
-                                                               else [])
-        source = " with ".join(parts) or "law defaults"
-    for k, v in values.items():
-        if not math.isfinite(float(v)):
-            raise InputError(f"parameter {k} of law '{law_obj.id}' is not finite ({v!r})")
-    return law_obj, {k: float(v) for k, v in values.items()}, fit, source
+    if isinstance(law, BoundLaw):
+        if params is not None or preset is not None:
+            raise InputError("a bound law carries its values: give no params or preset with "
+                             "it", option="params")
+        return law
+    if params is not None and not isinstance(params, Mapping):
+        if preset is not None:
+            raise InputError("give either a fit result (or bound law) or a preset, not both",
+                             option="preset")
+        return as_bound(params, law=law)
+    if law is None:
+        raise InputError("no law given")
+    return freeze(law, params, preset=preset)
 
 
-def export(law: Law | str | None, params: Any = None, format: str = "csv",
+def _check_format(format: str, tol: float | None) -> None:
+    if format not in FORMATS:
+        raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
+    if tol is not None and (isinstance(tol, bool) or not (
+            isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0)):
+        raise InputError(f"tolerance must be a positive number, got {tol!r}")
+
+
+def _job(bound: BoundLaw, format: str, specs: dict[str, AxisSpec], system: UnitSystem, *,
+         tol: float | None, max_rows: int, source: str | None,
+         options: Mapping[str, Any] | None) -> Job:
+    """The export job, with the warnings the bound values carry."""
+    law_obj = bound.law
+    unused = [v for v in specs if v not in law_obj.variables]
+    if unused:  # a range the law cannot use is an error, not ignored
+        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)} (its "
+                         f"variables: {', '.join(law_obj.variables) or 'none'}); remove the "
+                         "range", option=f"box.{unused[0]}")
+    job = Job(law=law_obj, values=dict(bound.values), fmt=format, units=system, specs=specs,
+              tol=tol, max_rows=int(max_rows), source=source or bound.source.describe(),
+              fit=bound, options=check_options(options))
+    job.warnings += [f"fit: {w}" for w in bound.notes]
+    if not bound.converged:
+        job.warnings.append("fit: the optimiser did not converge")
+    return job
+
+
+def _write(path: str | Path | None, text: str) -> str | None:
+    """Write the export atomically (never over an input); the path written or None."""
+    if path is None or str(path) == "-":
+        return None
+    from ..outputs import check_outputs, write_text_atomic
+
+    p = Path(path)
+    check_outputs([p])
+    try:
+        write_text_atomic(p, text)
+    except OSError as exc:
+        raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
+    return str(p)
+
+
+def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "csv",
            box: Mapping[str, Any] | None = None, *, preset: str | None = None,
            units: str | UnitSystem = "SI", tol: float | None = None,
            spacing: Mapping[str, str] | None = None, path: str | Path | None = None,
@@ -407,12 +441,16 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
 
     Parameters
     ----------
-    law : Law or str or None
-        The law (id or alias); may be None when ``params`` is a fit result.
-    params : mapping or FitResult, optional
-        Parameter values (SI) or a :class:`~frictionlaws.fitting.FitResult`
-        (also from :func:`~frictionlaws.fitting.load_result`); missing ones
-        come from ``preset`` or the defaults of optional parameters.
+    law : Law or BoundLaw or str or None
+        The law (id or alias), or a :class:`~frictionlaws.bound.BoundLaw`
+        (``law.freeze(...)``, ``result.bound``) that carries its values, their
+        source and fitted ranges; may be None when ``params`` is a bound law or
+        a fit result.
+    params : mapping or BoundLaw or FitResult, optional
+        Parameter values (SI), a bound law, or a
+        :class:`~frictionlaws.fitting.FitResult` (also from
+        :func:`~frictionlaws.fitting.load_result`); missing values come from
+        ``preset`` or the defaults of optional parameters.
     format : str
         One of :data:`FORMATS`: ``csv``, ``json``, ``abaqus``, ``abaqus-decay``,
         ``lsdyna``, ``ansys``, ``radioss``, ``abaqus-fric-coef``,
@@ -441,7 +479,8 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     max_rows : int
         Largest table allowed.
     source : str, optional
-        How the parameters were obtained (written in the header).
+        How the parameters were obtained (written in the header; default: the
+        bound law's :class:`~frictionlaws.bound.Source`).
     options : mapping, optional
         Format options: ``lsdyna_ssid``, ``lsdyna_msid``, ``lsdyna_sstyp``,
         ``lsdyna_mstyp``, ``lsdyna_contact``, ``lsdyna_table_id``,
@@ -459,29 +498,11 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
         a format that cannot represent the law (``abaqus-decay``; variables a
         solver does not support).
     """
-    if format not in FORMATS:
-        raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
-    if tol is not None and (isinstance(tol, bool) or not (
-            isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0)):
-        raise InputError(f"tolerance must be a positive number, got {tol!r}")
-    law_obj, values, fit, src = _values(law, params, preset)
-    message = law_obj.check_admissible(values)
+    _check_format(format, tol)
+    bound = _bound(law, params, preset)
     system = unit_system(units)
-    specs = make_specs(box, system, spacing)
-    unused = [v for v in specs if v not in law_obj.variables]
-    if unused:  # a range the law cannot use is an error, not ignored
-        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)} (its "
-                         f"variables: {', '.join(law_obj.variables) or 'none'}); remove the "
-                         "range", option=f"box.{unused[0]}")
-    job = Job(law=law_obj, values=values, fmt=format, units=system, specs=specs, tol=tol,
-              max_rows=int(max_rows), source=source or src, fit=fit,
-              options=check_options(options))
-    if message:
-        job.warnings.append(f"parameters not admissible: {message}")
-    if fit is not None:
-        job.warnings += [f"fit: {w}" for w in getattr(fit, "warnings", [])]
-        if getattr(fit, "success", True) is False:
-            job.warnings.append("fit: the optimiser did not converge")
+    job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
+               max_rows=max_rows, source=source, options=options)
     writer, _, needs_box = FORMATS[format]
     if needs_box:
         job.domain_warnings()
@@ -490,22 +511,12 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
     err = written.error
-    out_path = None
-    if path is not None and str(path) != "-":
-        from ..outputs import check_outputs, write_text_atomic
-
-        p = Path(path)
-        check_outputs([p])
-        try:
-            write_text_atomic(p, written.text)
-        except OSError as exc:
-            raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
-        out_path = str(p)
+    out_path = _write(path, written.text)
     error_at = {}
     if err is not None:
         error_at = {k: float(np.asarray(system.to_model(k, v))) for k, v in err.where.items()}
     return ExportResult(
-        format=format, text=written.text, path=out_path, law=law_obj.id, units=system.name,
+        format=format, text=written.text, path=out_path, law=bound.law.id, units=system.name,
         rows=written.rows, exact=written.exact,
         max_error=(0.0 if written.exact else (err.max_abs if err is not None else None)),
         error_at=error_at, rms_error=None if err is None else err.rms,

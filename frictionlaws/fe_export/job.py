@@ -91,8 +91,9 @@ class Job:
         Largest table allowed.
     source : str
         Where the parameter values came from.
-    fit : object, optional
-        The :class:`~frictionlaws.fitting.FitResult` they came from.
+    fit : BoundLaw, optional
+        The :class:`~frictionlaws.bound.BoundLaw` the values came from (standard
+        errors, fixed parameters, fitted ranges).
     options : dict
         Format-specific options.
     warnings : list of str
@@ -220,14 +221,14 @@ class Job:
     def param_lines(self) -> list[str]:
         """Parameter and setting lines with units (and standard errors from a fit)."""
         out = ["parameters (SI, as the law is defined):"]
-        est = getattr(self.fit, "params", None) or {}
+        stderr = getattr(self.fit, "stderr", None) or {}
+        fixed = getattr(self.fit, "fixed", None) or ()
         for p in self.law.params:
             unit = p.unit or "-"
             line = f"  {p.name} = {self.values[p.name]!r} [{unit}]"
-            e = est.get(p.name)
-            if e is not None and getattr(e, "stderr", None) is not None:
-                line += f" +/- {fmt_num(e.stderr, 3)} (standard error)"
-            elif e is not None and getattr(e, "fixed", False):
+            if stderr.get(p.name) is not None:
+                line += f" +/- {fmt_num(stderr[p.name], 3)} (standard error)"
+            elif p.name in fixed:
                 line += " (fixed)"
             out.append(line + (f"  {p.meaning}" if p.meaning else ""))
         for s in self.law.settings:
@@ -287,7 +288,7 @@ class Job:
                     f"{self.model(name, spec.hi)}) leaves the law's domain "
                     f"({self.model(name, dom[0])} .. {self.model(name, dom[1])}): "
                     "the exported values there are an extrapolation of the law")
-            rng = (getattr(self.fit, "data", None) or {}).get("ranges", {}).get(name)
+            rng = (getattr(self.fit, "fitted_ranges", None) or {}).get(name)
             if rng and (spec.lo < rng[0] * (1 - 1e-9) - 1e-300 or spec.hi > rng[1] * (1 + 1e-9)):
                 self.warnings.append(
                     f"the box of {name} extends beyond the fitted data "
