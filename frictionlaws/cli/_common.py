@@ -52,6 +52,11 @@ __all__ = [
     "data_kwargs",
     "fit_kwargs",
     "run_fit",
+    "DATA_OPTIONS",
+    "FIT_OPTIONS",
+    "PARAMS_HELP",
+    "add_law_source_options",
+    "bound_from_args",
     "refuse_unused",
     "flag_of",
     "RangeSpec",
@@ -165,13 +170,24 @@ class MergeNames(argparse.Action):
 # ------------------------------------------------------------------- option groups
 
 
-def add_data_options(p: argparse.ArgumentParser | Any) -> None:
-    """``--map``, ``--units`` and ``--area`` for reading a user's file (repeatable maps)."""
+#: The destinations :func:`add_data_options` creates: options that only apply to data.
+DATA_OPTIONS = ("map", "data_units", "area")
+
+
+def add_data_options(p: argparse.ArgumentParser | Any, *, units_flag: str = "--units") -> None:
+    """The one group of data options: ``--map``, ``--units`` and ``--area`` (repeatable maps).
+
+    Every command that reads a user's table (``fit``, ``compare``, ``datasets``,
+    ``export --fit``, ``tyre cornering --fit``) takes them.  ``units_flag`` renames
+    ``--units`` where the command's ``--units`` means something else (``export``:
+    ``--data-units``); the destination is always ``data_units``.
+    """
     p.add_argument("--map", metavar="COL=NAME,...", action=MergeAssignments,
                    help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV "
                         "(repeatable; a column given twice is an error)")
-    p.add_argument("--units", metavar="COL=UNIT,...", action=MergeAssignments,
-                   help="units of columns whose header has none, e.g. p=MPa,v=m/s "
+    p.add_argument(units_flag, dest="data_units", metavar="COL=UNIT,...",
+                   action=MergeAssignments,
+                   help="units of data columns whose header has none, e.g. p=MPa,v=m/s "
                         "(repeatable)")
     p.add_argument("--area", metavar="AREA",
                    help="nominal contact area to derive p from F_N, e.g. '314.16 mm^2'")
@@ -319,7 +335,7 @@ def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
     """``mapping``/``units``/``area`` keyword arguments for load_dataset and fit."""
     return {
         "mapping": parse_assignments(args.map, "--map") or None,
-        "units": parse_assignments(args.units, "--units") or None,
+        "units": parse_assignments(args.data_units, flag_of(args, "data_units")) or None,
         "area": args.area,
     }
 
@@ -350,6 +366,82 @@ def run_fit(args: argparse.Namespace, law: str, data: str) -> Any:
 
     with data_source(data) as source:
         return fit(law, source, **fit_kwargs(args))
+
+
+# ------------------------------------------------------------- a law with values
+
+
+#: What :func:`bound_from_args` asks for when no values are given.
+PARAMS_HELP = "--preset NAME, --params FILE.json, --fit DATA or --set NAME=VALUE,..."
+
+
+def add_law_source_options(p: argparse.ArgumentParser | Any, *, fit: bool = True) -> None:
+    """The one way to give a law its values: ``--preset``, ``--params``, ``--fit``, ``--set``.
+
+    ``--preset``, ``--params`` and ``--fit`` exclude each other; ``--set`` gives or
+    overrides values (alone or over a preset).  :func:`bound_from_args` turns them
+    into a :class:`~frictionlaws.bound.BoundLaw`.  With ``fit``, the command also
+    needs :func:`add_data_options` and :func:`add_fit_options`.
+    """
+    src = p.add_mutually_exclusive_group()
+    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
+    src.add_argument("--params", metavar="FILE.json",
+                     help="parameters: a 'fit --save' file or {'law': ..., 'params': {...}}")
+    if fit:
+        src.add_argument("--fit", metavar="DATA",
+                         help="fit the law to DATA (CSV file, packaged dataset or '-') first")
+    p.add_argument("--set", metavar="NAME=VALUE,...", action=MergeAssignments,
+                   help="give or override parameter values in SI, e.g. mu0=0.9 (alone or "
+                        "over --preset; repeatable)")
+
+
+def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
+    """``--preset/--set/--params/--fit`` (and ``--law``) as a :class:`~frictionlaws.bound.BoundLaw`.
+
+    ``--params`` gives the law itself (``law`` must agree when given); ``--fit``
+    fits ``law`` with the command's data and fit options (a fit that did not
+    converge comes back with ``converged`` False: the command decides); options
+    that only apply to a fit are refused without ``--fit``.
+
+    Raises
+    ------
+    UsageError
+        A missing ``--law`` or missing values, or ``--set`` with a file or a fit.
+    InputError
+        A law that does not match the file, an unknown preset, a bad value...
+    """
+    from frictionlaws.bound import bound_from_result, freeze
+
+    fit_data = getattr(args, "fit", None)
+    if not fit_data and hasattr(args, "fix"):
+        refuse_unused(args, (*FIT_OPTIONS, *DATA_OPTIONS), "without --fit")
+    values = parse_floats(args.set, "--set")
+    if args.params:
+        if values:
+            raise UsageError("--set cannot be combined with --params (edit the file instead)")
+        return _bound_from_file(args.params, law)
+    if not law:
+        raise UsageError("--law is required (except with --params)")
+    if fit_data:
+        if values:
+            raise UsageError("--set cannot be combined with --fit (hold values with --fix)")
+        return bound_from_result(run_fit(args, law, fit_data), dataset=fit_data)
+    if not args.preset and not values:
+        raise UsageError(f"give the parameters: {PARAMS_HELP}")
+    return freeze(law, values, preset=args.preset)
+
+
+def _bound_from_file(path: str, law: str | None) -> Any:
+    from frictionlaws.bound import Source, bound_from_result
+    from frictionlaws.errors import InputError
+    from frictionlaws.fitting import load_result
+    from frictionlaws.registry import get_law
+
+    result = load_result(path)
+    if law and get_law(law).id != result.law.id:
+        raise InputError(f"--law {law} does not match the law in the file "
+                         f"('{result.law.id}')", file=path)
+    return bound_from_result(result, Source("file", file=path))
 
 
 # -------------------------------------------------------------- inapplicable options
