@@ -805,20 +805,20 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
     for j, nm in enumerate(names):
         if j in assigned.values() or not headers[j]:
             continue
-        canon = _resolve_name(nm)
-        if canon is None:
+        found = _resolve_name(nm)
+        if found is None:
             ignored.append(headers[j])
-        elif canon in explicit:
-            notes.append(f"column '{headers[j]}' ignored: {canon} comes from "
-                         f"the mapping {canon}={map_[canon]}")
-        elif canon in assigned:
+        elif found in explicit:
+            notes.append(f"column '{headers[j]}' ignored: {found} comes from "
+                         f"the mapping {found}={map_[found]}")
+        elif found in assigned:
             raise InputError(
-                [f"columns '{headers[assigned[canon]]}' and '{headers[j]}' both give "
-                 f"'{canon}'; keep one, or choose with ", Setting("mapping", f"{canon}=COLUMN")],
+                [f"columns '{headers[assigned[found]]}' and '{headers[j]}' both give "
+                 f"'{found}'; keep one, or choose with ", Setting("mapping", f"{found}=COLUMN")],
                 file=src, column=headers[j],
             )
         else:
-            assigned[canon] = j
+            assigned[found] = j
     if "mu" not in assigned:
         _no_mu(table)
     if ignored:
@@ -1251,36 +1251,41 @@ def load_dataset(
                 "apply only when reading a file or a DataFrame"
             )
         return name_or_path
-    if isinstance(name_or_path, pd.DataFrame):
-        table = _table_from_frame(name_or_path, "<DataFrame>")
-        return _build(table, "dataframe", mapping, units, area, None)
-    if isinstance(name_or_path, Mapping):
-        try:
-            frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in name_or_path.items()})
-        except ValueError as exc:
-            raise InputError(f"cannot build a table from the dict: {exc}") from None
-        table = _table_from_frame(frame, "<dict>")
-        return _build(table, "data", mapping, units, area, None)
+    if isinstance(name_or_path, (pd.DataFrame, Mapping)):
+        table, name = _table_in_memory(name_or_path)
+        return _build(table, name, mapping, units, area, None)
     if not isinstance(name_or_path, (str, os.PathLike)):
         raise InputError(
             f"cannot load a dataset from a {type(name_or_path).__name__}; expected a path, "
             "a packaged dataset name, a DataFrame or a Dataset"
         )
-    text = os.fspath(name_or_path)
+    table, name = _table_on_disk(os.fspath(name_or_path))
+    prov = "\n".join(table.comments) or None
+    return _build(table, name, mapping, units, area, prov)
+
+
+def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, str]:
+    """A DataFrame or a dict of columns as a table, and the dataset's name."""
+    if isinstance(data, pd.DataFrame):
+        return _table_from_frame(data, "<DataFrame>"), "dataframe"
+    try:
+        frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in data.items()})
+    except ValueError as exc:
+        raise InputError(f"cannot build a table from the dict: {exc}") from None
+    return _table_from_frame(frame, "<dict>"), "data"
+
+
+def _table_on_disk(text: str) -> tuple[_Table, str]:
+    """A CSV file or a packaged dataset (``NAME`` or ``packaged:NAME``), and its name."""
     path = Path(text)
+    if not path.exists() and text.startswith(_PACKAGED_PREFIX):
+        bare = text[len(_PACKAGED_PREFIX):]
+        if bare not in _packaged_names():
+            raise InputError(
+                f"no packaged dataset '{bare}' (packaged: {', '.join(_packaged_names())})")
+        text = bare
+        path = Path(text)
     if not path.exists() and text in _packaged_names():
         raw = (datasets_dir() / f"{text}.csv").read_bytes()
-        table = read_table(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
-        prov = "\n".join(table.comments) or None
-        return _build(table, text, mapping, units, area, prov)
-    if not path.exists() and text.startswith(_PACKAGED_PREFIX):
-        if text[len(_PACKAGED_PREFIX):] in _packaged_names():
-            return load_dataset(text[len(_PACKAGED_PREFIX):], mapping=mapping, units=units,
-                                area=area)
-        raise InputError(
-            f"no packaged dataset '{text[len(_PACKAGED_PREFIX):]}' (packaged: "
-            f"{', '.join(_packaged_names())})"
-        )
-    table = read_table(path, source=text)
-    prov = "\n".join(table.comments) or None
-    return _build(table, path.stem, mapping, units, area, prov)
+        return read_table(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw), text
+    return read_table(path, source=text), path.stem

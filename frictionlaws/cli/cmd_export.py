@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -130,12 +131,20 @@ def _box(args: argparse.Namespace, system: Any) -> tuple[dict, dict[str, str]]:
         text = getattr(args, f"range_{var}")
         if text is not None:
             spec = parse_range(text, var, option=f"--{var}", min_points=1,
-                               unit=lambda x, var=var: float(system.to_si(var, x)))
+                               unit=_model_to_si(system, var))
             box[var] = (spec.lo, spec.hi, spec.n)
     for var in spacing:
         if var not in box:
             raise UsageError(f"--spacing {var}=...: no range given for {var} (--{var} MIN:MAX)")
     return box, spacing
+
+
+def _model_to_si(system: Any, var: str) -> Callable[[float], float]:
+    """A bare bound in the export's unit system -> SI."""
+    def convert(x: float) -> float:
+        return float(system.to_si(var, x))
+
+    return convert
 
 
 def _check_args(args: argparse.Namespace) -> None:

@@ -143,9 +143,13 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
                         "(default) or clamp to FZMAX")
 
 
-def _mf_conventions(args: argparse.Namespace) -> dict[str, str]:
-    return {"slip_angle": args.slip_angle, "friction_scaling": args.friction_scaling,
-            "loads_above_fzmax": args.loads_above_fzmax}
+def _mf_file(args: argparse.Namespace) -> Any:
+    """The property file read with the Magic Formula conventions chosen."""
+    from frictionlaws.tyre.magic_formula import MagicFormula
+
+    return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
+                                  friction_scaling=args.friction_scaling,
+                                  loads_above_fzmax=args.loads_above_fzmax)
 
 
 def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
@@ -384,9 +388,7 @@ def _run_thesis(args: argparse.Namespace) -> int:
 def _run_mf(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from frictionlaws.tyre.magic_formula import MagicFormula
-
-    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    mf = _mf_file(args)
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -423,9 +425,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
         from frictionlaws.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
-    from frictionlaws.tyre.magic_formula import MagicFormula
-
-    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    mf = _mf_file(args)
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
     if not red.fit.success:  # as fit: a failed reduction is reported, not saved (exit 1)

@@ -286,7 +286,7 @@ def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
             raise InputError(f"'{text}': {exc.bare_message}", option=f"box.{var}") from None
     if not math.isfinite(x):
         raise InputError(f"'{text}': bounds must be finite", option=f"box.{var}")
-    return float(system.to_si(var, x))
+    return float(np.asarray(system.to_si(var, x), dtype=float))
 
 
 def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
