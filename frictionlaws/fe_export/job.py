@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, Setting
 from ..law import MU_MAX, VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
@@ -26,11 +26,7 @@ from .systems import UnitSystem
 #: Points at which the law is checked in the box before export (spread over the axes).
 _BOX_SAMPLES = 200_000
 
-__all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
-
-#: How a missing range is given on the command line (used in messages).
-CLI_BOX_HINT = {"p": "--p MIN:MAX[:N]", "v": "--v MIN:MAX[:N]", "T": "--T MIN:MAX[:N]",
-                "F_N": "--F_N MIN:MAX[:N]", "s": "--s MIN:MAX[:N]"}
+__all__ = ["Job", "Written", "commented", "fmt_num"]
 
 
 def fmt_num(x: float, digits: int = 6) -> str:
@@ -127,11 +123,13 @@ class Job:
         """The ranges of ``names``; InputError naming the option when one is missing."""
         missing = [n for n in names if n not in self.specs]
         if missing:
+            hints: list[str | Setting] = []
+            for m in missing:  # each range as the front end sets it (the CLI: --p MIN:MAX)
+                hints += [" " if hints else "", Setting(f"box.{m}", "MIN:MAX[:N]")]
             raise InputError(
-                f"{what}: law '{self.law.id}' depends on "
-                + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
-                + "; give its range: " + " ".join(CLI_BOX_HINT[m] for m in missing)
-                + " (API: box={" + ", ".join(f"'{m}': (min, max)" for m in missing) + "})")
+                [f"{what}: law '{self.law.id}' depends on "
+                 + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
+                 + "; give its range: ", *hints])
         return [self.specs[n] for n in names]
 
     def make_grid(self, names: Sequence[str], what: str) -> tuple[Grid, GridError, str]:
@@ -189,9 +187,10 @@ class Job:
         for name, value in levels.items():
             if not (math.isfinite(value) and 0 <= value <= MU_MAX):
                 raise InputError(
-                    f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
-                    f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
-                    "(check the parameters; a fit that cannot determine them needs --fix)")
+                    [f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
+                     f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
+                     "(check the parameters; a fit that cannot determine them needs ",
+                     Setting("fix"), ")"])
 
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
