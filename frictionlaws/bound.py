@@ -181,21 +181,51 @@ class BoundLaw:
         return self.law.evaluate_checked(variables, self.values)
 
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
-        """Messages for the variables outside the range the values were fitted on."""
+        """List the variables outside the range the values were fitted on.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI).
+
+        Returns
+        -------
+        list of str
+            One message per variable outside its fitted range (none when not fitted).
+        """
         return outside_ranges(self.law, self.fitted_ranges, variables)
 
     def bind(self) -> Any:
-        """The plain vectorised function of :meth:`Law.bind <frictionlaws.law.Law.bind>`
-        (no checks, no warnings; variables positionally in :attr:`variables` order)."""
+        """Return the law as a plain vectorised function of its variables.
+
+        Returns
+        -------
+        callable
+            :meth:`Law.bind <frictionlaws.law.Law.bind>` at these values: no checks,
+            no warnings; variables positionally in :attr:`variables` order.
+        """
         return self.law.bind(self.values)
 
     def derived(self) -> dict[str, float]:
-        """The law's derived quantities at these values."""
+        """Evaluate the law's derived quantities at these values.
+
+        Returns
+        -------
+        dict
+            Derived quantity name -> value (in its declared unit).
+        """
         return self.law.derived_values(self.values)
 
     # ------------------------------------------------------------------ misc
     def to_dict(self) -> dict[str, Any]:
-        """The bound law as JSON-able values (SI, with units)."""
+        """Describe the bound law as JSON-able values (SI, with units).
+
+        Returns
+        -------
+        dict
+            ``law``, ``values`` (value, unit, stderr), ``source``, ``fitted_ranges``,
+            ``fixed``, ``notes`` and ``converged``.
+        """
         units = {p.name: p.unit for p in self.law.params}
         units.update({s.name: s.unit for s in self.law.settings})
         return {"law": self.law.id,

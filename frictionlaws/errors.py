@@ -11,17 +11,17 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 __all__ = ["FrictionLawsError", "InputError", "UnknownLawError", "GroupingError",
-           "DomainError", "FitError", "ExtrapolationWarning", "Setting", "Label"]
+           "DomainError", "FitError", "ExtrapolationWarning", "Argument", "Label"]
 
 #: How a front end names an argument of the API (the CLI: the flag that sets it).
 Label = Callable[[str], str]
 
 
 @dataclass(frozen=True)
-class Setting:
+class Argument:
     """An argument and a value quoted inside an error message, named by the front end.
 
-    The library writes ``Setting("mapping", "mu=COLUMN")`` where a message tells
+    The library writes ``Argument("mapping", "mu=COLUMN")`` where a message tells
     the user what to set; the API shows it as ``mapping='mu=COLUMN'``, the CLI as
     its flag followed by the value (see :meth:`InputError.compose`).  So library
     messages never quote command-line flags.
@@ -46,8 +46,8 @@ class Setting:
         return f"{target}={self.value!r}" if self.value else target
 
 
-#: A message: plain text, or text and :class:`Setting` pieces.
-Message = str | Sequence[str | Setting]
+#: A message: plain text, or text and :class:`Argument` pieces.
+Message = str | Sequence[str | Argument]
 
 
 class FrictionLawsError(Exception):
@@ -59,8 +59,8 @@ class InputError(FrictionLawsError, ValueError):
 
     Parameters
     ----------
-    message : str or sequence of str and Setting
-        What is wrong and what was expected; a :class:`Setting` piece names an
+    message : str or sequence of str and Argument
+        What is wrong and what was expected; an :class:`Argument` piece names an
         argument the user may set, in the words of the front end.
     file : str, optional
         The file concerned.
@@ -88,18 +88,35 @@ class InputError(FrictionLawsError, ValueError):
         self.column = column
         self.row = row
         self.option = option
-        self.parts: tuple[str | Setting, ...] = (
+        self.parts: tuple[str | Argument, ...] = (
             (message,) if isinstance(message, str) else tuple(message))
         #: The message without its location, settings named as API arguments.
         self.bare_message = self.render()
         super().__init__(self._compose())
 
     def render(self, label: Label | None = None) -> str:
-        """The message without its location; :class:`Setting` pieces named by ``label``."""
+        """Write the message without its location.
+
+        Parameters
+        ----------
+        label : callable, optional
+            How the front end names an API argument; by default the API's form.
+
+        Returns
+        -------
+        str
+            The text, with the :class:`Argument` pieces named by ``label``.
+        """
         return "".join(p if isinstance(p, str) else p.render(label) for p in self.parts)
 
     def replace_text(self, old: str, new: str) -> None:
-        """Replace ``old`` by ``new`` in the message and the file name (e.g. a private path)."""
+        """Replace ``old`` by ``new`` in the message and the file name (e.g. a private path).
+
+        Parameters
+        ----------
+        old, new : str
+            The text to replace and its replacement.
+        """
         self.parts = tuple(p.replace(old, new) if isinstance(p, str) else p
                            for p in self.parts)
         if self.file == old:
@@ -120,7 +137,7 @@ class InputError(FrictionLawsError, ValueError):
             API argument (``argument 'mapping'``).
         label : callable, optional
             How the front end names an API argument (the CLI: its flag); used for
-            :attr:`option` and for the :class:`Setting` pieces of the message.
+            :attr:`option` and for the :class:`Argument` pieces of the message.
 
         Returns
         -------

@@ -47,7 +47,7 @@ import numpy as np
 import pandas as pd
 
 from . import units as _units
-from .errors import InputError, Setting
+from .errors import Argument, InputError
 
 __all__ = [
     "CANONICAL",
@@ -147,10 +147,10 @@ def _split_pairs(text: str | Sequence[str], option: str, example: str
             if len(parts) > 1:
                 continue
             raise InputError(["is empty; expected NAME=VALUE pairs, e.g. ",
-                              Setting(option, example)], option=option)
+                              Argument(option, example)], option=option)
         if "=" not in part:
             raise InputError([f"'{part.strip()}' is not NAME=VALUE; expected e.g. ",
-                              Setting(option, example)], option=option)
+                              Argument(option, example)], option=option)
         k, v = part.split("=", 1)
         items.append((k, v))
     return items
@@ -170,7 +170,7 @@ def _parse_pairs(text: str | Sequence[str] | Mapping[str, str] | None, option: s
         k, v = k.strip(), v.strip()
         if not k or not v:
             raise InputError([f"'{k}={v}' has an empty name or value; expected e.g. ",
-                              Setting(option, example)], option=option)
+                              Argument(option, example)], option=option)
         canon = canonical_name(k, option=option)
         if canon in out:
             raise InputError(f"'{canon}' is given twice", option=option)
@@ -792,7 +792,7 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
     for canon, user_col in map_.items():
         j = _match_column(user_col, headers, names)
         if j is None:
-            raise InputError([Setting("mapping", f"{canon}={user_col}"),
+            raise InputError([Argument("mapping", f"{canon}={user_col}"),
                               f": no such column in the file (columns: {_listed(headers)})"],
                              file=src, column=user_col)
         if j in assigned.values():
@@ -814,7 +814,7 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
         elif found in assigned:
             raise InputError(
                 [f"columns '{headers[assigned[found]]}' and '{headers[j]}' both give "
-                 f"'{found}'; keep one, or choose with ", Setting("mapping", f"{found}=COLUMN")],
+                 f"'{found}'; keep one, or choose with ", Argument("mapping", f"{found}=COLUMN")],
                 file=src, column=headers[j],
             )
         else:
@@ -841,7 +841,7 @@ def _no_mu(table: _Table) -> None:
             )
     raise InputError(
         ["no friction coefficient column: expected a column named 'mu' (or cof, "
-         "friction, ...) or ", Setting("mapping", "mu=COLUMN"),
+         "friction, ...) or ", Argument("mapping", "mu=COLUMN"),
          f" (columns: {_listed(headers)})"],
         file=table.source,
     )
@@ -859,19 +859,19 @@ def _extra_units(table: _Table, names: list[str], assigned: Mapping[str, int],
             j = _match_column(key, headers, names)
             if j is None:
                 raise InputError(
-                    [Setting("units", f"{key}={unit}"),
+                    [Argument("units", f"{key}={unit}"),
                      f": '{key}' is neither a dataset column ({', '.join(CANONICAL)}) nor "
                      f"a column of the file (columns: {_listed(headers)})"], file=src) from None
             canon = next((c for c, k in assigned.items() if k == j), None)
             if canon is None:
                 raise InputError(
-                    [Setting("units", f"{key}={unit}"), ": the column is not used; map it "
-                     "first, e.g. ", Setting("mapping", f"p={key}")],
+                    [Argument("units", f"{key}={unit}"), ": the column is not used; map it "
+                     "first, e.g. ", Argument("mapping", f"p={key}")],
                     file=src, column=headers[j]) from None
         extra[str(canon)] = str(unit).strip()
     for canon, unit in extra.items():
         if canon not in assigned:
-            raise InputError([Setting("units", f"{canon}={unit}"),
+            raise InputError([Argument("units", f"{canon}={unit}"),
                               f": the file has no '{canon}' column "
                               f"(columns: {_listed(headers)})"], file=src)
     return extra
@@ -889,7 +889,7 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
         if header_unit is not None and given is not None and header_unit != given:
             raise InputError(
                 [f"the header gives unit '{header_unit}' but ",
-                 Setting("units", f"{canon}={given}"), " gives another; give the unit once"],
+                 Argument("units", f"{canon}={given}"), " gives another; give the unit once"],
                 file=src, column=headers[j],
             )
         unit = header_unit if header_unit is not None else given
@@ -904,7 +904,7 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
                 ex = _units.display_unit(canon)
                 raise InputError(
                     [f"column has no unit; give it in the header as '{names[j]} [{ex}]' "
-                     "or with ", Setting("units", f"{canon}={ex}")],
+                     "or with ", Argument("units", f"{canon}={ex}")],
                     file=src, column=headers[j],
                 )
         _units.check_unit(unit, canon, column=headers[j], file=src)
@@ -1094,15 +1094,15 @@ def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
         notes.append(f"area {area!r} not used: the data have a pressure column")
         return frame
     if "F_N" not in frame.columns:
-        raise InputError([Setting("area", str(area)), " needs a normal-load column F_N to "
+        raise InputError([Argument("area", str(area)), " needs a normal-load column F_N to "
                           "derive the pressure, and the data have none"], file=src)
     try:
         a = _units.parse_quantity(area, "area", what="area", file=src)
     except InputError as exc:  # "area '1 m' is a length...": the argument named by the front end
-        raise InputError([Setting("area"), exc.bare_message.removeprefix("area")],
+        raise InputError([Argument("area"), exc.bare_message.removeprefix("area")],
                          file=src) from None
     if not a > 0:
-        raise InputError([Setting("area", str(area)), " must be > 0"], file=src)
+        raise InputError([Argument("area", str(area)), " must be > 0"], file=src)
     frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
     units_given["p"] = f"F_N / area ({area})"
     notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")

@@ -644,8 +644,10 @@ class Law:
 
     def evaluate_checked(self, variables: Mapping[str, Any], params: Mapping[str, float]
                          ) -> Any:
-        """:meth:`evaluate` with the checks of a call: the variables
-        (:meth:`check_variables`) and mu (finite; not negative for a sliding law).
+        """Evaluate with the checks of a call: the variables and mu.
+
+        The variables are checked by :meth:`check_variables`; mu must be finite and,
+        for a sliding law, not negative.
 
         Parameters
         ----------
@@ -653,6 +655,11 @@ class Law:
             Variable name -> array-like in SI.
         params : mapping
             Complete, checked parameters and settings (:meth:`resolve`).
+
+        Returns
+        -------
+        float or numpy.ndarray or pandas.Series
+            As :meth:`evaluate`.
 
         Raises
         ------
@@ -740,10 +747,22 @@ class Law:
 
     def freeze(self, values: Mapping[str, float] | None = None, preset: str | None = None,
                *, source: Any = None) -> BoundLaw:
-        """This law bound to a preset and/or values: a :class:`~frictionlaws.bound.BoundLaw`.
+        """Bind this law to a preset and/or values, like a frozen scipy distribution.
 
-        Like a frozen distribution of scipy: ``law.freeze(preset="x")(p=1e5)``.
-        See :func:`frictionlaws.bound.freeze` for the arguments.
+        Parameters
+        ----------
+        values : mapping, optional
+            Parameter (or setting) values in SI, over the preset.
+        preset : str, optional
+            A named preset of the law.
+        source : Source or str, optional
+            Where the values came from (a string names a parameters file); see
+            :func:`frictionlaws.bound.freeze`.
+
+        Returns
+        -------
+        BoundLaw
+            E.g. ``law.freeze(preset="x")(p=1e5)``.
         """
         from .bound import freeze
 

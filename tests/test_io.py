@@ -95,9 +95,9 @@ def test_thesis_original_without_map_fails_clearly() -> None:
     # the library names its own argument; the CLI renders the same setting as a flag
     assert "mapping='mu=COLUMN'" in str(exc.value)
     assert "FC, NL, CP, PV, DV" in str(exc.value)
-    from frictionlaws.errors import Setting
+    from frictionlaws.errors import Argument
 
-    assert Setting("mapping", "mu=COLUMN") in exc.value.parts
+    assert Argument("mapping", "mu=COLUMN") in exc.value.parts
     assert "or --map mu=COLUMN (columns" in exc.value.compose(label={"mapping": "--map"}.get)
 
 

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, Setting
+from ..errors import Argument, InputError
 from ..law import MU_MAX, VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
@@ -123,9 +123,9 @@ class Job:
         """The ranges of ``names``; InputError naming the option when one is missing."""
         missing = [n for n in names if n not in self.specs]
         if missing:
-            hints: list[str | Setting] = []
+            hints: list[str | Argument] = []
             for m in missing:  # each range as the front end sets it (the CLI: --p MIN:MAX)
-                hints += [" " if hints else "", Setting(f"box.{m}", "MIN:MAX[:N]")]
+                hints += [" " if hints else "", Argument(f"box.{m}", "MIN:MAX[:N]")]
             raise InputError(
                 [f"{what}: law '{self.law.id}' depends on "
                  + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
@@ -190,7 +190,7 @@ class Job:
                     [f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
                      f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
                      "(check the parameters; a fit that cannot determine them needs ",
-                     Setting("fix"), ")"])
+                     Argument("fix"), ")"])
 
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
