@@ -198,36 +198,61 @@ FIT_OPTIONS = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "unce
                "boot", "boot_jobs", "boot_interval")
 
 
-def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
-    """Options that control a fit (``--fix``, ``--free``, weights, starts, seed)."""
-    p.add_argument("--fix", metavar="NAME=VALUE,...", action=MergeAssignments,
-                   help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")
-    p.add_argument("--free", metavar="SETTING,...", action=MergeNames,
-                   help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")
-    p.add_argument("--weights", choices=("auto", "none"), default="auto",
-                   help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
-    p.add_argument("--drop-invalid", action="store_true",
-                   help="drop (and report) rows where the law is singular, e.g. v = 0 in a "
-                        "log-velocity law, instead of stopping")
-    p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
-                   help="extra random starts for non-linear laws, 0 to 1000 (default 6)")
-    p.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
-                   help=f"seed of the random starts and the bootstrap, 0 to {SEED_MAX} "
-                        "(default 0)")
-    p.add_argument("--uncertainty", choices=("asymptotic", "sandwich", "bootstrap"),
-                   default="asymptotic",
-                   help="standard errors: asymptotic (fit covariance, default, fast), "
-                        "sandwich (HC3, robust to uneven scatter) or bootstrap (resamples "
-                        "whole test conditions; robust to a law that misses a trend)")
-    p.add_argument("--boot", type=bounded_int(20, 100_000), default=1000, metavar="N",
-                   help="bootstrap replicates, 20 to 100000 (default 1000; with "
-                        "--uncertainty bootstrap)")
-    p.add_argument("--boot-jobs", type=_boot_jobs, default=1, metavar="N",
-                   help="worker processes for the bootstrap refits (default 1; -1 = one "
-                        "per core; with --uncertainty bootstrap)")
-    p.add_argument("--boot-interval", choices=("bca", "percentile"), default="bca",
-                   help="bootstrap interval: bca (bias-corrected, accelerated; default) or "
-                        "percentile (with --uncertainty bootstrap)")
+def _fit_option_specs() -> dict[str, tuple[tuple[str, ...], dict[str, Any]]]:
+    """dest -> (flags, add_argument keywords) of every fit option, defined once."""
+    return {
+        "fix": (("--fix",), dict(
+            metavar="NAME=VALUE,...", action=MergeAssignments,
+            help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")),
+        "free": (("--free",), dict(
+            metavar="SETTING,...", action=MergeNames,
+            help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")),
+        "weights": (("--weights",), dict(
+            choices=("auto", "none"), default="auto",
+            help="auto: 1/mu_std or sqrt(n) when the data have them (default)")),
+        "drop_invalid": (("--drop-invalid",), dict(
+            action="store_true",
+            help="drop (and report) rows where the law is singular, e.g. v = 0 in a "
+                 "log-velocity law, instead of stopping")),
+        "starts": (("--starts",), dict(
+            type=bounded_int(0, 1000), default=None, metavar="N",
+            help="extra random starts for non-linear laws, 0 to 1000 (default: the "
+                 "fitter's rule, 6)")),
+        "seed": (("--seed",), dict(
+            type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
+            help=f"seed of the random starts, the folds and the bootstrap, 0 to {SEED_MAX} "
+                 "(default 0)")),
+        "uncertainty": (("--uncertainty",), dict(
+            choices=("asymptotic", "sandwich", "bootstrap"), default="asymptotic",
+            help="standard errors: asymptotic (fit covariance, default, fast), sandwich "
+                 "(HC3, robust to uneven scatter) or bootstrap (resamples whole test "
+                 "conditions; robust to a law that misses a trend)")),
+        "boot": (("--boot",), dict(
+            type=bounded_int(20, 100_000), default=1000, metavar="N",
+            help="bootstrap replicates, 20 to 100000 (default 1000; with --uncertainty "
+                 "bootstrap)")),
+        "boot_jobs": (("--boot-jobs",), dict(
+            type=_boot_jobs, default=1, metavar="N",
+            help="worker processes for the bootstrap refits (default 1; -1 = one per core; "
+                 "with --uncertainty bootstrap)")),
+        "boot_interval": (("--boot-interval",), dict(
+            choices=("bca", "percentile"), default="bca",
+            help="bootstrap interval: bca (bias-corrected, accelerated; default) or "
+                 "percentile (with --uncertainty bootstrap)")),
+    }
+
+
+def add_fit_options(p: argparse.ArgumentParser | Any, only: Sequence[str] | None = None
+                    ) -> None:
+    """The one group of fit options (``--fix``, ``--free``, weights, starts, seed, ...).
+
+    ``only`` adds a subset (argparse dests of :data:`FIT_OPTIONS`), for a command
+    that fits with fewer choices (``compare``: ``weights``, ``starts``, ``seed``).
+    """
+    specs = _fit_option_specs()
+    for dest in only or FIT_OPTIONS:
+        flags, kwargs = specs[dest]
+        p.add_argument(*flags, **kwargs)
 
 
 #: Bootstrap-only options (argparse dests), refused with another --uncertainty.
