@@ -452,9 +452,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         :func:`~frictionlaws.fitting.load_result`); missing values come from
         ``preset`` or the defaults of optional parameters.
     format : str
-        One of :data:`FORMATS`: ``csv``, ``json``, ``abaqus``, ``abaqus-decay``,
-        ``lsdyna``, ``ansys``, ``radioss``, ``abaqus-fric-coef``,
-        ``abaqus-vfric-coef``, ``abaqus-vfric``.
+        One of :data:`FORMATS` (``csv``, ``abaqus``, ``lsdyna``, ``radioss``...).
     box : mapping, optional
         Variable -> ``(min, max)`` or ``(min, max, n)`` in SI (numbers) or as
         quantity strings (``("10 kPa", "0.5 MPa", 20)``), or ``"MIN:MAX[:N]"``
@@ -482,9 +480,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         How the parameters were obtained (written in the header; default: the
         bound law's :class:`~frictionlaws.bound.Source`).
     options : mapping, optional
-        Format options: ``lsdyna_ssid``, ``lsdyna_msid``, ``lsdyna_sstyp``,
-        ``lsdyna_mstyp``, ``lsdyna_contact``, ``lsdyna_table_id``,
-        ``ansys_mat``, ``radioss_id``.
+        Format options (ids of the solver's cards), see :data:`OPTIONS`.
 
     Returns
     -------
@@ -510,13 +506,18 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
+    return _result(job, written, _write(path, written.text))
+
+
+def _result(job: Job, written: Written, path: str | None) -> ExportResult:
+    """What was written, with its error located in the model's units."""
     err = written.error
-    out_path = _write(path, written.text)
     error_at = {}
     if err is not None:
-        error_at = {k: float(np.asarray(system.to_model(k, v))) for k, v in err.where.items()}
+        error_at = {k: float(np.asarray(job.units.to_model(k, v)))
+                    for k, v in err.where.items()}
     return ExportResult(
-        format=format, text=written.text, path=out_path, law=bound.law.id, units=system.name,
+        format=job.fmt, text=written.text, path=path, law=job.law.id, units=job.units.name,
         rows=written.rows, exact=written.exact,
         max_error=(0.0 if written.exact else (err.max_abs if err is not None else None)),
         error_at=error_at, rms_error=None if err is None else err.rms,
