@@ -52,7 +52,7 @@ __all__ = [
     "data_kwargs",
     "fit_kwargs",
     "run_fit",
-    "DATA_OPTIONS",
+    "data_options",
     "FIT_OPTIONS",
     "PARAMS_HELP",
     "add_law_source_options",
@@ -170,8 +170,14 @@ class MergeNames(argparse.Action):
 # ------------------------------------------------------------------- option groups
 
 
-#: The destinations :func:`add_data_options` creates: options that only apply to data.
-DATA_OPTIONS = ("map", "data_units", "area")
+def data_options(args: argparse.Namespace) -> tuple[str, ...]:
+    """The destinations :func:`add_data_options` created: options that only apply to data."""
+    return ("map", _units_dest(args), "area")
+
+
+def _units_dest(args: argparse.Namespace) -> str:
+    """``units``, or ``data_units`` where the command's ``--units`` means something else."""
+    return "data_units" if hasattr(args, "data_units") else "units"
 
 
 def add_data_options(p: argparse.ArgumentParser | Any, *, units_flag: str = "--units") -> None:
@@ -180,12 +186,12 @@ def add_data_options(p: argparse.ArgumentParser | Any, *, units_flag: str = "--u
     Every command that reads a user's table (``fit``, ``compare``, ``datasets``,
     ``export --fit``, ``tyre cornering --fit``) takes them.  ``units_flag`` renames
     ``--units`` where the command's ``--units`` means something else (``export``:
-    ``--data-units``); the destination is always ``data_units``.
+    ``--data-units``, destination ``data_units``).
     """
     p.add_argument("--map", metavar="COL=NAME,...", action=MergeAssignments,
                    help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV "
                         "(repeatable; a column given twice is an error)")
-    p.add_argument(units_flag, dest="data_units", metavar="COL=UNIT,...",
+    p.add_argument(units_flag, metavar="COL=UNIT,...",
                    action=MergeAssignments,
                    help="units of data columns whose header has none, e.g. p=MPa,v=m/s "
                         "(repeatable)")
@@ -360,7 +366,8 @@ def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
     """``mapping``/``units``/``area`` keyword arguments for load_dataset and fit."""
     return {
         "mapping": parse_assignments(args.map, "--map") or None,
-        "units": parse_assignments(args.data_units, flag_of(args, "data_units")) or None,
+        "units": parse_assignments(getattr(args, _units_dest(args)),
+                                   flag_of(args, _units_dest(args))) or None,
         "area": args.area,
     }
 
@@ -439,7 +446,7 @@ def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
 
     fit_data = getattr(args, "fit", None)
     if not fit_data and hasattr(args, "fix"):
-        refuse_unused(args, (*FIT_OPTIONS, *DATA_OPTIONS), "without --fit")
+        refuse_unused(args, (*FIT_OPTIONS, *data_options(args)), "without --fit")
     values = parse_floats(args.set, "--set")
     if args.params:
         if values:

@@ -28,7 +28,7 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.io import list_datasets, load_dataset
 
     if args.name is None:
-        if args.map or args.data_units or args.area:
+        if args.map or args.units or args.area:
             from frictionlaws.errors import InputError
 
             raise InputError("--map, --units and --area need a dataset NAME or file")
@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"{d['name']:<{width}}  {d['rows']:>4}  {d['title']}")
         return 0
     with data_source(args.name) as source:
-        ds = load_dataset(source, mapping=args.map, units=args.data_units, area=args.area)
+        ds = load_dataset(source, mapping=args.map, units=args.units, area=args.area)
     if args.json:
         print(jsonio.dumps(ds.summary()))
         return 0

@@ -9,7 +9,6 @@ from pathlib import Path
 from typing import Any
 
 from ._common import (
-    DATA_OPTIONS,
     FIT_OPTIONS,
     UsageError,
     add_data_options,
@@ -18,6 +17,7 @@ from ._common import (
     add_law_source_options,
     bound_from_args,
     bounded_int,
+    data_options,
     fit_kwargs,
     parse_assignments,
     parse_range,
@@ -154,7 +154,7 @@ def _check_args(args: argparse.Namespace) -> None:
         raise UsageError("--json prints the export's summary on stdout, where -o - puts the "
                          "file: give -o FILE")
     if not args.fit:
-        refuse_unused(args, (*FIT_OPTIONS, *DATA_OPTIONS, "by"), "without --fit")
+        refuse_unused(args, (*FIT_OPTIONS, *data_options(args), "by"), "without --fit")
 
 
 def run(args: argparse.Namespace) -> int:
