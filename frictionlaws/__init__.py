@@ -29,6 +29,7 @@ _API = {
     "fit": "fitting",
     "FitResult": "fitting",
     "load_result": "fitting",
+    "BoundLaw": "bound",
     "with_wlf": "temperature",
     "wlf_log_aT": "temperature",
     "build_master_curve": "mastercurve",

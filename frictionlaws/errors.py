@@ -7,8 +7,47 @@ a law name, a parameter) derives from :class:`InputError`.  The CLI turns any
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
 __all__ = ["FrictionLawsError", "InputError", "UnknownLawError", "GroupingError",
-           "DomainError", "FitError", "ExtrapolationWarning"]
+           "DomainError", "FitError", "ExtrapolationWarning", "Argument", "Label"]
+
+#: How a front end names an argument of the API (the CLI: the flag that sets it).
+Label = Callable[[str], str]
+
+
+@dataclass(frozen=True)
+class Argument:
+    """An argument and a value quoted inside an error message, named by the front end.
+
+    The library writes ``Argument("mapping", "mu=COLUMN")`` where a message tells
+    the user what to set; the API shows it as ``mapping='mu=COLUMN'``, the CLI as
+    its flag followed by the value (see :meth:`InputError.compose`).  So library
+    messages never quote command-line flags.
+
+    Parameters
+    ----------
+    option : str
+        The API argument (``"mapping"``, ``"units"``, ``"area"``, ``"box.p"``...).
+    value : str
+        The value to show with it (may be empty: the argument alone).
+    """
+
+    option: str
+    value: str = ""
+
+    def render(self, label: Label | None = None) -> str:
+        """The setting as the front end writes it (the API's keyword form by default)."""
+        if label is not None:
+            return f"{label(self.option)} {self.value}".rstrip()
+        name, _, key = self.option.partition(".")
+        target = f"{name}[{key!r}]" if key else name
+        return f"{target}={self.value!r}" if self.value else target
+
+
+#: A message: plain text, or text and :class:`Argument` pieces.
+Message = str | Sequence[str | Argument]
 
 
 class FrictionLawsError(Exception):
@@ -20,8 +59,9 @@ class InputError(FrictionLawsError, ValueError):
 
     Parameters
     ----------
-    message : str
-        What is wrong and what was expected.
+    message : str or sequence of str and Argument
+        What is wrong and what was expected; an :class:`Argument` piece names an
+        argument the user may set, in the words of the front end.
     file : str, optional
         The file concerned.
     column : str, optional
@@ -32,12 +72,12 @@ class InputError(FrictionLawsError, ValueError):
         The argument of the API call concerned (``"mapping"``, ``"units"``,
         ``"area"``, ``"fix"``, ``"box.p"``...).  Messages written with it do not
         repeat the argument's name: the front end names it its own way (the CLI
-        as a flag such as ``--map``), see :meth:`compose`.
+        as a command-line flag), see :meth:`compose`.
     """
 
     def __init__(
         self,
-        message: str,
+        message: Message,
         *,
         file: str | None = None,
         column: str | None = None,
@@ -48,21 +88,56 @@ class InputError(FrictionLawsError, ValueError):
         self.column = column
         self.row = row
         self.option = option
-        self.bare_message = message
+        self.parts: tuple[str | Argument, ...] = (
+            (message,) if isinstance(message, str) else tuple(message))
+        #: The message without its location, settings named as API arguments.
+        self.bare_message = self.render()
         super().__init__(self._compose())
+
+    def render(self, label: Label | None = None) -> str:
+        """Write the message without its location.
+
+        Parameters
+        ----------
+        label : callable, optional
+            How the front end names an API argument; by default the API's form.
+
+        Returns
+        -------
+        str
+            The text, with the :class:`Argument` pieces named by ``label``.
+        """
+        return "".join(p if isinstance(p, str) else p.render(label) for p in self.parts)
+
+    def replace_text(self, old: str, new: str) -> None:
+        """Replace ``old`` by ``new`` in the message and the file name (e.g. a private path).
+
+        Parameters
+        ----------
+        old, new : str
+            The text to replace and its replacement.
+        """
+        self.parts = tuple(p.replace(old, new) if isinstance(p, str) else p
+                           for p in self.parts)
+        if self.file == old:
+            self.file = new
+        self.bare_message = self.render()
+        self.args = (self._compose(),)
 
     def _compose(self) -> str:
         return self.compose()
 
-    def compose(self, option_label: str | None = None) -> str:
+    def compose(self, option_label: str | None = None, *, label: Label | None = None) -> str:
         """Compose the message with its location (option, file, column, row).
 
         Parameters
         ----------
         option_label : str, optional
-            How to name :attr:`option`: the CLI passes its flag (``--map``).
-            Without a label the option is named as the API argument
-            (``argument 'mapping'``).
+            How to name :attr:`option`; by default ``label(option)``, else the
+            API argument (``argument 'mapping'``).
+        label : callable, optional
+            How the front end names an API argument (the CLI: its flag); used for
+            :attr:`option` and for the :class:`Argument` pieces of the message.
 
         Returns
         -------
@@ -72,7 +147,8 @@ class InputError(FrictionLawsError, ValueError):
         """
         where = []
         if self.option is not None:
-            where.append(option_label or f"argument '{self.option}'")
+            where.append(option_label or (label(self.option) if label is not None
+                                          else f"argument '{self.option}'"))
         if self.file is not None:
             where.append(f"file '{self.file}'")
         if self.column is not None:
@@ -80,7 +156,8 @@ class InputError(FrictionLawsError, ValueError):
         if self.row is not None:
             where.append(f"row {self.row}")
         prefix = ", ".join(where)
-        return f"{prefix}: {self.bare_message}" if prefix else self.bare_message
+        text = self.render(label)
+        return f"{prefix}: {text}" if prefix else text
 
 
 class UnknownLawError(InputError, KeyError):
@@ -108,20 +185,20 @@ class GroupingError(InputError):
     """Rows from several groups (counter-surfaces, compounds, rigs...) given to one pooled fit.
 
     ``column`` names the grouping column; the message ends with how to fit each group,
-    in the words of the front end (``by='surface'`` in the API, ``--by surface`` on the
-    command line).
+    in the words of the front end (``by='surface'`` in the API, the command line's
+    own flag there).
     """
 
     def __init__(self, message: str, *, column: str, file: str | None = None) -> None:
         self.group_column = column
         super().__init__(message, file=file, column=column, option="by")
 
-    def compose(self, option_label: str | None = None) -> str:
+    def compose(self, option_label: str | None = None, *, label: Label | None = None) -> str:
         where = ", ".join(x for x in (f"file '{self.file}'" if self.file else "",
                                       f"column '{self.column}'") if x)
-        how = (f"{option_label} {self.group_column}" if option_label
-               else f"by={self.group_column!r}")
-        return f"{where}: {self.bare_message}; fit each group on its own ({how})"
+        flag = option_label or (label("by") if label is not None else None)
+        how = f"{flag} {self.group_column}" if flag else f"by={self.group_column!r}"
+        return f"{where}: {self.render(label)}; fit each group on its own ({how})"
 
 
 class DomainError(InputError):

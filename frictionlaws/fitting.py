@@ -30,13 +30,16 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .errors import ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
+
+if TYPE_CHECKING:
+    from .bound import BoundLaw
 
 __all__ = ["fit", "FitResult", "ParamEstimate", "load_result", "FitData", "as_fit_data",
            "RESULT_FORMAT", "RESULT_VERSION"]
@@ -409,6 +412,13 @@ class FitResult:
         """Parameter values only (no settings)."""
         return {k: p.value for k, p in self.params.items()}
 
+    @property
+    def bound(self) -> BoundLaw:
+        """The law bound to the fitted values, with the fitted data's ranges."""
+        from .bound import bound_from_result
+
+        return bound_from_result(self)
+
     def predict(self, *, warn: bool = True, **variables: Any) -> Any:
         """Evaluate the fitted law; warn when outside the fitted data range."""
         if warn:
@@ -419,15 +429,9 @@ class FitResult:
 
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
         """Messages for variables outside the range the law was fitted on."""
-        msgs = []
-        for k, (lo, hi) in self.data.get("ranges", {}).items():
-            if k in variables and k in self.law.variables:
-                x = np.asarray(variables[k], float)
-                if x.size and (np.min(x) < lo * (1 - 1e-9) - 1e-300
-                               or np.max(x) > hi * (1 + 1e-9)):
-                    msgs.append(f"{k} outside the fitted range {lo:g}..{hi:g} "
-                                f"{VARIABLES[k].unit}: extrapolation")
-        return msgs
+        from .bound import outside_ranges
+
+        return outside_ranges(self.law, self.data.get("ranges", {}), variables)
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-able dict (the versioned save format)."""

@@ -19,9 +19,9 @@ column      meaning                        unit in the file        SI
 =========== ============================== ======================= =====
 
 Units go in the header in square brackets (``p [MPa]``), or through the
-``units`` argument (``--units p=MPa``) for files whose header has none.  Column
+``units`` argument (``units="p=MPa"``) for files whose header has none.  Column
 names may be aliases (``cof``, ``pressure``, ``speed``, ``load``...) or be
-mapped explicitly (``--map mu=FC,p=CP,v=DV``).  The full schema, the rules for
+mapped explicitly (``mapping="mu=FC,p=CP,v=DV"``).  The full schema, the rules for
 what is an error and what is a reported drop, and the provenance of the
 packaged datasets are in ``datasets/README.md``.
 
@@ -47,7 +47,7 @@ import numpy as np
 import pandas as pd
 
 from . import units as _units
-from .errors import InputError
+from .errors import Argument, InputError
 
 __all__ = [
     "CANONICAL",
@@ -114,8 +114,10 @@ for _canon, _names in ALIASES.items():
 _CANON_KEYS = {c.lower(): c for c in CANONICAL}
 
 
-def canonical_name(key: str, *, what: str = "name") -> str:
-    """The canonical column for a key of ``--map``/``--units`` (``"f_n"`` -> ``"F_N"``).
+def canonical_name(key: str, *, what: str = "name", option: str | None = None) -> str:
+    """The canonical column for a key of ``mapping``/``units`` (``"f_n"`` -> ``"F_N"``).
+
+    ``option`` is the argument the key came from (named in the error).
 
     Raises
     ------
@@ -128,44 +130,50 @@ def canonical_name(key: str, *, what: str = "name") -> str:
     if k.lower() in _CANON_KEYS:
         return _CANON_KEYS[k.lower()]
     raise InputError(
-        f"{what} '{k}' is not a dataset column; expected one of {', '.join(CANONICAL)}"
+        f"{what} '{k}' is not a dataset column; expected one of {', '.join(CANONICAL)}",
+        option=option,
     )
+
+
+def _split_pairs(text: str | Sequence[str], option: str, example: str
+                 ) -> list[tuple[str, str]]:
+    """``"a=1,b=2"`` (or several such strings) -> ``[("a", "1"), ("b", "2")]``."""
+    parts: list[str] = []
+    for chunk in ([text] if isinstance(text, str) else list(text)):
+        parts.extend(str(chunk).split(","))
+    items = []
+    for part in parts:
+        if not part.strip():
+            if len(parts) > 1:
+                continue
+            raise InputError(["is empty; expected NAME=VALUE pairs, e.g. ",
+                              Argument(option, example)], option=option)
+        if "=" not in part:
+            raise InputError([f"'{part.strip()}' is not NAME=VALUE; expected e.g. ",
+                              Argument(option, example)], option=option)
+        k, v = part.split("=", 1)
+        items.append((k, v))
+    return items
 
 
 def _parse_pairs(text: str | Sequence[str] | Mapping[str, str] | None, option: str,
                  example: str) -> dict[str, str]:
+    """``NAME=VALUE`` pairs of the argument ``option`` by canonical column name."""
     if text is None:
         return {}
     if isinstance(text, Mapping):
         items = [(str(k), str(v)) for k, v in text.items()]
     else:
-        parts: list[str] = []
-        for chunk in ([text] if isinstance(text, str) else list(text)):
-            parts.extend(p for p in str(chunk).split(","))
-        items = []
-        for part in parts:
-            if not part.strip():
-                if len(parts) > 1:
-                    continue
-                raise InputError(f"{option} is empty; expected e.g. {option} {example}")
-            if "=" not in part:
-                raise InputError(
-                    f"{option}: '{part.strip()}' is not NAME=VALUE; expected e.g. "
-                    f"{option} {example}"
-                )
-            k, v = part.split("=", 1)
-            items.append((k, v))
+        items = _split_pairs(text, option, example)
     out: dict[str, str] = {}
     for k, v in items:
         k, v = k.strip(), v.strip()
         if not k or not v:
-            raise InputError(
-                f"{option}: '{k}={v}' has an empty name or value; expected e.g. "
-                f"{option} {example}"
-            )
-        canon = canonical_name(k, what=f"{option} name")
+            raise InputError([f"'{k}={v}' has an empty name or value; expected e.g. ",
+                              Argument(option, example)], option=option)
+        canon = canonical_name(k, option=option)
         if canon in out:
-            raise InputError(f"{option}: '{canon}' is given twice")
+            raise InputError(f"'{canon}' is given twice", option=option)
         out[canon] = v
     return out
 
@@ -174,8 +182,8 @@ def parse_mapping(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[
     """Parse ``"mu=FC,p=CP,v=DV"`` into ``{"mu": "FC", "p": "CP", "v": "DV"}``.
 
     Keys are canonical column names (case-insensitive: ``f_n`` is ``F_N``);
-    values are the user's column names.  A list of such strings (a repeated
-    ``--map`` option) or a dict is accepted too.
+    values are the user's column names.  A list of such strings or a dict is
+    accepted too.
 
     Raises
     ------
@@ -183,13 +191,12 @@ def parse_mapping(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[
         On text that is not ``NAME=COLUMN`` pairs, an unknown canonical name, a
         name given twice or one column mapped twice.
     """
-    out = _parse_pairs(text, "--map", "mu=FC,p=CP,v=DV")
+    out = _parse_pairs(text, "mapping", "mu=FC,p=CP,v=DV")
     seen: dict[str, str] = {}
     for canon, col in out.items():
         if col in seen:
-            raise InputError(
-                f"--map: column '{col}' is mapped to both '{seen[col]}' and '{canon}'"
-            )
+            raise InputError(f"column '{col}' is mapped to both '{seen[col]}' and '{canon}'",
+                             option="mapping")
         seen[col] = canon
     return out
 
@@ -205,7 +212,7 @@ def parse_units(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[st
     InputError
         On text that is not ``NAME=UNIT`` pairs or an unknown canonical name.
     """
-    return _parse_pairs(text, "--units", "p=MPa,v=m/s")
+    return _parse_pairs(text, "units", "p=MPa,v=m/s")
 
 
 # --------------------------------------------------------------------------- Dataset
@@ -874,38 +881,39 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
     for canon, user_col in map_.items():
         j = _match_column(user_col, headers, names)
         if j is None:
-            raise InputError(f"--map {canon}={user_col}: no such column in the file "
-                             f"(columns: {_listed(headers)})", file=src, column=user_col)
+            raise InputError([Argument("mapping", f"{canon}={user_col}"),
+                              f": no such column in the file (columns: {_listed(headers)})"],
+                             file=src, column=user_col)
         if j in assigned.values():
             other = next(c for c, k in assigned.items() if k == j)
-            raise InputError(f"--map: column mapped to both '{other}' and '{canon}'",
-                             file=src, column=headers[j])
+            raise InputError(f"column mapped to both '{other}' and '{canon}'",
+                             file=src, column=headers[j], option="mapping")
         assigned[canon] = j
     explicit = set(assigned)
     ignored: list[str] = []
     for j, nm in enumerate(names):
         if j in assigned.values() or not headers[j]:
             continue
-        canon = _resolve_name(nm)
-        if canon is None:
+        found = _resolve_name(nm)
+        if found is None:
             ignored.append(headers[j])
-        elif canon in explicit:
-            notes.append(f"column '{headers[j]}' ignored: {canon} comes from "
-                         f"--map {canon}={map_[canon]}")
-        elif canon in assigned:
+        elif found in explicit:
+            notes.append(f"column '{headers[j]}' ignored: {found} comes from "
+                         f"the mapping {found}={map_[found]}")
+        elif found in assigned:
             raise InputError(
-                f"columns '{headers[assigned[canon]]}' and '{headers[j]}' both give "
-                f"'{canon}'; keep one, or choose with --map {canon}=COLUMN",
+                [f"columns '{headers[assigned[found]]}' and '{headers[j]}' both give "
+                 f"'{found}'; keep one, or choose with ", Argument("mapping", f"{found}=COLUMN")],
                 file=src, column=headers[j],
             )
         else:
-            assigned[canon] = j
+            assigned[found] = j
     if "mu" not in assigned:
         _no_mu(table)
     if ignored:
         notes.append(
             f"ignored column{'s' if len(ignored) > 1 else ''} not in the schema: "
-            f"{', '.join(ignored)} (use --map to use them)"
+            f"{', '.join(ignored)} (map them to use them)"
         )
     return assigned, explicit
 
@@ -921,8 +929,9 @@ def _no_mu(table: _Table) -> None:
                 file=table.source,
             )
     raise InputError(
-        "no friction coefficient column: expected a column named 'mu' (or cof, "
-        f"friction, ...) or --map mu=COLUMN (columns: {_listed(headers)})",
+        ["no friction coefficient column: expected a column named 'mu' (or cof, "
+         "friction, ...) or ", Argument("mapping", "mu=COLUMN"),
+         f" (columns: {_listed(headers)})"],
         file=table.source,
     )
 
@@ -934,24 +943,26 @@ def _extra_units(table: _Table, names: list[str], assigned: Mapping[str, int],
     extra: dict[str, str] = {}
     for key, unit in (units or {}).items():
         try:
-            canon: str | None = canonical_name(key, what="--units name")
+            canon: str | None = canonical_name(key, option="units")
         except InputError:
             j = _match_column(key, headers, names)
             if j is None:
                 raise InputError(
-                    f"--units {key}={unit}: '{key}' is neither a dataset column "
-                    f"({', '.join(CANONICAL)}) nor a column of the file "
-                    f"(columns: {_listed(headers)})", file=src) from None
+                    [Argument("units", f"{key}={unit}"),
+                     f": '{key}' is neither a dataset column ({', '.join(CANONICAL)}) nor "
+                     f"a column of the file (columns: {_listed(headers)})"], file=src) from None
             canon = next((c for c, k in assigned.items() if k == j), None)
             if canon is None:
                 raise InputError(
-                    f"--units {key}={unit}: the column is not used; map it first, "
-                    f"e.g. --map p={key}", file=src, column=headers[j]) from None
+                    [Argument("units", f"{key}={unit}"), ": the column is not used; map it "
+                     "first, e.g. ", Argument("mapping", f"p={key}")],
+                    file=src, column=headers[j]) from None
         extra[str(canon)] = str(unit).strip()
     for canon, unit in extra.items():
         if canon not in assigned:
-            raise InputError(f"--units {canon}={unit}: the file has no '{canon}' column "
-                             f"(columns: {_listed(headers)})", file=src)
+            raise InputError([Argument("units", f"{canon}={unit}"),
+                              f": the file has no '{canon}' column "
+                              f"(columns: {_listed(headers)})"], file=src)
     return extra
 
 
@@ -966,8 +977,8 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
         given = extra.get(canon)
         if header_unit is not None and given is not None and header_unit != given:
             raise InputError(
-                f"the header gives unit '{header_unit}' but --units gives "
-                f"{canon}={given}; give the unit once",
+                [f"the header gives unit '{header_unit}' but ",
+                 Argument("units", f"{canon}={given}"), " gives another; give the unit once"],
                 file=src, column=headers[j],
             )
         unit = header_unit if header_unit is not None else given
@@ -981,8 +992,8 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
             else:
                 ex = _units.display_unit(canon)
                 raise InputError(
-                    f"column has no unit; give it in the header as '{names[j]} [{ex}]' "
-                    f"or with --units {canon}={ex}",
+                    [f"column has no unit; give it in the header as '{names[j]} [{ex}]' "
+                     "or with ", Argument("units", f"{canon}={ex}")],
                     file=src, column=headers[j],
                 )
         _units.check_unit(unit, canon, column=headers[j], file=src)
@@ -1172,11 +1183,15 @@ def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
         notes.append(f"area {area!r} not used: the data have a pressure column")
         return frame
     if "F_N" not in frame.columns:
-        raise InputError(f"--area {area} needs a normal-load column F_N to derive the "
-                         "pressure, and the data have none", file=src)
-    a = _units.parse_quantity(area, "area", what="--area", file=src)
+        raise InputError([Argument("area", str(area)), " needs a normal-load column F_N to "
+                          "derive the pressure, and the data have none"], file=src)
+    try:
+        a = _units.parse_quantity(area, "area", what="area", file=src)
+    except InputError as exc:  # "area '1 m' is a length...": the argument named by the front end
+        raise InputError([Argument("area"), exc.bare_message.removeprefix("area")],
+                         file=src) from None
     if not a > 0:
-        raise InputError(f"--area {area} must be > 0", file=src)
+        raise InputError([Argument("area", str(area)), " must be > 0"], file=src)
     frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
     units_given["p"] = f"F_N / area ({area})"
     notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")
@@ -1325,36 +1340,41 @@ def load_dataset(
                 "apply only when reading a file or a DataFrame"
             )
         return name_or_path
-    if isinstance(name_or_path, pd.DataFrame):
-        table = _table_from_frame(name_or_path, "<DataFrame>")
-        return _build(table, "dataframe", mapping, units, area, None)
-    if isinstance(name_or_path, Mapping):
-        try:
-            frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in name_or_path.items()})
-        except ValueError as exc:
-            raise InputError(f"cannot build a table from the dict: {exc}") from None
-        table = _table_from_frame(frame, "<dict>")
-        return _build(table, "data", mapping, units, area, None)
+    if isinstance(name_or_path, (pd.DataFrame, Mapping)):
+        table, name = _table_in_memory(name_or_path)
+        return _build(table, name, mapping, units, area, None)
     if not isinstance(name_or_path, (str, os.PathLike)):
         raise InputError(
             f"cannot load a dataset from a {type(name_or_path).__name__}; expected a path, "
             "a packaged dataset name, a DataFrame or a Dataset"
         )
-    text = os.fspath(name_or_path)
+    table, name = _table_on_disk(os.fspath(name_or_path))
+    prov = "\n".join(table.comments) or None
+    return _build(table, name, mapping, units, area, prov)
+
+
+def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, str]:
+    """A DataFrame or a dict of columns as a table, and the dataset's name."""
+    if isinstance(data, pd.DataFrame):
+        return _table_from_frame(data, "<DataFrame>"), "dataframe"
+    try:
+        frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in data.items()})
+    except ValueError as exc:
+        raise InputError(f"cannot build a table from the dict: {exc}") from None
+    return _table_from_frame(frame, "<dict>"), "data"
+
+
+def _table_on_disk(text: str) -> tuple[_Table, str]:
+    """A CSV file or a packaged dataset (``NAME`` or ``packaged:NAME``), and its name."""
     path = Path(text)
+    if not path.exists() and text.startswith(_PACKAGED_PREFIX):
+        bare = text[len(_PACKAGED_PREFIX):]
+        if bare not in _packaged_names():
+            raise InputError(
+                f"no packaged dataset '{bare}' (packaged: {', '.join(_packaged_names())})")
+        text = bare
+        path = Path(text)
     if not path.exists() and text in _packaged_names():
         raw = (datasets_dir() / f"{text}.csv").read_bytes()
-        table = read_table(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw)
-        prov = "\n".join(table.comments) or None
-        return _build(table, text, mapping, units, area, prov)
-    if not path.exists() and text.startswith(_PACKAGED_PREFIX):
-        if text[len(_PACKAGED_PREFIX):] in _packaged_names():
-            return load_dataset(text[len(_PACKAGED_PREFIX):], mapping=mapping, units=units,
-                                area=area)
-        raise InputError(
-            f"no packaged dataset '{text[len(_PACKAGED_PREFIX):]}' (packaged: "
-            f"{', '.join(_packaged_names())})"
-        )
-    table = read_table(path, source=text)
-    prov = "\n".join(table.comments) or None
-    return _build(table, path.stem, mapping, units, area, prov)
+        return read_table(text, source=f"{_PACKAGED_PREFIX}{text}", raw=raw), text
+    return read_table(path, source=text), path.stem

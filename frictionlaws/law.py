@@ -22,11 +22,14 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import SimpleNamespace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .errors import DomainError, InputError
+
+if TYPE_CHECKING:
+    from .bound import BoundLaw
 
 __all__ = [
     "VARIABLES",
@@ -637,7 +640,32 @@ class Law:
             raise InputError(f"law '{self.id}': preset must be a name, got {preset!r}")
         variables = {k: v for k, v in kwargs.items() if k in VARIABLES}
         values = {k: v for k, v in kwargs.items() if k not in VARIABLES}
-        params = self.resolve(values, preset)
+        return self.evaluate_checked(variables, self.resolve(values, preset))
+
+    def evaluate_checked(self, variables: Mapping[str, Any], params: Mapping[str, float]
+                         ) -> Any:
+        """Evaluate with the checks of a call: the variables and mu.
+
+        The variables are checked by :meth:`check_variables`; mu must be finite and,
+        for a sliding law, not negative.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> array-like in SI.
+        params : mapping
+            Complete, checked parameters and settings (:meth:`resolve`).
+
+        Returns
+        -------
+        float or numpy.ndarray or pandas.Series
+            As :meth:`evaluate`.
+
+        Raises
+        ------
+        InputError, DomainError
+            A variable the law cannot take, or a mu that means nothing.
+        """
         self.check_variables(variables)
         out = self.evaluate(variables, params)
         mu = np.asarray(out, dtype=float)
@@ -716,6 +744,29 @@ class Law:
         bound.__name__ = f"{self.id.replace('-', '_')}_bound"
         bound.__doc__ = f"{self.title} with fixed parameters {params}; arguments {names} (SI)."
         return bound
+
+    def freeze(self, values: Mapping[str, float] | None = None, preset: str | None = None,
+               *, source: Any = None) -> BoundLaw:
+        """Bind this law to a preset and/or values, like a frozen scipy distribution.
+
+        Parameters
+        ----------
+        values : mapping, optional
+            Parameter (or setting) values in SI, over the preset.
+        preset : str, optional
+            A named preset of the law.
+        source : Source or str, optional
+            Where the values came from (a string names a parameters file); see
+            :func:`frictionlaws.bound.freeze`.
+
+        Returns
+        -------
+        BoundLaw
+            E.g. ``law.freeze(preset="x")(p=1e5)``.
+        """
+        from .bound import freeze
+
+        return freeze(self, values, preset=preset, source=source)
 
     def _check_strict_domain(self, name: str, x: np.ndarray) -> None:
         if not self.strict_domain or name not in self.domain or name == "s":

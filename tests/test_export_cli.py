@@ -83,7 +83,7 @@ def test_saved_fit_result_as_params(tmp_path, capsys):
     # the saved law must match --law when both are given
     code, out, err = run(capsys, "export", "--law", "thirion", "--params", str(saved),
                          "--format", "radioss", "-o", str(out_file))
-    assert code == 2 and "not 'thirion'" in err
+    assert code == 2 and "--law thirion does not match the law in the file" in err
 
 
 def test_fit_then_export(tmp_path, capsys):

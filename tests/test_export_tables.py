@@ -449,7 +449,7 @@ def test_ansys_refuses_slip_laws():
 def test_bad_input_errors():
     with pytest.raises(InputError, match="unknown export format 'nastran'"):
         export("coulomb", {"mu0": 1}, "nastran")
-    with pytest.raises(InputError, match=r"depends on p .*--p MIN:MAX"):
+    with pytest.raises(InputError, match=r"depends on p .*box\['p'\]='MIN:MAX"):
         export("thirion", {"a": 1, "b": 1e-6}, "csv")
     with pytest.raises(InputError, match="expected MIN:MAX"):
         parse_range("p", "0.1-0.5", "SI")

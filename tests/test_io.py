@@ -92,8 +92,13 @@ def test_thesis_original_with_load_in_kg_and_area() -> None:
 def test_thesis_original_without_map_fails_clearly() -> None:
     with pytest.raises(InputError) as exc:
         io.load_dataset("thesis-steel-original")
-    assert "--map mu=COLUMN" in str(exc.value)
+    # the library names its own argument; the CLI renders the same setting as a flag
+    assert "mapping='mu=COLUMN'" in str(exc.value)
     assert "FC, NL, CP, PV, DV" in str(exc.value)
+    from frictionlaws.errors import Argument
+
+    assert Argument("mapping", "mu=COLUMN") in exc.value.parts
+    assert "or --map mu=COLUMN (columns" in exc.value.compose(label={"mapping": "--map"}.get)
 
 
 def test_list_datasets() -> None:
@@ -276,7 +281,7 @@ def test_units_by_canonical_or_column_name(tmp_path: Path) -> None:
 def test_units_agreeing_with_header_are_fine_conflicts_are_not(tmp_path: Path) -> None:
     p = write(tmp_path, "mu,p [MPa]\n1.2,0.1\n")
     assert io.load_dataset(p, units={"p": "MPa"}).frame["p"].iloc[0] == 1e5
-    with pytest.raises(InputError, match="the header gives unit 'MPa' but --units"):
+    with pytest.raises(InputError, match="the header gives unit 'MPa' but units='p=kPa'"):
         io.load_dataset(p, units={"p": "kPa"})
 
 
@@ -297,8 +302,9 @@ def test_parse_mapping_and_units() -> None:
     assert io.parse_mapping({"T": "temp"}) == {"T": "temp"}
     assert io.parse_mapping(None) == {}
     assert io.parse_units("p=MPa,v=km/h,t=degC") == {"p": "MPa", "v": "km/h", "T": "degC"}
-    with pytest.raises(InputError, match="--units"):
+    with pytest.raises(InputError, match="argument 'units'") as exc:
         io.parse_units("p:MPa")
+    assert exc.value.option == "units"
     assert io.canonical_name("f_n") == "F_N"
 
 
@@ -322,7 +328,7 @@ def test_parse_mapping_and_units() -> None:
         ("mixed_delimiter.csv", {}, "p [MPa]", 3, "another delimiter"),
         ("binary.csv", {}, None, None, "not a text CSV file"),
         ("no_unit.csv", {"mapping": {"mu": "FC", "p": "CP", "v": "DV"}}, "CP", None,
-         "give it in the header as 'CP [MPa]' or with --units p=MPa"),
+         "give it in the header as 'CP [MPa]' or with units='p=MPa'"),
         ("no_unit.csv", {"mapping": {"mu": "FC", "p": "XX"}}, "XX", None,
          "no such column in the file (columns: FC, CP, DV)"),
         ("no_unit.csv", {"mapping": {"mu": "FC"}, "units": {"T": "degC"}}, None, None,
@@ -383,14 +389,14 @@ def test_missing_file_and_directory(tmp_path: Path) -> None:
         ("mu,p [MPa]\n,0.1\n0.5,\n", None, None, "no usable rows"),
         ("FC;p [MPa]\n0.5;0.1\n", None, None, "no friction coefficient column"),
         ("mu p v\n0.5 0.1 1\n", None, None, "delimiter is not recognised"),
-        ("mu,p [MPa],v [m/s]\n0.5,0.1,1\n", None, None, "--area 1 mm^2 needs"),
+        ("mu,p [MPa],v [m/s]\n0.5,0.1,1\n", None, None, "area='1 mm^2' needs"),
     ],
 )
 def test_malformed_text(tmp_path: Path, text: str, column: str | None, row: int | None,
                         fragment: str) -> None:
     path = write(tmp_path, text)
-    kwargs = {"area": "1 mm^2", "mapping": None} if "--area" in fragment else {}
-    if "--area" in fragment:  # area without F_N needs a file without p
+    kwargs = {"area": "1 mm^2", "mapping": None} if "area=" in fragment else {}
+    if "area=" in fragment:  # area without F_N needs a file without p
         path = write(tmp_path, "mu,v [m/s]\n0.5,1\n")
     with pytest.raises(InputError) as exc:
         io.load_dataset(path, **kwargs)
@@ -699,3 +705,20 @@ def test_encodings_by_byte_order_mark_and_a_dos_end_mark(tmp_path, encode):
     path = tmp_path / "enc.csv"
     path.write_bytes(encode("mu,p [MPa]\n0.5,0.1\n0.4,0.2\n"))
     assert io.load_dataset(path).frame["mu"].tolist() == [0.5, 0.4]
+
+
+def test_library_messages_name_arguments_not_flags(tmp_path: Path) -> None:
+    """The library speaks of its arguments (mapping=, units=, area=); only the CLI of flags."""
+    path = write(tmp_path, "mu,FC2,p [MPa]\n0.5,0.4,0.1\n")
+    with pytest.raises(InputError) as exc:
+        io.load_dataset(path, mapping="p=NOPE")
+    assert "--" not in str(exc.value) and "mapping='p=NOPE'" in str(exc.value)
+    flags = {"mapping": "--map", "units": "--units", "area": "--area"}.get
+    assert exc.value.compose(label=flags).startswith(
+        f"file '{path}', column 'NOPE': --map p=NOPE: no such column")
+    ds = io.load_dataset(path)
+    assert any("(map them to use them)" in n for n in ds.notes)
+    with pytest.raises(InputError) as exc:
+        io.load_dataset(write(tmp_path, "mu,F_N [N]\n0.5,3\n"), area="3 mm")
+    assert "area '3 mm' is a length" in str(exc.value)
+    assert "--area '3 mm' is a length" in exc.value.compose(label=flags)

@@ -43,7 +43,7 @@ def test_cornering_preset_and_json(capsys):
 
 def test_cornering_load_units_and_tyre_options(capsys):
     code, out, _ = run(capsys, "cornering", "--law", "coulomb", "--set", "mu0=0.9",
-                       "--loads", "2000:4000:1000", "--load-unit", "N", "--width", "120 mm",
+                       "--loads", "2000:4000:3", "--load-unit", "N", "--width", "120 mm",
                        "--half-length", "6 cm", "--c-py", "9 N/mm^2", "--speed", "20 km/h",
                        "--pressure-shape", "uniform", "--json")
     assert code == 0
@@ -74,8 +74,12 @@ def test_cornering_fit_and_params_file(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "6:2:1"], "START <= STOP"),
-    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "a,b"], "numbers"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "6:2:3"], "MIN is above MAX"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "a,b"], "not a number"),
+    (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads", "2:6.5:0.5"],
+     "not START:STOP:STEP; a step of 0.5 is 2:6.5:10"),
+    (["cornering", "--law", "coulomb", "--preset", "thesis-fe-1.0", "--params", "x.json"],
+     "not allowed with argument"),
     (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--loads=-1,2"], "positive"),
     (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--load-unit", "m"], "force"),
     (["cornering", "--law", "coulomb", "--set", "mu0=0.9", "--width", "3 s"], "length"),
@@ -83,7 +87,7 @@ def test_cornering_fit_and_params_file(capsys, tmp_path):
     (["cornering", "--law", "schallamach", "--preset", "hertz"], "F_N"),
     (["cornering", "--law", "nope", "--set", "a=1"], "unknown law"),
     (["cornering", "--set", "mu0=0.9"], "--law is required"),
-    (["cornering", "--law", "coulomb"], "one of the arguments"),
+    (["cornering", "--law", "coulomb"], "give the parameters: --preset NAME"),
     (["mf", "missing.tir"], "not found"),
     (["reduce", "MagicFormula62", "--law", "thirion", "--load", "4"], "sliding law"),
 ])

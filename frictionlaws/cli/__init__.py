@@ -32,7 +32,7 @@ import io
 import re
 import sys
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
@@ -170,13 +170,22 @@ def _clean(text: str) -> str:
     return _one_line(_PATH.sub("<library>", str(text)))
 
 
+def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:
+    """How this command names a library argument: its flag (``"mapping"`` -> ``--map``)."""
+    flags = dict(OPTION_FLAGS)
+    flags.update(getattr(args, "_option_flags", None) or {})
+
+    def label(option: str) -> str:
+        return flags.get(option, "--" + option.replace("_", "-"))
+
+    return label
+
+
 def _input_message(exc: Exception, args: argparse.Namespace | None) -> str:
-    option = getattr(exc, "option", None)
+    """A library error in the CLI's words: its arguments and settings named as flags."""
     compose = getattr(exc, "compose", None)
-    if option and callable(compose):
-        flags = dict(OPTION_FLAGS)
-        flags.update(getattr(args, "_option_flags", None) or {})
-        return _one_line(compose(flags.get(option, "--" + option.replace("_", "-"))))
+    if callable(compose):
+        return _one_line(compose(label=flag_label(args)))
     return _one_line(str(exc))
 
 
@@ -390,37 +399,43 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _dispatch(args: argparse.Namespace) -> int:
     """Run the command; turn every failure into an exit code and one stderr line."""
+    try:
+        return int(args._run(args) or 0)
+    except BrokenPipeError:
+        return 0
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # noqa: BLE001 - every failure is one line, never a traceback
+        message, code = _failure(exc, args)
+        _fail(message, code)
+        if code == 3 and getattr(args, "debug", False):
+            import traceback
+
+            traceback.print_exc(file=sys.stderr)
+        return code
+
+
+def _failure(exc: Exception, args: argparse.Namespace) -> tuple[str, int]:
+    """The one-line message and exit code of a failed command."""
     import json
 
     from frictionlaws.errors import FitError, InputError
 
-    try:
-        return int(args._run(args) or 0)
-    except (InputError, UsageError) as exc:
-        return _fail(_input_message(exc, args), 2)
-    except FitError as exc:
-        return _fail(f"fit failed: {_one_line(str(exc))}", 1)
-    except BrokenPipeError:
-        return 0
-    except OSError as exc:
-        return _fail(_os_message(exc), 2)
-    except (json.JSONDecodeError, UnicodeError) as exc:
-        return _fail(f"unreadable input ({_clean(str(exc))})", 2)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
-    except MemoryError:
-        return _fail("out of memory: the request is too large (fewer points or rows)", 2)
-    except Exception as exc:  # noqa: BLE001 - last resort: never a traceback
-        if _is_toml_error(exc):
-            return _fail(f"malformed TOML ({_clean(str(exc))})", 2)
-        _fail(f"internal error ({type(exc).__name__}: {_clean(str(exc))}); "
-              "please report it with the command you ran (--debug shows the traceback)", 3)
-        if getattr(args, "debug", False):
-            import traceback
-
-            traceback.print_exc(file=sys.stderr)
-        return 3
+    if isinstance(exc, (InputError, UsageError)):
+        return _input_message(exc, args), 2
+    if isinstance(exc, FitError):
+        return f"fit failed: {_one_line(str(exc))}", 1
+    if isinstance(exc, OSError):
+        return _os_message(exc), 2
+    if isinstance(exc, (json.JSONDecodeError, UnicodeError)):
+        return f"unreadable input ({_clean(str(exc))})", 2
+    if isinstance(exc, MemoryError):
+        return "out of memory: the request is too large (fewer points or rows)", 2
+    if _is_toml_error(exc):
+        return f"malformed TOML ({_clean(str(exc))})", 2
+    return (f"internal error ({type(exc).__name__}: {_clean(str(exc))}); please report it "
+            "with the command you ran (--debug shows the traceback)"), 3
 
 
 def _is_toml_error(exc: Exception) -> bool:

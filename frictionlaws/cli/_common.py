@@ -52,6 +52,11 @@ __all__ = [
     "data_kwargs",
     "fit_kwargs",
     "run_fit",
+    "data_options",
+    "FIT_OPTIONS",
+    "PARAMS_HELP",
+    "add_law_source_options",
+    "bound_from_args",
     "refuse_unused",
     "flag_of",
     "RangeSpec",
@@ -165,13 +170,30 @@ class MergeNames(argparse.Action):
 # ------------------------------------------------------------------- option groups
 
 
-def add_data_options(p: argparse.ArgumentParser | Any) -> None:
-    """``--map``, ``--units`` and ``--area`` for reading a user's file (repeatable maps)."""
+def data_options(args: argparse.Namespace) -> tuple[str, ...]:
+    """The destinations :func:`add_data_options` created: options that only apply to data."""
+    return ("map", _units_dest(args), "area")
+
+
+def _units_dest(args: argparse.Namespace) -> str:
+    """``units``, or ``data_units`` where the command's ``--units`` means something else."""
+    return "data_units" if hasattr(args, "data_units") else "units"
+
+
+def add_data_options(p: argparse.ArgumentParser | Any, *, units_flag: str = "--units") -> None:
+    """The one group of data options: ``--map``, ``--units`` and ``--area`` (repeatable maps).
+
+    Every command that reads a user's table (``fit``, ``compare``, ``datasets``,
+    ``export --fit``, ``tyre cornering --fit``) takes them.  ``units_flag`` renames
+    ``--units`` where the command's ``--units`` means something else (``export``:
+    ``--data-units``, destination ``data_units``).
+    """
     p.add_argument("--map", metavar="COL=NAME,...", action=MergeAssignments,
                    help="map canonical columns to your file's columns, e.g. mu=FC,p=CP,v=DV "
                         "(repeatable; a column given twice is an error)")
-    p.add_argument("--units", metavar="COL=UNIT,...", action=MergeAssignments,
-                   help="units of columns whose header has none, e.g. p=MPa,v=m/s "
+    p.add_argument(units_flag, metavar="COL=UNIT,...",
+                   action=MergeAssignments,
+                   help="units of data columns whose header has none, e.g. p=MPa,v=m/s "
                         "(repeatable)")
     p.add_argument("--area", metavar="AREA",
                    help="nominal contact area to derive p from F_N, e.g. '314.16 mm^2'")
@@ -182,36 +204,61 @@ FIT_OPTIONS = ("fix", "free", "weights", "drop_invalid", "starts", "seed", "unce
                "boot", "boot_jobs", "boot_interval")
 
 
-def add_fit_options(p: argparse.ArgumentParser | Any) -> None:
-    """Options that control a fit (``--fix``, ``--free``, weights, starts, seed)."""
-    p.add_argument("--fix", metavar="NAME=VALUE,...", action=MergeAssignments,
-                   help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")
-    p.add_argument("--free", metavar="SETTING,...", action=MergeNames,
-                   help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")
-    p.add_argument("--weights", choices=("auto", "none"), default="auto",
-                   help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
-    p.add_argument("--drop-invalid", action="store_true",
-                   help="drop (and report) rows where the law is singular, e.g. v = 0 in a "
-                        "log-velocity law, instead of stopping")
-    p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
-                   help="extra random starts for non-linear laws, 0 to 1000 (default 6)")
-    p.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
-                   help=f"seed of the random starts and the bootstrap, 0 to {SEED_MAX} "
-                        "(default 0)")
-    p.add_argument("--uncertainty", choices=("asymptotic", "sandwich", "bootstrap"),
-                   default="asymptotic",
-                   help="standard errors: asymptotic (fit covariance, default, fast), "
-                        "sandwich (HC3, robust to uneven scatter) or bootstrap (resamples "
-                        "whole test conditions; robust to a law that misses a trend)")
-    p.add_argument("--boot", type=bounded_int(20, 100_000), default=1000, metavar="N",
-                   help="bootstrap replicates, 20 to 100000 (default 1000; with "
-                        "--uncertainty bootstrap)")
-    p.add_argument("--boot-jobs", type=_boot_jobs, default=1, metavar="N",
-                   help="worker processes for the bootstrap refits (default 1; -1 = one "
-                        "per core; with --uncertainty bootstrap)")
-    p.add_argument("--boot-interval", choices=("bca", "percentile"), default="bca",
-                   help="bootstrap interval: bca (bias-corrected, accelerated; default) or "
-                        "percentile (with --uncertainty bootstrap)")
+def _fit_option_specs() -> dict[str, tuple[tuple[str, ...], dict[str, Any]]]:
+    """dest -> (flags, add_argument keywords) of every fit option, defined once."""
+    return {
+        "fix": (("--fix",), dict(
+            metavar="NAME=VALUE,...", action=MergeAssignments,
+            help="hold parameters (or settings) at values, e.g. n=0.3333 (repeatable)")),
+        "free": (("--free",), dict(
+            metavar="SETTING,...", action=MergeNames,
+            help="fit a fixed setting as a parameter, e.g. E_v (repeatable)")),
+        "weights": (("--weights",), dict(
+            choices=("auto", "none"), default="auto",
+            help="auto: 1/mu_std or sqrt(n) when the data have them (default)")),
+        "drop_invalid": (("--drop-invalid",), dict(
+            action="store_true",
+            help="drop (and report) rows where the law is singular, e.g. v = 0 in a "
+                 "log-velocity law, instead of stopping")),
+        "starts": (("--starts",), dict(
+            type=bounded_int(0, 1000), default=None, metavar="N",
+            help="extra random starts for non-linear laws, 0 to 1000 (default: the "
+                 "fitter's rule, 6)")),
+        "seed": (("--seed",), dict(
+            type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
+            help=f"seed of the random starts, the folds and the bootstrap, 0 to {SEED_MAX} "
+                 "(default 0)")),
+        "uncertainty": (("--uncertainty",), dict(
+            choices=("asymptotic", "sandwich", "bootstrap"), default="asymptotic",
+            help="standard errors: asymptotic (fit covariance, default, fast), sandwich "
+                 "(HC3, robust to uneven scatter) or bootstrap (resamples whole test "
+                 "conditions; robust to a law that misses a trend)")),
+        "boot": (("--boot",), dict(
+            type=bounded_int(20, 100_000), default=1000, metavar="N",
+            help="bootstrap replicates, 20 to 100000 (default 1000; with --uncertainty "
+                 "bootstrap)")),
+        "boot_jobs": (("--boot-jobs",), dict(
+            type=_boot_jobs, default=1, metavar="N",
+            help="worker processes for the bootstrap refits (default 1; -1 = one per core; "
+                 "with --uncertainty bootstrap)")),
+        "boot_interval": (("--boot-interval",), dict(
+            choices=("bca", "percentile"), default="bca",
+            help="bootstrap interval: bca (bias-corrected, accelerated; default) or "
+                 "percentile (with --uncertainty bootstrap)")),
+    }
+
+
+def add_fit_options(p: argparse.ArgumentParser | Any, only: Sequence[str] | None = None
+                    ) -> None:
+    """The one group of fit options (``--fix``, ``--free``, weights, starts, seed, ...).
+
+    ``only`` adds a subset (argparse dests of :data:`FIT_OPTIONS`), for a command
+    that fits with fewer choices (``compare``: ``weights``, ``starts``, ``seed``).
+    """
+    specs = _fit_option_specs()
+    for dest in only or FIT_OPTIONS:
+        flags, kwargs = specs[dest]
+        p.add_argument(*flags, **kwargs)
 
 
 #: Bootstrap-only options (argparse dests), refused with another --uncertainty.
@@ -319,7 +366,8 @@ def data_kwargs(args: argparse.Namespace) -> dict[str, Any]:
     """``mapping``/``units``/``area`` keyword arguments for load_dataset and fit."""
     return {
         "mapping": parse_assignments(args.map, "--map") or None,
-        "units": parse_assignments(args.units, "--units") or None,
+        "units": parse_assignments(getattr(args, _units_dest(args)),
+                                   flag_of(args, _units_dest(args))) or None,
         "area": args.area,
     }
 
@@ -350,6 +398,82 @@ def run_fit(args: argparse.Namespace, law: str, data: str) -> Any:
 
     with data_source(data) as source:
         return fit(law, source, **fit_kwargs(args))
+
+
+# ------------------------------------------------------------- a law with values
+
+
+#: What :func:`bound_from_args` asks for when no values are given.
+PARAMS_HELP = "--preset NAME, --params FILE.json, --fit DATA or --set NAME=VALUE,..."
+
+
+def add_law_source_options(p: argparse.ArgumentParser | Any, *, fit: bool = True) -> None:
+    """The one way to give a law its values: ``--preset``, ``--params``, ``--fit``, ``--set``.
+
+    ``--preset``, ``--params`` and ``--fit`` exclude each other; ``--set`` gives or
+    overrides values (alone or over a preset).  :func:`bound_from_args` turns them
+    into a :class:`~frictionlaws.bound.BoundLaw`.  With ``fit``, the command also
+    needs :func:`add_data_options` and :func:`add_fit_options`.
+    """
+    src = p.add_mutually_exclusive_group()
+    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
+    src.add_argument("--params", metavar="FILE.json",
+                     help="parameters: a 'fit --save' file or {'law': ..., 'params': {...}}")
+    if fit:
+        src.add_argument("--fit", metavar="DATA",
+                         help="fit the law to DATA (CSV file, packaged dataset or '-') first")
+    p.add_argument("--set", metavar="NAME=VALUE,...", action=MergeAssignments,
+                   help="give or override parameter values in SI, e.g. mu0=0.9 (alone or "
+                        "over --preset; repeatable)")
+
+
+def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
+    """``--preset/--set/--params/--fit`` (and ``--law``) as a :class:`~frictionlaws.bound.BoundLaw`.
+
+    ``--params`` gives the law itself (``law`` must agree when given); ``--fit``
+    fits ``law`` with the command's data and fit options (a fit that did not
+    converge comes back with ``converged`` False: the command decides); options
+    that only apply to a fit are refused without ``--fit``.
+
+    Raises
+    ------
+    UsageError
+        A missing ``--law`` or missing values, or ``--set`` with a file or a fit.
+    InputError
+        A law that does not match the file, an unknown preset, a bad value...
+    """
+    from frictionlaws.bound import bound_from_result, freeze
+
+    fit_data = getattr(args, "fit", None)
+    if not fit_data and hasattr(args, "fix"):
+        refuse_unused(args, (*FIT_OPTIONS, *data_options(args)), "without --fit")
+    values = parse_floats(args.set, "--set")
+    if args.params:
+        if values:
+            raise UsageError("--set cannot be combined with --params (edit the file instead)")
+        return _bound_from_file(args.params, law)
+    if not law:
+        raise UsageError("--law is required (except with --params)")
+    if fit_data:
+        if values:
+            raise UsageError("--set cannot be combined with --fit (hold values with --fix)")
+        return bound_from_result(run_fit(args, law, fit_data), dataset=fit_data)
+    if not args.preset and not values:
+        raise UsageError(f"give the parameters: {PARAMS_HELP}")
+    return freeze(law, values, preset=args.preset)
+
+
+def _bound_from_file(path: str, law: str | None) -> Any:
+    from frictionlaws.bound import Source, bound_from_result
+    from frictionlaws.errors import InputError
+    from frictionlaws.fitting import load_result
+    from frictionlaws.registry import get_law
+
+    result = load_result(path)
+    if law and get_law(law).id != result.law.id:
+        raise InputError(f"--law {law} does not match the law in the file "
+                         f"('{result.law.id}')", file=path)
+    return bound_from_result(result, Source("file", file=path))
 
 
 # -------------------------------------------------------------- inapplicable options
@@ -561,10 +685,7 @@ def data_source(data: str) -> Iterator[str]:
         try:
             yield path
         except InputError as exc:  # name standard input, not the private copy
-            if exc.file == path:
-                exc.file = "<stdin>"
-            exc.bare_message = exc.bare_message.replace(path, "<stdin>")
-            exc.args = (exc.compose(),)
+            exc.replace_text(path, "<stdin>")
             raise
 
 

@@ -13,7 +13,13 @@ from ._campaign import (
     split_names,
     wants_campaign,
 )
-from ._common import add_data_options, bounded_int, data_kwargs, progress_value
+from ._common import (
+    add_data_options,
+    add_fit_options,
+    bounded_int,
+    data_kwargs,
+    progress_value,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -46,12 +52,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--holdout", default="0.3", metavar="FRACTION|VAR=F,...",
                    help="upper fraction of the range held out for the extrapolation test: one "
                         "number for p and v, or e.g. p=0.3,v=0.2; 0 for none (default 0.3)")
-    p.add_argument("--seed", type=int, default=0,
-                   help="seed of the folds and of the fits' random starts (default 0)")
-    p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
-                   help="random starts per non-linear fit (default: the fitter's rule)")
-    p.add_argument("--weights", choices=("auto", "none"), default="auto",
-                   help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
+    add_fit_options(p, only=("weights", "starts", "seed"))
     p.add_argument("--mu-max", type=float, default=5.0, metavar="MU",
                    help="upper physical limit of mu in the plausibility scan (default 5)")
     p.add_argument("--report", metavar="DIR",

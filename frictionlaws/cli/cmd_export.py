@@ -4,10 +4,26 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ._common import FIT_OPTIONS, add_json_option, bounded_int
+from ._common import (
+    FIT_OPTIONS,
+    UsageError,
+    add_data_options,
+    add_fit_options,
+    add_json_option,
+    add_law_source_options,
+    bound_from_args,
+    bounded_int,
+    data_options,
+    fit_kwargs,
+    parse_assignments,
+    parse_range,
+    print_json,
+    refuse_unused,
+)
 
 _FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
             "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
@@ -35,13 +51,11 @@ abaqus-vfric (Fortran user subroutines; no box needed).
 
 __all__ = ["add_parser", "run"]
 
-#: Options that only mean something with --fit.
-_FIT_ONLY = (*FIT_OPTIONS, "map", "data_units", "area", "by")
+#: The variables a box may give ranges of (one flag each: --p, --v, ...).
+_BOX = ("p", "v", "T", "F_N", "s")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    from ._common import add_fit_options
-
     p = sub.add_parser(
         "export", help="export a law to Abaqus, LS-DYNA, Ansys, Radioss, tables or Fortran",
         description="Write a friction law in a finite-element code's own input (or a grid, or "
@@ -49,17 +63,10 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "parameters, units, box, the maximum interpolation error and where it occurs.",
         epilog=_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--law", help="law id or alias (may be omitted with --params)")
-    src = p.add_mutually_exclusive_group()
-    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
-    src.add_argument("--params", metavar="FILE.json",
-                     help="parameters: {'law': ..., 'params': {...}} or a 'fit --save' file")
-    src.add_argument("--fit", metavar="DATA",
-                     help="fit the law to DATA (CSV or packaged dataset) and export the result")
-    p.add_argument("--set", metavar="NAME=VALUE,...", action="append", default=[],
-                   help="give or override parameter values (SI), e.g. mu0=0.9")
+    add_law_source_options(p)
     p.add_argument("--format", required=True, choices=_FORMATS, metavar="FORMAT",
                    help="output format: " + ", ".join(_FORMATS))
-    for var in ("p", "v", "T", "F_N", "s"):
+    for var in _BOX:
         p.add_argument(f"--{var}", metavar="MIN:MAX[:N]", dest=f"range_{var}",
                        help=f"range of {var} (see below)")
     p.add_argument("--spacing", metavar="VAR=lin|log,...", action="append", default=[],
@@ -73,15 +80,18 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="output file ('-' for standard output)")
     add_json_option(p)
     g = p.add_argument_group("fit options (with --fit)")
-    g.add_argument("--map", metavar="COL=NAME,...",
-                   help="map canonical columns to the data file's columns")
-    g.add_argument("--data-units", metavar="COL=UNIT,...",
-                   help="units of data columns whose header has none, e.g. p=MPa,v=m/s")
-    g.add_argument("--area", metavar="AREA", help="nominal contact area, e.g. '314.16 mm^2'")
+    add_data_options(g, units_flag="--data-units")
     g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
                    help="fit and export each group separately, one file per group named "
                         "FILE's stem + _VALUE (e.g. -o deck.inp --by surface: deck_steel.inp)")
     add_fit_options(g)
+    _solver_options(p)
+    # library arguments named by this command's flags (--units is the unit system here)
+    p.set_defaults(_option_flags={"units": "--data-units"})
+    return p
+
+
+def _solver_options(p: argparse.ArgumentParser) -> None:
     s = p.add_argument_group("solver options")
     s.add_argument("--lsdyna-contact", metavar="SSID,MSID[,SSTYP,MSTYP]",
                    help="LS-DYNA contact card 1 ids (default 1,2,3,3: part ids 1 and 2)")
@@ -92,7 +102,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="Ansys material id")
     s.add_argument("--radioss-id", type=bounded_int(1, 99_999_999), default=1, metavar="ID",
                    help="Radioss /FRICTION id")
-    return p
 
 
 def _options(args: argparse.Namespace) -> dict:
@@ -114,84 +123,63 @@ def _options(args: argparse.Namespace) -> dict:
     return opts
 
 
-def run(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
-    from frictionlaws.fe_export import export
-    from frictionlaws.fe_export.api import parse_range
-    from frictionlaws.fe_export.systems import unit_system
-
-    from ._common import (
-        fit_kwargs,
-        parse_assignments,
-        parse_floats,
-        print_json,
-        refuse_unused,
-    )
-
-    _check_files(args)
-    if args.json and args.output == "-":
-        raise InputError("--json prints the export's summary on stdout, where -o - puts the "
-                         "file: give -o FILE")
-    if not args.fit:
-        refuse_unused(args, _FIT_ONLY, "without --fit")
-    system = unit_system(args.units)
+def _box(args: argparse.Namespace, system: Any) -> tuple[dict, dict[str, str]]:
+    """The ranges given (SI ``(min, max, n)``, the one range grammar) and their spacing."""
     spacing = parse_assignments(args.spacing, "--spacing")
     box = {}
-    for var in ("p", "v", "T", "F_N", "s"):
+    for var in _BOX:
         text = getattr(args, f"range_{var}")
         if text is not None:
-            box[var] = parse_range(var, text, system, spacing.get(var, "auto"))
+            spec = parse_range(text, var, option=f"--{var}", min_points=1,
+                               unit=_model_to_si(system, var))
+            box[var] = (spec.lo, spec.hi, spec.n)
     for var in spacing:
         if var not in box:
-            raise InputError(f"--spacing {var}=...: no range given for {var} (--{var} MIN:MAX)")
-    values = parse_floats(args.set, "--set")
-    params: Any = None
-    source = None
-    law = args.law
-    if args.params:
-        from frictionlaws.fitting import load_result
+            raise UsageError(f"--spacing {var}=...: no range given for {var} (--{var} MIN:MAX)")
+    return box, spacing
 
-        result = load_result(args.params)
-        if values:
-            raise InputError("--set cannot be combined with --params (edit the file instead)")
-        params = result
-        source = f"file {args.params}"
-    elif args.fit and args.by:
-        if not law:
-            raise InputError("--fit needs --law")
-        if values:
-            raise InputError("--set cannot be combined with --fit (hold values with --fix)")
-        return _export_groups(args, law, box, system)
-    elif args.fit:
-        if not law:
-            raise InputError("--fit needs --law")
-        if values:
-            raise InputError("--set cannot be combined with --fit (hold values with --fix)")
-        fit_args = argparse.Namespace(**vars(args))
-        fit_args.units = args.data_units
-        from frictionlaws.fitting import fit
 
-        result = fit(law, args.fit, **fit_kwargs(fit_args))
-        if not result.success:
-            print(f"error: the fit of '{law}' to {args.fit} did not converge "
-                  f"({result.message}); nothing exported", file=sys.stderr)
-            return 1
-        m = result.metrics
-        params = result
-        source = (f"fit to {args.fit} (n = {m.get('n')}, R^2 = {m.get('r2', float('nan')):.4g}, "
-                  f"rmse = {m.get('rmse', float('nan')):.3g})")
-        for w in result.warnings:
-            print(f"warning: fit: {w}", file=sys.stderr)
-    else:
-        if not law:
-            raise InputError("give --law (with --preset, --set or --fit), or --params FILE.json")
-        if not args.preset and not values:
-            raise InputError("give the parameters: --preset NAME, --params FILE.json, "
-                             "--fit DATA or --set NAME=VALUE,...")
-        params = values or None
-    res = export(law, params, args.format, box, preset=args.preset, units=system, tol=args.tol,
+def _model_to_si(system: Any, var: str) -> Callable[[float], float]:
+    """A bare bound in the export's unit system -> SI."""
+    def convert(x: float) -> float:
+        return float(system.to_si(var, x))
+
+    return convert
+
+
+def _check_args(args: argparse.Namespace) -> None:
+    """Outputs, --json, and the options that only apply to --fit, before any work."""
+    _check_files(args)
+    if args.json and args.output == "-":
+        raise UsageError("--json prints the export's summary on stdout, where -o - puts the "
+                         "file: give -o FILE")
+    if not args.fit:
+        refuse_unused(args, (*FIT_OPTIONS, *data_options(args), "by"), "without --fit")
+
+
+def run(args: argparse.Namespace) -> int:
+    from frictionlaws.fe_export import export
+    from frictionlaws.fe_export.systems import unit_system
+
+    _check_args(args)
+    system = unit_system(args.units)
+    box, spacing = _box(args, system)
+    if args.fit and args.by:
+        if not args.law:
+            raise UsageError("--law is required (except with --params)")
+        if args.set:
+            raise UsageError("--set cannot be combined with --fit (hold values with --fix)")
+        return _export_groups(args, args.law, box, spacing, system)
+    bound = bound_from_args(args, args.law)
+    if not bound.converged and args.fit:
+        print(f"error: the fit of '{bound.law.id}' to {args.fit} did not converge; "
+              "nothing exported", file=sys.stderr)
+        return 1
+    for w in bound.notes:
+        print(f"warning: fit: {w}", file=sys.stderr)
+    res = export(bound, None, args.format, box, units=system, tol=args.tol, spacing=spacing,
                  path=None if args.output == "-" else args.output, max_rows=args.max_rows,
-                 source=source, options=_options(args))
+                 options=_options(args))
     if args.output == "-":
         sys.stdout.write(res.text)
         print(res.report(), file=sys.stderr)
@@ -202,7 +190,8 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _export_groups(args: argparse.Namespace, law: str, box: dict, system: Any) -> int:
+def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[str, str],
+                   system: Any) -> int:
     """``export --fit DATA --by COL``: one fit and one file per group, all or nothing.
 
     Every group is fitted and exported in memory first; the files are written only
@@ -214,13 +203,10 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, system: Any) -
     from frictionlaws.outputs import check_outputs, write_text_atomic
 
     from ._campaign import split_names
-    from ._common import fit_kwargs, print_json
 
     if args.output == "-":
-        raise InputError("--by writes one file per group: give -o FILE, not -o -")
-    fit_args = argparse.Namespace(**vars(args))
-    fit_args.units = args.data_units
-    options = fit_kwargs(fit_args)
+        raise UsageError("--by writes one file per group: give -o FILE, not -o -")
+    options = fit_kwargs(args)
     load = {k: options.pop(k) for k in ("mapping", "units", "area")}
     groups = fit_groups(law, args.fit, split_names(args.by), load_options=load, **options)
     failed = [key_text(k) for k, r in groups if not r.success]
@@ -238,9 +224,10 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, system: Any) -
         m = fitted.metrics
         source = (f"fit to {args.fit}, group {key_text(key)} (n = {m.get('n')}, "
                   f"R^2 = {m.get('r2', float('nan')):.4g})")
-        results.append((path, export(law, fitted, args.format, box, units=system,
-                                     tol=args.tol, path=None, max_rows=args.max_rows,
-                                     source=source, options=_options(args))))
+        results.append((path, export(fitted.bound, None, args.format, box, units=system,
+                                     tol=args.tol, spacing=spacing, path=None,
+                                     max_rows=args.max_rows, source=source,
+                                     options=_options(args))))
     for path, res in results:
         write_text_atomic(path, res.text)
         res.path = str(path)

@@ -1,4 +1,4 @@
-"""``frictionlaws show``: everything a law declares."""
+"""``frictionlaws show``: everything a law declares (and, given values, the bound law)."""
 
 from __future__ import annotations
 
@@ -6,25 +6,25 @@ import argparse
 import re
 from typing import Any
 
-from ._common import add_json_option, print_json
+from ._common import add_json_option, add_law_source_options, bound_from_args, print_json
+
+__all__ = ["add_parser", "run", "describe", "describe_bound"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser("show", help="show a law: formula, parameters, presets, evidence",
                        description="Show a law's formula, parameters with units and bounds, "
                        "settings, presets, domain, derived quantities, references and "
-                       "evidence tag.")
+                       "evidence tag.  With --preset, --set or --params, also the law bound "
+                       "to those values: each value with its unit, where it came from, the "
+                       "derived quantities and the fitted ranges.")
     p.add_argument("law", metavar="LAW", help="law id or alias")
+    add_law_source_options(p, fit=False)
     add_json_option(p)
     return p
 
 
-def describe(law_name: str) -> str:
-    """The text ``show`` prints for a law."""
-    from frictionlaws.law import EVIDENCE_TAGS, VARIABLES
-    from frictionlaws.registry import get_law
-
-    law = get_law(law_name)
+def _header(law: Any) -> list[str]:
     out = [f"{law.id}: {law.title}"]
     if law.aliases:
         out.append(f"aliases: {', '.join(law.aliases)}")
@@ -34,7 +34,14 @@ def describe(law_name: str) -> str:
         out.append(f"description: {law.description}")
     out.append("variables: " + (", ".join(_variable_text(law, v) for v in law.variables)
                                 or "none (constant)"))
-    out.append("parameters:")
+    return out
+
+
+def _declared_values(law: Any) -> list[str]:
+    """Parameters, settings, floors and presets."""
+    from frictionlaws.law import VARIABLES
+
+    out = ["parameters:"]
     for p in law.params:
         lo, hi = p.bounds
         opt = f", default {p.default:g} if omitted" if p.optional else f", typical {p.default:g}"
@@ -48,46 +55,103 @@ def describe(law_name: str) -> str:
     out.append("presets:" + ("" if law.presets else " none"))
     for name, vals in law.presets.items():
         out.append(f"  {name}: " + ", ".join(f"{k}={v:g}" for k, v in vals.items()))
+    return out
+
+
+def _domain_and_derived(law: Any) -> list[str]:
+    from frictionlaws.law import VARIABLES
+
     if law.domain:
-        out.append("domain: " + ", ".join(f"{k} {lo:g}..{hi:g} {VARIABLES[k].unit}"
-                                          for k, (lo, hi) in law.domain.items()))
+        out = ["domain: " + ", ".join(f"{k} {lo:g}..{hi:g} {VARIABLES[k].unit}"
+                                      for k, (lo, hi) in law.domain.items())]
     else:
-        out.append("domain: no stated limits (see notes)")
+        out = ["domain: no stated limits (see notes)"]
     if law.derived:
         out.append("derived quantities:")
         for d in law.derived:
-            preset_vals = ""
-            if law.presets:
-                name = next(iter(law.presets))
-                try:
-                    val = law.derived_values(law.resolve(preset=name))[d.name]
-                    preset_vals = f" (preset {name}: {val:.4g})"
-                except Exception:  # noqa: BLE001 - display only
-                    preset_vals = ""
-            out.append(f"  {d.name} [{d.unit or '-'}]: {d.meaning}{preset_vals}")
-    if law.notes:
-        out.append(f"notes: {law.notes}")
+            out.append(f"  {d.name} [{d.unit or '-'}]: {d.meaning}{_preset_value(law, d.name)}")
+    return out
+
+
+def _preset_value(law: Any, name: str) -> str:
+    """`` (preset X: value)`` for a derived quantity at the first preset, when it evaluates."""
+    if not law.presets:
+        return ""
+    preset = next(iter(law.presets))
+    try:
+        val = law.derived_values(law.resolve(preset=preset))[name]
+    except Exception:  # noqa: BLE001 - display only
+        return ""
+    return f" (preset {preset}: {val:.4g})"
+
+
+def _references(law: Any) -> list[str]:
+    from frictionlaws.law import EVIDENCE_TAGS
+
+    out = [f"notes: {law.notes}"] if law.notes else []
     out.append("references:")
-    for r in law.references:
-        out.append(f"  - {r}")
+    out += [f"  - {r}" for r in law.references]
     tags = re.findall(r"\b(NF|C|S|M|I)\b", law.evidence)
     meaning = "; ".join(f"{t} = {EVIDENCE_TAGS[t]}" for t in dict.fromkeys(tags)
                         if t in EVIDENCE_TAGS)
     out.append(f"evidence: {law.evidence}" + (f" ({meaning})" if meaning else ""))
+    return out
+
+
+def describe(law_name: str) -> str:
+    """The text ``show`` prints for a law."""
+    from frictionlaws.registry import get_law
+
+    law = get_law(law_name)
+    return "\n".join([*_header(law), *_declared_values(law), *_domain_and_derived(law),
+                      *_references(law)])
+
+
+def describe_bound(bound: Any) -> str:
+    """The lines ``show`` adds for a law bound to values (``--preset/--set/--params``)."""
+    from frictionlaws.law import VARIABLES
+
+    law = bound.law
+    units = {p.name: p.unit for p in law.params} | {s.name: s.unit for s in law.settings}
+    out = [f"bound values (from {bound.source.describe()}; SI):"]
+    for k, v in bound.values.items():
+        err = bound.stderr.get(k)
+        extra = f" +/- {err:.3g}" if err is not None else (" (fixed)" if k in bound.fixed
+                                                           else "")
+        out.append(f"  {k:<8} = {v:.6g} {units.get(k) or '-'}{extra}")
+    derived = bound.derived()
+    if derived:
+        out.append("derived at these values: " + ", ".join(
+            f"{d.name} = {derived[d.name]:.4g} {d.unit}".rstrip() for d in law.derived))
+    ranges = {k: r for k, r in bound.fitted_ranges.items() if k in law.variables}
+    if ranges:
+        out.append("fitted on: " + ", ".join(f"{k} {lo:.4g}..{hi:.4g} {VARIABLES[k].unit}"
+                                             for k, (lo, hi) in ranges.items()))
     return "\n".join(out)
+
+
+def _bound(args: argparse.Namespace) -> Any:
+    """The bound law when values were given, else None (the declaration alone)."""
+    if not (args.preset or args.set or args.params):
+        return None
+    return bound_from_args(args, args.law)
 
 
 def run(args: argparse.Namespace) -> int:
     from frictionlaws.registry import get_law
 
+    bound = _bound(args)
     if args.json:
         law = get_law(args.law)
         doc = law.summary()
         doc["formula"] = law.pretty()
         doc["latex"] = law.latex()
+        if bound is not None:
+            doc["bound"] = bound.to_dict()
         print_json(doc)
     else:
-        print(describe(args.law))
+        text = describe(args.law)
+        print(text if bound is None else f"{text}\n{describe_bound(bound)}")
     return 0
 
 

@@ -19,7 +19,18 @@ import json
 import sys
 from typing import Any
 
-from ._common import add_data_options, add_fit_options, bounded_int, parse_floats
+from ._common import (
+    RANGE_HELP,
+    UsageError,
+    add_data_options,
+    add_fit_options,
+    add_law_source_options,
+    bound_from_args,
+    bounded_int,
+    parse_values,
+)
+
+__all__ = ["add_parser", "run", "parse_loads"]
 
 _MAX_LOADS = 1000
 
@@ -40,15 +51,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "angles (default 1, 2, 3 deg, as in the thesis) and the slope at the origin.")
     c.add_argument("--law", help="law id or alias (a law of p and/or v); optional with "
                    "--params")
-    src = c.add_mutually_exclusive_group(required=True)
-    src.add_argument("--preset", metavar="NAME", help="a named preset of the law")
-    src.add_argument("--params", metavar="FILE.json",
-                     help="parameters saved by 'frictionlaws fit --save'")
-    src.add_argument("--fit", metavar="DATA",
-                     help="fit the law to DATA (CSV file or packaged dataset) first")
-    src.add_argument("--set", metavar="NAME=VALUE,...", action="append",
-                     help="parameter values in SI, e.g. mu0=0.9")
-    _load_options(c, default="2:6.5:0.5")
+    add_law_source_options(c)
+    _load_options(c, default="2:6.5:10")
     c.add_argument("--angles", default="1,2,3", metavar="DEG,...",
                    help="slip angles of the secant [deg] (default 1,2,3)")
     _tyre_options(c)
@@ -139,15 +143,21 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
                         "(default) or clamp to FZMAX")
 
 
-def _mf_conventions(args: argparse.Namespace) -> dict[str, str]:
-    return {"slip_angle": args.slip_angle, "friction_scaling": args.friction_scaling,
-            "loads_above_fzmax": args.loads_above_fzmax}
+def _mf_file(args: argparse.Namespace) -> Any:
+    """The property file read with the Magic Formula conventions chosen."""
+    from frictionlaws.tyre.magic_formula import MagicFormula
+
+    return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
+                                  friction_scaling=args.friction_scaling,
+                                  loads_above_fzmax=args.loads_above_fzmax)
 
 
 def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
-    p.add_argument("--loads", default=default, metavar="START:STOP:STEP",
-                   help="vertical loads, a range START:STOP:STEP (inclusive) or a list "
-                        "A,B,C, in --load-unit" + (f" (default {default})" if default else ""))
+    p.add_argument("--loads", default=default, metavar="MIN:MAX:N|A,B,C",
+                   help=f"vertical loads: a range {RANGE_HELP} (the grammar of every command; "
+                        "the third number is a count, not a step), or a list A,B,C; bare "
+                        "numbers in --load-unit"
+                        + (f" (default {default})" if default else ""))
     p.add_argument("--load-unit", default="kN", metavar="UNIT",
                    help="unit of --loads (default kN)")
 
@@ -170,39 +180,51 @@ def _tyre_options(p: argparse.ArgumentParser) -> None:
 
 
 def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
-    """``"2:6.5:0.5"`` or ``"2,3,4"`` in ``unit`` -> loads in N (numpy array)."""
+    """``"2:6.5:10"`` (MIN:MAX:N) or ``"2,3,4"`` in ``unit`` -> loads in N (numpy array).
+
+    The one range grammar (:func:`~frictionlaws.cli._common.parse_range`); the old
+    ``START:STOP:STEP`` form is recognised by a third number that is not a count
+    and refused with its translation.
+    """
     import numpy as np
 
     from frictionlaws.errors import InputError
     from frictionlaws.units import to_si
 
-    text = (text or "").strip()
-    if not text:
-        raise InputError(f"{flag} is empty; expected START:STOP:STEP or A,B,C")
     try:
-        parts = [float(x) for x in text.replace(":", ",").split(",") if x.strip()]
-    except ValueError:
-        raise InputError(f"{flag} '{text}': expected START:STOP:STEP or A,B,C "
-                         "(numbers)") from None
-    if ":" in text:
-        if len(parts) != 3 or text.count(":") != 2:
-            raise InputError(f"{flag} '{text}': expected START:STOP:STEP")
-        start, stop, step = parts
-        if not step > 0 or stop < start:
-            raise InputError(f"{flag} '{text}': expected START <= STOP and STEP > 0")
-        count = int(np.floor((stop - start) / step + 1e-9)) + 1
-        if count > _MAX_LOADS:
-            raise InputError(f"{flag} '{text}' gives {count} loads (at most {_MAX_LOADS})")
-        values = start + step * np.arange(count)
-    else:
-        values = np.array(parts)
-    try:
-        loads = np.asarray(to_si(values, unit, "F_N"), dtype=float)
+        to_si(1.0, unit, "F_N")
     except InputError as exc:
         raise InputError(f"--load-unit {unit}: {exc}") from None
+    _refuse_step_form(text, flag)
+    loads = np.asarray(parse_values(text, "F_N", option=flag, unit=unit,
+                                    max_points=_MAX_LOADS), dtype=float)
     if loads.size == 0 or not np.all(np.isfinite(loads)) or np.any(loads <= 0):
-        raise InputError(f"{flag} '{text}': loads must be positive")
+        raise UsageError(f"{flag} '{text}': loads must be positive")
     return loads
+
+
+def _refuse_step_form(text: str, flag: str) -> None:
+    """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
+    number cannot be a count, flagged when it reads both ways."""
+    from frictionlaws.numbers import parse_number
+
+    parts = str(text or "").split(":")
+    if len(parts) != 3:
+        return
+    try:
+        start, stop, step = (parse_number(x) for x in parts)
+    except ValueError:
+        return  # with units or malformed: the range parser says what is wrong
+    if not (step > 0 and stop > start):
+        return
+    count = int((stop - start) / step + 1e-9) + 1
+    as_step = f"{start:g}:{start + (count - 1) * step:g}:{count}"
+    if step != int(step):
+        raise UsageError(f"{flag} '{text}': a range is MIN:MAX:N with N the number of loads, "
+                         f"not START:STOP:STEP; a step of {step:g} is {as_step}")
+    if abs(start + (count - 1) * step - stop) <= 1e-9 * abs(stop) and count != step:
+        print(f"warning: {flag} '{text}' is MIN:MAX:N, {int(step)} loads; for a step of "
+              f"{step:g} write {as_step}", file=sys.stderr)
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
@@ -282,52 +304,42 @@ def run(args: argparse.Namespace) -> int:
                      "fit-mf")
 
 
+def _angles(text: str) -> list[float]:
+    from frictionlaws.errors import InputError
+
+    try:
+        return [float(a) for a in text.split(",") if a.strip()]
+    except ValueError:
+        raise InputError(f"--angles '{text}': expected numbers in degrees, "
+                         "e.g. 1,2,3") from None
+
+
+def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
+    """What ``cornering`` says about where the law's values came from."""
+    if args.params:
+        return [f"parameters from {args.params}"]
+    if not args.fit:
+        return []
+    units = {p.name: p.unit for p in bound.law.params}
+    values = ", ".join(f"{k} = {v:.6g} {units.get(k, '')}".rstrip()
+                       for k, v in bound.param_values.items())
+    src = bound.source
+    return [f"law fitted to {src.dataset}: {values} ({src.detail})",
+            *(f"fit: {w}" for w in bound.notes)]
+
+
 def _run_cornering(args: argparse.Namespace) -> int:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning, InputError
+    from frictionlaws.errors import ExtrapolationWarning
     from frictionlaws.tyre.brush import BrushModel
 
-    from ._common import FIT_OPTIONS, fit_kwargs, refuse_unused
-
     loads = parse_loads(args.loads, args.load_unit)
-    try:
-        angles = [float(a) for a in args.angles.split(",") if a.strip()]
-    except ValueError:
-        raise InputError(f"--angles '{args.angles}': expected numbers in degrees, "
-                         "e.g. 1,2,3") from None
+    angles = _angles(args.angles)
     tyre = _tyre(args)
-    notes: list[str] = []
-    if not args.fit:
-        refuse_unused(args, (*FIT_OPTIONS, "map", "units", "area"), "without --fit")
-    if args.params:
-        from frictionlaws.fitting import load_result
-        from frictionlaws.registry import get_law
-
-        source = load_result(args.params)
-        if args.law and get_law(args.law).id != source.law.id:
-            raise InputError(f"--law {args.law} does not match the law in the file "
-                             f"('{source.law.id}')", file=args.params)
-        model = BrushModel(source, tyre=tyre)
-        notes.append(f"parameters from {args.params}")
-    else:
-        if not args.law:
-            raise InputError("--law is required (except with --params)")
-        if args.fit:
-            from frictionlaws.fitting import fit
-
-            result = fit(args.law, args.fit, **fit_kwargs(args))
-            model = BrushModel(result, tyre=tyre)
-            m = result.metrics
-            notes.append(f"law fitted to {result.data.get('name')}: "
-                         + ", ".join(f"{k} = {p.value:.6g} {p.unit}".rstrip()
-                                     for k, p in result.params.items())
-                         + f" (R^2 {m['r2']:.4f}, RMSE {m['rmse']:.4g})")
-            notes.extend(f"fit: {w}" for w in result.warnings)
-        elif args.preset:
-            model = BrushModel(args.law, preset=args.preset, tyre=tyre)
-        else:
-            model = BrushModel(args.law, parse_floats(args.set, "--set"), tyre=tyre)
+    bound = bound_from_args(args, args.law)
+    model = BrushModel(bound, tyre=tyre)
+    notes = _source_notes(args, bound)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
         res = model.cornering(loads, angles)
@@ -335,14 +347,14 @@ def _run_cornering(args: argparse.Namespace) -> int:
         out = res.to_dict()
         out["notes"] = notes
         print(json.dumps(out, indent=2))
-    else:
-        params = ", ".join(f"{k} = {v:.6g}" for k, v in res.params.items()) or "-"
-        print(f"law: {res.law} ({params}; SI units)")
-        for n in notes:
-            print(f"note: {n}")
-        print("\n".join(line for line in res.table().splitlines()
-                        if not line.startswith("warning: ")))
-        _warn(res.warnings)
+        return 0
+    params = ", ".join(f"{k} = {v:.6g}" for k, v in res.params.items()) or "-"
+    print(f"law: {res.law} ({params}; SI units)")
+    for n in notes:
+        print(f"note: {n}")
+    print("\n".join(line for line in res.table().splitlines()
+                    if not line.startswith("warning: ")))
+    _warn(res.warnings)
     return 0
 
 
@@ -376,9 +388,7 @@ def _run_thesis(args: argparse.Namespace) -> int:
 def _run_mf(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from frictionlaws.tyre.magic_formula import MagicFormula
-
-    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    mf = _mf_file(args)
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -415,9 +425,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
         from frictionlaws.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
-    from frictionlaws.tyre.magic_formula import MagicFormula
-
-    mf = MagicFormula.from_file(args.file, **_mf_conventions(args))
+    mf = _mf_file(args)
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
                     slip_max=args.slip_max, n=args.points)
     if not red.fit.success:  # as fit: a failed reduction is reported, not saved (exit 1)

@@ -410,8 +410,8 @@ def parse_holdout(spec: Any) -> dict[str, float]:
                 if not part.strip():
                     continue
                 if "=" not in part:
-                    raise InputError(f"--holdout: expected FRACTION or VAR=FRACTION,..., "
-                                     f"got '{part.strip()}'")
+                    raise InputError(f"expected FRACTION or VAR=FRACTION,..., "
+                                     f"got '{part.strip()}'", option="holdout")
                 k, v = (s.strip() for s in part.split("=", 1))
                 if k in items:
                     raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
@@ -420,17 +420,17 @@ def parse_holdout(spec: Any) -> dict[str, float]:
     out = {}
     for k, v in items.items():
         if k not in VARIABLES:
-            raise InputError(f"--holdout: unknown variable '{k}' (known: "
-                             f"{', '.join(VARIABLES)})")
+            raise InputError(f"unknown variable '{k}' (known: "
+                             f"{', '.join(VARIABLES)})", option="holdout")
         try:
             f = float(v)
         except (TypeError, ValueError):
-            raise InputError(f"--holdout: '{k}={v}' is not a number") from None
+            raise InputError(f"'{k}={v}' is not a number", option="holdout") from None
         if f == 0:
             continue
         if not 0 < f < 1:
-            raise InputError(f"--holdout: the fraction for {k} must be between 0 and 1 "
-                             f"(exclusive), not {f:g}")
+            raise InputError(f"the fraction for {k} must be between 0 and 1 "
+                             f"(exclusive), not {f:g}", option="holdout")
         out[k] = f
     return out
 

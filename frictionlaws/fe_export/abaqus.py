@@ -22,7 +22,7 @@ import itertools
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 from .exact import exp_decay_form
 from .fortran import FIELD_VARIABLES
 from .job import Job, Written, commented, model_axes, tabulated
@@ -97,10 +97,10 @@ def write_abaqus_decay(job: Job) -> Written:
     form, why = exp_decay_form(law, job.values)
     if form is None:
         raise InputError(
-            f"abaqus-decay: {why}, so *FRICTION, EXPONENTIAL DECAY cannot represent it "
-            "exactly. Fit 'exponential-decay' with delta held at 1 first (frictionlaws fit "
-            "--law exponential-decay --fix delta=1 DATA --save fit.json, then export "
-            "--params fit.json), or export a table with --format abaqus")
+            [f"abaqus-decay: {why}, so *FRICTION, EXPONENTIAL DECAY cannot represent it "
+             "exactly. Fit 'exponential-decay' with delta held at 1 first (",
+             Argument("fix", "delta=1"), ") and export that fit, or export a table with ",
+             Argument("format", "abaqus")])
     scale, _ = job.units.affine("v")
     d_c = form.d_c * scale
     notes = []

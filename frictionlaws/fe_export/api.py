@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -16,6 +16,9 @@ from .fortran import FORTRAN_FORMATS
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
+
+if TYPE_CHECKING:
+    from ..bound import BoundLaw
 
 __all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
 
@@ -254,9 +257,36 @@ class ExportResult:
 def _check_range(var: str, lo: float, hi: float) -> None:
     if var in ("p", "v", "F_N") and lo < 0:
         raise InputError(f"range of {var} ({VARIABLES[var].meaning}) must not be negative, "
-                         f"got MIN {lo:g} {VARIABLES[var].unit} (SI)")
+                         f"got MIN {lo:g} {VARIABLES[var].unit} (SI)", option=f"box.{var}")
     if var == "T" and lo <= 0:
-        raise InputError(f"range of T must be above 0 K, got MIN {lo:g} K (SI)")
+        raise InputError(f"range of T must be above 0 K, got MIN {lo:g} K (SI)",
+                         option="box.T")
+
+
+#: An example range per variable: bare numbers in the export's unit system, or with units.
+_RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
+                   "v": "0:2:21 or 1e-3m/s:10m/s:30", "T": "253.15:353.15:5 or 20degC:80degC:7",
+                   "F_N": "10:500:12 or 1N:1kN", "s": "0:1:41"}
+
+
+def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
+    """One bound of a range: a number in the unit system or a quantity with its unit."""
+    from ..units import parse_quantity
+
+    s = s.strip()
+    if not s:
+        raise InputError(f"'{text}': empty bound; expected MIN:MAX[:N], e.g. "
+                         f"{_RANGE_EXAMPLES[var]}", option=f"box.{var}")
+    try:
+        x = float(s)
+    except ValueError:
+        try:
+            return parse_quantity(s, var, what=var)
+        except InputError as exc:
+            raise InputError(f"'{text}': {exc.bare_message}", option=f"box.{var}") from None
+    if not math.isfinite(x):
+        raise InputError(f"'{text}': bounds must be finite", option=f"box.{var}")
+    return float(np.asarray(system.to_si(var, x), dtype=float))
 
 
 def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
@@ -264,45 +294,58 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
     """Parse ``MIN:MAX[:N]`` for variable ``var``.
 
     Bare numbers are in ``units`` (the export's unit system); a bound may carry
-    its own unit, e.g. ``"10kPa:0.5MPa:20"`` or ``"20degC:80degC"``.
+    its own unit, e.g. ``"10kPa:0.5MPa:20"`` or ``"20degC:80degC"``.  This is the
+    one range grammar of the package (``N`` points, both ends included).
 
     Raises
     ------
     InputError
-        With the option name, the text and an example, when malformed.
+        With ``option="box.<var>"``, the text and an example, when malformed.
     """
-    from ..units import parse_quantity
-
     system = unit_system(units)
-    opt = f"--{var}"
     parts = str(text).split(":")
-    example = {"p": "0.01:0.5:20 (in the --units system) or 10kPa:0.5MPa:20",
-               "v": "0:2:21 or 1e-3m/s:10m/s:30", "T": "253.15:353.15:5 or 20degC:80degC:7",
-               "F_N": "10:500:12 or 1N:1kN", "s": "0:1:41"}[var]
     if len(parts) not in (2, 3):
-        raise InputError(f"{opt} '{text}': expected MIN:MAX or MIN:MAX:N, e.g. {opt} {example}")
-
-    def bound(s: str) -> float:
-        s = s.strip()
-        if not s:
-            raise InputError(f"{opt} '{text}': empty bound; expected MIN:MAX[:N], e.g. "
-                             f"{opt} {example}")
-        try:
-            x = float(s)
-        except ValueError:
-            return parse_quantity(s, var, what=opt)
-        if not math.isfinite(x):
-            raise InputError(f"{opt} '{text}': bounds must be finite")
-        return float(system.to_si(var, x))
-
-    lo, hi = bound(parts[0]), bound(parts[1])
+        raise InputError(f"'{text}': expected MIN:MAX or MIN:MAX:N, e.g. "
+                         f"{_RANGE_EXAMPLES[var]}", option=f"box.{var}")
+    lo, hi = (_range_bound(var, x, text, system) for x in parts[:2])
     n = None
     if len(parts) == 3:
         try:
             n = int(parts[2].strip())
         except ValueError:
-            raise InputError(f"{opt} '{text}': N must be a whole number of points, got "
-                             f"'{parts[2].strip()}'") from None
+            raise InputError(f"'{text}': N must be a whole number of points, got "
+                             f"'{parts[2].strip()}'", option=f"box.{var}") from None
+    _check_range(var, lo, hi)
+    return AxisSpec(var, lo, hi, n, spacing)
+
+
+def _check_spacing(spacing: Mapping[str, str]) -> None:
+    for k, s in spacing.items():
+        if k not in VARIABLES:
+            raise InputError(f"spacing for unknown variable '{k}' (variables: "
+                             f"{', '.join(VARIABLES)})", option="spacing")
+        if s not in ("lin", "log", "auto"):
+            raise InputError(f"spacing of {k} must be lin or log, got '{s}'", option="spacing")
+
+
+def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
+    """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
+    from ..units import parse_quantity
+
+    if isinstance(spec, AxisSpec):
+        return spec
+    if isinstance(spec, str):
+        return parse_range(var, spec, units, spacing)
+    seq = list(spec)
+    if len(seq) not in (2, 3):
+        raise InputError(f"expected (min, max) or (min, max, n), got {spec!r}",
+                         option=f"box.{var}")
+    lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
+    n = None
+    if len(seq) == 3 and seq[2] is not None:
+        if int(seq[2]) != seq[2]:
+            raise InputError(f"n must be a whole number, got {seq[2]!r}", option=f"box.{var}")
+        n = int(seq[2])
     _check_range(var, lo, hi)
     return AxisSpec(var, lo, hi, n, spacing)
 
@@ -310,78 +353,85 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
 def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
                spacing: Mapping[str, str] | None = None) -> dict[str, AxisSpec]:
     """Ranges from an API ``box``: SI tuples ``(min, max[, n])``, quantity strings, text."""
-    from ..units import parse_quantity
-
     spacing = dict(spacing or {})
-    for k, s in spacing.items():
-        if k not in VARIABLES:
-            raise InputError(f"spacing for unknown variable '{k}' (variables: "
-                             f"{', '.join(VARIABLES)})")
-        if s not in ("lin", "log", "auto"):
-            raise InputError(f"spacing of {k} must be lin or log, got '{s}'")
+    _check_spacing(spacing)
     out: dict[str, AxisSpec] = {}
     for var, spec in (box or {}).items():
         if var not in VARIABLES:
-            raise InputError(f"box: unknown variable '{var}' (variables: "
-                             f"{', '.join(VARIABLES)})")
-        sp = spacing.get(var, "auto")
-        if isinstance(spec, AxisSpec):
-            out[var] = spec
-        elif isinstance(spec, str):
-            out[var] = parse_range(var, spec, units, sp)
-        else:
-            seq = list(spec)
-            if len(seq) not in (2, 3):
-                raise InputError(f"box['{var}']: expected (min, max) or (min, max, n), "
-                                 f"got {spec!r}")
-            lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
-            n = None
-            if len(seq) == 3 and seq[2] is not None:
-                if int(seq[2]) != seq[2]:
-                    raise InputError(f"box['{var}']: n must be a whole number, got {seq[2]!r}")
-                n = int(seq[2])
-            _check_range(var, lo, hi)
-            out[var] = AxisSpec(var, lo, hi, n, sp)
+            raise InputError(f"unknown variable '{var}' (variables: {', '.join(VARIABLES)})",
+                             option="box")
+        out[var] = _axis(var, spec, units, spacing.get(var, "auto"))
     for var in spacing:
         if var not in out:
-            raise InputError(f"spacing given for {var} but no range (--{var} MIN:MAX[:N])")
+            raise InputError(f"spacing given for {var} but no range", option=f"box.{var}")
     return out
 
 
 # ------------------------------------------------------------------ export
 
 
-def _values(law: Law | str | None, params: Any, preset: str | None
-            ) -> tuple[Law, dict[str, float], Any, str]:
-    from ..registry import get_law
+def _bound(law: Law | BoundLaw | str | None, params: Any, preset: str | None) -> BoundLaw:
+    """The law and its values: a BoundLaw given as ``law`` or ``params``, or bound here."""
+    from ..bound import BoundLaw, as_bound, freeze
 
-    fit = None
-    if params is not None and hasattr(params, "values") and hasattr(params, "law") \
-            and not isinstance(params, Mapping):
-        fit = params
-        fit_law = params.law
-        if law is not None and get_law(law).id != fit_law.id:
-            raise InputError(f"the parameters are for law '{fit_law.id}', not "
-                             f"'{get_law(law).id}'")
-        law_obj = fit_law
-        values = dict(params.values)
-        source = "fit result" + (f" ({params.message})" if getattr(params, "message", "")
-                                 else "")
-    else:
-        if law is None:
-            raise InputError("no law given")
-        law_obj = get_law(law)
-        values = law_obj.resolve(params, preset)
-        parts = ([f"preset '{preset}'"] if preset else []) + (["given values"] if params
-                                                               else [])
-        source = " with ".join(parts) or "law defaults"
-    for k, v in values.items():
-        if not math.isfinite(float(v)):
-            raise InputError(f"parameter {k} of law '{law_obj.id}' is not finite ({v!r})")
-    return law_obj, {k: float(v) for k, v in values.items()}, fit, source
+    if isinstance(law, BoundLaw):
+        if params is not None or preset is not None:
+            raise InputError("a bound law carries its values: give no params or preset with "
+                             "it", option="params")
+        return law
+    if params is not None and not isinstance(params, Mapping):
+        if preset is not None:
+            raise InputError("give either a fit result (or bound law) or a preset, not both",
+                             option="preset")
+        return as_bound(params, law=law)
+    if law is None:
+        raise InputError("no law given")
+    return freeze(law, params, preset=preset)
 
 
-def export(law: Law | str | None, params: Any = None, format: str = "csv",
+def _check_format(format: str, tol: float | None) -> None:
+    if format not in FORMATS:
+        raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
+    if tol is not None and (isinstance(tol, bool) or not (
+            isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0)):
+        raise InputError(f"tolerance must be a positive number, got {tol!r}")
+
+
+def _job(bound: BoundLaw, format: str, specs: dict[str, AxisSpec], system: UnitSystem, *,
+         tol: float | None, max_rows: int, source: str | None,
+         options: Mapping[str, Any] | None) -> Job:
+    """The export job, with the warnings the bound values carry."""
+    law_obj = bound.law
+    unused = [v for v in specs if v not in law_obj.variables]
+    if unused:  # a range the law cannot use is an error, not ignored
+        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)} (its "
+                         f"variables: {', '.join(law_obj.variables) or 'none'}); remove the "
+                         "range", option=f"box.{unused[0]}")
+    job = Job(law=law_obj, values=dict(bound.values), fmt=format, units=system, specs=specs,
+              tol=tol, max_rows=int(max_rows), source=source or bound.source.describe(),
+              fit=bound, options=check_options(options))
+    job.warnings += [f"fit: {w}" for w in bound.notes]
+    if not bound.converged:
+        job.warnings.append("fit: the optimiser did not converge")
+    return job
+
+
+def _write(path: str | Path | None, text: str) -> str | None:
+    """Write the export atomically (never over an input); the path written or None."""
+    if path is None or str(path) == "-":
+        return None
+    from ..outputs import check_outputs, write_text_atomic
+
+    p = Path(path)
+    check_outputs([p])
+    try:
+        write_text_atomic(p, text)
+    except OSError as exc:
+        raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
+    return str(p)
+
+
+def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "csv",
            box: Mapping[str, Any] | None = None, *, preset: str | None = None,
            units: str | UnitSystem = "SI", tol: float | None = None,
            spacing: Mapping[str, str] | None = None, path: str | Path | None = None,
@@ -391,16 +441,18 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
 
     Parameters
     ----------
-    law : Law or str or None
-        The law (id or alias); may be None when ``params`` is a fit result.
-    params : mapping or FitResult, optional
-        Parameter values (SI) or a :class:`~frictionlaws.fitting.FitResult`
-        (also from :func:`~frictionlaws.fitting.load_result`); missing ones
-        come from ``preset`` or the defaults of optional parameters.
+    law : Law or BoundLaw or str or None
+        The law (id or alias), or a :class:`~frictionlaws.bound.BoundLaw`
+        (``law.freeze(...)``, ``result.bound``) that carries its values, their
+        source and fitted ranges; may be None when ``params`` is a bound law or
+        a fit result.
+    params : mapping or BoundLaw or FitResult, optional
+        Parameter values (SI), a bound law, or a
+        :class:`~frictionlaws.fitting.FitResult` (also from
+        :func:`~frictionlaws.fitting.load_result`); missing values come from
+        ``preset`` or the defaults of optional parameters.
     format : str
-        One of :data:`FORMATS`: ``csv``, ``json``, ``abaqus``, ``abaqus-decay``,
-        ``lsdyna``, ``ansys``, ``radioss``, ``abaqus-fric-coef``,
-        ``abaqus-vfric-coef``, ``abaqus-vfric``.
+        One of :data:`FORMATS` (``csv``, ``abaqus``, ``lsdyna``, ``radioss``...).
     box : mapping, optional
         Variable -> ``(min, max)`` or ``(min, max, n)`` in SI (numbers) or as
         quantity strings (``("10 kPa", "0.5 MPa", 20)``), or ``"MIN:MAX[:N]"``
@@ -425,11 +477,10 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
     max_rows : int
         Largest table allowed.
     source : str, optional
-        How the parameters were obtained (written in the header).
+        How the parameters were obtained (written in the header; default: the
+        bound law's :class:`~frictionlaws.bound.Source`).
     options : mapping, optional
-        Format options: ``lsdyna_ssid``, ``lsdyna_msid``, ``lsdyna_sstyp``,
-        ``lsdyna_mstyp``, ``lsdyna_contact``, ``lsdyna_table_id``,
-        ``ansys_mat``, ``radioss_id``.
+        Format options (ids of the solver's cards), see :data:`OPTIONS`.
 
     Returns
     -------
@@ -443,29 +494,11 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
         a format that cannot represent the law (``abaqus-decay``; variables a
         solver does not support).
     """
-    if format not in FORMATS:
-        raise InputError(f"unknown export format '{format}'; formats: {', '.join(FORMATS)}")
-    if tol is not None and (isinstance(tol, bool) or not (
-            isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0)):
-        raise InputError(f"tolerance must be a positive number, got {tol!r}")
-    law_obj, values, fit, src = _values(law, params, preset)
-    message = law_obj.check_admissible(values)
+    _check_format(format, tol)
+    bound = _bound(law, params, preset)
     system = unit_system(units)
-    specs = make_specs(box, system, spacing)
-    unused = [v for v in specs if v not in law_obj.variables]
-    if unused:  # a range the law cannot use is an error, not ignored
-        raise InputError(f"law '{law_obj.id}' does not depend on {', '.join(unused)} (its "
-                         f"variables: {', '.join(law_obj.variables) or 'none'}); remove the "
-                         "range", option=f"box.{unused[0]}")
-    job = Job(law=law_obj, values=values, fmt=format, units=system, specs=specs, tol=tol,
-              max_rows=int(max_rows), source=source or src, fit=fit,
-              options=check_options(options))
-    if message:
-        job.warnings.append(f"parameters not admissible: {message}")
-    if fit is not None:
-        job.warnings += [f"fit: {w}" for w in getattr(fit, "warnings", [])]
-        if getattr(fit, "success", True) is False:
-            job.warnings.append("fit: the optimiser did not converge")
+    job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
+               max_rows=max_rows, source=source, options=options)
     writer, _, needs_box = FORMATS[format]
     if needs_box:
         job.domain_warnings()
@@ -473,23 +506,18 @@ def export(law: Law | str | None, params: Any = None, format: str = "csv",
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
-    err = written.error
-    out_path = None
-    if path is not None and str(path) != "-":
-        from ..outputs import check_outputs, write_text_atomic
+    return _result(job, written, _write(path, written.text))
 
-        p = Path(path)
-        check_outputs([p])
-        try:
-            write_text_atomic(p, written.text)
-        except OSError as exc:
-            raise InputError(f"cannot write the export: {exc.strerror}", file=str(p)) from None
-        out_path = str(p)
+
+def _result(job: Job, written: Written, path: str | None) -> ExportResult:
+    """What was written, with its error located in the model's units."""
+    err = written.error
     error_at = {}
     if err is not None:
-        error_at = {k: float(np.asarray(system.to_model(k, v))) for k, v in err.where.items()}
+        error_at = {k: float(np.asarray(job.units.to_model(k, v)))
+                    for k, v in err.where.items()}
     return ExportResult(
-        format=format, text=written.text, path=out_path, law=law_obj.id, units=system.name,
+        format=job.fmt, text=written.text, path=path, law=job.law.id, units=job.units.name,
         rows=written.rows, exact=written.exact,
         max_error=(0.0 if written.exact else (err.max_abs if err is not None else None)),
         error_at=error_at, rms_error=None if err is None else err.rms,

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 from ..law import MU_MAX, VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
@@ -26,11 +26,7 @@ from .systems import UnitSystem
 #: Points at which the law is checked in the box before export (spread over the axes).
 _BOX_SAMPLES = 200_000
 
-__all__ = ["Job", "Written", "commented", "fmt_num", "CLI_BOX_HINT"]
-
-#: How a missing range is given on the command line (used in messages).
-CLI_BOX_HINT = {"p": "--p MIN:MAX[:N]", "v": "--v MIN:MAX[:N]", "T": "--T MIN:MAX[:N]",
-                "F_N": "--F_N MIN:MAX[:N]", "s": "--s MIN:MAX[:N]"}
+__all__ = ["Job", "Written", "commented", "fmt_num"]
 
 
 def fmt_num(x: float, digits: int = 6) -> str:
@@ -91,8 +87,9 @@ class Job:
         Largest table allowed.
     source : str
         Where the parameter values came from.
-    fit : object, optional
-        The :class:`~frictionlaws.fitting.FitResult` they came from.
+    fit : BoundLaw, optional
+        The :class:`~frictionlaws.bound.BoundLaw` the values came from (standard
+        errors, fixed parameters, fitted ranges).
     options : dict
         Format-specific options.
     warnings : list of str
@@ -126,11 +123,13 @@ class Job:
         """The ranges of ``names``; InputError naming the option when one is missing."""
         missing = [n for n in names if n not in self.specs]
         if missing:
+            hints: list[str | Argument] = []
+            for m in missing:  # each range as the front end sets it (the CLI: --p MIN:MAX)
+                hints += [" " if hints else "", Argument(f"box.{m}", "MIN:MAX[:N]")]
             raise InputError(
-                f"{what}: law '{self.law.id}' depends on "
-                + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
-                + "; give its range: " + " ".join(CLI_BOX_HINT[m] for m in missing)
-                + " (API: box={" + ", ".join(f"'{m}': (min, max)" for m in missing) + "})")
+                [f"{what}: law '{self.law.id}' depends on "
+                 + ", ".join(f"{m} ({self.law.meaning(m)})" for m in missing)
+                 + "; give its range: ", *hints])
         return [self.specs[n] for n in names]
 
     def make_grid(self, names: Sequence[str], what: str) -> tuple[Grid, GridError, str]:
@@ -188,9 +187,10 @@ class Job:
         for name, value in levels.items():
             if not (math.isfinite(value) and 0 <= value <= MU_MAX):
                 raise InputError(
-                    f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
-                    f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
-                    "(check the parameters; a fit that cannot determine them needs --fix)")
+                    [f"law '{self.law.id}': {name} = {value:.6g} in the {self.fmt} card is not "
+                     f"a friction coefficient in 0..{MU_MAX:g}; nothing was written "
+                     "(check the parameters; a fit that cannot determine them needs ",
+                     Argument("fix"), ")"])
 
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
@@ -220,14 +220,14 @@ class Job:
     def param_lines(self) -> list[str]:
         """Parameter and setting lines with units (and standard errors from a fit)."""
         out = ["parameters (SI, as the law is defined):"]
-        est = getattr(self.fit, "params", None) or {}
+        stderr = getattr(self.fit, "stderr", None) or {}
+        fixed = getattr(self.fit, "fixed", None) or ()
         for p in self.law.params:
             unit = p.unit or "-"
             line = f"  {p.name} = {self.values[p.name]!r} [{unit}]"
-            e = est.get(p.name)
-            if e is not None and getattr(e, "stderr", None) is not None:
-                line += f" +/- {fmt_num(e.stderr, 3)} (standard error)"
-            elif e is not None and getattr(e, "fixed", False):
+            if stderr.get(p.name) is not None:
+                line += f" +/- {fmt_num(stderr[p.name], 3)} (standard error)"
+            elif p.name in fixed:
                 line += " (fixed)"
             out.append(line + (f"  {p.meaning}" if p.meaning else ""))
         for s in self.law.settings:
@@ -287,7 +287,7 @@ class Job:
                     f"{self.model(name, spec.hi)}) leaves the law's domain "
                     f"({self.model(name, dom[0])} .. {self.model(name, dom[1])}): "
                     "the exported values there are an extrapolation of the law")
-            rng = (getattr(self.fit, "data", None) or {}).get("ranges", {}).get(name)
+            rng = (getattr(self.fit, "fitted_ranges", None) or {}).get(name)
             if rng and (spec.lo < rng[0] * (1 - 1e-9) - 1e-300 or spec.hi > rng[1] * (1 + 1e-9)):
                 self.warnings.append(
                     f"the box of {name} extends beyond the fitted data "

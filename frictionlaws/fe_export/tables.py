@@ -55,7 +55,7 @@ def write_json(job: Job) -> Written:
     body = [*job.box_lines(grid), *job.error_lines(err, how)]
     head = job.header("grid of mu (JSON)", body, OUTSIDE_GRID)
     axes = model_axes(job, grid)
-    est = getattr(job.fit, "params", None) or {}
+    stderr = getattr(job.fit, "stderr", None) or {}
     doc = {
         "format": "frictionlaws-grid",
         "version": 1,
@@ -64,7 +64,7 @@ def write_json(job: Job) -> Written:
         "title": job.law.title,
         "parameters": {
             p.name: {"value": job.values[p.name], "unit": p.unit,
-                     "stderr": getattr(est.get(p.name), "stderr", None)}
+                     "stderr": stderr.get(p.name)}
             for p in job.law.params},
         "settings": {s.name: {"value": job.values[s.name], "unit": s.unit}
                      for s in job.law.settings},

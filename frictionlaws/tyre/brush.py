@@ -466,10 +466,11 @@ class BrushModel:
 
     Parameters
     ----------
-    law : str, Law, FitResult or callable
+    law : str, Law, BoundLaw, FitResult or callable
         A registered law (id or :class:`~frictionlaws.law.Law`) with
-        ``params``/``preset``; a fit result (its law and fitted values; its
-        fitted data range is used for extrapolation warnings); or a plain
+        ``params``/``preset``; a :class:`~frictionlaws.bound.BoundLaw` or a fit
+        result (its law and values; its fitted data range is used for
+        extrapolation warnings); or a plain
         function ``mu(p, v)`` of pressure [Pa] and sliding speed [m/s].
     params : mapping, optional
         Parameter values of the law (SI).
@@ -501,13 +502,16 @@ class BrushModel:
             raise InputError("tyre must be a BrushTyre")
         self.law: Law | None = None
         self.fitted_ranges: dict[str, tuple[float, float]] = {}
-        if hasattr(law, "law") and hasattr(law, "values") and isinstance(law.law, Law):
+        if isinstance(getattr(law, "law", None), Law):  # a BoundLaw or a fit result
             if params is not None or preset is not None:
-                raise InputError("give either a fit result or params/preset, not both")
-            self.fitted_ranges = {k: (float(v[0]), float(v[1])) for k, v in
-                                  (law.data or {}).get("ranges", {}).items()}
-            params = law.values
-            law = law.law
+                raise InputError("give either a bound law (or fit result) or params/preset, "
+                                 "not both")
+            from ..bound import as_bound
+
+            bound = as_bound(law)
+            self.fitted_ranges = dict(bound.fitted_ranges)
+            params = bound.values
+            law = bound.law
         if isinstance(law, (str, Law)):
             from ..registry import get_law
 
