@@ -175,6 +175,17 @@ def test_compare_thesis_steel_is_pinned(serial: dict[str, Any]) -> None:
     _check(serial)
 
 
+
+@pytest.mark.slow
+def test_compare_in_two_processes_gives_the_same_results(serial: dict[str, Any]) -> None:
+    parallel = summary(compare(data="thesis-steel", progress=False, jobs=2))
+    assert parallel["ranking"] == serial["ranking"]
+    for law, stats in serial["laws"].items():
+        for key, value in stats.items():
+            have = parallel["laws"][law][key]
+            assert have == value or (math.isnan(have) and math.isnan(value)), (law, key)
+
+
 if __name__ == "__main__":
     pprint.pprint(summary(compare(data="thesis-steel", progress=False)), width=100,
                   sort_dicts=False)

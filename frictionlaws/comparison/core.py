@@ -48,7 +48,7 @@ from ..fitting import FitData, FitResult, as_fit_data, fit
 from ..jsonio import dumps as _dumps
 from ..law import VARIABLES, Law
 from ..registry import get_law, list_laws
-from .cv import CVResult, cross_validate, error_text, kfold_assignment
+from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
 from .extrapolation import (
     MU_LIMITS,
     TREND_ALPHA,
@@ -330,7 +330,7 @@ def _select_laws(laws: Any, family: str | None, fd: FitData
 
 
 def _progress(total: int, enabled: bool | None) -> Any:
-    from tqdm import tqdm
+    from tqdm import tqdm  # type: ignore[import-untyped]
 
     disable = (not sys.stderr.isatty()) if enabled is None else not enabled
     return tqdm(total=total, desc="compare", unit="fit", disable=disable, leave=False,
@@ -368,6 +368,203 @@ def _rank_key(r: LawComparison) -> tuple[Any, ...]:
             r.fit.metrics["k"], r.law.id)
 
 
+def _check_options(fd: FitData, folds: Any, mu_limits: Sequence[float], jobs: Any
+                   ) -> tuple[int, tuple[float, float], list[str]]:
+    """Checked folds, limits of mu and the notes they call for (folds beyond the rows)."""
+    if fd.n < 3:
+        raise InputError(f"data '{fd.name}' has {fd.n} rows; a comparison needs at least 3")
+    if isinstance(folds, bool) or not isinstance(folds, (int, np.integer)):
+        raise InputError(f"folds must be a whole number, not {folds!r}", option="folds")
+    if folds < 2:
+        raise InputError(f"folds must be at least 2, not {folds}", option="folds")
+    if isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer)) or not (
+            jobs >= 1 or jobs == -1):
+        raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
+                         f"{jobs!r}", option="jobs")
+    lims = tuple(float(x) for x in mu_limits)
+    if len(lims) != 2 or not lims[0] < lims[1]:
+        raise InputError(f"the plausible range of mu must have low < high, got {lims}",
+                         option="mu_limits")
+    notes: list[str] = []
+    if folds > fd.n:
+        notes.append(f"{folds} folds asked for but the data have {fd.n} rows: "
+                     f"leave-one-out ({fd.n} folds) used")
+        folds = fd.n
+    return int(folds), (lims[0], lims[1]), notes
+
+
+@dataclass
+class _Setup:
+    """What every law of one comparison shares: the data, its design, folds and splits."""
+
+    fd: FitData
+    design: Design
+    trends: dict[str, Trend]
+    box: dict[str, tuple[float, float]]
+    splits: list[Split]
+    assign: np.ndarray
+    fit_kw: dict[str, Any]
+    limits: tuple[float, float]
+
+    @property
+    def active(self) -> list[Split]:
+        return [s for s in self.splits if s.usable]
+
+    @property
+    def folds(self) -> int:
+        return int(self.assign.max()) + 1
+
+    @property
+    def tasks_per_law(self) -> int:
+        return 1 + self.folds + len(self.active)
+
+
+def _task(law: Law, setup: _Setup, kind: str, index: int) -> Any:
+    """One fit of a comparison: the full fit, a cross-validation fold or a hold-out.
+
+    Module-level and self-contained so that joblib can run it in another process.
+    Returns a FitResult (or the error text) for the full fit, a FoldOutcome or a
+    HoldoutResult.
+    """
+    fd = setup.fd
+    rows = usable_rows(law, fd)
+    if kind == "fold":
+        return score_fold(law, fd, rows, setup.assign, index, fit_kwargs=setup.fit_kw)
+    if kind == "holdout":
+        return score_holdout(law, fd, rows, setup.active[index], fit_kwargs=setup.fit_kw)
+    try:
+        return fit(law, fd, on_invalid="drop", **setup.fit_kw)
+    except Exception as exc:  # noqa: BLE001 - any law may fail; list it, go on
+        return error_text(exc)
+
+
+def _run_tasks(laws: list[Law], setup: _Setup, jobs: int, bar: Any) -> list[list[Any]]:
+    """Every fit of every law (``jobs`` processes), grouped per law in task order."""
+    tasks = [(law, "full", 0) for law in laws]
+    tasks += [(law, "fold", f) for law in laws for f in range(setup.folds)]
+    tasks += [(law, "holdout", i) for law in laws for i in range(len(setup.active))]
+    if jobs == 1:
+        outputs: Iterable[Any] = (_task(law, setup, kind, i) for law, kind, i in tasks)
+    else:
+        from joblib import Parallel, delayed  # type: ignore[import-untyped]
+
+        outputs = Parallel(n_jobs=jobs, return_as="generator")(
+            delayed(_task)(law, setup, kind, i) for law, kind, i in tasks)
+    per_law: dict[str, list[Any]] = {law.id: [] for law in laws}
+    for (law, _kind, _i), out in zip(tasks, outputs):
+        bar.set_postfix_str(law.id)
+        per_law[law.id].append(out)
+        bar.update(1)
+    return [per_law[law.id] for law in laws]
+
+
+def _pooled_rmse(holds: list[HoldoutResult]) -> float:
+    """RMSE over the held-out rows of every split that could be scored."""
+    errs = [h for h in holds if h.error is None]
+    n_err = sum(h.n_test for h in errs)
+    if not errs or not n_err:
+        return math.nan
+    sq = sum(h.rmse**2 * h.n_test for h in errs)
+    return math.sqrt(sq / n_err) if math.isfinite(sq) else math.inf
+
+
+def _assemble(law: Law, setup: _Setup, outputs: list[Any]) -> LawComparison | dict[str, str]:
+    """One law's comparison from its fits (full, folds, hold-outs), or its failure."""
+    fd = setup.fd
+    res = outputs[0]
+    if isinstance(res, str):
+        return {"id": law.id, "title": law.title, "error": res}
+    rows = usable_rows(law, fd)
+    if res.metrics["n"] != int(rows.sum()):  # pragma: no cover - internal check
+        raise RuntimeError(f"row bookkeeping mismatch for law '{law.id}'")
+    cv = combine_folds(fd, outputs[1:1 + setup.folds], int(setup.fit_kw["seed"]))
+    holds: list[HoldoutResult] = outputs[1 + setup.folds:]
+    extra = [f"extrapolation test along {h.variable}: {h.error}" for h in holds
+             if h.error is not None]
+    extra += [f"cross-validation fold {f['fold']} ({f['n_train']} training rows): "
+              f"{f['error']}" for f in cv.failed]
+    plaus = scan_plausibility(law, res.values, fd, setup.design, setup.box, setup.trends,
+                              limits=setup.limits)
+    sub = fd.subset(rows)
+    resid = analyse_residuals(
+        res.residual, res.best_fit, {k: sub.arrays[k] for k in setup.design.varying},
+        describe=lambda k: "the fitted value" if k == "fitted" else k)
+    law_notes = [n for n in res.notes if n not in fd.notes]
+    return LawComparison(law, res, rows, law_notes, cv, holds, _pooled_rmse(holds), plaus,
+                         resid, extra_notes=extra)
+
+
+def _rank(results: list[LawComparison], fd: FitData, notes: list[str]) -> tuple[bool, int]:
+    """Akaike weights, the common-rows CV RMSE and the ranks (in place); notes on rows.
+
+    Returns whether the ranking used each law's own CV RMSE, and the common rows.
+    """
+    _akaike(results)
+    common = np.logical_and.reduce([r.rows for r in results])
+    same_rows = all(np.array_equal(r.rows, results[0].rows) for r in results)
+    if not same_rows and common.sum() < 3:
+        notes.append(f"the laws were fitted to different rows and share only "
+                     f"{int(common.sum())}: the ranking uses each law's CV RMSE over its own "
+                     "rows, which are not strictly comparable")
+        same_rows = True
+    elif not same_rows:
+        notes.append(f"the laws were fitted to different rows: the ranking uses the CV RMSE over "
+                     f"the {int(common.sum())} rows all of them could use (cv_rmse_common)")
+    for r in results:
+        if same_rows:
+            r.cv_rmse_common = r.cv.rmse
+        else:
+            pred = r.cv.predictions[common] if r.cv.predictions is not None else np.array([])
+            ok = np.isfinite(pred)
+            err = fd.arrays["mu"][common][ok] - pred[ok]
+            r.cv_rmse_common = float(np.sqrt(np.mean(err**2))) if err.size else math.nan
+    results.sort(key=_rank_key)
+    for i, r in enumerate(results, start=1):
+        r.rank = i
+    if len({r.aic_group for r in results}) > 1:
+        notes.append("the laws were fitted to different rows (some dropped rows where they "
+                     "are singular): AIC, AICc, BIC and Akaike weights compare only laws of "
+                     "the same group (column 'grp')")
+    return same_rows, int(common.sum())
+
+
+def _settings(setup: _Setup, what: str, starts: int | None, fractions: dict[str, float],
+              same_rows: bool, common: int) -> dict[str, Any]:
+    """The settings block of a comparison (what was done, and by which rules)."""
+    box = setup.box
+    return {
+        "laws": what,
+        "folds": setup.folds,
+        "seed": setup.fit_kw["seed"],
+        "starts": starts,
+        "holdout": fractions,
+        "holdout_rule": "rows with x > x_min + (1 - fraction)(x_max - x_min) are held out; "
+                        "the law is fitted on the others and scored on them",
+        "splits": [s.to_dict() for s in setup.splits],
+        "extended_box": {k: {"low": lo, "high": hi, "unit": VARIABLES[k].unit or "-",
+                             "display": f"{fmt_value(k, lo)} .. {fmt_value(k, hi)}"}
+                         for k, (lo, hi) in box.items()},
+        "extended_box_rule": "0.5 x lowest .. 3 x highest measured value (s capped at 1; "
+                             "T: 20 K below .. 20 K above); derived variables follow their "
+                             "driver",
+        "mu_limits": list(setup.limits),
+        "trend_tolerance": {"absolute": TREND_TOL, "relative": TREND_REL},
+        "trend_rule": "beyond each end of the measured range of a variable, mu must not move "
+                      "against the trend the data show toward that end by more than the "
+                      "tolerance (relative to mu where the reversal starts)",
+        "trend_alpha": TREND_ALPHA,
+        "ranking": RANKING,
+        "ranking_metric": "cv_rmse" if same_rows else "cv_rmse_common",
+        "common_rows": common,
+        "akaike_weights": "from AICc (AIC when AICc is undefined), among laws fitted to "
+                          "identical rows only",
+        "residual_tests": "Wald-Wolfowitz runs test (exact, one-sided: too few runs) and "
+                          "Kendall tau, per variable and vs the fitted value; Shapiro-Wilk; "
+                          "5 % level each, uncorrected",
+        "weights": "dataset" if setup.fd.weights is not None else "none",
+    }
+
+
 def compare(
     laws: str | Law | Iterable[str | Law] | None = None,
     data: Any = None,
@@ -383,6 +580,7 @@ def compare(
     units: Mapping[str, str] | None = None,
     area: Any = None,
     progress: bool | None = None,
+    jobs: int = 1,
 ) -> Comparison:
     """Fit and compare several laws on one dataset.
 
@@ -429,6 +627,10 @@ def compare(
         :func:`~frictionlaws.io.load_dataset`.
     progress : bool, optional
         Show a tqdm progress bar; by default only when stderr is a terminal.
+    jobs : int
+        Processes (joblib) sharing the fits: the full fit, every cross-validation fold
+        and every hold-out of every law are independent; -1 takes one per core.  The
+        results do not depend on it.
 
     Returns
     -------
@@ -449,144 +651,30 @@ def compare(
     if data is None:
         raise InputError("no data given to compare the laws on")
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
-    if fd.n < 3:
-        raise InputError(f"data '{fd.name}' has {fd.n} rows; a comparison needs at least 3")
-    if isinstance(folds, bool) or not isinstance(folds, (int, np.integer)):
-        raise InputError(f"folds must be a whole number, not {folds!r}", option="folds")
-    if folds < 2:
-        raise InputError(f"folds must be at least 2, not {folds}", option="folds")
-    lims = tuple(float(x) for x in mu_limits)
-    if len(lims) != 2 or not lims[0] < lims[1]:
-        raise InputError(f"the plausible range of mu must have low < high, got {lims}",
-                         option="mu_limits")
-    notes: list[str] = []
-    if folds > fd.n:
-        notes.append(f"{folds} folds asked for but the data have {fd.n} rows: "
-                     f"leave-one-out ({fd.n} folds) used")
-        folds = fd.n
+    folds, lims, notes = _check_options(fd, folds, mu_limits, jobs)
     fractions = parse_holdout(holdout)
     candidates, skipped, what = _select_laws(laws, family, fd)
     if not candidates:
         reasons = "; ".join(s["reason"] for s in skipped)
         raise InputError(f"none of {what} can be fitted to data '{fd.name}': {reasons}")
-
     design = design_of(fd)
-    trends = data_trends(fd, design)
-    box = extended_box(fd, design)
-    splits = holdout_splits(fd, fractions, design)
-    active = [s for s in splits if s.usable]
-    assign = kfold_assignment(fd.n, folds, seed)
-    fit_kw: dict[str, Any] = {"seed": seed, "starts": starts}
-
-    results: list[LawComparison] = []
-    failed: list[dict[str, str]] = []
-    bar = _progress(len(candidates) * (1 + folds + len(active)), progress)
+    setup = _Setup(fd, design, data_trends(fd, design), extended_box(fd, design),
+                   holdout_splits(fd, fractions, design), kfold_assignment(fd.n, folds, seed),
+                   {"seed": seed, "starts": starts}, lims)
+    bar = _progress(len(candidates) * setup.tasks_per_law, progress)
     try:
-        for law in candidates:
-            bar.set_postfix_str(law.id)
-            rows = usable_rows(law, fd)
-            try:
-                res = fit(law, fd, on_invalid="drop", **fit_kw)
-            except Exception as exc:  # noqa: BLE001 - any law may fail; list it, go on
-                failed.append({"id": law.id, "title": law.title, "error": error_text(exc)})
-                bar.update(1 + folds + len(active))
-                continue
-            bar.update(1)
-            if res.metrics["n"] != int(rows.sum()):  # pragma: no cover - internal check
-                raise RuntimeError(f"row bookkeeping mismatch for law '{law.id}'")
-            law_notes = [n for n in res.notes if n not in fd.notes]
-            cv = cross_validate(law, fd, rows, assign, fit_kwargs=fit_kw,
-                                step=lambda: bar.update(1))
-            holds = []
-            for split in active:
-                holds.append(score_holdout(law, fd, rows, split, fit_kwargs=fit_kw))
-                bar.update(1)
-            errs = [h for h in holds if h.error is None]
-            n_err = sum(h.n_test for h in errs)
-            extra = []
-            if errs and n_err:
-                sq = sum(h.rmse**2 * h.n_test for h in errs)
-                ex_rmse = math.sqrt(sq / n_err) if math.isfinite(sq) else math.inf
-            else:
-                ex_rmse = math.nan
-            for h in holds:
-                if h.error is not None:
-                    extra.append(f"extrapolation test along {h.variable}: {h.error}")
-            for f in cv.failed:
-                extra.append(f"cross-validation fold {f['fold']} ({f['n_train']} training "
-                             f"rows): {f['error']}")
-            plaus = scan_plausibility(law, res.values, fd, design, box, trends, limits=lims)
-            sub = fd.subset(rows)
-            resid = analyse_residuals(
-                res.residual, res.best_fit,
-                {k: sub.arrays[k] for k in design.varying},
-                describe=lambda k: "the fitted value" if k == "fitted" else k)
-            results.append(LawComparison(law, res, rows, law_notes, cv, holds, ex_rmse, plaus,
-                                         resid, extra_notes=extra))
+        outputs = _run_tasks(candidates, setup, int(jobs), bar)
     finally:
         bar.close()
-
+    results: list[LawComparison] = []
+    failed: list[dict[str, str]] = []
+    for law, out in zip(candidates, outputs):
+        one = _assemble(law, setup, out)
+        (failed if isinstance(one, dict) else results).append(one)  # type: ignore[arg-type]
     if not results:
         raise FitError(f"none of {what} could be fitted to data '{fd.name}': "
                        + "; ".join(f"{f['id']}: {f['error']}" for f in failed))
-    _akaike(results)
-    common = np.logical_and.reduce([r.rows for r in results])
-    same_rows = all(np.array_equal(r.rows, results[0].rows) for r in results)
-    if not same_rows and common.sum() < 3:
-        notes.append(f"the laws were fitted to different rows and share only "
-                     f"{int(common.sum())}: the ranking uses each law's CV RMSE over its own "
-                     "rows, which are not strictly comparable")
-        same_rows = True
-    elif not same_rows:
-        notes.append(f"the laws were fitted to different rows: the ranking uses the CV RMSE over "
-                     f"the {int(common.sum())} rows all of them could use (cv_rmse_common)")
-    for r in results:
-        if same_rows:
-            r.cv_rmse_common = r.cv.rmse
-        else:
-            pred = r.cv.predictions[common] if r.cv.predictions is not None else np.array([])
-            ok = np.isfinite(pred)
-            err = fd.arrays["mu"][common][ok] - pred[ok]
-            r.cv_rmse_common = float(np.sqrt(np.mean(err**2))) if err.size else math.nan
-    results.sort(key=_rank_key)
-    for i, r in enumerate(results, start=1):
-        r.rank = i
-    groups = {r.aic_group for r in results}
-    if len(groups) > 1:
-        notes.append("the laws were fitted to different rows (some dropped rows where they "
-                     "are singular): AIC, AICc, BIC and Akaike weights compare only laws of "
-                     "the same group (column 'grp')")
-    settings = {
-        "laws": what,
-        "folds": folds,
-        "seed": seed,
-        "starts": starts,
-        "holdout": fractions,
-        "holdout_rule": "rows with x > x_min + (1 - fraction)(x_max - x_min) are held out; "
-                        "the law is fitted on the others and scored on them",
-        "splits": [s.to_dict() for s in splits],
-        "extended_box": {k: {"low": lo, "high": hi, "unit": VARIABLES[k].unit or "-",
-                             "display": f"{fmt_value(k, lo)} .. {fmt_value(k, hi)}"}
-                         for k, (lo, hi) in box.items()},
-        "extended_box_rule": "0.5 x lowest .. 3 x highest measured value (s capped at 1; "
-                             "T: 20 K below .. 20 K above); derived variables follow their "
-                             "driver",
-        "mu_limits": list(lims),
-        "trend_tolerance": {"absolute": TREND_TOL, "relative": TREND_REL},
-        "trend_rule": "beyond each end of the measured range of a variable, mu must not move "
-                      "against the trend the data show toward that end by more than the "
-                      "tolerance (relative to mu where the reversal starts)",
-        "trend_alpha": TREND_ALPHA,
-        "ranking": RANKING,
-        "ranking_metric": "cv_rmse" if same_rows else "cv_rmse_common",
-        "common_rows": int(common.sum()),
-        "akaike_weights": "from AICc (AIC when AICc is undefined), among laws fitted to "
-                          "identical rows only",
-        "residual_tests": "Wald-Wolfowitz runs test (exact, one-sided: too few runs) and "
-                          "Kendall tau, per variable and vs the fitted value; Shapiro-Wilk; "
-                          "5 % level each, uncorrected",
-        "weights": "dataset" if fd.weights is not None else "none",
-    }
-    return Comparison(fd, results, skipped, failed, design, trends, box, splits, assign,
-                      settings, notes)
-
+    same_rows, common = _rank(results, fd, notes)
+    settings = _settings(setup, what, starts, fractions, same_rows, common)
+    return Comparison(fd, results, skipped, failed, design, setup.trends, setup.box,
+                      setup.splits, setup.assign, settings, notes)
