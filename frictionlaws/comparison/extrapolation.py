@@ -259,7 +259,7 @@ MIN_PAIRS = 5
 def _kendall(data: FitData, var: str, design: Design, rows: np.ndarray,
              continuity: bool) -> tuple[float, float, float | None, int, int, float | None]:
     """Stratified Kendall S, its variance, p-value, strata, pairs and Sen slope on ``rows``."""
-    from scipy import stats
+    from scipy import stats  # type: ignore[import-untyped]
 
     others = [k for k in design.varying if k != var]
     x, y = data.arrays[var], data.arrays["mu"]
@@ -451,11 +451,11 @@ class Split:
         return self.reason is None
 
     def describe(self) -> str:
-        if self.reason:
+        if self.reason or self.test is None or self.threshold is None:
             return f"{self.variable}: not held out ({self.reason})"
+        n = int(self.test.sum())
         return (f"{self.variable} > {fmt_value(self.variable, self.threshold)} "
-                f"(upper {self.fraction:.0%} of the range, {int(self.test.sum())} "
-                f"row{'s' if int(self.test.sum()) != 1 else ''})")
+                f"(upper {self.fraction:.0%} of the range, {n} row{'s' if n != 1 else ''})")
 
     def to_dict(self) -> dict[str, Any]:
         return {"variable": self.variable, "fraction": self.fraction,
@@ -522,6 +522,8 @@ class HoldoutResult:
 def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
                   fit_kwargs: Mapping[str, Any] | None = None) -> HoldoutResult:
     """Fit ``law`` on the usable rows below the split and score the usable rows above."""
+    if split.test is None:
+        raise InputError(f"the holdout along {split.variable} is not usable: {split.reason}")
     test = usable & split.test
     train = usable & ~split.test
     n_tr, n_te = int(train.sum()), int(test.sum())
