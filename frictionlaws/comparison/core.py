@@ -37,18 +37,16 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..errors import DomainError, FitError, InputError
-from ..fitting import FitData, FitResult, as_fit_data, fit
-from ..jsonio import dumps as _dumps
+from ..fitting import FitData, as_fit_data, fit
 from ..law import VARIABLES, Law
 from ..registry import get_law, list_laws
-from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
+from .cv import combine_folds, error_text, kfold_assignment, score_fold
 from .extrapolation import (
     MU_LIMITS,
     TREND_ALPHA,
@@ -56,7 +54,6 @@ from .extrapolation import (
     TREND_TOL,
     Design,
     HoldoutResult,
-    Plausibility,
     Split,
     Trend,
     data_trends,
@@ -68,12 +65,12 @@ from .extrapolation import (
     scan_plausibility,
     score_holdout,
 )
-from .residuals import ResidualAnalysis, analyse_residuals
+from .residuals import analyse_residuals
+from .results import COMPARISON_FORMAT, Comparison, LawComparison
 
-__all__ = ["compare", "Comparison", "LawComparison", "usable_rows", "COMPARISON_FORMAT"]
+__all__ = ["compare", "Comparison", "LawComparison", "usable_rows", "COMPARISON_FORMAT",
+           "default_family"]
 
-COMPARISON_FORMAT = "frictionlaws-comparison"
-COMPARISON_VERSION = 1
 RANKING = ("cross-validated RMSE (ascending), over the rows common to all fitted laws when "
            "they were fitted to different rows; laws with parameters the data cannot determine "
            "after identifiable ones, laws with incomplete cross-validation after complete ones, "
@@ -92,193 +89,6 @@ def usable_rows(law: Law, data: FitData) -> np.ndarray:
             x = data.arrays[var]
             ok &= (np.abs(x) if var == "v" else x) > floor
     return ok
-
-
-@dataclass
-class LawComparison:
-    """Everything :func:`compare` found out about one fitted law."""
-
-    law: Law
-    fit: FitResult
-    rows: np.ndarray
-    notes: list[str]
-    cv: CVResult
-    holdouts: list[HoldoutResult]
-    extrapolation_rmse: float
-    plausibility: Plausibility
-    residuals: ResidualAnalysis
-    akaike_weight: float | None = None
-    weight_basis: str = "aicc"
-    aic_group: int = 0
-    aic_group_size: int = 1
-    rank: int = 0
-    cv_rmse_common: float = math.nan
-    extra_notes: list[str] = field(default_factory=list)
-
-    @property
-    def id(self) -> str:
-        return self.law.id
-
-    @property
-    def metrics(self) -> dict[str, Any]:
-        return self.fit.metrics
-
-    @property
-    def plausible(self) -> bool:
-        return self.plausibility.plausible
-
-    @property
-    def n_dropped(self) -> int:
-        return int(self.rows.size - self.rows.sum())
-
-    def to_dict(self) -> dict[str, Any]:
-        m = self.fit.metrics
-        return {
-            "rank": self.rank,
-            "id": self.law.id,
-            "title": self.law.title,
-            "status": "fitted",
-            "k": m["k"], "n": m["n"], "n_dropped": self.n_dropped,
-            "r2": m["r2"], "adj_r2": m["adj_r2"], "rmse": m["rmse"], "mae": m["mae"],
-            "max_abs_residual": m["max_abs_residual"],
-            "aic": m["aic"], "aicc": m["aicc"], "bic": m["bic"],
-            "akaike_weight": self.akaike_weight,
-            "akaike_weight_basis": self.weight_basis,
-            "aic_group": self.aic_group, "aic_group_size": self.aic_group_size,
-            "cv_rmse": self.cv.rmse,
-            "cv_rmse_common": self.cv_rmse_common,
-            "cv": self.cv.to_dict(),
-            "extrapolation_rmse": self.extrapolation_rmse,
-            "extrapolation": [h.to_dict() for h in self.holdouts],
-            "plausible": self.plausible,
-            "plausibility_reasons": self.plausibility.reasons,
-            "plausibility": self.plausibility.to_dict(),
-            "converged": self.fit.success,
-            "warnings": list(self.fit.warnings),
-            "non_identifiable": list(self.fit.non_identifiable),
-            "residual_tests": self.residuals.to_dict(),
-            "residual_structure": list(self.residuals.structure),
-            "notes": list(self.notes) + list(self.extra_notes),
-            "params": {k: p.to_dict() for k, p in self.fit.params.items()},
-            "settings": dict(self.fit.settings),
-        }
-
-
-@dataclass
-class Comparison:
-    """The result of :func:`compare`: ranked laws, skipped and failed laws, settings.
-
-    ``results`` is in rank order (best first).  :meth:`table` is the console
-    table, :meth:`to_dict`/:meth:`to_json` the machine-readable form,
-    :meth:`write_report` the HTML/Markdown/PNG report.
-    """
-
-    data: FitData
-    results: list[LawComparison]
-    skipped: list[dict[str, str]]
-    failed: list[dict[str, str]]
-    design: Design
-    trends: dict[str, Trend]
-    box: dict[str, tuple[float, float]]
-    splits: list[Split]
-    folds: np.ndarray
-    settings: dict[str, Any]
-    notes: list[str] = field(default_factory=list)
-
-    def __getitem__(self, law_id: str) -> LawComparison:
-        key = get_law(law_id).id
-        for r in self.results:
-            if r.law.id == key:
-                return r
-        raise KeyError(law_id)
-
-    @property
-    def ranking(self) -> list[str]:
-        """Law ids, best first."""
-        return [r.law.id for r in self.results]
-
-    @property
-    def best(self) -> LawComparison | None:
-        return self.results[0] if self.results else None
-
-    def dataset_info(self) -> dict[str, Any]:
-        """Name, source, rows and the ranges of the variables (SI and display units)."""
-        variables = {}
-        for k, x in self.data.arrays.items():
-            if k not in VARIABLES:
-                continue
-            v = VARIABLES[k]
-            variables[k] = {"unit": v.unit or "-", "meaning": v.meaning,
-                            "min": float(np.min(x)), "max": float(np.max(x)),
-                            "distinct": int(np.unique(x).size),
-                            "range_display": f"{fmt_value(k, float(np.min(x)))} .. "
-                                             f"{fmt_value(k, float(np.max(x)))}"}
-        mu = self.data.arrays["mu"]
-        return {"name": self.data.name, "source": self.data.source, "n": self.data.n,
-                "mu": {"unit": "-", "min": float(np.min(mu)), "max": float(np.max(mu))},
-                "variables": variables, "weighted": self.data.weights is not None,
-                "notes": list(self.data.notes), "design": self.design.to_dict(),
-                "trends": {k: t.to_dict() for k, t in self.trends.items()}}
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-able dict: dataset, units, settings, ranked laws, skipped, failed."""
-        units = {"mu": "-", **{k: (v.unit or "-") for k, v in VARIABLES.items()}}
-        units.update({m: "-" for m in ("r2", "adj_r2", "rmse", "mae", "max_abs_residual",
-                                        "cv_rmse", "extrapolation_rmse", "akaike_weight")})
-        units.update({m: "- (log-likelihood based, compare within a group)"
-                      for m in ("aic", "aicc", "bic")})
-        return {
-            "format": COMPARISON_FORMAT,
-            "version": COMPARISON_VERSION,
-            "dataset": self.dataset_info(),
-            "units": units,
-            "settings": self.settings,
-            "ranking": self.ranking,
-            "laws": [r.to_dict() for r in self.results],
-            "skipped": list(self.skipped),
-            "failed": list(self.failed),
-            "notes": list(self.notes),
-        }
-
-    def to_json(self, indent: int = 2) -> str:
-        """JSON text of :meth:`to_dict` (non-finite numbers become null)."""
-        return _dumps(self.to_dict(), indent=indent)
-
-    def to_frame(self) -> Any:
-        """One row per ranked law: rank, metrics, CV and extrapolation RMSE, flags."""
-        import pandas as pd
-
-        cols = ("rank", "id", "k", "n", "r2", "rmse", "aic", "bic", "cv_rmse",
-                "extrapolation_rmse", "akaike_weight", "plausible", "converged")
-        rows = [{c: r.to_dict()[c] for c in cols} for r in self.results]
-        frame = pd.DataFrame(rows, columns=list(cols)).rename(columns={"id": "law"})
-        frame.attrs["units"] = "mu, rmse, cv_rmse, extrapolation_rmse: - (dimensionless)"
-        return frame
-
-    def _repr_html_(self) -> str:
-        from ..interop import table_html
-
-        rows = self.to_frame().to_dict("records")
-        return table_html(rows, caption=f"laws compared on {self.data.name} "
-                                        f"({self.data.n} rows), best first")
-
-    def table(self) -> str:
-        """The ranked console table with the flags, skipped and failed laws."""
-        from .report import format_table
-
-        return format_table(self)
-
-    def __str__(self) -> str:
-        return self.table()
-
-    def write_report(self, directory: str | Path) -> dict[str, Path]:
-        """Write ``report.html``, ``report.md``, ``comparison.json`` and the PNG figures.
-
-        Returns a dict name -> path of what was written.
-        """
-        from .report import write_report
-
-        return write_report(self, directory)
 
 
 # ----------------------------------------------------------------- compare
@@ -587,43 +397,33 @@ def compare(
     Parameters
     ----------
     laws : str, Law or iterable, optional
-        Law ids/aliases (a comma-separated string is accepted) or laws.  None
-        takes every law of ``family``.  Laws the data cannot feed (a law
-        needing T on data without temperature) are listed in
-        :attr:`Comparison.skipped` with the reason, never silently left out.
+        Law ids/aliases (a comma-separated string is accepted) or laws.  None takes every
+        law of ``family``.  Laws the data cannot feed (a law needing T on data without
+        temperature) are listed in :attr:`Comparison.skipped` with the reason.
     data : str, path, Dataset, DataFrame, mapping or FitData
-        Anything :func:`frictionlaws.fitting.as_fit_data` accepts (a packaged
-        dataset name such as ``"thesis-steel"``, a CSV path, SI arrays).
+        Anything :func:`frictionlaws.fitting.as_fit_data` accepts (a packaged dataset name
+        such as ``"thesis-steel"``, a CSV path, SI arrays).
     family : {"sliding", "slip"}, optional
-        The family to take when ``laws`` is None; by default
-        :func:`default_family`: ``"slip"`` for rolling-wheel slip data (s
-        varying within 0..1, no contact pressure), else ``"sliding"``.
+        The family to take when ``laws`` is None; by default :func:`default_family`:
+        ``"slip"`` for rolling-wheel slip data (s varying within 0..1, no contact
+        pressure), else ``"sliding"``.
     folds : int
-        Number of cross-validation folds (at most the number of rows; more is
-        reduced to leave-one-out with a note).
+        Number of cross-validation folds (more than the rows: leave-one-out, with a note).
     holdout : float, str or mapping, optional
-        Fraction of the upper range held out for the extrapolation test: a
-        number applies to p and v; ``"p=0.3,v=0.2"`` or ``{"p": 0.3}`` per
-        variable; None or 0 for none.
+        Fraction of the upper range held out for the extrapolation test: a number applies
+        to p and v; ``"p=0.3,v=0.2"`` or ``{"p": 0.3}`` per variable; None or 0 for none.
     seed : int
-        Seed of the folds and of the fits' random starts: the same seed gives
-        identical results.
+        Seed of the folds and of the fits' random starts (same seed, same results).
     starts : int, optional
         Random starts per non-linear fit (default: the fitter's own rule).
     weights : {"auto"}, None or array
-        As in :func:`~frictionlaws.fitting.fit`.  CV and extrapolation errors
-        are unweighted.
+        As in :func:`~frictionlaws.fitting.fit`.  CV and extrapolation errors are
+        unweighted.
     mu_limits : (float, float)
         Physical limits of mu in the plausibility scan (default 0 and 5).
-    mapping : mapping or str, optional
-        Canonical column -> the user's column, for reading a user's file, as in
-        :func:`~frictionlaws.io.load_dataset`.
-    units : mapping or str, optional
-        Units of columns whose header has none, as in
-        :func:`~frictionlaws.io.load_dataset`.
-    area : str or float, optional
-        Nominal contact area (``"314.16 mm^2"`` or a float in m^2) to derive
-        the pressure from the normal load, as in
+    mapping, units, area : optional
+        Column mapping, units of columns whose header has none, and the nominal contact
+        area (``"314.16 mm^2"`` or m^2) for reading a user's file, as in
         :func:`~frictionlaws.io.load_dataset`.
     progress : bool, optional
         Show a tqdm progress bar; by default only when stderr is a terminal.
@@ -635,11 +435,10 @@ def compare(
     Returns
     -------
     Comparison
-        The fitted laws in rank order (best first, by cross-validated RMSE),
-        each with its fit, cross-validation, extrapolation (hold-out) errors,
-        plausibility scan, residual tests and Akaike weight; the laws skipped
-        (with the reason) and those whose fit failed (with the error); the
-        settings and notes.
+        The fitted laws in rank order (best first, by cross-validated RMSE), each with its
+        fit, cross-validation, hold-out errors, plausibility scan, residual tests and
+        Akaike weight; the laws skipped (with the reason) and those whose fit failed
+        (with the error); the settings and notes.
 
     Raises
     ------
@@ -651,6 +450,13 @@ def compare(
     if data is None:
         raise InputError("no data given to compare the laws on")
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
+    return _compare(fd, laws, family, folds, holdout, seed, starts, mu_limits, progress, jobs)
+
+
+def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: Any, seed: int,
+             starts: int | None, mu_limits: Sequence[float], progress: bool | None,
+             jobs: Any) -> Comparison:
+    """:func:`compare` on data already read."""
     folds, lims, notes = _check_options(fd, folds, mu_limits, jobs)
     fractions = parse_holdout(holdout)
     candidates, skipped, what = _select_laws(laws, family, fd)

@@ -388,10 +388,51 @@ def _axis(data: FitData, var: str, lo: float, hi: float, n: int) -> np.ndarray:
 # ---------------------------------------------------------------- holdout
 
 
+def _holdout_items(text: str) -> dict[str, Any]:
+    """``"p=0.3,v=0.2"`` -> ``{"p": "0.3", "v": "0.2"}`` (each variable once)."""
+    items: dict[str, Any] = {}
+    for part in text.split(","):
+        if not part.strip():
+            continue
+        if "=" not in part:
+            raise InputError(f"--holdout: expected FRACTION or VAR=FRACTION,..., "
+                             f"got '{part.strip()}'")
+        k, v = (s.strip() for s in part.split("=", 1))
+        if k in items:
+            raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
+                             "give each variable once")
+        items[k] = v
+    return items
+
+
+def _holdout_fraction(k: str, v: Any) -> float:
+    """The checked fraction of variable ``k`` (0 means no holdout along it)."""
+    if k not in VARIABLES:
+        raise InputError(f"--holdout: unknown variable '{k}' (known: {', '.join(VARIABLES)})")
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise InputError(f"--holdout: '{k}={v}' is not a number") from None
+    if f != 0 and not 0 < f < 1:
+        raise InputError(f"--holdout: the fraction for {k} must be between 0 and 1 "
+                         f"(exclusive), not {f:g}")
+    return f
+
+
 def parse_holdout(spec: Any) -> dict[str, float]:
     """Holdout fractions from ``0.3``, ``"0.3"``, ``"p=0.3,v=0.2"``, a mapping, or None/0.
 
     A single fraction applies to pressure and velocity.
+
+    Parameters
+    ----------
+    spec : float, str, mapping or None
+        The holdout as given.
+
+    Returns
+    -------
+    dict of str to float
+        Variable -> fraction of its range held out (variables with 0 left out).
     """
     if spec is None:
         return {}
@@ -403,37 +444,9 @@ def parse_holdout(spec: Any) -> dict[str, float]:
         text = str(spec).strip()
         if text.lower() in ("", "none", "0", "off"):
             return {}
-        if "=" not in text:
-            items = {k: text for k in DEFAULT_HOLDOUT}
-        else:
-            items = {}
-            for part in text.split(","):
-                if not part.strip():
-                    continue
-                if "=" not in part:
-                    raise InputError(f"--holdout: expected FRACTION or VAR=FRACTION,..., "
-                                     f"got '{part.strip()}'")
-                k, v = (s.strip() for s in part.split("=", 1))
-                if k in items:
-                    raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
-                                     "give each variable once")
-                items[k] = v
-    out = {}
-    for k, v in items.items():
-        if k not in VARIABLES:
-            raise InputError(f"--holdout: unknown variable '{k}' (known: "
-                             f"{', '.join(VARIABLES)})")
-        try:
-            f = float(v)
-        except (TypeError, ValueError):
-            raise InputError(f"--holdout: '{k}={v}' is not a number") from None
-        if f == 0:
-            continue
-        if not 0 < f < 1:
-            raise InputError(f"--holdout: the fraction for {k} must be between 0 and 1 "
-                             f"(exclusive), not {f:g}")
-        out[k] = f
-    return out
+        items = _holdout_items(text) if "=" in text else {k: text for k in DEFAULT_HOLDOUT}
+    fractions = {k: _holdout_fraction(k, v) for k, v in items.items()}
+    return {k: f for k, f in fractions.items() if f != 0}
 
 
 @dataclass

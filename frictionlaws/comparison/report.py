@@ -36,7 +36,7 @@ from ..law import VARIABLES
 from .extrapolation import Split, evaluate_on, fmt_value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .core import Comparison, LawComparison
+    from .results import Comparison, LawComparison
 
 __all__ = ["format_table", "write_report", "make_figures", "Figure"]
 
