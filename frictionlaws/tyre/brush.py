@@ -461,6 +461,32 @@ def _index_of(values: np.ndarray, x: float) -> int:
 # ----------------------------------------------------------------------- model
 
 
+def _law_mu(bound: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
+    """mu(p, v) of a bound law whatever its variables (none, p, v, or both)."""
+    if names == ():
+        mu0 = float(bound())
+
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return np.full(np.broadcast(p, v).shape, mu0)
+    elif names == ("p",):
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(p)
+    elif names == ("v",):
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(v) + 0.0 * p
+    else:
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(p=p, v=v)
+    return mu
+
+
+def _function_mu(func: Callable[..., Any]) -> Callable[..., Any]:
+    """mu(p, v) of a user's function, given the speed's magnitude, as a float array."""
+    def mu(p: Any, v: Any = 0.0) -> Any:
+        return np.asarray(func(p, np.abs(v)), dtype=float) + 0.0 * p
+    return mu
+
+
 class BrushModel:
     """A brush tyre whose bristles obey a friction law mu(p, v).
 
@@ -509,55 +535,40 @@ class BrushModel:
             params = law.values
             law = law.law
         if isinstance(law, (str, Law)):
-            from ..registry import get_law
-
-            self.law = get_law(law)
-            extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
-            if extra or self.law.family != "sliding":
-                what = ", ".join(f"{v} ({VARIABLES[v].meaning})" for v in extra)
-                raise DomainError(
-                    f"law '{self.law.id}' cannot be the local friction limit of a brush "
-                    f"model: it needs {what or 'a slip ratio'}, while a bristle only has its "
-                    "contact pressure p and sliding speed v. Use a law of p and/or v "
-                    "(e.g. coulomb, thirion, savkoor, exponential-decay)")
-            self.values = self.law.resolve(params, preset)
-            adm = self.law.check_admissible(self.values)
-            if adm:
-                raise DomainError(f"law '{self.law.id}': parameters not admissible: {adm}")
-            bound = self.law.bind(self.values)
-            names = self.law.variables
-            self.uses_v = "v" in names
-            self.label = self.law.id
-            if names == ():
-                mu0 = float(bound())
-
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return np.full(np.broadcast(p, v).shape, mu0)
-            elif names == ("p",):
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(p)
-            elif names == ("v",):
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(v) + 0.0 * p
-            else:
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(p=p, v=v)
-            self.mu = mu
+            self._use_law(law, params, preset)
         elif callable(law):
             if params is not None or preset is not None:
                 raise InputError("params/preset apply to a registered law, not to a function")
-            self.values = {}
+            self.values: dict[str, float] = {}
             self.uses_v = True
-            self.label = getattr(law, "__name__", "function")
-            func = law
-
-            def mu(p: Any, v: Any = 0.0) -> Any:
-                return np.asarray(func(p, np.abs(v)), dtype=float) + 0.0 * p
-            self.mu = mu
+            self.label: str = getattr(law, "__name__", "function")
+            self.mu = _function_mu(law)
         else:
             raise InputError(f"law must be a law name, a Law, a fit result or a function "
                              f"mu(p, v); got {type(law).__name__}")
         self._ranges = self._reference_ranges()
+
+    def _use_law(self, law: str | Law, params: Mapping[str, float] | None,
+                 preset: str | None) -> None:
+        """Take a registered law of p and/or v, with its parameter values, as the limit."""
+        from ..registry import get_law
+
+        self.law = get_law(law)
+        extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
+        if extra or self.law.family != "sliding":
+            what = ", ".join(f"{v} ({VARIABLES[v].meaning})" for v in extra)
+            raise DomainError(
+                f"law '{self.law.id}' cannot be the local friction limit of a brush "
+                f"model: it needs {what or 'a slip ratio'}, while a bristle only has its "
+                "contact pressure p and sliding speed v. Use a law of p and/or v "
+                "(e.g. coulomb, thirion, savkoor, exponential-decay)")
+        self.values = self.law.resolve(params, preset)
+        adm = self.law.check_admissible(self.values)
+        if adm:
+            raise DomainError(f"law '{self.law.id}': parameters not admissible: {adm}")
+        self.uses_v = "v" in self.law.variables
+        self.label = self.law.id
+        self.mu = _law_mu(self.law.bind(self.values), self.law.variables)
 
     # -------------------------------------------------------------- checks
     def _reference_ranges(self) -> dict[str, tuple[float, float, str]]:
