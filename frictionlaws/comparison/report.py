@@ -148,8 +148,62 @@ def _header_lines(cmp: Comparison) -> list[str]:
     ]
 
 
+def _section(title: str, lines: Sequence[str]) -> list[str]:
+    """A titled block of the console table, or nothing when there is nothing to say."""
+    return ["", title, *lines] if lines else []
+
+
+def _table_footer(cmp: Comparison) -> list[str]:
+    """The legend lines under the ranked table."""
+    out = []
+    if _common(cmp):
+        out.append(f"CV common: CV RMSE over the {cmp.settings['common_rows']} rows every law "
+                   "could use (the ranking criterion, as the laws were fitted to different rows)")
+    if any(not r.cv.complete for r in cmp.results):
+        out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
+    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
+               "within a group only")
+    return out
+
+
+def _table_sections(cmp: Comparison) -> list[str]:
+    """The flags, trends, warnings, notes, skipped and failed laws under the table."""
+    res = cmp.results
+    out = _section("NOT IDENTIFIABLE from these data (ranked after the identifiable laws):",
+                   [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
+                    for r in res if r.fit.non_identifiable])
+    out += _section("IMPLAUSIBLE outside the measured range (extended box):",
+                    [f"  {r.law.id}: {reason}" for r in res if not r.plausible
+                     for reason in r.plausibility.reasons])
+    trends = [t.describe() for t in cmp.trends.values()]
+    if trends:
+        out += ["", "trends the data show: " + "; ".join(trends)]
+    out += _section("residual structure (each test at the 5 % level):",
+                    [f"  {r.law.id}: {s}" for r in res for s in r.residuals.structure])
+    out += _section("fit warnings (identifiability, bounds):",
+                    [f"  {r.law.id}: {w}" for r in res for w in r.fit.warnings])
+    notes = [f"  {r.law.id}: {n}" for r in res for n in r.notes + r.extra_notes]
+    if notes or cmp.notes or cmp.data.notes:
+        out += ["", "notes:", *[f"  {n}" for n in cmp.data.notes + cmp.notes], *notes]
+    out += _section("skipped (cannot be fitted to these data):",
+                    [f"  {s['id']}: {s['reason']}" for s in cmp.skipped])
+    out += _section("failed to fit:", [f"  {f['id']}: {f['error']}" for f in cmp.failed])
+    return out
+
+
 def format_table(cmp: Comparison) -> str:
-    """The ranked table with flags, notes, skipped and failed laws (plain text)."""
+    """Format the ranked table with flags, notes, skipped and failed laws (plain text).
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+
+    Returns
+    -------
+    str
+        The console table.
+    """
     rows = _rows(cmp)
     columns = _columns(cmp)
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
@@ -162,47 +216,7 @@ def format_table(cmp: Comparison) -> str:
 
     out = _header_lines(cmp) + ["", line(columns)]
     out += [line(r) for r in rows]
-    if _common(cmp):
-        out.append(f"CV common: CV RMSE over the {cmp.settings['common_rows']} rows every law "
-                   "could use (the ranking criterion, as the laws were fitted to different rows)")
-    if any(not r.cv.complete for r in cmp.results):
-        out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
-    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
-               "within a group only")
-    unid = [r for r in cmp.results if r.fit.non_identifiable]
-    if unid:
-        out += ["", "NOT IDENTIFIABLE from these data (ranked after the identifiable laws):"]
-        out += [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
-                for r in unid]
-    bad = [r for r in cmp.results if not r.plausible]
-    if bad:
-        out += ["", "IMPLAUSIBLE outside the measured range (extended box):"]
-        for r in bad:
-            for reason in r.plausibility.reasons:
-                out.append(f"  {r.law.id}: {reason}")
-    trends = [t.describe() for t in cmp.trends.values()]
-    if trends:
-        out += ["", "trends the data show: " + "; ".join(trends)]
-    struct = [(r.law.id, s) for r in cmp.results for s in r.residuals.structure]
-    if struct:
-        out += ["", "residual structure (each test at the 5 % level):"]
-        out += [f"  {lid}: {s}" for lid, s in struct]
-    ident = [(r.law.id, w) for r in cmp.results for w in r.fit.warnings]
-    if ident:
-        out += ["", "fit warnings (identifiability, bounds):"]
-        out += [f"  {lid}: {w}" for lid, w in ident]
-    notes = [(r.law.id, n) for r in cmp.results for n in r.notes + r.extra_notes]
-    if notes or cmp.notes or cmp.data.notes:
-        out += ["", "notes:"]
-        out += [f"  {n}" for n in cmp.data.notes + cmp.notes]
-        out += [f"  {lid}: {n}" for lid, n in notes]
-    if cmp.skipped:
-        out += ["", "skipped (cannot be fitted to these data):"]
-        out += [f"  {s['id']}: {s['reason']}" for s in cmp.skipped]
-    if cmp.failed:
-        out += ["", "failed to fit:"]
-        out += [f"  {f['id']}: {f['error']}" for f in cmp.failed]
-    return "\n".join(out)
+    return "\n".join(out + _table_footer(cmp) + _table_sections(cmp))
 
 
 # ------------------------------------------------------------------ figures
@@ -853,47 +867,40 @@ li{margin:0.2em 0}
 """
 
 
-def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
-    """The report as one self-contained HTML page (figures embedded as base64 PNG)."""
+def _html_ranking(cmp: Comparison) -> list[str]:
+    """The ranking table in HTML; each law's title under its id."""
     e = html.escape
-    d = cmp.data
-    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
-             f"<title>Comparison of friction laws on {e(d.name)}</title>",
-             f"<style>{_CSS}</style></head><body>",
-             f"<h1>Comparison of friction laws on {e(d.name)}</h1>",
-             f"<p>Data: <b>{e(d.name)}</b> ({e(d.source)}), {d.n} rows; "
-             f"{e(_ranges_text(cmp))}.</p>",
-             "<ul>" + "".join(f"<li>{e(m)}</li>" for m in _method(cmp)) + "</ul>",
-             "<h2>Ranking</h2>"]
     head, rows = _metric_table(cmp)
     # the title goes under the law id (a separate column makes the table too wide)
     skip = head.index("title")
-    parts.append("<table><tr>" + "".join(
-        f"<th class='{'l' if h == 'law' else ''}'>{e(h)}</th>"
-        for i, h in enumerate(head) if i != skip) + "</tr>")
+    parts = ["<table><tr>" + "".join(f"<th class='{'l' if h == 'law' else ''}'>{e(h)}</th>"
+                                     for i, h in enumerate(head) if i != skip) + "</tr>"]
     for r, row in zip(cmp.results, rows):
-        cls = "" if r.plausible else " class='bad'"
         cells = []
         for i, c in enumerate(row):
             if i == skip:
                 continue
-            text = e(c)
-            cls_td = ""
+            text, cls_td = e(c), ""
             if head[i] in ("plausible", "identifiable") and c == "NO":
                 text = "<span class='bad-word'>NO</span>"
             if head[i] == "law":
                 text = f"<b>{e(c)}</b><br><span class='title'>{e(row[skip])}</span>"
                 cls_td = "l law"
             cells.append(f"<td class='{cls_td}'>{text}</td>")
+        cls = "" if r.plausible else " class='bad'"
         parts.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
     parts.append("</table>")
-    parts.append("<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
-                 "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
-                 "alone in its group has weight 1 trivially).</p>")
+    return parts
+
+
+def _html_sections(cmp: Comparison) -> list[str]:
+    """The prose sections as HTML lists, IMPLAUSIBLE highlighted."""
+    e = html.escape
 
     def mark(text: str) -> str:
         return e(text).replace("IMPLAUSIBLE", "<span class='bad-word'>IMPLAUSIBLE</span>")
 
+    parts = []
     for heading, items in _sections(cmp):
         parts.append(f"<h2>{e(heading)}</h2><ul>")
         for item in items:
@@ -903,7 +910,38 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
             else:
                 parts.append(f"<li>{mark(item)}</li>")
         parts.append("</ul>")
-    parts.append("<h2>Figures</h2>")
+    return parts
+
+
+def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
+    """Write the report as one self-contained HTML page (figures embedded as base64 PNG).
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+    figures : sequence of Figure
+        The figures to embed, in order.
+
+    Returns
+    -------
+    str
+        The HTML page.
+    """
+    e = html.escape
+    d = cmp.data
+    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
+             f"<title>Comparison of friction laws on {e(d.name)}</title>",
+             f"<style>{_CSS}</style></head><body>",
+             f"<h1>Comparison of friction laws on {e(d.name)}</h1>",
+             f"<p>Data: <b>{e(d.name)}</b> ({e(d.source)}), {d.n} rows; "
+             f"{e(_ranges_text(cmp))}.</p>",
+             "<ul>" + "".join(f"<li>{e(m)}</li>" for m in _method(cmp)) + "</ul>",
+             "<h2>Ranking</h2>", *_html_ranking(cmp),
+             "<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
+             "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
+             "alone in its group has weight 1 trivially).</p>",
+             *_html_sections(cmp), "<h2>Figures</h2>"]
     for f in figures:
         b64 = base64.b64encode(f.png).decode("ascii")
         parts.append(f"<figure id='{e(f.name)}'><h3>{e(f.title)}</h3>"
