@@ -66,3 +66,16 @@ def test_figures_leave_pyplot_alone(serial: Comparison) -> None:
     height = int.from_bytes(residuals.png[20:24], "big")
     assert width == round((3.3 * 4 + 1.8) * DPI)
     assert height == round((0.6 * len(LAWS) + 1.7) * DPI)
+
+
+def test_figures_drawn_in_two_processes_are_the_same(serial: Comparison, tmp_path) -> None:
+    one = make_figures(serial)
+    two = make_figures(serial, jobs=2)
+    assert [f.name for f in two] == [f.name for f in one]
+    assert [f.png for f in two] == [f.png for f in one]
+    written = serial.write_report(tmp_path / "report", jobs=2)
+    assert written["residuals"].read_bytes() == next(f.png for f in one
+                                                     if f.name == "residuals")
+    with pytest.raises(InputError, match="jobs"):
+        serial.write_report(tmp_path / "other", jobs=0)
+    assert not (tmp_path / "other").exists()

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import InputError
 from ..law import VARIABLES
 from .extrapolation import Split, evaluate_on, fmt_value
 
@@ -702,7 +703,16 @@ def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
     return plan
 
 
-def make_figures(cmp: Comparison) -> list[Figure]:
+def _draw(cmp: Comparison, index: int) -> Figure | None:
+    """Draw figure ``index`` of the report's plan (module-level: joblib runs it elsewhere)."""
+    import matplotlib
+
+    draw, args = _figure_plan(cmp)[index]
+    with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 9}):
+        return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
+
+
+def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
     """Render every figure of the report.
 
     Each figure is drawn on its own Agg canvas (pyplot and the user's backend are
@@ -712,22 +722,22 @@ def make_figures(cmp: Comparison) -> list[Figure]:
     ----------
     cmp : Comparison
         The comparison to draw.
+    jobs : int
+        Processes (joblib) drawing the figures; 1 draws them here, one after another.
 
     Returns
     -------
     list of Figure
         The PNG figures in report order.
     """
-    import matplotlib
+    indices = range(len(_figure_plan(cmp)))
+    if jobs == 1:
+        figs = [_draw(cmp, i) for i in indices]
+    else:
+        from joblib import Parallel, delayed  # type: ignore[import-untyped]
 
-    styles = _styles(cmp)
-    figs: list[Figure] = []
-    with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 9}):
-        for draw, args in _figure_plan(cmp):
-            fig = draw(cmp, *args, styles) if args else draw(cmp, styles)
-            if fig is not None:
-                figs.append(fig)
-    return figs
+        figs = Parallel(n_jobs=jobs)(delayed(_draw)(cmp, i) for i in indices)
+    return [f for f in figs if f is not None]
 
 
 # ------------------------------------------------------------- md and html
@@ -951,12 +961,30 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     return "\n".join(parts)
 
 
-def write_report(cmp: Comparison, directory: str | Path) -> dict[str, Path]:
-    """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``."""
+def write_report(cmp: Comparison, directory: str | Path, jobs: int = 1) -> dict[str, Path]:
+    """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``.
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+    directory : str or Path
+        Where to write (created if missing).
+    jobs : int
+        Processes drawing the figures (see :func:`make_figures`).
+
+    Returns
+    -------
+    dict of str to Path
+        Name -> path of each file written.
+    """
     from ..io import output_dir
 
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or not (jobs >= 1 or jobs == -1):
+        raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
+                         f"{jobs!r}", option="jobs")
     out = output_dir(directory, "report directory")
-    figures = make_figures(cmp)
+    figures = make_figures(cmp, jobs)
     written: dict[str, Path] = {}
     for f in figures:
         p = out / f"{f.name}.png"

@@ -207,11 +207,21 @@ class Comparison:
     def __str__(self) -> str:
         return self.table()
 
-    def write_report(self, directory: str | Path) -> dict[str, Path]:
+    def write_report(self, directory: str | Path, *, jobs: int = 1) -> dict[str, Path]:
         """Write ``report.html``, ``report.md``, ``comparison.json`` and the PNG figures.
 
-        Returns a dict name -> path of what was written.
+        Parameters
+        ----------
+        directory : str or Path
+            Where to write (created if missing).
+        jobs : int
+            Processes (joblib) drawing the figures; 1 draws them in this process.
+
+        Returns
+        -------
+        dict of str to Path
+            Name -> path of each file written.
         """
         from .report import write_report
 
-        return write_report(self, directory)
+        return write_report(self, directory, jobs)
