@@ -60,8 +60,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..fitting import FitData, FitResult, fit
+from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
+from .cv import error_text, refit
 
 __all__ = ["MU_LIMITS", "TREND_TOL", "TREND_REL", "TREND_ALPHA", "Design", "design_of", "Trend",
            "data_trend", "data_trends", "extended_box", "Split", "holdout_splits",
@@ -258,7 +259,7 @@ MIN_PAIRS = 5
 def _kendall(data: FitData, var: str, design: Design, rows: np.ndarray,
              continuity: bool) -> tuple[float, float, float | None, int, int, float | None]:
     """Stratified Kendall S, its variance, p-value, strata, pairs and Sen slope on ``rows``."""
-    from scipy import stats
+    from scipy import stats  # type: ignore[import-untyped]
 
     others = [k for k in design.varying if k != var]
     x, y = data.arrays[var], data.arrays["mu"]
@@ -387,10 +388,52 @@ def _axis(data: FitData, var: str, lo: float, hi: float, n: int) -> np.ndarray:
 # ---------------------------------------------------------------- holdout
 
 
+def _holdout_items(text: str) -> dict[str, Any]:
+    """``"p=0.3,v=0.2"`` -> ``{"p": "0.3", "v": "0.2"}`` (each variable once)."""
+    items: dict[str, Any] = {}
+    for part in text.split(","):
+        if not part.strip():
+            continue
+        if "=" not in part:
+            raise InputError(f"expected FRACTION or VAR=FRACTION,..., "
+                             f"got '{part.strip()}'", option="holdout")
+        k, v = (s.strip() for s in part.split("=", 1))
+        if k in items:
+            raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
+                             "give each variable once")
+        items[k] = v
+    return items
+
+
+def _holdout_fraction(k: str, v: Any) -> float:
+    """The checked fraction of variable ``k`` (0 means no holdout along it)."""
+    if k not in VARIABLES:
+        raise InputError(f"unknown variable '{k}' (known: {', '.join(VARIABLES)})",
+                         option="holdout")
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise InputError(f"'{k}={v}' is not a number", option="holdout") from None
+    if f != 0 and not 0 < f < 1:
+        raise InputError(f"the fraction for {k} must be between 0 and 1 "
+                         f"(exclusive), not {f:g}", option="holdout")
+    return f
+
+
 def parse_holdout(spec: Any) -> dict[str, float]:
     """Holdout fractions from ``0.3``, ``"0.3"``, ``"p=0.3,v=0.2"``, a mapping, or None/0.
 
     A single fraction applies to pressure and velocity.
+
+    Parameters
+    ----------
+    spec : float, str, mapping or None
+        The holdout as given.
+
+    Returns
+    -------
+    dict of str to float
+        Variable -> fraction of its range held out (variables with 0 left out).
     """
     if spec is None:
         return {}
@@ -402,37 +445,9 @@ def parse_holdout(spec: Any) -> dict[str, float]:
         text = str(spec).strip()
         if text.lower() in ("", "none", "0", "off"):
             return {}
-        if "=" not in text:
-            items = {k: text for k in DEFAULT_HOLDOUT}
-        else:
-            items = {}
-            for part in text.split(","):
-                if not part.strip():
-                    continue
-                if "=" not in part:
-                    raise InputError(f"expected FRACTION or VAR=FRACTION,..., "
-                                     f"got '{part.strip()}'", option="holdout")
-                k, v = (s.strip() for s in part.split("=", 1))
-                if k in items:
-                    raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
-                                     "give each variable once")
-                items[k] = v
-    out = {}
-    for k, v in items.items():
-        if k not in VARIABLES:
-            raise InputError(f"unknown variable '{k}' (known: "
-                             f"{', '.join(VARIABLES)})", option="holdout")
-        try:
-            f = float(v)
-        except (TypeError, ValueError):
-            raise InputError(f"'{k}={v}' is not a number", option="holdout") from None
-        if f == 0:
-            continue
-        if not 0 < f < 1:
-            raise InputError(f"the fraction for {k} must be between 0 and 1 "
-                             f"(exclusive), not {f:g}", option="holdout")
-        out[k] = f
-    return out
+        items = _holdout_items(text) if "=" in text else {k: text for k in DEFAULT_HOLDOUT}
+    fractions = {k: _holdout_fraction(k, v) for k, v in items.items()}
+    return {k: f for k, f in fractions.items() if f != 0}
 
 
 @dataclass
@@ -450,11 +465,11 @@ class Split:
         return self.reason is None
 
     def describe(self) -> str:
-        if self.reason:
+        if self.reason or self.test is None or self.threshold is None:
             return f"{self.variable}: not held out ({self.reason})"
+        n = int(self.test.sum())
         return (f"{self.variable} > {fmt_value(self.variable, self.threshold)} "
-                f"(upper {self.fraction:.0%} of the range, {int(self.test.sum())} "
-                f"row{'s' if int(self.test.sum()) != 1 else ''})")
+                f"(upper {self.fraction:.0%} of the range, {n} row{'s' if n != 1 else ''})")
 
     def to_dict(self) -> dict[str, Any]:
         return {"variable": self.variable, "fraction": self.fraction,
@@ -521,6 +536,8 @@ class HoldoutResult:
 def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
                   fit_kwargs: Mapping[str, Any] | None = None) -> HoldoutResult:
     """Fit ``law`` on the usable rows below the split and score the usable rows above."""
+    if split.test is None:
+        raise InputError(f"the holdout along {split.variable} is not usable: {split.reason}")
     test = usable & split.test
     train = usable & ~split.test
     n_tr, n_te = int(train.sum()), int(test.sum())
@@ -528,10 +545,8 @@ def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
         return HoldoutResult(split.variable, n_tr, 0, math.nan, math.nan, test=test,
                              error="no held-out rows this law can be evaluated on")
     try:
-        res = fit(law, data.subset(train), on_invalid="error", **dict(fit_kwargs or {}))
+        res = refit(law, data.subset(train), fit_kwargs)
     except Exception as exc:  # noqa: BLE001 - a law may fail in any way; report it
-        from .cv import error_text
-
         return HoldoutResult(split.variable, n_tr, n_te, math.nan, math.nan, test=test,
                              error=error_text(exc))
     xs = {k: data.arrays[k][test] for k in law.variables if k in data.arrays}
@@ -609,6 +624,183 @@ def _names(vars_: Sequence[str]) -> str:
     return " and ".join(vars_)
 
 
+@dataclass
+class _Scan:
+    """A law evaluated over the grid of the extended box, and where the grid leaves the data."""
+
+    law: Law
+    design: Design
+    dims: list[str]
+    axes: list[np.ndarray]
+    mu: np.ndarray
+    ranges: dict[str, tuple[float, float]]
+    used: list[str]
+    outside: dict[str, np.ndarray]
+    n_out: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(a.size for a in self.axes)
+
+    def point(self, idx: tuple[int, ...]) -> dict[str, float]:
+        return {d: float(self.axes[i][idx[i]]) for i, d in enumerate(self.dims)}
+
+    def extrapolated(self, idx: tuple[int, ...]) -> list[str]:
+        return [d for d in self.used
+                if bool(np.ravel(self.outside[d])[idx[self.dims.index(d)]])]
+
+    def index(self, flat: int) -> tuple[int, ...]:
+        """Grid index of a flat position (``()`` on a grid without dimensions)."""
+        if not self.shape:
+            return ()
+        return tuple(int(i) for i in np.unravel_index(flat, self.mu.shape))
+
+    def where(self, idx: tuple[int, ...]) -> str:
+        return _where(self.law, self.point(idx) if self.shape else {}, self.design)
+
+
+def _region_text(names: list[str]) -> str:
+    if not names:
+        return "inside the measured range"
+    return f"with {_names(names)} outside the measured range"
+
+
+def _evaluate_box(law: Law, values: Mapping[str, float], data: FitData, design: Design,
+                  box: Mapping[str, tuple[float, float]]) -> _Scan:
+    """Evaluate the law over the box's grid and mark the grid points outside the data."""
+    dims = list(box)
+    n_per = max(9, min(201, int(round(GRID_POINTS ** (1.0 / max(1, len(dims)))))))
+    axes = [_axis(data, d, *box[d], n_per) for d in dims]
+    grids = np.meshgrid(*axes, indexing="ij") if axes else []
+    variables = design.complete(dict(zip(dims, grids)))
+    shape = tuple(a.size for a in axes)
+    with np.errstate(all="ignore"):
+        mu = np.asarray(law.evaluate({k: variables[k] for k in law.variables
+                                      if k in variables}, values), float)
+    mu = np.broadcast_to(mu, shape).copy() if shape else np.atleast_1d(mu)
+    ranges = {k: (float(np.min(data.arrays[k])), float(np.max(data.arrays[k]))) for k in dims}
+    used = [d for d in dims if _uses(law, d, design)]
+    outside = {}
+    for i, d in enumerate(dims):
+        lo, hi = ranges[d]
+        o = (axes[i] < lo - 1e-12 * abs(lo)) | (axes[i] > hi + 1e-12 * abs(hi))
+        outside[d] = o.reshape([-1 if j == i else 1 for j in range(len(dims))])
+    n_out = np.zeros(shape, dtype=int)
+    for d in used:
+        n_out = n_out + outside[d]
+    return _Scan(law, design, dims, axes, mu, ranges, used, outside, n_out)
+
+
+def _nonfinite_flag(sc: _Scan) -> list[Flag]:
+    finite = np.isfinite(sc.mu)
+    if finite.all():
+        return []
+    bad = ~finite
+    fewest = int(sc.n_out[bad].min())
+    idx = sc.index(int(np.flatnonzero((bad & (sc.n_out == fewest)).ravel())[0]))
+    names = sc.extrapolated(idx) if sc.shape else []
+    pt = sc.point(idx) if sc.shape else {}
+    return [Flag("non-finite",
+                 f"mu is not finite (blows up) at {int(bad.sum())} of {sc.mu.size} points "
+                 f"of the extended box, {_region_text(names)} e.g. at {sc.where(idx)}", at=pt)]
+
+
+def _limit_flag(sc: _Scan, kind: str, bad: np.ndarray, worst_fn: Any, text: str
+                ) -> list[Flag]:
+    """A limit of mu broken somewhere: where first (fewest variables extrapolated), worst."""
+    if not bad.any():
+        return []
+    mu = sc.mu
+    fewest = int(sc.n_out[bad].min())
+    near = bad & (sc.n_out == fewest)
+    i_near = sc.index(int(worst_fn(np.where(near, mu, np.nan))))
+    names = sc.extrapolated(i_near) if sc.shape else []
+    msg = (f"{text} at {int(bad.sum())} of {mu.size} points of the extended box; "
+           f"{_region_text(names)} it reaches {mu[i_near]:.3g} at {sc.where(i_near)}")
+    i_all = sc.index(int(worst_fn(np.where(bad, mu, np.nan))))
+    if sc.shape and i_all != i_near and abs(mu[i_all] - mu[i_near]) > 1e-9 * abs(mu[i_near]):
+        msg += (f" (extreme {mu[i_all]:.3g} at {sc.where(i_all)}, "
+                f"{_region_text(sc.extrapolated(i_all))})")
+    pt = sc.point(i_near) if sc.shape else {}
+    return [Flag(kind, msg, at=pt, mu=(float(mu[i_near]), float(mu[i_near])))]
+
+
+def _walk(sc: _Scan, var: str, end: str) -> np.ndarray:
+    """Grid indices of ``var`` from the measured end outward (beyond x_max up, x_min down)."""
+    xa = sc.axes[sc.dims.index(var)]
+    lo_v, hi_v = sc.ranges[var]
+    if end == "high":
+        return np.flatnonzero(xa >= hi_v * (1 - 1e-12))
+    return np.flatnonzero(xa <= lo_v * (1 + 1e-12) + 1e-300)[::-1]
+
+
+def _worst_reversal(sc: _Scan, var: str, end: str, sign: int
+                    ) -> tuple[int, int, int, np.ndarray, np.ndarray] | None:
+    """The line (other variables fixed) where mu turns most against ``sign`` beyond ``end``.
+
+    Returns (line, from, to, walk indices, mu along the walk of every line), or None.
+    """
+    ax = sc.dims.index(var)
+    idx = _walk(sc, var, end)
+    if idx.size < 2:
+        return None
+    m = np.moveaxis(np.where(np.isfinite(sc.mu), sc.mu, np.nan), ax, -1)
+    lines = m.reshape(-1, m.shape[-1])[:, idx]
+    line_out = np.moveaxis(sc.n_out - np.broadcast_to(sc.outside[var], sc.shape), ax, -1)
+    line_out = line_out.reshape(-1, m.shape[-1])[:, 0]
+    step = 1 if end == "high" else -1
+    # along the walk mu should move by sign*step; count the movement against it
+    run = (np.fmin if sign * step < 0 else np.fmax).accumulate(lines, axis=1)
+    change = np.abs(lines - run)
+    thr = np.maximum(TREND_TOL, TREND_REL * np.abs(run))
+    change = np.where(np.isfinite(change) & (change > thr), change, -np.inf)
+    worst_line = change.max(axis=1)
+    cand = np.isfinite(worst_line)
+    if not cand.any():
+        return None
+    fewest = int(line_out[cand].min())
+    li = int(np.argmax(np.where(cand & (line_out == fewest), worst_line, -np.inf)))
+    j = int(np.argmax(change[li]))
+    seg = lines[li, : j + 1]
+    i = int(np.nanargmin(seg)) if sign * step < 0 else int(np.nanargmax(seg))
+    return li, i, j, idx, lines
+
+
+def _trend_flag(sc: _Scan, var: str, end: str, trend: Trend) -> list[Flag]:
+    """A reversal of the data's trend beyond one end of ``var``'s measured range."""
+    sign = trend.ends.get(end, {}).get("sign", 0)
+    found = _worst_reversal(sc, var, end, sign) if sign else None
+    if found is None:
+        return []
+    li, i, j, idx, lines = found
+    xa = sc.axes[sc.dims.index(var)]
+    others = [d for d in sc.dims if d != var]
+    other_shape = tuple(sc.axes[sc.dims.index(d)].size for d in others)
+    oidx = np.unravel_index(li, other_shape) if other_shape else ()
+    at_o = {d: float(sc.axes[sc.dims.index(d)][oidx[k]]) for k, d in enumerate(others)}
+    x_i, x_j = float(xa[idx[i]]), float(xa[idx[j]])
+    mu_i, mu_j = float(lines[li, i]), float(lines[li, j])
+    lo_v, hi_v = sc.ranges[var]
+    walk = (f"as {var} increases beyond the highest measured {var} ({fmt_value(var, hi_v)})"
+            if end == "high" else
+            f"as {var} decreases below the lowest measured {var} ({fmt_value(var, lo_v)})")
+    o_names = [d for d in others if d in sc.used
+               and not sc.ranges[d][0] <= at_o[d] <= sc.ranges[d][1]]
+    ctx = ""
+    if any(_uses(sc.law, d, sc.design) for d in others):
+        ctx = f"; at {_where(sc.law, at_o, sc.design)}" + (
+            f", {_names(o_names)} also outside the measured range" if o_names else
+            ", inside the measured range")
+    verb = "rises" if mu_j > mu_i else "falls"
+    return [Flag(
+        "trend",
+        f"mu {verb} by {abs(mu_j - mu_i):.3g} {walk}: "
+        f"from {mu_i:.3g} at {var} = {fmt_value(var, x_i)} to {mu_j:.3g} at {var} = "
+        f"{fmt_value(var, x_j)}{ctx}; the data show mu {_WORD[sign]} with {var} toward that "
+        f"end ({trend.ends[end]['basis']})",
+        variable=var, at={**at_o, var: x_i}, to={**at_o, var: x_j}, mu=(mu_i, mu_j))]
+
+
 def scan_plausibility(law: Law, values: Mapping[str, float], data: FitData, design: Design,
                       box: Mapping[str, tuple[float, float]], trends: Mapping[str, Trend], *,
                       limits: tuple[float, float] = MU_LIMITS) -> Plausibility:
@@ -637,143 +829,27 @@ def scan_plausibility(law: Law, values: Mapping[str, float], data: FitData, desi
         Variable -> :class:`Trend` of the data (:func:`data_trends`).
     limits : tuple of float
         Physical limits (low, high) of mu.
+
+    Returns
+    -------
+    Plausibility
+        Whether the law is plausible, the flags with the reasons, and the range of
+        mu over the box.
     """
-    dims = list(box)
-    n_per = max(9, min(201, int(round(GRID_POINTS ** (1.0 / max(1, len(dims)))))))
-    axes = [_axis(data, d, *box[d], n_per) for d in dims]
-    grids = np.meshgrid(*axes, indexing="ij") if axes else []
-    variables = design.complete(dict(zip(dims, grids)))
-    shape = tuple(a.size for a in axes)
-    with np.errstate(all="ignore"):
-        used = {k: variables[k] for k in law.variables if k in variables}
-        mu = np.asarray(law.evaluate(used, values), float)
-    mu = np.broadcast_to(mu, shape).copy() if shape else np.atleast_1d(mu)
-    ranges = {k: (float(np.min(data.arrays[k])), float(np.max(data.arrays[k])))
-              for k in dims}
-    used = [d for d in dims if _uses(law, d, design)]
-    # which used variables are outside their measured range, per grid point
-    outside = {}
-    for i, d in enumerate(dims):
-        lo, hi = ranges[d]
-        ax = axes[i]
-        o = (ax < lo - 1e-12 * abs(lo)) | (ax > hi + 1e-12 * abs(hi))
-        outside[d] = o.reshape([-1 if j == i else 1 for j in range(len(dims))])
-    n_out = np.zeros(shape, dtype=int)
-    for d in used:
-        n_out = n_out + outside[d]
-
-    def point(idx: tuple[int, ...]) -> dict[str, float]:
-        return {d: float(axes[i][idx[i]]) for i, d in enumerate(dims)}
-
-    def extrapolated(idx: tuple[int, ...]) -> list[str]:
-        return [d for i, d in enumerate(used)
-                if bool(np.ravel(outside[d])[idx[dims.index(d)]])]
-
-    def region_text(names: list[str]) -> str:
-        if not names:
-            return "inside the measured range"
-        return f"with {_names(names)} outside the measured range"
-
-    flags: list[Flag] = []
+    sc = _evaluate_box(law, values, data, design, box)
+    mu = sc.mu
     finite = np.isfinite(mu)
-    total = mu.size
-
-    def limit_flag(kind: str, bad: np.ndarray, worst_fn: Any, text: str) -> None:
-        if not bad.any():
-            return
-        fewest = int(n_out[bad].min())
-        near = bad & (n_out == fewest)
-        val = np.where(near, mu, np.nan)
-        i_near = np.unravel_index(int(worst_fn(val)), mu.shape) if shape else ()
-        pt = point(i_near) if shape else {}
-        names = extrapolated(i_near) if shape else []
-        msg = (f"{text} at {int(bad.sum())} of {total} points of the extended box; "
-               f"{region_text(names)} it reaches {mu[i_near]:.3g} at {_where(law, pt, design)}")
-        val_all = np.where(bad, mu, np.nan)
-        i_all = np.unravel_index(int(worst_fn(val_all)), mu.shape) if shape else ()
-        if shape and i_all != i_near and abs(mu[i_all] - mu[i_near]) > 1e-9 * abs(mu[i_near]):
-            msg += (f" (extreme {mu[i_all]:.3g} at {_where(law, point(i_all), design)}, "
-                    f"{region_text(extrapolated(i_all))})")
-        flags.append(Flag(kind, msg, at=pt, mu=(float(mu[i_near]), float(mu[i_near]))))
-
-    if not finite.all():
-        bad = ~finite
-        fewest = int(n_out[bad].min())
-        idx = np.unravel_index(int(np.flatnonzero((bad & (n_out == fewest)).ravel())[0]),
-                               mu.shape) if shape else ()
-        pt = point(idx) if shape else {}
-        names = extrapolated(idx) if shape else []
-        flags.append(Flag("non-finite",
-                          f"mu is not finite (blows up) at {int(bad.sum())} of {total} points "
-                          f"of the extended box, {region_text(names)} e.g. at "
-                          f"{_where(law, pt, design)}", at=pt))
+    flags = _nonfinite_flag(sc)
     lo_lim, hi_lim = limits
     with np.errstate(invalid="ignore"):
-        limit_flag("below-limit", finite & (mu < lo_lim), np.nanargmin, f"mu < {lo_lim:g}")
-        limit_flag("above-limit", finite & (mu > hi_lim), np.nanargmax, f"mu > {hi_lim:g}")
+        flags += _limit_flag(sc, "below-limit", finite & (mu < lo_lim), np.nanargmin,
+                             f"mu < {lo_lim:g}")
+        flags += _limit_flag(sc, "above-limit", finite & (mu > hi_lim), np.nanargmax,
+                             f"mu > {hi_lim:g}")
     for var, trend in trends.items():
-        if var not in dims or var not in used:
-            continue
-        ax = dims.index(var)
-        xa = axes[ax]
-        lo_v, hi_v = ranges[var]
-        m = np.moveaxis(np.where(finite, mu, np.nan), ax, -1)
-        lines_all = m.reshape(-1, m.shape[-1])
-        others = [d for d in dims if d != var]
-        line_out = np.moveaxis(n_out - np.broadcast_to(outside[var], shape), ax, -1)
-        line_out = line_out.reshape(-1, m.shape[-1])[:, 0]
-        for end in ("high", "low"):
-            sign = trend.ends.get(end, {}).get("sign", 0)
-            if sign == 0:
-                continue
-            # walk outward from the measured end: beyond x_max upward, below x_min downward
-            if end == "high":
-                idx = np.flatnonzero(xa >= hi_v * (1 - 1e-12))
-            else:
-                idx = np.flatnonzero(xa <= lo_v * (1 + 1e-12) + 1e-300)[::-1]
-            if idx.size < 2:
-                continue
-            lines = lines_all[:, idx]
-            step = 1 if end == "high" else -1
-            # along the walk mu should move by sign*step; count the movement against it
-            run = (np.fmin if sign * step < 0 else np.fmax).accumulate(lines, axis=1)
-            change = np.abs(lines - run)
-            thr = np.maximum(TREND_TOL, TREND_REL * np.abs(run))
-            change = np.where(np.isfinite(change) & (change > thr), change, -np.inf)
-            worst_line = change.max(axis=1)
-            cand = np.isfinite(worst_line)
-            if not cand.any():
-                continue
-            fewest = int(line_out[cand].min())
-            li = int(np.argmax(np.where(cand & (line_out == fewest), worst_line, -np.inf)))
-            j = int(np.argmax(change[li]))
-            worst = float(change[li, j])
-            seg = lines[li, : j + 1]
-            i = int(np.nanargmin(seg)) if sign * step < 0 else int(np.nanargmax(seg))
-            oidx = np.unravel_index(li, m.shape[:-1]) if m.shape[:-1] else ()
-            at_o = {d: float(axes[dims.index(d)][oidx[k]]) for k, d in enumerate(others)}
-            x_i, x_j = float(xa[idx[i]]), float(xa[idx[j]])
-            mu_i, mu_j = float(lines[li, i]), float(lines[li, j])
-            verb = "rises" if mu_j > mu_i else "falls"
-            walk = (f"as {var} increases beyond the highest measured {var} "
-                    f"({fmt_value(var, hi_v)})" if end == "high" else
-                    f"as {var} decreases below the lowest measured {var} "
-                    f"({fmt_value(var, lo_v)})")
-            o_names = [d for d in others if d in used and not
-                       ranges[d][0] <= at_o[d] <= ranges[d][1]]
-            ctx = ""
-            if any(_uses(law, d, design) for d in others):
-                ctx = f"; at {_where(law, at_o, design)}" + (
-                    f", {_names(o_names)} also outside the measured range" if o_names else
-                    ", inside the measured range")
-            info = trend.ends[end]
-            flags.append(Flag(
-                "trend",
-                f"mu {verb} by {worst:.3g} {walk}: from {mu_i:.3g} at {var} = "
-                f"{fmt_value(var, x_i)} to {mu_j:.3g} at {var} = {fmt_value(var, x_j)}{ctx}; "
-                f"the data show mu {_WORD[sign]} with {var} toward that end ({info['basis']})",
-                variable=var, at={**at_o, var: x_i}, to={**at_o, var: x_j},
-                mu=(mu_i, mu_j)))
+        if var in sc.dims and var in sc.used:
+            for end in ("high", "low"):
+                flags += _trend_flag(sc, var, end, trend)
     with np.errstate(all="ignore"):
         mu_min = float(np.nanmin(np.where(finite, mu, np.nan))) if finite.any() else math.nan
         mu_max = float(np.nanmax(np.where(finite, mu, np.nan))) if finite.any() else math.nan

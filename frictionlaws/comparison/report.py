@@ -32,17 +32,25 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import InputError
 from ..law import VARIABLES
-from .extrapolation import evaluate_on, fmt_value
+from .extrapolation import Split, evaluate_on, fmt_value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .core import Comparison, LawComparison
+    from .results import Comparison, LawComparison
 
 __all__ = ["format_table", "write_report", "make_figures", "Figure"]
 
-#: Most panels in one fits figure (levels with the most rows are shown).
-MAX_PANELS = 8
-DPI = 100
+#: Most panels in one fits figure (levels with the most rows are shown): every panel
+#: costs a set of axes to lay out and draw, and a reader compares a few at a glance.
+MAX_PANELS = 4
+#: A grouping variable with more distinct values than this is binned into quartiles.
+BIN_ABOVE = 24
+#: Rows whose other variables take more distinct combinations than this, each once, are
+#: drawn at the median of those variables rather than at their most common combination.
+SCATTERED = 8
+#: Resolution of the PNG figures (dots per inch): the report is read on a screen.
+DPI = 80
 
 
 # ------------------------------------------------------------------ helpers
@@ -141,8 +149,62 @@ def _header_lines(cmp: Comparison) -> list[str]:
     ]
 
 
+def _section(title: str, lines: Sequence[str]) -> list[str]:
+    """A titled block of the console table, or nothing when there is nothing to say."""
+    return ["", title, *lines] if lines else []
+
+
+def _table_footer(cmp: Comparison) -> list[str]:
+    """The legend lines under the ranked table."""
+    out = []
+    if _common(cmp):
+        out.append(f"CV common: CV RMSE over the {cmp.settings['common_rows']} rows every law "
+                   "could use (the ranking criterion, as the laws were fitted to different rows)")
+    if any(not r.cv.complete for r in cmp.results):
+        out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
+    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
+               "within a group only")
+    return out
+
+
+def _table_sections(cmp: Comparison) -> list[str]:
+    """The flags, trends, warnings, notes, skipped and failed laws under the table."""
+    res = cmp.results
+    out = _section("NOT IDENTIFIABLE from these data (ranked after the identifiable laws):",
+                   [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
+                    for r in res if r.fit.non_identifiable])
+    out += _section("IMPLAUSIBLE outside the measured range (extended box):",
+                    [f"  {r.law.id}: {reason}" for r in res if not r.plausible
+                     for reason in r.plausibility.reasons])
+    trends = [t.describe() for t in cmp.trends.values()]
+    if trends:
+        out += ["", "trends the data show: " + "; ".join(trends)]
+    out += _section("residual structure (each test at the 5 % level):",
+                    [f"  {r.law.id}: {s}" for r in res for s in r.residuals.structure])
+    out += _section("fit warnings (identifiability, bounds):",
+                    [f"  {r.law.id}: {w}" for r in res for w in r.fit.warnings])
+    notes = [f"  {r.law.id}: {n}" for r in res for n in r.notes + r.extra_notes]
+    if notes or cmp.notes or cmp.data.notes:
+        out += ["", "notes:", *[f"  {n}" for n in cmp.data.notes + cmp.notes], *notes]
+    out += _section("skipped (cannot be fitted to these data):",
+                    [f"  {s['id']}: {s['reason']}" for s in cmp.skipped])
+    out += _section("failed to fit:", [f"  {f['id']}: {f['error']}" for f in cmp.failed])
+    return out
+
+
 def format_table(cmp: Comparison) -> str:
-    """The ranked table with flags, notes, skipped and failed laws (plain text)."""
+    """Format the ranked table with flags, notes, skipped and failed laws (plain text).
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+
+    Returns
+    -------
+    str
+        The console table.
+    """
     rows = _rows(cmp)
     columns = _columns(cmp)
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
@@ -155,47 +217,7 @@ def format_table(cmp: Comparison) -> str:
 
     out = _header_lines(cmp) + ["", line(columns)]
     out += [line(r) for r in rows]
-    if _common(cmp):
-        out.append(f"CV common: CV RMSE over the {cmp.settings['common_rows']} rows every law "
-                   "could use (the ranking criterion, as the laws were fitted to different rows)")
-    if any(not r.cv.complete for r in cmp.results):
-        out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
-    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
-               "within a group only")
-    unid = [r for r in cmp.results if r.fit.non_identifiable]
-    if unid:
-        out += ["", "NOT IDENTIFIABLE from these data (ranked after the identifiable laws):"]
-        out += [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
-                for r in unid]
-    bad = [r for r in cmp.results if not r.plausible]
-    if bad:
-        out += ["", "IMPLAUSIBLE outside the measured range (extended box):"]
-        for r in bad:
-            for reason in r.plausibility.reasons:
-                out.append(f"  {r.law.id}: {reason}")
-    trends = [t.describe() for t in cmp.trends.values()]
-    if trends:
-        out += ["", "trends the data show: " + "; ".join(trends)]
-    struct = [(r.law.id, s) for r in cmp.results for s in r.residuals.structure]
-    if struct:
-        out += ["", "residual structure (each test at the 5 % level):"]
-        out += [f"  {lid}: {s}" for lid, s in struct]
-    ident = [(r.law.id, w) for r in cmp.results for w in r.fit.warnings]
-    if ident:
-        out += ["", "fit warnings (identifiability, bounds):"]
-        out += [f"  {lid}: {w}" for lid, w in ident]
-    notes = [(r.law.id, n) for r in cmp.results for n in r.notes + r.extra_notes]
-    if notes or cmp.notes or cmp.data.notes:
-        out += ["", "notes:"]
-        out += [f"  {n}" for n in cmp.data.notes + cmp.notes]
-        out += [f"  {lid}: {n}" for lid, n in notes]
-    if cmp.skipped:
-        out += ["", "skipped (cannot be fitted to these data):"]
-        out += [f"  {s['id']}: {s['reason']}" for s in cmp.skipped]
-    if cmp.failed:
-        out += ["", "failed to fit:"]
-        out += [f"  {f['id']}: {f['error']}" for f in cmp.failed]
-    return "\n".join(out)
+    return "\n".join(out + _table_footer(cmp) + _table_sections(cmp))
 
 
 # ------------------------------------------------------------------ figures
@@ -214,8 +236,8 @@ class Figure:
 def _styles(cmp: Comparison) -> dict[str, dict[str, Any]]:
     import matplotlib
 
-    colours = list(matplotlib.colormaps["tab10"].colors) + list(
-        matplotlib.colormaps["Dark2"].colors)
+    maps: Any = matplotlib.colormaps  # ListedColormaps: they have .colors
+    colours = [*maps["tab10"].colors, *maps["Dark2"].colors]
     dashes = ["-", "--", "-.", ":"]
     out = {}
     # tab10 solid, then Dark2 dashed, so neighbouring colours differ in style too
@@ -236,12 +258,43 @@ def _law_handles(cmp: Comparison, styles: dict[str, dict[str, Any]],
             for r in cmp.results]
 
 
+def _new_figure(width: float, height: float) -> Any:
+    """A matplotlib figure on its own Agg canvas (no pyplot, no global figure registry)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure as MplFigure
+
+    fig = MplFigure(figsize=(width, height))
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _grid(fig: Any, nrows: int, ncols: int, *, legend_in: float = 0.0, top_in: float = 0.5,
+          left_in: float = 0.65,
+          bottom_in: float = 0.5, hspace: float = 0.45, wspace: float = 0.25,
+          sharey: bool = False) -> np.ndarray:
+    """A fixed grid of axes leaving ``legend_in`` inches on the right for a legend.
+
+    A fixed layout costs nothing at draw time (a constrained layout measures every
+    text of the figure, twice).
+    """
+    w, h = fig.get_size_inches()
+    axes = fig.subplots(nrows, ncols, squeeze=False, sharey=sharey)
+    fig.subplots_adjust(left=left_in / w, right=1.0 - (legend_in + 0.15) / w,
+                        bottom=bottom_in / h, top=1.0 - top_in / h, hspace=hspace,
+                        wspace=wspace)
+    return axes
+
+
+def _legend_width(handles: Sequence[Any]) -> float:
+    """Inches a figure legend of ``handles`` needs (8-point text, the longest line)."""
+    longest = max((len(line) for h in handles for line in str(h.get_label()).split("\n")),
+                  default=10)
+    return 0.7 + 0.062 * longest
+
+
 def _png(fig: Any) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=DPI)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
     return buf.getvalue()
 
 
@@ -250,7 +303,7 @@ def _levels(values: np.ndarray) -> tuple[list[tuple[float, np.ndarray, str]], st
     uniq, counts = np.unique(values, return_counts=True)
     if uniq.size <= MAX_PANELS:
         return [(float(u), values == u, "") for u in uniq], ""
-    if uniq.size > 3 * MAX_PANELS:
+    if uniq.size > BIN_ABOVE:
         edges = np.quantile(values, [0.25, 0.5, 0.75])
         bins = np.searchsorted(edges, values, side="right")
         out = []
@@ -270,7 +323,7 @@ def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[st
         return {}
     arr = np.column_stack([cmp.data.arrays[k][rows] for k in others])
     uniq, counts = np.unique(arr, axis=0, return_counts=True)
-    if counts.max() == 1 and uniq.shape[0] > MAX_PANELS:
+    if counts.max() == 1 and uniq.shape[0] > SCATTERED:
         return {k: float(np.median(cmp.data.arrays[k][rows])) for k in others}
     best = uniq[int(np.argmax(counts))]
     return {k: float(v) for k, v in zip(others, best)}
@@ -286,13 +339,38 @@ def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
     return max(0.0, lo - pad * span) if lo >= 0 else lo - pad * span, hi + pad * span
 
 
+def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: str) -> str:
+    if kind == "bin":
+        gm = cmp.data.arrays[g][mask]
+        title = f"{g} {fmt_value(g, float(gm.min()))} .. {fmt_value(g, float(gm.max()))}"
+    else:
+        title = f"{g} = {fmt_value(g, level)}"
+    nr = int(mask.sum())
+    return f"{title} ({nr} row{'s' if nr != 1 else ''})"
+
+
+def _fits_panel(cmp: Comparison, ax: Any, x: str, fixed: dict[str, float], mask: np.ndarray,
+                styles: dict[str, Any]) -> None:
+    """One panel of a fits figure: the rows of ``mask`` and every law at ``fixed``."""
+    d = cmp.data
+    xs = d.arrays[x]
+    ax.plot(_disp(x, xs[mask]), d.arrays["mu"][mask], "o", color="black", ms=5, zorder=5)
+    for r in cmp.results:
+        if not (r.rows & mask).any():
+            continue
+        lo, hi = r.fit.data["ranges"].get(x, (float(xs.min()), float(xs.max())))
+        grid = np.linspace(lo, hi, 120) if hi > lo else np.array([lo])
+        pts = {x: grid, **{k: np.full(grid.size, v) for k, v in fixed.items()}}
+        yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
+        ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
+    ax.grid(alpha=0.3)
+
+
 def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
                  ) -> Figure:
-    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
 
     d = cmp.data
-    mu = d.arrays["mu"]
-    xs = d.arrays[x]
     if g is None:
         panels, note = [(math.nan, np.ones(d.n, bool), "")], ""
     else:
@@ -300,42 +378,24 @@ def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
     others = [k for k in cmp.design.varying if k not in (x, g)]
     ncols = min(4, len(panels))
     nrows = math.ceil(len(panels) / ncols)
-    fig, axes = plt.subplots(nrows, ncols, figsize=(3.6 * ncols + 2.6, 3.0 * nrows + 0.6),
-                             squeeze=False, sharey=True, layout="constrained")
-    ylim = _ylim_data(mu)
+    fig = _new_figure(3.2 * ncols + 2.8, 2.7 * nrows + 1.0)
+    axes = _grid(fig, nrows, ncols, legend_in=2.6, top_in=0.7, bottom_in=0.6, sharey=True)
     for ax in axes.ravel()[len(panels):]:
         ax.set_visible(False)
     for (level, mask, kind), ax in zip(panels, axes.ravel()):
-        ax.plot(_disp(x, xs[mask]), mu[mask], "o", color="black", ms=5, zorder=5,
-                label="measured")
         fixed = {g: level} if g is not None else {}
         fixed.update({k: float(np.median(d.arrays[k][mask])) for k in others})
-        for r in cmp.results:
-            if not (r.rows & mask).any():
-                continue
-            lo, hi = r.fit.data["ranges"].get(x, (float(xs.min()), float(xs.max())))
-            grid = np.linspace(lo, hi, 200) if hi > lo else np.array([lo])
-            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in fixed.items()}}
-            yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
-            ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
+        _fits_panel(cmp, ax, x, fixed, mask, styles)
         if g is not None:
-            if kind == "bin":
-                gm = d.arrays[g][mask]
-                title = (f"{g} {fmt_value(g, float(gm.min()))} .. "
-                         f"{fmt_value(g, float(gm.max()))}")
-            else:
-                title = f"{g} = {fmt_value(g, level)}"
-            nr = int(mask.sum())
-            ax.set_title(f"{title} ({nr} row{'s' if nr != 1 else ''})", fontsize=9)
+            ax.set_title(_panel_title(cmp, g, level, mask, kind), fontsize=9)
+    for ax in axes[-1]:
         ax.set_xlabel(_label(x))
+    for ax in axes[:, 0]:
         ax.set_ylabel(_label("mu"))
-        ax.set_ylim(*ylim)
-        ax.grid(alpha=0.3)
-    from matplotlib.lines import Line2D
-
+    axes[0, 0].set_ylim(*_ylim_data(d.arrays["mu"]))
     handles = [Line2D([], [], marker="o", ls="", color="black", label="measured")]
     handles += _law_handles(cmp, styles)
-    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="law (rank)")
+    fig.legend(handles=handles, loc="upper right", fontsize=8, title="law (rank)")
     what = f"mu against {x}" + (f" for each level of {g}" if g else "")
     fig.suptitle(f"{cmp.data.name}: {what}", fontsize=11)
     caption = (f"The data with every fitted law: {what}. Each curve spans the {x} range of "
@@ -349,103 +409,106 @@ def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
     return Figure(name, what, caption, _png(fig))
 
 
-def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
-    import matplotlib.pyplot as plt
+#: Vertical distance between the strips of two laws in the residuals figure, in
+#: standardised residuals (residual / the law's RMSE).
+STRIP = 9.0
 
+
+def _strip(cmp: Comparison, r: LawComparison, column: str
+           ) -> tuple[np.ndarray, np.ndarray, str]:
+    """x, standardised y and the test text of one law's strip in one residual panel."""
+    scale = r.metrics["rmse"] if r.metrics["rmse"] > 0 else 1.0
+    if column == "qq":
+        osm, osr = r.residuals.normal_quantiles
+        return osm, osr / scale, f"Shapiro-Wilk p {_num(r.residuals.shapiro_p, '.2g')}"
+    if column == "fitted":
+        xv = r.fit.best_fit
+    else:
+        xv = _disp(column, cmp.data.arrays[column][r.rows])
+    t = r.residuals.tests.get(column, {})
+    runs_p = (t.get("runs") or {}).get("p_value")
+    text = f"runs p {_num(runs_p, '.2g')}, Kendall p {_num(t.get('kendall_p'), '.2g')}"
+    resid = np.asarray(r.fit.residual, float)
+    return np.asarray(xv, float), resid / scale, text
+
+
+def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     cols = list(cmp.design.varying) + ["fitted", "qq"]
     n = len(cmp.results)
-    # a fixed layout: constrained layout is slow with dozens of panels
-    height = 2.5 * n + 1.2
-    fig, axes = plt.subplots(n, len(cols), figsize=(3.4 * len(cols), height), squeeze=False)
-    fig.subplots_adjust(left=0.07, right=0.99, bottom=0.5 / height, top=1 - 0.95 / height,
-                        hspace=0.8, wspace=0.34)
-    for i, r in enumerate(cmp.results):
-        res = r.fit.residual
-        sub = cmp.data.subset(r.rows)
-        colour = styles[r.law.id]["color"]
-        for j, c in enumerate(cols):
-            ax = axes[i, j]
-            if c == "qq":
-                osm, osr = r.residuals.normal_quantiles
-                ax.plot(osm, osr, "o", ms=3.5, color=colour)
-                if osm.size > 1 and np.ptp(osm) > 0:
-                    slope, icpt = np.polyfit(osm, osr, 1)
-                    ax.plot(osm, icpt + slope * osm, "-", color="grey", lw=1)
-                ax.set_xlabel("normal quantile [-]", fontsize=8)
-                ax.set_ylabel("ordered residual [-]", fontsize=8)
-                sp = r.residuals.shapiro_p
-                ax.set_title(f"{r.rank}. {r.law.id}: normal Q-Q\n(Shapiro-Wilk p = "
-                             f"{_num(sp, '.2g')})", fontsize=8)
-            else:
-                xv = r.fit.best_fit if c == "fitted" else _disp(c, sub.arrays[c])
-                ax.axhline(0.0, color="grey", lw=0.8)
-                ax.plot(xv, res, "o", ms=3.5, color=colour)
-                t = r.residuals.tests.get(c, {})
-                runs_p = (t.get("runs") or {}).get("p_value")
-                title = "fitted value" if c == "fitted" else c
-                ax.set_title(f"{r.rank}. {r.law.id}: vs {title}\n(runs p = "
-                             f"{_num(runs_p, '.2g')}, Kendall p = "
-                             f"{_num(t.get('kendall_p'), '.2g')})", fontsize=8)
-                ax.set_xlabel("fitted mu [-]" if c == "fitted" else _label(c), fontsize=8)
-                ax.set_ylabel("residual of mu [-]", fontsize=8)
-            ax.tick_params(labelsize=7)
-            ax.grid(alpha=0.3)
-    fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order",
-                 fontsize=11, y=1 - 0.25 / height)
-    caption = ("Residuals of each fitted law (rows in rank order) against each variable and "
-               "against the fitted value, and the normal Q-Q plot. The panel titles give the "
-               "one-sided runs-test p-value (small: residual signs cluster along the "
-               "variable, a systematic misfit) and the Kendall-trend p-value.")
+    fig = _new_figure(3.3 * len(cols) + 1.8, 0.6 * n + 1.7)
+    axes = _grid(fig, 1, len(cols), left_in=1.7, top_in=0.75, bottom_in=0.6, wspace=0.08,
+                 sharey=True)[0]
+    offsets = -STRIP * np.arange(n)
+    for ax, c in zip(axes, cols):
+        for off in offsets:
+            ax.axhline(off, color="grey", lw=0.6)
+        for r, off in zip(cmp.results, offsets):
+            xv, yv, text = _strip(cmp, r, c)
+            ax.plot(xv, yv + off, "o", ms=3, color=styles[r.law.id]["color"])
+            ax.text(0.99, off + 0.5 * STRIP, text, transform=ax.get_yaxis_transform(),
+                    ha="right", va="center", fontsize=6.5, color="0.3")
+        ax.set_xlabel("normal quantile [-]" if c == "qq" else
+                      "fitted mu [-]" if c == "fitted" else _label(c), fontsize=8)
+        ax.set_title("normal Q-Q" if c == "qq" else
+                     f"vs {'the fitted value' if c == 'fitted' else c}", fontsize=9)
+        ax.grid(axis="x", alpha=0.3)
+        ax.tick_params(labelsize=7)
+    axes[0].set_yticks(offsets, [f"{r.rank}. {r.law.id}" for r in cmp.results], fontsize=7)
+    axes[0].set_ylim(offsets[-1] - 0.5 * STRIP, 0.65 * STRIP)
+    fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order, "
+                 "divided by the law's RMSE", fontsize=11)
+    caption = ("Residuals of each fitted law (one strip per law, in rank order, each divided "
+               "by that law's RMSE so that every strip has the same scale; the grey line is "
+               "zero) against each variable and against the fitted value, and the normal Q-Q "
+               "plot. The text gives the one-sided runs-test p-value (small: residual signs "
+               "cluster along the variable, a systematic misfit), the Kendall-trend p-value "
+               "and the Shapiro-Wilk p-value.")
     return Figure("residuals", "residuals", caption, _png(fig))
 
 
+def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any]) -> None:
+    """One split's panel: training and held-out rows, every law fitted below the threshold."""
+    d = cmp.data
+    mu = d.arrays["mu"]
+    x = split.variable
+    xs = d.arrays[x]
+    test = split.test if split.test is not None else np.zeros(d.n, bool)
+    thr = float(split.threshold) if split.threshold is not None else float(xs.max())
+    level = _mode_level(cmp, test, [k for k in cmp.design.varying if k != x])
+    match = np.ones(d.n, bool)
+    for k, v in level.items():
+        match &= np.isclose(d.arrays[k], v, rtol=1e-9, atol=0)
+    lo, hi = float(xs.min()), float(xs.max())
+    ax.axvspan(_disp(x, thr), _disp(x, hi + 0.04 * (hi - lo)), color="tab:red", alpha=0.08)
+    ax.plot(_disp(x, xs[~match]), mu[~match], "o", color="0.75", ms=4, zorder=3)
+    tr, te = match & ~test, match & test
+    ax.plot(_disp(x, xs[tr]), mu[tr], "o", color="black", ms=5, zorder=5)
+    ax.plot(_disp(x, xs[te]), mu[te], "s", mfc="none", mec="tab:red", mew=2, ms=9, zorder=6)
+    grid = np.linspace(lo, hi, 250)
+    for r in cmp.results:
+        h = next((h for h in r.holdouts if h.variable == x), None)
+        if h is None or h.fit is None or not r.rows.any():
+            continue
+        pts = {x: grid, **{k: np.full(grid.size, v) for k, v in level.items()}}
+        yv = evaluate_on(r.law, h.fit.values, cmp.design, pts)
+        ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
+    ax.set_ylim(*_ylim_data(mu, 0.3))
+    ax.set_xlim(_disp(x, lo - 0.04 * (hi - lo)), _disp(x, hi + 0.04 * (hi - lo)))
+    ax.set_xlabel(_label(x))
+    ax.set_ylabel(_label("mu"))
+    at = f" at {_at_text(level)}" if level else ""
+    ax.set_title(f"fitted on {x} <= {fmt_value(x, thr)}, scored above"
+                 f"\n({int(test.sum())} held-out rows; curves{at})", fontsize=9)
+    ax.grid(alpha=0.3)
+
+
 def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
-    import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     splits = [s for s in cmp.splits if s.usable]
     if not splits:
         return None
-    d = cmp.data
-    mu = d.arrays["mu"]
-    fig, axes = plt.subplots(1, len(splits), figsize=(5.2 * len(splits) + 2.8, 4.4),
-                             squeeze=False, layout="constrained")
-    for split, ax in zip(splits, axes[0]):
-        x = split.variable
-        xs = d.arrays[x]
-        others = [k for k in cmp.design.varying if k != x]
-        level = _mode_level(cmp, split.test, others)
-        match = np.ones(d.n, bool)
-        for k, v in level.items():
-            match &= np.isclose(d.arrays[k], v, rtol=1e-9, atol=0)
-        lo, hi = float(xs.min()), float(xs.max())
-        ax.axvspan(_disp(x, split.threshold), _disp(x, hi + 0.04 * (hi - lo)),
-                   color="tab:red", alpha=0.08)
-        ax.plot(_disp(x, xs[~match]), mu[~match], "o", color="0.75", ms=4, zorder=3)
-        tr = match & ~split.test
-        te = match & split.test
-        ax.plot(_disp(x, xs[tr]), mu[tr], "o", color="black", ms=5, zorder=5)
-        ax.plot(_disp(x, xs[te]), mu[te], "s", mfc="none", mec="tab:red", mew=2, ms=9,
-                zorder=6)
-        grid = np.linspace(lo, hi, 250)
-        for r in cmp.results:
-            h = next((h for h in r.holdouts if h.variable == x), None)
-            if h is None or h.fit is None:
-                continue
-            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in level.items()}}
-            yv = evaluate_on(r.law, h.fit.values, cmp.design, pts)
-            ok = r.rows.any()
-            if ok:
-                ax.plot(_disp(x, grid), yv, lw=1.4, **styles[r.law.id])
-        ax.set_ylim(*_ylim_data(mu, 0.3))
-        ax.set_xlim(_disp(x, lo - 0.04 * (hi - lo)), _disp(x, hi + 0.04 * (hi - lo)))
-        ax.set_xlabel(_label(x))
-        ax.set_ylabel(_label("mu"))
-        at = f" at {_at_text(level)}" if level else ""
-        ax.set_title(f"fitted on {x} <= {fmt_value(x, split.threshold)}, scored above"
-                     f"\n({int(split.test.sum())} held-out rows; curves{at})", fontsize=9)
-        ax.grid(alpha=0.3)
     handles = [Line2D([], [], marker="o", ls="", color="black", label="training rows"),
                Line2D([], [], marker="s", ls="", mfc="none", mec="tab:red", mew=2, ms=8,
                       label="held-out rows"),
@@ -453,7 +516,13 @@ def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
                Patch(color="tab:red", alpha=0.15, label="held-out range")]
     handles += _law_handles(cmp, styles, {r.law.id: f" ({_num(r.extrapolation_rmse, '.3f')})"
                                           for r in cmp.results})
-    fig.legend(handles=handles, loc="outside right upper", fontsize=8,
+    legend_in = _legend_width(handles)
+    fig = _new_figure(4.6 * len(splits) + legend_in + 0.9, 4.6)
+    axes = _grid(fig, 1, len(splits), legend_in=legend_in, top_in=0.95, bottom_in=0.6,
+                 wspace=0.3)
+    for split, ax in zip(splits, axes[0]):
+        _holdout_panel(cmp, ax, split, styles)
+    fig.legend(handles=handles, loc="upper right", fontsize=8,
                title="law (extrapolation RMSE)")
     fig.suptitle(f"{cmp.data.name}: extrapolation to the held-out upper range", fontsize=11)
     caption = ("Extrapolation test: each law is fitted on the rows below the threshold only "
@@ -463,69 +532,82 @@ def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
                   _png(fig))
 
 
+def _box_marks(ax: Any, r: LawComparison, x: str, lev: dict[str, float], colour: Any,
+               limits: tuple[float, float]) -> None:
+    """Mark where a law's plausibility flags happen in the panel of ``x``."""
+    lo_lim, hi_lim = limits
+    for f in r.plausibility.flags:
+        if f.kind == "trend" and f.variable == x and f.mu:
+            ax.plot([_disp(x, f.at[x]), _disp(x, f.to[x])], list(f.mu), "X",
+                    color=colour, mec="black", ms=9, zorder=7)
+        elif f.kind in ("above-limit", "below-limit") and x in f.at and f.mu:
+            if all(math.isclose(f.at.get(k, v), v, rel_tol=1e-6) for k, v in lev.items()):
+                yv_clip = min(max(f.mu[0], lo_lim - 0.9), hi_lim + 1.4)
+                ax.plot(_disp(x, f.at[x]), yv_clip, "^" if f.kind == "above-limit" else "v",
+                        color=colour, mec="black", ms=9, zorder=7)
+
+
+def _box_level(r: LawComparison, x: str, level: dict[str, float],
+               drawn_at: dict[str, list[str]]) -> dict[str, float]:
+    """Where a law is drawn in the panel of ``x``: where its trend turns, if it does."""
+    flag = next((f for f in r.plausibility.flags if f.kind == "trend" and f.variable == x),
+                None)
+    lev = dict(level)
+    if flag is not None:
+        lev.update({k: v for k, v in flag.at.items() if k != x and k in lev})
+        moved = {k: v for k, v in lev.items() if v != level[k]}
+        if moved:
+            drawn_at.setdefault(r.law.id, []).append(f"{x} panel at {_at_text(moved)}")
+    return lev
+
+
+def _box_mode(cmp: Comparison, x: str) -> dict[str, float]:
+    """The level of the other variables at which the panel of ``x`` is drawn."""
+    others = [k for k in cmp.box if k != x and k in cmp.design.varying]
+    return _mode_level(cmp, np.ones(cmp.data.n, bool), others)
+
+
+def _box_panel(cmp: Comparison, ax: Any, x: str, styles: dict[str, Any]) -> None:
+    """One variable's panel of the plausibility figure."""
+    d = cmp.data
+    limits = (float(cmp.settings["mu_limits"][0]), float(cmp.settings["mu_limits"][1]))
+    blo, bhi = cmp.box[x]
+    xs = d.arrays[x]
+    level = _box_mode(cmp, x)
+    ax.axvspan(_disp(x, float(xs.min())), _disp(x, float(xs.max())), color="0.85",
+               alpha=0.6, zorder=0)
+    for lim in limits:
+        ax.axhline(lim, color="tab:red", lw=1, ls="--", zorder=1)
+    grid = np.unique(np.concatenate([np.linspace(blo, bhi, 250),
+                                     np.geomspace(max(blo, bhi * 1e-4), bhi, 120)]))
+    ax.plot(_disp(x, xs), d.arrays["mu"], "o", color="black", ms=4, zorder=6)
+    for r in cmp.results:
+        lev = _box_level(r, x, level, {})
+        pts = {x: grid, **{k: np.full(grid.size, v) for k, v in lev.items()}}
+        yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
+        ax.plot(_disp(x, grid), yv, lw=2.2 if not r.plausible else 1.2, **styles[r.law.id],
+                zorder=4)
+        _box_marks(ax, r, x, lev, styles[r.law.id]["color"], limits)
+    ax.set_xlim(_disp(x, blo), _disp(x, bhi))
+    ax.set_ylim(limits[0] - 1.0, limits[1] + 1.5)
+    ax.set_xlabel(_label(x))
+    ax.set_ylabel(_label("mu"))
+    at = f" at {_at_text(level)}" if level else ""
+    ax.set_title(f"fully fitted laws over the extended {x} range{at}\n"
+                 "(a law whose trend turns is drawn where it turns: see legend)", fontsize=9)
+    ax.grid(alpha=0.3)
+
+
 def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
-    import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    d = cmp.data
-    mu = d.arrays["mu"]
     lo_lim, hi_lim = cmp.settings["mu_limits"]
     vars_ = [k for k in cmp.design.varying if k in cmp.box] or list(cmp.box)[:1]
-    if not vars_:
-        vars_ = []
-    fig, axes = plt.subplots(1, max(1, len(vars_)), figsize=(5.4 * max(1, len(vars_)) + 3.4,
-                                                             4.8),
-                             squeeze=False, layout="constrained")
-    drawn_at: dict[str, list[str]] = {}
-    for x, ax in zip(vars_, axes[0]):
-        blo, bhi = cmp.box[x]
-        xs = d.arrays[x]
-        others = [k for k in cmp.box if k != x and k in cmp.design.varying]
-        level = _mode_level(cmp, np.ones(d.n, bool), others)
-        ax.axvspan(_disp(x, float(xs.min())), _disp(x, float(xs.max())), color="0.85",
-                   alpha=0.6, zorder=0)
-        for lim in (lo_lim, hi_lim):
-            ax.axhline(lim, color="tab:red", lw=1, ls="--", zorder=1)
-        grid = np.unique(np.concatenate([np.linspace(blo, bhi, 400),
-                                         np.geomspace(max(blo, bhi * 1e-4), bhi, 200)]))
-        ax.plot(_disp(x, xs), mu, "o", color="black", ms=4, zorder=6)
-        for r in cmp.results:
-            flag = next((f for f in r.plausibility.flags
-                         if f.kind == "trend" and f.variable == x), None)
-            lev = dict(level)
-            if flag is not None:
-                lev.update({k: v for k, v in flag.at.items() if k != x and k in lev})
-                moved = {k: v for k, v in lev.items() if v != level[k]}
-                if moved:
-                    drawn_at[r.law.id] = drawn_at.get(r.law.id, []) + [
-                        f"{x} panel at {_at_text(moved)}"]
-            pts = {x: grid, **{k: np.full(grid.size, v) for k, v in lev.items()}}
-            yv = evaluate_on(r.law, r.fit.values, cmp.design, pts)
-            lw = 2.2 if not r.plausible else 1.2
-            ax.plot(_disp(x, grid), yv, lw=lw, **styles[r.law.id], zorder=4)
-            for f in r.plausibility.flags:
-                if f.kind == "trend" and f.variable == x and f.mu:
-                    ax.plot([_disp(x, f.at[x]), _disp(x, f.to[x])], list(f.mu), "X",
-                            color=styles[r.law.id]["color"], mec="black", ms=9, zorder=7)
-                elif f.kind in ("above-limit", "below-limit") and x in f.at and f.mu:
-                    same = all(math.isclose(f.at.get(k, v), v, rel_tol=1e-6)
-                               for k, v in lev.items())
-                    if same:
-                        yv_clip = min(max(f.mu[0], lo_lim - 0.9), hi_lim + 1.4)
-                        ax.plot(_disp(x, f.at[x]), yv_clip,
-                                "^" if f.kind == "above-limit" else "v",
-                                color=styles[r.law.id]["color"], mec="black", ms=9,
-                                zorder=7)
-        ax.set_xlim(_disp(x, blo), _disp(x, bhi))
-        ax.set_ylim(lo_lim - 1.0, hi_lim + 1.5)
-        ax.set_xlabel(_label(x))
-        ax.set_ylabel(_label("mu"))
-        at = f" at {_at_text(level)}" if level else ""
-        ax.set_title(f"fully fitted laws over the extended {x} range{at}\n"
-                     "(a law whose trend turns is drawn where it turns: see legend)",
-                     fontsize=9)
-        ax.grid(alpha=0.3)
+    drawn_at: dict[str, list[str]] = {}  # law -> the panels it is drawn off the mode in
+    for r in cmp.results:
+        for x in vars_:
+            _box_level(r, x, _box_mode(cmp, x), drawn_at)
     handles = [Line2D([], [], marker="o", ls="", color="black", label="measured"),
                Patch(color="0.85", label="measured range"),
                Line2D([], [], color="tab:red", ls="--", label="physical limits of mu"),
@@ -540,7 +622,13 @@ def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
             text += "\n    " + "; ".join(drawn_at[r.law.id])
         suffix[r.law.id] = text
     handles += _law_handles(cmp, styles, suffix)
-    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="law (rank)")
+    legend_in = _legend_width(handles)
+    fig = _new_figure(4.8 * max(1, len(vars_)) + legend_in + 0.9, 4.8)
+    axes = _grid(fig, 1, max(1, len(vars_)), legend_in=legend_in, top_in=0.95,
+                 bottom_in=0.6, wspace=0.3)
+    for x, ax in zip(vars_, axes[0]):
+        _box_panel(cmp, ax, x, styles)
+    fig.legend(handles=handles, loc="upper right", fontsize=8, title="law (rank)")
     fig.suptitle(f"{cmp.data.name}: plausibility outside the measured range", fontsize=11)
     box = "; ".join(f"{k} {v['display']}" for k, v in cmp.settings["extended_box"].items())
     caption = (f"Each fully fitted law over the extended box ({box}); grey: the measured "
@@ -553,11 +641,10 @@ def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
 
 
 def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
-    import matplotlib.pyplot as plt
-
     res = cmp.results
     n = len(res)
-    fig, ax = plt.subplots(figsize=(10, 0.7 * n + 1.8), layout="constrained")
+    fig = _new_figure(10, 0.45 * n + 1.6)
+    ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.45, bottom_in=0.55)[0, 0]
     k = cmp.settings["folds"]
     series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6"),
               (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan")]
@@ -591,7 +678,7 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     ax.invert_yaxis()
     ax.set_xlabel("RMSE of mu [-] (log scale)")
     ax.set_ylabel("law (rank by CV RMSE)")
-    ax.grid(axis="x", alpha=0.3, which="both")
+    ax.grid(axis="x", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
     ax.set_title(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
                  "upper range", fontsize=10)
@@ -601,30 +688,56 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     return Figure("metrics", "metrics", caption, _png(fig))
 
 
-def make_figures(cmp: Comparison) -> list[Figure]:
-    """Render every figure of the report (Agg backend)."""
+def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
+    """(drawing function, its extra arguments) of every figure of the report, in order."""
+    var = cmp.design.varying
+    plan: list[tuple[Any, tuple[Any, ...]]] = []
+    if len(var) >= 2:
+        plan += [(_fits_figure, (var[0], var[1])), (_fits_figure, (var[1], var[0]))]
+    elif len(var) == 1:
+        plan.append((_fits_figure, (var[0], None)))
+    plan += [(_residuals_figure, ()), (_holdout_figure, ())]
+    if cmp.box:
+        plan.append((_box_figure, ()))
+    plan.append((_metrics_figure, ()))
+    return plan
+
+
+def _draw(cmp: Comparison, index: int) -> Figure | None:
+    """Draw figure ``index`` of the report's plan (module-level: joblib runs it elsewhere)."""
     import matplotlib
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    draw, args = _figure_plan(cmp)[index]
+    with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 9}):
+        return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
 
-    styles = _styles(cmp)
-    figs: list[Figure] = []
-    with plt.rc_context({"font.size": 9, "axes.titlesize": 9}):
-        var = cmp.design.varying
-        if len(var) >= 2:
-            figs.append(_fits_figure(cmp, var[0], var[1], styles))
-            figs.append(_fits_figure(cmp, var[1], var[0], styles))
-        elif len(var) == 1:
-            figs.append(_fits_figure(cmp, var[0], None, styles))
-        figs.append(_residuals_figure(cmp, styles))
-        hold = _holdout_figure(cmp, styles)
-        if hold is not None:
-            figs.append(hold)
-        if cmp.box:
-            figs.append(_box_figure(cmp, styles))
-        figs.append(_metrics_figure(cmp, styles))
-    return figs
+
+def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
+    """Render every figure of the report.
+
+    Each figure is drawn on its own Agg canvas (pyplot and the user's backend are
+    left alone), with a fixed layout, at :data:`DPI`.
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison to draw.
+    jobs : int
+        Processes (joblib) drawing the figures; 1 draws them here, one after another.
+
+    Returns
+    -------
+    list of Figure
+        The PNG figures in report order.
+    """
+    indices = range(len(_figure_plan(cmp)))
+    if jobs == 1:
+        figs = [_draw(cmp, i) for i in indices]
+    else:
+        from joblib import Parallel, delayed  # type: ignore[import-untyped]
+
+        figs = Parallel(n_jobs=jobs)(delayed(_draw)(cmp, i) for i in indices)
+    return [f for f in figs if f is not None]
 
 
 # ------------------------------------------------------------- md and html
@@ -764,47 +877,40 @@ li{margin:0.2em 0}
 """
 
 
-def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
-    """The report as one self-contained HTML page (figures embedded as base64 PNG)."""
+def _html_ranking(cmp: Comparison) -> list[str]:
+    """The ranking table in HTML; each law's title under its id."""
     e = html.escape
-    d = cmp.data
-    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
-             f"<title>Comparison of friction laws on {e(d.name)}</title>",
-             f"<style>{_CSS}</style></head><body>",
-             f"<h1>Comparison of friction laws on {e(d.name)}</h1>",
-             f"<p>Data: <b>{e(d.name)}</b> ({e(d.source)}), {d.n} rows; "
-             f"{e(_ranges_text(cmp))}.</p>",
-             "<ul>" + "".join(f"<li>{e(m)}</li>" for m in _method(cmp)) + "</ul>",
-             "<h2>Ranking</h2>"]
     head, rows = _metric_table(cmp)
     # the title goes under the law id (a separate column makes the table too wide)
     skip = head.index("title")
-    parts.append("<table><tr>" + "".join(
-        f"<th class='{'l' if h == 'law' else ''}'>{e(h)}</th>"
-        for i, h in enumerate(head) if i != skip) + "</tr>")
+    parts = ["<table><tr>" + "".join(f"<th class='{'l' if h == 'law' else ''}'>{e(h)}</th>"
+                                     for i, h in enumerate(head) if i != skip) + "</tr>"]
     for r, row in zip(cmp.results, rows):
-        cls = "" if r.plausible else " class='bad'"
         cells = []
         for i, c in enumerate(row):
             if i == skip:
                 continue
-            text = e(c)
-            cls_td = ""
+            text, cls_td = e(c), ""
             if head[i] in ("plausible", "identifiable") and c == "NO":
                 text = "<span class='bad-word'>NO</span>"
             if head[i] == "law":
                 text = f"<b>{e(c)}</b><br><span class='title'>{e(row[skip])}</span>"
                 cls_td = "l law"
             cells.append(f"<td class='{cls_td}'>{text}</td>")
+        cls = "" if r.plausible else " class='bad'"
         parts.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
     parts.append("</table>")
-    parts.append("<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
-                 "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
-                 "alone in its group has weight 1 trivially).</p>")
+    return parts
+
+
+def _html_sections(cmp: Comparison) -> list[str]:
+    """The prose sections as HTML lists, IMPLAUSIBLE highlighted."""
+    e = html.escape
 
     def mark(text: str) -> str:
         return e(text).replace("IMPLAUSIBLE", "<span class='bad-word'>IMPLAUSIBLE</span>")
 
+    parts = []
     for heading, items in _sections(cmp):
         parts.append(f"<h2>{e(heading)}</h2><ul>")
         for item in items:
@@ -814,7 +920,38 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
             else:
                 parts.append(f"<li>{mark(item)}</li>")
         parts.append("</ul>")
-    parts.append("<h2>Figures</h2>")
+    return parts
+
+
+def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
+    """Write the report as one self-contained HTML page (figures embedded as base64 PNG).
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+    figures : sequence of Figure
+        The figures to embed, in order.
+
+    Returns
+    -------
+    str
+        The HTML page.
+    """
+    e = html.escape
+    d = cmp.data
+    parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
+             f"<title>Comparison of friction laws on {e(d.name)}</title>",
+             f"<style>{_CSS}</style></head><body>",
+             f"<h1>Comparison of friction laws on {e(d.name)}</h1>",
+             f"<p>Data: <b>{e(d.name)}</b> ({e(d.source)}), {d.n} rows; "
+             f"{e(_ranges_text(cmp))}.</p>",
+             "<ul>" + "".join(f"<li>{e(m)}</li>" for m in _method(cmp)) + "</ul>",
+             "<h2>Ranking</h2>", *_html_ranking(cmp),
+             "<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
+             "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
+             "alone in its group has weight 1 trivially).</p>",
+             *_html_sections(cmp), "<h2>Figures</h2>"]
     for f in figures:
         b64 = base64.b64encode(f.png).decode("ascii")
         parts.append(f"<figure id='{e(f.name)}'><h3>{e(f.title)}</h3>"
@@ -824,12 +961,30 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     return "\n".join(parts)
 
 
-def write_report(cmp: Comparison, directory: str | Path) -> dict[str, Path]:
-    """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``."""
+def write_report(cmp: Comparison, directory: str | Path, jobs: int = 1) -> dict[str, Path]:
+    """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``.
+
+    Parameters
+    ----------
+    cmp : Comparison
+        The comparison.
+    directory : str or Path
+        Where to write (created if missing).
+    jobs : int
+        Processes drawing the figures (see :func:`make_figures`).
+
+    Returns
+    -------
+    dict of str to Path
+        Name -> path of each file written.
+    """
     from ..io import output_dir
 
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or not (jobs >= 1 or jobs == -1):
+        raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
+                         f"{jobs!r}", option="jobs")
     out = output_dir(directory, "report directory")
-    figures = make_figures(cmp)
+    figures = make_figures(cmp, jobs)
     written: dict[str, Path] = {}
     for f in figures:
         p = out / f"{f.name}.png"

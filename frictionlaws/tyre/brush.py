@@ -461,6 +461,32 @@ def _index_of(values: np.ndarray, x: float) -> int:
 # ----------------------------------------------------------------------- model
 
 
+def _law_mu(bound: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
+    """mu(p, v) of a bound law whatever its variables (none, p, v, or both)."""
+    if names == ():
+        mu0 = float(bound())
+
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return np.full(np.broadcast(p, v).shape, mu0)
+    elif names == ("p",):
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(p)
+    elif names == ("v",):
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(v) + 0.0 * p
+    else:
+        def mu(p: Any, v: Any = 0.0) -> Any:
+            return bound(p=p, v=v)
+    return mu
+
+
+def _function_mu(func: Callable[..., Any]) -> Callable[..., Any]:
+    """mu(p, v) of a user's function, given the speed's magnitude, as a float array."""
+    def mu(p: Any, v: Any = 0.0) -> Any:
+        return np.asarray(func(p, np.abs(v)), dtype=float) + 0.0 * p
+    return mu
+
+
 class BrushModel:
     """A brush tyre whose bristles obey a friction law mu(p, v).
 
@@ -513,55 +539,40 @@ class BrushModel:
             params = bound.values
             law = bound.law
         if isinstance(law, (str, Law)):
-            from ..registry import get_law
-
-            self.law = get_law(law)
-            extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
-            if extra or self.law.family != "sliding":
-                what = ", ".join(f"{v} ({VARIABLES[v].meaning})" for v in extra)
-                raise DomainError(
-                    f"law '{self.law.id}' cannot be the local friction limit of a brush "
-                    f"model: it needs {what or 'a slip ratio'}, while a bristle only has its "
-                    "contact pressure p and sliding speed v. Use a law of p and/or v "
-                    "(e.g. coulomb, thirion, savkoor, exponential-decay)")
-            self.values = self.law.resolve(params, preset)
-            adm = self.law.check_admissible(self.values)
-            if adm:
-                raise DomainError(f"law '{self.law.id}': parameters not admissible: {adm}")
-            bound = self.law.bind(self.values)
-            names = self.law.variables
-            self.uses_v = "v" in names
-            self.label = self.law.id
-            if names == ():
-                mu0 = float(bound())
-
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return np.full(np.broadcast(p, v).shape, mu0)
-            elif names == ("p",):
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(p)
-            elif names == ("v",):
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(v) + 0.0 * p
-            else:
-                def mu(p: Any, v: Any = 0.0) -> Any:
-                    return bound(p=p, v=v)
-            self.mu = mu
+            self._use_law(law, params, preset)
         elif callable(law):
             if params is not None or preset is not None:
                 raise InputError("params/preset apply to a registered law, not to a function")
-            self.values = {}
+            self.values: dict[str, float] = {}
             self.uses_v = True
-            self.label = getattr(law, "__name__", "function")
-            func = law
-
-            def mu(p: Any, v: Any = 0.0) -> Any:
-                return np.asarray(func(p, np.abs(v)), dtype=float) + 0.0 * p
-            self.mu = mu
+            self.label: str = getattr(law, "__name__", "function")
+            self.mu = _function_mu(law)
         else:
             raise InputError(f"law must be a law name, a Law, a fit result or a function "
                              f"mu(p, v); got {type(law).__name__}")
         self._ranges = self._reference_ranges()
+
+    def _use_law(self, law: str | Law, params: Mapping[str, float] | None,
+                 preset: str | None) -> None:
+        """Take a registered law of p and/or v, with its parameter values, as the limit."""
+        from ..registry import get_law
+
+        self.law = get_law(law)
+        extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
+        if extra or self.law.family != "sliding":
+            what = ", ".join(f"{v} ({VARIABLES[v].meaning})" for v in extra)
+            raise DomainError(
+                f"law '{self.law.id}' cannot be the local friction limit of a brush "
+                f"model: it needs {what or 'a slip ratio'}, while a bristle only has its "
+                "contact pressure p and sliding speed v. Use a law of p and/or v "
+                "(e.g. coulomb, thirion, savkoor, exponential-decay)")
+        self.values = self.law.resolve(params, preset)
+        adm = self.law.check_admissible(self.values)
+        if adm:
+            raise DomainError(f"law '{self.law.id}': parameters not admissible: {adm}")
+        self.uses_v = "v" in self.law.variables
+        self.label = self.law.id
+        self.mu = _law_mu(self.law.bind(self.values), self.law.variables)
 
     # -------------------------------------------------------------- checks
     def _reference_ranges(self) -> dict[str, tuple[float, float, str]]:
@@ -577,7 +588,7 @@ class BrushModel:
                 out[var] = (lo, hi, "valid domain of the law")
         return out
 
-    def _limit(self, p: np.ndarray, v: Any, c: float, check: bool = True) -> np.ndarray:
+    def _limit(self, p: Any, v: Any, c: float, check: bool = True) -> np.ndarray:
         """Deflection limit mu p w / c [m]; raises on NaN or negative mu when ``check``."""
         with np.errstate(all="ignore"):
             mu = np.asarray(self.mu(p, v), dtype=float)
@@ -686,29 +697,8 @@ class BrushModel:
                 slide = ~stick
                 qs, vrs = qa[slide], vr[slide]
                 pk = p[k]
-                # the root with the smallest sliding speed (largest q <= q_a): scan
-                # x = (q_a - q)/q_a on a log grid for the first sign change, then bisect
-                x = _SCAN[None, :]
-                lim = self._limit(pk, (vrs * qs / ds)[:, None] * x, c, check=False)
-                below = (qs[:, None] * (1.0 - x)) <= lim
-                first = np.argmax(below, axis=1)
-                if not below[np.arange(qs.size), first].all():
-                    bad = int(np.flatnonzero(~below[np.arange(qs.size), first])[0])
-                    raise DomainError(
-                        f"law '{self.label}': no steady sliding speed (tried up to "
-                        f"{vrs[bad] * qs[bad] / ds:.3g} m/s) holds a sliding bristle at "
-                        f"p = {pk / 1e6:.4g} MPa: the law falls with sliding speed there "
-                        "(velocity weakening) or turns negative, so the local-speed steady "
-                        "state does not exist; use sliding_speed='slip'")
-                lo = np.where(first > 0, _SCAN[np.maximum(first - 1, 0)], 0.0)
-                hi = _SCAN[first]
-                for _ in range(BISECTION_STEPS):
-                    mid = 0.5 * (lo + hi)
-                    lim = self._limit(pk, vrs * qs * mid / ds, c, check=False)
-                    ok = qs * (1.0 - mid) <= lim
-                    hi = np.where(ok, mid, hi)
-                    lo = np.where(ok, lo, mid)
-                qslide = qs * (1.0 - hi)
+                x = self._slowest_slide(pk, qs, vrs, ds, c, L_static[k])
+                qslide = qs * (1.0 - x)
                 vs = vrs * (qs - qslide) / ds
                 with np.errstate(all="ignore"):
                     self._check_mu(np.asarray(self.mu(pk, vs), float), pk, vs)
@@ -719,6 +709,62 @@ class BrushModel:
             qn = qa
             q[:, k] = qn
         return q, ((vs_min, vs_max) if vs_min <= vs_max else None)
+
+    def _slowest_slide(self, pk: float, qs: np.ndarray, vrs: np.ndarray, ds: float, c: float,
+                       l_static: float) -> np.ndarray:
+        """x = (q_a - q)/q_a of the slowest steady sliding state of each sliding bristle.
+
+        The bristle at pressure ``pk`` with adhesion trial ``qs`` settles where its
+        deflection meets the friction limit at its own tip speed:
+        ``g(x) = qs (1 - x) - limit(pk, V_r qs x / ds) = 0``.  The root with the smallest
+        sliding speed is bracketed by the first sign change of ``g`` on a log grid of x,
+        then found by regula falsi with the Illinois modification (superlinear, and
+        never leaving the bracket) to :data:`BISECTION_STEPS` halvings of the bracket;
+        the returned x is the end of the final bracket where the limit holds.
+        """
+        x = _SCAN[None, :]
+        lim = np.broadcast_to(self._limit(pk, (vrs * qs / ds)[:, None] * x, c, check=False),
+                              (qs.size, _SCAN.size))
+        below = (qs[:, None] * (1.0 - x)) <= lim
+        first = np.argmax(below, axis=1)
+        rows = np.arange(qs.size)
+        if not below[rows, first].all():
+            bad = int(np.flatnonzero(~below[rows, first])[0])
+            raise DomainError(
+                f"law '{self.label}': no steady sliding speed (tried up to "
+                f"{vrs[bad] * qs[bad] / ds:.3g} m/s) holds a sliding bristle at "
+                f"p = {pk / 1e6:.4g} MPa: the law falls with sliding speed there "
+                "(velocity weakening) or turns negative, so the local-speed steady "
+                "state does not exist; use sliding_speed='slip'")
+        hi = _SCAN[first]
+        g_hi = qs * (1.0 - hi) - lim[rows, first]
+        prev = np.maximum(first - 1, 0)
+        lo = np.where(first > 0, _SCAN[prev], 0.0)
+        g_lo = np.where(first > 0, qs * (1.0 - lo) - lim[rows, prev], qs - l_static)
+        return self._illinois(pk, qs, vrs, ds, c, (lo, hi, g_lo, g_hi))
+
+    def _illinois(self, pk: float, qs: np.ndarray, vrs: np.ndarray, ds: float, c: float,
+                  bracket: tuple[np.ndarray, ...]) -> np.ndarray:
+        """Shrink brackets with g(lo) > 0 >= g(hi) around the root; return the hi ends."""
+        lo, hi, g_lo, g_hi = bracket
+        tol = (hi - lo) * 2.0**-BISECTION_STEPS
+        side = np.zeros(qs.size)
+        for _ in range(4 * BISECTION_STEPS):
+            active = (hi - lo > tol) & (g_hi < 0)
+            if not active.any():
+                break
+            with np.errstate(all="ignore"):
+                x = hi - g_hi * (hi - lo) / (g_hi - g_lo)
+            x = np.where((x > lo) & (x < hi), x, 0.5 * (lo + hi))
+            g = qs * (1.0 - x) - self._limit(pk, vrs * qs * x / ds, c, check=False)
+            ok = active & (g <= 0)
+            up = active & ~(g <= 0)
+            g_lo = np.where(ok & (side > 0), 0.5 * g_lo, g_lo)  # Illinois: the end that
+            g_hi = np.where(up & (side < 0), 0.5 * g_hi, g_hi)  # stayed twice counts half
+            hi, g_hi = np.where(ok, x, hi), np.where(ok, g, g_hi)
+            lo, g_lo = np.where(up, x, lo), np.where(up, g, g_lo)
+            side = np.where(ok, 1.0, np.where(up, -1.0, side))
+        return hi
 
     def _full_sliding(self, fz: float, slide_speed: np.ndarray) -> np.ndarray:
         """Force of a fully sliding patch at sliding speeds ``slide_speed`` [N]."""

@@ -1,0 +1,227 @@
+"""What :func:`~frictionlaws.comparison.compare` found: :class:`Comparison`, per law
+:class:`LawComparison`.
+
+Plain results (the fits, cross-validation, hold-outs, plausibility and residual tests
+of every law, and the settings), with their JSON form.  Computing them is
+:mod:`.core`'s work and formatting them :mod:`.report`'s: this module imports neither,
+and :mod:`.report` is imported only when a table or a report is asked for.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..fitting import FitData, FitResult
+from ..jsonio import dumps as _dumps
+from ..law import VARIABLES, Law
+from ..registry import get_law
+from .cv import CVResult
+from .extrapolation import Design, HoldoutResult, Plausibility, Split, Trend, fmt_value
+from .residuals import ResidualAnalysis
+
+__all__ = ["Comparison", "LawComparison", "COMPARISON_FORMAT", "COMPARISON_VERSION"]
+
+COMPARISON_FORMAT = "frictionlaws-comparison"
+COMPARISON_VERSION = 1
+
+
+@dataclass
+class LawComparison:
+    """Everything :func:`compare` found out about one fitted law."""
+
+    law: Law
+    fit: FitResult
+    rows: np.ndarray
+    notes: list[str]
+    cv: CVResult
+    holdouts: list[HoldoutResult]
+    extrapolation_rmse: float
+    plausibility: Plausibility
+    residuals: ResidualAnalysis
+    akaike_weight: float | None = None
+    weight_basis: str = "aicc"
+    aic_group: int = 0
+    aic_group_size: int = 1
+    rank: int = 0
+    cv_rmse_common: float = math.nan
+    extra_notes: list[str] = field(default_factory=list)
+
+    @property
+    def id(self) -> str:
+        return self.law.id
+
+    @property
+    def metrics(self) -> dict[str, Any]:
+        return self.fit.metrics
+
+    @property
+    def plausible(self) -> bool:
+        return self.plausibility.plausible
+
+    @property
+    def n_dropped(self) -> int:
+        return int(self.rows.size - self.rows.sum())
+
+    def to_dict(self) -> dict[str, Any]:
+        m = self.fit.metrics
+        return {
+            "rank": self.rank,
+            "id": self.law.id,
+            "title": self.law.title,
+            "status": "fitted",
+            "k": m["k"], "n": m["n"], "n_dropped": self.n_dropped,
+            "r2": m["r2"], "adj_r2": m["adj_r2"], "rmse": m["rmse"], "mae": m["mae"],
+            "max_abs_residual": m["max_abs_residual"],
+            "aic": m["aic"], "aicc": m["aicc"], "bic": m["bic"],
+            "akaike_weight": self.akaike_weight,
+            "akaike_weight_basis": self.weight_basis,
+            "aic_group": self.aic_group, "aic_group_size": self.aic_group_size,
+            "cv_rmse": self.cv.rmse,
+            "cv_rmse_common": self.cv_rmse_common,
+            "cv": self.cv.to_dict(),
+            "extrapolation_rmse": self.extrapolation_rmse,
+            "extrapolation": [h.to_dict() for h in self.holdouts],
+            "plausible": self.plausible,
+            "plausibility_reasons": self.plausibility.reasons,
+            "plausibility": self.plausibility.to_dict(),
+            "converged": self.fit.success,
+            "warnings": list(self.fit.warnings),
+            "non_identifiable": list(self.fit.non_identifiable),
+            "residual_tests": self.residuals.to_dict(),
+            "residual_structure": list(self.residuals.structure),
+            "notes": list(self.notes) + list(self.extra_notes),
+            "params": {k: p.to_dict() for k, p in self.fit.params.items()},
+            "settings": dict(self.fit.settings),
+        }
+
+
+@dataclass
+class Comparison:
+    """The result of :func:`compare`: ranked laws, skipped and failed laws, settings.
+
+    ``results`` is in rank order (best first).  :meth:`table` is the console
+    table, :meth:`to_dict`/:meth:`to_json` the machine-readable form,
+    :meth:`write_report` the HTML/Markdown/PNG report.
+    """
+
+    data: FitData
+    results: list[LawComparison]
+    skipped: list[dict[str, str]]
+    failed: list[dict[str, str]]
+    design: Design
+    trends: dict[str, Trend]
+    box: dict[str, tuple[float, float]]
+    splits: list[Split]
+    folds: np.ndarray
+    settings: dict[str, Any]
+    notes: list[str] = field(default_factory=list)
+
+    def __getitem__(self, law_id: str) -> LawComparison:
+        key = get_law(law_id).id
+        for r in self.results:
+            if r.law.id == key:
+                return r
+        raise KeyError(law_id)
+
+    @property
+    def ranking(self) -> list[str]:
+        """Law ids, best first."""
+        return [r.law.id for r in self.results]
+
+    @property
+    def best(self) -> LawComparison | None:
+        return self.results[0] if self.results else None
+
+    def dataset_info(self) -> dict[str, Any]:
+        """Name, source, rows and the ranges of the variables (SI and display units)."""
+        variables = {}
+        for k, x in self.data.arrays.items():
+            if k not in VARIABLES:
+                continue
+            v = VARIABLES[k]
+            variables[k] = {"unit": v.unit or "-", "meaning": v.meaning,
+                            "min": float(np.min(x)), "max": float(np.max(x)),
+                            "distinct": int(np.unique(x).size),
+                            "range_display": f"{fmt_value(k, float(np.min(x)))} .. "
+                                             f"{fmt_value(k, float(np.max(x)))}"}
+        mu = self.data.arrays["mu"]
+        return {"name": self.data.name, "source": self.data.source, "n": self.data.n,
+                "mu": {"unit": "-", "min": float(np.min(mu)), "max": float(np.max(mu))},
+                "variables": variables, "weighted": self.data.weights is not None,
+                "notes": list(self.data.notes), "design": self.design.to_dict(),
+                "trends": {k: t.to_dict() for k, t in self.trends.items()}}
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-able dict: dataset, units, settings, ranked laws, skipped, failed."""
+        units = {"mu": "-", **{k: (v.unit or "-") for k, v in VARIABLES.items()}}
+        units.update({m: "-" for m in ("r2", "adj_r2", "rmse", "mae", "max_abs_residual",
+                                        "cv_rmse", "extrapolation_rmse", "akaike_weight")})
+        units.update({m: "- (log-likelihood based, compare within a group)"
+                      for m in ("aic", "aicc", "bic")})
+        return {
+            "format": COMPARISON_FORMAT,
+            "version": COMPARISON_VERSION,
+            "dataset": self.dataset_info(),
+            "units": units,
+            "settings": self.settings,
+            "ranking": self.ranking,
+            "laws": [r.to_dict() for r in self.results],
+            "skipped": list(self.skipped),
+            "failed": list(self.failed),
+            "notes": list(self.notes),
+        }
+
+    def to_json(self, indent: int = 2) -> str:
+        """JSON text of :meth:`to_dict` (non-finite numbers become null)."""
+        return _dumps(self.to_dict(), indent=indent)
+
+    def to_frame(self) -> Any:
+        """One row per ranked law: rank, metrics, CV and extrapolation RMSE, flags."""
+        import pandas as pd
+
+        cols = ("rank", "id", "k", "n", "r2", "rmse", "aic", "bic", "cv_rmse",
+                "extrapolation_rmse", "akaike_weight", "plausible", "converged")
+        rows = [{c: r.to_dict()[c] for c in cols} for r in self.results]
+        frame = pd.DataFrame(rows, columns=list(cols)).rename(columns={"id": "law"})
+        frame.attrs["units"] = "mu, rmse, cv_rmse, extrapolation_rmse: - (dimensionless)"
+        return frame
+
+    def _repr_html_(self) -> str:
+        from ..interop import table_html
+
+        rows = self.to_frame().to_dict("records")
+        return table_html(rows, caption=f"laws compared on {self.data.name} "
+                                        f"({self.data.n} rows), best first")
+
+    def table(self) -> str:
+        """The ranked console table with the flags, skipped and failed laws."""
+        from .report import format_table
+
+        return format_table(self)
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def write_report(self, directory: str | Path, *, jobs: int = 1) -> dict[str, Path]:
+        """Write ``report.html``, ``report.md``, ``comparison.json`` and the PNG figures.
+
+        Parameters
+        ----------
+        directory : str or Path
+            Where to write (created if missing).
+        jobs : int
+            Processes (joblib) drawing the figures; 1 draws them in this process.
+
+        Returns
+        -------
+        dict of str to Path
+            Name -> path of each file written.
+        """
+        from .report import write_report
+
+        return write_report(self, directory, jobs)
