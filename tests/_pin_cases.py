@@ -74,11 +74,7 @@ def run(law: str, data: Any, options: dict[str, Any]) -> dict[str, Any]:
 
 
 if __name__ == "__main__":
-    print("PINS = {")
-    for name, law, data, options in cases():
-        r = run(law, data, options)
-        params = ", ".join(f"{k!r}: {v!r}" for k, v in r["params"].items())
-        print(f"    {name!r}: {{'params': {{{params}}},\n"
-              f"        'chisqr': {r['chisqr']!r}, 'r2': {r['r2']!r}, "
-              f"'non_identifiable': {r['non_identifiable']!r}}},")
-    print("}")
+    import pprint
+
+    table = {name: run(law, data, options) for name, law, data, options in cases()}
+    print("PINS = " + pprint.pformat(table, width=92, sort_dicts=False))
