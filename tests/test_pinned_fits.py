@@ -25,10 +25,9 @@ import math
 import warnings
 
 import pytest
+from _pin_cases import cases, run
 
 import frictionlaws as fl
-
-from _pin_cases import cases, run
 
 RTOL = 1e-6
 LOOSE = 0.05
