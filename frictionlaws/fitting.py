@@ -909,13 +909,14 @@ class _Search:
                                                                               sol.theta)))}
             self.best_values = {k: self.best_values[k] for k in self.setup.names}
 
-    @property
-    def reproduced(self) -> bool:
-        """True when two starts ended at the best chi^2."""
+    def reproduced(self, since: int = 0) -> bool:
+        """True when two starts ended at the best chi^2, one of them after the first
+        ``since`` starts."""
         if self.best is None:
             return False
         best = self.best.chisqr
-        return sum((f - best) <= SAME_MINIMUM * max(best, 1e-300) for f in self.finals) >= 2
+        hits = [(f - best) <= SAME_MINIMUM * max(best, 1e-300) for f in self.finals]
+        return sum(hits) >= 2 and any(hits[since:])
 
     @property
     def spread(self) -> float:
@@ -932,6 +933,7 @@ class _Search:
         ``first_fixed`` the first start is refined first whatever its score.
         """
         prob = self.problem()
+        since = len(self.finals)
         vectors = [self.start_vector(s, prob.names) for s in starts]
         unique: list[int] = []
         for i, v in enumerate(vectors):
@@ -947,7 +949,7 @@ class _Search:
                 self.errors.append("the model is not finite at the start")
                 continue
             self.run(starts[unique[j]])
-            if early and self.reproduced:
+            if early and self.reproduced(since):
                 return
 
 
@@ -960,8 +962,7 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
     n_random = 6 if starts is None else int(starts)
     if not law.linear and (search.spread > SAME_MINIMUM or search.best is None or forced):
         rng = np.random.default_rng(seed)
-        # every random start: their spread decides the global stage
-        search.refine(_random_starts(law, s.guess, s.vary, n_random, rng), early=False)
+        search.refine(_random_starts(law, s.guess, s.vary, n_random, rng), early=not forced)
 
 
 def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
