@@ -28,8 +28,8 @@ import numpy as np
 
 from .law import NUMPY, Law
 
-__all__ = ["jacobian_function", "probe_point", "generate_source", "write_module",
-           "MODULE_PATH"]
+__all__ = ["jacobian_function", "formula_text", "probe_point", "generate_source",
+           "write_module", "MODULE_PATH"]
 
 #: Where the generated derivative code lives.
 MODULE_PATH = Path(__file__).parent / "laws" / "_jacobians.py"
@@ -85,7 +85,45 @@ def _table() -> dict[str, tuple[dict[str, float], float, Callable[..., Any]]]:
     return dict(_jacobians.JACOBIANS)
 
 
-_CHECKED: dict[int, Callable[..., Any] | None] = {}
+_CHECKED: dict[int, bool] = {}
+
+
+def _current(law: Law) -> bool:
+    """True when the generated module's entry for ``law`` still describes its formula."""
+    key = id(law.formula)
+    if key not in _CHECKED:
+        entry = _table().get(law.id)
+        ok = False
+        if entry is not None:
+            point, value, _func = entry
+            now = _probe_value(law, point)
+            ok = set(point) == set(probe_point(law)) and math.isfinite(now) and (
+                abs(now - value) <= PROBE_RTOL * max(abs(value), 1e-300))
+        _CHECKED[key] = ok
+    return _CHECKED[key]
+
+
+def formula_text(law: Law) -> str:
+    """The plain-text formula ``mu = ...`` (:meth:`Law.pretty`), without sympy when the
+    generated module holds it for this very formula.
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+
+    Returns
+    -------
+    str
+        The same text as ``law.pretty()``.
+    """
+    if _current(law):
+        from .laws import _jacobians
+
+        text = _jacobians.FORMULAS.get(law.id)
+        if text is not None:
+            return str(text)
+    return law.pretty()
 
 
 def jacobian_function(law: Law) -> Callable[..., Any] | None:
@@ -102,19 +140,7 @@ def jacobian_function(law: Law) -> Callable[..., Any] | None:
         ``func(m, names, **variables_params_settings)`` returning one column (array or
         scalar) per name in ``names``; None when there is no current generated entry.
     """
-    key = id(law.formula)
-    if key in _CHECKED:
-        return _CHECKED[key]
-    entry = _table().get(law.id)
-    func = None
-    if entry is not None:
-        point, value, candidate = entry
-        now = _probe_value(law, point)
-        if set(point) == set(probe_point(law)) and math.isfinite(now) and (
-                abs(now - value) <= PROBE_RTOL * max(abs(value), 1e-300)):
-            func = candidate
-    _CHECKED[key] = func
-    return func
+    return _table()[law.id][2] if _current(law) else None
 
 
 # ----------------------------------------------------------------- generation
@@ -156,6 +182,8 @@ def _entry_source(law: Law) -> str | None:
 def generate_source(laws: list[Law]) -> str:
     """The text of ``frictionlaws/laws/_jacobians.py`` for ``laws``.
 
+    It defines ``JACOBIANS`` and ``FORMULAS`` (the plain-text formula of each law).
+
     Parameters
     ----------
     laws : list of Law
@@ -173,7 +201,7 @@ def generate_source(laws: list[Law]) -> str:
             "(sympy, common subexpressions shared); see :mod:`frictionlaws.derivatives`.",
             '"""', "", "# ruff: noqa", "# mypy: ignore-errors", "",
             "import numpy", "", ""]
-    body, table = [], []
+    body, table, texts = [], [], []
     for law in laws:
         src = _entry_source(law)
         if src is None:
@@ -185,8 +213,10 @@ def generate_source(laws: list[Law]) -> str:
         body.append(src)
         fname = "_d_" + law.id.replace("-", "_").replace("+", "_")
         table.append(f"    {law.id!r}: ({point!r}, {value!r}, {fname}),")
+        texts.append(f"    {law.id!r}: {law.pretty()!r},")
     return ("\n".join(head) + "\n\n\n".join(body) + "\n\n\nJACOBIANS = {\n"
-            + "\n".join(table) + "\n}\n")
+            + "\n".join(table) + "\n}\n\n#: Law.pretty() of each law, for reports without sympy.\n"
+            "FORMULAS = {\n" + "\n".join(texts) + "\n}\n")
 
 
 def write_module(path: Path | None = None) -> Path:

@@ -500,7 +500,9 @@ class FitResult:
         d = self.data
         rng = ", ".join(_fmt_range(k, lo, hi) for k, (lo, hi) in d.get("ranges", {}).items())
         lines.append(f"data: {d.get('name')} ({d.get('n')} rows{'; ' + rng if rng else ''})")
-        lines.append(f"formula: {self.law.pretty()}   (SI: {self._si_note()})")
+        from .derivatives import formula_text
+
+        lines.append(f"formula: {formula_text(self.law)}   (SI: {self._si_note()})")
         lines.append("")
         hdr = f"{'parameter':<10} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
         lines.append(hdr)

@@ -83,3 +83,22 @@ def test_lean_fit_gives_the_same_values_without_diagnostics():
 def test_lean_refuses_nonsense(bad):
     with pytest.raises(fl.InputError):
         fl.fit("thirion", "thesis-steel", **bad)
+
+
+@pytest.mark.parametrize("law_id", sorted(EXAMPLES))
+def test_stored_formula_text_is_the_sympy_text(law_id):
+    pytest.importorskip("sympy")
+    law = fl.get_law(law_id)
+    assert derivatives.formula_text(law) == law.pretty()
+
+
+def test_fit_report_imports_neither_sympy_nor_pint_nor_lmfit():
+    import subprocess
+    import sys
+
+    code = ("import sys, frictionlaws as fl; r = fl.fit('thirion', 'thesis-steel'); "
+            "r.report(); print(sorted(m for m in ('sympy', 'pint', 'lmfit', 'scipy.stats') "
+            "if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "[]"

@@ -330,3 +330,26 @@ JACOBIANS = {
     'kiencke-daiss': ({'s': 0.0731, 'k_s': 20.275100000000002, 'c1': 30.412100000000002, 'c2': 5.0696}, 0.9667416262341006, _d_kiencke_daiss),
     'germann': ({'s': 0.0731, 'a0': 0.0123, 'a1': 8.1107, 'a2': -15.204400000000001}, 0.523945786116, _d_germann),
 }
+
+#: Law.pretty() of each law, for reports without sympy.
+FORMULAS = {
+    'coulomb': 'mu = mu0',
+    'thirion': 'mu = 1.0/(a + b*p)',
+    'schallamach': 'mu = mu_ref/(F_N/F_ref)**n',
+    'denny': 'mu = 1.0/(a*(1.0 + b*p/E_v))',
+    'exponential-decay': 'mu = mu_d + (-mu_d + mu_s)*exp(-(v/v_c)**delta)',
+    'quadratic-pv': 'mu = c0 + c1*p + c2*v + c3*p*v + c4*p**2 + c5*v**2',
+    'thesis-poly2': 'mu = a0 + 1.0e-6*a1*p + 1.0e-12*a2*p**2 + a3*v + a4*v**2',
+    'thesis-poly3': 'mu = a0 + 1.0e-6*a1*p + 1.0e-12*a2*p**2 + 1.0e-18*a3*p**3 + a4*v + a5*v**2 + a6*v**3',
+    'savkoor': 'mu = (p/p_ref)**n*(mu_s + (mu_m - mu_s)*exp(-h10**2*log(v/v_m)**2/log(10)**2))',
+    'nackenhorst': 'mu = A*(p/p_ref)**n + b0 + b1*log(v/v_ref) + b2*log(v/v_ref)**2',
+    'nackenhorst-thesis': 'mu = c1*(p/c2)**c3 + c4*log(v/c5) - c6*log(v/c7)',
+    'huemer': 'mu = (alpha*(p/p_ref)**(n - 1.0) + beta)/(b/(v/v_ref)**(1.0/m_v) + c/(v/v_ref)**(2.0/m_v) + 1.0)',
+    'wriggers': 'mu = b*(2.0*a*p*v/(a**2*p**2 + v**2))**c*atan(d*p)/p',
+    'park': 'mu = (mu_s + (mu_m - mu_s)*exp(-h10**2*(-C1*(T - T_ref)/(C2 + T - T_ref) + log(v/v_m)/log(10))**2))/(p/p0)**n',
+    'pacejka': 'mu = D*sin(C*atan(B*(S_h + s) - E*(B*(S_h + s) - atan(B*(S_h + s))))) + S_v',
+    'burckhardt': 'mu = (c1*(1.0 - exp(-c2*s)) - c3*s)*exp(-c4*v)',
+    'burckhardt-sqrt': 'mu = c1*sqrt(s) - c2*s',
+    'kiencke-daiss': 'mu = k_s*s/(c1*s**2 + c2*s + 1.0)',
+    'germann': 'mu = a0 + a1*s + a2*s**2',
+}
