@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .law import NUMPY, Law
 
@@ -77,13 +78,13 @@ class Problem:
         self.prepared = prepare_variables(self.law, self.x, self.y.size)
         self.jac_func = jacobian_function(self.law)
 
-    def values(self, theta: Sequence[float]) -> dict[str, float]:
+    def values(self, theta: ArrayLike) -> dict[str, float]:
         """All parameter and setting values for the varied values ``theta``."""
         out = dict(self.held)
-        out.update(zip(self.names, (float(t) for t in theta)))
+        out.update(zip(self.names, (float(t) for t in np.asarray(theta, dtype=float))))
         return out
 
-    def model(self, theta: Sequence[float]) -> np.ndarray:
+    def model(self, theta: ArrayLike) -> np.ndarray:
         """The law at ``theta`` on every row (floors applied, no checks)."""
         with np.errstate(all="ignore"):
             out = self.law.formula(NUMPY, **self.prepared, **self.values(theta))
@@ -92,14 +93,14 @@ class Problem:
             out = np.broadcast_to(out, self.y.shape)
         return out
 
-    def residual(self, theta: Sequence[float]) -> np.ndarray:
+    def residual(self, theta: ArrayLike) -> np.ndarray:
         """``(model - y) * w``, the vector whose squares are summed."""
         r = self.model(theta) - self.y
         if self.w is not None:
             r *= self.w
         return r
 
-    def jacobian(self, theta: Sequence[float]) -> np.ndarray | None:
+    def jacobian(self, theta: ArrayLike) -> np.ndarray | None:
         """d residual / d theta, analytic, as an (n, k) array (None without a form)."""
         if self.jac_func is None:
             return None
@@ -140,7 +141,7 @@ def prepare_variables(law: Law, x: Mapping[str, np.ndarray], n: int) -> dict[str
     return out
 
 
-def numeric_jacobian(func: Callable[[np.ndarray], np.ndarray], x: np.ndarray,
+def numeric_jacobian(func: Callable[[Any], np.ndarray], x: np.ndarray,
                      scales: np.ndarray | None = None) -> np.ndarray:
     """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``.
 
@@ -275,7 +276,7 @@ def _covariance(jac: np.ndarray | None, redchi: float) -> np.ndarray | None:
 
 def _finish(problem: Problem, theta: np.ndarray, success: bool, message: str, nfev: int,
             jac: np.ndarray | None = None) -> Solution:
-    best_fit = np.array(problem.model(theta), float)
+    best_fit = np.array(problem.model(theta), dtype=float)
     resid = best_fit - problem.y
     if problem.w is not None:
         resid = resid * problem.w
@@ -290,7 +291,7 @@ def _finish(problem: Problem, theta: np.ndarray, success: bool, message: str, nf
     return sol
 
 
-def solve(problem: Problem, start: Sequence[float], method: str = "least_squares"
+def solve(problem: Problem, start: ArrayLike, method: str = "least_squares"
           ) -> Solution:
     """One local least-squares minimisation from ``start``.
 
@@ -326,7 +327,7 @@ def solve(problem: Problem, start: Sequence[float], method: str = "least_squares
         warnings.simplefilter("ignore")
         if not problem.bounded:
             return _solve_minpack(problem, x0, max_nfev)
-        from scipy.optimize import least_squares
+        from scipy.optimize import least_squares  # type: ignore[import-untyped]
 
         ret = least_squares(problem.residual, x0, jac=jac, bounds=(problem.lower, problem.upper),
                             method="trf", x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
@@ -336,7 +337,7 @@ def solve(problem: Problem, start: Sequence[float], method: str = "least_squares
 
 def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution:
     """MINPACK Levenberg-Marquardt (no bounds to respect)."""
-    from scipy.optimize import leastsq
+    from scipy.optimize import leastsq  # type: ignore[import-untyped]
 
     dfun = (lambda t: problem.jacobian(t)) if problem.jac_func is not None else None
     theta, _cov, info, mesg, ier = leastsq(problem.residual, x0, Dfun=dfun, full_output=True,
@@ -347,7 +348,7 @@ def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution:
 
 def _solve_lmfit(problem: Problem, x0: np.ndarray, method: str, max_nfev: int) -> Solution:
     """Another lmfit method, on the same residual."""
-    import lmfit
+    import lmfit  # type: ignore[import-untyped]
 
     params = lmfit.Parameters()
     for k, v, lo, hi in zip(problem.names, x0, problem.lower, problem.upper):
@@ -367,7 +368,7 @@ def _solve_lmfit(problem: Problem, x0: np.ndarray, method: str, max_nfev: int) -
     return _finish(problem, theta, bool(res.success), str(res.message), int(res.nfev))
 
 
-def score_starts(problem: Problem, starts: Sequence[Sequence[float]]) -> np.ndarray:
+def score_starts(problem: Problem, starts: Sequence[ArrayLike]) -> np.ndarray:
     """chi^2 at every start, evaluated in one broadcast pass where memory allows.
 
     Parameters

@@ -82,7 +82,9 @@ def _table() -> dict[str, tuple[dict[str, float], float, Callable[..., Any]]]:
         from .laws import _jacobians
     except ImportError:  # pragma: no cover - the module ships with the package
         return {}
-    return dict(_jacobians.JACOBIANS)
+    table: dict[str, tuple[dict[str, float], float, Callable[..., Any]]] = dict(
+        _jacobians.JACOBIANS)  # type: ignore[arg-type]
+    return table
 
 
 _CHECKED: dict[int, bool] = {}
@@ -148,8 +150,8 @@ def jacobian_function(law: Law) -> Callable[..., Any] | None:
 
 def _entry_source(law: Law) -> str | None:
     """The derivative function of one law as Python source, or None when not derivable."""
-    import sympy
-    from sympy.printing.numpy import NumPyPrinter
+    import sympy  # type: ignore[import-untyped]
+    from sympy.printing.numpy import NumPyPrinter  # type: ignore[import-untyped]
 
     try:
         expr = law.symbolic()

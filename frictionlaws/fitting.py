@@ -22,7 +22,6 @@ the reduced chi-square as lmfit does); the 95 % intervals use Student's t with
 from __future__ import annotations
 
 import functools
-import inspect
 import json
 import math
 import warnings
@@ -355,27 +354,6 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
     return fd, notes
 
 
-def _model_function(law: Law, extra: tuple[str, ...]) -> Any:
-    """A function with an explicit signature for lmfit.Model."""
-    settings = law.setting_values
-    indep = law.variables or ("_shape",)
-    names = list(indep) + list(law.param_names) + list(extra)
-
-    def model(**kw: Any) -> Any:
-        variables = {k: kw[k] for k in law.variables}
-        shape = kw.get("_shape")
-        values = {**settings, **{k: kw[k] for k in law.param_names}, **{k: kw[k] for k in extra}}
-        out = law.evaluate(variables, values)
-        if shape is not None:
-            out = np.broadcast_to(out, np.shape(shape))
-        return out
-
-    model.__signature__ = inspect.Signature(
-        [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD) for n in names])
-    model.__name__ = law.id.replace("-", "_").replace("+", "_")
-    return model
-
-
 @dataclass
 class FitResult:
     """The outcome of :func:`fit` (or of :func:`load_result`).
@@ -645,11 +623,11 @@ class FitResult:
             lines.append("")
             lines.append("derived quantities:")
             for k, dv in self.derived.items():
-                se = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
-                ci = dv.get("ci95")
-                se += f" [{_g(ci[0])}, {_g(ci[1])}]" if isinstance(ci, list) and len(ci) == 2 \
-                    else ""
-                lines.append(f"  {k} = {_g(dv['value'])}{se} {dv.get('unit') or '-'}"
+                dse = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
+                dci = dv.get("ci95")
+                dse += f" [{_g(dci[0])}, {_g(dci[1])}]" if isinstance(dci, list) and \
+                    len(dci) == 2 else ""
+                lines.append(f"  {k} = {_g(dv['value'])}{dse} {dv.get('unit') or '-'}"
                              f"  ({dv.get('meaning', '')})")
         m = self.metrics
         lines.append("")
@@ -816,7 +794,7 @@ class _GlobalStage:
 
     def search(self) -> tuple[dict[str, float] | None, tuple[str, ...]]:
         """The best point found and the parameters it put exactly on a bound."""
-        from scipy.optimize import differential_evolution
+        from scipy.optimize import differential_evolution  # type: ignore[import-untyped]
 
         box = [self._box(k)[:2] for k in self.names]
         try:
@@ -853,7 +831,8 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
         s = np.concatenate([s, np.zeros(jn.shape[1] - jn.shape[0])])
         vt = np.linalg.svd(np.vstack([jn, np.zeros((jn.shape[1] - jn.shape[0], jn.shape[1]))]))[2]
     rel = s / s[0] if s[0] > 0 else np.zeros_like(s)
-    non_id, weak = set(dead), set()
+    non_id: set[str] = set(dead)
+    weak: set[str] = set()
     for i, r in enumerate(rel):
         if r < WEAK_TOL:
             comp = np.abs(vt[i])
@@ -861,7 +840,7 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
             (non_id if r < RANK_TOL else weak).update(involved)
     weak -= non_id
     order = {n: i for i, n in enumerate(names)}
-    return (sorted(non_id, key=order.get), sorted(weak, key=order.get),
+    return (sorted(non_id, key=order.__getitem__), sorted(weak, key=order.__getitem__),
             float(rel[-1]) if rel.size else 0.0)
 
 
@@ -1234,7 +1213,7 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any], lean: bool) ->
     full_values = {**setup.settings, **values}
     vary = [k for k in setup.vary if k not in search.best_pinned]
     if lean:
-        jac, non_id = best.jac, []
+        jac, non_id = best.jac, list[str]()
     else:
         jac, non_id = _check_identifiability(setup, search, values, vary, warn_msgs)
     n, k = setup.y.size, len(setup.vary)
@@ -1273,7 +1252,7 @@ def _t975(dof: int) -> float:
     """The 97.5 % quantile of Student's t with ``dof`` degrees of freedom (inf for none)."""
     if dof <= 0:
         return math.inf
-    from scipy.special import stdtrit
+    from scipy.special import stdtrit  # type: ignore[import-untyped]
 
     return float(stdtrit(dof, 0.975))
 
@@ -1522,8 +1501,8 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
 
     if method == "asymptotic":
         return
-    ratios = {k: estimates[k].stderr / a for k, a in asym.items()
-              if a and estimates[k].stderr is not None and a > 0}
+    ratios = {k: se / a for k, a in asym.items()
+              if a and (se := estimates[k].stderr) is not None and a > 0}
     wide = {k: r for k, r in ratios.items() if r > NARROW_RATIO}
     if wide:
         shown = ", ".join(f"{k} x{r:.2g}" for k, r in wide.items())

@@ -184,7 +184,7 @@ class Derived:
 
 
 def _sympy_log10(x: Any) -> Any:
-    import sympy
+    import sympy  # type: ignore[import-untyped]
 
     return sympy.log(x, 10)
 
@@ -212,7 +212,7 @@ NUMPY = SimpleNamespace(
 @functools.lru_cache(maxsize=1)
 def sympy_namespace() -> SimpleNamespace:
     """The sympy math namespace passed to formulas for the symbolic form."""
-    import sympy
+    import sympy  # type: ignore[import-untyped]
 
     return SimpleNamespace(
         exp=sympy.exp,
@@ -837,7 +837,7 @@ class Law:
         dict
             Name -> symbol (positive where natural).
         """
-        import sympy
+        import sympy  # type: ignore[import-untyped]
 
         syms: dict[str, Any] = {}
         for v in self.variables:
@@ -875,7 +875,7 @@ class Law:
         str
             The LaTeX text.
         """
-        import sympy
+        import sympy  # type: ignore[import-untyped]
 
         return r"\mu = " + sympy.latex(self.symbolic())
 
@@ -887,7 +887,7 @@ class Law:
         str
             ``"mu = ..."``.
         """
-        import sympy
+        import sympy  # type: ignore[import-untyped]
 
         return "mu = " + sympy.sstr(self.symbolic())
 
