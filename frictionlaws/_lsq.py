@@ -327,6 +327,9 @@ def solve(problem: Problem, start: ArrayLike, method: str = "least_squares"
         warnings.simplefilter("ignore")
         if not problem.bounded:
             return _solve_minpack(problem, x0, max_nfev)
+        free = _minpack_inside(problem, x0, max_nfev) if MINPACK_FIRST else None
+        if free is not None and free.success and _inside(problem, free.theta):
+            return free  # no bound active at the minimum: the bounded fit ends there too
         from scipy.optimize import least_squares  # type: ignore[import-untyped]
 
         ret = least_squares(problem.residual, x0, jac=jac, bounds=(problem.lower, problem.upper),
@@ -335,13 +338,45 @@ def solve(problem: Problem, start: ArrayLike, method: str = "least_squares"
     return _finish(problem, ret.x, bool(ret.success), str(ret.message), int(ret.nfev))
 
 
-def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution:
+#: Try MINPACK first on bounded problems, keeping its minimum when no bound is active.
+MINPACK_FIRST = True
+
+
+def _inside(problem: Problem, theta: np.ndarray) -> bool:
+    """True when ``theta`` lies strictly inside the bounds (none is active)."""
+    span = np.where(np.isfinite(problem.upper - problem.lower), problem.upper - problem.lower,
+                    np.maximum(np.abs(theta), 1.0))
+    margin = 1e-9 * span
+    return bool(np.all(np.isfinite(theta)) and np.all(theta > problem.lower + margin)
+                and np.all(theta < problem.upper - margin))
+
+
+class _LeftBounds(Exception):
+    """MINPACK stepped outside the bounds: the bounded solver takes over."""
+
+
+def _minpack_inside(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution | None:
+    """MINPACK, abandoned (None) as soon as it steps onto or beyond a bound."""
+
+    def residual(theta: np.ndarray) -> np.ndarray:
+        if not _inside(problem, theta):
+            raise _LeftBounds
+        return problem.residual(theta)
+
+    try:
+        return _solve_minpack(problem, x0, max_nfev, residual)
+    except _LeftBounds:
+        return None
+
+
+def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int,
+                   residual: Callable[[np.ndarray], np.ndarray] | None = None) -> Solution:
     """MINPACK Levenberg-Marquardt (no bounds to respect)."""
     from scipy.optimize import leastsq  # type: ignore[import-untyped]
 
     dfun = (lambda t: problem.jacobian(t)) if problem.jac_func is not None else None
-    theta, _cov, info, mesg, ier = leastsq(problem.residual, x0, Dfun=dfun, full_output=True,
-                                           maxfev=2 * max_nfev)
+    theta, _cov, info, mesg, ier = leastsq(residual or problem.residual, x0, Dfun=dfun,
+                                           full_output=True, maxfev=2 * max_nfev)
     return _finish(problem, np.atleast_1d(theta), ier in (1, 2, 3, 4), str(mesg),
                    int(info["nfev"]))
 
