@@ -36,7 +36,7 @@ __all__ = ["Problem", "Solution", "solve", "score_starts", "numeric_jacobian",
 #: Evaluations of the model per start and varied parameter (as the fit always allowed).
 NFEV_PER_PARAM = 300
 #: Rows x starts evaluated at once by :func:`score_starts` (beyond: one start at a time).
-_SCORE_CELLS = 2_000_000
+_SCORE_CELLS = 500_000
 
 
 @dataclass
