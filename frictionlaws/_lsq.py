@@ -351,16 +351,23 @@ def _inside(problem: Problem, theta: np.ndarray) -> bool:
                 and np.all(theta < problem.upper - margin))
 
 
+#: Trial points beyond the bounds MINPACK may evaluate before the bounded solver takes over.
+OUTSIDE_TRIES = 10
+
+
 class _LeftBounds(Exception):
     """MINPACK stepped outside the bounds: the bounded solver takes over."""
 
 
 def _minpack_inside(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution | None:
-    """MINPACK, abandoned (None) as soon as it steps onto or beyond a bound."""
+    """MINPACK, abandoned (None) once it has tried points beyond the bounds 10 times."""
+    outside = [0]
 
     def residual(theta: np.ndarray) -> np.ndarray:
         if not _inside(problem, theta):
-            raise _LeftBounds
+            outside[0] += 1
+            if outside[0] > OUTSIDE_TRIES:
+                raise _LeftBounds
         return problem.residual(theta)
 
     try:
