@@ -8,9 +8,11 @@ fit reports (chi^2, AIC, BIC and the covariance scaled by the reduced chi^2, as 
 computes them).
 
 The solver is chosen for the problem: MINPACK's Levenberg-Marquardt
-(:func:`scipy.optimize.leastsq`) when no varied parameter has a finite bound, else the
-bounded trust-region reflective method of :func:`scipy.optimize.least_squares` with the
-parameters scaled by the Jacobian's columns.  Other lmfit method names go through
+(:func:`scipy.optimize.leastsq`, lean in memory and call overhead) whenever it reaches a
+minimum with no bound active; when a bound is active (or MINPACK keeps trying points
+beyond the bounds) the bounded trust-region reflective method of
+:func:`scipy.optimize.least_squares` takes over (``x_scale=1``: scaling by the Jacobian's
+columns was tried and sent several huemer starts to worse minima).  Other lmfit method names go through
 :func:`lmfit.minimize` with the same residual (lmfit is imported only then).
 
 :func:`score_starts` evaluates chi^2 at many candidate starts in one pass, so a
