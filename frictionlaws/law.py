@@ -117,7 +117,21 @@ class Param:
 
 @dataclass(frozen=True)
 class Setting:
-    """A fixed setting of a law (a reference scale), not fitted by default."""
+    """A fixed setting of a law (a reference scale), not fitted by default.
+
+    Parameters
+    ----------
+    name : str
+        Python identifier used in the formula.
+    value : float
+        The value (SI).
+    unit : str
+        Unit in SI, parsable by pint (``""`` for dimensionless).
+    meaning : str
+        One line saying what the setting is.
+    bounds : tuple of float
+        Lower and upper bound when the setting is fitted (``free=``).
+    """
 
     name: str
     value: float
@@ -130,9 +144,18 @@ class Setting:
 class Derived:
     """A quantity derived from the parameters (peak, slope at origin...).
 
-    ``func(m, **params_and_settings)`` returns the value; it is written with
-    the same math namespace as the formula so uncertainties can be propagated
-    numerically by the fitter.
+    Parameters
+    ----------
+    name : str
+        Name of the quantity.
+    unit : str
+        Its SI unit.
+    meaning : str
+        One line saying what it is.
+    func : callable
+        ``func(m, **params_and_settings)`` returns the value; it is written with
+        the same math namespace as the formula so uncertainties can be propagated
+        numerically by the fitter.
     """
 
     name: str
@@ -164,7 +187,7 @@ class Derived:
 
 
 def _sympy_log10(x: Any) -> Any:
-    import sympy
+    import sympy  # type: ignore[import-untyped]
 
     return sympy.log(x, 10)
 
@@ -192,7 +215,7 @@ NUMPY = SimpleNamespace(
 @functools.lru_cache(maxsize=1)
 def sympy_namespace() -> SimpleNamespace:
     """The sympy math namespace passed to formulas for the symbolic form."""
-    import sympy
+    import sympy  # type: ignore[import-untyped]
 
     return SimpleNamespace(
         exp=sympy.exp,
@@ -423,7 +446,18 @@ class Law:
         return {s.name: s.value for s in self.settings}
 
     def param(self, name: str) -> Param:
-        """The :class:`Param` called ``name``."""
+        """Return the :class:`Param` called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A parameter name.
+
+        Returns
+        -------
+        Param
+            Its declaration.
+        """
         for p in self.params:
             if p.name == name:
                 return p
@@ -433,7 +467,18 @@ class Law:
         )
 
     def setting(self, name: str) -> Setting:
-        """The :class:`Setting` called ``name``."""
+        """Return the :class:`Setting` called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A setting name.
+
+        Returns
+        -------
+        Setting
+            Its declaration.
+        """
         for s in self.settings:
             if s.name == name:
                 return s
@@ -448,7 +493,18 @@ class Law:
         return {p.name: p.default for p in self.params}
 
     def typical_range(self, name: str) -> tuple[float, float]:
-        """The default plotting/tabulation range of variable ``name`` in SI."""
+        """Return the default plotting/tabulation range of variable ``name`` in SI.
+
+        Parameters
+        ----------
+        name : str
+            A variable name.
+
+        Returns
+        -------
+        tuple of float
+            (low, high) in SI.
+        """
         if name in self.typical:
             return self.typical[name]
         if name in self.domain:
@@ -459,6 +515,18 @@ class Law:
     def resolve(self, values: Mapping[str, float] | None = None, preset: str | None = None
                 ) -> dict[str, float]:
         """Complete parameters and settings: preset, then ``values``, then defaults.
+
+        Parameters
+        ----------
+        values : mapping, optional
+            Parameter and setting values by name.
+        preset : str, optional
+            A preset name.
+
+        Returns
+        -------
+        dict
+            Every parameter and setting, checked.
 
         Raises
         ------
@@ -499,7 +567,18 @@ class Law:
         return out
 
     def bounds_of(self, name: str) -> tuple[float, float]:
-        """The declared bounds of a parameter or setting ``name``."""
+        """Return the declared bounds of a parameter or setting ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A parameter or setting name.
+
+        Returns
+        -------
+        tuple of float
+            (lower, upper).
+        """
         for p in self.params:
             if p.name == name:
                 return p.bounds
@@ -680,9 +759,16 @@ class Law:
         return out
 
     def check_variables(self, variables: Mapping[str, Any]) -> None:
-        """Refuse variable values a law cannot take: missing, non-numeric, non-finite,
-        a negative pressure or load, a temperature at or below 0 K, or a slip ratio
-        outside [0, 1] or outside a slip law's declared domain.
+        """Refuse variable values the law cannot take.
+
+        Missing, non-numeric, non-finite, a negative pressure or load, a temperature at
+        or below 0 K, or a slip ratio outside [0, 1] or outside a slip law's declared
+        domain.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI).
 
         Raises
         ------
@@ -716,12 +802,24 @@ class Law:
 
     def bind(self, values: Mapping[str, float] | None = None, preset: str | None = None
              ) -> Callable[..., Any]:
-        """A plain vectorised function of the law's variables with fixed parameters.
+        """Return a plain vectorised function of the law's variables with fixed parameters.
 
         The returned callable takes the variables positionally in the order
         of :attr:`variables` (or by keyword; an optional variable whose
         parameter is neutral may be left out), applies the floors and calls the
         formula directly: no checking, negligible overhead.
+
+        Parameters
+        ----------
+        values : mapping, optional
+            Parameter and setting values.
+        preset : str, optional
+            A preset name.
+
+        Returns
+        -------
+        callable
+            ``f(*variables) -> mu``.
         """
         params = self.resolve(values, preset)
         formula = self.formula
@@ -783,8 +881,14 @@ class Law:
 
     # -------------------------------------------------------------- symbolic
     def symbols(self) -> dict[str, Any]:
-        """Sympy symbols for variables, parameters and settings (positive where natural)."""
-        import sympy
+        """Return sympy symbols for variables, parameters and settings.
+
+        Returns
+        -------
+        dict
+            Name -> symbol (positive where natural).
+        """
+        import sympy  # type: ignore[import-untyped]
 
         syms: dict[str, Any] = {}
         for v in self.variables:
@@ -802,6 +906,11 @@ class Law:
         ----------
         substitute_settings : bool
             Replace the settings by their numeric values.
+
+        Returns
+        -------
+        sympy.Expr
+            The expression of mu.
         """
         syms = self.symbols()
         expr = self.formula(sympy_namespace(), **syms)
@@ -810,26 +919,60 @@ class Law:
         return expr
 
     def latex(self) -> str:
-        """LaTeX of the formula, ``\\mu = ...``."""
-        import sympy
+        """Return the LaTeX of the formula, ``\\mu = ...``.
+
+        Returns
+        -------
+        str
+            The LaTeX text.
+        """
+        import sympy  # type: ignore[import-untyped]
 
         return r"\mu = " + sympy.latex(self.symbolic())
 
     def pretty(self) -> str:
-        """A one-line plain-text rendering of the formula."""
-        import sympy
+        """Return a one-line plain-text rendering of the formula.
+
+        Returns
+        -------
+        str
+            ``"mu = ..."``.
+        """
+        import sympy  # type: ignore[import-untyped]
 
         return "mu = " + sympy.sstr(self.symbolic())
 
     # ----------------------------------------------------------------- misc
     def check_admissible(self, params: Mapping[str, float]) -> str | None:
-        """A message when ``params`` are not admissible, else None."""
+        """Say why ``params`` are not admissible.
+
+        Parameters
+        ----------
+        params : mapping
+            A complete set of parameter and setting values.
+
+        Returns
+        -------
+        str or None
+            The reason, or None when they are admissible.
+        """
         if self.admissible is None:
             return None
         return self.admissible(params)
 
     def initial_guess(self, data: Mapping[str, np.ndarray]) -> dict[str, float]:
-        """A data-driven initial guess, clipped into the bounds."""
+        """Return a data-driven initial guess, clipped into the bounds.
+
+        Parameters
+        ----------
+        data : mapping
+            ``"mu"`` and the variables as arrays (SI).
+
+        Returns
+        -------
+        dict
+            Parameter name -> start value.
+        """
         guess = self.defaults
         if self.guess is not None:
             try:
@@ -849,7 +992,18 @@ class Law:
         return guess
 
     def outside_domain(self, variables: Mapping[str, Any]) -> dict[str, int]:
-        """Count, per variable, how many values lie outside :attr:`domain`."""
+        """Count, per variable, how many values lie outside :attr:`domain`.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI).
+
+        Returns
+        -------
+        dict
+            Variable name -> count (only variables with values outside).
+        """
         out = {}
         for name, (lo, hi) in self.domain.items():
             if name in variables:
@@ -862,7 +1016,20 @@ class Law:
         return out
 
     def require_variables(self, available: set[str], what: str = "the data") -> None:
-        """Raise a clear error when ``available`` lacks a variable this law needs."""
+        """Raise a clear error when ``available`` lacks a variable this law needs.
+
+        Parameters
+        ----------
+        available : set of str
+            The variables at hand.
+        what : str
+            What holds them, for the message.
+
+        Raises
+        ------
+        DomainError
+            Naming the missing variables.
+        """
         missing = [v for v in self.required_variables() if v not in available]
         if missing:
             fam = ("a slip law (tyre, rolling wheel) needs the slip ratio s; "
@@ -876,7 +1043,13 @@ class Law:
             )
 
     def summary(self) -> dict[str, Any]:
-        """A JSON-able description of the law (used by ``show --json`` and the docs)."""
+        """Describe the law as JSON-able data (used by ``show --json`` and the docs).
+
+        Returns
+        -------
+        dict
+            Declaration fields by name.
+        """
         return {
             "id": self.id,
             "title": self.title,
@@ -908,7 +1081,18 @@ class Law:
         }
 
     def derived_values(self, params: Mapping[str, float]) -> dict[str, float]:
-        """Evaluate the derived quantities for complete ``params``."""
+        """Evaluate the derived quantities for complete ``params``.
+
+        Parameters
+        ----------
+        params : mapping
+            Parameter and setting values.
+
+        Returns
+        -------
+        dict
+            Derived quantity name -> value.
+        """
         out = {}
         for d in self.derived:
             out[d.name] = d.value(params)
@@ -934,7 +1118,20 @@ class Law:
         return law_html(self)
 
     def lmfit_model(self, values: Mapping[str, float] | None = None) -> Any:
-        """The law as an :class:`lmfit.Model` (see :func:`frictionlaws.interop.lmfit_model`)."""
+        """Return the law as an :class:`lmfit.Model`.
+
+        See :func:`frictionlaws.interop.lmfit_model`.
+
+        Parameters
+        ----------
+        values : mapping, optional
+            Start values (defaults: the declared ones).
+
+        Returns
+        -------
+        lmfit.Model
+            The model with the declared bounds as parameter hints.
+        """
         from .interop import lmfit_model
 
         return lmfit_model(self, values=values)

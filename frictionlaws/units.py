@@ -120,6 +120,25 @@ _DIMENSION_NAMES = (
 )
 
 
+#: Exact conversions of the most common spellings, (quantity, unit) -> (factor, offset) to
+#: SI, used without building the pint registry (tests/test_units.py checks each against
+#: pint).  Everything else goes through pint.
+_FAST: dict[tuple[str, str], tuple[float, float]] = {
+    **{(q, u): (1.0, 0.0) for q in ("mu", "mu_std", "s", "n") for u in ("", "-", "1")},
+    ("p", "Pa"): (1.0, 0.0), ("p", "kPa"): (1e3, 0.0), ("p", "MPa"): (1e6, 0.0),
+    ("p", "bar"): (1e5, 0.0), ("p", "N/mm^2"): (1e6, 0.0), ("p", "N/mm**2"): (1e6, 0.0),
+    ("v", "m/s"): (1.0, 0.0), ("v", "mm/s"): (1e-3, 0.0),
+    ("T", "K"): (1.0, 0.0), ("T", "degC"): (1.0, 273.15),
+    ("F_N", "N"): (1.0, 0.0), ("F_N", "kN"): (1e3, 0.0),
+}
+
+
+def _fast(unit: Any, quantity: str) -> tuple[float, float] | None:
+    """The exact (factor, offset) of a common unit, or None (then pint decides)."""
+    text = "" if unit is None else str(unit).strip()
+    return _FAST.get((quantity, text))
+
+
 @functools.lru_cache(maxsize=1)
 def unit_registry() -> Any:
     """The shared pint ``UnitRegistry`` (built once, on first use).
@@ -255,7 +274,8 @@ def check_unit(
     unit: str, quantity: str, *, column: str | None = None, file: str | None = None
 ) -> None:
     """Raise :class:`InputError` unless ``unit`` is a valid unit for ``quantity``."""
-    parse_unit(unit, quantity, column=column, file=file)
+    if _fast(unit, quantity) is None:
+        parse_unit(unit, quantity, column=column, file=file)
 
 
 def _is_mass(parsed: Any) -> bool:
@@ -298,6 +318,11 @@ def to_si(
     :data:`G_THESIS` = 9.8 m/s^2; ``kgf`` uses standard gravity.
     """
     kind = _kind(quantity)
+    fast = _fast(unit, quantity)
+    if fast is not None:
+        with np.errstate(over="ignore", invalid="ignore"):
+            arr = np.asarray(values, dtype=float)
+            return np.asarray(arr * fast[0] + fast[1], dtype=float)
     parsed = parse_unit(unit, quantity, column=column, file=file)
     ureg = unit_registry()
     arr = np.asarray(values, dtype=float)
@@ -330,7 +355,7 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
     Returns a note for a normal load given as a mass (converted with
     g = 9.8 m/s^2 as in the thesis), ``None`` otherwise.
     """
-    if quantity != "F_N" or is_no_unit(unit):
+    if quantity != "F_N" or is_no_unit(unit) or _fast(unit, quantity) is not None:
         return None
     parsed = parse_unit(unit, quantity, column=column)
     if not _is_mass(parsed):
