@@ -13,7 +13,7 @@ from ._campaign import (
     split_names,
     wants_campaign,
 )
-from ._common import add_data_options, bounded_int, data_kwargs, progress_value
+from ._common import SEED_MAX, add_data_options, bounded_int, data_kwargs, progress_value
 
 __all__ = ["add_parser", "run"]
 
@@ -46,13 +46,13 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--holdout", default="0.3", metavar="FRACTION|VAR=F,...",
                    help="upper fraction of the range held out for the extrapolation test: one "
                         "number for p and v, or e.g. p=0.3,v=0.2; 0 for none (default 0.3)")
-    p.add_argument("--seed", type=int, default=0,
+    p.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
                    help="seed of the folds and of the fits' random starts (default 0)")
     p.add_argument("--starts", type=bounded_int(0, 1000), default=None, metavar="N",
                    help="random starts per non-linear fit (default: the fitter's rule)")
     p.add_argument("--weights", choices=("auto", "none"), default="auto",
                    help="auto: 1/mu_std or sqrt(n) when the data have them (default)")
-    p.add_argument("--mu-max", type=float, default=5.0, metavar="MU",
+    p.add_argument("--mu-max", type=_mu_max, default=5.0, metavar="MU",
                    help="upper physical limit of mu in the plausibility scan (default 5)")
     p.add_argument("--report", metavar="DIR",
                    help="write report.html (self-contained), report.md, comparison.json and "
@@ -61,6 +61,19 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="print the comparison as one JSON object instead of the table")
     add_campaign_options(p, shared=False)
     return p
+
+
+def _mu_max(text: str) -> float:
+    """``--mu-max``: a finite number > 0 (the one number parser: no 'inf', no overflow)."""
+    from frictionlaws.numbers import parse_number
+
+    try:
+        value = parse_number(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"{value:g} is out of range: expected a number > 0")
+    return value
 
 
 def _options(args: argparse.Namespace) -> dict:

@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
 
     from frictionlaws.errors import InputError
     from frictionlaws.outputs import check_outputs
-    from frictionlaws.tribometer.process import process_campaign
+    from frictionlaws.tribometer.process import process_campaign, read_manifest
     from frictionlaws.tribometer.rig import load_rig
 
     out = Path(args.output)
@@ -50,12 +50,15 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"-o {args.output}: the dataset is written as CSV; give a .csv name")
     records_out = (Path(args.records_out) if args.records_out
                    else out.with_name(f"{out.stem}_records.csv"))
-    # every output is checked before any work: not an input, a writable file
+    # every output is checked before any work: not an input (manifest, rig or any record
+    # the manifest lists, resolved as the processing resolves them), a writable file
     check_outputs([out, records_out], dirs=[args.plots], inputs=[args.manifest, args.rig])
     rig = load_rig(args.rig)
+    entries, _ = read_manifest(args.manifest, rig)
+    check_outputs([out, records_out], dirs=[args.plots],
+                  inputs=[e.path for e in entries if e.path])
     camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=progress_value(args),
                             plots=args.plots, min_repeats=args.min_repeats)
-    check_outputs([out, records_out], inputs=[r.file for r in camp.records if r.file])
     if not any(c.written for c in camp.conditions):
         print(camp.summary())
         raise InputError(

@@ -308,8 +308,9 @@ def _select_laws(laws: Any, family: str | None, fd: FitData
         chosen = []
         for name in laws:
             law = get_law(name.strip() if isinstance(name, str) else name)
-            if law not in chosen:
-                chosen.append(law)
+            if law in chosen:  # a name given twice is an error (an alias counts as its law)
+                raise InputError(f"law '{law.id}' is given twice", option="laws")
+            chosen.append(law)
         if not chosen:
             raise InputError("no law given")
         what = "the laws asked for"
@@ -455,9 +456,12 @@ def compare(
         raise InputError(f"folds must be a whole number, not {folds!r}", option="folds")
     if folds < 2:
         raise InputError(f"folds must be at least 2, not {folds}", option="folds")
+    from ..fitting import _check_options
+
+    _check_options("least_squares", starts, seed, "error")  # the fit's rule for starts, seed
     lims = tuple(float(x) for x in mu_limits)
-    if len(lims) != 2 or not lims[0] < lims[1]:
-        raise InputError(f"the plausible range of mu must have low < high, got {lims}",
+    if len(lims) != 2 or not lims[0] < lims[1] or not np.isfinite(lims).all():
+        raise InputError(f"the plausible range of mu must be finite with low < high, got {lims}",
                          option="mu_limits")
     notes: list[str] = []
     if folds > fd.n:
