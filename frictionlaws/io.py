@@ -1078,16 +1078,16 @@ def _frame(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarr
 
 def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
                         units_given: dict[str, str], notes: list[str]) -> pd.DataFrame:
-    """p = F_N / area when the data have a load and no pressure."""
+    """p = F_N / area when the data have a load and no pressure (the area is checked anyway)."""
+    a = _units.parse_quantity(area, "area", what="--area", file=src)
+    if not a > 0:
+        raise InputError(f"--area {area} must be > 0", file=src)
     if "p" in frame.columns:
         notes.append(f"area {area!r} not used: the data have a pressure column")
         return frame
     if "F_N" not in frame.columns:
         raise InputError(f"--area {area} needs a normal-load column F_N to derive the "
                          "pressure, and the data have none", file=src)
-    a = _units.parse_quantity(area, "area", what="--area", file=src)
-    if not a > 0:
-        raise InputError(f"--area {area} must be > 0", file=src)
     frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
     units_given["p"] = f"F_N / area ({area})"
     notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")

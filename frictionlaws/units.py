@@ -344,6 +344,9 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
 
 
 _NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
+#: The number written before the unit (checked by the one number parser: no ``4_0``, no
+#: ``4,0``, no full-width digits, no overflow).
+_NUMBER_TOKEN = re.compile(r"^\s*([-+]?[\d_.,]*(?:[eE][-+]?[\d_]+)?)")
 
 
 def parse_quantity(
@@ -394,6 +397,7 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
+    _check_number_token(raw, label, file, column)
     ureg = unit_registry()
     try:
         q = ureg.parse_expression(raw)
@@ -422,6 +426,18 @@ def parse_quantity(
     if not np.isfinite(value):
         raise InputError(f"{label} '{raw}' is not finite", file=file, column=column)
     return value
+
+
+def _check_number_token(raw: str, label: str, file: str | None, column: str | None) -> None:
+    """Refuse a quantity whose number the one number parser refuses (pint would read it)."""
+    from .numbers import parse_number
+
+    m = _NUMBER_TOKEN.match(raw)
+    token = m.group(1) if m else ""
+    try:
+        parse_number(token)
+    except ValueError as exc:
+        raise InputError(f"{label} '{raw}': {exc}", file=file, column=column) from None
 
 
 def _example_quantity(expected: str) -> str:
