@@ -56,7 +56,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="upper physical limit of mu in the plausibility scan (default 5)")
     p.add_argument("--report", metavar="DIR",
                    help="write report.html (self-contained), report.md, comparison.json and "
-                        "PNG figures to DIR")
+                        "PNG figures to DIR (created with its parents if missing, as every "
+                        "output directory; a failed run creates nothing)")
     p.add_argument("--json", action="store_true",
                    help="print the comparison as one JSON object instead of the table")
     add_campaign_options(p, shared=False)

@@ -28,7 +28,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--records-out", metavar="RECORDS.csv",
                    help="per-record table (default: DATASET_records.csv next to the dataset)")
     p.add_argument("--plots", metavar="DIR",
-                   help="write diagnostic plots (raw, filtered, window) for every record")
+                   help="write diagnostic plots (raw, filtered, window) for every record to DIR "
+                        "(created with its parents if missing, like --report; only when the "
+                        "dataset is written)")
     p.add_argument("--jobs", type=bounded_int(0, 1024), default=0, metavar="N",
                    help="worker processes (default 0: one per CPU; 0..1024)")
     p.add_argument("--min-repeats", type=int, default=2, metavar="N",
@@ -38,10 +40,11 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
+    from contextlib import nullcontext
     from pathlib import Path
 
     from frictionlaws.errors import InputError
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.outputs import atomic_dir, check_outputs
     from frictionlaws.tribometer.process import process_campaign, read_manifest
     from frictionlaws.tribometer.rig import load_rig
 
@@ -57,15 +60,20 @@ def run(args: argparse.Namespace) -> int:
     entries, _ = read_manifest(args.manifest, rig)
     check_outputs([out, records_out], dirs=[args.plots],
                   inputs=[e.path for e in entries if e.path])
-    camp = process_campaign(args.manifest, rig, jobs=args.jobs, progress=progress_value(args),
-                            plots=args.plots, min_repeats=args.min_repeats)
-    if not any(c.written for c in camp.conditions):
-        print(camp.summary())
-        raise InputError(
-            f"no condition has {args.min_repeats} or more usable records: no dataset written, "
-            "nothing written at all (the reasons are in the summary above)", file=args.manifest)
-    camp.write_records(records_out)
-    camp.write_dataset(out)
+    # plots are drawn into a temporary directory moved into place only when the dataset
+    # is written: a failed run leaves no plots (and no created directory) behind
+    with atomic_dir(args.plots) if args.plots else nullcontext(None) as plots_tmp:
+        camp = process_campaign(args.manifest, rig, jobs=args.jobs,
+                                progress=progress_value(args), plots=plots_tmp,
+                                min_repeats=args.min_repeats)
+        if not any(c.written for c in camp.conditions):
+            print(camp.summary())
+            raise InputError(
+                f"no condition has {args.min_repeats} or more usable records: no dataset "
+                "written, nothing written at all (the reasons are in the summary above)",
+                file=args.manifest)
+        camp.write_records(records_out)
+        camp.write_dataset(out)
     print(camp.summary())
     print(f"per-record table: {records_out}")
     if args.plots:
