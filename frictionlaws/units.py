@@ -397,7 +397,7 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
-    _check_number_token(raw, label, file, column)
+    raw = _canonical_number(raw, label, file, column)
     ureg = unit_registry()
     try:
         q = ureg.parse_expression(raw)
@@ -428,16 +428,22 @@ def parse_quantity(
     return value
 
 
-def _check_number_token(raw: str, label: str, file: str | None, column: str | None) -> None:
-    """Refuse a quantity whose number the one number parser refuses (pint would read it)."""
+def _canonical_number(raw: str, label: str, file: str | None, column: str | None) -> str:
+    """``raw`` with its number rewritten as parsed by the one number parser.
+
+    pint would read ``4_0 mm`` and ``4,0 mm`` as 40 mm and ``008011 mm`` as 0 mm; the
+    number is parsed here (refusing what :func:`~frictionlaws.numbers.parse_number`
+    refuses) and only the unit is left to pint.
+    """
     from .numbers import parse_number
 
     m = _NUMBER_TOKEN.match(raw)
     token = m.group(1) if m else ""
     try:
-        parse_number(token)
+        value = parse_number(token)
     except ValueError as exc:
         raise InputError(f"{label} '{raw}': {exc}", file=file, column=column) from None
+    return repr(value) + raw[m.end():] if m else raw
 
 
 def _example_quantity(expected: str) -> str:
