@@ -195,3 +195,18 @@ def test_a_deeply_nested_params_file_is_bad_input(tmp_path: Path) -> None:
                    "0.01:0.5:5", "--units", "mm-N-s", "-o", str(tmp_path / "o.csv")])
     check_outcome(res, codes=[2])
     assert "nested too deeply" in res.err
+
+
+@HOSTILE
+@pytest.mark.parametrize("jobs", [-7, -1, 2.5, True, "4"])
+def test_process_campaign_refuses_a_nonsense_job_count(campaign: Path, jobs: object) -> None:
+    """jobs=-7 was taken as 'one per CPU' (the CLI refuses it; the API now does too)."""
+    with pytest.raises(InputError, match="jobs"):
+        fl.process_campaign(campaign / "manifest.csv", campaign / "rig.toml", jobs=jobs)
+
+
+@HOSTILE
+def test_load_rig_names_the_function_for_a_mapping() -> None:
+    """load_rig({...}) was a TypeError from os.fspath; it points to rig_from_dict now."""
+    with pytest.raises(InputError, match="rig_from_dict"):
+        fl.load_rig({"track_radius": "-40 mm"})  # type: ignore[arg-type]

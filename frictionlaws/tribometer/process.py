@@ -1092,7 +1092,11 @@ def _run(entries: list[ManifestEntry], rig: Rig, records: Sequence[Record] | Non
 
 
 def _jobs(jobs: int | None, n: int) -> int:
-    if jobs is None or jobs <= 0:
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer))
+                             or jobs < 0):
+        raise InputError(f"jobs must be a whole number >= 0 (0 or None: one per CPU), "
+                         f"not {jobs!r}", option="jobs")
+    if jobs is None or jobs == 0:
         jobs = os.cpu_count() or 1
     return max(1, min(jobs, n))
 

@@ -333,6 +333,9 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
     else:  # Python 3.10: the same parser, published as tomli
         import tomli as tomllib
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(f"load_rig takes the path of a TOML file, got {type(path).__name__}"
+                         " (build a rig from a mapping with rig_from_dict)")
     src = os.fspath(path)
     p = Path(src)
     if not p.exists():
