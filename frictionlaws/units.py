@@ -397,10 +397,10 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
-    raw = _canonical_number(raw, label, file, column)
+    parsed = _canonical_number(raw, label, file, column)  # messages quote raw as written
     ureg = unit_registry()
     try:
-        q = ureg.parse_expression(raw)
+        q = ureg.parse_expression(parsed)
     except Exception:  # noqa: BLE001 - pint raises several types for bad text
         raise InputError(
             f"{label} '{raw}' could not be read (unknown unit?); expected {kind.what} "
