@@ -529,7 +529,8 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
     except InputError as exc:
-        return [{"dataset": str(job.source), "group": {}, "error": str(exc)}]
+        return [{"dataset": str(job.source), "group": {}, "error": str(exc),
+                 "input_error": True}]
     out = []
     for key, mask in groups:
         record: dict[str, Any] = {"dataset": ds.name, "group": key, "rows": int(mask.sum())}
@@ -562,8 +563,10 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
     work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
                         dict(load_options or {})) for src in sources)
     rows = []
+    unreadable: list[str] = []
     for part in iter_parallel(_compare_dataset, work, jobs=jobs, scheduler=scheduler,
                               progress=progress, total=len(sources)):
+        unreadable += [rec["error"] for rec in part if rec.get("input_error")]
         for rec in part:
             base = {"dataset": rec["dataset"],
                     **{group_column(c): rec["group"].get(c) for c in columns}}
@@ -571,4 +574,8 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
                 rows.append({**base, "error": rec["error"]})
                 continue
             rows.extend({**base, **row, "error": None} for row in rec["ranking"])
+    if unreadable and len(unreadable) == len(sources):  # bad input, not failed comparisons
+        raise InputError(unreadable[0] if len(sources) == 1 else
+                         f"none of the {len(sources)} datasets could be read; first: "
+                         f"{unreadable[0]}")
     return pd.DataFrame(rows)

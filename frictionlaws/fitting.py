@@ -214,8 +214,16 @@ def _float_array(name: str, value: Any) -> np.ndarray:
     if isinstance(value, (str, bytes)):
         raise InputError(f"array '{name}' must hold numbers, got text")
     try:
-        return np.atleast_1d(np.asarray(value, dtype=float)).ravel()
-    except (TypeError, ValueError):
+        raw = np.asarray(value)
+        if raw.dtype.kind in "bc":  # True -> 1.0 and 1+2j -> 1.0 would be silent guesses
+            kind = "booleans" if raw.dtype.kind == "b" else "complex numbers"
+            raise InputError(f"array '{name}' must hold real numbers, got {kind}")
+        if raw.ndim > 1:
+            raise InputError(f"array '{name}' must be one-dimensional, got shape {raw.shape}")
+        return np.atleast_1d(raw.astype(float))
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, InputError):
+            raise
         raise InputError(f"array '{name}' must hold numbers") from None
 
 
@@ -918,7 +926,15 @@ def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tupl
         unknown = set(initial) - set(guess)
         if unknown:
             raise InputError(f"unknown initial value(s) {sorted(unknown)} for law '{law.id}'")
-        guess.update({k: float(v) for k, v in initial.items()})
+        if any(isinstance(v, (bool, str)) or v is None for v in initial.values()):
+            raise InputError(f"initial values must be numbers, got {dict(initial)!r}",
+                             option="initial")
+        given = {k: float(v) for k, v in initial.items()}
+        try:  # the one parameter-value check: finite, within the declared bounds
+            law.check_values(given, admissible=False)
+        except InputError as exc:
+            raise InputError(exc.bare_message, option="initial") from None
+        guess.update(given)
     return guess
 
 

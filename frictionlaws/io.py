@@ -1178,13 +1178,7 @@ def _frame(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarr
 
 def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
                         units_given: dict[str, str], notes: list[str]) -> pd.DataFrame:
-    """p = F_N / area when the data have a load and no pressure."""
-    if "p" in frame.columns:
-        notes.append(f"area {area!r} not used: the data have a pressure column")
-        return frame
-    if "F_N" not in frame.columns:
-        raise InputError([Argument("area", str(area)), " needs a normal-load column F_N to "
-                          "derive the pressure, and the data have none"], file=src)
+    """p = F_N / area when the data have a load and no pressure (the area is checked anyway)."""
     try:
         a = _units.parse_quantity(area, "area", what="area", file=src)
     except InputError as exc:  # "area '1 m' is a length...": the argument named by the front end
@@ -1192,6 +1186,12 @@ def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
                          file=src) from None
     if not a > 0:
         raise InputError([Argument("area", str(area)), " must be > 0"], file=src)
+    if "p" in frame.columns:
+        notes.append(f"area {area!r} not used: the data have a pressure column")
+        return frame
+    if "F_N" not in frame.columns:
+        raise InputError([Argument("area", str(area)), " needs a normal-load column F_N to "
+                          "derive the pressure, and the data have none"], file=src)
     frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
     units_given["p"] = f"F_N / area ({area})"
     notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")

@@ -108,6 +108,10 @@ def loads(text: str) -> Any:
     Raises
     ------
     ValueError
-        ``json.JSONDecodeError`` (with line and column) or a duplicate key or constant.
+        ``json.JSONDecodeError`` (with line and column), a duplicate key or constant, or
+        nesting too deep for the parser.
     """
-    return json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
+    try:
+        return json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
+    except RecursionError:  # e.g. 100000 nested arrays: not a parameter file
+        raise ValueError("the JSON is nested too deeply to be a parameter file") from None

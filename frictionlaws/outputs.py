@@ -218,13 +218,14 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
     """Build a directory of outputs in a temporary directory, then move it into place.
 
     Yields the temporary directory to write into.  On success every file is moved
-    into ``path`` (created if needed; files already there with other names are kept);
-    on failure nothing in ``path`` changes.
+    into ``path`` (created with its parents if needed; files already there with other
+    names are kept); on failure nothing in ``path`` changes and no directory is created.
     """
     target = Path(path)
     _check_dir_target(target, "output directory")
     base = target.parent if str(target.parent) else Path(".")
-    base.mkdir(parents=True, exist_ok=True)
+    while not base.exists() and base != base.parent:  # missing parents: made at the end only
+        base = base.parent
     tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".part", dir=str(base)))
     try:
         yield tmp

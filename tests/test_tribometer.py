@@ -165,7 +165,7 @@ def test_record_units_in_headers_convert_to_si(tmp_path):
     ("# c\ntime [s],torque [N m],disc_speed [rpm]\n0,1,2\n0.001,nan,2\n0.002,1,2\n",
      "missing or non-numeric", "torque [N m]", 4),
     ("time [s],torque [N m],disc_speed [rpm]\n0,1,2\n0.001,x1,2\n0.002,1,2\n",
-     "'x1' is not a number", "torque [N m]", 3),
+     "non-numeric value 'x1'", "torque [N m]", 3),
     ("time [s],torque [N m],disc_speed [rpm]\n0,1,2\n0.002,1,2\n0.001,1,2\n",
      "not strictly increasing", "time [s]", 4),
     ("time [s],torque [N m],disc_speed [rpm]\n0,1,2\n0.001,1,2\n0.002,1,2\n0.01,1,2\n"

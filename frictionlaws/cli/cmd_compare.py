@@ -53,15 +53,29 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="upper fraction of the range held out for the extrapolation test: one "
                         "number for p and v, or e.g. p=0.3,v=0.2; 0 for none (default 0.3)")
     add_fit_options(p, only=("weights", "starts", "seed"))
-    p.add_argument("--mu-max", type=float, default=5.0, metavar="MU",
+    p.add_argument("--mu-max", type=_mu_max, default=5.0, metavar="MU",
                    help="upper physical limit of mu in the plausibility scan (default 5)")
     p.add_argument("--report", metavar="DIR",
                    help="write report.html (self-contained), report.md, comparison.json and "
-                        "PNG figures to DIR")
+                        "PNG figures to DIR (created with its parents if missing, as every "
+                        "output directory; a failed run creates nothing)")
     p.add_argument("--json", action="store_true",
                    help="print the comparison as one JSON object instead of the table")
     add_campaign_options(p, shared=False)
     return p
+
+
+def _mu_max(text: str) -> float:
+    """``--mu-max``: a finite number > 0 (the one number parser: no 'inf', no overflow)."""
+    from frictionlaws.numbers import parse_number
+
+    try:
+        value = parse_number(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"{value:g} is out of range: expected a number > 0")
+    return value
 
 
 def _options(args: argparse.Namespace) -> dict:

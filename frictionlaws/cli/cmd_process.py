@@ -49,7 +49,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "only with -o DATASET.csv)")
     p.add_argument("--plots", metavar="DIR",
                    help="write diagnostic plots (raw, filtered, window) for every record "
-                        "(several manifests: one subdirectory NAME each)")
+                        "to DIR (several manifests: one subdirectory NAME each; created with "
+                        "its parents if missing, and only when the datasets are written)")
     p.add_argument("--jobs", type=_jobs, default=-1, metavar="N",
                    help="worker processes for the records (default -1: one per core; 1 = "
                         "serial; 1..1024)")
@@ -118,11 +119,15 @@ def _refuse_collisions(targets: list[_Target]) -> None:
 
 
 def _check_before_work(args: argparse.Namespace, targets: list[_Target],
-                       out_dir: Path | None) -> None:
+                       out_dir: Path | None, rig: Any) -> None:
+    """Every output checked before any work: no input among them (manifests, the rig and
+    every record the manifests list, resolved as the processing resolves them)."""
     from frictionlaws.outputs import check_outputs
+    from frictionlaws.tribometer.process import read_manifest
 
     _refuse_collisions(targets)
-    inputs = [*args.manifest, args.rig]
+    records = [e.path for m in args.manifest for e in read_manifest(m, rig)[0] if e.path]
+    inputs = [*args.manifest, args.rig, *records]
     files = [p for t in targets for p in (t.dataset, t.records)]
     if out_dir is None or out_dir.is_dir():
         check_outputs(files, dirs=[args.plots], inputs=inputs)
@@ -131,23 +136,29 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
 
 
 def run(args: argparse.Namespace) -> int:
+    from contextlib import nullcontext
+
+    from frictionlaws.outputs import atomic_dir
     from frictionlaws.tribometer.process import manifest_names, process_many
     from frictionlaws.tribometer.rig import load_rig
 
     names = manifest_names(args.manifest)  # refuses a manifest given twice
     targets, out_dir = _plan(args, names)
-    _check_before_work(args, targets, out_dir)
     rig = load_rig(args.rig)
-    camps = process_many(args.manifest, rig, jobs=args.jobs, scheduler=args.scheduler,
-                         progress=progress_value(args), plots=args.plots,
-                         min_repeats=args.min_repeats,
-                         plot_dirs="flat" if len(args.manifest) == 1 else "per-manifest")
-    empty = [t.manifest for t, c in zip(targets, camps, strict=True)
-             if not any(cond.written for cond in c.conditions)]
-    if empty:
-        _report(args, targets, camps, written=False)
-        _refuse_empty(args, empty)
-    _write(targets, camps, out_dir)
+    _check_before_work(args, targets, out_dir, rig)
+    # plots are drawn into a temporary directory moved into place only when the datasets
+    # are written: a failed run leaves no plots (and no created directory) behind
+    with atomic_dir(args.plots) if args.plots else nullcontext(None) as plots_tmp:
+        camps = process_many(args.manifest, rig, jobs=args.jobs, scheduler=args.scheduler,
+                             progress=progress_value(args), plots=plots_tmp,
+                             min_repeats=args.min_repeats,
+                             plot_dirs="flat" if len(args.manifest) == 1 else "per-manifest")
+        empty = [t.manifest for t, c in zip(targets, camps, strict=True)
+                 if not any(cond.written for cond in c.conditions)]
+        if empty:
+            _report(args, targets, camps, written=False)
+            _refuse_empty(args, empty)
+        _write(targets, camps, out_dir)
     _report(args, targets, camps, written=True)
     return 0
 

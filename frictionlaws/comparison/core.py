@@ -118,8 +118,9 @@ def _select_laws(laws: Any, family: str | None, fd: FitData
         chosen = []
         for name in laws:
             law = get_law(name.strip() if isinstance(name, str) else name)
-            if law not in chosen:
-                chosen.append(law)
+            if law in chosen:  # a name given twice is an error (an alias counts as its law)
+                raise InputError(f"law '{law.id}' is given twice", option="laws")
+            chosen.append(law)
         if not chosen:
             raise InputError("no law given")
         what = "the laws asked for"
@@ -192,8 +193,8 @@ def _check_options(fd: FitData, folds: Any, mu_limits: Sequence[float], jobs: An
         raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
                          f"{jobs!r}", option="jobs")
     lims = tuple(float(x) for x in mu_limits)
-    if len(lims) != 2 or not lims[0] < lims[1]:
-        raise InputError(f"the plausible range of mu must have low < high, got {lims}",
+    if len(lims) != 2 or not lims[0] < lims[1] or not np.isfinite(lims).all():
+        raise InputError(f"the plausible range of mu must be finite with low < high, got {lims}",
                          option="mu_limits")
     notes: list[str] = []
     if folds > fd.n:
@@ -457,6 +458,9 @@ def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: An
              starts: int | None, mu_limits: Sequence[float], progress: bool | None,
              jobs: Any) -> Comparison:
     """:func:`compare` on data already read."""
+    from ..fitting import _check_options as check_fit_options
+
+    check_fit_options("least_squares", starts, seed, "error")  # the fit's rule for both
     folds, lims, notes = _check_options(fd, folds, mu_limits, jobs)
     fractions = parse_holdout(holdout)
     candidates, skipped, what = _select_laws(laws, family, fd)

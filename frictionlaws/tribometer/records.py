@@ -49,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..io import decode_text
+from ..io import _detect_delimiter, decode_text
 from ..outputs import check_input_file
 from ..units import parse_unit, unit_registry
 
@@ -144,13 +144,7 @@ class Record:
         for name, arr in arrays.items():
             if arr.ndim != 1 or arr.size != n:
                 raise InputError(f"'{name}' has {arr.size} samples, 'time' has {n}", file=src)
-            bad = np.flatnonzero(~np.isfinite(arr))
-            if bad.size:
-                col = _label(name, self.units)
-                raise InputError(
-                    f"missing or non-numeric value (NaN or empty cell); {bad.size} such "
-                    f"value{'s' if bad.size > 1 else ''} in the column",
-                    file=src, column=col, row=row_of(int(bad[0])))
+            _refuse_non_finite(arr, src, _label(name, self.units), row_of)
         if n < 3:
             raise InputError(f"too short: {n} samples", file=src)
         dt = np.diff(self.time)
@@ -172,6 +166,21 @@ class Record:
                 f"{med:.6g} s; {bad.size} irregular step{'s' if bad.size > 1 else ''}); the "
                 "filter needs uniform sampling",
                 file=src, column=_label("time", self.units), row=row_of(i + 1))
+
+
+def _refuse_non_finite(arr: np.ndarray, src: str, column: str, row_of: Any) -> None:
+    """Name the first missing (NaN, empty) or infinite value of a column, with its row."""
+    bad = np.flatnonzero(~np.isfinite(arr))
+    if not bad.size:
+        return
+    i = int(bad[0])
+    if np.isinf(arr[i]):
+        what = ("infinite value ('inf', or a number beyond 1.8e308 after unit conversion); "
+                "expected a finite number")
+    else:
+        what = "missing or non-numeric value (NaN or empty cell); expected a number"
+    raise InputError(f"{what}; {bad.size} non-finite value{'s' if bad.size > 1 else ''} in "
+                     "the column", file=src, column=column, row=row_of(i))
 
 
 def _label(name: str, units: dict[str, str]) -> str:
@@ -247,11 +256,11 @@ def _factor(kind: str, unit: str | None, header: str, src: str) -> float:
     return _si_factor(kind, unit.strip())
 
 
-def _refuse_duplicate_headers(text: str, src: str) -> None:
+def _refuse_duplicate_headers(text: str, delimiter: str, src: str) -> None:
     """pandas renames a repeated header ('torque [N m].1'): refuse it instead."""
     line = next((ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
     seen: set[str] = set()
-    for cell in next(csv.reader([line])) if line else []:
+    for cell in next(csv.reader([line], delimiter=delimiter)) if line else []:
         name = cell.strip()
         if name in seen:
             raise InputError("duplicate column (two columns have the same header); keep one",
@@ -262,11 +271,17 @@ def _refuse_duplicate_headers(text: str, src: str) -> None:
 def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> Record:
     """Read one raw record CSV into SI units and validate it.
 
+    The file follows the rules of every table the library reads
+    (:func:`frictionlaws.io.read_table`): the encoding rule of
+    :func:`~frictionlaws.io.decode_text`, a ``;``, tab or ``,`` delimiter taken
+    from the header line, decimal commas with ``;`` or tab (then every decimal
+    separator must be a comma), ``#`` comment lines and blank lines.
+
     Parameters
     ----------
     path : str or path
-        The CSV file (comma-separated, header row first; lines starting with
-        ``#`` before the header are comments).
+        The CSV file (header row first; lines starting with ``#`` before the
+        header are comments).
     source : str, optional
         Name used in messages (default: the path as given).
 
@@ -278,13 +293,29 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
     ------
     InputError
         Missing file, unreadable text, missing/duplicate/unit-less columns,
-        unknown or wrong-dimension units, non-numeric or empty cells, time not
-        strictly increasing or not uniformly sampled.
+        unknown or wrong-dimension units, non-numeric, empty or infinite cells,
+        time not strictly increasing or not uniformly sampled.
     """
-    import pandas as pd
-
     src = source or os.fspath(path)
-    p = Path(path)
+    text = _record_text(Path(path), src)
+    layout = _Layout.of(text)
+    frame = _record_frame(text, layout, src)
+    headers = [str(c) for c in frame.columns]
+    found, units = _record_columns(headers, src)
+    rows = _RowNumbers(text)
+    arrays: dict[str, np.ndarray] = {}
+    for key, j in found.items():
+        factor = _factor(COLUMNS[key][0], units[key] or None, headers[j], src)
+        values = _column_values(frame.iloc[:, j], layout, headers[j], src, rows)
+        arrays[key] = values * factor if factor != 1.0 else values
+    rec = Record(arrays["time"], arrays["torque"], arrays["disc_speed"],
+                 arrays.get("pin_speed"), source=src, units=units)
+    rec.check(row_of=rows)
+    return rec
+
+
+def _record_text(p: Path, src: str) -> str:
+    """The decoded text of a record file (the one encoding rule); refuses empty files."""
     if not p.exists():
         raise InputError("record file not found", file=src)
     if p.is_dir():
@@ -294,13 +325,37 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
         raw = p.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read the file ({exc.strerror})", file=src) from None
-    text, _ = decode_text(raw, src, "record CSV file")  # the one encoding rule
+    text, _ = decode_text(raw, src, "record CSV file")
     if not text.strip():
         raise InputError("file is empty; expected a header such as "
                          "'time [s],torque [N m],disc_speed [rpm]' and data rows", file=src)
-    # fast path: no NA parsing (empty cells become text and are reported below), comment
-    # handling only when the file needs it
-    opts: dict[str, Any] = {"na_filter": False, "low_memory": False}
+    return text
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Delimiter and decimal separator of a record, read from its text."""
+
+    delimiter: str
+    decimal_comma: bool
+
+    @classmethod
+    def of(cls, text: str) -> _Layout:
+        """The delimiter of the header line (as for datasets) and whether commas are decimal."""
+        header = next((ln for ln in text.splitlines()
+                       if ln.strip() and not ln.lstrip().startswith("#")), "")
+        delimiter = _detect_delimiter(header) or ","
+        body = text[text.find(header) + len(header):]
+        return cls(delimiter, delimiter in (";", "\t") and "," in body)
+
+
+def _record_frame(text: str, layout: _Layout, src: str) -> Any:
+    """Parse the text with pandas (fast path: numbers stay numbers, the rest stays text)."""
+    import pandas as pd
+
+    opts: dict[str, Any] = {"na_filter": False, "low_memory": False,
+                            "sep": layout.delimiter, "skipinitialspace": True,
+                            "decimal": "," if layout.decimal_comma else "."}
     if "#" in text:
         opts["comment"] = "#"
     try:
@@ -310,8 +365,14 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
     except (pd.errors.ParserError, ValueError) as exc:
         raise InputError(f"cannot be read as CSV: {' '.join(str(exc).split())}",
                          file=src) from None
-    _refuse_duplicate_headers(text, src)
-    headers = [str(c) for c in frame.columns]
+    _refuse_duplicate_headers(text, layout.delimiter, src)
+    if frame.shape[0] == 0:
+        raise InputError("file has a header but no data rows", file=src)
+    return frame
+
+
+def _record_columns(headers: list[str], src: str) -> tuple[dict[str, int], dict[str, str]]:
+    """Canonical column -> position, and the unit written for it; refuses missing columns."""
     found: dict[str, int] = {}
     units: dict[str, str] = {}
     for j, h in enumerate(headers):
@@ -330,47 +391,41 @@ def read_record(path: str | os.PathLike[str], *, source: str | None = None) -> R
         raise InputError(
             f"missing column{'s' if len(missing) > 1 else ''} {', '.join(missing)}; expected "
             f"'time [s]', 'torque [N m]', 'disc_speed [rpm]' and optionally 'pin_speed [rpm]' "
-            f"(columns found: {listed})", file=src)
-    if frame.shape[0] == 0:
-        raise InputError("file has a header but no data rows", file=src)
-    arrays: dict[str, np.ndarray] = {}
-    for key, j in found.items():
-        kind = COLUMNS[key][0]
-        factor = _factor(kind, units[key] or None, headers[j], src)
-        col = frame[headers[j]] if frame.columns.is_unique else frame.iloc[:, j]
-        if col.dtype.kind not in "fiu":
-            text = col.astype(str).str.strip()
-            values = pd.to_numeric(text, errors="coerce").to_numpy(dtype=float, copy=True)
-            missing = text.str.lower().isin(_MISSING).to_numpy()
-            bad = np.flatnonzero(np.isnan(values) & ~missing)
-            if bad.size:
-                i = int(bad[0])
-                raise InputError(
-                    f"value {col.iloc[i]!r} is not a number "
-                    f"({bad.size} non-numeric cell{'s' if bad.size > 1 else ''})",
-                    file=src, column=headers[j], row=_file_row(p, i))
-            values[missing] = np.nan  # reported as missing by Record.check
-        else:
-            values = col.to_numpy(dtype=float)
-        arrays[key] = values * factor if factor != 1.0 else values
-    rec = Record(arrays["time"], arrays["torque"], arrays["disc_speed"],
-                 arrays.get("pin_speed"), source=src, units=units)
-    rec.check(row_of=lambda i: _file_row(p, i))
-    return rec
+            f"(columns found: {listed}"
+            + ("; the header has one column: separate the columns with ',', ';' or a tab)"
+               if len(headers) == 1 else ")"), file=src)
+    return found, units
 
 
-def _file_row(p: Path, i: int) -> int:
-    """Line number of data row ``i`` (0-based), counting comment and blank lines."""
-    count = -1
-    with p.open(encoding="utf-8-sig", errors="replace") as fh:
-        for number, line in enumerate(fh, start=1):
-            s = line.strip()
-            if not s or s.startswith("#"):
-                continue
-            if count == i:
-                return number
-            count += 1
-    return i + 2
+def _column_values(col: Any, layout: _Layout, header: str, src: str,
+                   rows: _RowNumbers) -> np.ndarray:
+    """A column as floats (NaN where empty): the datasets' number rule, messages and all."""
+    if col.dtype.kind in "fiu":
+        return np.asarray(col.to_numpy(dtype=float))
+    from ..io import _column_numbers, _Table  # the one number parser and its messages
+
+    table = _Table([header], [col.astype(str).tolist()], rows.all(len(col)), src,
+                   decimal_comma=layout.decimal_comma, delimiter=layout.delimiter)
+    return _column_numbers(table, 0, commas=layout.decimal_comma)
+
+
+class _RowNumbers:
+    """Maps a 0-based data row to its line in the file (comment and blank lines counted)."""
+
+    def __init__(self, text: str) -> None:
+        self._text = text
+        self._lines: list[int] | None = None
+
+    def all(self, n: int) -> list[int]:
+        """The lines of the first ``n`` data rows."""
+        if self._lines is None:
+            lines = [k for k, ln in enumerate(self._text.splitlines(), start=1)
+                     if ln.strip() and not ln.lstrip().startswith("#")]
+            self._lines = lines[1:]  # the first is the header
+        return [self._lines[i] if i < len(self._lines) else i + 2 for i in range(n)]
+
+    def __call__(self, i: int) -> int:
+        return self.all(i + 1)[i]
 
 
 def write_record(path: str | os.PathLike[str], record: Record, *,

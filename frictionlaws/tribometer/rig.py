@@ -333,6 +333,9 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
     else:  # Python 3.10: the same parser, published as tomli
         import tomli as tomllib
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(f"load_rig takes the path of a TOML file, got {type(path).__name__}"
+                         " (build a rig from a mapping with rig_from_dict)")
     src = os.fspath(path)
     p = Path(src)
     if not p.exists():
@@ -540,8 +543,10 @@ def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default:
         raise InputError(f"'{prefix}{key}' must be a string with a unit, e.g. \"10 rpm\"",
                          file=src)
     parts = raw.strip().split(None, 1)
+    from ..numbers import parse_number
+
     try:
-        number = float(parts[0])
+        number = parse_number(parts[0])  # the one number parser (no 1_0, no overflow)
     except (ValueError, IndexError):
         raise InputError(f"'{prefix}{key} = \"{raw}\"' is not a number with a unit; "
                          "expected e.g. \"10 rpm\"", file=src) from None
