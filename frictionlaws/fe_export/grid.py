@@ -210,7 +210,7 @@ def interpolate(points: Sequence[np.ndarray], values: np.ndarray,
         q = np.broadcast_arrays(*query) if query else [np.zeros(())]
         return np.full(np.shape(q[0]), float(values.reshape(-1)[0]))
     q = np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in query])
-    loc = []
+    loc: list[tuple[np.ndarray, np.ndarray] | None] = []
     for pts, x in zip(points, q):
         if len(pts) == 1:
             loc.append(None)
