@@ -371,10 +371,6 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
     C1, C2, T_ref, T_g_known = resolve_wlf(C1=C1, C2=C2, T_ref=T_ref, T_g=T_g, preset=preset)
     T_g_res = T_ref - 50.0 if T_g_known is None else T_g_known
     window = (T_g_res, T_g_res + WLF_WINDOW)
-    domain = dict(base.domain)
-    domain["T"] = window
-    typical = dict(base.typical)
-    typical["T"] = window
     return WLFLaw(
         id=f"{base.id}+wlf",
         title=f"{base.title} with WLF temperature shift",
@@ -385,8 +381,8 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
         settings=tuple(base.settings) + wlf_settings(C1, C2, T_ref),
         floors=dict(base.floors),
         presets=base.presets,
-        domain=domain,
-        typical=typical,
+        domain={**base.domain, "T": window},
+        typical={**base.typical, "T": window},
         references=tuple(base.references) + (_WLF_REFERENCE,),
         evidence=f"{base.evidence}; WLF: C (Williams-Landel-Ferry), I (combination)",
         guess=_shifted_guess(base, C1, C2, T_ref),
