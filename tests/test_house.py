@@ -286,7 +286,6 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
             if len(comp) > 1 or v in graph[v]:
                 out.append(sorted(comp))
 
-    sys.setrecursionlimit(max(sys.getrecursionlimit(), 10 * len(graph)))
     for v in sorted(graph):
         if v not in index:
             visit(v)
