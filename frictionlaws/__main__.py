@@ -2,5 +2,7 @@
 
 from frictionlaws.cli import entry
 
+__all__: list[str] = []
+
 if __name__ == "__main__":
     entry()

@@ -270,14 +270,7 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
         raise InputError("a WLF fit needs shift factors at two or more temperatures "
                          "besides the reference")
     dT = T - T_ref
-    # linearised start: -dT / y = C2/C1 + dT/C1
-    ok = np.abs(y) > 0.05
-    C1, C2 = 17.44, 51.6
-    if np.count_nonzero(ok) >= 2:
-        slope, icpt = np.polyfit(dT[ok], -dT[ok] / y[ok], 1)
-        if slope > 0 and icpt / slope > 0:
-            C1, C2 = 1.0 / slope, icpt / slope
-    C2 = max(C2, float(-dT.min()) + 1.0)
+    C1, C2 = _wlf_start(dT, y)
 
     def model(dT: np.ndarray, C1: float, C2: float) -> np.ndarray:
         return -C1 * dT / (C2 + dT)
@@ -292,6 +285,33 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
         cv = np.asarray(res.covar)
         if cv[0, 0] > 0 and cv[1, 1] > 0:
             corr = float(cv[0, 1] / math.sqrt(cv[0, 0] * cv[1, 1]))
+    rms = float(np.sqrt(np.mean((res.best_fit - y) ** 2)))
+    msgs = _wlf_fit_messages(c1, c2, rms)
+    return WLFFit(
+        C1=float(c1.value), C2=float(c2.value), T_ref=float(T_ref),
+        C1_stderr=None if c1.stderr is None else float(c1.stderr),
+        C2_stderr=None if c2.stderr is None else float(c2.stderr),
+        correlation=corr, rms=rms, n=int(T.size),
+        messages=msgs)
+
+
+def _wlf_start(dT: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """Starting C1, C2 [K] from the linearised form ``-dT / y = C2/C1 + dT/C1``.
+
+    The universal constants (17.44, 51.6 K) when the line does not give positive
+    values; C2 is kept clear of the pole at the lowest temperature.
+    """
+    ok = np.abs(y) > 0.05
+    C1, C2 = 17.44, 51.6
+    if np.count_nonzero(ok) >= 2:
+        slope, icpt = np.polyfit(dT[ok], -dT[ok] / y[ok], 1)
+        if slope > 0 and icpt / slope > 0:
+            C1, C2 = 1.0 / slope, icpt / slope
+    return C1, max(C2, float(-dT.min()) + 1.0)
+
+
+def _wlf_fit_messages(c1: Any, c2: Any, rms: float) -> list[str]:
+    """Warnings about a WLF fit: no standard errors, a constant at its bound, a poor fit."""
     msgs = []
     if c1.stderr is None or c2.stderr is None:
         msgs.append("the WLF fit could not estimate standard errors")
@@ -300,16 +320,10 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
         if abs(p.value - p.min) < tol or abs(p.value - p.max) < tol:
             msgs.append(f"{p.name} = {p.value:g} is at its bound: the shifts do not follow WLF "
                         "over this temperature range")
-    rms = float(np.sqrt(np.mean((res.best_fit - y) ** 2)))
     if rms > 0.2:
         msgs.append(f"the shifts deviate from the fitted WLF equation by {rms:.2f} decades rms: "
                     "WLF describes them poorly over this temperature range")
-    return WLFFit(
-        C1=float(c1.value), C2=float(c2.value), T_ref=float(T_ref),
-        C1_stderr=None if c1.stderr is None else float(c1.stderr),
-        C2_stderr=None if c2.stderr is None else float(c2.stderr),
-        correlation=corr, rms=rms, n=int(T.size),
-        messages=msgs)
+    return msgs
 
 
 @dataclass
@@ -513,17 +527,26 @@ def build_master_curve(
                          f"(found {len(curves)})")
     names = _y_names(y, y_names)
     temps = np.array([c.T for c in curves])
-    ref = len(curves) // 2 if T_ref is None else int(np.argmin(np.abs(temps - T_ref)))
-    messages = []
-    if T_ref is not None and abs(temps[ref] - T_ref) > T_tol:
-        messages.append(f"no curve at T_ref = {T_ref:.2f} K: the shifts are referred to the "
-                        f"nearest curve, at {temps[ref]:.2f} K")
+    messages: list[str] = []
+    ref = _reference_curve(temps, T_ref, T_tol, messages)
     shift, se, rms, pts = _chain_shifts(curves, ref, degree=degree,
                                         max_extrapolation=max_extrapolation,
                                         monotonic=monotonic)
     wlf = _wlf_or_message(temps, shift, float(temps[ref]), se, messages) if fit else None
     return MasterCurve(curves, float(temps[ref]), shift, se, rms, pts, wlf, x_name, names,
                        messages)
+
+
+def _reference_curve(temps: np.ndarray, T_ref: float | None, T_tol: float,
+                     messages: list[str]) -> int:
+    """Index of the reference curve: nearest to ``T_ref`` [K], else the middle one."""
+    if T_ref is None:
+        return len(temps) // 2
+    ref = int(np.argmin(np.abs(temps - T_ref)))
+    if abs(temps[ref] - T_ref) > T_tol:
+        messages.append(f"no curve at T_ref = {T_ref:.2f} K: the shifts are referred to the "
+                        f"nearest curve, at {temps[ref]:.2f} K")
+    return ref
 
 
 def _wlf_or_message(temps: np.ndarray, shift: np.ndarray, T_ref: float, se: np.ndarray,

@@ -9,6 +9,7 @@ laws, or a callable returning either.
 
 from __future__ import annotations
 
+import builtins
 import difflib
 import importlib
 from collections.abc import Callable, Iterable
@@ -106,7 +107,7 @@ class Registry:
     def __len__(self) -> int:
         return len(self._laws)
 
-    def load_entry_points(self) -> list[str]:
+    def load_entry_points(self) -> builtins.list[str]:
         """Register laws from the ``frictionlaws.laws`` entry-point group.
 
         Returns the messages of plugins that failed to load (they are also kept
@@ -127,7 +128,7 @@ class Registry:
         return errors
 
     @property
-    def plugin_errors(self) -> list[str]:
+    def plugin_errors(self) -> builtins.list[str]:
         """Messages of plugins that failed to load."""
         return list(self._plugin_errors)
 

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -365,6 +365,42 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
         WLF constants cannot be resolved.
     """
     base = get_law(law)
+    _check_wlf_base(base)
+    if preset is None and C1 is None and C2 is None:
+        preset = "grosch"
+    C1, C2, T_ref, T_g_known = resolve_wlf(C1=C1, C2=C2, T_ref=T_ref, T_g=T_g, preset=preset)
+    T_g_res = T_ref - 50.0 if T_g_known is None else T_g_known
+    window = (T_g_res, T_g_res + WLF_WINDOW)
+    return WLFLaw(
+        id=f"{base.id}+wlf",
+        title=f"{base.title} with WLF temperature shift",
+        family=base.family,
+        variables=tuple(base.variables) + ("T",),
+        params=base.params,
+        formula=_shifted_formula(base),
+        settings=tuple(base.settings) + wlf_settings(C1, C2, T_ref),
+        floors=dict(base.floors),
+        presets=base.presets,
+        domain={**base.domain, "T": window},
+        typical={**base.typical, "T": window},
+        references=tuple(base.references) + (_WLF_REFERENCE,),
+        evidence=f"{base.evidence}; WLF: C (Williams-Landel-Ferry), I (combination)",
+        guess=_shifted_guess(base, C1, C2, T_ref),
+        derived=tuple(_derived_at_ref(dv) for dv in base.derived),
+        admissible=base.admissible,
+        linear=False,
+        aliases=(),
+        description=(f"{base.description} Evaluated at the reduced velocity a_T(T) v, "
+                     "log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref) (WLF): a higher "
+                     "temperature acts as a lower velocity.").strip(),
+        notes=_wlf_notes(base, preset, (C1, C2, T_ref), T_g_res, assumed=T_g_known is None),
+        base_id=base.id,
+        T_g=T_g_res,
+    )
+
+
+def _check_wlf_base(base: Law) -> None:
+    """Refuse a base law a WLF shift cannot act on (no v, already T, or name clash)."""
     if "v" not in base.variables:
         raise InputError(f"law '{base.id}' does not depend on the velocity v: a WLF shift "
                          "acts through the reduced velocity a_T v and has no effect on it")
@@ -374,18 +410,22 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
                                      | {s.name for s in base.settings})
     if clash:
         raise InputError(f"law '{base.id}' already has {sorted(clash)}: cannot add WLF")
-    if preset is None and C1 is None and C2 is None:
-        preset = "grosch"
-    C1, C2, T_ref, T_g_res = resolve_wlf(C1=C1, C2=C2, T_ref=T_ref, T_g=T_g, preset=preset)
-    assumed = T_g_res is None
-    if assumed:
-        T_g_res = T_ref - 50.0
+
+
+def _shifted_formula(base: Law) -> Callable[..., Any]:
+    """The base law's formula evaluated at the reduced velocity ``a_T(T) v``."""
     base_formula = base.formula
 
     def formula(m: Any, *, v: Any, T: Any, C1: Any, C2: Any, T_ref: Any, **kw: Any) -> Any:
         v_red = v * 10 ** wlf_formula(m, T, C1, C2, T_ref)
         return base_formula(m, v=v_red, **kw)
 
+    return formula
+
+
+def _shifted_guess(base: Law, C1: float, C2: float,
+                   T_ref: float) -> Callable[[Mapping[str, np.ndarray]], dict[str, float]]:
+    """The base law's starting guess, applied to the data shifted to ``T_ref``."""
     base_guess = base.guess
 
     def guess(data: Mapping[str, np.ndarray]) -> dict[str, float]:
@@ -399,22 +439,26 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
                 np.isfinite(shift), shift, 0.0)
         return base_guess(d)
 
-    def _at_ref(dv: Derived) -> Derived:
-        extra = (" (at T = T_ref; at another T divide by a_T(T))" if dv.unit == "m/s"
-                 else " (at T = T_ref)")
-        return Derived(dv.name, dv.unit, dv.meaning + extra, dv.func)
+    return guess
 
-    derived = tuple(_at_ref(dv) for dv in base.derived)
-    window = (T_g_res, T_g_res + WLF_WINDOW)
-    domain = dict(base.domain)
-    domain["T"] = window
-    typical = dict(base.typical)
-    typical["T"] = window
+
+def _derived_at_ref(dv: Derived) -> Derived:
+    """A derived quantity of the base law, stated to hold at ``T = T_ref``."""
+    extra = (" (at T = T_ref; at another T divide by a_T(T))" if dv.unit == "m/s"
+             else " (at T = T_ref)")
+    return Derived(dv.name, dv.unit, dv.meaning + extra, dv.func)
+
+
+def _wlf_notes(base: Law, preset: str | None, constants: tuple[float, float, float],
+               T_g: float, *, assumed: bool) -> str:
+    """The notes of a ``<law>+wlf`` law: constants, their source, T_g and the window."""
+    C1, C2, T_ref = constants
+    window = (T_g, T_g + WLF_WINDOW)
     source = (f"preset '{preset}'" if preset is not None else "user constants")
-    tg_note = (f"T_g = {T_g_res:.2f} K assumed as T_ref - 50 K (Grosch's convention): "
+    tg_note = (f"T_g = {T_g:.2f} K assumed as T_ref - 50 K (Grosch's convention): "
                "pass T_g= to with_wlf to set the validity window" if assumed
-               else f"T_g = {T_g_res:.2f} K")
-    notes = (
+               else f"T_g = {T_g:.2f} K")
+    return (
         f"WLF shift ({source}: C1 = {C1:g}, C2 = {C2:g} K, T_ref = {T_ref:.2f} K; {tg_note}). "
         f"Valid roughly T_g .. T_g + 100 K = {window[0]:.2f} .. {window[1]:.2f} K; outside it "
         "evaluation warns (ExtrapolationWarning), at or below the pole T_ref - C2 it raises. "
@@ -422,32 +466,6 @@ def with_wlf(law: Law | str, *, C1: float | None = None, C2: float | None = None
         "separable from a shift of v alone unless the data span several temperatures. "
         + (f"Base law notes: {base.notes}" if base.notes else "")
     ).strip()
-    return WLFLaw(
-        id=f"{base.id}+wlf",
-        title=f"{base.title} with WLF temperature shift",
-        family=base.family,
-        variables=tuple(base.variables) + ("T",),
-        params=base.params,
-        formula=formula,
-        settings=tuple(base.settings) + wlf_settings(C1, C2, T_ref),
-        floors=dict(base.floors),
-        presets=base.presets,
-        domain=domain,
-        typical=typical,
-        references=tuple(base.references) + (_WLF_REFERENCE,),
-        evidence=f"{base.evidence}; WLF: C (Williams-Landel-Ferry), I (combination)",
-        guess=guess,
-        derived=derived,
-        admissible=base.admissible,
-        linear=False,
-        aliases=(),
-        description=(f"{base.description} Evaluated at the reduced velocity a_T(T) v, "
-                     "log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref) (WLF): a higher "
-                     "temperature acts as a lower velocity.").strip(),
-        notes=notes,
-        base_id=base.id,
-        T_g=T_g_res,
-    )
 
 
 #: Reference temperature of ``<law>+wlf`` laws looked up by name [K] (20 degC).

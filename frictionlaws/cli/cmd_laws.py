@@ -6,6 +6,8 @@ import argparse
 
 from ._common import add_json_option, print_json
 
+__all__ = ["add_parser", "run"]
+
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser("laws", help="list the registered friction laws",

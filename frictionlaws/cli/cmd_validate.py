@@ -7,6 +7,8 @@ import sys
 
 from ._common import add_json_option, parse_names, print_json
 
+__all__ = ["add_parser", "run"]
+
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(

@@ -364,16 +364,41 @@ def law_routine(law: Law, values: Mapping[str, float]) -> list[str]:
     ])
     lines.append("      implicit none")
     lines += _declare("real*8", ["xp", "xv", "xt", "xfn", "xs", "fmu", "dmu(5)"])
-    consts = [(fnames[n], float(values[n]), "parameter") for n in params] + [
-        (fnames[n], float(values[n]), "setting") for n in settings]
-    if consts:
-        lines += _comment(["parameters and settings (named constants, SI):"])
-        lines += _declare("real*8", [c[0] for c in consts])
-        for fname, val, _ in consts:
-            lines += _stmt(f"parameter ({fname} = {_real(val)})")
+    lines += _constant_lines([fnames[n] for n in params + settings],
+                             [float(values[n]) for n in params + settings])
     locals_ = [fnames[v] for v in law.variables] + [fnames[f"g:{v}"] for v in law.variables]
     temps = [str(t) for t, _ in repl]
     lines += _declare("real*8", locals_ + temps)
+    lines += _variable_lines(law, fnames)
+    for t, e in repl:
+        lines += printer.doprint(e.xreplace(rename), assign_to=str(t)).splitlines()
+    lines += printer.doprint(reduced[0].xreplace(rename), assign_to="fmu").splitlines()
+    for i, v in enumerate(_ORDER):
+        target = f"dmu({i + 1})"
+        if v in law.variables:
+            k = law.variables.index(v)
+            d = reduced[1 + k].xreplace(rename) * sympy.Symbol(fnames[f"g:{v}"])
+            lines += printer.doprint(d, assign_to=target).splitlines()
+        else:
+            lines.append(f"      {target} = 0.0d0")
+    lines += ["      return", "      end"]
+    return lines
+
+
+def _constant_lines(names: Sequence[str], values: Sequence[float]) -> list[str]:
+    """Declarations of the parameters and settings as Fortran named constants."""
+    if not names:
+        return []
+    lines = _comment(["parameters and settings (named constants, SI):"])
+    lines += _declare("real*8", list(names))
+    for fname, val in zip(names, values, strict=True):
+        lines += _stmt(f"parameter ({fname} = {_real(val)})")
+    return lines
+
+
+def _variable_lines(law: Law, fnames: Mapping[str, str]) -> list[str]:
+    """The law's variables from the arguments: |v|, the floors, and their chain factors."""
+    lines = []
     if law.variables:
         lines += _comment(["floors and |v| before any power or log (as the Python law)"])
     for v in law.variables:
@@ -388,18 +413,6 @@ def law_routine(law: Law, values: Mapping[str, float]) -> list[str]:
                       f"         {x} = {_real(floor)}",
                       f"         {g} = 0.0d0",
                       "      end if"]
-    for t, e in repl:
-        lines += printer.doprint(e.xreplace(rename), assign_to=str(t)).splitlines()
-    lines += printer.doprint(reduced[0].xreplace(rename), assign_to="fmu").splitlines()
-    for i, v in enumerate(_ORDER):
-        target = f"dmu({i + 1})"
-        if v in law.variables:
-            k = law.variables.index(v)
-            d = reduced[1 + k].xreplace(rename) * sympy.Symbol(fnames[f"g:{v}"])
-            lines += printer.doprint(d, assign_to=target).splitlines()
-        else:
-            lines.append(f"      {target} = 0.0d0")
-    lines += ["      return", "      end"]
     return lines
 
 

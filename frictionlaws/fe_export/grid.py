@@ -210,7 +210,7 @@ def interpolate(points: Sequence[np.ndarray], values: np.ndarray,
         q = np.broadcast_arrays(*query) if query else [np.zeros(())]
         return np.full(np.shape(q[0]), float(values.reshape(-1)[0]))
     q = np.broadcast_arrays(*[np.asarray(x, dtype=float) for x in query])
-    loc = []
+    loc: list[tuple[np.ndarray, np.ndarray] | None] = []
     for pts, x in zip(points, q):
         if len(pts) == 1:
             loc.append(None)
@@ -461,15 +461,7 @@ def _march_axis(func: Func, names: Sequence[str], a: int, lo: float, hi: float,
                     "shrink the box or check the parameters")
             h = cand[0] / 16.0
             continue
-        else:
-            j = ok[-1]
-            step = cand[j]
-            if j + 1 < len(cand):  # refine between the last passing and the next candidate
-                fine = np.linspace(cand[j], cand[j + 1], 9)[1:-1]
-                e_fine = _interval_errors(func, names, a, x, x + fine, context)
-                ok_fine = np.nonzero(e_fine <= tol_a)[0]
-                if len(ok_fine):
-                    step = fine[ok_fine[-1]]
+        step = _refined_step(func, names, a, x, cand, int(ok[-1]), context, tol_a)
         x_new = hi if step >= remaining * (1 - 1e-12) else x + step
         pts.append(x_new)
         h = step
@@ -477,6 +469,22 @@ def _march_axis(func: Func, names: Sequence[str], a: int, lo: float, hi: float,
     if pts[-1] < hi:
         pts.append(hi)
     return np.unique(np.asarray(pts, dtype=float))
+
+
+def _refined_step(func: Func, names: Sequence[str], a: int, x: float, cand: np.ndarray,
+                  j: int, context: Sequence[np.ndarray], tol_a: float) -> float:
+    """The longest step from ``x`` within ``tol_a``: candidate ``j`` passes, ``j + 1`` fails.
+
+    Seven steps between the two candidates are tried; the longest that passes wins.
+    """
+    step = cand[j]
+    if j + 1 < len(cand):  # refine between the last passing and the next candidate
+        fine = np.linspace(cand[j], cand[j + 1], 9)[1:-1]
+        e_fine = _interval_errors(func, names, a, x, x + fine, context)
+        ok_fine = np.nonzero(e_fine <= tol_a)[0]
+        if len(ok_fine):
+            step = fine[ok_fine[-1]]
+    return step
 
 
 def adaptive_grid(func: Func, specs: Sequence[AxisSpec], tol: float, *,
@@ -542,18 +550,25 @@ def adaptive_grid(func: Func, specs: Sequence[AxisSpec], tol: float, *,
                 s_bad = min(s_bad, s)
         if best is not None and s_bad / max(s_ok, 1e-300) < 1.15:
             break
-        if s_bad == math.inf:
-            err_now = best[1].max_abs if best is not None else tol
-            s = s_ok * min(4.0, max(1.2, tol / max(err_now, 1e-300)))
-        elif s_ok == 0.0:
-            s = s_bad * 0.6
-        else:
-            s = math.sqrt(s_ok * s_bad)
+        s = _next_budget(s_ok, s_bad, best[1].max_abs if best is not None else tol, tol)
     if best is None:
         return _repair(func, names, spacing, last, tol, max_rows, max_iter)
     if k > 1:
         best = _coordinate_pass(func, names, specs, context, best, best_s * tol / k, tol)
     return _evenly_spaced_if_smaller(func, names, specs, best, tol)
+
+
+def _next_budget(s_ok: float, s_bad: float, err_now: float, tol: float) -> float:
+    """The next error-budget factor of :func:`adaptive_grid`'s bracketing search.
+
+    ``s_ok`` is the largest factor that met ``tol`` (0 if none yet), ``s_bad`` the
+    smallest that did not (inf if none yet); ``err_now`` the best grid's error.
+    """
+    if s_bad == math.inf:
+        return s_ok * min(4.0, max(1.2, tol / max(err_now, 1e-300)))
+    if s_ok == 0.0:
+        return s_bad * 0.6
+    return math.sqrt(s_ok * s_bad)
 
 
 def _evenly_spaced_if_smaller(func: Func, names: tuple[str, ...], specs: Sequence[AxisSpec],

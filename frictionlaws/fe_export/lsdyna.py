@@ -18,7 +18,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .exact import exp_decay_form
+from .exact import ExpDecay, exp_decay_form
+from .grid import Grid
 from .job import Job, Written, commented, tabulated
 
 __all__ = ["write_lsdyna", "field10", "field20"]
@@ -108,41 +109,49 @@ def write_lsdyna(job: Job) -> Written:
     bad = [v for v in job.variables if v not in ("p", "v")]
     form, _ = exp_decay_form(law, job.values)
     if form is not None:
-        scale, _ = job.units.affine("v")
-        dc = form.d_c * scale
-        job.check_levels({"FS = mu_s": form.mu_s, "FD = mu_k": form.mu_k})
-        cards = _contact_cards(job, form.mu_s, form.mu_k, dc)
-        written = [float(c) for c in (cards[4][0:10], cards[4][10:20], cards[4][20:30])]
-        vv = np.linspace(0.0, 20.0 / dc, 2001) if dc > 0 else np.array([0.0, 1.0])
-        ref = written[1] + (written[0] - written[1]) * np.exp(-written[2] * vv)
-        exact_mu = form.mu_k + (form.mu_s - form.mu_k) * np.exp(-dc * vv)
-        dev = float(np.max(np.abs(ref - exact_mu)))
-        if dev > 1e-6:
-            job.warnings.append(
-                f"the 10-column fields of card 2 round FS, FD, DC enough to change mu by up to "
-                f"{dev:.2g}: check the values, or export a table (the law itself is exact)")
-        body = [
-            *job.box_lines(),
-            "exact: mu = FD + (FS - FD) exp(-DC |v_rel|) is the law itself (checked "
-            "numerically)",
-            f"FS = {form.mu_s!r}, FD = {form.mu_k!r}, DC = {dc!r} "
-            f"[1/({job.units.label('v')})]; written in 10-column fields, which changes mu "
-            f"by at most {dev:.2g}",
-            _contact_note(job),
-        ]
-        head = job.header("LS-DYNA contact card 2 (FS, FD, DC)", body,
-                          "the same formula holds at every sliding velocity (no table)")
-        lines = ["*KEYWORD", *commented(head, "$ "), *cards, "*END"]
-        return Written("\n".join(lines) + "\n", exact=True, summary=body[-3:-1],
-                       details={"FS": form.mu_s, "FD": form.mu_k, "DC": dc,
-                                "rounding": dev})
+        return _write_exact(job, form)
     if bad:
         raise InputError(
             f"lsdyna: law '{law.id}' depends on {', '.join(bad)}; LS-DYNA friction tables "
             "(FS = 2) give mu against pressure and sliding velocity only. Use an Abaqus "
             "format, or a law of p and v")
-    names = [v for v in ("p", "v") if v in job.variables]
-    grid, err, how = job.make_grid(names, "lsdyna")
+    return _write_table(job)
+
+
+def _write_exact(job: Job, form: ExpDecay) -> Written:
+    """Contact card 2 with FS, FD, DC: the exponential decay written exactly."""
+    scale, _ = job.units.affine("v")
+    dc = form.d_c * scale
+    job.check_levels({"FS = mu_s": form.mu_s, "FD = mu_k": form.mu_k})
+    cards = _contact_cards(job, form.mu_s, form.mu_k, dc)
+    written = [float(c) for c in (cards[4][0:10], cards[4][10:20], cards[4][20:30])]
+    vv = np.linspace(0.0, 20.0 / dc, 2001) if dc > 0 else np.array([0.0, 1.0])
+    ref = written[1] + (written[0] - written[1]) * np.exp(-written[2] * vv)
+    exact_mu = form.mu_k + (form.mu_s - form.mu_k) * np.exp(-dc * vv)
+    dev = float(np.max(np.abs(ref - exact_mu)))
+    if dev > 1e-6:
+        job.warnings.append(
+            f"the 10-column fields of card 2 round FS, FD, DC enough to change mu by up to "
+            f"{dev:.2g}: check the values, or export a table (the law itself is exact)")
+    body = [
+        *job.box_lines(),
+        "exact: mu = FD + (FS - FD) exp(-DC |v_rel|) is the law itself (checked "
+        "numerically)",
+        f"FS = {form.mu_s!r}, FD = {form.mu_k!r}, DC = {dc!r} "
+        f"[1/({job.units.label('v')})]; written in 10-column fields, which changes mu "
+        f"by at most {dev:.2g}",
+        _contact_note(job),
+    ]
+    head = job.header("LS-DYNA contact card 2 (FS, FD, DC)", body,
+                      "the same formula holds at every sliding velocity (no table)")
+    lines = ["*KEYWORD", *commented(head, "$ "), *cards, "*END"]
+    return Written("\n".join(lines) + "\n", exact=True, summary=body[-3:-1],
+                   details={"FS": form.mu_s, "FD": form.mu_k, "DC": dc,
+                            "rounding": dev})
+
+
+def _table_values(job: Job, grid: Grid) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pressures, velocities (model units, with guard points) and mu[p, v] of the table."""
     mu = tabulated(job, grid)
     if "p" not in grid.names:
         mu = mu[None, ...] if mu.ndim else np.full((1, 1), float(mu))
@@ -155,10 +164,16 @@ def write_lsdyna(job: Job) -> Written:
     if len(v_m) == 1 and v_m[0] == 0.0:
         v_m = np.array([0.0, 1.0])
         mu = np.repeat(mu, 2, axis=1)
-    p_g = _guarded(p_m)
     mu = _guard_values(mu, p_m, 0)
-    v_g = _guarded(v_m)
     mu = _guard_values(mu, v_m, 1)
+    return _guarded(p_m), _guarded(v_m), mu
+
+
+def _write_table(job: Job) -> Written:
+    """``FS = 2``: a *DEFINE_TABLE of pressures, each with a *DEFINE_CURVE of mu(v)."""
+    names = [v for v in ("p", "v") if v in job.variables]
+    grid, err, how = job.make_grid(names, "lsdyna")
+    p_g, v_g, mu = _table_values(job, grid)
     tbid = int(job.options.get("lsdyna_table_id", 1000))
     summary = [*job.box_lines(grid), *job.error_lines(err, how)]
     body = [
@@ -177,9 +192,18 @@ def write_lsdyna(job: Job) -> Written:
     head = job.header("LS-DYNA friction table (FS = 2, *DEFINE_TABLE)", body,
                       "mu is held at the end values (flat guard points)")
     lines = ["*KEYWORD", *commented(head, "$ "), *_contact_cards(job, 2.0, float(tbid), 0.0)]
-    lines += ["*DEFINE_TABLE", "$#    TBID       SFA      OFFA",
-              _int10(tbid) + field10(1.0) + field10(0.0),
-              "$#             VALUE  (contact pressure)"]
+    lines += _table_cards(job, tbid, p_g, v_g, mu)
+    lines.append("*END")
+    return Written("\n".join(lines) + "\n", rows=grid.rows, error=err, grid=grid,
+                   summary=summary, details={"table_id": tbid})
+
+
+def _table_cards(job: Job, tbid: int, p_g: np.ndarray, v_g: np.ndarray,
+                 mu: np.ndarray) -> list[str]:
+    """The *DEFINE_TABLE card and one *DEFINE_CURVE per pressure."""
+    lines = ["*DEFINE_TABLE", "$#    TBID       SFA      OFFA",
+             _int10(tbid) + field10(1.0) + field10(0.0),
+             "$#             VALUE  (contact pressure)"]
     lines += [field20(p) for p in p_g]
     for i, p in enumerate(p_g):
         lines += ["*DEFINE_CURVE",
@@ -189,6 +213,4 @@ def write_lsdyna(job: Job) -> Written:
                            field10(0.0), field10(0.0), _int10(0)]),
                   "$#                A1                  O1"]
         lines += [field20(v) + field20(m) for v, m in zip(v_g, mu[i], strict=True)]
-    lines.append("*END")
-    return Written("\n".join(lines) + "\n", rows=grid.rows, error=err, grid=grid,
-                   summary=summary, details={"table_id": tbid})
+    return lines

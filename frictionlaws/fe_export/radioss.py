@@ -27,7 +27,8 @@ __all__ = ["write_radioss", "ifric1", "fit_ifric1"]
 _KEYS = ("C1", "C2", "C3", "C4", "C5", "C6", "Fric")
 
 
-def ifric1(c: dict[str, float], P: np.ndarray, V: np.ndarray) -> np.ndarray:
+def ifric1(c: dict[str, float], P: np.ndarray | float,
+           V: np.ndarray | float) -> np.ndarray | float:
     """Radioss Ifric 1 in model units."""
     return (c["Fric"] + c["C1"] * P + c["C2"] * V + c["C3"] * P * V + c["C4"] * P**2
             + c["C5"] * V**2)
@@ -73,7 +74,7 @@ def fit_ifric1(job: Job, names: list[str]) -> tuple[dict[str, float], GridError,
     def approx(**kw: np.ndarray) -> np.ndarray:
         Pm = np.asarray(job.units.to_model("p", kw["p"]), float) if "p" in kw else 0.0
         Vm = np.asarray(job.units.to_model("v", kw["v"]), float) if "v" in kw else 0.0
-        return ifric1(c, Pm, Vm)
+        return np.asarray(ifric1(c, Pm, Vm), dtype=float)
 
     # the approximation error, on a denser sample than the fit's
     grid = Grid(tuple(names), tuple(breakpoints(s.lo, s.hi, 201, s.kind) if not s.single
@@ -161,7 +162,7 @@ def write_radioss(job: Job) -> Written:
         lines = commented(head, "# ") + _card(job, 4, c, f"frictionlaws {law.id} (exact)")
         return Written("\n".join(lines) + "\n", exact=True, summary=body[-2:-1],
                        details={"ifric": 4, "coefficients": c})
-    names = [v for v in ("p", "v") if v in job.variables]
+    names: list[str] = [v for v in ("p", "v") if v in job.variables]
     c, err, grid = fit_ifric1(job, names)
     if job.tol is not None and err.max_abs > job.tol:
         raise InputError(

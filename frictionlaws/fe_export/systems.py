@@ -20,9 +20,14 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from ..law import VARIABLES
+
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import ArrayLike
 
 __all__ = ["UnitSystem", "SYSTEMS", "unit_system"]
 
@@ -72,14 +77,14 @@ class UnitSystem:
         one = float(to_si(1.0, unit, var))
         return one - zero, zero
 
-    def to_model(self, var: str, x_si: object) -> object:
+    def to_model(self, var: str, x_si: ArrayLike) -> np.ndarray:
         """Convert SI values of ``var`` to this system's unit."""
         import numpy as np
 
         scale, offset = self.affine(var)
         return (np.asarray(x_si, dtype=float) - offset) / scale
 
-    def to_si(self, var: str, x_model: object) -> object:
+    def to_si(self, var: str, x_model: ArrayLike) -> np.ndarray:
         """Convert values of ``var`` in this system's unit to SI."""
         import numpy as np
 

@@ -141,6 +141,25 @@ def system_error_from_weights(
     """
     from scipy import stats
 
+    m_kg, r = _weights_si(masses, readings, mass_unit, torque_unit)
+    rad = _length(radius, "radius")
+    if not (g > 0 and math.isfinite(g)):
+        raise InputError(f"g must be > 0, got {g!r}")
+    known = m_kg * g * rad
+    diff = r - known
+    n = diff.size
+    offset = float(np.mean(diff))
+    sd = float(np.std(diff, ddof=1))
+    t = float(stats.t.ppf(0.975, n - 1))
+    half = t * sd / math.sqrt(n)
+    slope, slope_se, intercept, warnings = _gain_check(known, r, gain_tolerance)
+    return SystemErrorCalibration(offset, sd, (offset - half, offset + half), n, slope,
+                                  slope_se, intercept, known, r, warnings)
+
+
+def _weights_si(masses: Sequence[float] | np.ndarray, readings: Sequence[float] | np.ndarray,
+                mass_unit: str, torque_unit: str) -> tuple[np.ndarray, np.ndarray]:
+    """Checked hanging masses [kg] and torque readings [N m] of a hanging-weight test."""
     from ..units import parse_unit
 
     m = np.asarray(masses, dtype=float).ravel()
@@ -159,34 +178,29 @@ def system_error_from_weights(
         raise InputError(f"mass_unit '{mass_unit}' is not a mass unit (e.g. kg, g)")
     m_kg = m * float(ureg.Quantity(1.0, mu_).to("kg").magnitude)
     tq = float(ureg.Quantity(1.0, parse_unit(torque_unit, "torque")).to("N*m").magnitude)
-    r = r * tq
-    rad = _length(radius, "radius")
-    if not (g > 0 and math.isfinite(g)):
-        raise InputError(f"g must be > 0, got {g!r}")
-    known = m_kg * g * rad
-    diff = r - known
-    n = diff.size
-    offset = float(np.mean(diff))
-    sd = float(np.std(diff, ddof=1))
-    t = float(stats.t.ppf(0.975, n - 1))
-    half = t * sd / math.sqrt(n)
+    return m_kg, r * tq
+
+
+def _gain_check(known: np.ndarray, r: np.ndarray,
+                gain_tolerance: float) -> tuple[float, float, float, list[str]]:
+    """Slope, its standard error and intercept of reading vs known torque, with warnings."""
+    from scipy import stats
+
+    n = known.size
     warnings: list[str] = []
-    distinct = np.unique(known).size
-    if distinct >= 2:
-        fit = stats.linregress(known, r)
-        slope, slope_se, intercept = float(fit.slope), float(fit.stderr), float(fit.intercept)
-        tq_ = float(stats.t.ppf(0.975, n - 2)) if n > 2 else math.inf
-        if abs(slope - 1.0) > gain_tolerance and abs(slope - 1.0) > tq_ * slope_se:
-            warnings.append(
-                f"the reading grows {slope:.4g} times as fast as the known torque (slope "
-                f"differs from 1 beyond its 95 % interval): the sensor has a gain error, "
-                "which a constant system error does not correct; recalibrate the sensor")
-    else:
-        slope, slope_se, intercept = math.nan, math.nan, math.nan
+    if np.unique(known).size < 2:
         warnings.append("all readings use the same mass: the gain (slope) cannot be checked; "
                         "use several masses (the thesis used 1..4 kg)")
-    return SystemErrorCalibration(offset, sd, (offset - half, offset + half), n, slope,
-                                  slope_se, intercept, known, r, warnings)
+        return math.nan, math.nan, math.nan, warnings
+    fit = stats.linregress(known, r)
+    slope, slope_se, intercept = float(fit.slope), float(fit.stderr), float(fit.intercept)
+    tq_ = float(stats.t.ppf(0.975, n - 2)) if n > 2 else math.inf
+    if abs(slope - 1.0) > gain_tolerance and abs(slope - 1.0) > tq_ * slope_se:
+        warnings.append(
+            f"the reading grows {slope:.4g} times as fast as the known torque (slope "
+            f"differs from 1 beyond its 95 % interval): the sensor has a gain error, "
+            "which a constant system error does not correct; recalibrate the sensor")
+    return slope, slope_se, intercept, warnings
 
 
 @dataclass(frozen=True)

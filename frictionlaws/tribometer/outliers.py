@@ -184,7 +184,7 @@ def pooled_outliers(conditions: Sequence[Sequence[float] | np.ndarray],
         if v.size and not np.all(np.isfinite(v) & (v > 0)):
             raise InputError("the pooled outlier rule needs positive, finite record means")
     nan_z = [np.full(v.size, math.nan) for v in values]
-    nothing = [[] for _ in values]
+    nothing: list[list[int]] = [[] for _ in values]
     tested = [i for i, v in enumerate(values) if v.size >= 3]
     pool = sum(inner_count(values[i].size) for i in tested)
     if pool < MIN_POOL:

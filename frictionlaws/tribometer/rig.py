@@ -429,99 +429,17 @@ def rig_from_dict(data: Mapping[str, Any], *, source: str = "<dict>") -> Rig:
     src = source
     _check_keys(data, _TOP_KEYS, src, "")
     radius = _quantity(data, "track_radius", "length", src, required=True)
-    if "contact_area" in data and "pin_diameter" in data:
-        raise InputError("give either 'pin_diameter' or 'contact_area', not both", file=src)
-    if "contact_area" in data:
-        area = _quantity(data, "contact_area", "area", src)
-    elif "pin_diameter" in data:
-        d = _quantity(data, "pin_diameter", "length", src)
-        area = math.pi * d * d / 4.0
-    else:
-        raise InputError("missing 'pin_diameter' (e.g. pin_diameter = \"20 mm\") or "
-                         "'contact_area' (e.g. contact_area = \"314.16 mm^2\")", file=src)
+    area = _contact_area(data, src)
     system_error = _quantity(data, "system_error", "torque", src, default=0.0,
                              sign="any")
     g = _acceleration(data["g"], "g", src) if "g" in data else 9.8
     torque_range = _quantity(data, "torque_range", "torque", src)
-
-    speeds = table = None
-    if "internal_torque" in data:
-        it = data["internal_torque"]
-        _check_keys(it, {"disc_speed_rpm", "torque_Nm"}, src, "internal_torque")
-        for key in ("disc_speed_rpm", "torque_Nm"):
-            if key not in it:
-                raise InputError(f"[internal_torque] needs '{key}' (a list of numbers)",
-                                 file=src)
-        try:
-            rpm = np.asarray(it["disc_speed_rpm"], dtype=float)
-            tq = np.asarray(it["torque_Nm"], dtype=float)
-        except (TypeError, ValueError):
-            raise InputError("[internal_torque]: disc_speed_rpm and torque_Nm must be lists "
-                             "of numbers", file=src) from None
-        if rpm.ndim != 1 or tq.ndim != 1 or rpm.size == 0 or rpm.size != tq.size:
-            raise InputError(
-                f"[internal_torque]: disc_speed_rpm ({rpm.size} values) and torque_Nm "
-                f"({tq.size} values) must be non-empty lists of the same length", file=src)
-        if not (np.all(np.isfinite(rpm)) and np.all(np.isfinite(tq))):
-            raise InputError("[internal_torque]: values must be finite numbers", file=src)
-        if np.any(rpm < 0):
-            raise InputError("[internal_torque]: disc_speed_rpm must be >= 0 (speeds are "
-                             "looked up by magnitude)", file=src)
-        order = np.argsort(rpm, kind="stable")
-        rpm, tq = rpm[order], tq[order]
-        if np.any(np.diff(rpm) == 0):
-            raise InputError("[internal_torque]: disc_speed_rpm has a repeated value",
-                             file=src)
-        speeds, table = rpm * RPM, tq
-
-    filt = FilterSettings()
-    if "filter" in data:
-        ft = data["filter"]
-        _check_keys(ft, {"cutoff", "order", "auto_min", "auto_max", "auto_snr"}, src, "filter")
-        cutoff: float | None = None
-        raw = ft.get("cutoff", "auto")
-        if not (isinstance(raw, str) and raw.strip().lower() == "auto"):
-            cutoff = _quantity(ft, "cutoff", "frequency", src, prefix="filter.")
-        order = ft.get("order", 4)
-        if isinstance(order, bool) or not isinstance(order, int) or not 1 <= order <= 10:
-            raise InputError(f"'filter.order' must be an integer 1..10, got {order!r}",
-                             file=src)
-        filt = FilterSettings(
-            cutoff=cutoff, order=order,
-            auto_min=_quantity(ft, "auto_min", "frequency", src, prefix="filter.",
-                               default=1.0),
-            auto_max=_quantity(ft, "auto_max", "frequency", src, prefix="filter.",
-                               default=0.0, sign="nonneg"),
-            auto_snr=_number(ft, "auto_snr", src, "filter.", 10.0, 1.0, 1e6),
-        )
-
-    win = WindowSettings()
-    if "window" in data:
-        wt = data["window"]
-        names = {f.name for f in fields(WindowSettings)}
-        _check_keys(wt, names, src, "window")
-        kw: dict[str, float] = {}
-        for name in names:
-            if name not in wt:
-                continue
-            if name in _WINDOW_FRACTIONS:
-                hi = 100.0 if name in ("noise_factor", "min_mu") else 1.0
-                kw[name] = _number(wt, name, src, "window.", 0.0, 0.0, hi)
-            else:
-                kw[name] = _quantity(wt, name, "time", src, prefix="window.", sign="nonneg")
-        win = WindowSettings(**kw)
-
-    out = OutlierSettings()
-    if "outliers" in data:
-        ot = data["outliers"]
-        _check_keys(ot, {"rule", "alpha"}, src, "outliers")
-        rule = str(ot.get("rule", "pooled")).strip().lower()
-        if rule not in OUTLIER_RULES:
-            raise InputError(f"'outliers.rule' = {ot.get('rule')!r}; expected one of "
-                             f"{', '.join(OUTLIER_RULES)}", file=src)
-        out = OutlierSettings(rule=rule, alpha=_number(ot, "alpha", src, "outliers.", 0.01,
-                                                       1e-6, 0.5))
-
+    speeds, table = (_internal_torque(data["internal_torque"], src)
+                     if "internal_torque" in data else (None, None))
+    filt = _filter_settings(data["filter"], src) if "filter" in data else FilterSettings()
+    win = _window_settings(data["window"], src) if "window" in data else WindowSettings()
+    out = (_outlier_settings(data["outliers"], src) if "outliers" in data
+           else OutlierSettings())
     step = 10.0 * RPM
     if "grouping" in data:
         gt = data["grouping"]
@@ -531,6 +449,97 @@ def rig_from_dict(data: Mapping[str, Any], *, source: str = "<dict>") -> Rig:
     return Rig(track_radius=radius, contact_area=area, system_error=system_error, g=g,
                internal_speed=speeds, internal_torque_table=table, torque_range=torque_range,
                filter=filt, window=win, outliers=out, group_speed_step=step, source=src)
+
+
+def _contact_area(data: Mapping[str, Any], src: str) -> float:
+    """The pin's contact area [m^2], from ``contact_area`` or ``pin_diameter`` (one of them)."""
+    if "contact_area" in data and "pin_diameter" in data:
+        raise InputError("give either 'pin_diameter' or 'contact_area', not both", file=src)
+    if "contact_area" in data:
+        return _quantity(data, "contact_area", "area", src)
+    if "pin_diameter" in data:
+        d = _quantity(data, "pin_diameter", "length", src)
+        return math.pi * d * d / 4.0
+    raise InputError("missing 'pin_diameter' (e.g. pin_diameter = \"20 mm\") or "
+                     "'contact_area' (e.g. contact_area = \"314.16 mm^2\")", file=src)
+
+
+def _internal_torque(it: Mapping[str, Any], src: str) -> tuple[np.ndarray, np.ndarray]:
+    """The ``[internal_torque]`` table: disc speeds [rad/s] (ascending) and torques [N m]."""
+    _check_keys(it, {"disc_speed_rpm", "torque_Nm"}, src, "internal_torque")
+    for key in ("disc_speed_rpm", "torque_Nm"):
+        if key not in it:
+            raise InputError(f"[internal_torque] needs '{key}' (a list of numbers)",
+                             file=src)
+    try:
+        rpm = np.asarray(it["disc_speed_rpm"], dtype=float)
+        tq = np.asarray(it["torque_Nm"], dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("[internal_torque]: disc_speed_rpm and torque_Nm must be lists "
+                         "of numbers", file=src) from None
+    if rpm.ndim != 1 or tq.ndim != 1 or rpm.size == 0 or rpm.size != tq.size:
+        raise InputError(
+            f"[internal_torque]: disc_speed_rpm ({rpm.size} values) and torque_Nm "
+            f"({tq.size} values) must be non-empty lists of the same length", file=src)
+    if not (np.all(np.isfinite(rpm)) and np.all(np.isfinite(tq))):
+        raise InputError("[internal_torque]: values must be finite numbers", file=src)
+    if np.any(rpm < 0):
+        raise InputError("[internal_torque]: disc_speed_rpm must be >= 0 (speeds are "
+                         "looked up by magnitude)", file=src)
+    order = np.argsort(rpm, kind="stable")
+    rpm, tq = rpm[order], tq[order]
+    if np.any(np.diff(rpm) == 0):
+        raise InputError("[internal_torque]: disc_speed_rpm has a repeated value",
+                         file=src)
+    return rpm * RPM, tq
+
+
+def _filter_settings(ft: Mapping[str, Any], src: str) -> FilterSettings:
+    """The ``[filter]`` table (cutoff ``"auto"`` or a frequency, order 1..10)."""
+    _check_keys(ft, {"cutoff", "order", "auto_min", "auto_max", "auto_snr"}, src, "filter")
+    cutoff: float | None = None
+    raw = ft.get("cutoff", "auto")
+    if not (isinstance(raw, str) and raw.strip().lower() == "auto"):
+        cutoff = _quantity(ft, "cutoff", "frequency", src, prefix="filter.")
+    order = ft.get("order", 4)
+    if isinstance(order, bool) or not isinstance(order, int) or not 1 <= order <= 10:
+        raise InputError(f"'filter.order' must be an integer 1..10, got {order!r}",
+                         file=src)
+    return FilterSettings(
+        cutoff=cutoff, order=order,
+        auto_min=_quantity(ft, "auto_min", "frequency", src, prefix="filter.",
+                           default=1.0),
+        auto_max=_quantity(ft, "auto_max", "frequency", src, prefix="filter.",
+                           default=0.0, sign="nonneg"),
+        auto_snr=_number(ft, "auto_snr", src, "filter.", 10.0, 1.0, 1e6),
+    )
+
+
+def _window_settings(wt: Mapping[str, Any], src: str) -> WindowSettings:
+    """The ``[window]`` table: fractions as numbers, durations as times."""
+    names = {f.name for f in fields(WindowSettings)}
+    _check_keys(wt, names, src, "window")
+    kw: dict[str, float] = {}
+    for name in names:
+        if name not in wt:
+            continue
+        if name in _WINDOW_FRACTIONS:
+            hi = 100.0 if name in ("noise_factor", "min_mu") else 1.0
+            kw[name] = _number(wt, name, src, "window.", 0.0, 0.0, hi)
+        else:
+            kw[name] = _quantity(wt, name, "time", src, prefix="window.", sign="nonneg")
+    return WindowSettings(**kw)
+
+
+def _outlier_settings(ot: Mapping[str, Any], src: str) -> OutlierSettings:
+    """The ``[outliers]`` table: the rule and its significance level."""
+    _check_keys(ot, {"rule", "alpha"}, src, "outliers")
+    rule = str(ot.get("rule", "pooled")).strip().lower()
+    if rule not in OUTLIER_RULES:
+        raise InputError(f"'outliers.rule' = {ot.get('rule')!r}; expected one of "
+                         f"{', '.join(OUTLIER_RULES)}", file=src)
+    return OutlierSettings(rule=rule, alpha=_number(ot, "alpha", src, "outliers.", 0.01,
+                                                    1e-6, 0.5))
 
 
 def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default: float) -> float:

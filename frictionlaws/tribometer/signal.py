@@ -353,34 +353,52 @@ def find_window(
         When no window of at least ``min_window`` can be found, or the steady
         level is not positive.
     """
-    st = settings
-    a, b = segment
-    min_len = max(2, int(round(st.min_window * fs)))
     if mode == "initial":
-        s0 = a + int(round(st.initial_delay * fs))
-        e0 = s0 + int(round(st.initial_duration * fs))
-        limit = b - int(round(st.end_margin * fs))
-        notes: list[str] = []
-        if e0 > limit:
-            e0 = limit
-            notes.append("initial window shortened: the motors stop earlier")
-        if e0 - s0 < min_len:
-            raise NoWindow(
-                f"no initial window: the motors are at speed for {(b - a) / fs:.3g} s, "
-                f"need initial_delay {st.initial_delay:g} s + at least min_window "
-                f"{st.min_window:g} s")
-        seg = mu[s0:e0]
-        level = float(np.mean(seg))
-        _check_friction(level, seg, st, "the initial window")
-        x = np.arange(seg.size) - 0.5 * (seg.size - 1)
-        drift = float(np.dot(x, seg - level) / np.dot(x, x)) * seg.size / level
-        if abs(drift) > st.level_tolerance:
-            notes.append(f"the friction drifts by {100 * drift:+.1f} % across the initial "
-                         "window (start-up peak not over, or debris): check initial_delay "
-                         "and initial_duration")
-        return Window(s0, e0, segment, level, None, tuple(notes))
+        return _initial_window(mu, fs, segment, settings)
     if mode != "steady":
         raise ValueError(f"mode must be 'steady' or 'initial', not {mode!r}")
+    return _steady_window(mu, fs, segment, settings)
+
+
+def _min_length(st: WindowSettings, fs: float) -> int:
+    """The shortest accepted window, in samples."""
+    return max(2, int(round(st.min_window * fs)))
+
+
+def _initial_window(mu: np.ndarray, fs: float, segment: tuple[int, int],
+                    st: WindowSettings) -> Window:
+    """The fixed window ``initial_delay .. + initial_duration`` after the motors reach speed."""
+    a, b = segment
+    min_len = _min_length(st, fs)
+    s0 = a + int(round(st.initial_delay * fs))
+    e0 = s0 + int(round(st.initial_duration * fs))
+    limit = b - int(round(st.end_margin * fs))
+    notes: list[str] = []
+    if e0 > limit:
+        e0 = limit
+        notes.append("initial window shortened: the motors stop earlier")
+    if e0 - s0 < min_len:
+        raise NoWindow(
+            f"no initial window: the motors are at speed for {(b - a) / fs:.3g} s, "
+            f"need initial_delay {st.initial_delay:g} s + at least min_window "
+            f"{st.min_window:g} s")
+    seg = mu[s0:e0]
+    level = float(np.mean(seg))
+    _check_friction(level, seg, st, "the initial window")
+    x = np.arange(seg.size) - 0.5 * (seg.size - 1)
+    drift = float(np.dot(x, seg - level) / np.dot(x, x)) * seg.size / level
+    if abs(drift) > st.level_tolerance:
+        notes.append(f"the friction drifts by {100 * drift:+.1f} % across the initial "
+                     "window (start-up peak not over, or debris): check initial_delay "
+                     "and initial_duration")
+    return Window(s0, e0, segment, level, None, tuple(notes))
+
+
+def _steady_window(mu: np.ndarray, fs: float, segment: tuple[int, int],
+                   st: WindowSettings) -> Window:
+    """The longest stretch, ending in the second half, where the friction stays at its level."""
+    a, b = segment
+    min_len = _min_length(st, fs)
     if b - a < 2 * min_len:
         raise NoWindow(f"no steady window: the motors are at speed for only {(b - a) / fs:.3g} "
                        f"s (need at least 2 x min_window = {2 * st.min_window:g} s)")

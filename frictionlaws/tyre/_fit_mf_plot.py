@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+__all__ = ["plot_fit"]
+
 
 def plot_fit(result: Any, path: str | Path) -> Path:
     """Draw F_x0(kappa) and F_y0(alpha) per load at the reference conditions; save to ``path``.

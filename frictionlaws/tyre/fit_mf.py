@@ -297,8 +297,9 @@ def _stage2_start(d: _Direction, curves: list[dict[str, float]], fz0: float,
     col = {k: np.array([c[k] for c in curves]) for k in ("mu", "K", "C", "E", "S_H", "S_V")}
     e = np.minimum(col["E"], 0.95)
     if d.name == "x":
-        names = ("PDX1 PDX2", "PKX1 PKX2", "PEX1 PEX2", "PHX1 PHX2", "PVX1 PVX2")
-        ys = (col["mu"], col["K"] / fz, e, col["S_H"], col["S_V"] / fz)
+        names: tuple[str, ...] = ("PDX1 PDX2", "PKX1 PKX2", "PEX1 PEX2", "PHX1 PHX2",
+                                  "PVX1 PVX2")
+        ys: tuple[np.ndarray, ...] = (col["mu"], col["K"] / fz, e, col["S_H"], col["S_V"] / fz)
         out = {"PCX1": float(np.mean(col["C"]))}
     else:
         names = ("PDY1 PDY2", "PEY1 PEY2", "PHY1 PHY2", "PVY1 PVY2")
@@ -342,12 +343,13 @@ def _needs_met(name: str, have: set[str]) -> bool:
 def _predict(mf: MagicFormula, d: _Direction, names: Sequence[str], p: np.ndarray
              ) -> np.ndarray:
     """The model force at the points of ``d`` with ``names`` set to ``p``."""
-    for k, v in zip(names, p):
-        mf.coefficients[k] = float(v)
+    for name, v in zip(names, p):
+        mf.coefficients[name] = float(v)
+    # MagicFormula._long/_lat annotate dpi as float but broadcast it like fz and gamma
     if d.name == "x":
-        k = mf._long(d.fz, d.gamma, d.dpi)
+        k = mf._long(d.fz, d.gamma, d.dpi)  # type: ignore[arg-type]
         return mf_curve(d.slip + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
-    k = mf._lat(d.fz, d.gamma, d.dpi)
+    k = mf._lat(d.fz, d.gamma, d.dpi)  # type: ignore[arg-type]
     return mf_curve(np.tan(d.slip) + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
 
 
@@ -501,9 +503,9 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     measured = data.pressure[np.isfinite(data.pressure)]
     if measured.size and FITTYPS[fittyp] != "5.2":
         ranges.append(("INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", measured / f_p))
-    for sec, lo, hi, v in ranges:
+    for sec, lo, hi, observed in ranges:
         entry = pf.sections.setdefault(sec, {})
-        entry[lo], entry[hi] = float(np.min(v)), float(np.max(v))
+        entry[lo], entry[hi] = float(np.min(observed)), float(np.max(observed))
     return pf
 
 

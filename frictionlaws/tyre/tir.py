@@ -353,17 +353,7 @@ def read_property_file(path: str | Path) -> PropertyFile:
 
 def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> PropertyFile:
     """Read the JSON variant (a text or an already decoded mapping)."""
-    if isinstance(text, str):
-        try:
-            from .. import jsonio
-
-            doc = jsonio.loads(text)
-        except json.JSONDecodeError as exc:
-            raise InputError(f"not valid JSON: {exc.msg}", file=source, row=exc.lineno) from None
-        except ValueError as exc:
-            raise InputError(str(exc), file=source) from None
-    else:
-        doc = text
+    doc = _json_document(text, source) if isinstance(text, str) else text
     if not isinstance(doc, Mapping):
         raise InputError("expected a JSON object whose members are the sections", file=source)
     sections: dict[str, dict[str, Value]] = {}
@@ -374,26 +364,43 @@ def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> Pro
             if sec in sections:
                 raise InputError(f"section '{name}' appears twice (case-insensitive)",
                                  file=source)
-            entries: dict[str, Value] = {}
-            for key, value in body.items():
-                k = str(key).upper()
-                if k in entries:
-                    raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
-                                     file=source)
-                if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-                    raise InputError(
-                        f"[{sec}] {key}: expected a number or a string, got "
-                        f"{type(value).__name__}", file=source)
-                if isinstance(value, float) and not math.isfinite(value):
-                    raise InputError(f"[{sec}] {key} is not finite", file=source)
-                entries[k] = float(value) if isinstance(value, (int, float)) else value
-            sections[sec] = entries
+            sections[sec] = _json_section(sec, body, source)
         else:
             metadata[str(name)] = body
     if not sections:
         raise InputError("no sections found (expected members such as "
                          "\"LONGITUDINAL_COEFFICIENTS\": {...})", file=source)
     return PropertyFile(sections, metadata=metadata, path=source, format="json")
+
+
+def _json_document(text: str, source: str) -> Any:
+    """The decoded JSON text (strict JSON: the project's one reader)."""
+    from .. import jsonio
+
+    try:
+        return jsonio.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"not valid JSON: {exc.msg}", file=source, row=exc.lineno) from None
+    except ValueError as exc:
+        raise InputError(str(exc), file=source) from None
+
+
+def _json_section(sec: str, body: Mapping[str, Any], source: str) -> dict[str, Value]:
+    """One JSON section: keys upper-cased (unique), values finite numbers or strings."""
+    entries: dict[str, Value] = {}
+    for key, value in body.items():
+        k = str(key).upper()
+        if k in entries:
+            raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
+                             file=source)
+        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+            raise InputError(
+                f"[{sec}] {key}: expected a number or a string, got "
+                f"{type(value).__name__}", file=source)
+        if isinstance(value, float) and not math.isfinite(value):
+            raise InputError(f"[{sec}] {key} is not finite", file=source)
+        entries[k] = float(value) if isinstance(value, (int, float)) else value
+    return entries
 
 
 def _strip_comment(text: str) -> tuple[str, str]:
@@ -436,71 +443,94 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
 
 def read_tir(text: str, *, source: str = "<memory>") -> PropertyFile:
     """Parse the text of an ADAMS ``.tir`` property file."""
-    sections: dict[str, dict[str, Value]] = {}
-    tables: dict[str, tuple[list[str], list[list[float]]]] = {}
-    lines: dict[tuple[str, str], int] = {}
-    comments: dict[tuple[str, str], str] = {}
-    current: str | None = None
-    table: tuple[list[str], list[list[float]]] | None = None
+    reader = _TirReader(source)
     for lineno, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip().lstrip("\ufeff")
-        if not line or line[0] in "$!":
-            continue
+        if line and line[0] not in "$!":
+            reader.line(line, lineno)
+    if not reader.sections:
+        raise InputError("no [SECTION] found: not a .tir property file", file=source)
+    return PropertyFile(reader.sections, reader.tables, path=source, format="tir",
+                        lines=reader.lines, comments=reader.comments)
+
+
+class _TirReader:
+    """The state of a ``.tir`` parse: sections, tables, where each key was and comments."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self.sections: dict[str, dict[str, Value]] = {}
+        self.tables: dict[str, tuple[list[str], list[list[float]]]] = {}
+        self.lines: dict[tuple[str, str], int] = {}
+        self.comments: dict[tuple[str, str], str] = {}
+        self.current: str | None = None
+        self.table: tuple[list[str], list[list[float]]] | None = None
+
+    def line(self, line: str, lineno: int) -> None:
+        """Read one non-blank, non-comment line."""
         m = _SECTION.match(line)
         if m:
-            current = m.group(1).upper()
-            if current in sections:
-                raise InputError(f"section [{current}] appears twice", file=source, row=lineno)
-            sections[current] = {}
-            table = None
-            continue
-        if current is None:
-            raise InputError(f"entry before the first [SECTION]: {line!r}", file=source,
+            self._section(m.group(1).upper(), lineno)
+            return
+        if self.current is None:
+            raise InputError(f"entry before the first [SECTION]: {line!r}", file=self.source,
                              row=lineno)
         m = _TABLE_HEADER.match(line)
         if m:
-            cols = m.group(1).split()
-            if not cols:
-                raise InputError("empty table header {}", file=source, row=lineno)
-            if current in tables:
-                raise InputError(f"section [{current}] has two tables", file=source, row=lineno)
-            table = (cols, [])
-            tables[current] = table
-            continue
+            self._table_header(self.current, m.group(1).split(), lineno)
+            return
         m = _KEY.match(line)
         if m:
-            key = m.group(1).upper()
-            value_text, comment = _strip_comment(m.group(2))
-            if (current, key) in lines:
-                raise InputError(
-                    f"[{current}] {key} is given twice (lines {lines[(current, key)]} and "
-                    f"{lineno}); remove one", file=source, row=lineno)
-            sections[current][key] = _parse_value(value_text, source, lineno, key)
-            lines[(current, key)] = lineno
-            if comment:
-                comments[(current, key)] = comment
-            table = None
-            continue
-        if table is not None:
-            body, _ = _strip_comment(line)
-            parts = body.split()
-            try:
-                row = [float(p.replace("d", "e").replace("D", "E")) for p in parts]
-            except ValueError:
-                raise InputError(f"[{current}] table row is not numeric: {line!r}",
-                                 file=source, row=lineno) from None
-            if len(row) != len(table[0]):
-                raise InputError(
-                    f"[{current}] table row has {len(row)} values, the header "
-                    f"{{{' '.join(table[0])}}} names {len(table[0])}", file=source, row=lineno)
-            table[1].append(row)
-            continue
+            self._entry(self.current, m.group(1).upper(), m.group(2), lineno)
+            return
+        if self.table is not None:
+            self._table_row(self.current, self.table, line, lineno)
+            return
         raise InputError(f"cannot read line {line!r}: expected KEY = value, [SECTION], "
-                         "a $comment or a table row", file=source, row=lineno)
-    if not sections:
-        raise InputError("no [SECTION] found: not a .tir property file", file=source)
-    return PropertyFile(sections, tables, path=source, format="tir", lines=lines,
-                        comments=comments)
+                         "a $comment or a table row", file=self.source, row=lineno)
+
+    def _section(self, name: str, lineno: int) -> None:
+        if name in self.sections:
+            raise InputError(f"section [{name}] appears twice", file=self.source, row=lineno)
+        self.current = name
+        self.sections[name] = {}
+        self.table = None
+
+    def _table_header(self, current: str, cols: list[str], lineno: int) -> None:
+        if not cols:
+            raise InputError("empty table header {}", file=self.source, row=lineno)
+        if current in self.tables:
+            raise InputError(f"section [{current}] has two tables", file=self.source,
+                             row=lineno)
+        self.table = (cols, [])
+        self.tables[current] = self.table
+
+    def _entry(self, current: str, key: str, rest: str, lineno: int) -> None:
+        value_text, comment = _strip_comment(rest)
+        if (current, key) in self.lines:
+            raise InputError(
+                f"[{current}] {key} is given twice (lines {self.lines[(current, key)]} and "
+                f"{lineno}); remove one", file=self.source, row=lineno)
+        self.sections[current][key] = _parse_value(value_text, self.source, lineno, key)
+        self.lines[(current, key)] = lineno
+        if comment:
+            self.comments[(current, key)] = comment
+        self.table = None
+
+    def _table_row(self, current: str, table: tuple[list[str], list[list[float]]],
+                   line: str, lineno: int) -> None:
+        body, _ = _strip_comment(line)
+        try:
+            row = [float(p.replace("d", "e").replace("D", "E")) for p in body.split()]
+        except ValueError:
+            raise InputError(f"[{current}] table row is not numeric: {line!r}",
+                             file=self.source, row=lineno) from None
+        if len(row) != len(table[0]):
+            raise InputError(
+                f"[{current}] table row has {len(row)} values, the header "
+                f"{{{' '.join(table[0])}}} names {len(table[0])}", file=self.source,
+                row=lineno)
+        table[1].append(row)
 
 
 # ------------------------------------------------------------------- writing

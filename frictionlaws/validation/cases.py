@@ -257,15 +257,14 @@ def _case_slip_peaks(run: CaseRun) -> None:
 
     sq = get_law("burckhardt-sqrt")
     for c1, c2 in ((2.5, 2.5), (1.0, 0.9)):
-        s_num, mu_num = _argmax(lambda s, c1=c1, c2=c2: sq(s=s, c1=c1, c2=c2), 0.0, 1.0)
+        s_num, mu_num = _argmax(_along(sq, "s", c1=c1, c2=c2), 0.0, 1.0)
         run.compare(f"burckhardt-sqrt c1={c1:g}, c2={c2:g}: s* = (c1/(2 c2))^2",
                     (c1 / (2 * c2)) ** 2, s_num, Tol(abs=1e-6))
         run.compare(f"burckhardt-sqrt c1={c1:g}, c2={c2:g}: mu* = c1^2/(4 c2)",
                     c1 * c1 / (4 * c2), mu_num, Tol(abs=1e-10))
     kd = get_law("kiencke-daiss")
     for k_s, c1, c2 in ((20.0, 30.0, 5.0), (12.0, 60.0, -2.0)):
-        s_num, mu_num = _argmax(lambda s, k=k_s, a=c1, b=c2: kd(s=s, k_s=k, c1=a, c2=b),
-                                0.0, 1.0)
+        s_num, mu_num = _argmax(_along(kd, "s", k_s=k_s, c1=c1, c2=c2), 0.0, 1.0)
         run.compare(f"kiencke-daiss k_s={k_s:g}, c1={c1:g}, c2={c2:g}: s* = 1/sqrt(c1)",
                     1 / math.sqrt(c1), s_num, Tol(abs=1e-6))
         run.compare(f"kiencke-daiss k_s={k_s:g}, c1={c1:g}, c2={c2:g}: "
@@ -273,7 +272,7 @@ def _case_slip_peaks(run: CaseRun) -> None:
                     Tol(abs=1e-10))
         h = 1e-7
         run.compare(f"kiencke-daiss k_s={k_s:g}: initial slope = k_s", k_s,
-                    _forward_slope(lambda s, k=k_s, a=c1, b=c2: kd(s=s, k_s=k, c1=a, c2=b), h),
+                    _forward_slope(_along(kd, "s", k_s=k_s, c1=c1, c2=c2), h),
                     Tol(rel=1e-6))
     ge = get_law("germann")
     h = 1e-7
@@ -691,7 +690,7 @@ def _case_sliding_identities(run: CaseRun) -> None:
     wr = get_law("wriggers")
     wp = {"a": 1e-6, "b": 1e5, "c": 0.5, "d": 1e-5}
     for pp in (3e4, 2e5, 8e5):
-        x, y = _argmax(lambda lv, pp=pp: wr(p=pp, v=10.0 ** lv, **wp), -6.0, 3.0)
+        x, y = _argmax(_along(wr, "v", log10=True, p=pp, **wp), -6.0, 3.0)
         run.compare(f"wriggers p = {pp:g} Pa: peak velocity vbar = a p", wp["a"] * pp,
                     10.0 ** x, Tol(rel=1e-5), unit="m/s")
         run.compare(f"wriggers p = {pp:g} Pa: peak value (b/p) arctan(d p)",
@@ -835,7 +834,6 @@ TABLE_6_2 = {
     "S400": (0.776, 0.959, 1.103, 1.209, 1.341, 1.391, 1.491, 1.502, 1.567, 1.554),
     "steel": (0.805, 0.987, 1.132, 1.226, 1.366, 1.409, 1.505, 1.514, 1.576, 1.555),
 }
-LOADS_KN = (2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0, 6.5)
 
 
 def _brush_closed_form(mu: float, fz: float, c: float, a: float, angles_deg) -> float:
@@ -1058,6 +1056,15 @@ CASES: tuple[Case, ...] = (
          "constant-mu brush tyre vs its closed form; CS(6.5 kN)/CS(2 kN) with a law fitted to "
          "thesis-steel at most 0.90 x the constant-mu ratio (thesis: 0.71)", _case_tyre),
 )
+
+
+def _along(law: Any, var: str, *, log10: bool = False, **fixed: float) -> Callable[[Any], Any]:
+    """``law`` as a function of one variable ``var`` (of ``log10(var)`` when ``log10``)."""
+
+    def f(x: Any) -> Any:
+        return law(**{var: 10.0 ** np.asarray(x) if log10 else x}, **fixed)
+
+    return f
 
 
 def _forward_slope(f: Callable[[float], Any], h: float) -> float:
