@@ -12,8 +12,8 @@ The solver is chosen for the problem: MINPACK's Levenberg-Marquardt
 minimum with no bound active; when a bound is active (or MINPACK keeps trying points
 beyond the bounds) the bounded trust-region reflective method of
 :func:`scipy.optimize.least_squares` takes over (``x_scale=1``: scaling by the Jacobian's
-columns was tried and sent several huemer starts to worse minima).  Other lmfit method names go through
-:func:`lmfit.minimize` with the same residual (lmfit is imported only then).
+columns was tried and sent several huemer starts to worse minima).  Other lmfit method
+names go through :func:`lmfit.minimize` with the same residual (lmfit is imported only then).
 
 :func:`score_starts` evaluates chi^2 at many candidate starts in one pass, so a
 multi-start search refines only the promising ones.
@@ -332,7 +332,7 @@ def solve(problem: Problem, start: ArrayLike, method: str = "least_squares"
         free = _minpack_inside(problem, x0, max_nfev) if MINPACK_FIRST else None
         if free is not None and free.success and _inside(problem, free.theta):
             return free  # no bound active at the minimum: the bounded fit ends there too
-        from scipy.optimize import least_squares  # type: ignore[import-untyped]
+        from scipy.optimize import least_squares
 
         ret = least_squares(problem.residual, x0, jac=jac, bounds=(problem.lower, problem.upper),
                             method="trf", x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
@@ -381,7 +381,7 @@ def _minpack_inside(problem: Problem, x0: np.ndarray, max_nfev: int) -> Solution
 def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int,
                    residual: Callable[[np.ndarray], np.ndarray] | None = None) -> Solution:
     """MINPACK Levenberg-Marquardt (no bounds to respect)."""
-    from scipy.optimize import leastsq  # type: ignore[import-untyped]
+    from scipy.optimize import leastsq
 
     dfun = (lambda t: problem.jacobian(t)) if problem.jac_func is not None else None
     theta, _cov, info, mesg, ier = leastsq(residual or problem.residual, x0, Dfun=dfun,
@@ -392,7 +392,7 @@ def _solve_minpack(problem: Problem, x0: np.ndarray, max_nfev: int,
 
 def _solve_lmfit(problem: Problem, x0: np.ndarray, method: str, max_nfev: int) -> Solution:
     """Another lmfit method, on the same residual."""
-    import lmfit  # type: ignore[import-untyped]
+    import lmfit
 
     params = lmfit.Parameters()
     for k, v, lo, hi in zip(problem.names, x0, problem.lower, problem.upper):

@@ -87,12 +87,12 @@ def _table() -> dict[str, tuple[dict[str, float], float, Callable[..., Any]]]:
     return table
 
 
-_CHECKED: dict[int, bool] = {}
+_CHECKED: dict[tuple[str, int], bool] = {}
 
 
 def _current(law: Law) -> bool:
     """True when the generated module's entry for ``law`` still describes its formula."""
-    key = id(law.formula)
+    key = (law.id, id(law.formula))  # two laws may share one formula function
     if key not in _CHECKED:
         entry = _table().get(law.id)
         ok = False
@@ -150,8 +150,8 @@ def jacobian_function(law: Law) -> Callable[..., Any] | None:
 
 def _entry_source(law: Law) -> str | None:
     """The derivative function of one law as Python source, or None when not derivable."""
-    import sympy  # type: ignore[import-untyped]
-    from sympy.printing.numpy import NumPyPrinter  # type: ignore[import-untyped]
+    import sympy
+    from sympy.printing.numpy import NumPyPrinter
 
     try:
         expr = law.symbolic()
@@ -202,7 +202,7 @@ def generate_source(laws: list[Law]) -> str:
             "Written by ``python -m frictionlaws.derivatives`` from each law's symbolic form",
             "(sympy, common subexpressions shared); see :mod:`frictionlaws.derivatives`.",
             '"""', "", "# ruff: noqa", "# mypy: ignore-errors", "",
-            "import numpy", "", ""]
+            "import numpy", "", '__all__ = ["FORMULAS", "JACOBIANS"]', "", ""]
     body, table, texts = [], [], []
     for law in laws:
         src = _entry_source(law)

@@ -806,7 +806,7 @@ class _GlobalStage:
 
     def search(self) -> tuple[dict[str, float] | None, tuple[str, ...]]:
         """The best point found and the parameters it put exactly on a bound."""
-        from scipy.optimize import differential_evolution  # type: ignore[import-untyped]
+        from scipy.optimize import differential_evolution
 
         box = [self._box(k)[:2] for k in self.names]
         try:
@@ -891,7 +891,7 @@ class _Setup:
 
 def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
                        uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
-                       global_stage: Any) -> None:
+                       global_stage: Any, lean: Any) -> None:
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
     from .uncertainty import check_uncertainty_options
 
@@ -900,6 +900,11 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
     if global_stage not in ("auto", "on", "off"):
         raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",
                          option="global_stage")
+    if not isinstance(lean, bool):
+        raise InputError(f"lean must be True or False, not {lean!r}", option="lean")
+    if lean and uncertainty != "asymptotic":
+        raise InputError("a lean fit gives asymptotic standard errors only; "
+                         f"uncertainty {uncertainty!r} needs a full fit", option="lean")
 
 
 def _freed_settings(law: Law, free: Iterable[str]) -> tuple[str, ...]:
@@ -1107,88 +1112,57 @@ def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
 
 
 def fit(
-    law: str | Law,
-    data: Any,
-    *,
-    fix: Mapping[str, float] | None = None,
-    free: Iterable[str] = (),
-    initial: Mapping[str, float] | None = None,
-    weights: Any = "auto",
-    starts: int | None = None,
-    seed: int = 0,
-    on_invalid: str = "error",
-    mapping: Mapping[str, str] | None = None,
-    units: Mapping[str, str] | None = None,
-    area: Any = None,
-    method: str = "least_squares",
-    uncertainty: str = "asymptotic",
-    n_boot: int = 1000,
-    n_jobs: int = 1,
-    interval: str = "bca",
-    global_stage: str = "auto",
-    lean: bool = False,
+    law: str | Law, data: Any, *, fix: Mapping[str, float] | None = None,
+    free: Iterable[str] = (), initial: Mapping[str, float] | None = None,
+    weights: Any = "auto", starts: int | None = None, seed: int = 0,
+    on_invalid: str = "error", mapping: Mapping[str, str] | None = None,
+    units: Mapping[str, str] | None = None, area: Any = None,
+    method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
+    n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto", lean: bool = False,
 ) -> FitResult:
-    """Fit ``law`` to ``data`` with lmfit.
+    """Fit ``law`` to ``data`` (lmfit parameters, scipy's least-squares solvers).
 
     Parameters
     ----------
     law : str or Law
         Law id or alias, or a :class:`~frictionlaws.law.Law`.
     data : str, path, Dataset, DataFrame or mapping
-        A packaged dataset name, a CSV path, a loaded dataset, or a mapping of
-        SI arrays with ``"mu"`` and the law's variables.
+        A packaged dataset name, a CSV path, a loaded dataset, or SI arrays (``"mu"``
+        and the law's variables).
     fix : mapping, optional
-        Parameters held at the given values (``{"n": 1/3}``).  Settings may be
-        given here too, to change their fixed value.
+        Parameters (or settings) held at the given values (``{"n": 1/3}``).
     free : iterable of str, optional
-        Settings to fit as parameters (e.g. ``["E_v"]`` for Denny, which then
-        is not identifiable: the result says so).
+        Settings fitted as parameters (e.g. ``["E_v"]`` for Denny).
     initial : mapping, optional
         Initial values overriding the law's data-driven guess.
     weights : {"auto"}, None or array
-        ``"auto"`` uses the dataset's replicate statistics (1/mu_std, else
-        sqrt(n)) when present; None fits unweighted.
+        ``"auto"``: 1/mu_std, else sqrt(n), when the dataset has them; None: unweighted.
     starts : int, optional
-        Number of random starts for non-linear laws.  By default the fit
-        starts from the data-driven guess, the defaults and every preset, and
-        adds 6 random starts only when those end at different minima; giving
-        ``starts`` forces that many random starts.
+        Random starts forced for non-linear laws (default: 6, only when the guess, the
+        defaults and the presets end at different minima).
     seed : int
-        Seed of the random starts, the global stage and the bootstrap (results are
-        reproducible).
+        Seed of the random starts, the global stage and the bootstrap.
     on_invalid : {"error", "drop"}
-        What to do with rows where the law is singular (v = 0 in a log-v law):
-        raise a clear error, or drop them and say so in the result.
-    mapping : mapping, optional
-        Column mapping, passed to :func:`frictionlaws.io.load_dataset` when ``data`` is
-        a file.
-    units : mapping, optional
-        Column units, passed to :func:`frictionlaws.io.load_dataset`.
-    area : optional
-        Contact area, passed to :func:`frictionlaws.io.load_dataset`.
+        Rows where the law is singular (v = 0 in a log-v law): refuse, or drop and say so.
+    mapping, units, area : optional
+        Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        Minimisation method: ``"least_squares"`` (default: MINPACK or a bounded trust
-        region, chosen for the problem) or another lmfit method name (then lmfit runs).
+        ``"least_squares"`` (MINPACK or a bounded trust region, chosen for the problem) or
+        another lmfit method name (then lmfit runs).
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
-        How standard errors and intervals are obtained: the covariance of the fit
-        (assumes the law is right and the scatter even), the HC3 sandwich
-        (robust to uneven scatter), or a bootstrap resampling whole conditions
-        (robust to a law that misses a trend; slower).  Derived quantities get
-        their errors by the same method.  See :mod:`frictionlaws.uncertainty`.
-    n_boot : int
-        Bootstrap replicates (20..100000), for ``uncertainty="bootstrap"``.
-    n_jobs : int
-        Number of joblib workers for the bootstrap (1: in this process; -1: one per core).
+        Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
+        a bootstrap over whole conditions (a law that misses a trend); see
+        :mod:`frictionlaws.uncertainty`.
+    n_boot, n_jobs : int
+        Bootstrap replicates (20..100000) and joblib workers (-1: one per core).
     interval : {"bca", "percentile"}
         Bootstrap interval kind.
     global_stage : {"auto", "on", "off"}
-        A bounded differential-evolution search on the transformed parameters
-        before a local polish: ``"auto"`` runs it only when the local starts end
-        worse than the mean of mu or at different minima.
+        Bounded differential evolution before a local polish; ``"auto"``: only when the
+        local starts end worse than the mean of mu or at different minima.
     lean : bool
-        A lean refit (for cross-validation and hold-outs): values, covariance-based
-        standard errors, metrics and convergence only; no identifiability analysis,
-        derived quantities, robust errors or provenance.
+        A refit for cross-validation: values, covariance errors, metrics, convergence; no
+        identifiability, derived quantities, robust errors or provenance.
 
     Returns
     -------
@@ -1198,18 +1172,13 @@ def fit(
     Raises
     ------
     InputError
-        Bad data, unknown names, data without the law's variables.
+        Bad data or options, unknown names, data without the law's variables.
     FitError
         When no start gives a finite fit.
     """
     law = get_law(law)
     _check_fit_options(method, starts, seed, on_invalid, uncertainty, n_boot, n_jobs,
-                       interval, global_stage)
-    if not isinstance(lean, bool):
-        raise InputError(f"lean must be True or False, not {lean!r}", option="lean")
-    if lean and uncertainty != "asymptotic":
-        raise InputError("a lean fit gives asymptotic standard errors only; "
-                         f"uncertainty {uncertainty!r} needs a full fit", option="lean")
+                       interval, global_stage, lean)
     setup = _setup(law, data, fix, free, initial, weights, on_invalid,
                    {"mapping": mapping, "units": units, "area": area})
     search = _Search(setup, method)
@@ -1272,7 +1241,7 @@ def _t975(dof: int) -> float:
     """The 97.5 % quantile of Student's t with ``dof`` degrees of freedom (inf for none)."""
     if dof <= 0:
         return math.inf
-    from scipy.special import stdtrit  # type: ignore[import-untyped]
+    from scipy.special import stdtrit
 
     return float(stdtrit(dof, 0.975))
 

@@ -410,7 +410,7 @@ class Dataset:
             the unit given by the user; for ``surface`` its values), ``notes``
             and ``provenance``.
         """
-        cols = {}
+        cols: dict[str, dict[str, Any]] = {}
         for col in self.frame.columns:
             if col == "surface":
                 cols[col] = {"values": sorted({str(s) for s in self.frame[col]})}

@@ -187,7 +187,7 @@ class Derived:
 
 
 def _sympy_log10(x: Any) -> Any:
-    import sympy  # type: ignore[import-untyped]
+    import sympy
 
     return sympy.log(x, 10)
 
@@ -215,7 +215,7 @@ NUMPY = SimpleNamespace(
 @functools.lru_cache(maxsize=1)
 def sympy_namespace() -> SimpleNamespace:
     """The sympy math namespace passed to formulas for the symbolic form."""
-    import sympy  # type: ignore[import-untyped]
+    import sympy
 
     return SimpleNamespace(
         exp=sympy.exp,
@@ -888,7 +888,7 @@ class Law:
         dict
             Name -> symbol (positive where natural).
         """
-        import sympy  # type: ignore[import-untyped]
+        import sympy
 
         syms: dict[str, Any] = {}
         for v in self.variables:
@@ -926,7 +926,7 @@ class Law:
         str
             The LaTeX text.
         """
-        import sympy  # type: ignore[import-untyped]
+        import sympy
 
         return r"\mu = " + sympy.latex(self.symbolic())
 
@@ -938,7 +938,7 @@ class Law:
         str
             ``"mu = ..."``.
         """
-        import sympy  # type: ignore[import-untyped]
+        import sympy
 
         return "mu = " + sympy.sstr(self.symbolic())
 

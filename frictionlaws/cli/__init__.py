@@ -262,7 +262,7 @@ def _quiet_stderr(quiet: bool) -> Iterator[None]:
         return
     original = sys.stderr
     wrapper = _DropWarnings(original)
-    sys.stderr = wrapper  # type: ignore[assignment]
+    sys.stderr = wrapper
     try:
         yield
     finally:

@@ -141,7 +141,7 @@ def _select_laws(laws: Any, family: str | None, fd: FitData
 
 
 def _progress(total: int, enabled: bool | None) -> Any:
-    from tqdm import tqdm  # type: ignore[import-untyped]
+    from tqdm import tqdm
 
     disable = (not sys.stderr.isatty()) if enabled is None else not enabled
     return tqdm(total=total, desc="compare", unit="fit", disable=disable, leave=False,
@@ -257,7 +257,7 @@ def _run_tasks(laws: list[Law], setup: _Setup, jobs: int, bar: Any) -> list[list
     if jobs == 1:
         outputs: Iterable[Any] = (_task(law, setup, kind, i) for law, kind, i in tasks)
     else:
-        from joblib import Parallel, delayed  # type: ignore[import-untyped]
+        from joblib import Parallel, delayed
 
         outputs = Parallel(n_jobs=jobs, return_as="generator")(
             delayed(_task)(law, setup, kind, i) for law, kind, i in tasks)

@@ -259,7 +259,7 @@ MIN_PAIRS = 5
 def _kendall(data: FitData, var: str, design: Design, rows: np.ndarray,
              continuity: bool) -> tuple[float, float, float | None, int, int, float | None]:
     """Stratified Kendall S, its variance, p-value, strata, pairs and Sen slope on ``rows``."""
-    from scipy import stats  # type: ignore[import-untyped]
+    from scipy import stats
 
     others = [k for k in design.varying if k != var]
     x, y = data.arrays[var], data.arrays["mu"]

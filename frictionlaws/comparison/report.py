@@ -734,7 +734,7 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
     if jobs == 1:
         figs = [_draw(cmp, i) for i in indices]
     else:
-        from joblib import Parallel, delayed  # type: ignore[import-untyped]
+        from joblib import Parallel, delayed
 
         figs = Parallel(n_jobs=jobs)(delayed(_draw)(cmp, i) for i in indices)
     return [f for f in figs if f is not None]

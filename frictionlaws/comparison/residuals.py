@@ -90,7 +90,7 @@ def runs_test(signs: Any) -> dict[str, Any]:
         upper = float(np.sum(pmf[runs - 2:]))
         out["method"] = "exact"
     else:
-        from scipy import stats  # type: ignore[import-untyped]
+        from scipy import stats
 
         var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
         z_lo = (runs + 0.5 - expected) / math.sqrt(var)
@@ -146,7 +146,7 @@ def analyse_residuals(residual: np.ndarray, fitted: np.ndarray,
     describe : callable, optional
         ``describe(name) -> str`` naming an ordering in messages.
     """
-    from scipy import stats  # type: ignore[import-untyped]
+    from scipy import stats
 
     describe = describe or (lambda k: k)
     residual = np.asarray(residual, float)

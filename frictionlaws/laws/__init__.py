@@ -6,6 +6,8 @@ One module per group of laws; each declares its laws once with
 
 from importlib import import_module
 
+__all__ = ["LAW_MODULES"]
+
 #: The modules that declare built-in laws, in registration order.
 LAW_MODULES = ("basic", "thesis", "velocity", "slip", "persson")
 

@@ -6,6 +6,8 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+__all__ = ["linear_guess", "linear_lstsq", "spread", "subsample"]
+
 
 def linear_lstsq(columns: Sequence[np.ndarray], y: np.ndarray) -> np.ndarray:
     """Least-squares coefficients of ``y ~ sum(c_i * columns_i)``."""

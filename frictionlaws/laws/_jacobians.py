@@ -9,6 +9,8 @@ Written by ``python -m frictionlaws.derivatives`` from each law's symbolic form
 
 import numpy
 
+__all__ = ["FORMULAS", "JACOBIANS"]
+
 def _d_coulomb(m, names, mu0):
     d = {
         'mu0': 1,

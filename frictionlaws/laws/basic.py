@@ -15,6 +15,8 @@ from ..law import F_MIN, Derived, Law, Param, Setting
 from ..registry import register
 from ._guess import linear_guess, linear_lstsq
 
+__all__ = ["INF"]
+
 INF = math.inf
 
 # --------------------------------------------------------------------- coulomb

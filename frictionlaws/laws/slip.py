@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -37,7 +38,7 @@ def _pacejka(m, s, B, C, D, E, S_h, S_v):
     return D * m.sin(C * m.arctan(Bx - E * (Bx - m.arctan(Bx)))) + S_v
 
 
-def _mf(s: np.ndarray, B: float, C: float, D: float, E: float, S_h: float, S_v: float
+def _mf(s: Any, B: float, C: float, D: float, E: float, S_h: float, S_v: float
         ) -> np.ndarray:
     return _pacejka(NUMPY, np.asarray(s, float), B, C, D, E, S_h, S_v)
 

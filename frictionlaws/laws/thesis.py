@@ -15,6 +15,8 @@ from ..law import Law, Param
 from ..registry import register
 from ._guess import linear_guess
 
+__all__ = ["THESIS_BOX"]
+
 #: The measured box of the thesis campaign (SI): P 0.03..0.25 MPa, V 0..2.77 m/s.
 THESIS_BOX = {"p": (0.03e6, 0.25e6), "v": (0.0, 2.77)}
 _MPA = 1e6
