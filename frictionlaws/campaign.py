@@ -448,7 +448,7 @@ def _fmt(x: Any) -> str:
 
 _METRICS = ("r2", "rmse", "aic", "bic", "n")
 #: Datasets between two garbage collections while streaming (keeps memory flat).
-_GC_EVERY = 200
+_GC_EVERY = 50
 
 
 def group_column(name: str) -> str:
