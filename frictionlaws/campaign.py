@@ -44,11 +44,23 @@ SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
 
 # ------------------------------------------------------------------ inputs
 def iter_datasets(sources: Any) -> list[Any]:
-    """Expand ``sources`` (a name, path, directory, Dataset, or a sequence of them)
-    into a list of items :func:`frictionlaws.io.load_dataset` reads.
+    """Expand dataset sources into the items :func:`frictionlaws.io.load_dataset` reads.
 
-    A directory stands for its ``*.csv`` files, sorted by name.  An empty
-    directory is an error naming it.
+    Parameters
+    ----------
+    sources : str, path, Dataset or a sequence of them
+        Packaged names, files, directories or datasets.  A directory stands for its
+        ``*.csv`` files, sorted by name.
+
+    Returns
+    -------
+    list
+        One item per dataset, in order.
+
+    Raises
+    ------
+    InputError
+        When nothing is given or a directory holds no ``*.csv`` file (naming it).
     """
     if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Iterable):
         sources = [sources]
@@ -67,7 +79,20 @@ def iter_datasets(sources: Any) -> list[Any]:
 
 
 def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np.ndarray]]:
-    """The groups of ``dataset`` by the columns ``by``: (key, boolean row mask) pairs.
+    """Split ``dataset`` into the groups of the columns ``by``.
+
+    Parameters
+    ----------
+    dataset : Dataset
+        A loaded dataset.
+    by : sequence of str
+        The grouping columns; none gives one group of all rows.
+
+    Returns
+    -------
+    list of (dict, numpy.ndarray)
+        Each group's key (column -> value) and boolean row mask, in the order the
+        groups first appear.
 
     Raises
     ------
@@ -127,7 +152,18 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
 
 
 def key_text(key: Mapping[str, Any]) -> str:
-    """A group key as text, variables with their SI unit: ``surface=steel, T=293.15 K``."""
+    """Write a group key as text, variables with their SI unit.
+
+    Parameters
+    ----------
+    key : mapping
+        Column -> value.
+
+    Returns
+    -------
+    str
+        E.g. ``surface=steel, T=293.15 K``.
+    """
     from .law import VARIABLES
 
     parts = []
@@ -197,8 +233,9 @@ def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
 def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int = 1,
                   scheduler: str | None = None, progress: bool = False,
                   total: int | None = None) -> Iterator[Any]:
-    """``func(item)`` for each item, in order, as each is done: serially, on ``jobs``
-    local processes or on a Dask cluster.
+    """Apply ``func`` to each item serially, on local processes or on a Dask cluster.
+
+    The results come in order, each as soon as it (and those before it) is done.
 
     In parallel the items travel in batches (:func:`batch_size` items per task, so
     the cost of scheduling a task is shared by several items) and a bounded window
@@ -245,7 +282,22 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
 
 
 def run_parallel(func: Callable[[Any], Any], items: Iterable[Any], **kw: Any) -> list[Any]:
-    """The list of :func:`iter_parallel`'s results."""
+    """Run :func:`iter_parallel` to the end.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level function (picklable) of one item.
+    items : iterable
+        The items.
+    **kw
+        ``jobs``, ``scheduler``, ``progress``, ``total`` as for :func:`iter_parallel`.
+
+    Returns
+    -------
+    list
+        The results, in the order of ``items``.
+    """
     return list(iter_parallel(func, items, **kw))
 
 
@@ -271,11 +323,22 @@ DASK_WORKER_CONFIG: dict[str, Any] = {
 
 
 def batch_size(total: int | None, workers: int) -> int:
-    """Items per task for ``total`` items on ``workers`` worker threads.
+    """Choose the number of items per task for ``total`` items on ``workers`` threads.
 
     Enough items to share the cost of scheduling a task, at most :data:`MAX_BATCH`,
     and at least eight tasks per worker so that all workers stay busy to the end.
-    1 when the number of items is not known.
+
+    Parameters
+    ----------
+    total : int or None
+        Number of items; ``None`` or 0 when not known.
+    workers : int
+        Worker threads (processes for joblib) the tasks are spread over.
+
+    Returns
+    -------
+    int
+        Items per task, from 1 (also when ``total`` is not known) to :data:`MAX_BATCH`.
     """
     if not total or total <= 0:
         return 1
@@ -366,6 +429,23 @@ class Campaign:
     ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
     warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
     fit could not be made).
+
+    Parameters
+    ----------
+    records : list of dict
+        The records held in memory (empty when they were streamed to ``path``).
+    by : tuple of str
+        The grouping columns.
+    laws : tuple of str
+        The law ids fitted.
+    notes : list of str
+        Remarks on the campaign as a whole.
+    path : Path, optional
+        The file the records were streamed to.
+    count : int
+        Number of records (also when streamed).
+    failed : list of dict
+        The failed records of a streamed campaign.
     """
 
     records: list[dict[str, Any]]
@@ -452,7 +532,18 @@ _GC_EVERY = 50
 
 
 def group_column(name: str) -> str:
-    """The tidy table's header of grouping column ``name``: variables carry their SI unit."""
+    """Name the tidy table's column of grouping column ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A grouping column.
+
+    Returns
+    -------
+    str
+        ``name``, followed by ``[unit]`` (SI) when it is a law variable.
+    """
     from .law import VARIABLES
 
     unit = VARIABLES[name].unit if name in VARIABLES else ""
@@ -460,7 +551,18 @@ def group_column(name: str) -> str:
 
 
 def tidy_columns(by: Sequence[str]) -> list[str]:
-    """The columns of a campaign's tidy table (the CSV header), for grouping columns ``by``."""
+    """List the columns of a campaign's tidy table (the CSV header).
+
+    Parameters
+    ----------
+    by : sequence of str
+        The grouping columns.
+
+    Returns
+    -------
+    list of str
+        The header, grouping columns with their units.
+    """
     return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
             "stderr", "ci95_low", "ci95_high", "unit", "fixed", "converged", *_METRICS,
             "warnings", "error"]
@@ -524,8 +626,12 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         See :func:`iter_datasets`.
     by : str or sequence of str
         Grouping columns (e.g. ``"surface"``); each group is fitted on its own.
-    jobs, scheduler, progress
-        See :func:`iter_parallel`.
+    jobs : int
+        Local worker processes (1: serial; -1: one per core); see :func:`iter_parallel`.
+    scheduler : str, optional
+        A Dask scheduler address; see :func:`iter_parallel`.
+    progress : bool
+        Show a progress bar on stderr.
     output : path, optional
         Stream the results to this ``.csv`` (tidy rows) or ``.jsonl`` (one record a
         line) file as they are done, instead of holding them: the memory then stays
@@ -539,6 +645,7 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     Returns
     -------
     Campaign
+        The records (or, when streamed, their count, failures and file).
     """
     from .registry import get_law
 
@@ -608,12 +715,33 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
                  by: str | Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  progress: bool = False, load_options: Mapping[str, Any] | None = None,
                  **compare_options: Any) -> Any:
-    """Compare laws on each group of each dataset; a tidy :class:`pandas.DataFrame`.
+    """Compare laws on each group of each dataset.
 
-    One row per (dataset, group, law) with the ranking metrics of
-    :meth:`frictionlaws.comparison.Comparison.to_frame`, plus ``error`` for a dataset or
-    group that could not be compared.  ``jobs``/``scheduler`` as in :func:`fit_many`;
-    ``compare_options`` go to :func:`frictionlaws.compare` (``folds``, ``seed``...).
+    Parameters
+    ----------
+    datasets : name, path, directory, Dataset or a sequence of them
+        See :func:`iter_datasets`.
+    laws : sequence of str, optional
+        Law ids; default: those :func:`frictionlaws.compare` chooses.
+    by : str or sequence of str
+        Grouping columns; each group is compared on its own.
+    jobs : int
+        Local worker processes; see :func:`iter_parallel`.
+    scheduler : str, optional
+        A Dask scheduler address; see :func:`iter_parallel`.
+    progress : bool
+        Show a progress bar on stderr.
+    load_options : mapping, optional
+        ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    **compare_options
+        Passed to :func:`frictionlaws.compare` (``folds``, ``seed``...).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (dataset, group, law) with the ranking metrics of
+        :meth:`frictionlaws.comparison.Comparison.to_frame`, plus ``error`` for a
+        dataset or group that could not be compared.
     """
     import pandas as pd
 
