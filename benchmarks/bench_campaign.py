@@ -15,7 +15,8 @@ to a CSV file, does not grow with the number of datasets (less than
 on Dask.  The peak with the results held in memory (on Dask, where the caller does
 no fitting) is printed for contrast.
 
-Run: ``python benchmarks/bench_campaign.py [--datasets 1000] [--rounds 1] [--no-dask]``.
+Run: ``python benchmarks/bench_campaign.py [--datasets 1000] [--rounds 1] [--no-dask]
+[--no-timing]``.
 """
 
 from __future__ import annotations
@@ -175,6 +176,8 @@ def main() -> int:
     ap.add_argument("--rounds", type=int, default=1,
                     help="repeat the timed runs (shows the noise of a shared machine)")
     ap.add_argument("--no-dask", action="store_true")
+    ap.add_argument("--no-timing", action="store_true",
+                    help="only the memory checks")
     args = ap.parse_args()
     n_small = max(args.datasets // 10, 10)
     with tempfile.TemporaryDirectory() as tmp_name:
@@ -187,11 +190,11 @@ def main() -> int:
         print(f"{args.datasets} datasets x {len(LAWS)} laws ({', '.join(LAWS)}); "
               f"{psutil.cpu_count()} cores, load average {psutil.getloadavg()[0]:.1f}")
         table: list[dict[str, float]] = []
-        for i in range(args.rounds):
+        for i in range(0 if args.no_timing else args.rounds):
             print(f"round {i + 1}:")
             table.append(report_round(one_round(folder, small, args.datasets,
                                                 not args.no_dask)))
-        if args.rounds > 1:
+        if len(table) > 1:
             for label in table[0]:
                 values = [r[label] for r in table]
                 print(f"{label}: throughput vs serial {min(values):.2f}x .. "
