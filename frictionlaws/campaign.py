@@ -10,19 +10,22 @@ The unit of work is one dataset: a worker loads it, splits it into groups, fits
 every law to every group and returns plain dictionaries (never laws or lmfit
 objects), so the work runs unchanged serially, on local processes
 (``jobs=N``, joblib) or on a Dask cluster (``scheduler="tcp://host:8786"``,
-Dask futures, a bounded window in flight; needs the ``dask`` extra).  Datasets are loaded inside
-the workers, so the memory of the calling process grows with the number of
-results, not with the data.
+Dask futures; needs the ``dask`` extra).  Both parallel back ends send datasets in
+batches (:func:`batch_size`) with a bounded window of batches in flight.  Datasets
+are loaded inside the workers, so the memory of the calling process grows with the
+number of results held, not with the data (and not at all when they are streamed
+to a file).
 """
 
 from __future__ import annotations
 
 import gc
+import importlib
 import itertools
 import math
 import os
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence, Sized
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,8 +35,8 @@ import numpy as np
 from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
-           "iter_parallel", "SCHEDULER_ENV", "tidy_columns", "key_text", "fit_groups",
-           "group_column"]
+           "iter_parallel", "batch_size", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
+           "tidy_columns", "key_text", "fit_groups", "group_column"]
 
 #: Environment variable naming a Dask scheduler address when none is given.
 SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
@@ -41,11 +44,23 @@ SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
 
 # ------------------------------------------------------------------ inputs
 def iter_datasets(sources: Any) -> list[Any]:
-    """Expand ``sources`` (a name, path, directory, Dataset, or a sequence of them)
-    into a list of items :func:`frictionlaws.io.load_dataset` reads.
+    """Expand dataset sources into the items :func:`frictionlaws.io.load_dataset` reads.
 
-    A directory stands for its ``*.csv`` files, sorted by name.  An empty
-    directory is an error naming it.
+    Parameters
+    ----------
+    sources : str, path, Dataset or a sequence of them
+        Packaged names, files, directories or datasets.  A directory stands for its
+        ``*.csv`` files, sorted by name.
+
+    Returns
+    -------
+    list
+        One item per dataset, in order.
+
+    Raises
+    ------
+    InputError
+        When nothing is given or a directory holds no ``*.csv`` file (naming it).
     """
     if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Iterable):
         sources = [sources]
@@ -64,7 +79,20 @@ def iter_datasets(sources: Any) -> list[Any]:
 
 
 def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np.ndarray]]:
-    """The groups of ``dataset`` by the columns ``by``: (key, boolean row mask) pairs.
+    """Split ``dataset`` into the groups of the columns ``by``.
+
+    Parameters
+    ----------
+    dataset : Dataset
+        A loaded dataset.
+    by : sequence of str
+        The grouping columns; none gives one group of all rows.
+
+    Returns
+    -------
+    list of (dict, numpy.ndarray)
+        Each group's key (column -> value) and boolean row mask, in the order the
+        groups first appear.
 
     Raises
     ------
@@ -124,7 +152,18 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
 
 
 def key_text(key: Mapping[str, Any]) -> str:
-    """A group key as text, variables with their SI unit: ``surface=steel, T=293.15 K``."""
+    """Write a group key as text, variables with their SI unit.
+
+    Parameters
+    ----------
+    key : mapping
+        Column -> value.
+
+    Returns
+    -------
+    str
+        E.g. ``surface=steel, T=293.15 K``.
+    """
     from .law import VARIABLES
 
     parts = []
@@ -180,20 +219,6 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
     return records
 
 
-def _fit_chunk(jobs: Sequence[_Job]) -> list[dict[str, Any]]:
-    """Several datasets in one unit of work (less scheduling per dataset)."""
-    return [rec for job in jobs for rec in _fit_dataset(job)]
-
-
-def _chunk_size(n: int, jobs: int, scheduler: str | None) -> int:
-    """Datasets per unit of work: 1 serially; in parallel, enough to amortise the
-    scheduling (a few dozen milliseconds a task) while keeping every worker busy."""
-    if jobs == 1 and scheduler is None and not os.environ.get(SCHEDULER_ENV):
-        return 1
-    workers = (os.cpu_count() or 1) if jobs == -1 or scheduler else jobs
-    return max(1, min(16, n // (8 * max(workers, 1))))
-
-
 #: What a campaign record keeps of a fit (the full result stays with single fits).
 _KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived")
 
@@ -208,13 +233,22 @@ def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
 def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int = 1,
                   scheduler: str | None = None, progress: bool = False,
                   total: int | None = None) -> Iterator[Any]:
-    """``func(item)`` for each item, in order, as each is done: serially, on ``jobs``
-    local processes or on a Dask cluster.
+    """Apply ``func`` to each item serially, on local processes or on a Dask cluster.
+
+    The results come in order, each as soon as it (and those before it) is done.
+
+    In parallel the items travel in batches (:func:`batch_size` items per task, so
+    the cost of scheduling a task is shared by several items) and a bounded window
+    of batches is in flight (a few per worker), so neither the caller's memory nor
+    the scheduler's queue grows with the number of items.  Both back ends batch
+    alike; the results are the same as serially, in the same order.
 
     Parameters
     ----------
     func : callable
         A module-level function (picklable) of one item.
+    items : iterable
+        The items; read lazily, a window at a time.
     jobs : int
         1: serial; N > 1: N local worker processes (joblib's loky backend);
         -1: one per core.
@@ -223,33 +257,104 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         cluster as Dask futures.  Default: the environment
         variable :data:`SCHEDULER_ENV`, if set.
     progress : bool
-        Show a progress bar (tqdm) on stderr.
+        Show a progress bar (tqdm) on stderr, counting finished items.
     total : int, optional
-        Number of items, for the progress bar.
+        Number of items (default ``len(items)`` when it has one), for the batch
+        size and the progress bar.
 
     Yields
     ------
-    The results, in the order of ``items``; the caller may consume them as they
-    come, so nothing but the current results is held.
+    object
+        The results, in the order of ``items``; the caller may consume them as they
+        come, so nothing but the current results is held.
     """
     _check_jobs(jobs)
     scheduler = scheduler or os.environ.get(SCHEDULER_ENV) or None
-    items = _progress(items, progress, total)
+    if total is None and isinstance(items, Sized):
+        total = len(items)
     if scheduler is not None:
-        yield from _on_dask(func, items, scheduler)
-        return
-    if jobs == 1:
-        yield from (func(item) for item in items)
-        return
-    import joblib
-
-    yield from joblib.Parallel(n_jobs=jobs, batch_size="auto", return_as="generator")(
-        joblib.delayed(func)(item) for item in items)
+        results: Iterable[Any] = _on_dask(func, items, scheduler, total)
+    elif jobs == 1:
+        results = map(func, items)
+    else:
+        results = _on_joblib(func, items, jobs, total)
+    yield from _progress(results, progress, total)
 
 
 def run_parallel(func: Callable[[Any], Any], items: Iterable[Any], **kw: Any) -> list[Any]:
-    """The list of :func:`iter_parallel`'s results."""
+    """Run :func:`iter_parallel` to the end.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level function (picklable) of one item.
+    items : iterable
+        The items.
+    **kw
+        ``jobs``, ``scheduler``, ``progress``, ``total`` as for :func:`iter_parallel`.
+
+    Returns
+    -------
+    list
+        The results, in the order of ``items``.
+    """
     return list(iter_parallel(func, items, **kw))
+
+
+#: Largest number of items in one task (a task then lasts well under a second for
+#: a dataset and three laws, short enough to balance the workers at the end).
+MAX_BATCH = 16
+#: Tasks per worker the items are cut into at least (load balance at the end).
+_TASKS_PER_WORKER = 8
+#: Batches in flight per worker thread (one running, the next ones queued).
+_WINDOW = 3
+
+#: Dask settings recommended for the workers of a campaign (start the workers with
+#: them: ``dask.config.set`` before a ``LocalCluster``, or the environment variables
+#: ``DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False`` and
+#: ``DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL=500ms`` for ``dask worker``).  The
+#: statistical profiler samples the running task's stack every 10 ms and the event
+#: loop checks its health every 20 ms; with fits written in Python, that took a
+#: fifth of the workers' CPU time in ``benchmarks/bench_campaign.py``.
+DASK_WORKER_CONFIG: dict[str, Any] = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "500ms",
+}
+
+
+def batch_size(total: int | None, workers: int) -> int:
+    """Choose the number of items per task for ``total`` items on ``workers`` threads.
+
+    Enough items to share the cost of scheduling a task, at most :data:`MAX_BATCH`,
+    and at least eight tasks per worker so that all workers stay busy to the end.
+
+    Parameters
+    ----------
+    total : int or None
+        Number of items; ``None`` or 0 when not known.
+    workers : int
+        Worker threads (processes for joblib) the tasks are spread over.
+
+    Returns
+    -------
+    int
+        Items per task, from 1 (also when ``total`` is not known) to :data:`MAX_BATCH`.
+    """
+    if not total or total <= 0:
+        return 1
+    return max(1, min(MAX_BATCH, total // (_TASKS_PER_WORKER * max(workers, 1))))
+
+
+def _batches(items: Iterable[Any], size: int) -> Iterator[list[Any]]:
+    """``items`` in lists of ``size`` (the last one shorter), read lazily."""
+    it = iter(items)
+    while batch := list(itertools.islice(it, size)):
+        yield batch
+
+
+def _run_batch(func: Callable[[Any], Any], batch: Sequence[Any]) -> list[Any]:
+    """One task: ``func`` over a batch of items (runs on a worker)."""
+    return [func(item) for item in batch]
 
 
 def _check_jobs(jobs: Any) -> None:
@@ -259,21 +364,30 @@ def _check_jobs(jobs: Any) -> None:
                          f"core (got {jobs!r})")
 
 
-def _progress(items: Iterable[Any], on: bool, total: int | None) -> Iterable[Any]:
+def _progress(results: Iterable[Any], on: bool, total: int | None) -> Iterable[Any]:
     if not on:
-        return items
-    from tqdm import tqdm
+        return results
+    tqdm = importlib.import_module("tqdm").tqdm  # untyped library: Any
 
-    return tqdm(items, total=total, unit="dataset", leave=False)
+    return tqdm(results, total=total, unit="dataset", leave=False)
 
 
-def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str) -> Iterator[Any]:
-    """``func`` over ``items`` on the Dask cluster at ``address``, results in order.
+def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
+               total: int | None) -> Iterator[Any]:
+    """``func`` over ``items`` on ``jobs`` local processes (loky), in batches, in order."""
+    joblib = importlib.import_module("joblib")  # untyped library: Any
 
-    Futures are submitted directly (no joblib layer) and a bounded window of them is
-    in flight, a few per worker thread, so the caller's memory does not grow with
-    the number of items and every worker always has the next task queued.
-    """
+    workers = joblib.effective_n_jobs(jobs)
+    size = batch_size(total, workers)
+    tasks = (joblib.delayed(_run_batch)(func, batch) for batch in _batches(items, size))
+    parallel = joblib.Parallel(n_jobs=jobs, batch_size=1, pre_dispatch=_WINDOW * workers,
+                               return_as="generator")
+    for part in parallel(tasks):
+        yield from part
+
+
+def _dask_client(address: str) -> Any:
+    """A Dask client connected to ``address``; InputError when that cannot be done."""
     try:
         from dask.distributed import Client
     except ImportError:
@@ -281,18 +395,29 @@ def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str) -> 
                          "(install the 'dask' extra: pip install 'frictionlaws[dask]')"
                          ) from None
     try:
-        client = Client(address, timeout="10s")
+        return Client(address, timeout="10s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError(f"cannot reach the Dask scheduler at {address!r} ({exc})") from None
-    with client:
+
+
+def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str,
+             total: int | None) -> Iterator[Any]:
+    """``func`` over ``items`` on the Dask cluster at ``address``, results in order.
+
+    Batches of items are submitted as futures (no joblib layer), sized by the
+    cluster's worker threads; a window of :data:`_WINDOW` batches per thread is in
+    flight and each is released as soon as its results are taken.
+    """
+    with _dask_client(address) as client:
         threads = sum(client.nthreads().values()) or 1
+        size = batch_size(total, threads)
         window: deque[Any] = deque()
-        for item in items:
-            window.append(client.submit(func, item, pure=False))
-            if len(window) >= 3 * threads:
-                yield window.popleft().result()
+        for batch in _batches(items, size):
+            window.append(client.submit(_run_batch, func, batch, pure=False))
+            if len(window) >= _WINDOW * threads:
+                yield from window.popleft().result()
         while window:
-            yield window.popleft().result()
+            yield from window.popleft().result()
 
 
 # ------------------------------------------------------------------ results
@@ -304,6 +429,23 @@ class Campaign:
     ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
     warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
     fit could not be made).
+
+    Parameters
+    ----------
+    records : list of dict
+        The records held in memory (empty when they were streamed to ``path``).
+    by : tuple of str
+        The grouping columns.
+    laws : tuple of str
+        The law ids fitted.
+    notes : list of str
+        Remarks on the campaign as a whole.
+    path : Path, optional
+        The file the records were streamed to.
+    count : int
+        Number of records (also when streamed).
+    failed : list of dict
+        The failed records of a streamed campaign.
     """
 
     records: list[dict[str, Any]]
@@ -390,7 +532,18 @@ _GC_EVERY = 50
 
 
 def group_column(name: str) -> str:
-    """The tidy table's header of grouping column ``name``: variables carry their SI unit."""
+    """Name the tidy table's column of grouping column ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A grouping column.
+
+    Returns
+    -------
+    str
+        ``name``, followed by ``[unit]`` (SI) when it is a law variable.
+    """
     from .law import VARIABLES
 
     unit = VARIABLES[name].unit if name in VARIABLES else ""
@@ -398,7 +551,18 @@ def group_column(name: str) -> str:
 
 
 def tidy_columns(by: Sequence[str]) -> list[str]:
-    """The columns of a campaign's tidy table (the CSV header), for grouping columns ``by``."""
+    """List the columns of a campaign's tidy table (the CSV header).
+
+    Parameters
+    ----------
+    by : sequence of str
+        The grouping columns.
+
+    Returns
+    -------
+    list of str
+        The header, grouping columns with their units.
+    """
     return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
             "stderr", "ci95_low", "ci95_high", "unit", "fixed", "converged", *_METRICS,
             "warnings", "error"]
@@ -462,8 +626,12 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         See :func:`iter_datasets`.
     by : str or sequence of str
         Grouping columns (e.g. ``"surface"``); each group is fitted on its own.
-    jobs, scheduler, progress
-        See :func:`iter_parallel`.
+    jobs : int
+        Local worker processes (1: serial; -1: one per core); see :func:`iter_parallel`.
+    scheduler : str, optional
+        A Dask scheduler address; see :func:`iter_parallel`.
+    progress : bool
+        Show a progress bar on stderr.
     output : path, optional
         Stream the results to this ``.csv`` (tidy rows) or ``.jsonl`` (one record a
         line) file as they are done, instead of holding them: the memory then stays
@@ -477,6 +645,7 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     Returns
     -------
     Campaign
+        The records (or, when streamed, their count, failures and file).
     """
     from .registry import get_law
 
@@ -486,12 +655,10 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     columns = (by,) if isinstance(by, str) else tuple(by)
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
-    work = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
-            for src in sources]
-    size = _chunk_size(len(work), jobs, scheduler)
-    chunks = (work[i:i + size] for i in range(0, len(work), size))
-    parts = iter_parallel(_fit_chunk, chunks, jobs=jobs, scheduler=scheduler,
-                          progress=progress, total=-(-len(work) // size))
+    work = (_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
+            for src in sources)
+    parts = iter_parallel(_fit_dataset, work, jobs=jobs, scheduler=scheduler,
+                          progress=progress, total=len(sources))
     if target is not None:
         return _stream(parts, target, columns, law_ids)
     records = [rec for part in parts for rec in part]
@@ -549,12 +716,33 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
                  by: str | Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  progress: bool = False, load_options: Mapping[str, Any] | None = None,
                  **compare_options: Any) -> Any:
-    """Compare laws on each group of each dataset; a tidy :class:`pandas.DataFrame`.
+    """Compare laws on each group of each dataset.
 
-    One row per (dataset, group, law) with the ranking metrics of
-    :meth:`frictionlaws.comparison.Comparison.to_frame`, plus ``error`` for a dataset or
-    group that could not be compared.  ``jobs``/``scheduler`` as in :func:`fit_many`;
-    ``compare_options`` go to :func:`frictionlaws.compare` (``folds``, ``seed``...).
+    Parameters
+    ----------
+    datasets : name, path, directory, Dataset or a sequence of them
+        See :func:`iter_datasets`.
+    laws : sequence of str, optional
+        Law ids; default: those :func:`frictionlaws.compare` chooses.
+    by : str or sequence of str
+        Grouping columns; each group is compared on its own.
+    jobs : int
+        Local worker processes; see :func:`iter_parallel`.
+    scheduler : str, optional
+        A Dask scheduler address; see :func:`iter_parallel`.
+    progress : bool
+        Show a progress bar on stderr.
+    load_options : mapping, optional
+        ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    **compare_options
+        Passed to :func:`frictionlaws.compare` (``folds``, ``seed``...).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (dataset, group, law) with the ranking metrics of
+        :meth:`frictionlaws.comparison.Comparison.to_frame`, plus ``error`` for a
+        dataset or group that could not be compared.
     """
     import pandas as pd
 

@@ -15,7 +15,15 @@ __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_
 
 
 def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> None:
-    """``--by``, ``--shared``, ``--jobs``, ``--scheduler`` and ``--out``."""
+    """Add ``--by``, ``--shared``, ``--jobs``, ``--scheduler``, ``--out`` and ``--progress``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    shared : bool
+        Whether the command takes ``--shared`` (a global fit across groups).
+    """
     g = p.add_argument_group("campaigns (several datasets, groups, parallel work)")
     g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
                    help="fit each group of these columns separately, e.g. --by surface")
@@ -34,7 +42,19 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
 
 
 def campaign_progress(args: argparse.Namespace) -> bool:
-    """``--progress`` for a campaign: automatic means a bar when stderr is a terminal."""
+    """Decide whether a campaign shows a progress bar.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line.
+
+    Returns
+    -------
+    bool
+        ``--progress``/``--no-progress`` as given; by default, whether stderr is a
+        terminal.
+    """
     value = progress_value(args)
     return sys.stderr.isatty() if value is None else value
 
@@ -50,7 +70,23 @@ def _jobs(text: str) -> int:
 
 
 def split_names(items: list[str]) -> list[str]:
-    """``["a,b", "c"]`` -> ``["a", "b", "c"]``; a name given twice is an error."""
+    """Split comma-separated names: ``["a,b", "c"]`` -> ``["a", "b", "c"]``.
+
+    Parameters
+    ----------
+    items : list of str
+        The values of a repeatable option.
+
+    Returns
+    -------
+    list of str
+        The names, in order.
+
+    Raises
+    ------
+    InputError
+        When a name is given twice.
+    """
     from frictionlaws.errors import InputError
 
     out: list[str] = []
@@ -73,7 +109,18 @@ def refuse_campaign_options(args: argparse.Namespace) -> None:
 
 
 def wants_campaign(args: argparse.Namespace) -> bool:
-    """True when the command must run as a campaign (several datasets, a directory, groups)."""
+    """Tell whether the command must run as a campaign.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line.
+
+    Returns
+    -------
+    bool
+        True for several datasets, a directory, ``--by`` or ``--shared``.
+    """
     from frictionlaws.errors import InputError
 
     data = args.data if isinstance(args.data, list) else [args.data]
@@ -104,7 +151,20 @@ def _refuse_without_by(args: argparse.Namespace) -> None:
 
 
 def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
-    """``fit`` over several datasets and/or groups; print a summary, write ``--out``."""
+    """Run ``fit`` over several datasets and/or groups; print a summary, write ``--out``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line.
+    fit_kwargs : dict
+        The fit options built from it (load options are taken out of it).
+
+    Returns
+    -------
+    int
+        The exit status: 0, or 1 when a fit failed.
+    """
     from frictionlaws.campaign import fit_many
 
     _refuse_without_by(args)
