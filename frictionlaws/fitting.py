@@ -22,6 +22,7 @@ the reduced chi-square as lmfit does); the 95 % intervals use Student's t with
 from __future__ import annotations
 
 import functools
+import inspect
 import json
 import math
 import warnings
@@ -33,8 +34,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import _lsq
-from ._lsq import numeric_jacobian
 from .errors import ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
@@ -365,50 +364,30 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
     return fd, notes
 
 
+def _model_function(law: Law, extra: tuple[str, ...]) -> Any:
+    """A function with an explicit signature for lmfit.Model."""
+    settings = law.setting_values
+    indep = law.variables or ("_shape",)
+    names = list(indep) + list(law.param_names) + list(extra)
+
+    def model(**kw: Any) -> Any:
+        variables = {k: kw[k] for k in law.variables}
+        shape = kw.get("_shape")
+        values = {**settings, **{k: kw[k] for k in law.param_names}, **{k: kw[k] for k in extra}}
+        out = law.evaluate(variables, values)
+        if shape is not None:
+            out = np.broadcast_to(out, np.shape(shape))
+        return out
+
+    model.__signature__ = inspect.Signature(
+        [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD) for n in names])
+    model.__name__ = law.id.replace("-", "_").replace("+", "_")
+    return model
+
+
 @dataclass
 class FitResult:
-    """The outcome of :func:`fit` (or of :func:`load_result`).
-
-    Parameters
-    ----------
-    law : Law
-        The law fitted.
-    params : dict
-        Parameter name -> :class:`ParamEstimate` (fixed ones included).
-    settings : dict
-        Setting name -> value used (SI).
-    metrics : dict
-        Goodness of fit: ``r2``, ``adj_r2``, ``rmse``, ``mae``, ``max_abs_residual``,
-        ``aic``, ``aicc``, ``bic``, ``chisqr``, ``redchi``, ``n``, ``k``, ``weighted``.
-    correlation : dict
-        Parameter -> parameter -> correlation coefficient.
-    success : bool
-        Whether the fit converged and beats the mean of mu.
-    message : str
-        The solver's message (or why the fit is refused).
-    warnings : list of str
-        Everything the user must know about this fit.
-    non_identifiable : list of str
-        Parameters the data cannot determine.
-    derived : dict
-        Derived quantity -> value, stderr, ci95, unit, meaning.
-    data : dict
-        Name, source, row count and ranges of the data.
-    notes : list of str
-        What was done to the data or the fit (dropped rows, global stage...).
-    provenance : dict
-        Package versions and creation time.
-    uncertainty : dict
-        How the standard errors were obtained.
-    lmfit_result : object, optional
-        Kept for compatibility; None (fits no longer run through lmfit.Model).
-    residual : numpy.ndarray, optional
-        ``mu - fit`` per row (unweighted).
-    best_fit : numpy.ndarray, optional
-        The fitted law per row.
-    fit_data : FitData, optional
-        The data fitted.
-    """
+    """The outcome of :func:`fit` (or of :func:`load_result`)."""
 
     law: Law
     params: dict[str, ParamEstimate]
@@ -449,21 +428,7 @@ class FitResult:
         return bound_from_result(self)
 
     def predict(self, *, warn: bool = True, **variables: Any) -> Any:
-        """Evaluate the fitted law; warn when outside the fitted data range.
-
-        Parameters
-        ----------
-        warn : bool
-            Issue an :class:`~frictionlaws.errors.ExtrapolationWarning` outside the
-            fitted range.
-        **variables
-            Variable name -> values (SI).
-
-        Returns
-        -------
-        float or numpy.ndarray
-            The friction coefficient mu.
-        """
+        """Evaluate the fitted law; warn when outside the fitted data range."""
         if warn:
             msgs = self.extrapolation(variables)
             if msgs:
@@ -471,30 +436,13 @@ class FitResult:
         return self.law.evaluate(variables, self.values)
 
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
-        """Say which variables lie outside the range the law was fitted on.
-
-        Parameters
-        ----------
-        variables : mapping
-            Variable name -> values (SI).
-
-        Returns
-        -------
-        list of str
-            One message per variable outside its fitted range.
-        """
+        """Messages for variables outside the range the law was fitted on."""
         from .bound import outside_ranges
 
         return outside_ranges(self.law, self.data.get("ranges", {}), variables)
 
     def to_dict(self) -> dict[str, Any]:
-        """Return the result as a JSON-able dict (the versioned save format).
-
-        Returns
-        -------
-        dict
-            Everything :func:`load_result` reads back.
-        """
+        """A JSON-able dict (the versioned save format)."""
         return {
             "format": RESULT_FORMAT,
             "version": RESULT_VERSION,
@@ -518,34 +466,13 @@ class FitResult:
         }
 
     def to_frame(self) -> Any:
-        """Return the parameters as a :class:`pandas.DataFrame`.
-
-        Returns
-        -------
-        pandas.DataFrame
-            Value, stderr, CI, unit and fixed flag per parameter.
-        """
+        """The parameters as a :class:`pandas.DataFrame` (value, stderr, CI, unit, fixed)."""
         from .interop import params_frame
 
         return params_frame(self)
 
     def plot(self, data: Any = None, **kw: Any) -> Any:
-        """Plot data, fit, 95 % band and residuals.
-
-        See :func:`frictionlaws.interop.plot_result`.
-
-        Parameters
-        ----------
-        data : optional
-            The data to show (default: the data fitted).
-        **kw
-            Passed to :func:`frictionlaws.interop.plot_result`.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            The figure.
-        """
+        """Data, fit, 95 % band and residuals (see :func:`frictionlaws.interop.plot_result`)."""
         from .interop import plot_result
 
         return plot_result(self, data, **kw)
@@ -564,35 +491,13 @@ class FitResult:
         return f"<FitResult {self.law.id}: {values}; R^2 = {r2_text}, n = {m.get('n')}; {state}>"
 
     def to_json(self, *, indent: int | None = 2) -> str:
-        """Return strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers).
-
-        Parameters
-        ----------
-        indent : int, optional
-            Indentation (None: one line).
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
+        """Strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers)."""
         from .jsonio import dumps
 
         return dumps(self.to_dict(), indent=indent)
 
     def save(self, path: str | Path) -> Path:
-        """Write the versioned JSON to ``path`` atomically (never over the fitted data).
-
-        Parameters
-        ----------
-        path : str or Path
-            The file to write.
-
-        Returns
-        -------
-        Path
-            The file written.
-        """
+        """Write the versioned JSON to ``path`` atomically (never over the fitted data)."""
         from .outputs import check_outputs, write_text_atomic
 
         source = self.data.get("source") if isinstance(self.data, Mapping) else None
@@ -600,20 +505,12 @@ class FitResult:
         return write_text_atomic(path, self.to_json() + "\n")
 
     def report(self) -> str:
-        """Return a plain-text report with units.
-
-        Returns
-        -------
-        str
-            Parameters, errors, derived quantities, metrics, notes and warnings.
-        """
+        """A plain-text report with units."""
         lines = [f"law: {self.law.id} - {self.law.title}"]
         d = self.data
         rng = ", ".join(_fmt_range(k, lo, hi) for k, (lo, hi) in d.get("ranges", {}).items())
         lines.append(f"data: {d.get('name')} ({d.get('n')} rows{'; ' + rng if rng else ''})")
-        from .derivatives import formula_text
-
-        lines.append(f"formula: {formula_text(self.law)}   (SI: {self._si_note()})")
+        lines.append(f"formula: {self.law.pretty()}   (SI: {self._si_note()})")
         lines.append("")
         hdr = f"{'parameter':<10} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
         lines.append(hdr)
@@ -635,11 +532,11 @@ class FitResult:
             lines.append("")
             lines.append("derived quantities:")
             for k, dv in self.derived.items():
-                dse = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
-                dci = dv.get("ci95")
-                dse += f" [{_g(dci[0])}, {_g(dci[1])}]" if isinstance(dci, list) and \
-                    len(dci) == 2 else ""
-                lines.append(f"  {k} = {_g(dv['value'])}{dse} {dv.get('unit') or '-'}"
+                se = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
+                ci = dv.get("ci95")
+                se += f" [{_g(ci[0])}, {_g(ci[1])}]" if isinstance(ci, list) and len(ci) == 2 \
+                    else ""
+                lines.append(f"  {k} = {_g(dv['value'])}{se} {dv.get('unit') or '-'}"
                              f"  ({dv.get('meaning', '')})")
         m = self.metrics
         lines.append("")
@@ -765,7 +662,11 @@ class _GlobalStage:
         ss_tot = float(np.sum((self.y - self.y.mean()) ** 2))
         if ss_tot > 0 and float(np.sum((self.y - fitted) ** 2)) > ss_tot:
             return True
-        rel = (np.asarray(finals) - min(finals)) / max(min(finals), 1e-300)
+        # chi^2 differences below 1e-9 of the data's own sum of squares are round-off
+        # (a law that fits exactly, e.g. constant mu), not different minima
+        yw = self.y if self.w is None else self.y * self.w
+        floor = 1e-6 * float(np.sum(yw ** 2))  # x the 1e-3 below: 1e-9 of it
+        rel = (np.asarray(finals) - min(finals)) / max(min(finals), floor, 1e-300)
         return bool(np.mean(rel > 1e-3) > 0.5)  # most starts miss the best basin
 
     def _box(self, k: str) -> tuple[float, float, str]:
@@ -824,8 +725,30 @@ class _GlobalStage:
 
 
 def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.ndarray:
-    """Central-difference Jacobian (see :func:`frictionlaws._lsq.numeric_jacobian`)."""
-    return numeric_jacobian(func, x, scales)
+    """Central-difference Jacobian of ``func`` (vector -> vector) at ``x``.
+
+    The first step is 1e-6 of the parameter's magnitude or of its typical
+    scale (``scales``, e.g. the declared default), whichever is larger, or
+    1e-6 in its unit when both are zero.  When that step moves the model by
+    less than 1e-7 of its size (a parameter sitting near a bound of 0, say),
+    the step grows until it does, so every column stands well above round-off.
+    """
+    f0 = func(x)
+    size = max(float(np.linalg.norm(f0)), 1e-300)
+    jac = np.empty((f0.size, x.size))
+    for j in range(x.size):
+        mag = max(abs(x[j]), abs(scales[j]) if scales is not None else 0.0)
+        h = 1e-6 * mag if mag > 0 else 1e-6
+        for _ in range(8):
+            xp, xm = x.copy(), x.copy()
+            xp[j] += h
+            xm[j] -= h
+            diff = func(xp) - func(xm)
+            if np.linalg.norm(diff) >= 1e-7 * size or not np.all(np.isfinite(diff)):
+                break
+            h *= 10.0
+        jac[:, j] = diff / (2 * h)
+    return jac
 
 
 def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list[str], float]:
@@ -843,8 +766,7 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
         s = np.concatenate([s, np.zeros(jn.shape[1] - jn.shape[0])])
         vt = np.linalg.svd(np.vstack([jn, np.zeros((jn.shape[1] - jn.shape[0], jn.shape[1]))]))[2]
     rel = s / s[0] if s[0] > 0 else np.zeros_like(s)
-    non_id: set[str] = set(dead)
-    weak: set[str] = set()
+    non_id, weak = set(dead), set()
     for i, r in enumerate(rel):
         if r < WEAK_TOL:
             comp = np.abs(vt[i])
@@ -852,81 +774,128 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
             (non_id if r < RANK_TOL else weak).update(involved)
     weak -= non_id
     order = {n: i for i, n in enumerate(names)}
-    return (sorted(non_id, key=order.__getitem__), sorted(weak, key=order.__getitem__),
+    return (sorted(non_id, key=order.get), sorted(weak, key=order.get),
             float(rel[-1]) if rel.size else 0.0)
 
 
-@dataclass
-class _Setup:
-    """A fit's data and parameters after every check, before any minimisation."""
+def fit(
+    law: str | Law,
+    data: Any,
+    *,
+    fix: Mapping[str, float] | None = None,
+    free: Iterable[str] = (),
+    initial: Mapping[str, float] | None = None,
+    weights: Any = "auto",
+    starts: int | None = None,
+    seed: int = 0,
+    on_invalid: str = "error",
+    mapping: Mapping[str, str] | None = None,
+    units: Mapping[str, str] | None = None,
+    area: Any = None,
+    method: str = "least_squares",
+    uncertainty: str = "asymptotic",
+    n_boot: int = 1000,
+    n_jobs: int = 1,
+    interval: str = "bca",
+    global_stage: str = "auto",
+) -> FitResult:
+    """Fit ``law`` to ``data`` with lmfit.
 
-    law: Law
-    model_law: Law
-    fd: FitData
-    notes: list[str]
-    fix: dict[str, float]
-    freed: tuple[str, ...]
-    settings: dict[str, float]
-    x: dict[str, np.ndarray]
-    y: np.ndarray
-    w: np.ndarray | None
-    guess: dict[str, float]
-    vary: list[str]
-    bounds: dict[str, tuple[float, float]]
+    Parameters
+    ----------
+    law : str or Law
+        Law id or alias, or a :class:`~frictionlaws.law.Law`.
+    data : str, path, Dataset, DataFrame or mapping
+        A packaged dataset name, a CSV path, a loaded dataset, or a mapping of
+        SI arrays with ``"mu"`` and the law's variables.
+    fix : mapping, optional
+        Parameters held at the given values (``{"n": 1/3}``).  Settings may be
+        given here too, to change their fixed value.
+    free : iterable of str, optional
+        Settings to fit as parameters (e.g. ``["E_v"]`` for Denny, which then
+        is not identifiable: the result says so).
+    initial : mapping, optional
+        Initial values overriding the law's data-driven guess.
+    weights : {"auto"}, None or array
+        ``"auto"`` uses the dataset's replicate statistics (1/mu_std, else
+        sqrt(n)) when present; None fits unweighted.
+    starts : int, optional
+        Number of random starts for non-linear laws.  By default the fit
+        starts from the data-driven guess, the defaults and every preset, and
+        adds 6 random starts only when those end at different minima; giving
+        ``starts`` forces that many random starts.
+    seed : int
+        Seed of the random starts, the global stage and the bootstrap (results are
+        reproducible).
+    on_invalid : {"error", "drop"}
+        What to do with rows where the law is singular (v = 0 in a log-v law):
+        raise a clear error, or drop them and say so in the result.
+    mapping, units, area
+        Passed to :func:`frictionlaws.io.load_dataset` when ``data`` is a file.
+    method : str
+        lmfit minimisation method.
+    uncertainty : {"asymptotic", "sandwich", "bootstrap"}
+        How standard errors and intervals are obtained: the covariance of the fit
+        (assumes the law is right and the scatter even), the HC3 sandwich
+        (robust to uneven scatter), or a bootstrap resampling whole conditions
+        (robust to a law that misses a trend; slower).  Derived quantities get
+        their errors by the same method.  See :mod:`frictionlaws.uncertainty`.
+    n_boot : int
+        Bootstrap replicates (20..100000), for ``uncertainty="bootstrap"``.
+    n_jobs : int
+        joblib workers for the bootstrap (1: in this process; -1: one per core).
+    interval : {"bca", "percentile"}
+        Bootstrap interval kind.
+    global_stage : {"auto", "on", "off"}
+        A bounded differential-evolution search on the transformed parameters
+        before a local polish: ``"auto"`` runs it only when the local starts end
+        worse than the mean of mu or at different minima.
 
-    @property
-    def names(self) -> list[str]:
-        """Every parameter of the fit, fixed or not (law parameters, then freed settings)."""
-        return list(self.law.param_names) + list(self.freed)
+    Returns
+    -------
+    FitResult
 
-    def unit(self, name: str) -> str:
-        """The unit of a parameter or freed setting."""
-        return self.law.setting(name).unit if name in self.freed else self.law.param(name).unit
+    Raises
+    ------
+    InputError
+        Bad data, unknown names, data without the law's variables.
+    FitError
+        When no start gives a finite fit.
+    """
+    import lmfit
+    from scipy import stats
 
-    def typical(self, name: str) -> float:
-        """The declared default of a parameter or freed setting (its typical size)."""
-        return (self.law.param(name).default if name in self.law.param_names
-                else self.law.setting(name).value)
-
-
-def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
-                       uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
-                       global_stage: Any, lean: Any) -> None:
-    """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
+    law = get_law(law)
+    _check_options(method, starts, seed, on_invalid)
     from .uncertainty import check_uncertainty_options
 
-    _check_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
     if global_stage not in ("auto", "on", "off"):
         raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",
                          option="global_stage")
-    if not isinstance(lean, bool):
-        raise InputError(f"lean must be True or False, not {lean!r}", option="lean")
-    if lean and uncertainty != "asymptotic":
-        raise InputError("a lean fit gives asymptotic standard errors only; "
-                         f"uncertainty {uncertainty!r} needs a full fit", option="lean")
-
-
-def _freed_settings(law: Law, free: Iterable[str]) -> tuple[str, ...]:
-    """The settings to fit as parameters; an unknown name is refused."""
-    setting_names = [s.name for s in law.settings]
+    fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
+    fd, notes = _check_data_for_law(law, fd, on_invalid)
+    notes = list(fd.notes) + notes
+    fix = dict(fix or {})
     free = list(dict.fromkeys(free))
+    setting_names = [s.name for s in law.settings]
     for k in free:
-        if k not in setting_names and k not in law.param_names:
+        if k not in setting_names:
+            if k in law.param_names:
+                continue
             raise InputError(f"law '{law.id}' has no setting '{k}' to free "
                              f"(settings: {', '.join(setting_names) or 'none'})")
-    return tuple(k for k in free if k in setting_names)
+    fix = _check_fix(law, fix, setting_names)
+    fix.update(_neutral_fixes(law, fd, fix, notes))
+    freed = tuple(k for k in free if k in setting_names)
+    settings = {k: float(fix.get(k, v)) for k, v in law.setting_values.items() if k not in freed}
 
-
-def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tuple[str, ...],
-                 initial: Mapping[str, float] | None) -> dict[str, float]:
-    """The law's data-driven guess, the freed settings' values, then ``initial``."""
     y = fd.arrays["mu"]
+    x = {k: fd.arrays[k] if k in fd.arrays else np.zeros_like(y) for k in law.variables}
     guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
     guess = law.initial_guess(guess_data)
     for k in freed:
-        guess[k] = float(initial.get(k, law.setting(k).value) if initial
-                         else law.setting(k).value)
+        guess[k] = float(initial.get(k, law.setting(k).value) if initial else law.setting(k).value)
     if initial:
         unknown = set(initial) - set(guess)
         if unknown:
@@ -940,331 +909,114 @@ def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tupl
         except InputError as exc:
             raise InputError(exc.bare_message, option="initial") from None
         guess.update(given)
-    return guess
 
+    # settings fixed to non-default values flow through the model's closure
+    law_for_model = law
+    if settings != {k: v for k, v in law.setting_values.items() if k not in freed}:
+        from dataclasses import replace
 
-def _model_law(law: Law, settings: Mapping[str, float], freed: tuple[str, ...]) -> Law:
-    """``law`` with its settings at the values of this fit (a copy when they differ)."""
-    if dict(settings) == {k: v for k, v in law.setting_values.items() if k not in freed}:
-        return law
-    from dataclasses import replace
+        from .law import Setting
 
-    from .law import Setting
-
-    return replace(law, settings=tuple(
-        Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
-        for s in law.settings))
-
-
-def _setup(law: Law, data: Any, fix: Mapping[str, float] | None, free: Iterable[str],
-           initial: Mapping[str, float] | None, weights: Any, on_invalid: str,
-           load: Mapping[str, Any]) -> _Setup:
-    """Load and check the data, the fixed and freed names and the start."""
-    fd = as_fit_data(data, weights=weights, **load)
-    fd, notes = _check_data_for_law(law, fd, on_invalid)
-    notes = list(fd.notes) + notes
-    freed = _freed_settings(law, free)
-    fixed = _check_fix(law, dict(fix or {}), [s.name for s in law.settings])
-    fixed.update(_neutral_fixes(law, fd, fixed, notes))
-    settings = {k: float(fixed.get(k, v)) for k, v in law.setting_values.items()
-                if k not in freed}
-    y = fd.arrays["mu"]
-    x = {k: fd.arrays[k] if k in fd.arrays else np.zeros_like(y) for k in law.variables}
-    guess = _start_guess(law, fd, x, freed, initial)
-    vary = [k for k in list(law.param_names) + list(freed) if k not in fixed]
-    if not vary:
+        law_for_model = replace(law, settings=tuple(
+            Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
+            for s in law.settings))
+    func = _model_function(law_for_model, freed)
+    indep = law.variables or ("_shape",)
+    model = lmfit.Model(func, independent_vars=list(indep), nan_policy="raise")
+    vary_names = [k for k in list(law.param_names) + list(freed) if k not in fix]
+    if not vary_names:
         raise InputError(f"every parameter of law '{law.id}' is fixed: nothing to fit")
     bounds = {p.name: p.bounds for p in law.params}
     bounds.update({k: law.setting(k).bounds for k in freed})
-    return _Setup(law, _model_law(law, settings, freed), fd, notes, fixed, freed, settings,
-                  x, y, fd.weights, guess, vary, bounds)
 
+    def make_params(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
+        params = lmfit.Parameters()
+        for k in list(law.param_names) + list(freed):
+            lo, hi = bounds[k]
+            if k in fix:
+                params.add(k, value=float(fix[k]), vary=False)
+            elif k in pinned:  # held exactly at the bound the global stage found
+                params.add(k, value=float(start[k]), vary=False)
+            else:
+                params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
+        return params
 
-#: Relative chi^2 difference within which two starts reached the same minimum.
-SAME_MINIMUM = 1e-6
-
-
-@dataclass
-class _Search:
-    """The multi-start search: runs local fits and keeps the best."""
-
-    setup: _Setup
-    method: str
-    best: _lsq.Solution | None = None
-    best_values: dict[str, float] = field(default_factory=dict)
-    best_pinned: tuple[str, ...] = ()
-    finals: list[float] = field(default_factory=list)
-    errors: list[str] = field(default_factory=list)
-    _problems: dict[tuple[str, ...], _lsq.Problem] = field(default_factory=dict)
-
-    def problem(self, pinned: tuple[str, ...] = (), at: Mapping[str, float] | None = None
-                ) -> _lsq.Problem:
-        """The least-squares problem with ``pinned`` held (at the values ``at``)."""
-        s = self.setup
-        names = [k for k in s.vary if k not in pinned]
-        held = {**s.settings, **s.fix, **{k: float((at or {})[k]) for k in pinned}}
-        key = tuple(pinned)
-        prob = self._problems.get(key)
-        if prob is None:
-            lower = np.array([s.bounds[k][0] for k in names], float)
-            upper = np.array([s.bounds[k][1] for k in names], float)
-            prob = _lsq.Problem(s.model_law, s.x, s.y, s.w, held, names, lower, upper)
-            self._problems[key] = prob
-        else:
-            prob.held = held
-        return prob
-
-    def start_vector(self, start: Mapping[str, float], names: list[str]) -> np.ndarray:
-        """A start clipped strictly inside the bounds."""
-        return np.array([_clip(float(start[k]), *self.setup.bounds[k]) for k in names])
-
-    def run(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
-        """One local fit from ``start``; kept when it beats the best so far."""
-        prob = self.problem(pinned, start)
-        try:
-            sol = _lsq.solve(prob, self.start_vector(start, prob.names), self.method)
-        except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
-            self.errors.append(str(exc))
-            return
-        if not math.isfinite(sol.chisqr) or not np.all(np.isfinite(sol.best_fit)):
-            return
-        self.finals.append(sol.chisqr)
-        if self.best is None or sol.chisqr < self.best.chisqr * (1 - 1e-10):
-            self.best, self.best_pinned = sol, pinned
-            self.best_values = {**self.setup.fix, **prob.held, **dict(zip(prob.names,
-                                                                          map(float,
-                                                                              sol.theta)))}
-            self.best_values = {k: self.best_values[k] for k in self.setup.names}
-
-    def reproduced(self, since: int = 0) -> bool:
-        """True when two starts ended at the best chi^2, one of them after the first
-        ``since`` starts."""
-        if self.best is None:
-            return False
-        best = self.best.chisqr
-        hits = [(f - best) <= SAME_MINIMUM * max(best, 1e-300) for f in self.finals]
-        return sum(hits) >= 2 and any(hits[since:])
-
-    @property
-    def spread(self) -> float:
-        """Relative spread of the final chi^2 of the starts run so far."""
-        if not self.finals:
-            return math.inf
-        return (max(self.finals) - min(self.finals)) / max(min(self.finals), 1e-300)
-
-    def refine(self, starts: list[dict[str, float]], early: bool = True,
-               first_fixed: bool = False) -> None:
-        """Score ``starts`` in one pass and refine them best first.
-
-        With ``early``, stop as soon as a start reproduces the best chi^2; with
-        ``first_fixed`` the first start is refined first whatever its score.
-        """
-        prob = self.problem()
-        since = len(self.finals)
-        vectors = [self.start_vector(s, prob.names) for s in starts]
-        unique: list[int] = []
-        for i, v in enumerate(vectors):
-            if not any(np.array_equal(v, vectors[j]) for j in unique):
-                unique.append(i)
-        scores = _lsq.score_starts(prob, [vectors[i] for i in unique])
-        order = list(np.argsort(scores, kind="stable"))
-        if first_fixed and order:  # the data-driven guess first: ties keep its minimum
-            order.remove(0)
-            order.insert(0, 0)
-        for j in order:
-            if not math.isfinite(scores[j]):
-                self.errors.append("the model is not finite at the start")
-                continue
-            self.run(starts[unique[j]])
-            if early and self.reproduced(since):
-                return
-
-
-def _multistart(search: _Search, starts: int | None, seed: int) -> None:
-    """The deterministic starts, then random ones when they disagree, all fail or are asked."""
-    s = search.setup
-    law = s.model_law
-    search.refine(_starts(law, s.guess, s.vary), early=not law.linear, first_fixed=True)
-    forced = starts is not None and int(starts) > 0
+    kwargs = {k: x[k] for k in law.variables}
+    if not law.variables:
+        kwargs["_shape"] = y
+    w = fd.weights
+    rng = np.random.default_rng(seed)
     n_random = 6 if starts is None else int(starts)
-    if not law.linear and (search.spread > SAME_MINIMUM or search.best is None or forced):
-        rng = np.random.default_rng(seed)
-        search.refine(_random_starts(law, s.guess, s.vary, n_random, rng), early=not forced)
+    n_random_forced = starts is not None and int(starts) > 0
+    best = None
+    errors: list[str] = []
+    finals: list[float] = []
 
+    max_nfev = 300 * (len(vary_names) + 1)
 
-def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
-    """Differential evolution then a local polish, when asked or wanted; its notes."""
-    s = search.setup
-    stage = _GlobalStage(s.model_law, {**s.settings, **s.fix}, s.vary, s.bounds, s.guess, s.x,
-                         s.y, s.w, seed)
-    if not (mode == "on" or (mode == "auto" and stage.wanted(search.best, search.finals))):
-        return []
-    start, pinned = stage.search()
-    if start is None:
-        return []
-    search.run(start, pinned)
-    if pinned:  # the bound may be a limit the polish should also leave
-        search.run(start)
-    return [f"global stage: differential evolution over {len(s.vary)} transformed "
-            "parameters, then the local polish"
-            + (f" (with {', '.join(pinned)} held at the bound it reached)"
-               if pinned and search.best_pinned else "")]
+    best_pinned: tuple[str, ...] = ()
 
+    def run(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
+        nonlocal best, best_pinned
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                res = model.fit(y, make_params(start, pinned), weights=w, method=method,
+                                max_nfev=max_nfev, **kwargs)
+        except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
+            errors.append(str(exc))
+            return
+        if not np.isfinite(res.chisqr):
+            return
+        finals.append(float(res.chisqr))
+        if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
+            best, best_pinned = res, pinned
 
-def fit(
-    law: str | Law, data: Any, *, fix: Mapping[str, float] | None = None,
-    free: Iterable[str] = (), initial: Mapping[str, float] | None = None,
-    weights: Any = "auto", starts: int | None = None, seed: int = 0,
-    on_invalid: str = "error", mapping: Mapping[str, str] | None = None,
-    units: Mapping[str, str] | None = None, area: Any = None,
-    method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
-    n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto", lean: bool = False,
-) -> FitResult:
-    """Fit ``law`` to ``data`` (lmfit parameters, scipy's least-squares solvers).
-
-    Parameters
-    ----------
-    law : str or Law
-        Law id or alias, or a :class:`~frictionlaws.law.Law`.
-    data : str, path, Dataset, DataFrame or mapping
-        A packaged dataset name, a CSV path, a loaded dataset, or SI arrays (``"mu"``
-        and the law's variables).
-    fix : mapping, optional
-        Parameters (or settings) held at the given values (``{"n": 1/3}``).
-    free : iterable of str, optional
-        Settings fitted as parameters (e.g. ``["E_v"]`` for Denny).
-    initial : mapping, optional
-        Initial values overriding the law's data-driven guess.
-    weights : {"auto"}, None or array
-        ``"auto"``: 1/mu_std, else sqrt(n), when the dataset has them; None: unweighted.
-    starts : int, optional
-        Random starts forced for non-linear laws (default: 6, only when the guess, the
-        defaults and the presets end at different minima).
-    seed : int
-        Seed of the random starts, the global stage and the bootstrap.
-    on_invalid : {"error", "drop"}
-        Rows where the law is singular (v = 0 in a log-v law): refuse, or drop and say so.
-    mapping, units, area : optional
-        Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
-    method : str
-        ``"least_squares"`` (MINPACK or a bounded trust region, chosen for the problem) or
-        another lmfit method name (then lmfit runs).
-    uncertainty : {"asymptotic", "sandwich", "bootstrap"}
-        Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
-        a bootstrap over whole conditions (a law that misses a trend); see
-        :mod:`frictionlaws.uncertainty`.
-    n_boot, n_jobs : int
-        Bootstrap replicates (20..100000) and joblib workers (-1: one per core).
-    interval : {"bca", "percentile"}
-        Bootstrap interval kind.
-    global_stage : {"auto", "on", "off"}
-        Bounded differential evolution before a local polish; ``"auto"``: only when the
-        local starts end worse than the mean of mu or at different minima.
-    lean : bool
-        A refit for cross-validation: values, covariance errors, metrics, convergence; no
-        identifiability, derived quantities, robust errors or provenance.
-
-    Returns
-    -------
-    FitResult
-        Values, errors, diagnostics and metrics of the best fit.
-
-    Raises
-    ------
-    InputError
-        Bad data or options, unknown names, data without the law's variables.
-    FitError
-        When no start gives a finite fit.
-    """
-    law = get_law(law)
-    _check_fit_options(method, starts, seed, on_invalid, uncertainty, n_boot, n_jobs,
-                       interval, global_stage, lean)
-    setup = _setup(law, data, fix, free, initial, weights, on_invalid,
-                   {"mapping": mapping, "units": units, "area": area})
-    search = _Search(setup, method)
-    _multistart(search, starts, seed)
-    setup.notes.extend(_global_stage(search, global_stage, seed))
-    if search.best is None:
-        errors = search.errors
-        raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "
-                       f"gave a finite result{(' (' + errors[0] + ')') if errors else ''}")
-    opts = dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval,
-                seed=seed)
-    return _result(setup, search, opts, lean)
-
-
-def _result(setup: _Setup, search: _Search, opts: dict[str, Any], lean: bool) -> FitResult:
-    """The diagnostics, metrics and errors of the best fit, as a :class:`FitResult`."""
-    law, best = setup.law, search.best
-    assert best is not None
+    for start in _starts(law, guess, vary_names):
+        run(start)
+    # Random starts when the deterministic ones disagree (several minima) or all failed:
+    # the surface is then multi-modal or hard, and more starts are worth their cost.
+    spread = (max(finals) - min(finals)) / max(min(finals), 1e-300) if finals else math.inf
+    if not law.linear and (spread > 1e-6 or best is None or n_random_forced):
+        for start in _random_starts(law, guess, vary_names, n_random, rng):
+            run(start)
+    stage = _GlobalStage(law_for_model, {**settings, **fix}, vary_names, bounds, guess, x, y,
+                         w, seed)
+    if global_stage == "on" or (global_stage == "auto" and stage.wanted(best, finals)):
+        start, pinned = stage.search()
+        if start is not None:
+            run(start, pinned)
+            if pinned:  # the bound may be a limit the polish should also leave
+                run(start)
+            notes.append(f"global stage: differential evolution over {len(vary_names)} "
+                         "transformed parameters, then the local polish"
+                         + (f" (with {', '.join(pinned)} held at the bound it reached)"
+                            if pinned and best_pinned else ""))
+    if best is None:
+        raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
+                       f"finite result{(' (' + errors[0] + ')') if errors else ''}")
+    # --------------------------------------------------------- diagnostics
     warn_msgs: list[str] = []
-    values = search.best_values
-    full_values = {**setup.settings, **values}
-    vary = [k for k in setup.vary if k not in search.best_pinned]
-    if lean:
-        jac, non_id = best.jac, list[str]()
-    else:
-        jac, non_id = _check_identifiability(setup, search, values, vary, warn_msgs)
-    n, k = setup.y.size, len(setup.vary)
-    dof = n - k
-    tval = _t975(dof)
-    estimates = _estimates(setup, search, values, non_id, dof, tval, warn_msgs)
-    corr: dict[str, dict[str, float]] = {}
-    if best.covar is not None:
-        _set_corr(list(best.names), np.asarray(best.covar), corr)
-    fitted = np.asarray(best.best_fit, float)
-    resid = setup.y - fitted
-    metrics = _metrics(setup.y, resid, best, k, setup.w is not None, warn_msgs)
-    success, message = _status(best, metrics["r2"], warn_msgs)
-    _law_checks(setup, full_values, warn_msgs)
-    derived: dict[str, dict[str, Any]] = {}
-    unc_info: dict[str, Any] = {"method": "asymptotic"}
-    if not lean:
-        derived = _derived(law, full_values, list(best.names), best.covar, non_id)
-        assert jac is not None
-        unc_info = _robust_errors(
-            _ErrorInputs(law, setup.fd, setup.x, setup.y, setup.w, vary, full_values,
-                         setup.bounds, jac, resid, non_id, tval),
-            estimates, derived, corr, warn_msgs, opts)
-    fd = setup.fd
-    return FitResult(
-        law=law, params=estimates, settings=setup.settings, metrics=metrics,
-        correlation=corr, success=success, message=message, warnings=warn_msgs,
-        non_identifiable=non_id, derived=derived,
-        data={"name": fd.name, "source": fd.source, "n": int(n),
-              "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
-        notes=setup.notes, provenance={} if lean else _provenance(), uncertainty=unc_info,
-        lmfit_result=None, residual=resid, best_fit=fitted, fit_data=fd)
+    vary = [k for k in vary_names if k not in best_pinned]
+    values = {k: float(best.params[k].value) for k in list(law.param_names) + list(freed)}
+    full_values = {**settings, **values}
 
+    def residual_vec(theta: np.ndarray) -> np.ndarray:
+        vals = dict(full_values)
+        vals.update(dict(zip(vary, theta)))
+        with np.errstate(all="ignore"):
+            out = law.evaluate(x, vals) if law.variables else np.broadcast_to(
+                law.evaluate({}, vals), y.shape)
+        out = np.asarray(out, float)
+        return out * (w if w is not None else 1.0)
 
-def _t975(dof: int) -> float:
-    """The 97.5 % quantile of Student's t with ``dof`` degrees of freedom (inf for none)."""
-    if dof <= 0:
-        return math.inf
-    from scipy.special import stdtrit
-
-    return float(stdtrit(dof, 0.975))
-
-
-def _check_identifiability(setup: _Setup, search: _Search, values: Mapping[str, float],
-                           vary: list[str], warn_msgs: list[str]
-                           ) -> tuple[np.ndarray, list[str]]:
-    """The Jacobian at the optimum and the non-identifiable names; warnings added."""
-    prob = search.problem(search.best_pinned, values)
     theta0 = np.array([values[k] for k in vary])
-    jac = prob.jacobian(theta0)
-    if jac is None or not np.all(np.isfinite(jac)):
-        w = setup.w
-
-        def weighted_model(theta: np.ndarray) -> np.ndarray:
-            out = prob.model(theta)
-            return out * w if w is not None else np.array(out)
-
-        scales = np.array([setup.typical(k) for k in vary])
-        jac = numeric_jacobian(weighted_model, theta0, scales)
+    scales = np.array([law.param(k).default if k in law.param_names else law.setting(k).value
+                       for k in vary])
+    jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
-    for var in (v for v in setup.law.variables if v in setup.fd.arrays):
-        xs = np.unique(setup.fd.arrays[var])
+    for var in (v for v in law.variables if v in fd.arrays):
+        xs = np.unique(fd.arrays[var])
         if xs.size == 1:
             warn_msgs.append(
                 f"the data have a single value of {var} ({_fmt_range(var, xs[0], xs[0])}); "
@@ -1277,67 +1029,62 @@ def _check_identifiability(setup: _Setup, search: _Search, values: Mapping[str, 
     if weak:
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")
-    return jac, non_id
 
-
-def _estimates(setup: _Setup, search: _Search, values: Mapping[str, float],
-               non_id: list[str], dof: int, tval: float, warn_msgs: list[str]
-               ) -> dict[str, ParamEstimate]:
-    """One :class:`ParamEstimate` per parameter, with the at-bound warnings."""
-    assert search.best is not None
-    stderr = search.best.stderr()
-    out: dict[str, ParamEstimate] = {}
-    for name in setup.names:
-        unit = setup.unit(name)
-        if name in setup.fix:
-            out[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
+    n, k = y.size, len(vary_names)
+    dof = n - k
+    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
+    cov_names = list(best.var_names) if best.covar is not None else []
+    estimates: dict[str, ParamEstimate] = {}
+    for name in list(law.param_names) + list(freed):
+        unit = law.setting(name).unit if name in freed else law.param(name).unit
+        par = best.params[name]
+        if name in fix:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
             continue
-        if name in search.best_pinned:
-            out[name] = ParamEstimate(name, values[name], None, None, unit)
+        if name in best_pinned:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit)
             warn_msgs.append(f"no standard error for {name}: the global stage found the best "
                              f"fit with {name} exactly at its bound, where the law changes "
                              "form (the fit is not differentiable there)")
             continue
-        out[name] = _estimate(setup, name, values[name], stderr.get(name), non_id, dof, tval,
-                              warn_msgs)
-        _warn_at_bound(setup, name, values[name], warn_msgs)
-    return out
+        se = par.stderr
+        ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
+        if ok:
+            limits = (law.setting(name) if name in freed else law.param(name)).bounds
+            ci = _clip_interval(name, (values[name] - tval * se, values[name] + tval * se),
+                                limits, warn_msgs)
+            estimates[name] = ParamEstimate(name, values[name], float(se), ci, unit)
+        else:
+            estimates[name] = ParamEstimate(name, values[name], None, None, unit,
+                                            identifiable=name not in non_id)
+            if name not in non_id:
+                why = (" (as many parameters as data points)" if dof <= 0 else
+                       " (the covariance matrix is singular because of the parameters the "
+                       "data cannot determine; fix those to get it)" if non_id else
+                       " (the covariance matrix could not be estimated)")
+                warn_msgs.append(f"no standard error for {name}{why}")
+        lo, hi = bounds[name]
+        typical = law.param(name).default if name in law.param_names else law.setting(name).value
+        scale = max(abs(values[name]), abs(typical), 1e-300)
+        if (math.isfinite(lo) and abs(values[name] - lo) <= 1e-6 * max(scale, abs(lo))) or (
+                math.isfinite(hi) and abs(values[name] - hi) <= 1e-6 * max(scale, abs(hi))):
+            warn_msgs.append(f"{name} = {values[name]:.6g} is at its bound "
+                             f"[{lo:g}, {hi:g}]: the optimum may lie beyond it")
 
+    corr: dict[str, dict[str, float]] = {}
+    if best.covar is not None:
+        cv = np.asarray(best.covar)
+        sd = np.sqrt(np.clip(np.diag(cv), 0, None))
+        with np.errstate(all="ignore"):
+            cm = cv / np.outer(sd, sd)
+        for i, a in enumerate(cov_names):
+            corr[a] = {b: float(cm[i, j]) for j, b in enumerate(cov_names)}
 
-def _estimate(setup: _Setup, name: str, value: float, se: float | None, non_id: list[str],
-              dof: int, tval: float, warn_msgs: list[str]) -> ParamEstimate:
-    """The estimate of one fitted parameter, its error withheld when it cannot be trusted."""
-    unit = setup.unit(name)
-    if name not in non_id and se is not None and math.isfinite(se) and dof > 0:
-        ci = _clip_interval(name, (value - tval * se, value + tval * se), setup.bounds[name],
-                            warn_msgs)
-        return ParamEstimate(name, value, float(se), ci, unit)
-    if name not in non_id:
-        why = (" (as many parameters as data points)" if dof <= 0 else
-               " (the covariance matrix is singular because of the parameters the "
-               "data cannot determine; fix those to get it)" if non_id else
-               " (the covariance matrix could not be estimated)")
-        warn_msgs.append(f"no standard error for {name}{why}")
-    return ParamEstimate(name, value, None, None, unit, identifiable=name not in non_id)
-
-
-def _warn_at_bound(setup: _Setup, name: str, value: float, warn_msgs: list[str]) -> None:
-    """Warn when a fitted value sits on one of its bounds."""
-    lo, hi = setup.bounds[name]
-    scale = max(abs(value), abs(setup.typical(name)), 1e-300)
-    if (math.isfinite(lo) and abs(value - lo) <= 1e-6 * max(scale, abs(lo))) or (
-            math.isfinite(hi) and abs(value - hi) <= 1e-6 * max(scale, abs(hi))):
-        warn_msgs.append(f"{name} = {value:.6g} is at its bound "
-                         f"[{lo:g}, {hi:g}]: the optimum may lie beyond it")
-
-
-def _metrics(y: np.ndarray, resid: np.ndarray, best: _lsq.Solution, k: int, weighted: bool,
-             warn_msgs: list[str]) -> dict[str, Any]:
-    """Goodness of fit: unweighted residuals for R^2 and RMSE, lmfit's AIC and BIC."""
-    n = y.size
-    ss_res = float(np.dot(resid, resid))
-    dev = y - y.mean()
-    ss_tot = float(np.dot(dev, dev))
+    # goodness of fit (unweighted residuals for R^2/RMSE; lmfit's AIC/BIC)
+    fitted = np.asarray(best.best_fit, float)
+    resid = y - fitted
+    ss_res = float(np.sum(resid**2))
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
     flat = ss_tot <= n * (1e-12 * float(np.max(np.abs(y)))) ** 2  # mu constant to round-off
     r2 = math.nan if flat else 1.0 - ss_res / ss_tot
     if flat:
@@ -1346,18 +1093,14 @@ def _metrics(y: np.ndarray, resid: np.ndarray, best: _lsq.Solution, k: int, weig
     adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
     aic = float(best.aic)
     aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else float("inf")
-    abs_resid = np.abs(resid)
-    return {
+    metrics = {
         "r2": r2, "adj_r2": adj, "rmse": math.sqrt(ss_res / n),
-        "mae": float(np.mean(abs_resid)), "max_abs_residual": float(np.max(abs_resid)),
+        "mae": float(np.mean(np.abs(resid))), "max_abs_residual": float(np.max(np.abs(resid))),
         "aic": aic, "aicc": aicc, "bic": float(best.bic), "chisqr": float(best.chisqr),
-        "redchi": float(best.redchi) if n - k > 0 else float("nan"), "n": int(n),
-        "k": int(k), "weighted": weighted,
+        "redchi": float(best.redchi) if dof > 0 else float("nan"), "n": int(n), "k": int(k),
+        "weighted": w is not None,
     }
 
-
-def _status(best: _lsq.Solution, r2: float, warn_msgs: list[str]) -> tuple[bool, str]:
-    """Convergence as reported, and refused when the fit is worse than the mean."""
     success, message = bool(best.success), str(best.message)
     if not success:
         warn_msgs.append(f"the optimiser did not report convergence: {best.message}")
@@ -1366,20 +1109,42 @@ def _status(best: _lsq.Solution, r2: float, warn_msgs: list[str]) -> tuple[bool,
         message = (f"the fit is worse than the mean of mu (R^2 = {r2:.4g}): the law does not "
                    "describe these data")
         warn_msgs.append(message)
-    return success, message
-
-
-def _law_checks(setup: _Setup, full_values: Mapping[str, float], warn_msgs: list[str]) -> None:
-    """Admissibility of the fitted values, and rows outside the law's domain."""
-    law = setup.law
     adm = law.check_admissible(full_values)
     if adm:
         warn_msgs.append(f"fitted parameters not admissible: {adm}")
-    for var, count in law.outside_domain(setup.fd.arrays).items():
+    outside = law.outside_domain(fd.arrays)
+    for var, count in outside.items():
         lo, hi = law.domain[var]
         warn_msgs.append(f"{count} data rows lie outside the law's valid domain of {var} "
                          f"({_fmt_range(var, lo, hi)})")
 
+    derived = _derived(law, full_values, cov_names,
+                       None if best.covar is None else np.asarray(best.covar), non_id)
+    unc_info = _robust_errors(
+        _ErrorInputs(law, fd, x, y, w, vary, full_values, bounds, jac, resid, non_id, tval),
+        estimates, derived, corr, warn_msgs,
+        dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval, seed=seed))
+    return FitResult(
+        law=law,
+        params=estimates,
+        settings=settings,
+        metrics=metrics,
+        correlation=corr,
+        success=success,
+        message=message,
+        warnings=warn_msgs,
+        non_identifiable=non_id,
+        derived=derived,
+        data={"name": fd.name, "source": fd.source, "n": int(n),
+              "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
+        notes=notes,
+        provenance=_provenance(),
+        uncertainty=unc_info,
+        lmfit_result=best,
+        residual=resid,
+        best_fit=fitted,
+        fit_data=fd,
+    )
 
 
 def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarray | None,
@@ -1490,8 +1255,8 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
 
     if method == "asymptotic":
         return
-    ratios = {k: se / a for k, a in asym.items()
-              if a and (se := estimates[k].stderr) is not None and a > 0}
+    ratios = {k: estimates[k].stderr / a for k, a in asym.items()
+              if a and estimates[k].stderr is not None and a > 0}
     wide = {k: r for k, r in ratios.items() if r > NARROW_RATIO}
     if wide:
         shown = ", ".join(f"{k} x{r:.2g}" for k, r in wide.items())
@@ -1626,21 +1391,6 @@ def load_result(path: str | Path) -> FitResult:
     Also accepts a plain ``{"law": ID, "params": {name: value}}`` JSON file.  Every
     value is checked: numbers where numbers belong, known names, values within the
     law's bounds; anything else is an :class:`InputError` naming the file and key.
-
-    Parameters
-    ----------
-    path : str or Path
-        The JSON file.
-
-    Returns
-    -------
-    FitResult
-        The result (without residuals or data arrays).
-
-    Raises
-    ------
-    InputError
-        Naming the file and the offending key.
     """
     from . import jsonio
     from .outputs import check_input_file

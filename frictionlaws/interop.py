@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = [
     "lmfit_model",
+    "model_result",
     "params_frame",
     "is_labelled",
     "evaluate_labelled",
@@ -85,6 +86,44 @@ def lmfit_model(law: Law, *, values: Mapping[str, float] | None = None) -> Any:
     for s in law.settings:
         model.set_param_hint(s.name, value=start[s.name], vary=False)
     return model
+
+
+def model_result(result: Any) -> Any:
+    """The lmfit :class:`~lmfit.model.ModelResult` of a fit, for lmfit's own tools.
+
+    The law's :func:`lmfit_model` is fitted to the same data, weights and fixed values,
+    starting from the library's optimum, so lmfit ends where the library did (its
+    ``fit_report()``, ``conf_interval()``, ``eval_uncertainty()`` then apply).
+
+    Parameters
+    ----------
+    result : FitResult
+        A fit that still holds its data (``result.fit_data``; results read back from
+        a file do not).
+
+    Returns
+    -------
+    lmfit.model.ModelResult
+        lmfit's result for the same fit.
+    """
+    from .errors import InputError
+
+    fd = getattr(result, "fit_data", None)
+    if fd is None:
+        raise InputError("this result does not hold the data it was fitted to (a result "
+                         "read from a file): refit to get lmfit's ModelResult")
+    law = result.law
+    model = lmfit_model(law, values=result.values)
+    params = model.make_params()
+    for name, est in result.params.items():
+        params[name].set(value=est.value, vary=not est.fixed)
+    for name, value in result.settings.items():
+        if name in params and name not in result.params:
+            params[name].set(value=value, vary=False)
+    y = fd.arrays["mu"]
+    xs = {k: fd.arrays[k] for k in law.variables} or {"x": y}
+    with np.errstate(all="ignore"):
+        return model.fit(y, params, weights=fd.weights, **xs)
 
 
 # ----------------------------------------------------------------------- pandas

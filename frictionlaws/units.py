@@ -120,25 +120,6 @@ _DIMENSION_NAMES = (
 )
 
 
-#: Exact conversions of the most common spellings, (quantity, unit) -> (factor, offset) to
-#: SI, used without building the pint registry (tests/test_units.py checks each against
-#: pint).  Everything else goes through pint.
-_FAST: dict[tuple[str, str], tuple[float, float]] = {
-    **{(q, u): (1.0, 0.0) for q in ("mu", "mu_std", "s", "n") for u in ("", "-", "1")},
-    ("p", "Pa"): (1.0, 0.0), ("p", "kPa"): (1e3, 0.0), ("p", "MPa"): (1e6, 0.0),
-    ("p", "bar"): (1e5, 0.0), ("p", "N/mm^2"): (1e6, 0.0), ("p", "N/mm**2"): (1e6, 0.0),
-    ("v", "m/s"): (1.0, 0.0), ("v", "mm/s"): (1e-3, 0.0),
-    ("T", "K"): (1.0, 0.0), ("T", "degC"): (1.0, 273.15),
-    ("F_N", "N"): (1.0, 0.0), ("F_N", "kN"): (1e3, 0.0),
-}
-
-
-def _fast(unit: Any, quantity: str) -> tuple[float, float] | None:
-    """The exact (factor, offset) of a common unit, or None (then pint decides)."""
-    text = "" if unit is None else str(unit).strip()
-    return _FAST.get((quantity, text))
-
-
 @functools.lru_cache(maxsize=1)
 def unit_registry() -> Any:
     """The shared pint ``UnitRegistry`` (built once, on first use).
@@ -274,8 +255,7 @@ def check_unit(
     unit: str, quantity: str, *, column: str | None = None, file: str | None = None
 ) -> None:
     """Raise :class:`InputError` unless ``unit`` is a valid unit for ``quantity``."""
-    if _fast(unit, quantity) is None:
-        parse_unit(unit, quantity, column=column, file=file)
+    parse_unit(unit, quantity, column=column, file=file)
 
 
 def _is_mass(parsed: Any) -> bool:
@@ -318,11 +298,6 @@ def to_si(
     :data:`G_THESIS` = 9.8 m/s^2; ``kgf`` uses standard gravity.
     """
     kind = _kind(quantity)
-    fast = _fast(unit, quantity)
-    if fast is not None:
-        with np.errstate(over="ignore", invalid="ignore"):
-            arr = np.asarray(values, dtype=float)
-            return np.asarray(arr * fast[0] + fast[1], dtype=float)
     parsed = parse_unit(unit, quantity, column=column, file=file)
     ureg = unit_registry()
     arr = np.asarray(values, dtype=float)
@@ -355,7 +330,7 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
     Returns a note for a normal load given as a mass (converted with
     g = 9.8 m/s^2 as in the thesis), ``None`` otherwise.
     """
-    if quantity != "F_N" or is_no_unit(unit) or _fast(unit, quantity) is not None:
+    if quantity != "F_N" or is_no_unit(unit):
         return None
     parsed = parse_unit(unit, quantity, column=column)
     if not _is_mass(parsed):
@@ -369,9 +344,6 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
 
 
 _NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
-#: The number written before the unit (checked by the one number parser: no ``4_0``, no
-#: ``4,0``, no full-width digits, no overflow).
-_NUMBER_TOKEN = re.compile(r"^\s*([-+]?[\d_.,]*(?:[eE][-+]?[\d_]+)?)")
 
 
 def parse_quantity(
@@ -422,10 +394,9 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
-    parsed = _canonical_number(raw, label, file, column)  # messages quote raw as written
     ureg = unit_registry()
     try:
-        q = ureg.parse_expression(parsed)
+        q = ureg.parse_expression(raw)
     except Exception:  # noqa: BLE001 - pint raises several types for bad text
         raise InputError(
             f"{label} '{raw}' could not be read (unknown unit?); expected {kind.what} "
@@ -451,24 +422,6 @@ def parse_quantity(
     if not np.isfinite(value):
         raise InputError(f"{label} '{raw}' is not finite", file=file, column=column)
     return value
-
-
-def _canonical_number(raw: str, label: str, file: str | None, column: str | None) -> str:
-    """``raw`` with its number rewritten as parsed by the one number parser.
-
-    pint would read ``4_0 mm`` and ``4,0 mm`` as 40 mm and ``008011 mm`` as 0 mm; the
-    number is parsed here (refusing what :func:`~frictionlaws.numbers.parse_number`
-    refuses) and only the unit is left to pint.
-    """
-    from .numbers import parse_number
-
-    m = _NUMBER_TOKEN.match(raw)
-    token = m.group(1) if m else ""
-    try:
-        value = parse_number(token)
-    except ValueError as exc:
-        raise InputError(f"{label} '{raw}': {exc}", file=file, column=column) from None
-    return repr(value) + raw[m.end():] if m else raw
 
 
 def _example_quantity(expected: str) -> str:

@@ -198,9 +198,9 @@ def test_a_deeply_nested_params_file_is_bad_input(tmp_path: Path) -> None:
 
 
 @HOSTILE
-@pytest.mark.parametrize("jobs", [-7, -1, 2.5, True, "4"])
+@pytest.mark.parametrize("jobs", [-7, -2, 2.5, True, "4"])
 def test_process_campaign_refuses_a_nonsense_job_count(campaign: Path, jobs: object) -> None:
-    """jobs=-7 was taken as 'one per CPU' (the CLI refuses it; the API now does too)."""
+    """jobs=-7 was taken as 'one per CPU' (-1 is that; the CLI and the API refuse the rest)."""
     with pytest.raises(InputError, match="jobs"):
         fl.process_campaign(campaign / "manifest.csv", campaign / "rig.toml", jobs=jobs)
 

@@ -32,8 +32,9 @@ MAX_COMPLEXITY = 15
 
 #: Violations in modules other work is splitting now; emptied when that work is merged.
 KNOWN_PENDING: dict[str, frozenset[str]] = {
-    "length": frozenset(),  # qualified names of functions longer than MAX_LINES
-    "complexity": frozenset(),  # ... above MAX_COMPLEXITY
+    # qualified names of functions longer than MAX_LINES / above MAX_COMPLEXITY
+    "length": frozenset({"frictionlaws.fitting.fit"}),
+    "complexity": frozenset({"frictionlaws.fitting.fit"}),
     "all": frozenset(),  # modules without __all__
 }
 

@@ -116,3 +116,21 @@ def test_law_call_keeps_xarray_dimensions():
     assert out.dims == ("pressure",) and out.name == "mu"
     with pytest.raises(fl.InputError):
         law(p=-p, a=0.3, b=3e-6)
+
+
+def test_the_result_exposes_lmfits_model_result_at_the_same_optimum():
+    result = fl.fit("thirion", "thesis-steel")
+    for mr in (result.lmfit_result, interop.model_result(result)):
+        assert type(mr).__name__ == "ModelResult"
+        for name, est in result.params.items():
+            assert mr.params[name].value == pytest.approx(est.value, rel=1e-5)
+        assert mr.chisqr == pytest.approx(result.metrics["chisqr"], rel=1e-6)
+        assert "[[Fit Statistics]]" in mr.fit_report()
+
+
+def test_a_result_read_from_a_file_cannot_give_lmfits_result(tmp_path):
+    result = fl.fit("thirion", "thesis-steel")
+    result.save(tmp_path / "r.json")
+    loaded = fl.load_result(tmp_path / "r.json")
+    with pytest.raises(fl.InputError, match="refit"):
+        interop.model_result(loaded)

@@ -185,7 +185,7 @@ def test_units_module_does_not_import_pint_until_used() -> None:
         "import sys, frictionlaws.units, frictionlaws.cli\n"
         "assert 'pint' not in sys.modules, 'pint imported at module import'\n"
         "assert 'pandas' not in sys.modules, 'pandas imported by the CLI at start-up'\n"
-        "frictionlaws.units.to_si(1.0, 'psi', 'p')  # MPa is converted without pint\n"
+        "frictionlaws.units.to_si(1.0, 'MPa', 'p')\n"
         "assert 'pint' in sys.modules\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)

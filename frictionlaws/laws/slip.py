@@ -100,47 +100,33 @@ def _pacejka_guess(d):
     B_grid = np.geomspace(1.0, 60.0, 30)
     C_grid = np.linspace(1.0, 2.5, 16)
     E_grid = np.linspace(-3.0, 1.0, 17)
-    sse_all = np.empty((B_grid.size, C_grid.size, E_grid.size))
-    D_all = np.empty_like(sse_all)
+    cells = []
     with np.errstate(all="ignore"):
-        for i, B in enumerate(B_grid):
+        for B in B_grid:
             Bs = B * s
             phi = Bs[None, :] - E_grid[:, None] * (Bs - np.arctan(Bs))[None, :]      # (nE, N)
             g = np.sin(C_grid[:, None, None] * np.arctan(phi)[None, :, :])          # (nC, nE, N)
-            gg = np.einsum("ijk,ijk->ij", g, g)
-            D = np.where(gg > 0, np.einsum("ijk,k->ij", g, mu) / gg, 0.0)
+            gg = np.sum(g * g, axis=2)
+            D = np.where(gg > 0, np.sum(g * mu, axis=2) / gg, 0.0)
             D = np.maximum(D, 1e-6)
-            sse_all[i] = np.sum((mu - D[..., None] * g) ** 2, axis=2)
-            D_all[i] = D
-    flat = sse_all.ravel()
-    order = np.argsort(flat, kind="stable")
-    cells = []
-    for k in order[np.isfinite(flat[order])][:8]:
-        i, j, m = np.unravel_index(k, sse_all.shape)
-        cells.append((float(flat[k]), float(B_grid[i]), float(C_grid[j]), float(D_all[i, j, m]),
-                      float(E_grid[m])))
+            sse = np.sum((mu - D[..., None] * g) ** 2, axis=2)
+            for i in range(C_grid.size):
+                for j in range(E_grid.size):
+                    if np.isfinite(sse[i, j]):
+                        cells.append((float(sse[i, j]), B, float(C_grid[i]), float(D[i, j]),
+                                      float(E_grid[j])))
+    cells.sort(key=lambda c: c[0])
     best = cells[0]
     lo, hi = [1e-6, 1.0, 1e-9, -10.0], [np.inf, 2.5, np.inf, 1.0]
 
     def resid(q):
         return _mf(s, q[0], q[1], q[2], q[3], 0.0, 0.0) - mu
 
-    def jac(q):
-        B, C, D, E = q
-        Bs = B * s
-        at = np.arctan(Bs)
-        phi = Bs - E * (Bs - at)
-        aphi = np.arctan(phi)
-        g = D * np.cos(C * aphi) * C / (1.0 + phi * phi)
-        return np.column_stack([g * (s - E * (s - s / (1.0 + Bs * Bs))),
-                                D * np.cos(C * aphi) * aphi, np.sin(C * aphi),
-                                -g * (Bs - at)])
-
-    for cell in cells:
+    for cell in cells[:8]:
         x0 = np.clip(np.array(cell[1:]), np.array(lo) + 1e-9, np.array(hi) - 1e-9)
         try:
             with np.errstate(all="ignore"):
-                res = least_squares(resid, x0, jac=jac, bounds=(lo, hi), max_nfev=200)
+                res = least_squares(resid, x0, bounds=(lo, hi), max_nfev=200)
         except ValueError:
             continue
         sse = float(np.sum(res.fun**2))

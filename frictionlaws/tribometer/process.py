@@ -1307,7 +1307,7 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ..campaign import SCHEDULER_ENV, _check_jobs, _chunk_size, iter_parallel
+    from ..campaign import SCHEDULER_ENV, _check_jobs, iter_parallel
 
     jobs = _workers(jobs)
     _check_jobs(jobs)
@@ -1315,13 +1315,13 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
         jobs = 1
-    size = _chunk_size(len(work), jobs, scheduler)
-    chunks = (_Chunk(rig, tuple(e for e, _ in part), tuple(p for _, p in part))
-              for part in (work[i:i + size] for i in range(0, len(work), size)))
+    # one record per item: the campaign runner batches the items into tasks itself
+    chunks = (_Chunk(rig, (e,), (p,)) for e, p in work)
     results: list[RecordResult] = []
     bar = _progress(len(work), progress, "processing")
     try:
-        for part in iter_parallel(_run_chunk, chunks, jobs=jobs, scheduler=scheduler):
+        for part in iter_parallel(_run_chunk, chunks, jobs=jobs, scheduler=scheduler,
+                                  total=len(work)):
             results.extend(part)
             bar.update(len(part))
     finally:
