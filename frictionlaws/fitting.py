@@ -387,7 +387,48 @@ def _model_function(law: Law, extra: tuple[str, ...]) -> Any:
 
 @dataclass
 class FitResult:
-    """The outcome of :func:`fit` (or of :func:`load_result`)."""
+    """The outcome of :func:`fit` (or of :func:`load_result`).
+
+    Parameters
+    ----------
+    law : Law
+        The law fitted.
+    params : dict
+        Parameter name -> :class:`ParamEstimate` (fixed ones included).
+    settings : dict
+        Setting name -> value used (SI).
+    metrics : dict
+        Goodness of fit: ``r2``, ``adj_r2``, ``rmse``, ``mae``, ``max_abs_residual``,
+        ``aic``, ``aicc``, ``bic``, ``chisqr``, ``redchi``, ``n``, ``k``, ``weighted``.
+    correlation : dict
+        Parameter -> parameter -> correlation coefficient.
+    success : bool
+        Whether the fit converged and beats the mean of mu.
+    message : str
+        The solver's message (or why the fit is refused).
+    warnings : list of str
+        Everything the user must know about this fit.
+    non_identifiable : list of str
+        Parameters the data cannot determine.
+    derived : dict
+        Derived quantity -> value, stderr, ci95, unit, meaning.
+    data : dict
+        Name, source, row count and ranges of the data.
+    notes : list of str
+        What was done to the data or the fit (dropped rows, global stage...).
+    provenance : dict
+        Package versions and creation time.
+    uncertainty : dict
+        How the standard errors were obtained.
+    lmfit_result : lmfit.model.ModelResult, optional
+        The lmfit result of the best fit (None for a result read from a file).
+    residual : numpy.ndarray, optional
+        ``mu - fit`` per row (unweighted).
+    best_fit : numpy.ndarray, optional
+        The fitted law per row.
+    fit_data : FitData, optional
+        The data fitted.
+    """
 
     law: Law
     params: dict[str, ParamEstimate]
@@ -428,7 +469,21 @@ class FitResult:
         return bound_from_result(self)
 
     def predict(self, *, warn: bool = True, **variables: Any) -> Any:
-        """Evaluate the fitted law; warn when outside the fitted data range."""
+        """Evaluate the fitted law; warn when outside the fitted data range.
+
+        Parameters
+        ----------
+        warn : bool
+            Issue an :class:`~frictionlaws.errors.ExtrapolationWarning` outside the
+            fitted range.
+        **variables
+            Variable name -> values (SI).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The friction coefficient mu.
+        """
         if warn:
             msgs = self.extrapolation(variables)
             if msgs:
@@ -436,13 +491,30 @@ class FitResult:
         return self.law.evaluate(variables, self.values)
 
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
-        """Messages for variables outside the range the law was fitted on."""
+        """Say which variables lie outside the range the law was fitted on.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI).
+
+        Returns
+        -------
+        list of str
+            One message per variable outside its fitted range.
+        """
         from .bound import outside_ranges
 
         return outside_ranges(self.law, self.data.get("ranges", {}), variables)
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-able dict (the versioned save format)."""
+        """Return the result as a JSON-able dict (the versioned save format).
+
+        Returns
+        -------
+        dict
+            Everything :func:`load_result` reads back.
+        """
         return {
             "format": RESULT_FORMAT,
             "version": RESULT_VERSION,
@@ -466,13 +538,34 @@ class FitResult:
         }
 
     def to_frame(self) -> Any:
-        """The parameters as a :class:`pandas.DataFrame` (value, stderr, CI, unit, fixed)."""
+        """Return the parameters as a :class:`pandas.DataFrame`.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Value, stderr, CI, unit and fixed flag per parameter.
+        """
         from .interop import params_frame
 
         return params_frame(self)
 
     def plot(self, data: Any = None, **kw: Any) -> Any:
-        """Data, fit, 95 % band and residuals (see :func:`frictionlaws.interop.plot_result`)."""
+        """Plot data, fit, 95 % band and residuals.
+
+        See :func:`frictionlaws.interop.plot_result`.
+
+        Parameters
+        ----------
+        data : optional
+            The data to show (default: the data fitted).
+        **kw
+            Passed to :func:`frictionlaws.interop.plot_result`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from .interop import plot_result
 
         return plot_result(self, data, **kw)
@@ -491,13 +584,35 @@ class FitResult:
         return f"<FitResult {self.law.id}: {values}; R^2 = {r2_text}, n = {m.get('n')}; {state}>"
 
     def to_json(self, *, indent: int | None = 2) -> str:
-        """Strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers)."""
+        """Return strict JSON text of :meth:`to_dict` (``null`` for non-finite numbers).
+
+        Parameters
+        ----------
+        indent : int, optional
+            Indentation (None: one line).
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
         from .jsonio import dumps
 
         return dumps(self.to_dict(), indent=indent)
 
     def save(self, path: str | Path) -> Path:
-        """Write the versioned JSON to ``path`` atomically (never over the fitted data)."""
+        """Write the versioned JSON to ``path`` atomically (never over the fitted data).
+
+        Parameters
+        ----------
+        path : str or Path
+            The file to write.
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         from .outputs import check_outputs, write_text_atomic
 
         source = self.data.get("source") if isinstance(self.data, Mapping) else None
@@ -505,7 +620,13 @@ class FitResult:
         return write_text_atomic(path, self.to_json() + "\n")
 
     def report(self) -> str:
-        """A plain-text report with units."""
+        """Return a plain-text report with units.
+
+        Returns
+        -------
+        str
+            Parameters, errors, derived quantities, metrics, notes and warnings.
+        """
         lines = [f"law: {self.law.id} - {self.law.title}"]
         d = self.data
         rng = ", ".join(_fmt_range(k, lo, hi) for k, (lo, hi) in d.get("ranges", {}).items())
@@ -806,59 +927,48 @@ def fit(
     law : str or Law
         Law id or alias, or a :class:`~frictionlaws.law.Law`.
     data : str, path, Dataset, DataFrame or mapping
-        A packaged dataset name, a CSV path, a loaded dataset, or a mapping of
-        SI arrays with ``"mu"`` and the law's variables.
+        A packaged dataset name, a CSV path, a loaded dataset, or SI arrays (``"mu"``
+        and the law's variables).
     fix : mapping, optional
-        Parameters held at the given values (``{"n": 1/3}``).  Settings may be
-        given here too, to change their fixed value.
+        Parameters (or settings) held at the given values (``{"n": 1/3}``).
     free : iterable of str, optional
-        Settings to fit as parameters (e.g. ``["E_v"]`` for Denny, which then
-        is not identifiable: the result says so).
+        Settings fitted as parameters (e.g. ``["E_v"]`` for Denny).
     initial : mapping, optional
         Initial values overriding the law's data-driven guess.
     weights : {"auto"}, None or array
-        ``"auto"`` uses the dataset's replicate statistics (1/mu_std, else
-        sqrt(n)) when present; None fits unweighted.
+        ``"auto"``: 1/mu_std, else sqrt(n), when the dataset has them; None: unweighted.
     starts : int, optional
-        Number of random starts for non-linear laws.  By default the fit
-        starts from the data-driven guess, the defaults and every preset, and
-        adds 6 random starts only when those end at different minima; giving
-        ``starts`` forces that many random starts.
+        Random starts forced for non-linear laws (default: 6, only when the guess, the
+        defaults and the presets end at different minima).
     seed : int
-        Seed of the random starts, the global stage and the bootstrap (results are
-        reproducible).
+        Seed of the random starts, the global stage and the bootstrap.
     on_invalid : {"error", "drop"}
-        What to do with rows where the law is singular (v = 0 in a log-v law):
-        raise a clear error, or drop them and say so in the result.
-    mapping, units, area
-        Passed to :func:`frictionlaws.io.load_dataset` when ``data`` is a file.
+        Rows where the law is singular (v = 0 in a log-v law): refuse, or drop and say so.
+    mapping, units, area : optional
+        Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        lmfit minimisation method.
+        The lmfit minimisation method (default ``"least_squares"``: bounded trust region).
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
-        How standard errors and intervals are obtained: the covariance of the fit
-        (assumes the law is right and the scatter even), the HC3 sandwich
-        (robust to uneven scatter), or a bootstrap resampling whole conditions
-        (robust to a law that misses a trend; slower).  Derived quantities get
-        their errors by the same method.  See :mod:`frictionlaws.uncertainty`.
-    n_boot : int
-        Bootstrap replicates (20..100000), for ``uncertainty="bootstrap"``.
-    n_jobs : int
-        joblib workers for the bootstrap (1: in this process; -1: one per core).
+        Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
+        a bootstrap over whole conditions (a law that misses a trend); see
+        :mod:`frictionlaws.uncertainty`.
+    n_boot, n_jobs : int
+        Bootstrap replicates (20..100000) and joblib workers (-1: one per core).
     interval : {"bca", "percentile"}
         Bootstrap interval kind.
     global_stage : {"auto", "on", "off"}
-        A bounded differential-evolution search on the transformed parameters
-        before a local polish: ``"auto"`` runs it only when the local starts end
-        worse than the mean of mu or at different minima.
+        Bounded differential evolution before a local polish; ``"auto"``: only when the
+        local starts end worse than the mean of mu or at different minima.
 
     Returns
     -------
     FitResult
+        Values, errors, diagnostics and metrics of the best fit.
 
     Raises
     ------
     InputError
-        Bad data, unknown names, data without the law's variables.
+        Bad data or options, unknown names, data without the law's variables.
     FitError
         When no start gives a finite fit.
     """
@@ -1391,6 +1501,21 @@ def load_result(path: str | Path) -> FitResult:
     Also accepts a plain ``{"law": ID, "params": {name: value}}`` JSON file.  Every
     value is checked: numbers where numbers belong, known names, values within the
     law's bounds; anything else is an :class:`InputError` naming the file and key.
+
+    Parameters
+    ----------
+    path : str or Path
+        The JSON file.
+
+    Returns
+    -------
+    FitResult
+        The result (without residuals or data arrays).
+
+    Raises
+    ------
+    InputError
+        Naming the file and the offending key.
     """
     from . import jsonio
     from .outputs import check_input_file
