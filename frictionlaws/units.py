@@ -344,6 +344,9 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
 
 
 _NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
+#: The number written before the unit (checked by the one number parser: no ``4_0``, no
+#: ``4,0``, no full-width digits, no overflow).
+_NUMBER_TOKEN = re.compile(r"^\s*([-+]?[\d_.,]*(?:[eE][-+]?[\d_]+)?)")
 
 
 def parse_quantity(
@@ -394,9 +397,10 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
+    parsed = _canonical_number(raw, label, file, column)  # messages quote raw as written
     ureg = unit_registry()
     try:
-        q = ureg.parse_expression(raw)
+        q = ureg.parse_expression(parsed)
     except Exception:  # noqa: BLE001 - pint raises several types for bad text
         raise InputError(
             f"{label} '{raw}' could not be read (unknown unit?); expected {kind.what} "
@@ -422,6 +426,24 @@ def parse_quantity(
     if not np.isfinite(value):
         raise InputError(f"{label} '{raw}' is not finite", file=file, column=column)
     return value
+
+
+def _canonical_number(raw: str, label: str, file: str | None, column: str | None) -> str:
+    """``raw`` with its number rewritten as parsed by the one number parser.
+
+    pint would read ``4_0 mm`` and ``4,0 mm`` as 40 mm and ``008011 mm`` as 0 mm; the
+    number is parsed here (refusing what :func:`~frictionlaws.numbers.parse_number`
+    refuses) and only the unit is left to pint.
+    """
+    from .numbers import parse_number
+
+    m = _NUMBER_TOKEN.match(raw)
+    token = m.group(1) if m else ""
+    try:
+        value = parse_number(token)
+    except ValueError as exc:
+        raise InputError(f"{label} '{raw}': {exc}", file=file, column=column) from None
+    return repr(value) + raw[m.end():] if m else raw
 
 
 def _example_quantity(expected: str) -> str:
