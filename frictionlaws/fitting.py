@@ -379,7 +379,7 @@ def _model_function(law: Law, extra: tuple[str, ...]) -> Any:
             out = np.broadcast_to(out, np.shape(shape))
         return out
 
-    model.__signature__ = inspect.Signature(
+    model.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
         [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD) for n in names])
     model.__name__ = law.id.replace("-", "_").replace("+", "_")
     return model
@@ -654,8 +654,8 @@ class FitResult:
             lines.append("derived quantities:")
             for k, dv in self.derived.items():
                 se = f" +/- {_g(dv['stderr'])}" if dv.get("stderr") is not None else ""
-                ci = dv.get("ci95")
-                se += f" [{_g(ci[0])}, {_g(ci[1])}]" if isinstance(ci, list) and len(ci) == 2 \
+                dci = dv.get("ci95")
+                se += f" [{_g(dci[0])}, {_g(dci[1])}]" if isinstance(dci, list) and len(dci) == 2 \
                     else ""
                 lines.append(f"  {k} = {_g(dv['value'])}{se} {dv.get('unit') or '-'}"
                              f"  ({dv.get('meaning', '')})")
@@ -887,7 +887,8 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
         s = np.concatenate([s, np.zeros(jn.shape[1] - jn.shape[0])])
         vt = np.linalg.svd(np.vstack([jn, np.zeros((jn.shape[1] - jn.shape[0], jn.shape[1]))]))[2]
     rel = s / s[0] if s[0] > 0 else np.zeros_like(s)
-    non_id, weak = set(dead), set()
+    non_id: set[str] = set(dead)
+    weak: set[str] = set()
     for i, r in enumerate(rel):
         if r < WEAK_TOL:
             comp = np.abs(vt[i])
@@ -895,30 +896,18 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
             (non_id if r < RANK_TOL else weak).update(involved)
     weak -= non_id
     order = {n: i for i, n in enumerate(names)}
-    return (sorted(non_id, key=order.get), sorted(weak, key=order.get),
+    return (sorted(non_id, key=order.__getitem__), sorted(weak, key=order.__getitem__),
             float(rel[-1]) if rel.size else 0.0)
 
 
 def fit(
-    law: str | Law,
-    data: Any,
-    *,
-    fix: Mapping[str, float] | None = None,
-    free: Iterable[str] = (),
-    initial: Mapping[str, float] | None = None,
-    weights: Any = "auto",
-    starts: int | None = None,
-    seed: int = 0,
-    on_invalid: str = "error",
-    mapping: Mapping[str, str] | None = None,
-    units: Mapping[str, str] | None = None,
-    area: Any = None,
-    method: str = "least_squares",
-    uncertainty: str = "asymptotic",
-    n_boot: int = 1000,
-    n_jobs: int = 1,
-    interval: str = "bca",
-    global_stage: str = "auto",
+    law: str | Law, data: Any, *, fix: Mapping[str, float] | None = None,
+    free: Iterable[str] = (), initial: Mapping[str, float] | None = None,
+    weights: Any = "auto", starts: int | None = None, seed: int = 0,
+    on_invalid: str = "error", mapping: Mapping[str, str] | None = None,
+    units: Mapping[str, str] | None = None, area: Any = None,
+    method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
+    n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto",
 ) -> FitResult:
     """Fit ``law`` to ``data`` with lmfit.
 
@@ -972,40 +961,115 @@ def fit(
     FitError
         When no start gives a finite fit.
     """
-    import lmfit
-    from scipy import stats
-
     law = get_law(law)
-    _check_options(method, starts, seed, on_invalid)
+    _check_fit_options(method, starts, seed, on_invalid, uncertainty, n_boot, n_jobs,
+                       interval, global_stage)
+    setup = _setup(law, data, fix, free, initial, weights, on_invalid,
+                   {"mapping": mapping, "units": units, "area": area})
+    search = _Search(setup, method)
+    _multistart(search, starts, seed)
+    setup.notes.extend(_global_stage(search, global_stage, seed))
+    if search.best is None:
+        errors = search.errors
+        raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "
+                       f"gave a finite result{(' (' + errors[0] + ')') if errors else ''}")
+    opts = dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval,
+                seed=seed)
+    return _result(setup, search, opts)
+
+
+def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
+                       uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
+                       global_stage: Any) -> None:
+    """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
     from .uncertainty import check_uncertainty_options
 
+    _check_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
     if global_stage not in ("auto", "on", "off"):
         raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",
                          option="global_stage")
-    fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
+
+
+@dataclass
+class _Setup:
+    """Everything a fit works with, once the data and options are checked."""
+
+    law: Law
+    fd: FitData
+    notes: list[str]
+    fix: dict[str, float]
+    freed: tuple[str, ...]
+    settings: dict[str, float]
+    x: dict[str, np.ndarray]
+    y: np.ndarray
+    guess: dict[str, float]
+    model_law: Law
+    vary_names: list[str]
+    bounds: dict[str, tuple[float, float]]
+
+    @property
+    def names(self) -> list[str]:
+        """The parameters and freed settings, in the law's order."""
+        return list(self.law.param_names) + list(self.freed)
+
+    @property
+    def w(self) -> np.ndarray | None:
+        return self.fd.weights
+
+    def unit(self, name: str) -> str:
+        return self.law.setting(name).unit if name in self.freed else self.law.param(name).unit
+
+    def typical(self, name: str) -> float:
+        return (self.law.param(name).default if name in self.law.param_names
+                else self.law.setting(name).value)
+
+
+def _setup(law: Law, data: Any, fix: Mapping[str, float] | None, free: Iterable[str],
+           initial: Mapping[str, float] | None, weights: Any, on_invalid: str,
+           load: Mapping[str, Any]) -> _Setup:
+    """Check the data, fixes, freed settings and initial values; build the start guess."""
+    fd = as_fit_data(data, weights=weights, **load)
     fd, notes = _check_data_for_law(law, fd, on_invalid)
     notes = list(fd.notes) + notes
-    fix = dict(fix or {})
-    free = list(dict.fromkeys(free))
     setting_names = [s.name for s in law.settings]
-    for k in free:
-        if k not in setting_names:
-            if k in law.param_names:
-                continue
-            raise InputError(f"law '{law.id}' has no setting '{k}' to free "
-                             f"(settings: {', '.join(setting_names) or 'none'})")
-    fix = _check_fix(law, fix, setting_names)
-    fix.update(_neutral_fixes(law, fd, fix, notes))
-    freed = tuple(k for k in free if k in setting_names)
-    settings = {k: float(fix.get(k, v)) for k, v in law.setting_values.items() if k not in freed}
-
+    freed = _freed_settings(law, free, setting_names)
+    fixed = _check_fix(law, dict(fix or {}), setting_names)
+    fixed.update(_neutral_fixes(law, fd, fixed, notes))
+    settings = {k: float(fixed.get(k, v)) for k, v in law.setting_values.items()
+                if k not in freed}
     y = fd.arrays["mu"]
     x = {k: fd.arrays[k] if k in fd.arrays else np.zeros_like(y) for k in law.variables}
+    guess = _start_guess(law, fd, x, freed, initial)
+    vary_names = [k for k in list(law.param_names) + list(freed) if k not in fixed]
+    if not vary_names:
+        raise InputError(f"every parameter of law '{law.id}' is fixed: nothing to fit")
+    bounds = {p.name: p.bounds for p in law.params}
+    bounds.update({k: law.setting(k).bounds for k in freed})
+    return _Setup(law, fd, notes, fixed, freed, settings, x, y, guess,
+                  _model_law(law, settings, freed), vary_names, bounds)
+
+
+def _freed_settings(law: Law, free: Iterable[str], setting_names: list[str]
+                    ) -> tuple[str, ...]:
+    """The settings to fit as parameters; an unknown name is refused."""
+    free = list(dict.fromkeys(free))
+    for k in free:
+        if k not in setting_names and k not in law.param_names:
+            raise InputError(f"law '{law.id}' has no setting '{k}' to free "
+                             f"(settings: {', '.join(setting_names) or 'none'})")
+    return tuple(k for k in free if k in setting_names)
+
+
+def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tuple[str, ...],
+                 initial: Mapping[str, float] | None) -> dict[str, float]:
+    """The law's data-driven guess, the freed settings' values, then ``initial``."""
+    y = fd.arrays["mu"]
     guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
     guess = law.initial_guess(guess_data)
     for k in freed:
-        guess[k] = float(initial.get(k, law.setting(k).value) if initial else law.setting(k).value)
+        guess[k] = float(initial.get(k, law.setting(k).value) if initial
+                         else law.setting(k).value)
     if initial:
         unknown = set(initial) - set(guess)
         if unknown:
@@ -1019,114 +1083,149 @@ def fit(
         except InputError as exc:
             raise InputError(exc.bare_message, option="initial") from None
         guess.update(given)
+    return guess
 
-    # settings fixed to non-default values flow through the model's closure
-    law_for_model = law
-    if settings != {k: v for k, v in law.setting_values.items() if k not in freed}:
-        from dataclasses import replace
 
-        from .law import Setting
+def _model_law(law: Law, settings: Mapping[str, float], freed: tuple[str, ...]) -> Law:
+    """The law with settings fixed to non-default values (they flow through its closure)."""
+    if settings == {k: v for k, v in law.setting_values.items() if k not in freed}:
+        return law
+    from dataclasses import replace
 
-        law_for_model = replace(law, settings=tuple(
-            Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
-            for s in law.settings))
-    func = _model_function(law_for_model, freed)
-    indep = law.variables or ("_shape",)
-    model = lmfit.Model(func, independent_vars=list(indep), nan_policy="raise")
-    vary_names = [k for k in list(law.param_names) + list(freed) if k not in fix]
-    if not vary_names:
-        raise InputError(f"every parameter of law '{law.id}' is fixed: nothing to fit")
-    bounds = {p.name: p.bounds for p in law.params}
-    bounds.update({k: law.setting(k).bounds for k in freed})
+    from .law import Setting
 
-    def make_params(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
+    return replace(law, settings=tuple(
+        Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
+        for s in law.settings))
+
+
+@dataclass
+class _Search:
+    """The multi-start search: runs local lmfit fits and keeps the best."""
+
+    setup: _Setup
+    method: str
+    best: Any = None
+    best_pinned: tuple[str, ...] = ()
+    errors: list[str] = field(default_factory=list)
+    finals: list[float] = field(default_factory=list)
+    model: Any = None
+
+    def __post_init__(self) -> None:
+        import lmfit
+
+        s = self.setup
+        indep = s.law.variables or ("_shape",)
+        self.model = lmfit.Model(_model_function(s.model_law, s.freed),
+                                 independent_vars=list(indep), nan_policy="raise")
+        self.kwargs = {k: s.x[k] for k in s.law.variables}
+        if not s.law.variables:
+            self.kwargs["_shape"] = s.y
+        self.max_nfev = 300 * (len(s.vary_names) + 1)
+
+    def params(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
+        """lmfit parameters from ``start``: fixed, pinned at a bound, or varied."""
+        import lmfit
+
+        s = self.setup
         params = lmfit.Parameters()
-        for k in list(law.param_names) + list(freed):
-            lo, hi = bounds[k]
-            if k in fix:
-                params.add(k, value=float(fix[k]), vary=False)
+        for k in s.names:
+            lo, hi = s.bounds[k]
+            if k in s.fix:
+                params.add(k, value=float(s.fix[k]), vary=False)
             elif k in pinned:  # held exactly at the bound the global stage found
                 params.add(k, value=float(start[k]), vary=False)
             else:
                 params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
         return params
 
-    kwargs = {k: x[k] for k in law.variables}
-    if not law.variables:
-        kwargs["_shape"] = y
-    w = fd.weights
-    rng = np.random.default_rng(seed)
-    n_random = 6 if starts is None else int(starts)
-    n_random_forced = starts is not None and int(starts) > 0
-    best = None
-    errors: list[str] = []
-    finals: list[float] = []
-
-    max_nfev = 300 * (len(vary_names) + 1)
-
-    best_pinned: tuple[str, ...] = ()
-
-    def run(start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
-        nonlocal best, best_pinned
+    def run(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
+        """One local fit from ``start``; kept when it beats the best so far."""
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                res = model.fit(y, make_params(start, pinned), weights=w, method=method,
-                                max_nfev=max_nfev, **kwargs)
+                res = self.model.fit(self.setup.y, self.params(start, pinned),
+                                     weights=self.setup.w, method=self.method,
+                                     max_nfev=self.max_nfev, **self.kwargs)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
-            errors.append(str(exc))
+            self.errors.append(str(exc))
             return
         if not np.isfinite(res.chisqr):
             return
-        finals.append(float(res.chisqr))
-        if best is None or res.chisqr < best.chisqr * (1 - 1e-10):
-            best, best_pinned = res, pinned
+        self.finals.append(float(res.chisqr))
+        if self.best is None or res.chisqr < self.best.chisqr * (1 - 1e-10):
+            self.best, self.best_pinned = res, pinned
 
-    for start in _starts(law, guess, vary_names):
-        run(start)
+
+def _multistart(search: _Search, starts: int | None, seed: int) -> None:
+    """The deterministic starts, then random ones when they disagree, all fail or are asked."""
+    s = search.setup
+    for start in _starts(s.law, s.guess, s.vary_names):
+        search.run(start)
     # Random starts when the deterministic ones disagree (several minima) or all failed:
     # the surface is then multi-modal or hard, and more starts are worth their cost.
+    finals = search.finals
     spread = (max(finals) - min(finals)) / max(min(finals), 1e-300) if finals else math.inf
-    if not law.linear and (spread > 1e-6 or best is None or n_random_forced):
-        for start in _random_starts(law, guess, vary_names, n_random, rng):
-            run(start)
-    stage = _GlobalStage(law_for_model, {**settings, **fix}, vary_names, bounds, guess, x, y,
-                         w, seed)
-    if global_stage == "on" or (global_stage == "auto" and stage.wanted(best, finals)):
-        start, pinned = stage.search()
-        if start is not None:
-            run(start, pinned)
-            if pinned:  # the bound may be a limit the polish should also leave
-                run(start)
-            notes.append(f"global stage: differential evolution over {len(vary_names)} "
-                         "transformed parameters, then the local polish"
-                         + (f" (with {', '.join(pinned)} held at the bound it reached)"
-                            if pinned and best_pinned else ""))
-    if best is None:
-        raise FitError(f"law '{law.id}' could not be fitted to '{fd.name}': no start gave a "
-                       f"finite result{(' (' + errors[0] + ')') if errors else ''}")
-    # --------------------------------------------------------- diagnostics
-    warn_msgs: list[str] = []
-    vary = [k for k in vary_names if k not in best_pinned]
-    values = {k: float(best.params[k].value) for k in list(law.param_names) + list(freed)}
-    full_values = {**settings, **values}
+    forced = starts is not None and int(starts) > 0
+    if not s.law.linear and (spread > 1e-6 or search.best is None or forced):
+        rng = np.random.default_rng(seed)
+        n_random = 6 if starts is None else int(starts)
+        for start in _random_starts(s.law, s.guess, s.vary_names, n_random, rng):
+            search.run(start)
+
+
+def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
+    """Differential evolution then a local polish, when asked or wanted; its notes."""
+    s = search.setup
+    stage = _GlobalStage(s.model_law, {**s.settings, **s.fix}, s.vary_names, s.bounds,
+                         s.guess, s.x, s.y, s.w, seed)
+    if not (mode == "on" or (mode == "auto" and stage.wanted(search.best, search.finals))):
+        return []
+    start, pinned = stage.search()
+    if start is None:
+        return []
+    search.run(start, pinned)
+    if pinned:  # the bound may be a limit the polish should also leave
+        search.run(start)
+    return [f"global stage: differential evolution over {len(s.vary_names)} transformed "
+            "parameters, then the local polish"
+            + (f" (with {', '.join(pinned)} held at the bound it reached)"
+               if pinned and search.best_pinned else "")]
+
+
+@dataclass
+class _Diagnosis:
+    """The best fit's values and what the data can determine of them."""
+
+    vary: list[str]
+    values: dict[str, float]
+    full_values: dict[str, float]
+    jac: np.ndarray
+    non_id: list[str]
+
+
+def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosis:
+    """Identifiability from the Jacobian at the best fit, with its warnings."""
+    law, best, w = setup.law, search.best, setup.w
+    vary = [k for k in setup.vary_names if k not in search.best_pinned]
+    values = {k: float(best.params[k].value) for k in setup.names}
+    full_values = {**setup.settings, **values}
 
     def residual_vec(theta: np.ndarray) -> np.ndarray:
         vals = dict(full_values)
         vals.update(dict(zip(vary, theta)))
         with np.errstate(all="ignore"):
-            out = law.evaluate(x, vals) if law.variables else np.broadcast_to(
-                law.evaluate({}, vals), y.shape)
+            out = law.evaluate(setup.x, vals) if law.variables else np.broadcast_to(
+                law.evaluate({}, vals), setup.y.shape)
         out = np.asarray(out, float)
         return out * (w if w is not None else 1.0)
 
     theta0 = np.array([values[k] for k in vary])
-    scales = np.array([law.param(k).default if k in law.param_names else law.setting(k).value
-                       for k in vary])
+    scales = np.array([setup.typical(k) for k in vary])
     jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
-    for var in (v for v in law.variables if v in fd.arrays):
-        xs = np.unique(fd.arrays[var])
+    for var in (v for v in law.variables if v in setup.fd.arrays):
+        xs = np.unique(setup.fd.arrays[var])
         if xs.size == 1:
             warn_msgs.append(
                 f"the data have a single value of {var} ({_fmt_range(var, xs[0], xs[0])}); "
@@ -1139,60 +1238,75 @@ def fit(
     if weak:
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")
+    return _Diagnosis(vary, values, full_values, jac, non_id)
 
-    n, k = y.size, len(vary_names)
-    dof = n - k
-    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
-    cov_names = list(best.var_names) if best.covar is not None else []
+
+def _estimates(setup: _Setup, search: _Search, diag: _Diagnosis, tval: float, dof: int,
+               warn_msgs: list[str]) -> dict[str, ParamEstimate]:
+    """Value, standard error and 95 % interval of every parameter, with their warnings."""
     estimates: dict[str, ParamEstimate] = {}
-    for name in list(law.param_names) + list(freed):
-        unit = law.setting(name).unit if name in freed else law.param(name).unit
-        par = best.params[name]
-        if name in fix:
-            estimates[name] = ParamEstimate(name, values[name], None, None, unit, fixed=True)
-            continue
-        if name in best_pinned:
-            estimates[name] = ParamEstimate(name, values[name], None, None, unit)
-            warn_msgs.append(f"no standard error for {name}: the global stage found the best "
-                             f"fit with {name} exactly at its bound, where the law changes "
-                             "form (the fit is not differentiable there)")
-            continue
-        se = par.stderr
-        ok = (name not in non_id and se is not None and np.isfinite(se) and dof > 0)
-        if ok:
-            limits = (law.setting(name) if name in freed else law.param(name)).bounds
-            ci = _clip_interval(name, (values[name] - tval * se, values[name] + tval * se),
-                                limits, warn_msgs)
-            estimates[name] = ParamEstimate(name, values[name], float(se), ci, unit)
-        else:
-            estimates[name] = ParamEstimate(name, values[name], None, None, unit,
-                                            identifiable=name not in non_id)
-            if name not in non_id:
-                why = (" (as many parameters as data points)" if dof <= 0 else
-                       " (the covariance matrix is singular because of the parameters the "
-                       "data cannot determine; fix those to get it)" if non_id else
-                       " (the covariance matrix could not be estimated)")
-                warn_msgs.append(f"no standard error for {name}{why}")
-        lo, hi = bounds[name]
-        typical = law.param(name).default if name in law.param_names else law.setting(name).value
-        scale = max(abs(values[name]), abs(typical), 1e-300)
-        if (math.isfinite(lo) and abs(values[name] - lo) <= 1e-6 * max(scale, abs(lo))) or (
-                math.isfinite(hi) and abs(values[name] - hi) <= 1e-6 * max(scale, abs(hi))):
-            warn_msgs.append(f"{name} = {values[name]:.6g} is at its bound "
-                             f"[{lo:g}, {hi:g}]: the optimum may lie beyond it")
+    for name in setup.names:
+        estimates[name] = _estimate(setup, search, diag, name, tval, dof, warn_msgs)
+        if name not in setup.fix and name not in search.best_pinned:
+            _warn_at_bound(setup, name, diag.values[name], warn_msgs)
+    return estimates
 
+
+def _estimate(setup: _Setup, search: _Search, diag: _Diagnosis, name: str, tval: float,
+              dof: int, warn_msgs: list[str]) -> ParamEstimate:
+    """One parameter's estimate (fixed, pinned at a bound, or fitted)."""
+    law, value, unit, non_id = setup.law, diag.values[name], setup.unit(name), diag.non_id
+    if name in setup.fix:
+        return ParamEstimate(name, value, None, None, unit, fixed=True)
+    if name in search.best_pinned:
+        warn_msgs.append(f"no standard error for {name}: the global stage found the best "
+                         f"fit with {name} exactly at its bound, where the law changes "
+                         "form (the fit is not differentiable there)")
+        return ParamEstimate(name, value, None, None, unit)
+    se = search.best.params[name].stderr
+    if name not in non_id and se is not None and np.isfinite(se) and dof > 0:
+        limits = (law.setting(name) if name in setup.freed else law.param(name)).bounds
+        ci = _clip_interval(name, (value - tval * se, value + tval * se), limits, warn_msgs)
+        return ParamEstimate(name, value, float(se), ci, unit)
+    if name not in non_id:
+        why = (" (as many parameters as data points)" if dof <= 0 else
+               " (the covariance matrix is singular because of the parameters the "
+               "data cannot determine; fix those to get it)" if non_id else
+               " (the covariance matrix could not be estimated)")
+        warn_msgs.append(f"no standard error for {name}{why}")
+    return ParamEstimate(name, value, None, None, unit, identifiable=name not in non_id)
+
+
+def _warn_at_bound(setup: _Setup, name: str, value: float, warn_msgs: list[str]) -> None:
+    """Warn when a fitted value sits at one of its declared bounds."""
+    lo, hi = setup.bounds[name]
+    scale = max(abs(value), abs(setup.typical(name)), 1e-300)
+    if (math.isfinite(lo) and abs(value - lo) <= 1e-6 * max(scale, abs(lo))) or (
+            math.isfinite(hi) and abs(value - hi) <= 1e-6 * max(scale, abs(hi))):
+        warn_msgs.append(f"{name} = {value:.6g} is at its bound "
+                         f"[{lo:g}, {hi:g}]: the optimum may lie beyond it")
+
+
+def _correlation(best: Any) -> dict[str, dict[str, float]]:
+    """The parameters' correlation matrix from lmfit's covariance (empty without one)."""
     corr: dict[str, dict[str, float]] = {}
-    if best.covar is not None:
-        cv = np.asarray(best.covar)
-        sd = np.sqrt(np.clip(np.diag(cv), 0, None))
-        with np.errstate(all="ignore"):
-            cm = cv / np.outer(sd, sd)
-        for i, a in enumerate(cov_names):
-            corr[a] = {b: float(cm[i, j]) for j, b in enumerate(cov_names)}
+    if best.covar is None:
+        return corr
+    names = list(best.var_names)
+    cv = np.asarray(best.covar)
+    sd = np.sqrt(np.clip(np.diag(cv), 0, None))
+    with np.errstate(all="ignore"):
+        cm = cv / np.outer(sd, sd)
+    for i, a in enumerate(names):
+        corr[a] = {b: float(cm[i, j]) for j, b in enumerate(names)}
+    return corr
 
-    # goodness of fit (unweighted residuals for R^2/RMSE; lmfit's AIC/BIC)
-    fitted = np.asarray(best.best_fit, float)
-    resid = y - fitted
+
+def _metrics(y: np.ndarray, best: Any, k: int, weighted: bool, warn_msgs: list[str]
+             ) -> dict[str, Any]:
+    """Goodness of fit: unweighted residuals for R^2/RMSE; lmfit's AIC/BIC."""
+    n, dof = y.size, y.size - k
+    resid = y - np.asarray(best.best_fit, float)
     ss_res = float(np.sum(resid**2))
     ss_tot = float(np.sum((y - y.mean()) ** 2))
     flat = ss_tot <= n * (1e-12 * float(np.max(np.abs(y)))) ** 2  # mu constant to round-off
@@ -1203,14 +1317,17 @@ def fit(
     adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
     aic = float(best.aic)
     aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else float("inf")
-    metrics = {
+    return {
         "r2": r2, "adj_r2": adj, "rmse": math.sqrt(ss_res / n),
         "mae": float(np.mean(np.abs(resid))), "max_abs_residual": float(np.max(np.abs(resid))),
         "aic": aic, "aicc": aicc, "bic": float(best.bic), "chisqr": float(best.chisqr),
         "redchi": float(best.redchi) if dof > 0 else float("nan"), "n": int(n), "k": int(k),
-        "weighted": w is not None,
+        "weighted": weighted,
     }
 
+
+def _status(best: Any, r2: float, warn_msgs: list[str]) -> tuple[bool, str]:
+    """Converged, and not worse than the mean of mu; the message to report."""
     success, message = bool(best.success), str(best.message)
     if not success:
         warn_msgs.append(f"the optimiser did not report convergence: {best.message}")
@@ -1219,42 +1336,52 @@ def fit(
         message = (f"the fit is worse than the mean of mu (R^2 = {r2:.4g}): the law does not "
                    "describe these data")
         warn_msgs.append(message)
-    adm = law.check_admissible(full_values)
+    return success, message
+
+
+def _law_checks(law: Law, full_values: Mapping[str, float], fd: FitData,
+                warn_msgs: list[str]) -> None:
+    """Warn about inadmissible fitted values and data outside the law's domain."""
+    adm = law.check_admissible(dict(full_values))
     if adm:
         warn_msgs.append(f"fitted parameters not admissible: {adm}")
-    outside = law.outside_domain(fd.arrays)
-    for var, count in outside.items():
+    for var, count in law.outside_domain(fd.arrays).items():
         lo, hi = law.domain[var]
         warn_msgs.append(f"{count} data rows lie outside the law's valid domain of {var} "
                          f"({_fmt_range(var, lo, hi)})")
 
-    derived = _derived(law, full_values, cov_names,
-                       None if best.covar is None else np.asarray(best.covar), non_id)
+
+def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
+    """The diagnostics, metrics and errors of the best fit, as a :class:`FitResult`."""
+    from scipy import stats
+
+    law, best, fd, y = setup.law, search.best, setup.fd, setup.y
+    warn_msgs: list[str] = []
+    diag = _diagnose(setup, search, warn_msgs)
+    n, k = y.size, len(setup.vary_names)
+    dof = n - k
+    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
+    estimates = _estimates(setup, search, diag, tval, dof, warn_msgs)
+    corr = _correlation(best)
+    metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
+    success, message = _status(best, metrics["r2"], warn_msgs)
+    _law_checks(law, diag.full_values, fd, warn_msgs)
+    cov_names = list(best.var_names) if best.covar is not None else []
+    derived = _derived(law, diag.full_values, cov_names,
+                       None if best.covar is None else np.asarray(best.covar), diag.non_id)
+    fitted = np.asarray(best.best_fit, float)
     unc_info = _robust_errors(
-        _ErrorInputs(law, fd, x, y, w, vary, full_values, bounds, jac, resid, non_id, tval),
-        estimates, derived, corr, warn_msgs,
-        dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval, seed=seed))
+        _ErrorInputs(law, fd, setup.x, y, setup.w, diag.vary, diag.full_values, setup.bounds,
+                     diag.jac, y - fitted, diag.non_id, tval),
+        estimates, derived, corr, warn_msgs, opts)
     return FitResult(
-        law=law,
-        params=estimates,
-        settings=settings,
-        metrics=metrics,
-        correlation=corr,
-        success=success,
-        message=message,
-        warnings=warn_msgs,
-        non_identifiable=non_id,
-        derived=derived,
+        law=law, params=estimates, settings=setup.settings, metrics=metrics,
+        correlation=corr, success=success, message=message, warnings=warn_msgs,
+        non_identifiable=diag.non_id, derived=derived,
         data={"name": fd.name, "source": fd.source, "n": int(n),
               "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
-        notes=notes,
-        provenance=_provenance(),
-        uncertainty=unc_info,
-        lmfit_result=best,
-        residual=resid,
-        best_fit=fitted,
-        fit_data=fd,
-    )
+        notes=setup.notes, provenance=_provenance(), uncertainty=unc_info,
+        lmfit_result=best, residual=y - fitted, best_fit=fitted, fit_data=fd)
 
 
 def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarray | None,
@@ -1365,8 +1492,8 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
 
     if method == "asymptotic":
         return
-    ratios = {k: estimates[k].stderr / a for k, a in asym.items()
-              if a and estimates[k].stderr is not None and a > 0}
+    ratios = {k: se / a for k, a in asym.items()
+              if a and a > 0 and (se := estimates[k].stderr) is not None}
     wide = {k: r for k, r in ratios.items() if r > NARROW_RATIO}
     if wide:
         shown = ", ".join(f"{k} x{r:.2g}" for k, r in wide.items())
