@@ -35,7 +35,7 @@ def _names(requirements: list[str]) -> set[str]:
 
 def _imported() -> set[str]:
     """Top-level third-party packages the library imports anywhere (also lazily)."""
-    stdlib = set(sys.stdlib_module_names)
+    stdlib = set(sys.stdlib_module_names) | {"tomllib"}  # stdlib from 3.11 (tomli before)
     found: set[str] = set()
     for path in PACKAGE.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):

@@ -77,8 +77,9 @@ CELLS = [
     # (cell, layout, words the message must contain)
     ("inf", (",", False), ["infinite", "expected a finite number"]),
     ("-Infinity", (",", False), ["infinite"]),
-    ("1e400", (",", False), ["infinite"]),
-    ("1e400", (";", True), ["infinite"]),
+    # pandas reads 1e400 as inf or leaves it to the number parser, by version
+    ("1e400", (",", False), ["infinite|overflows a double"]),
+    ("1e400", (";", True), ["infinite|overflows a double"]),
     ("-inf", (";", True), ["infinite"]),
     ("nan", (",", False), ["missing", "expected a number"]),
     ("", (";", False), ["missing"]),
@@ -105,7 +106,7 @@ def test_a_bad_torque_cell_is_named_with_file_column_row(tmp_path: Path, cell: s
     assert "bad.csv" in msg and "torque [N m]" in msg
     assert "row 7" in msg  # two comment/blank lines, the header, then the fourth data row
     for word in words:
-        assert word in msg, msg
+        assert any(w in msg for w in word.split("|")), msg
     assert "\n" not in msg
 
 
