@@ -3,8 +3,9 @@
 
 Plain results (the fits, cross-validation, hold-outs, plausibility and residual tests
 of every law, and the settings), with their JSON form.  Computing them is
-:mod:`.core`'s work and formatting them :mod:`.report`'s: this module imports neither,
-and :mod:`.report` is imported only when a table or a report is asked for.
+:mod:`frictionlaws.comparison.core`'s work and formatting them
+:mod:`frictionlaws.comparison.report`'s: this module imports neither,
+and the report module is imported only when a table or a report is asked for.
 """
 
 from __future__ import annotations
