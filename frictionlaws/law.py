@@ -782,7 +782,9 @@ class Law:
         that fails a check returns None: the whole-array path then names the value.
         """
         names = self.variables
-        if not names or set(variables) != set(names):
+        if not names:
+            return self._constant_array(variables, params)
+        if set(variables) != set(names):
             return None
         arrays: list[np.ndarray] = [variables[k] for k in names]
         shape = np.shape(arrays[0])
@@ -805,6 +807,17 @@ class Law:
                 if not self._mu_ok(block):
                     return None
         return out.reshape(shape)
+
+    def _constant_array(self, variables: Mapping[str, Any], params: Mapping[str, float]
+                        ) -> np.ndarray | None:
+        """A law of no variable on arrays: mu checked once, then repeated to their shape."""
+        if not variables or not set(variables) <= set(VARIABLES) or not all(
+                type(a) is np.ndarray and a.ndim for a in variables.values()):
+            return None
+        mu = np.asarray(self.formula(NUMPY, **params), dtype=float)
+        if mu.ndim or not self._mu_ok(mu):
+            return None
+        return np.full(np.broadcast_shapes(*(a.shape for a in variables.values())), float(mu))
 
     def check_variables(self, variables: Mapping[str, Any]) -> None:
         """Refuse variable values the law cannot take.
@@ -832,20 +845,24 @@ class Law:
 
     def _variable_ok(self, name: str, x: np.ndarray) -> bool:
         """Cheap test (reductions only) that ``x`` passes :meth:`check_variables`."""
-        if not _all_finite(x):
-            return False
         if x.size == 0:
             return True
-        lo = float(x.min())
+        if name == "s" or (self.strict_domain and name in self.domain):
+            lo, hi = float(x.min()), float(x.max())  # NaN and infinities show in these
+            if not (math.isfinite(lo) and math.isfinite(hi)):
+                return False
+        elif _all_finite(x):
+            lo = hi = float(x.min())
+        else:
+            return False
         low = _LOWER_LIMITS.get(name)
         if low is not None and (lo < low[0] if low[1] else lo <= low[0]):
             return False
         if name == "s":
             s_lo, s_hi = self.domain.get("s", (0.0, 1.0))
-            return lo >= s_lo - 1e-12 and float(x.max()) <= s_hi + 1e-12
+            return lo >= s_lo - 1e-12 and hi <= s_hi + 1e-12
         if self.strict_domain and name in self.domain:
             d_lo, d_hi = self.domain[name]
-            hi = float(x.max())
             if name == "v":  # the magnitude of the velocity counts
                 lo, hi = (0.0 if lo <= 0.0 <= hi else min(abs(lo), abs(hi)),
                           max(abs(lo), abs(hi)))
