@@ -207,6 +207,7 @@ NUMPY = SimpleNamespace(
     sign=np.sign,
     maximum=np.maximum,
     minimum=np.minimum,
+    power=lambda x, a: np.exp(a * np.log(x)),  # x > 0; numpy's general power is slower
     pi=np.pi,
     is_symbolic=False,
 )
@@ -231,6 +232,7 @@ def sympy_namespace() -> SimpleNamespace:
         sign=sympy.sign,
         maximum=sympy.Max,
         minimum=sympy.Min,
+        power=sympy.Pow,
         pi=sympy.pi,
         is_symbolic=True,
     )
