@@ -149,15 +149,19 @@ def test_series_in_series_out(law_id):
 
 
 @pytest.mark.parametrize("law_id", LAW_IDS)
-def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(law_id):
+def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(
+        law_id, monkeypatch):
     """A call on many points goes block by block (checks while each block is in cache):
     the numbers are those of the whole-array formula, and a bad value in a late block is
-    named with its index in the whole array, as without blocks."""
-    from frictionlaws.law import _BLOCKED_FROM
+    named with its index in the whole array, as without blocks.  (Blocks of 64 values
+    from 256 values here, so that a slow law is quick to test.)"""
+    import frictionlaws.law as law_module
 
+    monkeypatch.setattr(law_module, "_BLOCK", 64)
+    monkeypatch.setattr(law_module, "_BLOCKED_FROM", 256)
     law = get_law(law_id)
     case = case_for(law)
-    n = _BLOCKED_FROM + 1237
+    n = 256 + 37
     x = sample(case, np.random.default_rng(11), n)
     x = {v: x[v] for v in law.variables}
     if not x:
