@@ -169,7 +169,8 @@ def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(
     params = law.resolve(case.params)
     assert law._evaluate_blocks(x, params) is not None
     whole = raw(law, **x, **case.params)
-    np.testing.assert_array_equal(law(**x, **case.params), whole)
+    # equal to round-off (persson's quadrature sums in an order that depends on the block)
+    np.testing.assert_allclose(law(**x, **case.params), whole, rtol=1e-13, atol=0)
     name = law.variables[-1]
     broken = {**x, name: x[name].copy()}
     broken[name][n - 5] = np.nan
