@@ -207,6 +207,7 @@ NUMPY = SimpleNamespace(
     sign=np.sign,
     maximum=np.maximum,
     minimum=np.minimum,
+    power=lambda x, a: np.exp(a * np.log(x)),  # x > 0; numpy's general power is slower
     pi=np.pi,
     is_symbolic=False,
 )
@@ -231,6 +232,7 @@ def sympy_namespace() -> SimpleNamespace:
         sign=sympy.sign,
         maximum=sympy.Max,
         minimum=sympy.Min,
+        power=sympy.Pow,
         pi=sympy.pi,
         is_symbolic=True,
     )
@@ -745,18 +747,79 @@ class Law:
         InputError, DomainError
             A variable the law cannot take, or a mu that means nothing.
         """
+        fast = self._evaluate_blocks(variables, params)
+        if fast is not None:
+            return fast
         self.check_variables(variables)
         out = self.evaluate(variables, params)
         mu = np.asarray(out, dtype=float)
-        if not np.all(np.isfinite(mu)):
+        if not self._mu_ok(mu):
+            self._refuse_mu(mu, params)
+        return out
+
+    def _mu_ok(self, mu: np.ndarray) -> bool:
+        """Cheap test (reductions only) that mu is finite and, if sliding, not negative."""
+        if not _all_finite(mu):
+            return False
+        return self.family != "sliding" or mu.size == 0 or float(mu.min()) >= 0
+
+    def _refuse_mu(self, mu: np.ndarray, params: Mapping[str, float]) -> None:
+        """Raise for the first mu :meth:`_mu_ok` refuses."""
+        if not np.isfinite(mu).all():
             raise DomainError(f"law '{self.id}' gives a non-finite mu for these inputs "
                               f"and parameters {params}")
-        if self.family == "sliding" and np.any(mu < 0):
-            bad = mu < 0
+        bad = mu < 0
+        if self.family == "sliding" and bad.any():
             raise DomainError(f"law '{self.id}' gives a negative mu ({mu[bad].flat[0]:.4g}) "
                               f"at index {_first(np.atleast_1d(bad))}: outside the range where "
                               "the law means anything (a sliding friction coefficient is >= 0)")
-        return out
+
+    def _evaluate_blocks(self, variables: Mapping[str, Any], params: Mapping[str, float]
+                         ) -> np.ndarray | None:
+        """A large checked call, evaluated and checked block by block; None when not apt.
+
+        For plain float arrays of one shape, at least :data:`_BLOCKED_FROM` values, the
+        variables and mu of each block of :data:`_BLOCK` values are checked while the
+        block is in the processor's cache, so the checks cost almost nothing.  Any block
+        that fails a check returns None: the whole-array path then names the value.
+        """
+        names = self.variables
+        if not names:
+            return self._constant_array(variables, params)
+        if set(variables) != set(names):
+            return None
+        arrays: list[np.ndarray] = [variables[k] for k in names]
+        shape = np.shape(arrays[0])
+        if not all(type(a) is np.ndarray and a.dtype == np.float64 and a.flags.c_contiguous
+                   and a.shape == shape for a in arrays):
+            return None
+        size = int(np.prod(shape))
+        if size < _BLOCKED_FROM:
+            return None
+        flat = {k: a.reshape(-1) for k, a in zip(names, arrays)}
+        out = np.empty(size)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            for start in range(0, size, _BLOCK):
+                part = {k: a[start:start + _BLOCK] for k, a in flat.items()}
+                if not all(self._variable_ok(k, a) for k, a in part.items()):
+                    return None
+                block = out[start:start + _BLOCK]
+                block[...] = self.formula(
+                    NUMPY, **{k: self._prepare(k, a) for k, a in part.items()}, **params)
+                if not self._mu_ok(block):
+                    return None
+        return out.reshape(shape)
+
+    def _constant_array(self, variables: Mapping[str, Any], params: Mapping[str, float]
+                        ) -> np.ndarray | None:
+        """A law of no variable on arrays: mu checked once, then repeated to their shape."""
+        if not variables or not set(variables) <= set(VARIABLES) or not all(
+                type(a) is np.ndarray and a.ndim for a in variables.values()):
+            return None
+        mu = np.asarray(self.formula(NUMPY, **params), dtype=float)
+        if mu.ndim or not self._mu_ok(mu):
+            return None
+        return np.full(np.broadcast_shapes(*(a.shape for a in variables.values())), float(mu))
 
     def check_variables(self, variables: Mapping[str, Any]) -> None:
         """Refuse variable values the law cannot take.
@@ -779,26 +842,57 @@ class Law:
             if name not in variables:
                 continue
             x = _float_array(name, variables[name], self.id)
-            bad = ~np.isfinite(x)
-            if bad.any():
-                raise InputError(f"law '{self.id}': {name} has a non-finite value "
-                                 f"({x[bad].flat[0]}) at index {_first(bad)}")
-            low = _LOWER_LIMITS.get(name)
-            if low is not None:
-                below = x < low[0] if low[1] else x <= low[0]
-                if below.any():
-                    raise DomainError(
-                        f"law '{self.id}': {name} = {x[below].flat[0]:g} at index "
-                        f"{_first(below)} is not allowed ({VARIABLES[name].meaning} must be "
-                        f"{'>=' if low[1] else '>'} {low[0]:g} {VARIABLES[name].unit})")
-            self._check_strict_domain(name, x)
-            if name == "s":
-                lo, hi = self.domain.get("s", (0.0, 1.0))
-                out = (x < lo - 1e-12) | (x > hi + 1e-12)
-                if out.any():
-                    raise DomainError(
-                        f"law '{self.id}': s = {x[out].flat[0]:g} at index {_first(out)} is "
-                        f"outside the law's slip domain [{lo:g}, {hi:g}]")
+            if not self._variable_ok(name, x):
+                self._refuse_variable(name, x)
+
+    def _variable_ok(self, name: str, x: np.ndarray) -> bool:
+        """Cheap test (reductions only) that ``x`` passes :meth:`check_variables`."""
+        if x.size == 0:
+            return True
+        if name == "s" or (self.strict_domain and name in self.domain):
+            lo, hi = float(x.min()), float(x.max())  # NaN and infinities show in these
+            if not (math.isfinite(lo) and math.isfinite(hi)):
+                return False
+        elif _all_finite(x):
+            lo = hi = float(x.min())
+        else:
+            return False
+        low = _LOWER_LIMITS.get(name)
+        if low is not None and (lo < low[0] if low[1] else lo <= low[0]):
+            return False
+        if name == "s":
+            s_lo, s_hi = self.domain.get("s", (0.0, 1.0))
+            return lo >= s_lo - 1e-12 and hi <= s_hi + 1e-12
+        if self.strict_domain and name in self.domain:
+            d_lo, d_hi = self.domain[name]
+            if name == "v":  # the magnitude of the velocity counts
+                lo, hi = (0.0 if lo <= 0.0 <= hi else min(abs(lo), abs(hi)),
+                          max(abs(lo), abs(hi)))
+            return lo >= d_lo * (1 - 1e-9) - 1e-300 and hi <= d_hi * (1 + 1e-9)
+        return True
+
+    def _refuse_variable(self, name: str, x: np.ndarray) -> None:
+        """Raise for the first value of ``x`` that :meth:`_variable_ok` refuses."""
+        bad = ~np.isfinite(x)
+        if bad.any():
+            raise InputError(f"law '{self.id}': {name} has a non-finite value "
+                             f"({x[bad].flat[0]}) at index {_first(bad)}")
+        low = _LOWER_LIMITS.get(name)
+        if low is not None:
+            below = x < low[0] if low[1] else x <= low[0]
+            if below.any():
+                raise DomainError(
+                    f"law '{self.id}': {name} = {x[below].flat[0]:g} at index "
+                    f"{_first(below)} is not allowed ({VARIABLES[name].meaning} must be "
+                    f"{'>=' if low[1] else '>'} {low[0]:g} {VARIABLES[name].unit})")
+        self._check_strict_domain(name, x)
+        if name == "s":
+            s_lo, s_hi = self.domain.get("s", (0.0, 1.0))
+            out = (x < s_lo - 1e-12) | (x > s_hi + 1e-12)
+            if out.any():
+                raise DomainError(
+                    f"law '{self.id}': s = {x[out].flat[0]:g} at index {_first(out)} is "
+                    f"outside the law's slip domain [{s_lo:g}, {s_hi:g}]")
 
     def bind(self, values: Mapping[str, float] | None = None, preset: str | None = None
              ) -> Callable[..., Any]:
@@ -1154,8 +1248,27 @@ def _jsonable(x: float) -> float | str | None:
 
 
 #: Physical lower limits of variables: (limit, inclusive).
+#: Values per block of a large checked evaluation (:meth:`Law.evaluate_checked`): a few
+#: arrays of this many doubles stay in the processor's cache.
+_BLOCK = 1 << 16
+#: Size from which a checked evaluation goes block by block.
+_BLOCKED_FROM = 4 * _BLOCK
+
 _LOWER_LIMITS: dict[str, tuple[float, bool]] = {"p": (0.0, True), "F_N": (0.0, True),
                                                  "T": (0.0, False)}
+
+
+def _all_finite(x: np.ndarray) -> bool:
+    """True when no value is NaN or infinite, tested cheaply.
+
+    The sum of squares (one BLAS pass, no temporary array) is finite exactly when every
+    value is, unless a value beyond 1e154 overflows it: only then are the values
+    tested one by one.
+    """
+    flat = np.ravel(x)
+    if flat.size == 0 or math.isfinite(float(np.dot(flat, flat))):
+        return True
+    return bool(np.isfinite(flat).all())
 
 
 def _first(mask: np.ndarray) -> int | tuple[int, ...]:

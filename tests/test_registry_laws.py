@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from law_cases import CASES
 
 from frictionlaws import fit, get_law, list_laws
-from frictionlaws.errors import DomainError
+from frictionlaws.errors import DomainError, InputError
 from frictionlaws.law import EVIDENCE_TAGS, VARIABLES
 
 LAW_IDS = [law.id for law in list_laws()]
@@ -54,6 +54,13 @@ def test_law_call_refuses_negative_mu_and_a_strict_domain():
     assert raw(poly3, p=0.25e6, v=2.77, preset="steel") < 0  # the published polynomial
     with pytest.raises(DomainError, match="negative mu"):
         poly3(p=0.25e6, v=2.77, preset="steel")
+    # a negative mu in a late block of a large call: named at its index in the array
+    from frictionlaws.law import _BLOCKED_FROM
+
+    p, v = np.full(_BLOCKED_FROM + 9, 0.1e6), np.full(_BLOCKED_FROM + 9, 1.0)
+    p[-3], v[-3] = 0.25e6, 2.77
+    with pytest.raises(DomainError, match=f"negative mu .* at index {p.size - 3}"):
+        poly3(p=p, v=v, preset="steel")
     with pytest.raises(DomainError, match="must not be extrapolated"):
         get_law("thesis-poly2")(p=0.0, v=7.0, preset="steel")
     assert get_law("thesis-poly2")(p=0.1e6, v=1.0, preset="steel") > 0
@@ -139,6 +146,36 @@ def test_series_in_series_out(law_id):
     out = raw(law, **series, **case.params)
     assert isinstance(out, pd.Series)
     assert list(out.index) == list(range(10, 17))
+
+
+@pytest.mark.parametrize("law_id", LAW_IDS)
+def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(
+        law_id, monkeypatch):
+    """A call on many points goes block by block (checks while each block is in cache):
+    the numbers are those of the whole-array formula, and a bad value in a late block is
+    named with its index in the whole array, as without blocks.  (Blocks of 64 values
+    from 256 values here, so that a slow law is quick to test.)"""
+    import frictionlaws.law as law_module
+
+    monkeypatch.setattr(law_module, "_BLOCK", 64)
+    monkeypatch.setattr(law_module, "_BLOCKED_FROM", 256)
+    law = get_law(law_id)
+    case = case_for(law)
+    n = 256 + 37
+    x = sample(case, np.random.default_rng(11), n)
+    x = {v: x[v] for v in law.variables}
+    if not x:
+        return
+    params = law.resolve(case.params)
+    assert law._evaluate_blocks(x, params) is not None
+    whole = raw(law, **x, **case.params)
+    # equal to round-off (persson's quadrature sums in an order that depends on the block)
+    np.testing.assert_allclose(law(**x, **case.params), whole, rtol=1e-13, atol=0)
+    name = law.variables[-1]
+    broken = {**x, name: x[name].copy()}
+    broken[name][n - 5] = np.nan
+    with pytest.raises(InputError, match=f"{name} has a non-finite value .* at index {n - 5}"):
+        law(**broken, **case.params)
 
 
 @pytest.mark.parametrize("law_id", LAW_IDS)

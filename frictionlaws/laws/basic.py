@@ -84,7 +84,7 @@ register(Law(
 
 
 def _schallamach(m, F_N, mu_ref, n, F_ref):
-    return mu_ref * (F_N / F_ref) ** (-n)
+    return mu_ref * m.power(F_N / F_ref, -n)
 
 
 def _schallamach_guess(d):

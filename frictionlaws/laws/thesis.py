@@ -34,7 +34,8 @@ def _poly2(m, p, v, a0, a1, a2, a3, a4):
 
 def _poly3(m, p, v, a0, a1, a2, a3, a4, a5, a6):
     P = p / _MPA
-    return a0 + a1 * P + a2 * P**2 + a3 * P**3 + a4 * v + a5 * v**2 + a6 * v**3
+    # P * P * P: numpy raises to a general power slowly; sympy still shows P**3
+    return a0 + a1 * P + a2 * P**2 + a3 * (P * P * P) + a4 * v + a5 * v**2 + a6 * (v * v * v)
 
 
 def _params(n_p: int, n_v: int) -> tuple[Param, ...]:
