@@ -16,7 +16,7 @@ on Dask.  The peak with the results held in memory (on Dask, where the caller do
 no fitting) is printed for contrast.
 
 Run: ``python benchmarks/bench_campaign.py [--datasets 1000] [--rounds 1] [--no-dask]
-[--no-timing]``.
+[--no-timing] [--no-memory]``.
 """
 
 from __future__ import annotations
@@ -179,6 +179,8 @@ def main() -> int:
     ap.add_argument("--no-dask", action="store_true")
     ap.add_argument("--no-timing", action="store_true",
                     help="only the memory checks")
+    ap.add_argument("--no-memory", action="store_true",
+                    help="only the timed runs")
     args = ap.parse_args()
     n_small = max(args.datasets // 10, 10)
     with tempfile.TemporaryDirectory() as tmp_name:
@@ -200,6 +202,8 @@ def main() -> int:
                 values = [r[label] for r in table]
                 print(f"{label}: throughput vs serial {min(values):.2f}x .. "
                       f"{max(values):.2f}x over {args.rounds} rounds")
+        if args.no_memory:
+            return 0
         print(f"peak memory of the calling process (load average "
               f"{psutil.getloadavg()[0]:.1f}):")
         flat = memory_checks(folder, small, tmp, (n_small, args.datasets), not args.no_dask)

@@ -48,6 +48,7 @@ def _tamper(monkeypatch, law_id, factor=1.0 + 1e-6):
 # ------------------------------------------------------------------ the whole suite
 
 
+@pytest.mark.slow
 def test_full_suite_passes_with_sources(capsys):
     code, report = _cli_json(capsys)
     failed = [(c["id"], c["error"], [k for k in c["checks"] if k["passed"] is False])
