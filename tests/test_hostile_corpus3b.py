@@ -20,8 +20,17 @@ corpus itself stays outside the project):
 
 from __future__ import annotations
 
+import tempfile
+from pathlib import Path
+
 import pytest
-from hostile import check_outcome, run_cli
+from hostile import Snapshot, check_outcome, hostile, run_cli, stderr_lines
+from hypothesis import given
+from hypothesis import strategies as st
+
+import frictionlaws as fl
+from frictionlaws.campaign import MIN_ROWS_PER_GROUP, NEVER_GROUPING, UnreadableDatasets, fit_many
+from frictionlaws.errors import InputError
 
 HOSTILE = pytest.mark.hostile
 
@@ -59,3 +68,121 @@ def test_with_json_a_usage_error_leaves_stdout_empty() -> None:
     res = run_cli(["fit", "--json"])
     check_outcome(res, codes=[2])
     assert res.out == ""
+
+
+# ------------------------------------------------------------------ campaigns
+
+GOOD = ("mu,p [MPa],v [m/s],surface\n1.2,0.05,1,steel\n1.1,0.1,1,steel\n1.0,0.15,2,glass\n"
+        "0.95,0.2,2,glass\n0.9,0.25,3,glass\n0.85,0.3,3,steel\n")
+#: Files no loader can read: empty, a header and nothing, text in a number, no mu column.
+UNREADABLE = (b"", b"mu,p [MPa]\n", b"mu,p [MPa]\n0.5,abc\n0.4,0.2\n", b"x,y\n1,2\n3,4\n",
+              b"\x00\x01\x02\xff")
+
+
+@HOSTILE
+@hostile(8)
+@given(good=st.integers(0, 3), bad=st.lists(st.sampled_from(UNREADABLE), min_size=1,
+                                            max_size=3))
+def test_a_campaign_with_an_unreadable_dataset_names_each_and_fits_none(good: int,
+                                                                       bad: list[bytes]) -> None:
+    """Every unreadable file on its own error line, then one summary; exit 2, nothing written."""
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / "campaign"
+        folder.mkdir()
+        for i in range(good):
+            (folder / f"good{i}.csv").write_text(GOOD)
+        names = [f"bad{i}.csv" for i in range(len(bad))]
+        for name, content in zip(names, bad):
+            (folder / name).write_bytes(content)
+        snap = Snapshot.take([Path(tmp)], list(folder.iterdir()))
+        res = run_cli(["fit", "--law", "thirion", str(folder), "--out",
+                       str(Path(tmp) / "fits.csv")])
+        assert res.code == 2 and "Traceback" not in res.err, res.describe()
+        lines = [ln for ln in stderr_lines(res.err) if not ln.startswith("warning:")]
+        assert all(ln.startswith("error: ") for ln in lines), lines
+        total = good + len(bad)
+        if total == 1:  # one dataset: its own error, one line
+            assert len(lines) == 1 and names[0] in lines[0]
+        else:
+            assert len(lines) == len(bad) + 1, lines
+            for name, line in zip(names, lines):
+                assert name in line
+            assert f"{len(bad)} of {total} datasets" in lines[-1]
+            assert "nothing was fitted" in lines[-1]
+        assert not snap.check(failed=True)
+
+
+@HOSTILE
+def test_the_api_refuses_the_campaign_listing_every_unreadable_dataset(tmp_path: Path) -> None:
+    (tmp_path / "a.csv").write_text(GOOD)
+    (tmp_path / "b.csv").write_bytes(b"")
+    (tmp_path / "c.csv").write_bytes(b"mu,p [MPa]\n0.5,abc\n")
+    with pytest.raises(UnreadableDatasets) as info:
+        fit_many("thirion", tmp_path)
+    assert [Path(str(p.file)).name for p in info.value.problems] == ["b.csv", "c.csv"]
+    assert "2 of 3 datasets" in str(info.value) and "b.csv" in str(info.value)
+
+
+# ------------------------------------------------------------------ grouping
+
+MEASURED = sorted(set(NEVER_GROUPING) | {"p"})  # p: thirion's variable
+
+
+@HOSTILE
+@hostile(10)
+@given(column=st.sampled_from(MEASURED), other=st.sampled_from([[], ["surface"]]))
+def test_grouping_by_a_measured_quantity_is_refused(column: str, other: list[str]) -> None:
+    by = other + [column]
+    with pytest.raises(InputError, match="not a measured quantity") as info:
+        fit_many("thirion", "thesis-steel", by=by)
+    assert info.value.option == "by"
+    with tempfile.TemporaryDirectory() as tmp:
+        data = Path(tmp) / "d.csv"
+        data.write_text(GOOD)
+        res = run_cli(["fit", "--law", "thirion", str(data), "--by", ",".join(by)])
+        check_outcome(res, codes=[2])
+        assert "--by" in res.err and "grouping column such as surface" in res.err
+
+
+@HOSTILE
+def test_a_condition_the_law_does_not_use_may_group() -> None:
+    """T groups an isothermal law's fits (the shared-parameter workflow); v groups thirion."""
+    from frictionlaws.campaign import check_grouping
+
+    assert check_grouping(["T"], ["thirion"]) == ("T",)
+    with pytest.raises(InputError, match="law 'thirion' is fitted on it"):
+        check_grouping(["surface", "p"], ["coulomb", "thirion"])
+    with pytest.raises(InputError, match="given twice"):
+        check_grouping(["surface", "surface"])
+
+
+@HOSTILE
+@hostile(12)
+@given(rows=st.integers(2, 40), data=st.data())
+def test_a_column_that_leaves_under_two_rows_a_group_is_no_grouping(rows: int,
+                                                                   data: st.DataObject) -> None:
+    """Groups of fewer than MIN_ROWS_PER_GROUP rows on average: refused, naming the column."""
+    groups = data.draw(st.integers(1, rows))
+    labels = [f"s{i % groups}" for i in range(rows)]
+    body = "".join(f"{1.0 - 0.01 * i:.3f},{0.05 + 0.01 * i:.3f},{lab}\n"
+                   for i, lab in enumerate(labels))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "d.csv"
+        path.write_text("mu,p [MPa],surface\n" + body)
+        ds = fl.load_dataset(path)
+        from frictionlaws.campaign import group_keys
+
+        if groups > 1 and rows < MIN_ROWS_PER_GROUP * groups:
+            with pytest.raises(InputError, match="column 'surface' splits"):
+                group_keys(ds, ["surface"])
+        else:
+            assert len(group_keys(ds, ["surface"])) == groups
+
+
+@HOSTILE
+def test_a_missing_grouping_column_is_named_with_the_columns_there_are(tmp_path: Path) -> None:
+    data = tmp_path / "d.csv"
+    data.write_text(GOOD)
+    res = run_cli(["fit", "--law", "thirion", str(data), "--by", "compound"])
+    check_outcome(res, codes=[2])
+    assert "no column compound" in res.err and "surface" in res.err
