@@ -186,3 +186,71 @@ def test_a_missing_grouping_column_is_named_with_the_columns_there_are(tmp_path:
     res = run_cli(["fit", "--law", "thirion", str(data), "--by", "compound"])
     check_outcome(res, codes=[2])
     assert "no column compound" in res.err and "surface" in res.err
+
+
+# ------------------------------------------------------------------ Magic Formula fit
+
+
+def _below_the_peak_csv(path: Path) -> Path:
+    """Pure-slip forces of a tyre whose lateral data stop before the peak.
+
+    Longitudinal: F_x = F_z 1.1 sin(1.6 arctan(12 kappa)), kappa in -0.2..0.2 (peak
+    reached); lateral: F_y = -F_z sin(1.3 arctan(0.2 alpha/deg)), alpha in -10..10 deg,
+    whose peak (C arctan(B alpha) = pi/2) lies at about 13 deg, beyond the data.
+    """
+    import numpy as np
+
+    rows = ["Fz [kN],kappa [-],alpha [deg],gamma [deg],pressure [bar],Fx [N],Fy [N]"]
+    for fz in (2.0, 4.0, 6.0):  # kN
+        for kappa in np.linspace(-0.2, 0.2, 21):
+            fx = 1e3 * fz * 1.1 * np.sin(1.6 * np.arctan(12 * kappa))
+            rows.append(f"{fz},{kappa:.4f},0,0,2.2,{fx:.4f},")
+        for alpha in np.linspace(-10, 10, 21):
+            fy = -1e3 * fz * np.sin(1.3 * np.arctan(0.2 * alpha))
+            rows.append(f"{fz},0,{alpha:.3f},0,2.2,,{fy:.4f}")
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_data_that_stop_before_the_peak_give_a_plausible_tyre_and_a_warning(
+        tmp_path: Path) -> None:
+    """Was refused: 'the peak friction mu_y = 149.7 ... check the inflation pressure'."""
+    import json
+
+    import numpy as np
+
+    from frictionlaws.tyre import MagicFormula
+    from frictionlaws.tyre._fit_mf_peak import PEAK_MU
+
+    data = _below_the_peak_csv(tmp_path / "forces.csv")
+    out = tmp_path / "fitted.tir"
+    res = run_cli(["tyre", "fit-mf", str(data), "--json", "-o", str(out)], timeout=240)
+    check_outcome(res, codes=[0], json_out=True)
+    doc = json.loads(res.out)
+    warned = [w for w in doc["warnings"] if "stop before the peak" in w]
+    assert len(warned) == 1 and warned[0].startswith("Fy0") and "PDY1" in warned[0]
+    assert any("stop before the peak" in ln for ln in stderr_lines(res.err)
+               if ln.startswith("warning:"))
+    assert not any(w.startswith("Fx0") for w in doc["warnings"])  # that peak is measured
+    model = MagicFormula.from_file(out)
+    alpha = np.radians(np.linspace(-10, 10, 41))
+    for fz in (2000.0, 4000.0, 6000.0):  # at the measured 2.2 bar (the file's NOMPRES differs)
+        mu = float(model.lateral(fz, 0.0, 2.2e5).mu)
+        assert PEAK_MU[0] <= mu <= PEAK_MU[1], mu
+        measured = -fz * np.sin(1.3 * np.arctan(0.2 * np.degrees(alpha)))
+        assert np.abs(model.fy0(alpha, fz, 0.0, 2.2e5) - measured).max() < 0.01 * fz
+    assert doc["errors"]["y"]["rmse"] < 1.0  # newtons, on forces up to 6 kN
+
+
+@HOSTILE
+@hostile(20)
+@given(mu=st.one_of(st.floats(-1e6, 1e6), st.sampled_from([float("nan"), float("inf")])),
+       fz=st.floats(1.0, 1e5))
+def test_the_peak_penalty_is_zero_inside_the_physical_range_only(mu: float, fz: float) -> None:
+    import numpy as np
+
+    from frictionlaws.tyre._fit_mf_peak import PEAK_MU, peak_penalty
+
+    pen = float(peak_penalty(np.array([mu]), np.array([fz]))[0])
+    assert np.isfinite(pen) and pen >= 0
+    assert (pen == 0) == (PEAK_MU[0] <= mu <= PEAK_MU[1])
