@@ -254,3 +254,114 @@ def test_the_peak_penalty_is_zero_inside_the_physical_range_only(mu: float, fz: 
     pen = float(peak_penalty(np.array([mu]), np.array([fz]))[0])
     assert np.isfinite(pen) and pen >= 0
     assert (pen == 0) == (PEAK_MU[0] <= mu <= PEAK_MU[1])
+
+
+# ------------------------------------------------------------------ rig ranges
+
+
+def _rig_with(key: str, text: str) -> dict:
+    """A valid rig mapping with ``key`` (``"table.key"`` for a table entry) set to ``text``."""
+    rig: dict = {"track_radius": "40 mm", "contact_area": "314 mm^2"}
+    table, _, name = key.rpartition(".")
+    if key == "pin_diameter":
+        del rig["contact_area"]
+    (rig.setdefault(table, {}) if table else rig)[name] = text
+    return rig
+
+
+@st.composite
+def _outside(draw: st.DrawFn) -> tuple[str, float]:
+    """A ranged rig key and a value (in the range's display unit) outside its range."""
+    from frictionlaws.tribometer.rig import RANGES
+
+    key = draw(st.sampled_from(sorted(RANGES)))
+    rng = RANGES[key]
+    lo, hi = rng.lo / rng.scale, rng.hi / rng.scale
+    factor = draw(st.floats(1.01, 1e6))
+    sides = ["above"] + (["below"] if lo != 0 else [])
+    side = draw(st.sampled_from(sides))
+    if side == "above":
+        value = hi * factor if hi > 0 else hi / factor
+    else:
+        value = lo / factor if lo > 0 else lo * factor
+    return key, value
+
+
+@HOSTILE
+@hostile(40)
+@given(case=_outside())
+def test_a_rig_value_outside_its_plausible_range_is_refused(case: tuple[str, float]) -> None:
+    """Names the rig file, the key, the value with its unit and the range."""
+    from frictionlaws.tribometer.rig import RANGES, rig_from_dict
+
+    key, value = case
+    unit = RANGES[key].unit
+    text = f"{value:.10g} {unit}"
+    with pytest.raises(InputError) as info:
+        rig_from_dict(_rig_with(key, text), source="rig.toml")
+    message = str(info.value)
+    assert info.value.file == "rig.toml"
+    assert f"'{key}' = '{text}'" in message and "plausible range" in message, message
+    assert f" {unit} (" in message  # the range, in the unit of the key
+
+
+@HOSTILE
+def test_every_ranged_rig_value_accepts_its_range_ends() -> None:
+    """The ranges are inclusive and every ranged key is read through them."""
+    from frictionlaws.tribometer.rig import RANGES, rig_from_dict
+
+    for key, rng in RANGES.items():
+        for end in (rng.lo, rng.hi):
+            if end == 0 and key != "filter.auto_max" and not key.startswith("window."):
+                continue
+            rig_from_dict(_rig_with(key, f"{end / rng.scale!r} {rng.unit}"), source="rig.toml")
+
+
+@pytest.fixture(scope="module")
+def campaign_100hz(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A synthetic campaign of two records sampled at 100 Hz (Nyquist frequency 50 Hz)."""
+    from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
+
+    root = tmp_path_factory.mktemp("campaign")
+    make_campaign(root, [ConditionSpec("c", "steel", 3.0, 1.1, repeats=2)],
+                  record_kwargs={"duration": 12.0, "fs": 100.0})
+    return root
+
+
+@HOSTILE
+@pytest.mark.parametrize("old,new,words", [
+    ('"40 mm"', '"40 km"', "'track_radius' = '40 km'"),
+    ('"9.8 m/s^2"', '"98000 m/s^2"', "9.7..9.9 m/s^2"),
+    ('cutoff = "auto"', 'cutoff = "1e9 Hz"', "'filter.cutoff' = '1e9 Hz'"),
+])
+def test_process_refuses_an_absurd_rig_naming_the_rig(campaign_100hz: Path, tmp_path: Path,
+                                                      old: str, new: str, words: str) -> None:
+    """These passed the unit checks and ended as 'no condition has 2 usable records'."""
+    text = (campaign_100hz / "rig.toml").read_text()
+    assert text.count(old) == 1
+    rig = tmp_path / "rig.toml"
+    rig.write_text(text.replace(old, new))
+    snap = Snapshot.take([tmp_path])
+    res = run_cli(["process", str(campaign_100hz / "manifest.csv"), "--rig", str(rig),
+                   "-o", str(tmp_path / "ds.csv"), "--jobs", "1"])
+    check_outcome(res, snapshot=snap, codes=[2])
+    assert "rig.toml" in res.err and words in res.err and "plausible range" in res.err
+
+
+@HOSTILE
+@hostile(4)
+@given(cutoff=st.floats(50.5, 1e6))  # records at 100 Hz
+def test_a_cutoff_at_or_above_a_records_nyquist_frequency_refuses_the_rig(
+        campaign_100hz: Path, cutoff: float) -> None:
+    """Checked when each record is read: the rig is wrong, not the record (exit 2)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        text = (campaign_100hz / "rig.toml").read_text()
+        rig = Path(tmp) / "rig.toml"
+        rig.write_text(text.replace('cutoff = "auto"', f'cutoff = "{cutoff!r} Hz"'))
+        assert f'cutoff = "{cutoff!r} Hz"' in rig.read_text()
+        res = run_cli(["process", str(campaign_100hz / "manifest.csv"), "--rig", str(rig),
+                       "-o", str(Path(tmp) / "ds.csv"), "--jobs", "1"])
+        check_outcome(res, codes=[2])
+        assert "rig.toml" in res.err and "'filter.cutoff'" in res.err
+        assert "Nyquist frequency 50 Hz" in res.err and "100 Hz" in res.err
+        assert not (Path(tmp) / "ds.csv").exists()
