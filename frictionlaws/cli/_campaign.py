@@ -26,7 +26,9 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
     """
     g = p.add_argument_group("campaigns (several datasets, groups, parallel work)")
     g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
-                   help="fit each group of these columns separately, e.g. --by surface")
+                   help="fit each group of these columns separately, e.g. --by surface; a "
+                        "test condition, not mu, mu_std, n or a variable of a law fitted, "
+                        "with 2 or more rows a group on average")
     if shared:
         g.add_argument("--shared", metavar="NAME[,NAME]", action="append", default=[],
                        help="with --by: one global fit in which these parameters are common "

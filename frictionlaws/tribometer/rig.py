@@ -39,7 +39,11 @@ dimensional value is a string with its unit, parsed with pint through
     [grouping]
     speed_step = "10 rpm"
 
-Unknown keys are an error (a typo must not silently fall back to a default).
+Unknown keys are an error (a typo must not silently fall back to a default).  Every
+dimensional value must lie in its plausible range (:data:`RANGES`: a track radius of
+1 mm..2 m, g of 9.7..9.9 m/s^2...), so a unit slip such as ``"40 km"`` is refused
+naming the key, the value and the range; a filter cut-off must also lie below the
+Nyquist frequency of every record (checked as each record is processed).
 The meaning of each setting is documented on :class:`FilterSettings`,
 :class:`WindowSettings`, :class:`OutlierSettings` and :class:`Rig`.
 """
