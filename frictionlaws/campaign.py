@@ -36,10 +36,95 @@ from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
            "iter_parallel", "batch_size", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
-           "tidy_columns", "key_text", "fit_groups", "group_column"]
+           "tidy_columns", "key_text", "fit_groups", "group_column", "check_grouping",
+           "UnreadableDatasets", "NEVER_GROUPING", "MIN_ROWS_PER_GROUP"]
 
 #: Environment variable naming a Dask scheduler address when none is given.
 SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
+
+
+#: Columns that are never grouping columns: the fitted quantity and its statistics.
+NEVER_GROUPING = ("mu", "mu_std", "n")
+#: A grouping column must leave at least this many rows a group on average.  Every law
+#: has a parameter and a fit needs more rows than parameters, so a column that splits
+#: the rows into groups of one or two (a measured value, a row id) is no grouping.
+MIN_ROWS_PER_GROUP = 2
+
+
+class UnreadableDatasets(InputError):
+    """Some datasets of a campaign cannot be read (or grouped): nothing is fitted.
+
+    Parameters
+    ----------
+    problems : list of InputError
+        Why each unreadable dataset cannot be read, in the campaign's order.
+    total : int
+        Number of datasets in the campaign.
+    """
+
+    def __init__(self, problems: Sequence[InputError], total: int) -> None:
+        self.problems = list(problems)
+        self.total = total
+        super().__init__(f"{len(self.problems)} of {total} datasets of the campaign cannot "
+                         "be read or grouped, so nothing was fitted: "
+                         + "; ".join(str(p) for p in self.problems))
+
+    def summary(self) -> str:
+        """One line that sums the problems up (a front end lists each one before it).
+
+        Returns
+        -------
+        str
+            E.g. ``1 of 2 datasets of the campaign cannot be read or grouped; ...``.
+        """
+        return (f"{len(self.problems)} of {self.total} datasets of the campaign cannot be "
+                "read or grouped; nothing was fitted (fix or remove each one named above)")
+
+
+def check_grouping(by: Sequence[str], laws: Sequence[str] = ()) -> tuple[str, ...]:
+    """Check grouping column names before any data are read.
+
+    A grouping column groups rows under a test condition (``surface``, or a variable
+    the laws fitted do not use, such as ``T`` for an isothermal law).  The fitted
+    quantity and its statistics (:data:`NEVER_GROUPING`) and the variables a law uses
+    are measured quantities: grouping by them leaves nothing for the law to fit.
+
+    Parameters
+    ----------
+    by : sequence of str
+        The grouping columns.
+    laws : sequence of str
+        The laws to be fitted to each group (ids or aliases); none: only the
+        quantities that are never grouping columns are refused.
+
+    Returns
+    -------
+    tuple of str
+        The columns, unchanged.
+
+    Raises
+    ------
+    InputError
+        A column given twice, empty, or naming a measured quantity.
+    """
+    from .registry import get_law
+
+    columns = (by,) if isinstance(by, str) else tuple(by)
+    used = {v: get_law(law).id for law in laws for v in get_law(law).variables}
+    seen: set[str] = set()
+    for col in columns:
+        if not isinstance(col, str) or not col.strip():
+            raise InputError(f"a grouping column must be a column name, got {col!r}",
+                             option="by")
+        if col in seen:
+            raise InputError(f"'{col}' is given twice", option="by")
+        seen.add(col)
+        if col in NEVER_GROUPING or col in used:
+            why = (f"law '{used[col]}' is fitted on it" if col in used
+                   else "it is the fitted quantity or its statistics")
+            raise InputError(f"must name a grouping column such as surface, not a measured "
+                             f"quantity ('{col}': {why})", option="by")
+    return columns
 
 
 # ------------------------------------------------------------------ inputs
@@ -97,15 +182,26 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
     Raises
     ------
     InputError
-        When a grouping column is not in the dataset (naming the columns it has).
+        When a grouping column is the fitted quantity or its statistics
+        (:data:`NEVER_GROUPING`), is not in the dataset (naming the columns it has), or
+        leaves fewer than :data:`MIN_ROWS_PER_GROUP` rows a group on average.
     """
     frame = dataset.frame
     if not by:
         return [({}, np.ones(len(frame), dtype=bool))]
+    check_grouping(by)
     missing = [c for c in by if c not in frame.columns]
     if missing:
         raise InputError(f"no column {', '.join(missing)} to group by (columns: "
-                         f"{', '.join(map(str, frame.columns))})", file=str(dataset.source))
+                         f"{', '.join(map(str, frame.columns))})", file=str(dataset.source),
+                         option="by")
+    for col in by:
+        count = int(frame[col].astype(str).nunique())
+        if count > 1 and len(frame) < MIN_ROWS_PER_GROUP * count:
+            raise InputError(f"column '{col}' splits the {len(frame)} rows into {count} groups "
+                             f"(fewer than {MIN_ROWS_PER_GROUP} rows a group on average): it "
+                             "must name a grouping column such as surface, not a measured "
+                             "quantity", file=str(dataset.source), option="by")
     keys = frame[list(by)].astype(str).agg("\x1f".join, axis=1).to_numpy()
     groups = []
     for key in dict.fromkeys(keys.tolist()):
@@ -142,6 +238,7 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
     from .fitting import fit
     from .io import Dataset, load_dataset
 
+    check_grouping(by, [law])
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
     out = []
     for key, mask in group_keys(dataset, list(by)):
@@ -192,6 +289,37 @@ class _Job:
     by: tuple[str, ...]
     fit_options: Mapping[str, Any]
     load_options: Mapping[str, Any]
+
+
+def _read_problem(job: _Job) -> InputError | None:
+    """Load one dataset and split it into groups: None, or why that cannot be done.
+
+    The error is rebuilt as a plain :class:`InputError` (message parts and location),
+    so that it travels between processes whatever its class.
+    """
+    from .io import load_dataset
+
+    try:
+        group_keys(load_dataset(job.source, **job.load_options), job.by)
+    except InputError as exc:
+        return InputError(exc.parts, file=exc.file, column=exc.column, row=exc.row,
+                          option=exc.option)
+    return None
+
+
+def _refuse_unreadable(work: Sequence[_Job], **parallel: Any) -> None:
+    """Read every dataset of a campaign before any fit; refuse it naming each bad one.
+
+    A campaign half done is worse than none: the fits of the readable datasets would
+    look complete.  So every dataset is read (and grouped) first, in parallel as the
+    fits are, and an :class:`UnreadableDatasets` lists all that cannot be.
+    """
+    problems = [p for p in iter_parallel(_read_problem, work, total=len(work), **parallel)
+                if p is not None]
+    if len(work) == 1 and problems:
+        raise problems[0]  # one dataset: its own error says it all
+    if problems:
+        raise UnreadableDatasets(problems, len(work))
 
 
 def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
@@ -646,18 +774,28 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     -------
     Campaign
         The records (or, when streamed, their count, failures and file).
+
+    Raises
+    ------
+    UnreadableDatasets
+        When any dataset cannot be read or grouped: every dataset is read before
+        the first fit, and all that cannot be are named (nothing is fitted).
+    InputError
+        A grouping column that is a measured quantity (:func:`check_grouping`), no
+        law, or an output that cannot be written.
     """
     from .registry import get_law
 
     law_ids = tuple(get_law(law).id for law in ([laws] if isinstance(laws, str) else laws))
     if not law_ids:
         raise InputError("no law given")
-    columns = (by,) if isinstance(by, str) else tuple(by)
+    columns = check_grouping(by, law_ids)
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
-    work = (_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
-            for src in sources)
-    parts = iter_parallel(_fit_dataset, work, jobs=jobs, scheduler=scheduler,
+    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
+             for src in sources]
+    _refuse_unreadable(jobs_, jobs=jobs, scheduler=scheduler)
+    parts = iter_parallel(_fit_dataset, jobs_, jobs=jobs, scheduler=scheduler,
                           progress=progress, total=len(sources))
     if target is not None:
         return _stream(parts, target, columns, law_ids)
@@ -746,7 +884,7 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
     """
     import pandas as pd
 
-    columns = (by,) if isinstance(by, str) else tuple(by)
+    columns = check_grouping(by, tuple(laws) if laws else ())
     sources = iter_datasets(datasets)
     work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
                         dict(load_options or {})) for src in sources)

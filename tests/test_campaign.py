@@ -83,14 +83,16 @@ def test_many_files_and_a_directory_give_the_same_records(tmp_path):
     assert not from_dir.errors
 
 
-def test_an_unreadable_dataset_is_a_record_not_a_crash(tmp_path):
+def test_an_unreadable_dataset_refuses_the_campaign_before_any_fit(tmp_path):
+    """A campaign half done looks complete: every dataset is read first (issue 12)."""
+    from frictionlaws.campaign import UnreadableDatasets
+
     good = _two_surfaces(tmp_path)
     bad = tmp_path / "bad.csv"
     bad.write_text("mu,p [MPa]\n0.5,abc\n")
-    camp = fit_many("thirion", [good, bad], by="surface")
-    assert len(camp) == 3
-    assert len(camp.errors) == 1 and "bad.csv" in camp.errors[0]["error"]
-    assert "error" in camp.summary()
+    with pytest.raises(UnreadableDatasets, match="1 of 2 datasets") as info:
+        fit_many("thirion", [good, bad], by="surface")
+    assert [p.file for p in info.value.problems] == [str(bad)]
 
 
 def test_results_save_as_csv_and_strict_json(tmp_path):
@@ -186,11 +188,11 @@ def test_streamed_output_equals_the_in_memory_table(tmp_path):
     folder.mkdir()
     for T, part in df.groupby("T [degC]"):
         part.to_csv(folder / f"T{int(T):03d}.csv", index=False)
-    (folder / "broken.csv").write_text("mu,p [MPa]\n0.5,-1\n")
+    (folder / "broken.csv").write_text("mu,p [MPa]\n0.5,0.1\n")  # one row: thirion fails
     held = fit_many(["thirion", "coulomb"], folder)
     streamed = fit_many(["thirion", "coulomb"], folder, output=tmp_path / "out.csv")
     assert streamed.records == [] and len(streamed) == len(held) == 12
-    assert len(streamed.errors) == 2 and "broken.csv" in streamed.errors[0]["error"]
+    assert len(streamed.errors) == 1 and "broken" in streamed.errors[0]["dataset"]
     pd.testing.assert_frame_equal(held.to_frame(), streamed.to_frame(), check_dtype=False)
     lines = fit_many("thirion", folder, output=tmp_path / "out.jsonl")
     assert len((tmp_path / "out.jsonl").read_text().splitlines()) == len(lines) == 6

@@ -38,7 +38,8 @@ from typing import Any
 
 from ._common import UsageError
 
-__all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS"]
+__all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS",
+           "command_names"]
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS = (
@@ -115,7 +116,15 @@ class _Parser(argparse.ArgumentParser):
         self.register("action", "store", _StoreOnce)
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise UsageError(f"{self.prog}: {message}")
+        raise _ParseError(f"{self.prog}: {message}", usage=self.format_usage())
+
+
+class _ParseError(UsageError):
+    """A command line argparse could not parse, with the usage of the parser that failed."""
+
+    def __init__(self, message: str, *, usage: str) -> None:
+        super().__init__(message)
+        self.usage = usage
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -353,9 +362,58 @@ def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> l
     return out
 
 
+def _usage_error(message: str, usage: str, argv: Sequence[str]) -> int:
+    """A command line that cannot run: its usage on stdout, one ``error:`` line, exit 2.
+
+    The usage goes to stdout so that stderr keeps one line per problem; with
+    ``--json`` stdout stays empty (it carries JSON or nothing).
+    """
+    if "--json" not in argv:
+        print(usage.rstrip("\n"))
+    print(f"error: {_one_line(message)}", file=sys.stderr)
+    return 2
+
+
+def command_names(parser: argparse.ArgumentParser) -> list[str]:
+    """List the sub-commands of ``parser`` (its sub-parsers, aliases left out), in order.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        A parser with sub-commands (the top-level one, or ``tyre``'s).
+
+    Returns
+    -------
+    list of str
+        The command names as ``--help`` lists them; empty when it has none.
+    """
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return [choice.dest for choice in action._choices_actions]
+    return []
+
+
+def _without_command(parser: argparse.ArgumentParser,
+                     args: argparse.Namespace) -> argparse.ArgumentParser | None:
+    """The parser (top level or a command with sub-commands) whose command is missing."""
+    current: argparse.ArgumentParser | None = parser
+    while current is not None:
+        action = next((a for a in current._actions
+                       if isinstance(a, argparse._SubParsersAction)), None)
+        if action is None:
+            return None
+        chosen = getattr(args, action.dest, None)
+        if not chosen:
+            return current
+        current = action.choices.get(chosen)
+    return None
+
+
 def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
     try:
         return parser.parse_args(_join_negative_values(parser, argv))
+    except _ParseError as exc:
+        return _usage_error(str(exc), exc.usage, argv)
     except UsageError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
@@ -377,14 +435,17 @@ def _completion(parser: argparse.ArgumentParser, shell: str) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
     parser = build_parser()
-    args = _parse(parser, list(sys.argv[1:] if argv is None else argv))
+    argv_list = list(sys.argv[1:] if argv is None else argv)
+    args = _parse(parser, argv_list)
     if isinstance(args, int):
         return args
     if args.print_completion:
         return _completion(parser, args.print_completion)
-    if not getattr(args, "command", None):
-        parser.print_help()
-        return 2
+    missing = _without_command(parser, args)
+    if missing is not None:
+        names = ", ".join(command_names(missing))
+        return _usage_error(f"{missing.prog}: no command given; choose one of: {names}",
+                            missing.format_usage(), argv_list)
     collected = _Warnings()
     with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet):
         warnings.simplefilter("always")

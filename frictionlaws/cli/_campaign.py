@@ -26,7 +26,9 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
     """
     g = p.add_argument_group("campaigns (several datasets, groups, parallel work)")
     g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
-                   help="fit each group of these columns separately, e.g. --by surface")
+                   help="fit each group of these columns separately, e.g. --by surface; a "
+                        "test condition, not mu, mu_std, n or a variable of a law fitted, "
+                        "with 2 or more rows a group on average")
     if shared:
         g.add_argument("--shared", metavar="NAME[,NAME]", action="append", default=[],
                        help="with --by: one global fit in which these parameters are common "
@@ -165,20 +167,18 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     int
         The exit status: 0, or 1 when a fit failed.
     """
-    from frictionlaws.campaign import fit_many
+    from frictionlaws.campaign import check_grouping
 
     _refuse_without_by(args)
     _check_out(args)
-    by = split_names(args.by)
+    by = list(check_grouping(split_names(args.by), [args.law]))
     load: dict[str, Any] = {k: fit_kwargs.pop(k) for k in ("mapping", "units", "area")
                             if k in fit_kwargs}
     if getattr(args, "shared", []):
         return _run_shared(args, by, split_names(args.shared), fit_kwargs, load)
     stream = args.out if args.out and Path(args.out).suffix.lower() in (".csv", ".jsonl") \
         else None
-    camp = fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
-                    progress=campaign_progress(args), output=stream, load_options=load,
-                    **fit_kwargs)
+    camp = _fit_all(args, by, stream, load, fit_kwargs)
     if args.out and stream is None:
         camp.save(args.out)
     if getattr(args, "json", False):
@@ -195,6 +195,26 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
             print(f"error: {rec['dataset']} {rec['law']}: {rec['error']}", file=sys.stderr)
     _refuse_if_only_input_errors(camp)
     return 1 if camp.errors else 0
+
+
+def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
+             load: dict[str, Any], fit_kwargs: dict[str, Any]) -> Any:
+    """:func:`~frictionlaws.campaign.fit_many`; a campaign with unreadable datasets is
+    refused with one ``error:`` line per dataset, then one that sums up (exit 2)."""
+    from frictionlaws.campaign import UnreadableDatasets, fit_many
+    from frictionlaws.errors import InputError
+
+    from . import flag_label
+
+    try:
+        return fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
+                        progress=campaign_progress(args), output=stream, load_options=load,
+                        **fit_kwargs)
+    except UnreadableDatasets as exc:
+        label = flag_label(args)
+        for problem in exc.problems:
+            print("error: " + " ".join(problem.compose(label=label).split()), file=sys.stderr)
+        raise InputError(exc.summary()) from None
 
 
 def _refuse_if_only_input_errors(camp: Any) -> None:

@@ -25,7 +25,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "to the groups. Exit 0 on success, 1 when a fit did not converge or is worse than "
         "the mean, 2 on bad input.")
     p.add_argument("data", metavar="DATA", nargs="+",
-                   help="CSV file(s), a directory of CSV files, or a packaged dataset name")
+                   help="CSV file(s), a directory of CSV files, or a packaged dataset name; "
+                        "several are read before any fit, and any that cannot be read "
+                        "refuses the run, each named (exit 2)")
     p.add_argument("--law", required=True, help="law id or alias (see 'frictionlaws laws')")
     add_data_options(p)
     add_fit_options(p)

@@ -452,6 +452,10 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
 
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
+    if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
+        from frictionlaws.tyre._fit_mf_plot import check_figure_path
+
+        check_figure_path(args.plot)
     res = fit_mf(args.data, fittyp=args.fittyp, template=args.template,
                  sign_convention=args.sign_convention)
     res.write(args.output)

@@ -85,7 +85,7 @@ import numpy as np
 
 from ..errors import InputError
 from .records import Record, read_record, split_header
-from .rig import RPM, Rig
+from .rig import RPM, Rig, RigError, check_cutoff
 from .signal import NoWindow, Window, auto_cutoff, find_window, lowpass, speed_segment
 
 __all__ = [
@@ -483,11 +483,19 @@ def process_record(record: Record, entry: ManifestEntry, rig: Rig, *,
     RecordResult
         (and the signals when ``keep_signals``).  Problems with the record give
         ``status = "unusable"`` with the reason; nothing is raised for them.
+
+    Raises
+    ------
+    RigError
+        When a rig setting does not suit the record (a cut-off above its Nyquist
+        frequency): the rig file is wrong, for every record alike.
     """
     res = _base_result(entry)
     box: dict[str, _Signals] = {}
     try:
         _process(record, entry, rig, res, box if keep_signals else None)
+    except RigError:
+        raise  # the rig does not suit the record: the rig file must change
     except (InputError, NoWindow) as exc:
         res.status = "unusable"
         res.reason = " ".join(str(exc).split())
@@ -540,6 +548,7 @@ def _friction(rec: Record, rig: Rig, res: RecordResult, disc: np.ndarray, pin: n
         info = auto_cutoff(raw, fs, rig.filter)
         res.cutoff, res.cutoff_source = info.cutoff, f"auto ({info.limited_by})"
     else:
+        check_cutoff(rig, rig.filter.cutoff, fs, str(rec.source))
         res.cutoff, res.cutoff_source = rig.filter.cutoff, "rig"
     if not res.cutoff < 0.5 * fs:
         raise InputError(f"filter cut-off {res.cutoff:g} Hz is not below the Nyquist frequency "

@@ -39,7 +39,11 @@ dimensional value is a string with its unit, parsed with pint through
     [grouping]
     speed_step = "10 rpm"
 
-Unknown keys are an error (a typo must not silently fall back to a default).
+Unknown keys are an error (a typo must not silently fall back to a default).  Every
+dimensional value must lie in its plausible range (:data:`RANGES`: a track radius of
+1 mm..2 m, g of 9.7..9.9 m/s^2...), so a unit slip such as ``"40 km"`` is refused
+naming the key, the value and the range; a filter cut-off must also lie below the
+Nyquist frequency of every record (checked as each record is processed).
 The meaning of each setting is documented on :class:`FilterSettings`,
 :class:`WindowSettings`, :class:`OutlierSettings` and :class:`Rig`.
 """
@@ -67,6 +71,10 @@ __all__ = [
     "load_rig",
     "rig_from_dict",
     "RPM",
+    "PlausibleRange",
+    "RANGES",
+    "RigError",
+    "check_cutoff",
 ]
 
 #: One revolution per minute in rad/s.
@@ -185,6 +193,122 @@ class OutlierSettings:
 
     rule: str = "pooled"
     alpha: float = 0.01
+
+
+class RigError(InputError):
+    """A rig setting that does not suit a record (a filter cut-off above its Nyquist
+    frequency): the rig is wrong, not the record, so processing stops (never a
+    record marked unusable)."""
+
+
+@dataclass(frozen=True)
+class PlausibleRange:
+    """The range a rig quantity of any real tribometer lies in (SI), and how to show it.
+
+    A value outside is almost always a unit slip (``"40 km"`` for ``"40 mm"``) or a
+    typing error, which would otherwise surface only as "no usable record".
+
+    Parameters
+    ----------
+    lo, hi : float
+        The plausible range, ends included [SI unit of the quantity].
+    unit : str
+        The unit the range is shown in.
+    scale : float
+        That unit in SI (``1e-3`` for mm).
+    why : str
+        What bounds the range, for the message.
+    """
+
+    lo: float
+    hi: float
+    unit: str
+    scale: float
+    why: str
+
+    def check(self, name: str, value: float, raw: Any, src: str) -> float:
+        """Return ``value`` if it lies in the range, else refuse it.
+
+        Parameters
+        ----------
+        name : str
+            The key in the rig file (``"track_radius"``, ``"filter.auto_min"``).
+        value : float
+            Its value in SI.
+        raw : object
+            The value as written in the file (shown in the message).
+        src : str
+            The rig file.
+
+        Returns
+        -------
+        float
+            ``value``.
+
+        Raises
+        ------
+        InputError
+            Naming the file, the key, the value with its unit and the range.
+        """
+        if self.lo <= value <= self.hi:
+            return value
+        raise InputError(f"'{name}' = {raw!r} ({value / self.scale:.6g} {self.unit}) is outside "
+                         f"the plausible range {self.lo / self.scale:g}..{self.hi / self.scale:g} "
+                         f"{self.unit} ({self.why})", file=src)
+
+
+#: The plausible range of every dimensional rig quantity, by its key in the rig file.
+#: ``filter.cutoff`` is also checked against each record's Nyquist frequency when the
+#: record is processed (:func:`check_cutoff`).
+RANGES: dict[str, PlausibleRange] = {
+    "track_radius": PlausibleRange(1e-3, 2.0, "mm", 1e-3,
+                                   "a pin track, from a micro-tribometer to a road wheel"),
+    "pin_diameter": PlausibleRange(1e-4, 0.5, "mm", 1e-3, "a pin or a rubber block"),
+    "contact_area": PlausibleRange(1e-8, 0.1, "mm^2", 1e-6,
+                                   "a pin tip up to a whole tyre contact patch"),
+    "system_error": PlausibleRange(-1e3, 1e3, "N*m", 1.0,
+                                   "a torque offset, far below any sensor's full scale"),
+    "g": PlausibleRange(9.7, 9.9, "m/s^2", 1.0,
+                        "gravity anywhere on the Earth's surface is 9.76..9.84 m/s^2"),
+    "torque_range": PlausibleRange(1e-3, 1e5, "N*m", 1.0, "torque sensors' full scales"),
+    "filter.cutoff": PlausibleRange(1e-3, 1e6, "Hz", 1.0, "a low-pass cut-off, also "
+                                    "below half the sampling rate of each record"),
+    "filter.auto_min": PlausibleRange(1e-3, 1e6, "Hz", 1.0, "a low-pass cut-off"),
+    "filter.auto_max": PlausibleRange(0.0, 1e6, "Hz", 1.0,
+                                      "a low-pass cut-off; 0 means a quarter of the "
+                                      "sampling rate"),
+    **{f"window.{name}": PlausibleRange(0.0, 86400.0, "s", 1.0, "at most a day")
+       for name in ("min_duration", "min_window", "smooth", "settle", "end_margin",
+                    "initial_delay", "initial_duration")},
+    "grouping.speed_step": PlausibleRange(0.01 * RPM, 1e4 * RPM, "rpm", RPM,
+                                          "a difference of disc or pin speeds"),
+}
+
+
+def check_cutoff(rig: Rig, cutoff: float, fs: float, record: str) -> None:
+    """Refuse a rig cut-off at or above the Nyquist frequency of a record.
+
+    Parameters
+    ----------
+    rig : Rig
+        The rig (its ``source`` is named).
+    cutoff : float
+        The rig's cut-off [Hz].
+    fs : float
+        The record's sampling rate [Hz].
+    record : str
+        The record, named in the message.
+
+    Raises
+    ------
+    RigError
+        When ``cutoff >= fs / 2``: the rig, not the record, must change.
+    """
+    nyquist = 0.5 * fs
+    if not 0 < cutoff < nyquist:
+        raise RigError(f"'filter.cutoff' = {cutoff:g} Hz is not below the Nyquist frequency "
+                       f"{nyquist:g} Hz of record '{record}' (sampled at {fs:g} Hz); expected "
+                       f"0 < cutoff < {nyquist:g} Hz", file=rig.source)
 
 
 @dataclass(frozen=True)
@@ -371,7 +495,7 @@ def _quantity(table: Mapping[str, Any], key: str, kind: str, src: str, prefix: s
         raise InputError(f"'{name}' must be > 0, got {raw!r}", file=src)
     if sign == "nonneg" and value < 0:
         raise InputError(f"'{name}' must be >= 0, got {raw!r}", file=src)
-    return value
+    return RANGES[name].check(name, value, raw, src) if name in RANGES else value
 
 
 _EXAMPLE = {"length": "40 mm", "area": "314.16 mm^2", "torque": "0.3 N*m",
@@ -395,7 +519,7 @@ def _acceleration(raw: Any, name: str, src: str) -> float:
     value = float(q.to(target).magnitude)
     if not value > 0 or not math.isfinite(value):
         raise InputError(f"'{name}' must be > 0, got {raw!r}", file=src)
-    return value
+    return RANGES[name].check(name, value, raw, src)
 
 
 def _number(table: Mapping[str, Any], key: str, src: str, prefix: str, default: float,
@@ -565,4 +689,4 @@ def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default:
     value = number * angular_unit_factor(parts[1], column=f"{prefix}{key}", file=src)
     if not value > 0:
         raise InputError(f"'{prefix}{key}' must be > 0", file=src)
-    return value
+    return RANGES[prefix + key].check(prefix + key, value, raw, src)

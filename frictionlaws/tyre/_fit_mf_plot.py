@@ -8,7 +8,41 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["plot_fit"]
+__all__ = ["plot_fit", "check_figure_path"]
+
+
+def check_figure_path(path: str | Path) -> str:
+    """The figure format of ``path`` (its suffix), refused when matplotlib cannot write it.
+
+    Called before any work, so that a figure that cannot be drawn leaves no other
+    output behind.
+
+    Parameters
+    ----------
+    path : str or Path
+        The figure file; no suffix means PNG.
+
+    Returns
+    -------
+    str
+        The format (``"png"``, ``"pdf"``, ``"svg"``...).
+
+    Raises
+    ------
+    InputError
+        When matplotlib has no writer for the suffix (naming those it has).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from ..errors import InputError
+
+    fmt = Path(path).suffix.lstrip(".").lower() or "png"
+    known = FigureCanvasAgg(Figure()).get_supported_filetypes()
+    if fmt not in known:
+        raise InputError(f"a figure cannot be written as '.{fmt}'; use one of "
+                         f"{', '.join('.' + k for k in sorted(known))}", file=str(path))
+    return fmt
 
 
 def plot_fit(result: Any, path: str | Path) -> Path:
@@ -25,6 +59,7 @@ def plot_fit(result: Any, path: str | Path) -> Path:
     from ..outputs import atomic_write, check_outputs
     from .fit_mf import _select
 
+    fmt = check_figure_path(path)
     check_outputs([path], inputs=[result.data.source], what="figure")
     p_nom = result.model.nominal_pressure if result.version != "5.2" else None
     dirs = [d for d in (_select(result.data, n, p_nom) for n in ("x", "y")) if d is not None]
@@ -32,7 +67,6 @@ def plot_fit(result: Any, path: str | Path) -> Path:
                              layout="constrained")
     for ax, d in zip(axes[0], dirs):
         _panel(ax, d, result.model)
-    fmt = Path(path).suffix.lstrip(".").lower() or "png"
     with atomic_write(path, "wb") as fh:
         fig.savefig(fh, format=fmt)
     plt.close(fig)

@@ -17,9 +17,15 @@ three stages:
 Coefficients the data cannot determine (a pressure term with one pressure, a
 camber term with one camber, a curvature in load with fewer than three loads,
 an asymmetry with one sign of slip, or a direction of the Jacobian with no
-information) are left at the template's value and named in the notes.  Rows with
-both slips non-zero (combined slip) are not used.  The slip angle enters as
+information) are left at the template's value and named in the notes; a coefficient along a
+direction the data do not inform whose template value would spoil the fit is held
+at its fitted value instead (standard error infinite, named in the notes).  Rows
+with both slips non-zero (combined slip) are not used.  The slip angle enters as
 tan(alpha), the library's default convention.
+
+The peak friction coefficient stays within a physical range during the fit, and
+data that stop before the peak give a warning (the peak is extrapolated), not a
+refusal; see :mod:`frictionlaws.tyre._fit_mf_peak`.
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import ExtrapolationWarning, FitError, InputError
+from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unreached_peaks
 from .magic_formula import EXAMPLES, MagicFormula, _packaged_example, mf_curve
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
@@ -89,6 +96,9 @@ class MFFit:
         (largest measured |F|) and ``n`` points.
     stages : dict
         Per direction, the per-load curves of stage 1 (load, mu, K, C, E, S_H, S_V).
+    warnings : list of str
+        What the data leave open (a peak they do not reach); also issued as
+        :class:`~frictionlaws.errors.ExtrapolationWarning` and written as notes.
     """
 
     version: str
@@ -102,12 +112,14 @@ class MFFit:
     data: TyreData
     seconds: float
     notes: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     def tir_text(self) -> str:
         """The ``.tir`` text of the fitted property file."""
         header = [f"FITTED by frictionlaws fit_mf from {self.data.source} "
                   f"({len(self.data)} rows), Magic Formula {self.version}, pure slip "
                   "Fx0/Fy0 only; other sections from the template."]
+        header += [f"warning: {w}" for w in self.warnings]
         header += [f"note: {n}" for n in self.notes]
         return format_tir(self.property_file, header=header)
 
@@ -130,6 +142,7 @@ class MFFit:
         for d, e in self.errors.items():
             lines.append(f"F{d}0: {int(e['n'])} points, RMSE {e['rmse']:.4g} N, max |error| "
                          f"{e['max_abs']:.4g} N, peak |F| {e['peak']:.4g} N")
+        lines.extend(f"warning: {w}" for w in self.warnings)
         lines.extend(f"note: {n}" for n in self.notes)
         return "\n".join(lines)
 
@@ -139,7 +152,8 @@ class MFFit:
                 "coefficients": {k: {"value": v, "stderr": self.stderr.get(k)}
                                  for k, v in self.values.items()},
                 "undetermined": list(self.undetermined), "errors": self.errors,
-                "stages": self.stages, "seconds": self.seconds, "notes": list(self.notes)}
+                "stages": self.stages, "seconds": self.seconds, "notes": list(self.notes),
+                "warnings": list(self.warnings)}
 
     def plot(self, path: str | Path) -> Path:
         """Save a figure of data and fit per load (nominal pressure, smallest camber)."""
@@ -239,11 +253,13 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
                        "reference pressure and camber")
     both = [(x > 0).sum() >= 3 and (x < 0).sum() >= 3 for x, _, _ in sets]
     p0, lo, hi = [1.4], [0.3], [3.0]
-    for x, y, _ in sets:
+    for x, y, fz in sets:
         start = _curve_start(x, y)
+        d_max = min(5 * start[1], PEAK_MU[1] * fz)  # a peak the data stop before: physical
+        start[1] = min(start[1], 0.5 * d_max)
         p0 += start
         lo += [-np.inf, 1e-6 * start[1], -20.0, -20.0, -np.inf, -np.inf]
-        hi += [np.inf, 5 * start[1], 1.0, 20.0, np.inf, np.inf]
+        hi += [np.inf, d_max, 1.0, 20.0, np.inf, np.inf]
 
     def resid(p: np.ndarray) -> np.ndarray:
         out = []
@@ -357,18 +373,23 @@ _BOUNDS = {"PCX1": (0.3, 3.0), "PCY1": (0.3, 3.0), "PKY2": (0.05, 50.0), "PKY4":
            "PEX1": (-50.0, 1.0), "PEY1": (-50.0, 1.0)}
 
 
-def _solve(mf: MagicFormula, d: _Direction, names: list[str], method: str = "lm") -> Any:
+def _solve(mf: FittingModel, d: _Direction, names: list[str], method: str = "lm") -> Any:
     """Least squares over ``names`` (starting at the model's current values).
 
     Levenberg-Marquardt (MINPACK) from the staged start; when it ends outside the
     bounds of a shape coefficient (C, PKY2, PKY4, E at nominal load), the bounded
-    trust-region solver is run from the clipped solution.
+    trust-region solver is run from the start and from the clipped solution, and the
+    better end is kept (clipping a solution that ran along a flat direction can leave
+    it far from the data).  The residuals are the
+    force errors followed by the peak-friction penalty (zero while the peak
+    friction is physical, :func:`~frictionlaws.tyre._fit_mf_peak.peak_penalty`).
     """
     lo = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[0] for k in names])
     hi = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[1] for k in names])
 
     def resid(p: np.ndarray) -> np.ndarray:
-        return _predict(mf, d, names, p) - d.force
+        force = _predict(mf, d, names, p) - d.force
+        return np.concatenate([force, peak_penalty(mf.peak_mu, d.fz)])
 
     def inside(p: np.ndarray) -> np.ndarray:
         with np.errstate(invalid="ignore"):
@@ -384,17 +405,20 @@ def _solve(mf: MagicFormula, d: _Direction, names: list[str], method: str = "lm"
             r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
                               max_nfev=100 * (len(names) + 1))
         if np.any(r.x < lo) or np.any(r.x > hi) or not np.isfinite(r.cost):
-            r = least_squares(resid, inside(r.x if np.isfinite(r.cost) else p0),
-                              bounds=(lo, hi), x_scale="jac", method="trf",
-                              max_nfev=100 * (len(names) + 1))
+            starts = [p0] + ([inside(r.x)] if np.isfinite(r.cost) else [])
+            r = min((least_squares(resid, x0, bounds=(lo, hi), x_scale="jac", method="trf",
+                                   max_nfev=100 * (len(names) + 1)) for x0 in starts),
+                    key=lambda res: res.cost)
     _predict(mf, d, names, r.x)  # leave the model at the solution
     return r
 
 
-def _stderr(r: Any, n_free: int) -> tuple[np.ndarray, np.ndarray]:
-    """Standard errors and the smallest relative singular value's direction of J."""
+def _stderr(r: Any, n_free: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Standard errors and the smallest relative singular value's direction of J.
+
+    ``n`` is the number of data points (the rows of J after them are the penalty's).
+    """
     J = r.jac
-    n = J.shape[0]
     norms = np.linalg.norm(J, axis=0)
     norms[norms == 0] = 1.0
     _, s, vt = np.linalg.svd(J / norms, full_matrices=False)
@@ -407,7 +431,7 @@ def _stderr(r: Any, n_free: int) -> tuple[np.ndarray, np.ndarray]:
     return se, weak
 
 
-def _fit_direction(mf: MagicFormula, d: _Direction, data: TyreData, version: str,
+def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str,
                    template: dict[str, float]) -> tuple[dict, dict, list[str], list[dict]]:
     """Stages 1-3 for one direction: (values, stderr, undetermined, stage-1 curves)."""
     group = X_COEFFICIENTS[version] if d.name == "x" else Y_COEFFICIENTS[version]
@@ -417,25 +441,62 @@ def _fit_direction(mf: MagicFormula, d: _Direction, data: TyreData, version: str
     for k in group:  # every coefficient starts at zero or its stage-2 value ...
         mf.coefficients[k] = 0.0
     for k in undetermined:  # ... except those the data cannot determine
-        mf.coefficients[k] = template.get(k, 2.0 if k == "PKY4" else 0.0)
+        mf.coefficients[k] = _template_value(template, k)
     curves = _stage1(d)
     start = _stage2_start(d, curves, mf.fz0, version)
     mf.coefficients.update({k: v for k, v in start.items() if k in free})
     rest = [k for k in free if k not in start]
     if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
         _solve(mf, d, rest)
-    while True:  # stage 3: global refinement; drop directions the data do not inform
-        r = _solve(mf, d, free)
-        se, weak = _stderr(r, len(free))
+    se, dropped, held = _refine(mf, d, free, template)
+    undetermined.extend(dropped)
+    values = {k: float(mf.coefficients[k]) for k in free + held}
+    stderr = {k: float(s) for k, s in zip(free, se)}
+    stderr.update({k: math.inf for k in held})
+    return values, stderr, undetermined, curves
+
+
+def _template_value(template: dict[str, float], name: str) -> float:
+    return template.get(name, 2.0 if name == "PKY4" else 0.0)
+
+
+#: A template value may replace an uninformed coefficient if the refit is no worse than
+#: this factor on the cost (else the coefficient is held at its fitted value).
+_DROP_COST = 1.01
+
+
+def _refine(mf: FittingModel, d: _Direction, free: list[str], template: dict[str, float]
+            ) -> tuple[np.ndarray, list[str], list[str]]:
+    """Stage 3: global refinement of ``free`` (shortened in place), dropping directions
+    the data do not inform.
+
+    A dropped coefficient goes back to the template's value when the refit is then no
+    worse (cost within :data:`_DROP_COST`); otherwise the template's value does not
+    suit these data and the coefficient is held where the fit left it.
+
+    Returns the standard errors of ``free``, the coefficients set to the template's
+    value and those held at their fitted value.
+    """
+    dropped: list[str] = []
+    held: list[str] = []
+    r = _solve(mf, d, free)
+    while True:
+        se, weak = _stderr(r, len(free), d.force.size)
         if weak.size == 0 or len(free) <= 1:
-            break
+            return se, dropped, held
         worst = free[int(np.argmax(np.abs(weak)))]
         free.remove(worst)
-        undetermined.append(worst)
-        mf.coefficients[worst] = template.get(worst, 2.0 if worst == "PKY4" else 0.0)
-    values = {k: float(mf.coefficients[k]) for k in free}
-    stderr = {k: float(s) for k, s in zip(free, se)}
-    return values, stderr, undetermined, curves
+        fitted = dict(mf.coefficients)
+        mf.coefficients[worst] = _template_value(template, worst)
+        refit = _solve(mf, d, free)
+        if refit.cost <= _DROP_COST * r.cost + 1e-12 * float(np.sum(d.force**2)):
+            dropped.append(worst)
+            r = refit
+        else:
+            mf.coefficients.clear()
+            mf.coefficients.update(fitted)
+            held.append(worst)
+            r = _solve(mf, d, free)
 
 
 def _template(template: str | Path | PropertyFile | None, version: str) -> PropertyFile:
@@ -554,39 +615,65 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
                  "coefficients come from it")
     tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
                                   "LATERAL_COEFFICIENTS")
-    mf = MagicFormula(dict(tpl_coeffs), fnomin=tpl.si("VERTICAL", "FNOMIN"), version=version,
+    mf = FittingModel(dict(tpl_coeffs), fnomin=tpl.si("VERTICAL", "FNOMIN"), version=version,
                       source=tpl.path)
     p_nom = _nominal_pressure(tpl, data, notes)
     p_fit = p_nom if version != "5.2" else None
     if version == "5.2" and np.isfinite(data.pressure).any():
         notes.append("MF 5.2 has no pressure coefficients here: the pressure column is "
                      "not used")
-    values: dict[str, float] = {}
-    stderr: dict[str, float] = {}
-    undetermined: list[str] = []
-    stages: dict[str, list[dict[str, float]]] = {}
-    errors: dict[str, dict[str, float]] = {}
-    for name in ("x", "y"):
-        d = _select(data, name, p_fit)
-        if d is None:
-            notes.append(f"no pure-slip F{name}0 points: the F{name}0 coefficients are the "
-                         "template's")
-            continue
-        v, se, und, curves = _fit_direction(mf, d, data, version, tpl_coeffs)
-        values.update(v)
-        stderr.update(se)
-        undetermined.extend(und)
-        stages[name] = curves
-        errors[name] = _errors(mf, d)
+    values, stderr, undetermined, stages, errors, warns = _fit_directions(
+        mf, data, version, tpl_coeffs, p_fit, notes)
     n_comb = int(np.sum((np.abs(data.alpha) > ALPHA_ZERO) & (np.abs(data.kappa) > KAPPA_ZERO)))
     if n_comb:
         notes.append(f"{n_comb} combined-slip rows (kappa and alpha both non-zero) not used")
     if undetermined:
         notes.append("not determined by the data, left at the template's value: "
                      + ", ".join(undetermined))
+    held = [k for k, se in stderr.items() if se == math.inf]
+    if held:
+        notes.append("not determined by the data, and the template's value does not suit "
+                     "them: held at the fitted value (standard error infinite): "
+                     + ", ".join(held))
     pf = _build_file(tpl, fittyp, values, p_nom, data)
-    return _finish(pf, version, values, stderr, undetermined, errors, stages, data,
-                   t0, notes)
+    fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
+                     t0, notes)
+    fitted.warnings = warns
+    for text in warns:
+        warnings.warn(text, ExtrapolationWarning, stacklevel=2)
+    return fitted
+
+
+def _fit_directions(mf: FittingModel, data: TyreData, version: str,
+                    template: dict[str, float], p_fit: float | None, notes: list[str]
+                    ) -> tuple[dict[str, float], dict[str, float], list[str], dict, dict,
+                               list[str]]:
+    """Fit F_x0 then F_y0: values, standard errors, undetermined coefficients, stage-1
+    curves, errors and warnings (peaks the data do not reach)."""
+    values: dict[str, float] = {}
+    stderr: dict[str, float] = {}
+    undetermined: list[str] = []
+    stages: dict[str, list[dict[str, float]]] = {}
+    errors: dict[str, dict[str, float]] = {}
+    warns: list[str] = []
+    for name in ("x", "y"):
+        d = _select(data, name, p_fit)
+        if d is None:
+            notes.append(f"no pure-slip F{name}0 points: the F{name}0 coefficients are the "
+                         "template's")
+            continue
+        v, se, und, curves = _fit_direction(mf, d, data, version, template)
+        values.update(v)
+        stderr.update(se)
+        undetermined.extend(und)
+        stages[name] = curves
+        errors[name] = _errors(mf, d)
+        ref = d.reference
+        unreached = unreached_peaks(mf, name, d.slip[ref], d.fz[ref], d.gamma[ref],
+                                    d.dpi[ref], d.load_labels[ref], d.loads)
+        if unreached:
+            warns.append(peak_message(name, unreached, [k for k in v if k[:2] == "PD"]))
+    return values, stderr, undetermined, stages, errors, warns
 
 
 def _finish(pf: PropertyFile, version: str, values: dict[str, float],
