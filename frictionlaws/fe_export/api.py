@@ -416,14 +416,23 @@ def _job(bound: BoundLaw, format: str, specs: dict[str, AxisSpec], system: UnitS
     return job
 
 
-def _write(path: str | Path | None, text: str) -> str | None:
-    """Write the export atomically (never over an input); the path written or None."""
+def _inputs_of(bound: BoundLaw) -> list[str]:
+    """The files the bound values came from: the fitted data file, the params file."""
+    src = bound.source
+    return [f for f in (src.data_file, src.file) if f]
+
+
+def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
+    """Write the export atomically, never over ``inputs`` nor a file read in this process.
+
+    Returns the path written, or None for no path (or ``"-"``).
+    """
     if path is None or str(path) == "-":
         return None
     from ..outputs import check_outputs, write_text_atomic
 
     p = Path(path)
-    check_outputs([p])
+    check_outputs([p], inputs=inputs, what="export file")
     try:
         write_text_atomic(p, text)
     except OSError as exc:
@@ -473,7 +482,10 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         Variable -> ``"lin"`` or ``"log"`` (default: log when min > 0 and
         max/min >= 100, else lin).
     path : str or Path, optional
-        Write the file there.
+        Write the file there (atomically).  Refused when it is the data file
+        the values were fitted to, their params file, or any file read in this
+        process (see :mod:`frictionlaws.outputs`); any other path is written as
+        asked.
     max_rows : int
         Largest table allowed.
     source : str, optional
@@ -496,6 +508,10 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     """
     _check_format(format, tol)
     bound = _bound(law, params, preset)
+    if path is not None and str(path) != "-":  # before any work
+        from ..outputs import check_outputs
+
+        check_outputs([path], inputs=_inputs_of(bound), what="export file")
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
@@ -506,7 +522,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
-    return _result(job, written, _write(path, written.text))
+    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
 
 
 def _result(job: Job, written: Written, path: str | None) -> ExportResult:
