@@ -486,13 +486,11 @@ def compare(
     progress : bool, optional
         Show a tqdm progress bar; by default only when stderr is a terminal.
     jobs : int
-        Processes (joblib) sharing the fits: the full fit, every cross-validation fold
-        and every hold-out of every law are independent; -1 takes one per core.  The
+        Processes (joblib) sharing the fits (all independent); -1: one per core.  The
         results do not depend on it.
     max_rows : int or None
-        Most rows compared (default :data:`MAX_ROWS`): larger data are compared on a
-        seeded random subsample of that many rows, with a note (module docstring);
-        None compares every row, however long it takes.
+        Larger data are compared on a seeded random subsample of that many rows, with a
+        note (module docstring); None compares every row, however long it takes.
 
     Returns
     -------
@@ -512,8 +510,8 @@ def compare(
     if data is None:
         raise InputError("no data given to compare the laws on")
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
-    return _compare(fd, laws, family, folds, holdout, seed, starts, mu_limits, progress, jobs,
-                    max_rows)
+    return _compare(fd, laws, family, folds, holdout, seed, starts, mu_limits, progress,
+                    jobs, max_rows)
 
 
 def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: Any, seed: int,

@@ -422,6 +422,14 @@ def _inputs_of(bound: BoundLaw) -> list[str]:
     return [f for f in (src.data_file, src.file) if f]
 
 
+def _check_path(path: str | Path | None, bound: BoundLaw) -> None:
+    """Check the export's path before any work (the same check as :func:`_write`)."""
+    if path is not None and str(path) != "-":
+        from ..outputs import check_outputs
+
+        check_outputs([path], inputs=_inputs_of(bound), what="export file")
+
+
 def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
     """Write the export atomically, never over ``inputs`` nor a file read in this process.
 
@@ -482,10 +490,8 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         Variable -> ``"lin"`` or ``"log"`` (default: log when min > 0 and
         max/min >= 100, else lin).
     path : str or Path, optional
-        Write the file there (atomically).  Refused when it is the data file
-        the values were fitted to, their params file, or any file read in this
-        process (see :mod:`frictionlaws.outputs`); any other path is written as
-        asked.
+        Write the file there, atomically; never over the fitted data, the params
+        file or a file read in this process (:mod:`frictionlaws.outputs`).
     max_rows : int
         Largest table allowed.
     source : str, optional
@@ -508,10 +514,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     """
     _check_format(format, tol)
     bound = _bound(law, params, preset)
-    if path is not None and str(path) != "-":  # before any work
-        from ..outputs import check_outputs
-
-        check_outputs([path], inputs=_inputs_of(bound), what="export file")
+    _check_path(path, bound)
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
