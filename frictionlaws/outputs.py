@@ -27,6 +27,10 @@ Which files count as inputs (the files no write may replace):
 * the files the values of a fit came from: exporting or saving a fit result (or a law
   bound to a fit) refuses the fitted data file even when this process never read it.
 
+A file this process wrote itself (through this module) and read back later is its own
+product, not a user's input: it may be written again (a script that writes, reads and
+rewrites ``rt.csv`` works), unless the writing call names it as one of its inputs.
+
 A path the caller names explicitly that is none of these is written as asked, an
 existing file there replaced (atomically), as :func:`open` and ``pandas.to_csv`` do:
 the library cannot know that a file it never read is precious.
@@ -186,10 +190,15 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
 _PROTECTED: set[str] = set()
 #: The same files as (device, inode): a hard link to one is refused too.
 _PROTECTED_IDS: set[tuple[int, int]] = set()
+#: Files written by this module in this process (real paths): not registered when read.
+_WRITTEN: set[str] = set()
 
 
 def _register(path: Path, st: os.stat_result | None) -> None:
-    _PROTECTED.add(_key(path))
+    key = _key(path)
+    if key in _WRITTEN:  # this process's own output, read back
+        return
+    _PROTECTED.add(key)
     if st is not None:
         _PROTECTED_IDS.add((st.st_dev, st.st_ino))
 
@@ -198,7 +207,8 @@ def protect_input(path: PathLike) -> None:
     """Register ``path`` as an input of this process: no later write replaces it.
 
     Called for every file the library reads (through :func:`check_input_file`) and
-    for the inputs given to :func:`check_outputs`.  Cheap: one ``stat``.
+    for the inputs given to :func:`check_outputs`.  Cheap: one ``stat``.  A file this
+    process wrote (:func:`atomic_write`, :func:`atomic_dir`) is not registered.
 
     Parameters
     ----------
@@ -265,6 +275,7 @@ def atomic_write(path: PathLike, mode: str = "w", *, encoding: str | None = "utf
         except OSError:
             pass
         os.replace(tmp, target)
+        _WRITTEN.add(_key(target))
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
@@ -317,5 +328,6 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
                 dest.mkdir(parents=True, exist_ok=True)
             else:
                 os.replace(item, dest)
+                _WRITTEN.add(_key(dest))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

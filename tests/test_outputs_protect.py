@@ -35,6 +35,7 @@ def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> None:
     """Each test starts with no file registered (the registry is per process)."""
     monkeypatch.setattr(outputs, "_PROTECTED", set())
     monkeypatch.setattr(outputs, "_PROTECTED_IDS", set())
+    monkeypatch.setattr(outputs, "_WRITTEN", set())
 
 
 def _data(folder: Path, name: str = "data.csv") -> Path:
@@ -90,8 +91,8 @@ def test_a_saved_fit_refuses_its_data_file_even_when_this_process_never_read_it(
     data = _data(tmp_path)
     saved = tmp_path / "fit.json"
     fl.fit("thirion", data).save(saved)
-    monkeypatch.setattr(outputs, "_PROTECTED", set())  # a new session: nothing read
-    monkeypatch.setattr(outputs, "_PROTECTED_IDS", set())
+    for name in ("_PROTECTED", "_PROTECTED_IDS", "_WRITTEN"):  # a new session
+        monkeypatch.setattr(outputs, name, set())
     res = fl.load_result(saved)
     assert not outputs.is_protected(data)
     before = data.read_bytes()
@@ -111,6 +112,17 @@ def test_a_path_that_is_not_an_input_is_written_as_asked(tmp_path: Path) -> None
     new = tmp_path / "new.csv"
     fl.export("thirion", {"a": 1, "b": 1e-6}, "csv", box=BOX, path=new)
     assert new.is_file()
+
+
+def test_a_file_this_process_wrote_may_be_read_and_written_again(tmp_path: Path) -> None:
+    path = tmp_path / "rt.csv"
+    for factor in (1.0, 0.5):  # write, read back, write again: the process's own file
+        ds = fl.load_dataset({"mu": [0.9 * factor, 0.8 * factor], "p": [1e5, 2e5]})
+        back = fl.load_dataset(ds.to_csv(path))
+        assert back.frame["mu"].iloc[0] == pytest.approx(0.9 * factor)
+    res = fl.fit("thirion", _data(tmp_path))
+    with pytest.raises(InputError, match="also an input"):  # but never a call's own input
+        res.save(tmp_path / "data.csv")
 
 
 def test_the_cli_refuses_a_file_read_earlier_in_the_same_process(tmp_path: Path) -> None:
@@ -163,6 +175,7 @@ def test_a_read_file_is_never_replaced_whatever_name_reaches_it(
         stem: str, read_as: str, write_as: str, how: str) -> None:
     outputs._PROTECTED.clear()
     outputs._PROTECTED_IDS.clear()
+    outputs._WRITTEN.clear()
     cwd = os.getcwd()
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp).resolve()
