@@ -249,8 +249,8 @@ def is_protected(path: PathLike) -> bool:
 
 def _refuse_protected(path: Path, what: str = "output file") -> None:
     if is_protected(path):
-        raise InputError(f"the {what} was read as an input in this session; it would be "
-                         "overwritten (give another name)", file=str(path))
+        raise InputError(f"refusing to overwrite an input: the {what} was read in this "
+                         "session (give another name)", file=str(path))
 
 
 @contextlib.contextmanager
