@@ -40,6 +40,7 @@ def test_large_data_are_compared_on_a_seeded_subsample() -> None:
     assert "400 rows" in cmp.notes[0] and "subsample of 60" in cmp.notes[0]
     doc = json.loads(cmp.to_json())
     assert doc["settings"]["rows"]["used"] == 60 and doc["notes"][0] == cmp.notes[0]
+    assert doc["dataset"]["n"] == 60 and doc["dataset"]["n_data"] == 400
     for r in cmp.results:  # every part used the subsample only
         assert r.fit.metrics["n"] <= 60 and r.cv.predictions is not None
         assert r.cv.predictions.size == 60
