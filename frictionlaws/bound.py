@@ -58,6 +58,8 @@ class Source:
         The dataset fitted (``kind="fit"``).
     detail : str
         A short statement about the origin (a fit's size and quality).
+    data_file : str, optional
+        The data file fitted, when known (``kind="fit"``): no output replaces it.
     """
 
     kind: str = "values"
@@ -66,6 +68,7 @@ class Source:
     file: str | None = None
     dataset: str | None = None
     detail: str = ""
+    data_file: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         if self.kind not in SOURCE_KINDS:
@@ -344,7 +347,7 @@ def bound_from_result(result: FitResult, source: Source | None = None, *,
             (("n", "n", "{}"), ("R^2", "r2", "{:.4g}"), ("rmse", "rmse", "{:.3g}"))
             if isinstance(m.get(key), (int, float)) and math.isfinite(m[key]))
         source = Source("fit", dataset=dataset or data.get("name") or data.get("source"),
-                        detail=detail)
+                        detail=detail, data_file=data.get("source") or None)
     return BoundLaw(
         result.law, result.values, source, fitted_ranges=data.get("ranges") or {},
         stderr={k: p.stderr for k, p in result.params.items() if p.stderr is not None},

@@ -522,7 +522,8 @@ class Dataset:
         Parameters
         ----------
         path : str or path-like
-            The file to write (overwritten if it exists).
+            The file to write (replaced atomically if it exists; never a file
+            read in this process, see :mod:`frictionlaws.outputs`).
 
         Returns
         -------
@@ -540,7 +541,9 @@ class Dataset:
             unit = _units.display_unit(c)
             vals = _units.from_si(self.frame[c].to_numpy(dtype=float), unit, c)
             columns.append([format(float(x), ".15g") for x in vals])
-        with path.open("w", encoding="utf-8", newline="") as fh:
+        from .outputs import atomic_write  # never over a file read in this process
+
+        with atomic_write(path, newline="") as fh:
             if self.provenance:
                 for line in self.provenance.splitlines():
                     fh.write(f"# {line}".rstrip() + "\n")

@@ -13,6 +13,27 @@ Rules (the same for every command and API call that writes files):
 
 Library functions call :func:`check_outputs` at their start with what they will
 read and write; failures raise :class:`~frictionlaws.errors.InputError`.
+
+Which files count as inputs (the files no write may replace):
+
+* the inputs a call names (its data, manifest, records, rig, params or property file),
+  given to :func:`check_outputs`;
+* every file read in this process: the one table reader and the loaders (datasets,
+  manifests, records, rigs, params JSON, property files) open their file through
+  :func:`check_input_file`, which registers it with :func:`protect_input`.  So
+  ``fit("data.csv")`` then ``export(..., path="data.csv")`` in the same session (API
+  or CLI) is refused, whichever call wrote last.  A file is recognised through any
+  name (relative, ``./x``, ``a/../x``, a symbolic link) and through a hard link;
+* the files the values of a fit came from: exporting or saving a fit result (or a law
+  bound to a fit) refuses the fitted data file even when this process never read it.
+
+A file this process wrote itself (through this module) and read back later is its own
+product, not a user's input: it may be written again (a script that writes, reads and
+rewrites ``rt.csv`` works), unless the writing call names it as one of its inputs.
+
+A path the caller names explicitly that is none of these is written as asked, an
+existing file there replaced (atomically), as :func:`open` and ``pandas.to_csv`` do:
+the library cannot know that a file it never read is precious.
 """
 
 from __future__ import annotations
@@ -31,6 +52,8 @@ from .errors import InputError
 __all__ = [
     "check_input_file",
     "check_outputs",
+    "protect_input",
+    "is_protected",
     "atomic_write",
     "write_text_atomic",
     "write_bytes_atomic",
@@ -49,7 +72,11 @@ def _key(path: Path) -> str:
 
 
 def check_input_file(path: PathLike, what: str = "input file") -> Path:
-    """Refuse an input that is missing, a directory or a special file (FIFO, device)."""
+    """Refuse an input that is missing, a directory or a special file (FIFO, device).
+
+    A file that passes is registered as read (:func:`protect_input`): no later
+    write of this process replaces it.
+    """
     p = Path(path)
     try:
         st = p.stat()
@@ -64,6 +91,7 @@ def check_input_file(path: PathLike, what: str = "input file") -> Path:
                          "give a file on disk", file=str(p))
     if not os.access(p, os.R_OK):
         raise InputError(f"the {what} is not readable", file=str(p))
+    _register(p, st)
     return p
 
 
@@ -141,6 +169,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
             if _same_file(out, src):
                 raise InputError(f"the {what} is also an input; it would be overwritten "
                                  "(give another name)", file=str(out))
+        _refuse_protected(out, what)
         if _key(out) in seen:
             raise InputError(f"the same {what} is named twice", file=str(out))
         seen[_key(out)] = out
@@ -153,16 +182,75 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
             if _same_file(out, src):
                 raise InputError("the output directory is also an input", file=str(out))
         _check_dir_target(out, "output directory")
-    _PROTECTED.update(_key(p) for p in ins)
+    for src in ins:
+        protect_input(src)
 
 
-#: Inputs registered by :func:`check_outputs` in this process: never replaced.
+#: Inputs read or named in this process (real paths): never replaced.
 _PROTECTED: set[str] = set()
+#: The same files as (device, inode): a hard link to one is refused too.
+_PROTECTED_IDS: set[tuple[int, int]] = set()
+#: Files written by this module in this process (real paths): not registered when read.
+_WRITTEN: set[str] = set()
 
 
-def _refuse_protected(path: Path) -> None:
-    if _key(path) in _PROTECTED:
-        raise InputError("refusing to overwrite an input file", file=str(path))
+def _register(path: Path, st: os.stat_result | None) -> None:
+    key = _key(path)
+    if key in _WRITTEN:  # this process's own output, read back
+        return
+    _PROTECTED.add(key)
+    if st is not None:
+        _PROTECTED_IDS.add((st.st_dev, st.st_ino))
+
+
+def protect_input(path: PathLike) -> None:
+    """Register ``path`` as an input of this process: no later write replaces it.
+
+    Called for every file the library reads (through :func:`check_input_file`) and
+    for the inputs given to :func:`check_outputs`.  Cheap: one ``stat``.  A file this
+    process wrote (:func:`atomic_write`, :func:`atomic_dir`) is not registered.
+
+    Parameters
+    ----------
+    path : path-like
+        The file read (a missing file is registered by name).
+    """
+    p = Path(path)
+    try:
+        st: os.stat_result | None = p.stat()
+    except OSError:
+        st = None
+    _register(p, st)
+
+
+def is_protected(path: PathLike) -> bool:
+    """True when ``path`` names a file registered by :func:`protect_input` (any name or link).
+
+    Parameters
+    ----------
+    path : path-like
+        The path to test.
+
+    Returns
+    -------
+    bool
+    """
+    p = Path(path)
+    if _key(p) in _PROTECTED:
+        return True
+    if not _PROTECTED_IDS:
+        return False
+    try:
+        st = p.stat()
+    except OSError:
+        return False
+    return (st.st_dev, st.st_ino) in _PROTECTED_IDS
+
+
+def _refuse_protected(path: Path, what: str = "output file") -> None:
+    if is_protected(path):
+        raise InputError(f"refusing to overwrite an input: the {what} was read in this "
+                         "session (give another name)", file=str(path))
 
 
 @contextlib.contextmanager
@@ -187,6 +275,7 @@ def atomic_write(path: PathLike, mode: str = "w", *, encoding: str | None = "utf
         except OSError:
             pass
         os.replace(tmp, target)
+        _WRITTEN.add(_key(target))
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
@@ -239,5 +328,6 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
                 dest.mkdir(parents=True, exist_ok=True)
             else:
                 os.replace(item, dest)
+                _WRITTEN.add(_key(dest))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -16,6 +16,18 @@ For every law that can be fitted to the data, :func:`compare` reports
   (:mod:`.extrapolation`);
 * **residual structure** tests (:mod:`.residuals`).
 
+Large data: a comparison makes ``1 + folds + hold-outs`` fits per law (96 for
+the sliding family with the defaults), each with random starts, and the trend
+test compares every pair of rows.  On data with more than ``max_rows`` rows
+(default :data:`MAX_ROWS`) every part of the comparison (full fits, folds,
+hold-outs, trends, residual tests) uses the same seeded random subsample of
+``max_rows`` rows, and the notes and settings say so.  Measured on this
+project's machine, the full fits alone of the sliding laws take about a minute
+on 20,000 rows, so subsampling only the refits would not bound the run; the
+ranking on a few thousand rows is what the extra rows would give, and the
+chosen law can then be fitted to every row with :func:`frictionlaws.fitting.fit`.
+Data with at most ``max_rows`` rows are compared as they are.
+
 Ranking: by cross-validated RMSE, the error on rows a law has not seen, which
 neither rewards extra parameters the way R^2 does nor needs the likelihood
 assumptions of AIC.  When the laws were fitted to different rows (a
@@ -69,7 +81,10 @@ from .residuals import analyse_residuals
 from .results import COMPARISON_FORMAT, Comparison, LawComparison
 
 __all__ = ["compare", "Comparison", "LawComparison", "usable_rows", "COMPARISON_FORMAT",
-           "default_family"]
+           "default_family", "MAX_ROWS", "subsample"]
+
+#: Most rows a comparison works on; larger data are subsampled (module docstring).
+MAX_ROWS = 2000
 
 RANKING = ("cross-validated RMSE (ascending), over the rows common to all fitted laws when "
            "they were fitted to different rows; laws with parameters the data cannot determine "
@@ -202,6 +217,44 @@ def _check_options(fd: FitData, folds: Any, mu_limits: Sequence[float], jobs: An
                      f"leave-one-out ({fd.n} folds) used")
         folds = fd.n
     return int(folds), (lims[0], lims[1]), notes
+
+
+def subsample(fd: FitData, max_rows: int | None, seed: int) -> tuple[FitData, str | None]:
+    """At most ``max_rows`` rows of ``fd``, drawn at random (seeded), in their order.
+
+    Parameters
+    ----------
+    fd : FitData
+        The data.
+    max_rows : int or None
+        Most rows kept; None keeps every row.
+    seed : int
+        Seed of :func:`numpy.random.default_rng` (same seed, same rows).
+
+    Returns
+    -------
+    FitData, str or None
+        The rows kept (``fd`` itself when it has at most ``max_rows`` rows) and
+        the note saying what was done (None when nothing was).
+    """
+    if max_rows is None or fd.n <= max_rows:
+        return fd, None
+    keep = np.zeros(fd.n, dtype=bool)
+    keep[np.random.default_rng(seed).choice(fd.n, size=max_rows, replace=False)] = True
+    note = (f"the data have {fd.n} rows: every fit, fold, hold-out and test of this "
+            f"comparison uses a random subsample of {max_rows} of them (seed {seed}); "
+            "fit the chosen law to every row on its own")
+    return fd.subset(keep), note
+
+
+def _check_max_rows(max_rows: Any) -> int | None:
+    if max_rows is None:
+        return None
+    if isinstance(max_rows, bool) or not isinstance(max_rows, (int, np.integer)) \
+            or max_rows < 3:
+        raise InputError(f"max_rows must be a whole number >= 3 (or None for every row), "
+                         f"not {max_rows!r}", option="max_rows")
+    return int(max_rows)
 
 
 @dataclass
@@ -340,7 +393,7 @@ def _rank(results: list[LawComparison], fd: FitData, notes: list[str]) -> tuple[
 
 
 def _settings(setup: _Setup, what: str, starts: int | None, fractions: dict[str, float],
-              same_rows: bool, common: int) -> dict[str, Any]:
+              same_rows: bool, common: int, rows: dict[str, Any]) -> dict[str, Any]:
     """The settings block of a comparison (what was done, and by which rules)."""
     box = setup.box
     return {
@@ -373,6 +426,9 @@ def _settings(setup: _Setup, what: str, starts: int | None, fractions: dict[str,
                           "Kendall tau, per variable and vs the fitted value; Shapiro-Wilk; "
                           "5 % level each, uncorrected",
         "weights": "dataset" if setup.fd.weights is not None else "none",
+        "rows": rows,
+        "rows_rule": "data with more than max_rows rows are compared on a seeded random "
+                     "subsample of max_rows rows (every fit, fold, hold-out and test)",
     }
 
 
@@ -392,6 +448,7 @@ def compare(
     area: Any = None,
     progress: bool | None = None,
     jobs: int = 1,
+    max_rows: int | None = MAX_ROWS,
 ) -> Comparison:
     """Fit and compare several laws on one dataset.
 
@@ -429,9 +486,11 @@ def compare(
     progress : bool, optional
         Show a tqdm progress bar; by default only when stderr is a terminal.
     jobs : int
-        Processes (joblib) sharing the fits: the full fit, every cross-validation fold
-        and every hold-out of every law are independent; -1 takes one per core.  The
+        Processes (joblib) sharing the fits (all independent); -1: one per core.  The
         results do not depend on it.
+    max_rows : int or None
+        Larger data are compared on a seeded random subsample of that many rows, with a
+        note (module docstring); None compares every row, however long it takes.
 
     Returns
     -------
@@ -451,17 +510,23 @@ def compare(
     if data is None:
         raise InputError("no data given to compare the laws on")
     fd = as_fit_data(data, mapping=mapping, units=units, area=area, weights=weights)
-    return _compare(fd, laws, family, folds, holdout, seed, starts, mu_limits, progress, jobs)
+    return _compare(fd, laws, family, folds, holdout, seed, starts, mu_limits, progress,
+                    jobs, max_rows)
 
 
 def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: Any, seed: int,
              starts: int | None, mu_limits: Sequence[float], progress: bool | None,
-             jobs: Any) -> Comparison:
+             jobs: Any, max_rows: Any = MAX_ROWS) -> Comparison:
     """:func:`compare` on data already read."""
     from ..fitting import _check_options as check_fit_options
 
     check_fit_options("least_squares", starts, seed, "error")  # the fit's rule for both
+    limit = _check_max_rows(max_rows)
+    n_data = fd.n
+    fd, sub_note = subsample(fd, limit, seed)
     folds, lims, notes = _check_options(fd, folds, mu_limits, jobs)
+    if sub_note:
+        notes.insert(0, sub_note)
     fractions = parse_holdout(holdout)
     candidates, skipped, what = _select_laws(laws, family, fd)
     if not candidates:
@@ -485,6 +550,7 @@ def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: An
         raise FitError(f"none of {what} could be fitted to data '{fd.name}': "
                        + "; ".join(f"{f['id']}: {f['error']}" for f in failed))
     same_rows, common = _rank(results, fd, notes)
-    settings = _settings(setup, what, starts, fractions, same_rows, common)
+    settings = _settings(setup, what, starts, fractions, same_rows, common,
+                         {"data": n_data, "used": fd.n, "max_rows": limit})
     return Comparison(fd, results, skipped, failed, design, setup.trends, setup.box,
                       setup.splits, setup.assign, settings, notes)

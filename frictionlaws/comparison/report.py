@@ -977,23 +977,25 @@ def write_report(cmp: Comparison, directory: str | Path, jobs: int = 1) -> dict[
     -------
     dict of str to Path
         Name -> path of each file written.
+
+    Notes
+    -----
+    The files are written by the output guard (:func:`frictionlaws.outputs.atomic_dir`):
+    all of them or none, and never over a file read in this process.
     """
-    from ..io import output_dir
+    from ..outputs import atomic_dir
 
     if isinstance(jobs, bool) or not isinstance(jobs, int) or not (jobs >= 1 or jobs == -1):
         raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
                          f"{jobs!r}", option="jobs")
-    out = output_dir(directory, "report directory")
-    figures = make_figures(cmp, jobs)
-    written: dict[str, Path] = {}
-    for f in figures:
-        p = out / f"{f.name}.png"
-        p.write_bytes(f.png)
-        written[f.name] = p
-    (out / "report.md").write_text(to_markdown(cmp, figures) + "\n", encoding="utf-8")
-    (out / "report.html").write_text(to_html(cmp, figures) + "\n", encoding="utf-8")
-    (out / "comparison.json").write_text(cmp.to_json() + "\n", encoding="utf-8")
-    written["report.md"] = out / "report.md"
-    written["report.html"] = out / "report.html"
-    written["comparison.json"] = out / "comparison.json"
+    out = Path(directory)
+    with atomic_dir(out) as tmp:  # checks the directory before the figures are drawn
+        figures = make_figures(cmp, jobs)
+        for f in figures:
+            (tmp / f"{f.name}.png").write_bytes(f.png)
+        (tmp / "report.md").write_text(to_markdown(cmp, figures) + "\n", encoding="utf-8")
+        (tmp / "report.html").write_text(to_html(cmp, figures) + "\n", encoding="utf-8")
+        (tmp / "comparison.json").write_text(cmp.to_json() + "\n", encoding="utf-8")
+    written = {f.name: out / f"{f.name}.png" for f in figures}
+    written.update({n: out / n for n in ("report.md", "report.html", "comparison.json")})
     return written

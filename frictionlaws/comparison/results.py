@@ -139,7 +139,11 @@ class Comparison:
         return self.results[0] if self.results else None
 
     def dataset_info(self) -> dict[str, Any]:
-        """Name, source, rows and the ranges of the variables (SI and display units)."""
+        """Name, source, rows and the ranges of the variables (SI and display units).
+
+        ``n`` is the rows compared; ``n_data`` the rows of the data (more when a large
+        dataset was subsampled, see :data:`~frictionlaws.comparison.core.MAX_ROWS`).
+        """
         variables = {}
         for k, x in self.data.arrays.items():
             if k not in VARIABLES:
@@ -151,7 +155,9 @@ class Comparison:
                             "range_display": f"{fmt_value(k, float(np.min(x)))} .. "
                                              f"{fmt_value(k, float(np.max(x)))}"}
         mu = self.data.arrays["mu"]
+        n_data = self.settings.get("rows", {}).get("data", self.data.n)
         return {"name": self.data.name, "source": self.data.source, "n": self.data.n,
+                "n_data": n_data,
                 "mu": {"unit": "-", "min": float(np.min(mu)), "max": float(np.max(mu))},
                 "variables": variables, "weighted": self.data.weights is not None,
                 "notes": list(self.data.notes), "design": self.design.to_dict(),

@@ -416,14 +416,31 @@ def _job(bound: BoundLaw, format: str, specs: dict[str, AxisSpec], system: UnitS
     return job
 
 
-def _write(path: str | Path | None, text: str) -> str | None:
-    """Write the export atomically (never over an input); the path written or None."""
+def _inputs_of(bound: BoundLaw) -> list[str]:
+    """The files the bound values came from: the fitted data file, the params file."""
+    src = bound.source
+    return [f for f in (src.data_file, src.file) if f]
+
+
+def _check_path(path: str | Path | None, bound: BoundLaw) -> None:
+    """Check the export's path before any work (the same check as :func:`_write`)."""
+    if path is not None and str(path) != "-":
+        from ..outputs import check_outputs
+
+        check_outputs([path], inputs=_inputs_of(bound), what="export file")
+
+
+def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
+    """Write the export atomically, never over ``inputs`` nor a file read in this process.
+
+    Returns the path written, or None for no path (or ``"-"``).
+    """
     if path is None or str(path) == "-":
         return None
     from ..outputs import check_outputs, write_text_atomic
 
     p = Path(path)
-    check_outputs([p])
+    check_outputs([p], inputs=inputs, what="export file")
     try:
         write_text_atomic(p, text)
     except OSError as exc:
@@ -473,7 +490,8 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         Variable -> ``"lin"`` or ``"log"`` (default: log when min > 0 and
         max/min >= 100, else lin).
     path : str or Path, optional
-        Write the file there.
+        Write the file there, atomically; never over the fitted data, the params
+        file or a file read in this process (:mod:`frictionlaws.outputs`).
     max_rows : int
         Largest table allowed.
     source : str, optional
@@ -496,6 +514,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     """
     _check_format(format, tol)
     bound = _bound(law, params, preset)
+    _check_path(path, bound)
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
@@ -506,7 +525,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
-    return _result(job, written, _write(path, written.text))
+    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
 
 
 def _result(job: Job, written: Written, path: str | None) -> ExportResult:

@@ -50,7 +50,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..io import _detect_delimiter, decode_text
-from ..outputs import check_input_file
+from ..outputs import atomic_write, check_input_file
 from ..units import parse_unit, unit_registry
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
@@ -459,7 +459,7 @@ def write_record(path: str | os.PathLike[str], record: Record, *,
     flat = np.column_stack(cols).ravel().tolist()
     body = (line * n) % tuple(flat)
     out = Path(path)
-    with out.open("w", encoding="utf-8", newline="") as fh:
+    with atomic_write(out, newline="") as fh:  # never over a file read in this process
         fh.write(",".join(heads) + "\n")
         fh.write(body)
     return out

@@ -61,6 +61,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..outputs import check_input_file
 from ..units import parse_quantity, unit_registry
 
 __all__ = [
@@ -466,6 +467,7 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
         raise InputError("rig file not found; expected a TOML rig description", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a TOML rig description", file=src)
+    check_input_file(p, "rig file")  # no FIFO; registered as read, never overwritten
     try:
         data = tomllib.loads(p.read_text(encoding="utf-8-sig"))
     except UnicodeDecodeError:

@@ -561,9 +561,9 @@ def format_tir(pf: PropertyFile, *, header: Iterable[str] = ()) -> str:
 
 def write_tir(pf: PropertyFile, path: str | Path, *, header: Iterable[str] = ()) -> Path:
     """Write ``pf`` as an ADAMS ``.tir`` file (see :func:`format_tir`)."""
-    path = Path(path)
-    path.write_text(format_tir(pf, header=header), encoding="utf-8")
-    return path
+    from ..outputs import write_text_atomic  # atomic, never over a file read
+
+    return write_text_atomic(Path(path), format_tir(pf, header=header))
 
 
 def converted_header(source: str, provenance: str) -> list[str]:
