@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pandas as pd
 import pytest
 from hostile import run_cli
 
@@ -86,3 +87,29 @@ def test_the_cli_bounds_a_large_file_and_says_so(tmp_path) -> None:  # type: ign
     assert f"{n} rows" in doc["notes"][0]
     text = run_cli(["compare", str(path), "--laws", "thirion", "--holdout", "0"])
     assert text.code == 0 and f"subsample of {MAX_ROWS}" in text.out
+
+
+def test_the_cli_max_rows_option_sets_the_subsample_or_every_row(tmp_path) -> None:
+    """``compare --max-rows N|all`` reaches the library; its default is the library's."""
+    import argparse
+
+    from frictionlaws.cli import cmd_compare
+    from frictionlaws.comparison.core import MAX_ROWS
+
+    assert cmd_compare._DEFAULT_MAX_ROWS == MAX_ROWS
+    rng = np.random.default_rng(5)
+    p = rng.uniform(0.01, 0.3, 40)
+    path = tmp_path / "d.csv"
+    pd.DataFrame({"mu": 1 / (0.7 + 1.5 * p), "p [MPa]": p, "v [m/s]": 1.0}).to_csv(
+        path, index=False)
+    for option, used in (("10", 10), ("all", 40), ("ALL", 40)):
+        res = run_cli(["compare", str(path), "--laws", "thirion,coulomb", "--json",
+                       "--max-rows", option])
+        assert res.code == 0, res.err
+        assert json.loads(res.out)["settings"]["rows"]["used"] == used
+    for bad in ("2", "x", "1e3", "-5"):
+        res = run_cli(["compare", str(path), "--max-rows", bad])
+        assert res.code == 2 and "--max-rows" in res.err and "'all'" in res.err, res.err
+    assert isinstance(cmd_compare._max_rows("all"), str)
+    with pytest.raises(argparse.ArgumentTypeError):
+        cmd_compare._max_rows("0")

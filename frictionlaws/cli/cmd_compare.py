@@ -55,6 +55,11 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     add_fit_options(p, only=("weights", "starts", "seed"))
     p.add_argument("--mu-max", type=_mu_max, default=5.0, metavar="MU",
                    help="upper physical limit of mu in the plausibility scan (default 5)")
+    p.add_argument("--max-rows", type=_max_rows, default=None, metavar="N|all",
+                   help="compare data with more rows on a seeded random subsample of N rows "
+                        "(every fit, fold, hold-out and test; said in the notes); 'all' for "
+                        "every row, however long that takes (default "
+                        f"{_DEFAULT_MAX_ROWS})")
     p.add_argument("--report", metavar="DIR",
                    help="write report.html (self-contained), report.md, comparison.json and "
                         "PNG figures to DIR (created with its parents if missing, as every "
@@ -63,6 +68,22 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="print the comparison as one JSON object instead of the table")
     add_campaign_options(p, shared=False)
     return p
+
+
+#: compare's default subsample size, frictionlaws.comparison.core.MAX_ROWS (kept here
+#: as a literal so that building the parser imports no numpy; a test checks they agree).
+_DEFAULT_MAX_ROWS = 2000
+_ALL_ROWS = "all"
+
+
+def _max_rows(text: str) -> int | str:
+    """``--max-rows``: a whole number >= 3, or 'all'."""
+    if text.strip().lower() == _ALL_ROWS:
+        return _ALL_ROWS
+    try:
+        return bounded_int(3, None)(text)
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"{exc}, or '{_ALL_ROWS}'") from None
 
 
 def _mu_max(text: str) -> float:
@@ -82,7 +103,14 @@ def _options(args: argparse.Namespace) -> dict:
     return {"family": args.family, "folds": args.folds, "holdout": args.holdout,
             "seed": args.seed, "starts": args.starts,
             "weights": "auto" if args.weights == "auto" else None,
-            "mu_limits": (0.0, args.mu_max)}
+            "mu_limits": (0.0, args.mu_max), **_rows_option(args)}
+
+
+def _rows_option(args: argparse.Namespace) -> dict:
+    """``max_rows`` for compare: absent (the library's default), a number, or None (all)."""
+    if args.max_rows is None:
+        return {}
+    return {"max_rows": None if args.max_rows == _ALL_ROWS else args.max_rows}
 
 
 def run(args: argparse.Namespace) -> int:
