@@ -282,3 +282,75 @@ def test_imports_inside_functions_and_for_types_do_not_count():
     nodes = list(_import_time_nodes(ast.parse(src).body))
     got = set().union(*[_targets("frictionlaws.registry", n) for n in nodes])
     assert got == {"frictionlaws.law"}
+
+
+# ------------------------------------------------------------- one place per fact
+
+
+def _unit_columns() -> dict[str, dict[str, str]]:
+    """Each per-quantity column of the one unit table: SI unit, display unit, example."""
+    from frictionlaws.units import QUANTITIES
+
+    return {col: {k: getattr(q, attr) for k, q in QUANTITIES.items()}
+            for col, attr in (("SI unit", "si"), ("display unit", "display"),
+                              ("example", "example"))}
+
+
+def _copied_columns(tree: ast.AST, columns: dict[str, dict[str, str]]) -> Iterator[str]:
+    """Dict literals ``{"p": "Pa", "v": "m/s", ...}`` repeating a column of the unit table.
+
+    A literal is a copy when at least two of its keys name quantities and every value is
+    that quantity's entry in one column (a unit system such as mm-N-s is not a copy).
+    """
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict) or len(node.keys) < 2:
+            continue
+        pairs = [(k.value, v.value) for k, v in zip(node.keys, node.values)
+                 if isinstance(k, ast.Constant) and isinstance(v, ast.Constant)]
+        if len(pairs) != len(node.keys):
+            continue
+        for col, table in columns.items():
+            if all(k in table and table[k] == v for k, v in pairs):
+                yield f"line {node.lineno}: the {col} of {', '.join(k for k, _ in pairs)}"
+
+
+def test_units_of_a_quantity_are_declared_once():
+    """SI and display units live in ``units.QUANTITIES`` only; nothing copies a column."""
+    from dataclasses import fields
+
+    from frictionlaws.law import VARIABLES, Variable
+    from frictionlaws.units import QUANTITIES
+
+    assert not {"unit", "display_unit", "si", "display"} & {f.name for f in fields(Variable)}
+    for name, var in VARIABLES.items():
+        assert (var.unit, var.display_unit) == (QUANTITIES[name].si, QUANTITIES[name].display)
+    columns = _unit_columns()
+    copies = {mod: list(_copied_columns(tree, columns)) for mod, tree in TREES.items()
+              if mod != "frictionlaws.units"}
+    assert not {m: c for m, c in copies.items() if c}
+    built = {mod for mod, tree in TREES.items() if mod != "frictionlaws.units"
+             and any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+                     and n.func.id == "Quantity" for n in ast.walk(tree))}
+    assert not built, f"Quantity declared outside frictionlaws.units: {sorted(built)}"
+
+
+def test_the_copy_check_finds_a_copied_unit_column():
+    columns = _unit_columns()
+    copied = ast.parse('S = {"SI": {"p": "Pa", "v": "m/s", "T": "K", "F_N": "N", "s": ""}}\n'
+                       'E = {"area": "314.16 mm^2", "p": "0.2 MPa"}\n'
+                       'D = {"p": "MPa", "T": "degC"}\n')
+    assert len(list(_copied_columns(copied, columns))) == 3
+    system = ast.parse('M = {"p": "MPa", "v": "mm/s", "T": "K", "F_N": "N", "s": ""}\n')
+    assert list(_copied_columns(system, columns)) == []
+
+
+def test_dataset_columns_come_from_the_variable_list():
+    """io's columns and aliases are keyed from the one variable list and the unit table."""
+    from frictionlaws import io
+    from frictionlaws.law import VARIABLES
+    from frictionlaws.units import QUANTITIES
+
+    assert io.VARIABLE_COLUMNS == tuple(VARIABLES)
+    assert tuple(io.ALIASES) == io.CANONICAL  # one alias entry per column, same order
+    assert set(io.CANONICAL) - {"surface"} <= set(QUANTITIES)
+    assert set(VARIABLES) <= set(QUANTITIES)
