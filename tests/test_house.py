@@ -13,8 +13,10 @@ test fail until it is removed from the list), so the list can only shrink.
 
 from __future__ import annotations
 
+import argparse
 import ast
 import json
+import re
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -354,3 +356,31 @@ def test_dataset_columns_come_from_the_variable_list():
     assert tuple(io.ALIASES) == io.CANONICAL  # one alias entry per column, same order
     assert set(io.CANONICAL) - {"surface"} <= set(QUANTITIES)
     assert set(VARIABLES) <= set(QUANTITIES)
+
+
+def test_export_formats_and_unit_systems_have_one_list():
+    """The CLI's --format choices, its help and the docs read the library's tables."""
+    from frictionlaws.cli import build_parser, cmd_export
+    from frictionlaws.fe_export.api import FORMATS
+    from frictionlaws.fe_export.systems import SYSTEMS
+    from frictionlaws.law import VARIABLES
+
+    assert cmd_export._BOX == tuple(VARIABLES)
+    assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
+        getattr(e, "value", None) for e in n.elts}
+        for n in ast.walk(TREES["frictionlaws.cli.cmd_export"]))
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction))
+    export = sub.choices["export"]
+    fmt = next(a for a in export._actions if "--format" in a.option_strings)
+    assert list(fmt.choices) == list(FORMATS)
+    text = export.format_help()
+    for name, (_, what, _needs_box) in FORMATS.items():
+        assert f"  {name} " in text and what in text
+    for name in SYSTEMS:
+        assert name in text.split("unit systems:")[1]
+    guide = (REPO / "docs" / "user-guide" / "export.rst").read_text(encoding="utf-8")
+    table = guide.split("Formats\n-------")[1].split("\nUnits\n")[0]
+    assert set(re.findall(r"``([a-z-]+)``", table.split("what is written")[1])) == set(FORMATS)
+    units = guide.split("\nUnits\n-----")[1].split("\n\n")[1]
+    assert set(re.findall(r"``([A-Za-z-]+)`` \([^)`]*,", units)) == set(SYSTEMS)
