@@ -384,3 +384,50 @@ def test_export_formats_and_unit_systems_have_one_list():
     assert set(re.findall(r"``([a-z-]+)``", table.split("what is written")[1])) == set(FORMATS)
     units = guide.split("\nUnits\n-----")[1].split("\n\n")[1]
     assert set(re.findall(r"``([A-Za-z-]+)`` \([^)`]*,", units)) == set(SYSTEMS)
+
+
+# ---------------------------------------------------- where the law ids are listed
+
+#: Directories the docs build writes (ignored by git): generated from the registry.
+_GENERATED_DOCS = ("_build", "auto_examples", "gen_modules", "generated")
+#: The one file outside the law modules that names every law: the example table.
+LAW_TABLE = "frictionlaws/law_examples.py"
+
+
+def _names_every_law(text: str, ids: list[str]) -> bool:
+    return all(re.search(rf"(?<![\w-]){re.escape(i)}(?![\w-])", text) for i in ids)
+
+
+def _files_naming_every_law(ids: list[str]) -> list[str]:
+    laws = PACKAGE / "laws"
+    files = [p for p in PACKAGE.rglob("*") if p.is_file() and laws not in p.parents]
+    docs = REPO / "docs"
+    if docs.is_dir():  # a source checkout
+        files += [p for p in docs.rglob("*") if p.is_file()
+                  and not set(p.relative_to(docs).parts) & set(_GENERATED_DOCS)]
+    out = []
+    for path in files:
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (UnicodeDecodeError, OSError):
+            continue  # images, compiled files
+        if _names_every_law(text, ids):
+            base = PACKAGE.parent if PACKAGE in path.parents else REPO
+            out.append(path.relative_to(base).as_posix())
+    return sorted(out)
+
+
+def test_at_most_one_file_outside_the_law_modules_lists_every_law():
+    """Adding a law touches its module and one entry of the example table, nothing else."""
+    from frictionlaws import list_laws
+
+    ids = [law.id for law in list_laws()]
+    assert len(ids) > 10
+    assert _files_naming_every_law(ids) == [LAW_TABLE]
+
+
+def test_the_law_list_check_sees_a_list():
+    ids = ["coulomb", "thesis-poly2", "park"]
+    assert _names_every_law("laws: coulomb, thesis-poly2 and park", ids)
+    assert not _names_every_law("coulomb, thesis-poly3 and park", ids)  # poly2 missing
+    assert not _names_every_law("coulomb, thesis-poly2 and parker", ids)
