@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     from .bound import BoundLaw
 
 __all__ = ["fit", "FitResult", "ParamEstimate", "load_result", "FitData", "as_fit_data",
-           "RESULT_FORMAT", "RESULT_VERSION"]
+           "check_fit_options", "RESULT_FORMAT", "RESULT_VERSION"]
 
 RESULT_FORMAT = "frictionlaws-fit-result"
 RESULT_VERSION = 1
@@ -264,8 +264,30 @@ def _check_magnitudes(fd: FitData) -> None:
                              column=name)
 
 
-def _check_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> None:
-    """Refuse nonsense values of fit's keyword arguments with a clear InputError."""
+def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> None:
+    """Refuse nonsense values of :func:`fit`'s search options with a clear error.
+
+    The one rule for these options, shared by :func:`fit` and the comparison (which fits
+    with the same ``starts`` and ``seed``).
+
+    Parameters
+    ----------
+    method : str
+        The lmfit method; one of ``least_squares``, ``leastsq``, ``nelder``, ``lbfgsb``,
+        ``powell``, ``trust-constr``.
+    starts : int or None
+        Number of extra starting points, a whole number 0..1000 (None: the default).
+    seed : int
+        Seed of the random starts, a whole number 0..2**32 - 1.
+    on_invalid : str
+        ``"error"`` or ``"drop"``: what to do with non-finite rows.
+
+    Raises
+    ------
+    InputError
+        Naming the option (``method``, ``starts``, ``seed``, ``on_invalid``) and the value
+        refused.
+    """
     if method not in _METHODS:
         raise InputError(f"method must be one of {', '.join(_METHODS)}, not {method!r}",
                          option="method")
@@ -984,7 +1006,7 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
     from .uncertainty import check_uncertainty_options
 
-    _check_options(method, starts, seed, on_invalid)
+    check_fit_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
     if global_stage not in ("auto", "on", "off"):
         raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",

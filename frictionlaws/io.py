@@ -48,6 +48,7 @@ import pandas as pd
 
 from . import units as _units
 from .errors import Argument, InputError
+from .law import VARIABLES
 
 __all__ = [
     "CANONICAL",
@@ -63,15 +64,17 @@ __all__ = [
     "canonical_name",
 ]
 
+#: The canonical columns that are independent variables of a law
+#: (:data:`frictionlaws.law.VARIABLES`; their units: :data:`frictionlaws.units.QUANTITIES`).
+VARIABLE_COLUMNS: tuple[str, ...] = tuple(VARIABLES)
 #: Canonical columns, in the order a dataset stores and writes them.
-CANONICAL: tuple[str, ...] = ("mu", "p", "v", "T", "F_N", "s", "mu_std", "n", "surface")
-#: The canonical columns that are independent variables of a law.
-VARIABLE_COLUMNS: tuple[str, ...] = ("p", "v", "T", "F_N", "s")
+CANONICAL: tuple[str, ...] = ("mu", *VARIABLE_COLUMNS, "mu_std", "n", "surface")
 _NUMERIC = tuple(c for c in CANONICAL if c != "surface")
-_DIMENSIONLESS = ("mu", "s", "mu_std", "n")
+_DIMENSIONLESS = tuple(c for c in _NUMERIC if not _units.si_unit(c))
 
-#: Accepted column names for each canonical column.  The canonical names
-#: themselves match exactly (``T`` is temperature, ``t`` is not); these
+#: Accepted column names for each canonical column, in :data:`CANONICAL` order (the
+#: one alias table; a test checks it has every canonical column and no other).  The
+#: canonical names themselves match exactly (``T`` is temperature, ``t`` is not); these
 #: aliases match case-insensitively, with spaces, ``_`` and ``-`` equivalent.
 ALIASES: dict[str, tuple[str, ...]] = {
     "mu": ("mu", "μ", "cof", "coef", "friction", "friction coefficient",

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import DomainError, InputError
+from .units import QUANTITIES
 
 if TYPE_CHECKING:
     from .bound import BoundLaw
@@ -58,22 +59,44 @@ MU_MAX = 10.0
 
 @dataclass(frozen=True)
 class Variable:
-    """An independent variable a law may use (always in SI units inside)."""
+    """An independent variable a law may use (always in SI units inside).
+
+    Its units are not declared here: :attr:`unit` and :attr:`display_unit` are read
+    from the one table of units, :data:`frictionlaws.units.QUANTITIES`.
+
+    Parameters
+    ----------
+    name : str
+        The variable's name (a key of :data:`~frictionlaws.units.QUANTITIES`).
+    meaning : str
+        What the variable is, in a few words ("contact pressure").
+    typical : tuple of float
+        A typical range in SI (low, high).
+    """
 
     name: str
-    unit: str
     meaning: str
-    display_unit: str
     typical: tuple[float, float]
 
+    @property
+    def unit(self) -> str:
+        """The SI unit (``""`` when dimensionless)."""
+        return QUANTITIES[self.name].si
 
-#: The independent variables known to frictionlaws, with their SI unit.
+    @property
+    def display_unit(self) -> str:
+        """The unit outputs write the variable in (p in MPa, T in degC)."""
+        return QUANTITIES[self.name].display
+
+
+#: The independent variables known to frictionlaws (their units are read from
+#: :data:`frictionlaws.units.QUANTITIES`).
 VARIABLES: dict[str, Variable] = {
-    "p": Variable("p", "Pa", "contact pressure", "MPa", (1e4, 1e6)),
-    "v": Variable("v", "m/s", "sliding velocity (magnitude)", "m/s", (1e-3, 10.0)),
-    "T": Variable("T", "K", "temperature", "degC", (253.15, 373.15)),
-    "F_N": Variable("F_N", "N", "normal load", "N", (1.0, 1000.0)),
-    "s": Variable("s", "", "slip ratio (braking slip, 0..1)", "", (0.0, 1.0)),
+    "p": Variable("p", "contact pressure", (1e4, 1e6)),
+    "v": Variable("v", "sliding velocity (magnitude)", (1e-3, 10.0)),
+    "T": Variable("T", "temperature", (253.15, 373.15)),
+    "F_N": Variable("F_N", "normal load", (1.0, 1000.0)),
+    "s": Variable("s", "slip ratio (braking slip, 0..1)", (0.0, 1.0)),
 }
 
 FAMILIES = ("sliding", "slip")

@@ -73,30 +73,40 @@ class Quantity:
         Units shown in messages as examples of what is accepted.
     display : str
         Unit used when writing the quantity in outputs.
+    example : str
+        A value with its unit, quoted in messages (``"0.2 MPa"``); ``"1"`` when
+        dimensionless.
     """
 
     si: str
     what: str
     examples: tuple[str, ...]
     display: str
+    example: str = "1"
 
 
 #: Quantity kinds by name: the canonical dataset columns plus a few used by options.
+#: The one table of units: the SI unit, the unit written in outputs and the accepted
+#: units of every quantity (law variables, dataset columns, rig quantities) live here
+#: only; :data:`frictionlaws.law.VARIABLES` reads its variables' units from it.
 QUANTITIES: dict[str, Quantity] = {
     "mu": Quantity("", "a dimensionless friction coefficient", ("-",), ""),
     "mu_std": Quantity("", "a dimensionless standard deviation of mu", ("-",), ""),
     "n": Quantity("", "a dimensionless count", ("-",), ""),
     "s": Quantity("", "a dimensionless slip ratio", ("-", "%"), ""),
-    "p": Quantity("Pa", "a pressure", ("MPa", "kPa", "Pa", "bar", "psi", "N/mm^2"), "MPa"),
-    "v": Quantity("m/s", "a velocity", ("m/s", "mm/s", "km/h"), "m/s"),
-    "T": Quantity("K", "a temperature", ("degC", "K", "degF"), "degC"),
-    "F_N": Quantity("N", "a force", ("N", "kN", "kgf", "lbf", "kg (dead weight)"), "N"),
-    "area": Quantity("m**2", "an area", ("mm^2", "cm^2", "m^2"), "mm^2"),
-    "length": Quantity("m", "a length", ("mm", "m"), "mm"),
-    "time": Quantity("s", "a time", ("s", "ms"), "s"),
-    "torque": Quantity("N*m", "a torque", ("N*m", "N*mm"), "N*m"),
-    "frequency": Quantity("Hz", "a frequency", ("Hz", "1/s"), "Hz"),
-    "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s"),
+    "p": Quantity("Pa", "a pressure", ("MPa", "kPa", "Pa", "bar", "psi", "N/mm^2"), "MPa",
+                  "0.2 MPa"),
+    "v": Quantity("m/s", "a velocity", ("m/s", "mm/s", "km/h"), "m/s", "1.38 m/s"),
+    "T": Quantity("K", "a temperature", ("degC", "K", "degF"), "degC", "20 degC"),
+    "F_N": Quantity("N", "a force", ("N", "kN", "kgf", "lbf", "kg (dead weight)"), "N",
+                    "49 N"),
+    "area": Quantity("m**2", "an area", ("mm^2", "cm^2", "m^2"), "mm^2", "314.16 mm^2"),
+    "length": Quantity("m", "a length", ("mm", "m"), "mm", "40 mm"),
+    "time": Quantity("s", "a time", ("s", "ms"), "s", "10 s"),
+    "torque": Quantity("N*m", "a torque", ("N*m", "N*mm"), "N*m", "0.3 N*m"),
+    "frequency": Quantity("Hz", "a frequency", ("Hz", "1/s"), "Hz", "1000 Hz"),
+    "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s",
+                                 "331 rpm"),
     "angle": Quantity("rad", "an angle", ("deg", "rad"), "deg"),
 }
 
@@ -447,18 +457,7 @@ def _canonical_number(raw: str, label: str, file: str | None, column: str | None
 
 
 def _example_quantity(expected: str) -> str:
-    return {
-        "area": "314.16 mm^2",
-        "p": "0.2 MPa",
-        "v": "1.38 m/s",
-        "T": "20 degC",
-        "F_N": "49 N",
-        "length": "40 mm",
-        "time": "10 s",
-        "torque": "0.3 N*m",
-        "frequency": "1000 Hz",
-        "angular_velocity": "331 rpm",
-    }.get(expected, "1")
+    return _kind(expected).example
 
 
 def display_unit(quantity: str) -> str:

@@ -13,8 +13,10 @@ test fail until it is removed from the list), so the list can only shrink.
 
 from __future__ import annotations
 
+import argparse
 import ast
 import json
+import re
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -282,3 +284,150 @@ def test_imports_inside_functions_and_for_types_do_not_count():
     nodes = list(_import_time_nodes(ast.parse(src).body))
     got = set().union(*[_targets("frictionlaws.registry", n) for n in nodes])
     assert got == {"frictionlaws.law"}
+
+
+# ------------------------------------------------------------- one place per fact
+
+
+def _unit_columns() -> dict[str, dict[str, str]]:
+    """Each per-quantity column of the one unit table: SI unit, display unit, example."""
+    from frictionlaws.units import QUANTITIES
+
+    return {col: {k: getattr(q, attr) for k, q in QUANTITIES.items()}
+            for col, attr in (("SI unit", "si"), ("display unit", "display"),
+                              ("example", "example"))}
+
+
+def _copied_columns(tree: ast.AST, columns: dict[str, dict[str, str]]) -> Iterator[str]:
+    """Dict literals ``{"p": "Pa", "v": "m/s", ...}`` repeating a column of the unit table.
+
+    A literal is a copy when at least two of its keys name quantities and every value is
+    that quantity's entry in one column (a unit system such as mm-N-s is not a copy).
+    """
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict) or len(node.keys) < 2:
+            continue
+        pairs = [(k.value, v.value) for k, v in zip(node.keys, node.values)
+                 if isinstance(k, ast.Constant) and isinstance(v, ast.Constant)]
+        if len(pairs) != len(node.keys):
+            continue
+        for col, table in columns.items():
+            if all(k in table and table[k] == v for k, v in pairs):
+                yield f"line {node.lineno}: the {col} of {', '.join(k for k, _ in pairs)}"
+
+
+def test_units_of_a_quantity_are_declared_once():
+    """SI and display units live in ``units.QUANTITIES`` only; nothing copies a column."""
+    from dataclasses import fields
+
+    from frictionlaws.law import VARIABLES, Variable
+    from frictionlaws.units import QUANTITIES
+
+    assert not {"unit", "display_unit", "si", "display"} & {f.name for f in fields(Variable)}
+    for name, var in VARIABLES.items():
+        assert (var.unit, var.display_unit) == (QUANTITIES[name].si, QUANTITIES[name].display)
+    columns = _unit_columns()
+    copies = {mod: list(_copied_columns(tree, columns)) for mod, tree in TREES.items()
+              if mod != "frictionlaws.units"}
+    assert not {m: c for m, c in copies.items() if c}
+    built = {mod for mod, tree in TREES.items() if mod != "frictionlaws.units"
+             and any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+                     and n.func.id == "Quantity" for n in ast.walk(tree))}
+    assert not built, f"Quantity declared outside frictionlaws.units: {sorted(built)}"
+
+
+def test_the_copy_check_finds_a_copied_unit_column():
+    columns = _unit_columns()
+    copied = ast.parse('S = {"SI": {"p": "Pa", "v": "m/s", "T": "K", "F_N": "N", "s": ""}}\n'
+                       'E = {"area": "314.16 mm^2", "p": "0.2 MPa"}\n'
+                       'D = {"p": "MPa", "T": "degC"}\n')
+    assert len(list(_copied_columns(copied, columns))) == 3
+    system = ast.parse('M = {"p": "MPa", "v": "mm/s", "T": "K", "F_N": "N", "s": ""}\n')
+    assert list(_copied_columns(system, columns)) == []
+
+
+def test_dataset_columns_come_from_the_variable_list():
+    """io's columns and aliases are keyed from the one variable list and the unit table."""
+    from frictionlaws import io
+    from frictionlaws.law import VARIABLES
+    from frictionlaws.units import QUANTITIES
+
+    assert io.VARIABLE_COLUMNS == tuple(VARIABLES)
+    assert tuple(io.ALIASES) == io.CANONICAL  # one alias entry per column, same order
+    assert set(io.CANONICAL) - {"surface"} <= set(QUANTITIES)
+    assert set(VARIABLES) <= set(QUANTITIES)
+
+
+def test_export_formats_and_unit_systems_have_one_list():
+    """The CLI's --format choices, its help and the docs read the library's tables."""
+    from frictionlaws.cli import build_parser, cmd_export
+    from frictionlaws.fe_export.api import FORMATS
+    from frictionlaws.fe_export.systems import SYSTEMS
+    from frictionlaws.law import VARIABLES
+
+    assert cmd_export._BOX == tuple(VARIABLES)
+    assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
+        getattr(e, "value", None) for e in n.elts}
+        for n in ast.walk(TREES["frictionlaws.cli.cmd_export"]))
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction))
+    export = sub.choices["export"]
+    fmt = next(a for a in export._actions if "--format" in a.option_strings)
+    assert list(fmt.choices) == list(FORMATS)
+    text = export.format_help()
+    for name, (_, what, _needs_box) in FORMATS.items():
+        assert f"  {name} " in text and what in text
+    for name in SYSTEMS:
+        assert name in text.split("unit systems:")[1]
+    guide = (REPO / "docs" / "user-guide" / "export.rst").read_text(encoding="utf-8")
+    table = guide.split("Formats\n-------")[1].split("\nUnits\n")[0]
+    assert set(re.findall(r"``([a-z-]+)``", table.split("what is written")[1])) == set(FORMATS)
+    units = guide.split("\nUnits\n-----")[1].split("\n\n")[1]
+    assert set(re.findall(r"``([A-Za-z-]+)`` \([^)`]*,", units)) == set(SYSTEMS)
+
+
+# ---------------------------------------------------- where the law ids are listed
+
+#: Directories the docs build writes (ignored by git): generated from the registry.
+_GENERATED_DOCS = ("_build", "auto_examples", "gen_modules", "generated")
+#: The one file outside the law modules that names every law: the example table.
+LAW_TABLE = "frictionlaws/law_examples.py"
+
+
+def _names_every_law(text: str, ids: list[str]) -> bool:
+    return all(re.search(rf"(?<![\w-]){re.escape(i)}(?![\w-])", text) for i in ids)
+
+
+def _files_naming_every_law(ids: list[str]) -> list[str]:
+    laws = PACKAGE / "laws"
+    files = [p for p in PACKAGE.rglob("*") if p.is_file() and laws not in p.parents]
+    docs = REPO / "docs"
+    if docs.is_dir():  # a source checkout
+        files += [p for p in docs.rglob("*") if p.is_file()
+                  and not set(p.relative_to(docs).parts) & set(_GENERATED_DOCS)]
+    out = []
+    for path in files:
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (UnicodeDecodeError, OSError):
+            continue  # images, compiled files
+        if _names_every_law(text, ids):
+            base = PACKAGE.parent if PACKAGE in path.parents else REPO
+            out.append(path.relative_to(base).as_posix())
+    return sorted(out)
+
+
+def test_at_most_one_file_outside_the_law_modules_lists_every_law():
+    """Adding a law touches its module and one entry of the example table, nothing else."""
+    from frictionlaws import list_laws
+
+    ids = [law.id for law in list_laws()]
+    assert len(ids) > 10
+    assert _files_naming_every_law(ids) == [LAW_TABLE]
+
+
+def test_the_law_list_check_sees_a_list():
+    ids = ["coulomb", "thesis-poly2", "park"]
+    assert _names_every_law("laws: coulomb, thesis-poly2 and park", ids)
+    assert not _names_every_law("coulomb, thesis-poly3 and park", ids)  # poly2 missing
+    assert not _names_every_law("coulomb, thesis-poly2 and parker", ids)

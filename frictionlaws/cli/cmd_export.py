@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -25,11 +25,8 @@ from ._common import (
     refuse_unused,
 )
 
-_FORMATS = ("csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys", "radioss",
-            "abaqus-fric-coef", "abaqus-vfric-coef", "abaqus-vfric")
-
 _EPILOG = """\
-ranges: --p, --v, --T, --F_N, --s take MIN:MAX or MIN:MAX:N.  Bare numbers are in the
+ranges: {box} take MIN:MAX or MIN:MAX:N.  Bare numbers are in the
 --units system (mm-N-s: p in MPa, v in mm/s; SI: Pa, m/s; T in K unless overridden); a
 bound may carry its own unit, without spaces or quoted:
   --p 0.01:0.5:20 --units mm-N-s        (MPa)      --p 10kPa:0.5MPa:20
@@ -38,20 +35,80 @@ With N for every variable and no --tol the grid is as given; with --tol (or a mi
 breakpoints are placed until the solver's interpolation (linear between points, end
 values held) is within TOL of the law everywhere in the box (default TOL 0.001).
 
-unit systems: SI (Pa, m/s, K, N), mm-N-s (MPa, mm/s, K, N), mm-kg-ms (GPa, m/s, K, kN);
+unit systems: {systems};
 override a unit after the name, e.g. --units mm-N-s,T=degC.
 
-formats: csv, json (grids); abaqus (*FRICTION table); abaqus-decay (*FRICTION,
-EXPONENTIAL DECAY, exact laws only); lsdyna (FS/FD/DC when exact, else FS=2
-*DEFINE_TABLE); ansys (TB,FRIC + TBFIELD); radioss (/FRICTION Ifric 1 or 4, exact or
-fitted over the box with the error reported); abaqus-fric-coef, abaqus-vfric-coef,
-abaqus-vfric (Fortran user subroutines; no box needed).
+formats:
+{formats}
 """
+
+
+class _Formats:
+    """The export formats, read from the library's one table when first needed.
+
+    Building the parser imports no numpy: the table (``fe_export.api.FORMATS``) is read
+    only when ``--format`` is checked or the help is shown.
+    """
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(_formats())
+
+    def __contains__(self, name: object) -> bool:
+        return name in _formats()
+
+
+def _formats() -> dict[str, tuple[Any, str, bool]]:
+    from frictionlaws.fe_export.api import FORMATS
+
+    return FORMATS
+
+
+def _systems() -> dict[str, dict[str, str]]:
+    from frictionlaws.fe_export.systems import SYSTEMS
+
+    return SYSTEMS
+
+
+def _system_list(with_units: bool) -> str:
+    """``SI (Pa, m/s, K, N), mm-N-s (...)`` or ``SI (default), mm-N-s, ...``."""
+    from frictionlaws.law import VARIABLES
+
+    out = []
+    for i, (name, units) in enumerate(_systems().items()):
+        shown = [units[v] for v in VARIABLES if units.get(v)]
+        out.append(f"{name} ({', '.join(shown)})" if with_units
+                   else f"{name} (default)" if i == 0 else name)
+    return ", ".join(out)
+
+
+def _format_lines() -> str:
+    table = _formats()
+    width = max(map(len, table))
+    return "\n".join(f"  {name:<{width}}  {text}" + ("" if needs_box else "; no ranges needed")
+                      for name, (_, text, needs_box) in table.items())
+
+
+class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Fills the help's lists (formats, unit systems) from the library's tables."""
+
+    def add_text(self, text: str | None) -> None:
+        if text == _EPILOG:
+            text = _EPILOG.format(box=", ".join(f"--{v}" for v in _BOX),
+                                  systems=_system_list(True), formats=_format_lines())
+        super().add_text(text)
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help
+        if text and "{systems}" in text:
+            text = text.replace("{systems}", _system_list(False))
+        return text
 
 
 __all__ = ["add_parser", "run"]
 
-#: The variables a box may give ranges of (one flag each: --p, --v, ...).
+#: The variables a box may give ranges of (one flag each: --p, --v, ...): the law
+#: variables.  The flags are made when the parser is built, which imports no numpy, so
+#: this is not read from ``law.VARIABLES``; tests/test_house.py checks the two agree.
 _BOX = ("p", "v", "T", "F_N", "s")
 
 
@@ -61,18 +118,18 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         description="Write a friction law in a finite-element code's own input (or a grid, or "
         "an Abaqus user subroutine), in the model's units, with a header stating the law, "
         "parameters, units, box, the maximum interpolation error and where it occurs.",
-        epilog=_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+        epilog=_EPILOG, formatter_class=_HelpFormatter)
     p.add_argument("--law", help="law id or alias (may be omitted with --params)")
     add_law_source_options(p)
-    p.add_argument("--format", required=True, choices=_FORMATS, metavar="FORMAT",
-                   help="output format: " + ", ".join(_FORMATS))
+    p.add_argument("--format", required=True, choices=_Formats(), metavar="FORMAT",
+                   help="output format: %(choices)s")
     for var in _BOX:
         p.add_argument(f"--{var}", metavar="MIN:MAX[:N]", dest=f"range_{var}",
                        help=f"range of {var} (see below)")
     p.add_argument("--spacing", metavar="VAR=lin|log,...", action="append", default=[],
                    help="point spacing per variable (default log when MAX/MIN >= 100)")
     p.add_argument("--units", default="SI", metavar="SYSTEM",
-                   help="unit system of the file: SI (default), mm-N-s, mm-kg-ms[,VAR=UNIT]")
+                   help="unit system of the file: {systems}[,VAR=UNIT]")
     p.add_argument("--tol", type=float, help="largest interpolation error in mu (adaptive grid)")
     p.add_argument("--max-rows", type=bounded_int(1, 10_000_000), default=200_000, metavar="N",
                    help="largest table allowed (default 200000; 1..10000000)")

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from ..law import VARIABLES
+from ..units import QUANTITIES
 
 if TYPE_CHECKING:
     import numpy as np
@@ -33,7 +34,7 @@ __all__ = ["UnitSystem", "SYSTEMS", "unit_system"]
 
 #: Named unit systems: variable -> unit (pint syntax; "" = dimensionless).
 SYSTEMS: dict[str, dict[str, str]] = {
-    "SI": {"p": "Pa", "v": "m/s", "T": "K", "F_N": "N", "s": ""},
+    "SI": {v: QUANTITIES[v].si for v in VARIABLES},
     "mm-N-s": {"p": "MPa", "v": "mm/s", "T": "K", "F_N": "N", "s": ""},
     "mm-kg-ms": {"p": "GPa", "v": "m/s", "T": "K", "F_N": "kN", "s": ""},
 }

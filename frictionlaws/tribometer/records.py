@@ -51,7 +51,7 @@ import numpy as np
 from ..errors import InputError
 from ..io import _detect_delimiter, decode_text
 from ..outputs import atomic_write, check_input_file
-from ..units import parse_unit, unit_registry
+from ..units import QUANTITIES, parse_unit, unit_registry
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
 
@@ -240,7 +240,7 @@ def angular_unit_factor(unit: str, *, column: str | None = None,
 @functools.lru_cache(maxsize=64)
 def _si_factor(kind: str, unit: str) -> float:
     parsed = parse_unit(unit, kind)
-    si = {"time": "s", "torque": "N*m"}[kind]
+    si = QUANTITIES[kind].si
     return float(unit_registry().Quantity(1.0, parsed).to(si).magnitude)
 
 
