@@ -78,7 +78,7 @@ class UnreadableDatasets(InputError):
             E.g. ``1 of 2 datasets of the campaign cannot be read or grouped; ...``.
         """
         return (f"{len(self.problems)} of {self.total} datasets of the campaign cannot be "
-                "read or grouped; nothing was fitted (fix or remove each one named above)")
+                "read or grouped; nothing was fitted (fix or remove each file named)")
 
 
 def check_grouping(by: Sequence[str], laws: Sequence[str] = ()) -> tuple[str, ...]:

@@ -200,7 +200,7 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
 def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
              load: dict[str, Any], fit_kwargs: dict[str, Any]) -> Any:
     """:func:`~frictionlaws.campaign.fit_many`; a campaign with unreadable datasets is
-    refused with one ``error:`` line per dataset, then one that sums up (exit 2)."""
+    refused with one ``error:`` line per dataset, the last one summing up (exit 2)."""
     from frictionlaws.campaign import UnreadableDatasets, fit_many
     from frictionlaws.errors import InputError
 
@@ -212,9 +212,10 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
                         **fit_kwargs)
     except UnreadableDatasets as exc:
         label = flag_label(args)
-        for problem in exc.problems:
-            print("error: " + " ".join(problem.compose(label=label).split()), file=sys.stderr)
-        raise InputError(exc.summary()) from None
+        lines = [" ".join(p.compose(label=label).split()) for p in exc.problems]
+        for line in lines[:-1]:
+            print("error: " + line, file=sys.stderr)
+        raise InputError(f"{lines[-1]}; {exc.summary()}") from None
 
 
 def _refuse_if_only_input_errors(camp: Any) -> None:
