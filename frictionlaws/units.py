@@ -46,6 +46,7 @@ __all__ = [
     "conversion_note",
     "parse_quantity",
     "display_unit",
+    "to_display",
     "header",
     "is_no_unit",
 ]
@@ -463,6 +464,28 @@ def _example_quantity(expected: str) -> str:
 def display_unit(quantity: str) -> str:
     """The unit frictionlaws writes ``quantity`` in (p MPa, v m/s, T degC, F_N N)."""
     return _kind(quantity).display
+
+
+def to_display(values: Any, quantity: str) -> np.ndarray:
+    """SI ``values`` of ``quantity`` in its display unit (:func:`display_unit`).
+
+    Parameters
+    ----------
+    values : array_like
+        Values in SI (Pa, m/s, K, N).
+    quantity : str
+        A quantity of :data:`QUANTITIES` (``"p"``, ``"T"``, ``"mu"``...).
+
+    Returns
+    -------
+    numpy.ndarray
+        The values in the display unit (MPa, degC...); a copy as floats when the
+        display unit is the SI one.
+    """
+    kind = _kind(quantity)
+    if kind.display == kind.si:
+        return np.asarray(values, dtype=float)
+    return from_si(values, kind.display, quantity)
 
 
 def header(column: str, unit: str | None = None) -> str:

@@ -217,3 +217,14 @@ def test_units_pint_calls_compatible_but_mean_something_else(unit, quantity, mes
 ])
 def test_units_the_policy_keeps_accepting(unit, quantity):
     units.parse_unit(unit, quantity)
+
+
+def test_to_display_is_the_one_si_to_display_conversion() -> None:
+    """p in MPa, T in degC, v and mu as they are: the unit table's display units."""
+    from frictionlaws.units import display_unit, to_display
+
+    np.testing.assert_allclose(to_display([1e5, 2e6], "p"), [0.1, 2.0], rtol=1e-15)
+    np.testing.assert_allclose(to_display(293.15, "T"), 20.0, rtol=1e-14)
+    np.testing.assert_array_equal(to_display([0.5, 1.0], "v"), [0.5, 1.0])
+    np.testing.assert_array_equal(to_display(0.7, "mu"), 0.7)
+    assert (display_unit("p"), display_unit("T")) == ("MPa", "degC")

@@ -62,6 +62,7 @@ import numpy as np
 from ..errors import InputError
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
+from ..units import display_unit, to_display
 from .cv import error_text, refit
 
 __all__ = ["MU_LIMITS", "TREND_TOL", "TREND_REL", "TREND_ALPHA", "Design", "design_of", "Trend",
@@ -89,13 +90,9 @@ def fmt_value(var: str, x: float) -> str:
     """``x`` (SI) in the variable's display unit, with the unit."""
     if var == "mu":
         return f"{x:.3g}"
-    info = VARIABLES[var]
-    if info.display_unit == "MPa":
-        return f"{x / 1e6:.4g} MPa"
-    if info.display_unit == "degC":
-        return f"{x - 273.15:.4g} degC"
-    unit = info.display_unit
-    return f"{x:.4g} {unit}".rstrip() if unit else f"{x:.4g}"
+    unit = display_unit(var)
+    value = float(to_display(x, var))
+    return f"{value:.4g} {unit}" if unit else f"{value:.4g}"
 
 
 # ---------------------------------------------------------------- design

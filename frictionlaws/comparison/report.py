@@ -34,6 +34,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..law import VARIABLES
+from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -72,14 +73,7 @@ def _num(x: Any, fmt: str = ".3g") -> str:
 
 def _disp(var: str, x: Any) -> Any:
     """SI -> display unit (MPa, degC)."""
-    if var == "mu":
-        return x
-    du = VARIABLES[var].display_unit
-    if du == "MPa":
-        return np.asarray(x, float) / 1e6
-    if du == "degC":
-        return np.asarray(x, float) - 273.15
-    return x
+    return to_display(x, var)
 
 
 def _label(var: str) -> str:
