@@ -19,6 +19,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -41,3 +43,15 @@ def pytest_ignore_collect(collection_path: Path, config: Any) -> bool | None:
             and not collection_path.name.startswith("test_hostile")):
         return True
     return None
+
+
+@pytest.fixture(scope="module")
+def small_campaign(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A synthetic campaign (rig.toml, manifest.csv, two records sampled at 100 Hz, so
+    a Nyquist frequency of 50 Hz), fresh for each test module."""
+    from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
+
+    root = tmp_path_factory.mktemp("campaign")
+    make_campaign(root, [ConditionSpec("c", "steel", 3.0, 1.1, repeats=2)],
+                  record_kwargs={"duration": 12.0, "fs": 100.0})
+    return root

@@ -7,7 +7,7 @@ Each test states the general rule, then checks it on the kinds of input that bro
   the run succeeds: a failed run leaves nothing, not even the directory;
 * options are checked as the library checks the same values (``compare --seed -1`` was an
   internal error, ``--mu-max inf`` and a law named twice were accepted);
-* a campaign in which no dataset can be read is bad input (exit 2);
+* a small_campaign in which no dataset can be read is bad input (exit 2);
 * the number in a quantity goes through the one number parser (``4_0 mm``, ``4,0 mm``);
 * a value that does not apply is still checked (``--area 'nan mm^2'`` with a pressure column);
 * arrays given to ``fit`` hold real numbers in one dimension; initial values obey bounds;
@@ -31,46 +31,35 @@ from frictionlaws.numbers import parse_number
 from frictionlaws.units import parse_quantity
 
 #: The fast cases belong to the hostile harness (CI budget 60 s); the ones that process a
-#: campaign run with the ordinary suite.
+#: small_campaign run with the ordinary suite.
 HOSTILE = pytest.mark.hostile
 
 GOOD = "mu,p [MPa],v [m/s]\n1.2,0.05,1\n1.1,0.1,1\n1.0,0.15,2\n0.95,0.2,2\n0.9,0.25,3\n"
 
 
-@pytest.fixture(scope="module")
-def campaign(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A small synthetic campaign: rig.toml, manifest.csv, records/*.csv (2 records)."""
-    from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
-
-    root = tmp_path_factory.mktemp("campaign")
-    make_campaign(root, [ConditionSpec("c", "steel", 3.0, 1.1, repeats=2)],
-                  record_kwargs={"duration": 12.0, "fs": 100.0})
-    return root
-
-
 @HOSTILE
 @pytest.mark.parametrize("target", ["records/c_01.csv", "records/c_02.csv"])
-def test_process_refuses_to_overwrite_a_record_the_manifest_lists(campaign: Path,
+def test_process_refuses_to_overwrite_a_record_the_manifest_lists(small_campaign: Path,
                                                                    target: str) -> None:
     """The corpus: '-o records/x.csv' replaced a raw record with the dataset (exit 0)."""
-    out = campaign / target
-    snap = Snapshot.take([campaign], list((campaign / "records").glob("*.csv")))
-    res = run_cli(["process", str(campaign / "manifest.csv"), "--rig",
-                   str(campaign / "rig.toml"), "-o", str(out), "--jobs", "1"])
+    out = small_campaign / target
+    snap = Snapshot.take([small_campaign], list((small_campaign / "records").glob("*.csv")))
+    res = run_cli(["process", str(small_campaign / "manifest.csv"), "--rig",
+                   str(small_campaign / "rig.toml"), "-o", str(out), "--jobs", "1"])
     check_outcome(res, snapshot=snap, codes=[2])
     assert "also an input" in res.err and Path(target).name in res.err
 
 
-def test_a_failed_process_leaves_no_plots_and_no_directory(campaign: Path) -> None:
+def test_a_failed_process_leaves_no_plots_and_no_directory(small_campaign: Path) -> None:
     """The corpus: a run ending in 'nothing written at all' had written plots/sub/*.png."""
-    plots = campaign / "new" / "plots"
-    snap = Snapshot.take([campaign])
-    res = run_cli(["process", str(campaign / "manifest.csv"), "--rig",
-                   str(campaign / "rig.toml"), "-o", str(campaign / "ds.csv"),
+    plots = small_campaign / "new" / "plots"
+    snap = Snapshot.take([small_campaign])
+    res = run_cli(["process", str(small_campaign / "manifest.csv"), "--rig",
+                   str(small_campaign / "rig.toml"), "-o", str(small_campaign / "ds.csv"),
                    "--plots", str(plots), "--min-repeats", "5", "--jobs", "1"],
                   timeout=60)
     check_outcome(res, snapshot=snap, codes=[2])
-    assert not (campaign / "new").exists()
+    assert not (small_campaign / "new").exists()
 
 
 @HOSTILE
@@ -199,10 +188,10 @@ def test_a_deeply_nested_params_file_is_bad_input(tmp_path: Path) -> None:
 
 @HOSTILE
 @pytest.mark.parametrize("jobs", [-7, -2, 2.5, True, "4"])
-def test_process_campaign_refuses_a_nonsense_job_count(campaign: Path, jobs: object) -> None:
+def test_process_campaign_refuses_a_nonsense_job_count(small_campaign: Path, jobs: object) -> None:
     """jobs=-7 was taken as 'one per CPU' (-1 is that; the CLI and the API refuse the rest)."""
     with pytest.raises(InputError, match="jobs"):
-        fl.process_campaign(campaign / "manifest.csv", campaign / "rig.toml", jobs=jobs)
+        fl.process_campaign(small_campaign / "manifest.csv", small_campaign / "rig.toml", jobs=jobs)
 
 
 @HOSTILE

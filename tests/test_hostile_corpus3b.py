@@ -318,32 +318,21 @@ def test_every_ranged_rig_value_accepts_its_range_ends() -> None:
             rig_from_dict(_rig_with(key, f"{end / rng.scale!r} {rng.unit}"), source="rig.toml")
 
 
-@pytest.fixture(scope="module")
-def campaign_100hz(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A synthetic campaign of two records sampled at 100 Hz (Nyquist frequency 50 Hz)."""
-    from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
-
-    root = tmp_path_factory.mktemp("campaign")
-    make_campaign(root, [ConditionSpec("c", "steel", 3.0, 1.1, repeats=2)],
-                  record_kwargs={"duration": 12.0, "fs": 100.0})
-    return root
-
-
 @HOSTILE
 @pytest.mark.parametrize("old,new,words", [
     ('"40 mm"', '"40 km"', "'track_radius' = '40 km'"),
     ('"9.8 m/s^2"', '"98000 m/s^2"', "9.7..9.9 m/s^2"),
     ('cutoff = "auto"', 'cutoff = "1e9 Hz"', "'filter.cutoff' = '1e9 Hz'"),
 ])
-def test_process_refuses_an_absurd_rig_naming_the_rig(campaign_100hz: Path, tmp_path: Path,
+def test_process_refuses_an_absurd_rig_naming_the_rig(small_campaign: Path, tmp_path: Path,
                                                       old: str, new: str, words: str) -> None:
     """These passed the unit checks and ended as 'no condition has 2 usable records'."""
-    text = (campaign_100hz / "rig.toml").read_text()
+    text = (small_campaign / "rig.toml").read_text()
     assert text.count(old) == 1
     rig = tmp_path / "rig.toml"
     rig.write_text(text.replace(old, new))
     snap = Snapshot.take([tmp_path])
-    res = run_cli(["process", str(campaign_100hz / "manifest.csv"), "--rig", str(rig),
+    res = run_cli(["process", str(small_campaign / "manifest.csv"), "--rig", str(rig),
                    "-o", str(tmp_path / "ds.csv"), "--jobs", "1"])
     check_outcome(res, snapshot=snap, codes=[2])
     assert "rig.toml" in res.err and words in res.err and "plausible range" in res.err
@@ -353,14 +342,14 @@ def test_process_refuses_an_absurd_rig_naming_the_rig(campaign_100hz: Path, tmp_
 @hostile(4)
 @given(cutoff=st.floats(50.5, 1e6))  # records at 100 Hz
 def test_a_cutoff_at_or_above_a_records_nyquist_frequency_refuses_the_rig(
-        campaign_100hz: Path, cutoff: float) -> None:
+        small_campaign: Path, cutoff: float) -> None:
     """Checked when each record is read: the rig is wrong, not the record (exit 2)."""
     with tempfile.TemporaryDirectory() as tmp:
-        text = (campaign_100hz / "rig.toml").read_text()
+        text = (small_campaign / "rig.toml").read_text()
         rig = Path(tmp) / "rig.toml"
         rig.write_text(text.replace('cutoff = "auto"', f'cutoff = "{cutoff!r} Hz"'))
         assert f'cutoff = "{cutoff!r} Hz"' in rig.read_text()
-        res = run_cli(["process", str(campaign_100hz / "manifest.csv"), "--rig", str(rig),
+        res = run_cli(["process", str(small_campaign / "manifest.csv"), "--rig", str(rig),
                        "-o", str(Path(tmp) / "ds.csv"), "--jobs", "1"])
         check_outcome(res, codes=[2])
         assert "rig.toml" in res.err and "'filter.cutoff'" in res.err
