@@ -44,7 +44,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from ..errors import InputError
-from ..law import Law
+from ..law import VARIABLES, Law
 
 __all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES",
            "input_deck", "interaction_name"]
@@ -57,8 +57,9 @@ FORTRAN_FORMATS = {
 }
 #: Law variables not passed by Abaqus' friction interfaces: read from field variables.
 FIELD_VARIABLES = ("F_N", "s")
-#: Order of the arguments of the law routine (and of its derivative array).
-_ORDER = ("p", "v", "T", "F_N", "s")
+#: Order of the arguments of the law routine (and of its derivative array): the order
+#: of the variable table.
+_ORDER = tuple(VARIABLES)
 _ARG = {"p": "xp", "v": "xv", "T": "xt", "F_N": "xfn", "s": "xs"}
 
 
