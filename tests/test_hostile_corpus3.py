@@ -7,7 +7,7 @@ Each test states the general rule, then checks it on the kinds of input that bro
   the run succeeds: a failed run leaves nothing, not even the directory;
 * options are checked as the library checks the same values (``compare --seed -1`` was an
   internal error, ``--mu-max inf`` and a law named twice were accepted);
-* a small_campaign in which no dataset can be read is bad input (exit 2);
+* a campaign in which no dataset can be read is bad input (exit 2);
 * the number in a quantity goes through the one number parser (``4_0 mm``, ``4,0 mm``);
 * a value that does not apply is still checked (``--area 'nan mm^2'`` with a pressure column);
 * arrays given to ``fit`` hold real numbers in one dimension; initial values obey bounds;
@@ -31,7 +31,7 @@ from frictionlaws.numbers import parse_number
 from frictionlaws.units import parse_quantity
 
 #: The fast cases belong to the hostile harness (CI budget 60 s); the ones that process a
-#: small_campaign run with the ordinary suite.
+#: campaign run with the ordinary suite.
 HOSTILE = pytest.mark.hostile
 
 GOOD = "mu,p [MPa],v [m/s]\n1.2,0.05,1\n1.1,0.1,1\n1.0,0.15,2\n0.95,0.2,2\n0.9,0.25,3\n"

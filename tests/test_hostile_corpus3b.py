@@ -7,7 +7,7 @@ corpus itself stays outside the project):
   stdout and one ``error:`` line on stderr, exit 2; a missing command names the
   commands there are, as the parser knows them;
 * a campaign is read whole before any fit: every dataset that cannot be read is named
-  on its own ``error:`` line, then one line sums up, exit 2 and nothing fitted;
+  on its own ``error:`` line, the last one also summing up, exit 2 and nothing fitted;
 * a grouping column (``by=``, ``--by``) groups rows: a measured quantity (a law
   variable, ``mu``, ``mu_std``, ``n``), a column that is not there, or one that leaves
   fewer than two rows a group on average is refused;
