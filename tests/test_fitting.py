@@ -197,3 +197,16 @@ def test_intervals_are_cut_at_the_parameter_bounds_with_a_warning():
         lo, hi = get_law("thirion").param(name).bounds
         assert p.ci95 is None or lo <= p.ci95[0] <= p.ci95[1] <= hi, name
     assert any("reaches past its bounds" in w for w in res.warnings)
+
+
+def test_a_fit_worse_than_the_mean_is_not_reported_as_converged():
+    """A law held (here by a fixed a = 10, so mu <= 0.1) where the data sit near 1: the
+    optimiser converges, but the fit explains less than the mean does (the global stage,
+    which cannot help a held law, is off to keep the test quick)."""
+    p = np.linspace(1e5, 5e5, 10)
+    res = fit("thirion", {"mu": 1.0 + 0.01 * np.sin(p), "p": p}, fix={"a": 10.0},
+              global_stage="off")
+    assert res.metrics["r2"] < 0
+    assert not res.success
+    assert "worse than the mean of mu" in res.message
+    assert any("worse than the mean of mu" in w for w in res.warnings)
