@@ -1,10 +1,17 @@
-"""Fitting a law to data with lmfit, honestly.
+"""Fitting a law to data, honestly.
 
-:func:`fit` builds an :class:`lmfit.Model` from a law's declaration (the
-independent variables passed explicitly), starts from the law's data-driven
-guess, tries several starts where the surface may have several minima, and
-returns a :class:`FitResult` with values, standard errors, 95 % confidence
-intervals, the correlation matrix, goodness of fit and warnings.
+:func:`fit` minimises the (weighted) squared residual of a law's declaration with
+scipy's bounded trust region, the way lmfit's ``least_squares`` method does
+(:mod:`frictionlaws._lsq`; lmfit's other minimisers on request), starts from the
+law's data-driven guess, tries several starts where the surface may have several
+minima, and returns a :class:`FitResult` with values, standard errors, 95 %
+confidence intervals, the correlation matrix, goodness of fit and warnings.
+
+On large data (:data:`ANALYTIC_FROM` rows or more) the solver and the
+identifiability analysis use each law's analytic Jacobian, derived once from its
+symbolic form (:mod:`frictionlaws.derivatives`).  The deterministic starts are
+scored by their chi^2 and refined best first; the search stops when a second start
+reproduces the best chi^2.
 
 Identifiability is checked on the Jacobian at the optimum: its columns are
 scaled to unit length and decomposed (SVD).  A relative singular value below
@@ -35,7 +42,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import ExtrapolationWarning, FitError, InputError
-from .law import VARIABLES, Law
+from .law import NUMPY, VARIABLES, Law
 from .registry import get_law
 
 if TYPE_CHECKING:
@@ -51,6 +58,10 @@ RESULT_VERSION = 1
 RANK_TOL = 1e-5
 #: Relative singular value below which a parameter direction is poorly determined.
 WEAK_TOL = 1e-2
+#: Rows from which a fit uses the laws' analytic Jacobians.  Below, a model evaluation
+#: costs less than the solver's own bookkeeping, so finite differences cost little, and
+#: fits follow the path of the results pinned by tests/test_pinned_*.py.
+ANALYTIC_FROM = 1000
 
 
 @dataclass(frozen=True)
@@ -442,8 +453,9 @@ class FitResult:
         Package versions and creation time.
     uncertainty : dict
         How the standard errors were obtained.
-    lmfit_result : lmfit.model.ModelResult, optional
-        The lmfit result of the best fit (None for a result read from a file).
+    local_fit : optional
+        The local solve of the best fit (None for a result read from a file); lmfit's
+        ``ModelResult`` when a method other than the default was asked for.
     residual : numpy.ndarray, optional
         ``mu - fit`` per row (unweighted).
     best_fit : numpy.ndarray, optional
@@ -466,10 +478,26 @@ class FitResult:
     notes: list[str] = field(default_factory=list)
     provenance: dict[str, Any] = field(default_factory=dict)
     uncertainty: dict[str, Any] = field(default_factory=dict)
-    lmfit_result: Any = None
+    local_fit: Any = field(default=None, repr=False, compare=False)
     residual: np.ndarray | None = None
     best_fit: np.ndarray | None = None
     fit_data: FitData | None = None
+
+    @functools.cached_property
+    def lmfit_result(self) -> Any:
+        """lmfit's :class:`~lmfit.model.ModelResult` of this fit (None without its data).
+
+        lmfit's own minimiser result when it ran the fit; otherwise lmfit refits the law
+        from this optimum (:func:`frictionlaws.interop.model_result`), so its tools
+        (``fit_report()``, ``conf_interval()``, ``eval_uncertainty()``) apply.
+        """
+        if self.local_fit is not None and hasattr(self.local_fit, "model"):
+            return self.local_fit
+        if self.fit_data is None:
+            return None
+        from .interop import model_result
+
+        return model_result(self)
 
     @property
     def values(self) -> dict[str, float]:
@@ -931,7 +959,7 @@ def fit(
     method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
     n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto",
 ) -> FitResult:
-    """Fit ``law`` to ``data`` with lmfit.
+    """Fit ``law`` to ``data`` (bounded least squares, several starts).
 
     Parameters
     ----------
@@ -958,7 +986,8 @@ def fit(
     mapping, units, area : optional
         Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        The lmfit minimisation method (default ``"least_squares"``: bounded trust region).
+        The minimisation method (default ``"least_squares"``: scipy's bounded trust
+        region, run directly; lmfit's other minimisers by their lmfit name).
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
         Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
         a bootstrap over whole conditions (a law that misses a trend); see
@@ -1134,16 +1163,60 @@ class _Search:
     model: Any = None
 
     def __post_init__(self) -> None:
-        import lmfit
-
         s = self.setup
-        indep = s.law.variables or ("_shape",)
-        self.model = lmfit.Model(_model_function(s.model_law, s.freed),
-                                 independent_vars=list(indep), nan_policy="raise")
+        self.max_nfev = 300 * (len(s.vary_names) + 1)
+        if self.method != "least_squares":  # lmfit's other minimisers
+            import lmfit
+
+            indep = s.law.variables or ("_shape",)
+            self.model = lmfit.Model(_model_function(s.model_law, s.freed),
+                                     independent_vars=list(indep), nan_policy="raise")
         self.kwargs = {k: s.x[k] for k in s.law.variables}
         if not s.law.variables:
             self.kwargs["_shape"] = s.y
-        self.max_nfev = 300 * (len(s.vary_names) + 1)
+        self.prepared = s.model_law.prepare_variables(s.x)
+        self.held = {k: v for k, v in s.model_law.setting_values.items() if k not in s.names}
+        self.jac_func = None
+        if s.y.size >= ANALYTIC_FROM:
+            from .derivatives import jacobian_function
+
+            self.jac_func = jacobian_function(s.law)
+
+    def jacobian(self, values: Mapping[str, float], names: list[str]) -> np.ndarray | None:
+        """The analytic Jacobian of the model by ``names`` at ``values`` (None: none)."""
+        if self.jac_func is None:
+            return None
+        from .derivatives import model_jacobian
+
+        return model_jacobian(self.jac_func, self.prepared, {**self.held, **values}, names,
+                              self.setup.y.size)
+
+    def score(self, start: Mapping[str, float]) -> float:
+        """chi^2 at a start (infinite when the model is not finite there)."""
+        s = self.setup
+        with np.errstate(all="ignore"):
+            try:
+                r = s.y - np.asarray(self.evaluate(self.start_values(start)), float)
+            except (ValueError, FloatingPointError, TypeError, ZeroDivisionError):
+                return math.inf
+        if s.w is not None:
+            r = r * s.w
+        c = float(np.sum(r * r))
+        return c if math.isfinite(c) else math.inf
+
+    def start_values(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()
+                     ) -> dict[str, float]:
+        """Every parameter's start: fixed, held at a bound (pinned), or inside its bounds."""
+        s = self.setup
+        out = {}
+        for k in s.names:
+            if k in s.fix:
+                out[k] = float(s.fix[k])
+            elif k in pinned:  # held exactly at the bound the global stage found
+                out[k] = float(start[k])
+            else:
+                out[k] = _clip(float(start[k]), *s.bounds[k])
+        return out
 
     def params(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
         """lmfit parameters from ``start``: fixed, pinned at a bound, or varied."""
@@ -1151,24 +1224,41 @@ class _Search:
 
         s = self.setup
         params = lmfit.Parameters()
-        for k in s.names:
-            lo, hi = s.bounds[k]
-            if k in s.fix:
-                params.add(k, value=float(s.fix[k]), vary=False)
-            elif k in pinned:  # held exactly at the bound the global stage found
-                params.add(k, value=float(start[k]), vary=False)
+        for k, value in self.start_values(start, pinned).items():
+            if k in s.fix or k in pinned:
+                params.add(k, value=value, vary=False)
             else:
-                params.add(k, value=_clip(float(start[k]), lo, hi), min=lo, max=hi)
+                params.add(k, value=value, min=s.bounds[k][0], max=s.bounds[k][1])
         return params
+
+    def _local(self, start: Mapping[str, float], pinned: tuple[str, ...]) -> Any:
+        """One local solve: the lean trust region, or lmfit's minimiser when asked."""
+        s = self.setup
+        if self.method != "least_squares":
+            return self.model.fit(s.y, self.params(start, pinned), weights=s.w,
+                                  method=self.method, max_nfev=self.max_nfev, **self.kwargs)
+        from ._lsq import solve
+
+        values = self.start_values(start, pinned)
+        vary = [k for k in s.names if k not in s.fix and k not in pinned]
+        jac = None
+        if self.jac_func is not None:
+            def jac(v: Mapping[str, float]) -> np.ndarray:
+                out = self.jacobian(v, vary)
+                assert out is not None
+                return out
+        return solve(self.evaluate, s.y, s.w, values, vary, s.bounds, self.max_nfev, jac)
+
+    def evaluate(self, values: Mapping[str, float]) -> Any:
+        """The model (the law with the fit's settings) at ``values`` on the data."""
+        return self.setup.model_law.formula(NUMPY, **self.prepared, **self.held, **values)
 
     def run(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
         """One local fit from ``start``; kept when it beats the best so far."""
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                res = self.model.fit(self.setup.y, self.params(start, pinned),
-                                     weights=self.setup.w, method=self.method,
-                                     max_nfev=self.max_nfev, **self.kwargs)
+                res = self._local(start, pinned)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
             self.errors.append(str(exc))
             return
@@ -1180,20 +1270,43 @@ class _Search:
 
 
 def _multistart(search: _Search, starts: int | None, seed: int) -> None:
-    """The deterministic starts, then random ones when they disagree, all fail or are asked."""
+    """The deterministic starts, then random ones when they disagree, all fail or are asked.
+
+    The deterministic starts are scored by their chi^2 and refined best first, and the
+    search stops as soon as one ends where an earlier one did (chi^2 within 1e-6): the
+    surface then shows one basin for the starts that look best, and the others would
+    cost a full solve each.
+    """
     s = search.setup
-    for start in _starts(s.law, s.guess, s.vary_names):
+    candidates = _starts(s.law, s.guess, s.vary_names)
+    if len(candidates) > 1:
+        scores = [search.score(c) for c in candidates]
+        candidates = [candidates[i] for i in sorted(range(len(scores)), key=scores.__getitem__)]
+    reproduced = False
+    for start in candidates:
         search.run(start)
+        reproduced = _reproduced(search.finals)
+        if reproduced:
+            break
     # Random starts when the deterministic ones disagree (several minima) or all failed:
     # the surface is then multi-modal or hard, and more starts are worth their cost.
     finals = search.finals
     spread = (max(finals) - min(finals)) / max(min(finals), 1e-300) if finals else math.inf
     forced = starts is not None and int(starts) > 0
-    if not s.law.linear and (spread > 1e-6 or search.best is None or forced):
+    if not s.law.linear and ((spread > 1e-6 and not reproduced) or search.best is None
+                             or forced):
         rng = np.random.default_rng(seed)
         n_random = 6 if starts is None else int(starts)
         for start in _random_starts(s.law, s.guess, s.vary_names, n_random, rng):
             search.run(start)
+
+
+def _reproduced(finals: list[float]) -> bool:
+    """True when the latest local fit ended at the best chi^2 of the earlier ones."""
+    if len(finals) < 2:
+        return False
+    best = min(finals[:-1])
+    return abs(finals[-1] - best) <= 1e-6 * max(best, 1e-300)
 
 
 def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
@@ -1242,9 +1355,14 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
         out = np.asarray(out, float)
         return out * (w if w is not None else 1.0)
 
-    theta0 = np.array([values[k] for k in vary])
-    scales = np.array([setup.typical(k) for k in vary])
-    jac = _jacobian(residual_vec, theta0, scales)
+    jac = search.jacobian(values, vary)
+    if jac is not None and np.all(np.isfinite(jac)):
+        if w is not None:
+            jac *= w[:, None]
+    else:
+        theta0 = np.array([values[k] for k in vary])
+        scales = np.array([setup.typical(k) for k in vary])
+        jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
     for var in (v for v in law.variables if v in setup.fd.arrays):
         xs = np.unique(setup.fd.arrays[var])
@@ -1375,14 +1493,14 @@ def _law_checks(law: Law, full_values: Mapping[str, float], fd: FitData,
 
 def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
     """The diagnostics, metrics and errors of the best fit, as a :class:`FitResult`."""
-    from scipy import stats
+    from scipy.special import stdtrit  # Student's t quantile, without scipy.stats
 
     law, best, fd, y = setup.law, search.best, setup.fd, setup.y
     warn_msgs: list[str] = []
     diag = _diagnose(setup, search, warn_msgs)
     n, k = y.size, len(setup.vary_names)
     dof = n - k
-    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
+    tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.inf
     estimates = _estimates(setup, search, diag, tval, dof, warn_msgs)
     corr = _correlation(best)
     metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
@@ -1403,7 +1521,7 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
         data={"name": fd.name, "source": fd.source, "n": int(n),
               "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
         notes=setup.notes, provenance=_provenance(), uncertainty=unc_info,
-        lmfit_result=best, residual=y - fitted, best_fit=fitted, fit_data=fd)
+        local_fit=best, residual=y - fitted, best_fit=fitted, fit_data=fd)
 
 
 def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarray | None,

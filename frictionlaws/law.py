@@ -663,14 +663,29 @@ class Law:
         decl = self._declared(name)
         return decl.meaning if decl is not None else ""
 
-    def _prepare(self, name: str, x: Any) -> Any:
-        x = np.asarray(x, dtype=float)
-        if name == "v":
-            x = np.abs(x)
-        floor = self.floors.get(name)
-        if floor is not None:
-            x = np.maximum(x, floor)
-        return x
+    def prepare_variables(self, variables: Mapping[str, Any]) -> dict[str, Any]:
+        """The law's variables as its formula takes them: floats, ``|v|``, floors applied.
+
+        Parameters
+        ----------
+        variables : mapping
+            Every variable of the law (SI), array-like.
+
+        Returns
+        -------
+        dict
+            Variable name -> float array (or float), ready for :attr:`formula`.
+        """
+        out = {}
+        for name in self.variables:
+            x = np.asarray(variables[name], dtype=float)
+            if name == "v":
+                x = np.abs(x)
+            floor = self.floors.get(name)
+            if floor is not None:
+                x = np.maximum(x, floor)
+            out[name] = x
+        return out
 
     def evaluate(self, variables: Mapping[str, Any], params: Mapping[str, float]) -> Any:
         """Evaluate with explicit mappings of variables and complete parameters.
@@ -701,8 +716,7 @@ class Law:
                      for k, v in variables.items()}
             self.evaluate(plain, params)  # the same checks, on the bare arrays
             return evaluate_labelled(self, variables, params)
-        full = self._fill_optional(variables, params)
-        kw = {k: self._prepare(k, full[k]) for k in self.variables}
+        kw = self.prepare_variables(self._fill_optional(variables, params))
         kw.update(params)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             out = self.formula(NUMPY, **kw)
@@ -827,8 +841,7 @@ class Law:
                 if not all(self._variable_ok(k, a) for k, a in part.items()):
                     return None
                 block = out[start:start + _BLOCK]
-                block[...] = self.formula(
-                    NUMPY, **{k: self._prepare(k, a) for k, a in part.items()}, **params)
+                block[...] = self.formula(NUMPY, **self.prepare_variables(part), **params)
                 if not self._mu_ok(block):
                     return None
         return out.reshape(shape)

@@ -89,17 +89,17 @@ def pacejka_peak(B: float, C: float, D: float, E: float, S_h: float = 0.0, S_v: 
 def _pacejka_guess(d):
     """Grid over (B, C, E) with D in closed form, then the best few cells polished.
 
-    C and E trade off (distinct minima fit almost equally well), so the eight
+    C and E trade off (distinct minima fit almost equally well), so the four
     best grid cells are each refined by a short bounded least-squares run and
     the best result is returned.
     """
     from scipy.optimize import least_squares
 
-    d = _subsample(d, 600)
+    d = _subsample(d, 200)
     s, mu = d["s"], d["mu"]
-    B_grid = np.geomspace(1.0, 60.0, 30)
-    C_grid = np.linspace(1.0, 2.5, 16)
-    E_grid = np.linspace(-3.0, 1.0, 17)
+    B_grid = np.geomspace(1.0, 60.0, 15)
+    C_grid = np.linspace(1.0, 2.5, 8)
+    E_grid = np.linspace(-3.0, 1.0, 9)
     cells = []
     with np.errstate(all="ignore"):
         for B in B_grid:
@@ -122,7 +122,7 @@ def _pacejka_guess(d):
     def resid(q):
         return _mf(s, q[0], q[1], q[2], q[3], 0.0, 0.0) - mu
 
-    for cell in cells[:8]:
+    for cell in cells[:4]:
         x0 = np.clip(np.array(cell[1:]), np.array(lo) + 1e-9, np.array(hi) - 1e-9)
         try:
             with np.errstate(all="ignore"):

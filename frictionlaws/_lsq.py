@@ -1,0 +1,246 @@
+"""The local least-squares solve of a fit, without lmfit's per-call bookkeeping.
+
+:func:`solve` runs :func:`scipy.optimize.least_squares` (bounded trust region
+reflective, ``x_scale=1``, tolerances ``1e-8``) on the weighted residual
+``(mu - model) * w`` and computes what a fit reports from it, exactly as lmfit's
+``least_squares`` method does for the same problem: the same starting point, the
+same residual (``data - model``, then times the weights), the same finite
+difference Jacobian (or an analytic one when given), the same evaluation budget
+(the fit is stopped after ``max_nfev`` residual evaluations, Jacobian columns
+included), the covariance ``inv(J^T J)`` scaled by the reduced chi-square, and
+chi-square, AIC and BIC by lmfit's formulas.  So a fit gives the numbers it gave
+when lmfit ran the loop, while each residual evaluation costs one model call and
+one subtraction instead of a copy of lmfit's parameter objects.
+
+lmfit stays available for its own tools: :func:`frictionlaws.interop.model_result`
+refits the law with lmfit from the library's optimum.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["LocalFit", "Estimate", "solve"]
+
+#: The message of a model that returned NaN or infinity (lmfit's wording, shortened).
+NAN_MESSAGE = ("The model function generated NaN values and the fit aborted! Please check "
+               "your model function and/or set boundaries on parameters where applicable.")
+
+
+@dataclass
+class Estimate:
+    """One parameter of a local fit: its value and (for varied ones) standard error."""
+
+    value: float
+    stderr: float | None = None
+
+
+@dataclass
+class LocalFit:
+    """The outcome of one local least-squares solve (lmfit's result attributes).
+
+    Attributes
+    ----------
+    params : dict
+        Every parameter (varied and held) -> :class:`Estimate`.
+    var_names : list of str
+        The varied parameters, in the order of ``covar``'s rows.
+    covar : numpy.ndarray or None
+        Covariance of the varied parameters, scaled by the reduced chi-square.
+    best_fit : numpy.ndarray
+        The model at the solution.
+    residual : numpy.ndarray
+        The weighted residual at the solution.
+    chisqr, redchi, aic, bic : float
+        Goodness of fit, as lmfit computes it.
+    success : bool
+        The solver's convergence flag (False when the evaluation budget ran out).
+    message : str
+        The solver's message.
+    nfev : int
+        Residual evaluations used (Jacobian columns included).
+    """
+
+    params: dict[str, Estimate]
+    var_names: list[str]
+    covar: np.ndarray | None
+    best_fit: np.ndarray
+    residual: np.ndarray
+    chisqr: float
+    redchi: float
+    aic: float
+    bic: float
+    success: bool
+    message: str
+    nfev: int
+    jac: np.ndarray | None = field(default=None, repr=False)
+
+
+class _BudgetSpent(Exception):
+    """Raised inside the residual when the evaluation budget is spent."""
+
+
+@dataclass
+class _Residual:
+    """The weighted residual ``(y - model) * w`` of the varied parameters."""
+
+    model: Callable[[dict[str, float]], Any]
+    y: np.ndarray
+    w: np.ndarray | None
+    held: dict[str, float]
+    names: list[str]
+    lo: np.ndarray
+    hi: np.ndarray
+    max_nfev: int
+    nfev: int = 0
+    last: np.ndarray | None = None
+
+    def values(self, theta: np.ndarray) -> dict[str, float]:
+        """Every parameter's value at ``theta`` (varied ones kept inside their bounds)."""
+        vals = dict(self.held)
+        clipped = np.minimum(np.maximum(theta, self.lo), self.hi)
+        vals.update(zip(self.names, (float(t) for t in clipped)))
+        return vals
+
+    def model_at(self, theta: np.ndarray) -> np.ndarray:
+        """The model at ``theta``, refused (ValueError) when not finite."""
+        out = np.asarray(self.model(self.values(theta)), dtype=float)
+        if out.shape != self.y.shape:
+            out = np.broadcast_to(out, self.y.shape)
+        if not np.all(np.isfinite(out)):
+            raise ValueError(NAN_MESSAGE)
+        return out
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        theta = np.atleast_1d(theta)
+        self.nfev += 1
+        self.last = theta
+        if self.nfev > self.max_nfev:
+            raise _BudgetSpent
+        diff = self.y - self.model_at(theta)
+        if self.w is not None:
+            diff *= self.w
+        return diff
+
+
+def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray | None,
+          start: Mapping[str, float], vary: list[str],
+          bounds: Mapping[str, tuple[float, float]], max_nfev: int,
+          jac: Callable[[dict[str, float]], np.ndarray] | None = None) -> LocalFit:
+    """Minimise ``sum(((y - model(values)) * w)**2)`` over the ``vary`` parameters.
+
+    Parameters
+    ----------
+    model : callable
+        ``model(values) -> array``, values being every parameter by name.
+    y, w : numpy.ndarray
+        The data and the weights multiplying the residual (None: unweighted).
+    start : mapping
+        Every parameter's starting value; those not in ``vary`` are held there.
+    vary : list of str
+        The parameters varied.
+    bounds : mapping
+        ``(low, high)`` of each varied parameter (infinite allowed).
+    max_nfev : int
+        Residual evaluations allowed (finite-difference columns count).
+    jac : callable, optional
+        ``jac(values) -> (n, len(vary))`` Jacobian of the model; None: finite
+        differences (two-point, as lmfit's default).
+
+    Returns
+    -------
+    LocalFit
+        The solution and lmfit's statistics of it.
+
+    Raises
+    ------
+    ValueError
+        When the model is not finite at a point the solver tried.
+    """
+    from scipy.optimize import least_squares
+
+    lo = np.array([bounds[k][0] for k in vary], float)
+    hi = np.array([bounds[k][1] for k in vary], float)
+    held = {k: float(v) for k, v in start.items() if k not in vary}
+    res = _Residual(model, y, w, held, list(vary), lo, hi, max_nfev)
+    x0 = np.array([float(start[k]) for k in vary])
+    kws: dict[str, Any] = dict(jac="2-point", method="trf", ftol=1e-8, xtol=1e-8, gtol=1e-8,
+                               x_scale=1.0, loss="linear", max_nfev=2 * max_nfev)
+    if jac is not None:
+        kws["jac"] = _residual_jacobian(jac, res)
+    try:
+        ret = least_squares(res, x0, bounds=(lo, hi), **kws)
+    except _BudgetSpent:
+        assert res.last is not None
+        return _finish(res, res.last, None, False,
+                       f"Fit aborted: number of function evaluations > {max_nfev}")
+    return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message))
+
+
+def _residual_jacobian(jac: Callable[[dict[str, float]], np.ndarray], res: _Residual
+                       ) -> Callable[[np.ndarray], np.ndarray]:
+    """The Jacobian of the weighted residual from the model's analytic one."""
+    def residual_jac(theta: np.ndarray) -> np.ndarray:
+        theta = np.atleast_1d(theta)
+        out = np.asarray(jac(res.values(theta)), float)
+        out *= -1.0
+        if res.w is not None:
+            out *= res.w[:, None]
+        bad = np.flatnonzero(~np.all(np.isfinite(out), axis=0))
+        if bad.size:  # e.g. d(x**c)/dc = x**c log x at x = 0: differences there
+            _difference_columns(res, out, theta, bad)
+        return out
+    return residual_jac
+
+
+def _difference_columns(res: _Residual, jac: np.ndarray, theta: np.ndarray,
+                        cols: np.ndarray) -> None:
+    """Replace columns ``cols`` of the residual's Jacobian by forward differences."""
+    r0 = res(theta)
+    for j in cols:
+        h = 1.5e-8 * max(abs(float(theta[j])), 1.0)
+        step = theta.copy()
+        step[j] = step[j] + h if step[j] + h <= res.hi[j] else step[j] - h
+        jac[:, j] = (res(step) - r0) / (step[j] - theta[j])
+
+
+def _finish(res: _Residual, theta: np.ndarray, jac: np.ndarray | None, success: bool,
+            message: str) -> LocalFit:
+    """lmfit's bookkeeping of a solve: residual at the solution, statistics, covariance."""
+    res.max_nfev = res.nfev + 2  # the evaluation at the solution is always allowed
+    resid = res(theta)
+    nfev = res.nfev - 1
+    theta = np.minimum(np.maximum(np.atleast_1d(theta), res.lo), res.hi)
+    ndata, nvary = resid.size, len(res.names)
+    chisqr = float((resid ** 2).sum())
+    redchi = chisqr / max(1, ndata - nvary)
+    chisqr = max(chisqr, 1e-250 * ndata)
+    neg2ll = ndata * math.log(chisqr / ndata)
+    covar = _covariance(jac, redchi)
+    params = {k: Estimate(v) for k, v in res.held.items()}
+    for i, k in enumerate(res.names):
+        se = None if covar is None else float(np.sqrt(covar[i, i]))
+        params[k] = Estimate(float(theta[i]), se)
+    if covar is not None:
+        for k in res.held:
+            params[k].stderr = 0.0
+    return LocalFit(params=params, var_names=list(res.names), covar=covar,
+                    best_fit=res.model_at(theta), residual=resid, chisqr=chisqr,
+                    redchi=redchi, aic=neg2ll + 2 * nvary, bic=neg2ll + math.log(ndata) * nvary,
+                    success=success, message=message, nfev=nfev, jac=jac)
+
+
+def _covariance(jac: np.ndarray | None, redchi: float) -> np.ndarray | None:
+    """``inv(J^T J)`` times the reduced chi-square; None when singular or not computed."""
+    if jac is None:
+        return None
+    try:
+        cov = np.linalg.inv(np.matmul(jac.T, jac))
+    except np.linalg.LinAlgError:
+        return None
+    return cov * redchi

@@ -1,0 +1,334 @@
+"""Analytic Jacobians of the built-in laws: GENERATED, do not edit.
+
+Written by ``python -m frictionlaws.derivatives`` from each law's symbolic form
+(sympy, common subexpressions shared); see :mod:`frictionlaws.derivatives`.
+"""
+
+# ruff: noqa
+# mypy: ignore-errors
+
+import numpy
+
+__all__ = ["JACOBIANS"]
+
+def _d_coulomb(m, names, mu0):
+    d = {
+        'mu0': 1,
+    }
+    return [d[k] for k in names]
+
+
+def _d_thirion(m, names, p, a, b):
+    x0 = 1.0/(a + b*p)**2
+    d = {
+        'a': -x0,
+        'b': -p*x0,
+    }
+    return [d[k] for k in names]
+
+
+def _d_schallamach(m, names, F_N, mu_ref, n, F_ref):
+    x0 = F_ref**(-1.0)
+    x1 = F_N*x0
+    x2 = x1**(-n)
+    x3 = mu_ref*x2
+    d = {
+        'mu_ref': x2,
+        'n': -x3*numpy.log(x1),
+        'F_ref': n*x0*x3,
+    }
+    return [d[k] for k in names]
+
+
+def _d_denny(m, names, p, a, b, E_v):
+    x0 = p/E_v
+    x1 = b*x0 + 1.0
+    x2 = 1.0/(a*x1**2)
+    d = {
+        'a': -1.0/(a**2*x1),
+        'b': -x0*x2,
+        'E_v': b*p*x2/E_v**2,
+    }
+    return [d[k] for k in names]
+
+
+def _d_exponential_decay(m, names, v, mu_s, mu_d, v_c, delta):
+    x0 = v_c**(-1.0)
+    x1 = v*x0
+    x2 = x1**delta
+    x3 = numpy.exp(-x2)
+    x4 = x2*x3*(mu_d - mu_s)
+    d = {
+        'mu_s': x3,
+        'mu_d': 1 - x3,
+        'v_c': -delta*x0*x4,
+        'delta': x4*numpy.log(x1),
+    }
+    return [d[k] for k in names]
+
+
+def _d_quadratic_pv(m, names, p, v, c0, c1, c2, c3, c4, c5):
+    d = {
+        'c0': 1,
+        'c1': p,
+        'c2': v,
+        'c3': p*v,
+        'c4': p**2,
+        'c5': v**2,
+    }
+    return [d[k] for k in names]
+
+
+def _d_thesis_poly2(m, names, p, v, a0, a1, a2, a3, a4):
+    d = {
+        'a0': 1,
+        'a1': 1.0e-6*p,
+        'a2': 1.0e-12*p**2,
+        'a3': v,
+        'a4': v**2,
+    }
+    return [d[k] for k in names]
+
+
+def _d_thesis_poly3(m, names, p, v, a0, a1, a2, a3, a4, a5, a6):
+    d = {
+        'a0': 1,
+        'a1': 1.0e-6*p,
+        'a2': 1.0e-12*p**2,
+        'a3': 1.0e-18*p**3,
+        'a4': v,
+        'a5': v**2,
+        'a6': v**3,
+    }
+    return [d[k] for k in names]
+
+
+def _d_savkoor(m, names, p, v, mu_s, mu_m, h10, v_m, n, p_ref):
+    x0 = p_ref**(-1.0)
+    x1 = p*x0
+    x2 = x1**n
+    x3 = h10**2
+    x4 = numpy.log(10)**(-2.0)
+    x5 = v_m**(-1.0)
+    x6 = numpy.log(v*x5)
+    x7 = x4*x6**2
+    x8 = numpy.exp(-x3*x7)
+    x9 = x2*x8
+    x10 = mu_m - mu_s
+    x11 = 2*x10*x9
+    x12 = x2*(mu_s + x10*x8)
+    d = {
+        'mu_s': x2*(1 - x8),
+        'mu_m': x9,
+        'h10': -h10*x11*x7,
+        'v_m': x11*x3*x4*x5*x6,
+        'n': x12*numpy.log(x1),
+        'p_ref': -n*x0*x12,
+    }
+    return [d[k] for k in names]
+
+
+def _d_nackenhorst(m, names, p, v, A, n, b0, b1, b2, p_ref, v_ref):
+    x0 = p_ref**(-1.0)
+    x1 = p*x0
+    x2 = x1**n
+    x3 = A*x2
+    x4 = v_ref**(-1.0)
+    x5 = numpy.log(v*x4)
+    d = {
+        'A': x2,
+        'n': x3*numpy.log(x1),
+        'b0': 1,
+        'b1': x5,
+        'b2': x5**2,
+        'p_ref': -n*x0*x3,
+        'v_ref': -x4*(b1 + 2*b2*x5),
+    }
+    return [d[k] for k in names]
+
+
+def _d_nackenhorst_thesis(m, names, p, v, c1, c2, c3, c4, c5, c6, c7):
+    x0 = c2**(-1.0)
+    x1 = p*x0
+    x2 = x1**c3
+    x3 = c1*x2
+    x4 = c5**(-1.0)
+    x5 = c7**(-1.0)
+    d = {
+        'c1': x2,
+        'c2': -c3*x0*x3,
+        'c3': x3*numpy.log(x1),
+        'c4': numpy.log(v*x4),
+        'c5': -c4*x4,
+        'c6': -numpy.log(v*x5),
+        'c7': c6*x5,
+    }
+    return [d[k] for k in names]
+
+
+def _d_huemer(m, names, p, v, alpha, beta, n, m_v, b, c, p_ref, v_ref):
+    x0 = p_ref**(-1.0)
+    x1 = p*x0
+    x2 = n - 1.0
+    x3 = x1**x2
+    x4 = v_ref**(-1.0)
+    x5 = v*x4
+    x6 = m_v**(-1.0)
+    x7 = x5**(-1.0*x6)
+    x8 = b*x7
+    x9 = x5**(-2.0*x6)
+    x10 = c*x9
+    x11 = x10 + x8 + 1.0
+    x12 = x11**(-1.0)
+    x13 = x12*x3
+    x14 = alpha*x13
+    x15 = (alpha*x3 + beta)/x11**2
+    x16 = x15*(2.0*x10 + 1.0*x8)
+    d = {
+        'alpha': x13,
+        'beta': x12,
+        'n': x14*numpy.log(x1),
+        'm_v': -x16*numpy.log(x5)/m_v**2,
+        'b': -x15*x7,
+        'c': -x15*x9,
+        'p_ref': -x0*x14*x2,
+        'v_ref': -x16*x4*x6,
+    }
+    return [d[k] for k in names]
+
+
+def _d_wriggers(m, names, p, v, a, b, c, d):
+    x0 = p**2
+    x1 = a**2*x0
+    x2 = (v**2 + x1)**(-1.0)
+    x3 = 2.0*a*p*v*x2
+    x4 = x3**c
+    x5 = x4*numpy.arctan(d*p)/p
+    x6 = b*x5
+    d = {
+        'a': -0.5*c*x6*(4.0*x1*x2 - 2.0)/a,
+        'b': x5,
+        'c': x6*numpy.log(x3),
+        'd': b*x4/(d**2*x0 + 1),
+    }
+    return [d[k] for k in names]
+
+
+def _d_park(m, names, p, v, T, n, mu_s, mu_m, h10, v_m, p0, C1, C2, T_ref):
+    x0 = p0**(-1.0)
+    x1 = p*x0
+    x2 = x1**(-n)
+    x3 = h10**2
+    x4 = numpy.log(10)**(-1.0)
+    x5 = v_m**(-1.0)
+    x6 = T - T_ref
+    x7 = C2 + x6
+    x8 = x7**(-1.0)
+    x9 = x6*x8
+    x10 = C1*x9 - x4*numpy.log(v*x5)
+    x11 = x10**2
+    x12 = numpy.exp(-x11*x3)
+    x13 = x12*(mu_m - mu_s)
+    x14 = x2*(mu_s + x13)
+    x15 = 2*x13*x2
+    x16 = x10*x15*x3
+    x17 = C1*x16
+    d = {
+        'n': -x14*numpy.log(x1),
+        'mu_s': x2*(1 - x12),
+        'mu_m': x12*x2,
+        'h10': -h10*x11*x15,
+        'v_m': -x16*x4*x5,
+        'p0': n*x0*x14,
+        'C1': -x16*x9,
+        'C2': x17*x6/x7**2,
+        'T_ref': -x17*x8*(x9 - 1),
+    }
+    return [d[k] for k in names]
+
+
+def _d_pacejka(m, names, s, B, C, D, E, S_h, S_v):
+    x0 = S_h + s
+    x1 = (B**2*x0**2 + 1)**(-1.0)
+    x2 = B*x0
+    x3 = x2 - numpy.arctan(x2)
+    x4 = -E*x3 + x2
+    x5 = numpy.arctan(x4)
+    x6 = C*x5
+    x7 = D*numpy.cos(x6)
+    x8 = C*x7/(x4**2 + 1)
+    d = {
+        'B': x8*(-E*(-x0*x1 + x0) + x0),
+        'C': x5*x7,
+        'D': numpy.sin(x6),
+        'E': -x3*x8,
+        'S_h': B*x8*(-E*(1 - x1) + 1),
+        'S_v': 1,
+    }
+    return [d[k] for k in names]
+
+
+def _d_burckhardt(m, names, s, v, c1, c2, c3, c4):
+    x0 = numpy.exp(-c4*v)
+    x1 = numpy.exp(-c2*s)
+    x2 = 1.0 - x1
+    x3 = s*x0
+    d = {
+        'c1': x0*x2,
+        'c2': c1*x1*x3,
+        'c3': -x3,
+        'c4': -v*x0*(c1*x2 - c3*s),
+    }
+    return [d[k] for k in names]
+
+
+def _d_burckhardt_sqrt(m, names, s, c1, c2):
+    d = {
+        'c1': numpy.sqrt(s),
+        'c2': -s,
+    }
+    return [d[k] for k in names]
+
+
+def _d_kiencke_daiss(m, names, s, k_s, c1, c2):
+    x0 = s**2
+    x1 = c1*x0 + c2*s + 1.0
+    x2 = k_s/x1**2
+    d = {
+        'k_s': s/x1,
+        'c1': -s**3*x2,
+        'c2': -x0*x2,
+    }
+    return [d[k] for k in names]
+
+
+def _d_germann(m, names, s, a0, a1, a2):
+    d = {
+        'a0': 1,
+        'a1': s,
+        'a2': s**2,
+    }
+    return [d[k] for k in names]
+
+
+JACOBIANS = {
+    'coulomb': ({'mu0': 0.8120600000000001}, 0.8120600000000001, _d_coulomb),
+    'thirion': ({'p': 376300.0, 'a': 1.0148000000000001, 'b': 0.0011010137}, 0.0024077456871913834, _d_thirion),
+    'schallamach': ({'F_N': 370.63, 'mu_ref': 1.0148000000000001, 'n': 0.3333333333333333, 'F_ref': 1.0148000000000001}, 0.14196907570759856, _d_schallamach),
+    'denny': ({'p': 376300.0, 'a': 2.0285, 'b': 15.2066, 'E_v': 10137000.0011}, 0.31510258430115456, _d_denny),
+    'exponential-decay': ({'v': 3.70063, 'mu_s': 1.0148000000000001, 'mu_d': 0.60932, 'v_c': 1.0148000000000001, 'delta': 1.0148000000000001}, 0.6191743358409266, _d_exponential_decay),
+    'quadratic-pv': ({'p': 376300.0, 'v': 3.70063, 'c0': 1.0148000000000001, 'c1': 0.0123, 'c2': 0.0123, 'c3': 0.0123, 'c4': 0.0123, 'c5': 0.0123}, 1741722545.047711, _d_quadratic_pv),
+    'thesis-poly2': ({'p': 111400.0, 'v': 1.0249, 'a0': 1.0148000000000001, 'a1': 0.0123, 'a2': 0.0123, 'a3': 0.0123, 'a4': 0.0123}, 1.0418492986310004, _d_thesis_poly2),
+    'thesis-poly3': ({'p': 111400.0, 'v': 1.0249, 'a0': 1.0148000000000001, 'a1': 0.0123, 'a2': 0.0123, 'a3': 0.0123, 'a4': 0.0123, 'a5': 0.0123, 'a6': 0.0123}, 1.0551081812658543, _d_thesis_poly3),
+    'savkoor': ({'p': 376300.0, 'v': 3.7000006300000003, 'mu_s': 0.50795, 'mu_m': 1.21754, 'h10': 0.30521, 'v_m': 0.011237, 'n': 0.0, 'p_ref': 101370.0011}, 0.9011335862328314, _d_savkoor),
+    'nackenhorst': ({'p': 376300.0, 'v': 3.70063, 'A': 0.30521, 'n': -0.30301, 'b0': 0.60932, 'b1': 0.021374, 'b2': -0.0009273999999999999, 'p_ref': 101370.0011, 'v_ref': 1.0148000000000001}, 0.8405361947426244, _d_nackenhorst),
+    'nackenhorst-thesis': ({'p': 376300.0, 'v': 3.70063, 'c1': 0.30521, 'c2': 101370.0011, 'c3': -0.30301, 'c4': 0.051785000000000005, 'c5': 1.0148000000000001, 'c6': 0.031511, 'c7': 0.10247000000000002}, 0.15909458226161838, _d_nackenhorst_thesis),
+    'huemer': ({'p': 3706300.0, 'v': 3.70063, 'alpha': 0.10247000000000002, 'beta': 0.50795, 'n': 0.50795, 'm_v': 2.0285, 'b': 0.10247000000000002, 'c': 0.011237, 'p_ref': 1013700.0011, 'v_ref': 1.0148000000000001}, 0.5316385077312801, _d_huemer),
+    'wriggers': ({'p': 376300.0, 'v': 3.700063, 'a': 0.0011010137, 'b': 101370.0011, 'c': 0.50795, 'd': 0.001110137}, 0.05468572324566037, _d_wriggers),
+    'park': ({'p': 376300.0, 'v': 3.7000006300000003, 'T': 260.15, 'n': 0.11373333333333334, 'mu_s': 0.50795, 'mu_m': 1.21754, 'h10': 0.30521, 'v_m': 0.011237, 'p0': 152055.0011, 'C1': 8.982482, 'C2': 102.99301999999999, 'T_ref': 276.893255}, 0.5761404509858479, _d_park),
+    'pacejka': ({'s': 0.0731, 'B': 10.1381, 'C': 1.92713, 'D': 1.0148000000000001, 'E': 0.984389, 'S_h': 0.0123, 'S_v': 0.0123}, 0.9571911741369643, _d_pacejka),
+    'burckhardt': ({'s': 0.0731, 'v': 14.8, 'c1': 1.21754, 'c2': 25.343600000000002, 'c3': 0.50795, 'c4': 0.0123}, 0.8247877720861176, _d_burckhardt),
+    'burckhardt-sqrt': ({'s': 0.0731, 'c1': 2.0285, 'c2': 2.0285}, 0.40016243170955057, _d_burckhardt_sqrt),
+    'kiencke-daiss': ({'s': 0.0731, 'k_s': 20.275100000000002, 'c1': 30.412100000000002, 'c2': 5.0696}, 0.9667416262341006, _d_kiencke_daiss),
+    'germann': ({'s': 0.0731, 'a0': 0.0123, 'a1': 8.1107, 'a2': -15.204400000000001}, 0.523945786116, _d_germann),
+}
