@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -54,8 +54,6 @@ class LocalFit:
         Covariance of the varied parameters, scaled by the reduced chi-square.
     best_fit : numpy.ndarray
         The model at the solution.
-    residual : numpy.ndarray
-        The weighted residual at the solution.
     chisqr, redchi, aic, bic : float
         Goodness of fit, as lmfit computes it.
     success : bool
@@ -70,7 +68,6 @@ class LocalFit:
     var_names: list[str]
     covar: np.ndarray | None
     best_fit: np.ndarray
-    residual: np.ndarray
     chisqr: float
     redchi: float
     aic: float
@@ -78,7 +75,6 @@ class LocalFit:
     success: bool
     message: str
     nfev: int
-    jac: np.ndarray | None = field(default=None, repr=False)
 
 
 class _BudgetSpent(Exception):
@@ -178,8 +174,8 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
     except _BudgetSpent:
         assert res.last is not None
         return _finish(res, res.last, None, False,
-                       f"Fit aborted: number of function evaluations > {max_nfev}")
-    return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message))
+                       f"Fit aborted: number of function evaluations > {max_nfev}", max_nfev)
+    return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message), res.nfev)
 
 
 def _residual_jacobian(jac: Callable[[dict[str, float]], np.ndarray], res: _Residual
@@ -210,14 +206,16 @@ def _difference_columns(res: _Residual, jac: np.ndarray, theta: np.ndarray,
 
 
 def _finish(res: _Residual, theta: np.ndarray, jac: np.ndarray | None, success: bool,
-            message: str) -> LocalFit:
+            message: str, nfev: int) -> LocalFit:
     """lmfit's bookkeeping of a solve: residual at the solution, statistics, covariance."""
-    res.max_nfev = res.nfev + 2  # the evaluation at the solution is always allowed
-    resid = res(theta)
-    nfev = res.nfev - 1
+    model = res.model_at(theta)  # the residual there, computed as the solver's was
+    resid = res.y - model
+    if res.w is not None:
+        resid *= res.w
     theta = np.minimum(np.maximum(np.atleast_1d(theta), res.lo), res.hi)
     ndata, nvary = resid.size, len(res.names)
     chisqr = float((resid ** 2).sum())
+    del resid
     redchi = chisqr / max(1, ndata - nvary)
     chisqr = max(chisqr, 1e-250 * ndata)
     neg2ll = ndata * math.log(chisqr / ndata)
@@ -230,9 +228,9 @@ def _finish(res: _Residual, theta: np.ndarray, jac: np.ndarray | None, success: 
         for k in res.held:
             params[k].stderr = 0.0
     return LocalFit(params=params, var_names=list(res.names), covar=covar,
-                    best_fit=res.model_at(theta), residual=resid, chisqr=chisqr,
-                    redchi=redchi, aic=neg2ll + 2 * nvary, bic=neg2ll + math.log(ndata) * nvary,
-                    success=success, message=message, nfev=nfev, jac=jac)
+                    best_fit=model, chisqr=chisqr, redchi=redchi,
+                    aic=neg2ll + 2 * nvary, bic=neg2ll + math.log(ndata) * nvary,
+                    success=success, message=message, nfev=nfev)
 
 
 def _covariance(jac: np.ndarray | None, redchi: float) -> np.ndarray | None:

@@ -35,6 +35,8 @@ __all__ = ["jacobian_function", "model_jacobian", "probe_point", "generate_sourc
 MODULE_PATH = Path(__file__).parent / "laws" / "_jacobians.py"
 #: Relative agreement the probe value must show for a generated entry to be used.
 PROBE_RTOL = 1e-12
+#: Rows per block of a large Jacobian (the derivative code's temporaries stay this size).
+BLOCK = 1 << 16
 
 
 def probe_point(law: Law) -> dict[str, float]:
@@ -145,11 +147,14 @@ def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
         d mu / d name, column by column (NaN or infinity where the derivative is not
         finite, e.g. d(x**c)/dc at x = 0).
     """
-    with np.errstate(all="ignore"):
-        cols = func(NUMPY, names, **prepared, **values)
     jac = np.empty((n, len(names)), order="F")
-    for j, col in enumerate(cols):
-        jac[:, j] = col
+    step = BLOCK if n > 2 * BLOCK else max(n, 1)
+    for start in range(0, n, step):  # blocks keep the formula's temporaries small
+        part = {k: v[start:start + step] if np.ndim(v) else v for k, v in prepared.items()}
+        with np.errstate(all="ignore"):
+            cols = func(NUMPY, names, **part, **values)
+        for j, col in enumerate(cols):
+            jac[start:start + step, j] = col
     return jac
 
 

@@ -820,10 +820,13 @@ class _GlobalStage:
     names: list[str]
     bounds: dict[str, tuple[float, float]]
     guess: dict[str, float]
-    x: dict[str, np.ndarray]
+    evaluate: Any
     y: np.ndarray
     w: np.ndarray | None
     seed: int
+
+    def __post_init__(self) -> None:
+        self.boxes = {k: self._box(k) for k in self.names}
 
     def wanted(self, best: Any, finals: list[float]) -> bool:
         """True when the local starts end worse than the mean of mu or at different minima."""
@@ -862,7 +865,7 @@ class _GlobalStage:
         """Parameter values for a point ``u`` of the search box."""
         out = {}
         for k, uk in zip(self.names, u):
-            _a, _b, scale = self._box(k)
+            scale = self.boxes[k][2]
             lo, hi = self.bounds[k]
             out[k] = float(min(max(10.0 ** uk if scale == "log" else uk, lo), hi))
         return out
@@ -870,8 +873,7 @@ class _GlobalStage:
     def cost(self, u: np.ndarray) -> float:
         vals = {**self.held, **self.values(u)}
         with np.errstate(all="ignore"):
-            model = np.broadcast_to(np.asarray(self.law.evaluate(self.x, vals), float),
-                                    self.y.shape)
+            model = np.broadcast_to(np.asarray(self.evaluate(vals), float), self.y.shape)
         r = (model - self.y) * (self.w if self.w is not None else 1.0)
         c = float(np.sum(r * r))
         return c if math.isfinite(c) else 1e300
@@ -880,7 +882,7 @@ class _GlobalStage:
         """The best point found and the parameters it put exactly on a bound."""
         from scipy.optimize import differential_evolution
 
-        box = [self._box(k)[:2] for k in self.names]
+        box = [self.boxes[k][:2] for k in self.names]
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
@@ -1312,8 +1314,9 @@ def _reproduced(finals: list[float]) -> bool:
 def _global_stage(search: _Search, mode: str, seed: int) -> list[str]:
     """Differential evolution then a local polish, when asked or wanted; its notes."""
     s = search.setup
-    stage = _GlobalStage(s.model_law, {**s.settings, **s.fix}, s.vary_names, s.bounds,
-                         s.guess, s.x, s.y, s.w, seed)
+    held = {k: v for k, v in s.fix.items() if k in s.names}  # settings: in model_law
+    stage = _GlobalStage(s.model_law, held, s.vary_names, s.bounds, s.guess,
+                         search.evaluate, s.y, s.w, seed)
     if not (mode == "on" or (mode == "auto" and stage.wanted(search.best, search.finals))):
         return []
     start, pinned = stage.search()
