@@ -722,11 +722,10 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
     var = VARIABLES.get(k)
     if var is None:
         return f"{k} {lo:g}..{hi:g}"
-    scale = {"MPa": 1e-6}.get(var.display_unit, 1.0)
-    if var.display_unit == "degC":
-        return f"{k} {lo - 273.15:.4g}..{hi - 273.15:.4g} degC"
-    unit = var.display_unit or "-"
-    return f"{k} {lo * scale:.4g}..{hi * scale:.4g} {unit}"
+    from .units import to_display
+
+    shown = to_display([lo, hi], k)
+    return f"{k} {shown[0]:.4g}..{shown[1]:.4g} {var.display_unit or '-'}"
 
 
 # --------------------------------------------------------------------- fitting
@@ -1375,14 +1374,14 @@ def _law_checks(law: Law, full_values: Mapping[str, float], fd: FitData,
 
 def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
     """The diagnostics, metrics and errors of the best fit, as a :class:`FitResult`."""
-    from scipy import stats
+    from scipy.special import stdtrit  # Student's t quantile, without scipy.stats
 
     law, best, fd, y = setup.law, search.best, setup.fd, setup.y
     warn_msgs: list[str] = []
     diag = _diagnose(setup, search, warn_msgs)
     n, k = y.size, len(setup.vary_names)
     dof = n - k
-    tval = float(stats.t.ppf(0.975, dof)) if dof > 0 else math.inf
+    tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.inf
     estimates = _estimates(setup, search, diag, tval, dof, warn_msgs)
     corr = _correlation(best)
     metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
