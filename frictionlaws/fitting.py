@@ -131,9 +131,8 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
         labels = getattr(ds, "row_labels", None)
         fd.row_labels = np.asarray(labels) if labels is not None else None
-        frame = getattr(ds, "frame", None)
-        if frame is not None and CONDITION_COLUMN in frame.columns:
-            fd.conditions = frame[CONDITION_COLUMN].astype(str).to_numpy()
+        if CONDITION_COLUMN in ds.column_names:  # the columns, without building a DataFrame
+            fd.conditions = np.array([str(c) for c in ds.column(CONDITION_COLUMN)], object)
     _check_magnitudes(fd)
     if isinstance(weights, str):
         if weights != "auto":
@@ -167,12 +166,12 @@ def refuse_pooled_groups(dataset: Any) -> None:
     """Raise :class:`~frictionlaws.errors.GroupingError` when a grouping column varies."""
     from .errors import GroupingError
 
-    frame = getattr(dataset, "frame", None)
-    if frame is None:
+    names = getattr(dataset, "column_names", None)
+    if names is None:
         return
     for col in GROUP_COLUMNS:
-        if col in frame.columns:
-            values = sorted({str(v) for v in frame[col] if str(v).strip()})
+        if col in names:
+            values = sorted({str(v) for v in dataset.column(col) if str(v).strip()})
             if len(values) > 1:
                 shown = ", ".join(values[:6]) + (" ..." if len(values) > 6 else "")
                 raise GroupingError(
