@@ -1622,10 +1622,18 @@ def _numpy_ns() -> Any:
 
 @functools.lru_cache(maxsize=1)
 def _versions() -> tuple[tuple[str, str], ...]:
-    """Versions of the packages a result depends on (read once: metadata is slow)."""
+    """Versions of the packages a result depends on (read once: metadata is slow).
+
+    A package already imported gives its ``__version__``; only the others are looked
+    up in the installed metadata (a scan of the environment).
+    """
+    import sys
     from importlib.metadata import PackageNotFoundError, version
 
     def ver(pkg: str) -> str:
+        loaded = getattr(sys.modules.get(pkg), "__version__", None)
+        if isinstance(loaded, str):
+            return loaded
         try:
             return version(pkg)
         except PackageNotFoundError:
