@@ -11,7 +11,11 @@ Then, from one more run of the fit command under ``python -X importtime``, which
 numpy, scipy.optimize, pandas, pint, sympy, matplotlib, lmfit and scipy.stats it loads
 and their cumulative import time.
 
-Run: ``python benchmarks/bench_startup.py [--rounds N]`` (default 7).
+With ``--tree DIR`` a third command runs in the same rounds: the same fit with the
+``frictionlaws`` package of another source tree (e.g. a checkout of the code before a
+change), so that the gain is measured in the same run too.
+
+Run: ``python benchmarks/bench_startup.py [--rounds N] [--tree DIR]`` (default 7 rounds).
 """
 
 from __future__ import annotations
@@ -61,21 +65,24 @@ def wall(cmd: list[str], cwd: Path, out: Path) -> float:
     return elapsed
 
 
-def alternate(rounds: int, tmp: Path) -> tuple[list[float], list[float]]:
-    """Wall times of the fit command and of ``import lmfit``, one pair per round."""
-    fit_cmd = fit_command()
-    base_cmd = [sys.executable, "-c", "import lmfit"]
-    wall(fit_cmd, tmp, tmp / "warm-fit.txt")  # file caches, .pyc files
-    wall(base_cmd, tmp, tmp / "warm-lmfit.txt")
-    fits, bases = [], []
+def tree_command(tree: Path) -> list[str]:
+    """The fit command run with the ``frictionlaws`` package of the source tree ``tree``."""
+    code = (f"import sys; sys.path.insert(0, {str(tree)!r}); import frictionlaws; "
+            f"assert frictionlaws.__file__.startswith({str(tree)!r}), frictionlaws.__file__; "
+            f"from frictionlaws.cli import main; sys.exit(main({list(FIT_ARGS)!r}))")
+    return [sys.executable, "-c", code]
+
+
+def alternate(rounds: int, tmp: Path, commands: dict[str, list[str]]) -> dict[str, list[float]]:
+    """Wall times of each command, one per round, the order rotated every round."""
+    names = list(commands)
+    for name in names:  # file caches, .pyc files
+        wall(commands[name], tmp, tmp / f"warm-{name}.txt")
+    times: dict[str, list[float]] = {name: [] for name in names}
     for i in range(rounds):
-        if i % 2:
-            bases.append(wall(base_cmd, tmp, tmp / "lmfit.txt"))
-            fits.append(wall(fit_cmd, tmp, tmp / "fit.txt"))
-        else:
-            fits.append(wall(fit_cmd, tmp, tmp / "fit.txt"))
-            bases.append(wall(base_cmd, tmp, tmp / "lmfit.txt"))
-    return fits, bases
+        for name in names[i % len(names):] + names[:i % len(names)]:
+            times[name].append(wall(commands[name], tmp, tmp / f"{name}.txt"))
+    return times
 
 
 def imports(tmp: Path) -> dict[str, float | None]:
@@ -100,11 +107,16 @@ def imports(tmp: Path) -> dict[str, float | None]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=7, help="timed runs of each command")
+    ap.add_argument("--tree", type=Path, help="also time the fit with this source tree's package")
     args = ap.parse_args()
+    commands = {"fit": fit_command(), "lmfit": [sys.executable, "-c", "import lmfit"]}
+    if args.tree is not None:
+        commands["tree"] = tree_command(args.tree.resolve())
     with tempfile.TemporaryDirectory() as name:
         tmp = Path(name)
-        fits, bases = alternate(args.rounds, tmp)
+        times = alternate(args.rounds, tmp, commands)
         loaded = imports(tmp)
+    fits, bases = times["fit"], times["lmfit"]
     paired = [f / b for f, b in zip(fits, bases, strict=True)]
     print(f"frictionlaws {' '.join(FIT_ARGS)}  vs  python -c 'import lmfit'  "
           f"({args.rounds} alternate rounds, wall seconds)")
@@ -116,6 +128,14 @@ def main() -> None:
           f"(range {min(paired):.2f}..{max(paired):.2f})")
     verdict = "met" if statistics.median(paired) <= TARGET else "NOT met"
     print(f"  target (issue 15): <= {TARGET:.1f}x  -> {verdict} (median of paired ratios)")
+    if "tree" in times:
+        tree = times["tree"]
+        ratios = [t / b for t, b in zip(tree, bases, strict=True)]
+        gain = [t / f for t, f in zip(tree, fits, strict=True)]
+        print(f"  fit with {args.tree}: best {min(tree):.3f} s   median "
+              f"{statistics.median(tree):.3f} s   / import lmfit: median of paired "
+              f"{statistics.median(ratios):.2f}x   its time / this tree's: median of paired "
+              f"{statistics.median(gain):.2f}x")
     print("modules loaded by the fit command (cumulative import time, -X importtime):")
     for mod, secs in loaded.items():
         state = "not loaded" if secs is None else f"loaded ({secs * 1e3:.0f} ms)"
