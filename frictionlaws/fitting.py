@@ -142,9 +142,8 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
         labels = getattr(ds, "row_labels", None)
         fd.row_labels = np.asarray(labels) if labels is not None else None
-        frame = getattr(ds, "frame", None)
-        if frame is not None and CONDITION_COLUMN in frame.columns:
-            fd.conditions = frame[CONDITION_COLUMN].astype(str).to_numpy()
+        if CONDITION_COLUMN in ds.column_names:  # the columns, without building a DataFrame
+            fd.conditions = np.array([str(c) for c in ds.column(CONDITION_COLUMN)], object)
     _check_magnitudes(fd)
     if isinstance(weights, str):
         if weights != "auto":
@@ -178,12 +177,12 @@ def refuse_pooled_groups(dataset: Any) -> None:
     """Raise :class:`~frictionlaws.errors.GroupingError` when a grouping column varies."""
     from .errors import GroupingError
 
-    frame = getattr(dataset, "frame", None)
-    if frame is None:
+    names = getattr(dataset, "column_names", None)
+    if names is None:
         return
     for col in GROUP_COLUMNS:
-        if col in frame.columns:
-            values = sorted({str(v) for v in frame[col] if str(v).strip()})
+        if col in names:
+            values = sorted({str(v) for v in dataset.column(col) if str(v).strip()})
             if len(values) > 1:
                 shown = ", ".join(values[:6]) + (" ..." if len(values) > 6 else "")
                 raise GroupingError(
@@ -750,11 +749,10 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
     var = VARIABLES.get(k)
     if var is None:
         return f"{k} {lo:g}..{hi:g}"
-    scale = {"MPa": 1e-6}.get(var.display_unit, 1.0)
-    if var.display_unit == "degC":
-        return f"{k} {lo - 273.15:.4g}..{hi - 273.15:.4g} degC"
-    unit = var.display_unit or "-"
-    return f"{k} {lo * scale:.4g}..{hi * scale:.4g} {unit}"
+    from .units import to_display
+
+    shown = to_display([lo, hi], k)
+    return f"{k} {shown[0]:.4g}..{shown[1]:.4g} {var.display_unit or '-'}"
 
 
 # --------------------------------------------------------------------- fitting
@@ -1745,10 +1743,18 @@ def _numpy_ns() -> Any:
 
 @functools.lru_cache(maxsize=1)
 def _versions() -> tuple[tuple[str, str], ...]:
-    """Versions of the packages a result depends on (read once: metadata is slow)."""
+    """Versions of the packages a result depends on (read once: metadata is slow).
+
+    A package already imported gives its ``__version__``; only the others are looked
+    up in the installed metadata (a scan of the environment).
+    """
+    import sys
     from importlib.metadata import PackageNotFoundError, version
 
     def ver(pkg: str) -> str:
+        loaded = getattr(sys.modules.get(pkg), "__version__", None)
+        if isinstance(loaded, str):
+            return loaded
         try:
             return version(pkg)
         except PackageNotFoundError:

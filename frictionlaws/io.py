@@ -37,18 +37,21 @@ import csv
 import math
 import os
 import re
+import sys
 import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeGuard
 
 import numpy as np
-import pandas as pd
 
 from . import units as _units
 from .errors import Argument, InputError
 from .law import VARIABLES
+
+if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
+    import pandas as pd
 
 __all__ = [
     "CANONICAL",
@@ -219,18 +222,19 @@ def parse_units(text: str | Sequence[str] | Mapping[str, str] | None) -> dict[st
 
 
 # --------------------------------------------------------------------------- Dataset
-@dataclass(eq=False)
 class Dataset:
     """A friction dataset in canonical SI columns.
 
-    The parameters are kept as attributes of the same names.
+    The parameters are kept as attributes of the same names.  The columns are
+    numpy arrays until :attr:`frame` is first asked for: reading and fitting a
+    dataset does not import pandas; from then on the DataFrame holds the data.
 
     Parameters
     ----------
-    frame : pandas.DataFrame
+    frame : pandas.DataFrame or mapping of str to numpy.ndarray
         Canonical columns only, in SI: ``mu`` [-], ``p`` [Pa], ``v`` [m/s],
         ``T`` [K], ``F_N`` [N], ``s`` [-], ``mu_std`` [-], ``n`` [-],
-        ``surface`` (text); only those present.
+        ``surface`` (text); only those present, one value per row.
     name : str
         Short name (packaged name or file stem).
     source : str
@@ -248,30 +252,94 @@ class Dataset:
         used to name rows in later messages.
     """
 
-    frame: pd.DataFrame
-    name: str
-    source: str
-    units: dict[str, str] = field(default_factory=dict)
-    notes: list[str] = field(default_factory=list)
-    provenance: str | None = None
-    rows: np.ndarray | None = None
+    def __init__(self, frame: pd.DataFrame | Mapping[str, np.ndarray], name: str, source: str,
+                 units: dict[str, str] | None = None, notes: list[str] | None = None,
+                 provenance: str | None = None, rows: np.ndarray | None = None) -> None:
+        self._frame: pd.DataFrame | None = None
+        self._columns: dict[str, np.ndarray] | None = None
+        if isinstance(frame, Mapping):
+            self._columns = {str(k): np.asarray(v) for k, v in frame.items()}
+        else:
+            self._frame = frame
+        self.name = name
+        self.source = source
+        self.units: dict[str, str] = {} if units is None else units
+        self.notes: list[str] = [] if notes is None else notes
+        self.provenance = provenance
+        self.rows = rows
+
+    @property
+    def frame(self) -> pd.DataFrame:
+        """The data as a :class:`pandas.DataFrame` (built on first use, then kept)."""
+        if self._frame is None:
+            import pandas as pd
+
+            cols = self._columns or {}
+            self._frame = pd.DataFrame(
+                {c: (pd.Series(v, dtype=object) if v.dtype == object else v)
+                 for c, v in cols.items()},
+                index=pd.RangeIndex(len(next(iter(cols.values()), ()))))
+            self._columns = None  # the frame is the data from now on (it may be edited)
+        return self._frame
+
+    @frame.setter
+    def frame(self, value: pd.DataFrame) -> None:
+        self._frame, self._columns = value, None
+
+    @property
+    def column_names(self) -> tuple[str, ...]:
+        """The columns present, in order (canonical names)."""
+        if self._columns is not None:
+            return tuple(self._columns)
+        return tuple(str(c) for c in self.frame.columns)
+
+    def column(self, name: str, dtype: Any = None) -> np.ndarray:
+        """Return one column as a numpy array.
+
+        Parameters
+        ----------
+        name : str
+            A column of :attr:`column_names`.
+        dtype : numpy dtype, optional
+            The dtype wanted (e.g. ``float``).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, one per row (SI for numeric columns).
+
+        Raises
+        ------
+        KeyError
+            When the dataset has no such column.
+        """
+        if self._columns is not None:
+            return np.asarray(self._columns[name], dtype=dtype)
+        return self.frame[name].to_numpy(dtype=dtype)
 
     def __len__(self) -> int:
+        if self._columns is not None:
+            return len(next(iter(self._columns.values()), ()))
         return len(self.frame)
 
     def __repr__(self) -> str:
-        cols = ", ".join(self.frame.columns)
+        cols = ", ".join(self.column_names)
         return f"Dataset({self.name!r}, {len(self)} rows, columns: {cols})"
 
     @property
     def variables(self) -> set[str]:
         """Variable columns present (among ``p``, ``v``, ``T``, ``F_N``, ``s``)."""
-        return {c for c in VARIABLE_COLUMNS if c in self.frame.columns}
+        return {c for c in VARIABLE_COLUMNS if c in self.column_names}
 
     @property
     def varying(self) -> set[str]:
         """Variable columns that take more than one distinct value."""
-        return {c for c in self.variables if self.frame[c].nunique() > 1}
+        out = set()
+        for c in self.variables:
+            x = self.column(c, float)
+            if np.unique(x[~np.isnan(x)]).size > 1:
+                out.add(c)
+        return out
 
     @property
     def row_labels(self) -> np.ndarray | None:
@@ -306,8 +374,8 @@ class Dataset:
             present among ``p`` [Pa], ``v`` [m/s], ``T`` [K], ``F_N`` [N] and
             ``s`` [-].
         """
-        return {c: self.frame[c].to_numpy(dtype=float)
-                for c in ("mu", *VARIABLE_COLUMNS) if c in self.frame.columns}
+        names = self.column_names
+        return {c: self.column(c, float) for c in ("mu", *VARIABLE_COLUMNS) if c in names}
 
     def weights(self) -> np.ndarray | None:
         """Return fit weights from the replicate statistics, or None (unweighted).
@@ -328,10 +396,10 @@ class Dataset:
             One weight (1 / sigma of mu) per row, or None when the dataset has
             neither a usable ``mu_std`` nor an ``n`` column.
         """
-        f = self.frame
-        n = f["n"].to_numpy(dtype=float) if "n" in f.columns else None
-        if "mu_std" in f.columns:
-            std = f["mu_std"].to_numpy(dtype=float)
+        names = self.column_names
+        n = self.column("n", float) if "n" in names else None
+        if "mu_std" in names:
+            std = self.column("mu_std", float)
             if len(std) and np.all(std > 0):
                 w = 1.0 / std
                 return w * np.sqrt(n) if n is not None else w
@@ -364,7 +432,11 @@ class Dataset:
                 f"subset mask has shape {m.shape}, expected ({len(self)},) for dataset "
                 f"'{self.name}'"
             )
-        frame = self.frame.loc[m].reset_index(drop=True)
+        frame: pd.DataFrame | dict[str, np.ndarray]
+        if self._columns is not None:
+            frame = {c: v[m] for c, v in self._columns.items()}
+        else:
+            frame = self.frame.loc[m].reset_index(drop=True)
         rows = None if self.rows is None else self.rows[m]
         notes = list(self.notes)
         if not m.all():
@@ -384,10 +456,10 @@ class Dataset:
         """
         lines = [f"{self.name}: {len(self)} rows ({self.source})"]
         for col in ("mu", *VARIABLE_COLUMNS, "mu_std", "n"):
-            if col not in self.frame.columns:
+            if col not in self.column_names:
                 continue
             unit = _units.display_unit(col)
-            vals = _units.from_si(self.frame[col].to_numpy(dtype=float), unit, col)
+            vals = _units.from_si(self.column(col, float), unit, col)
             distinct = len(np.unique(vals))
             rng = (f"{vals.min():.4g}" if distinct == 1
                    else f"{vals.min():.4g} .. {vals.max():.4g}")
@@ -395,8 +467,8 @@ class Dataset:
             given = self.units.get(col)
             src = f", given in {given}" if given and given != unit else ""
             lines.append(f"  {label:<12} {rng}  ({distinct} distinct{src})")
-        if "surface" in self.frame.columns:
-            surfaces = sorted({str(s) for s in self.frame["surface"] if str(s)})
+        if "surface" in self.column_names:
+            surfaces = sorted({str(s) for s in self.column("surface") if str(s)})
             lines.append(f"  {'surface':<12} {', '.join(surfaces) or '-'}")
         for note in self.notes:
             lines.append(f"note: {note}")
@@ -414,11 +486,11 @@ class Dataset:
             and ``provenance``.
         """
         cols: dict[str, dict[str, Any]] = {}
-        for col in self.frame.columns:
+        for col in self.column_names:
             if col == "surface":
-                cols[col] = {"values": sorted({str(s) for s in self.frame[col]})}
+                cols[col] = {"values": sorted({str(s) for s in self.column(col)})}
                 continue
-            vals = self.frame[col].to_numpy(dtype=float)
+            vals = self.column(col, float)
             cols[col] = {"unit": _units.si_unit(col), "min": float(vals.min()),
                          "max": float(vals.max()), "distinct": int(len(np.unique(vals))),
                          "given_unit": self.units.get(col, "")}
@@ -465,7 +537,7 @@ class Dataset:
             frame, from 0); a wrong unit, a missing ``mu`` column, a bad mapping or
             no row left are refused too.
         """
-        if not isinstance(frame, pd.DataFrame):
+        if not _is_frame(frame):
             raise InputError(f"Dataset.from_frame takes a pandas DataFrame, got "
                              f"{type(frame).__name__}")
         if isinstance(mapping, str):
@@ -498,16 +570,18 @@ class Dataset:
         InputError
             For ``units`` other than ``"si"`` or ``"display"``.
         """
+        import pandas as pd
+
         if units not in ("si", "display"):
             raise InputError(f"units must be 'si' or 'display', got {units!r}")
         out = pd.DataFrame(index=range(len(self)))
         given: dict[str, str] = {}
-        for c in (c for c in CANONICAL if c in self.frame.columns):
+        for c in (c for c in CANONICAL if c in self.column_names):
             if c == "surface" or c not in _units.QUANTITIES:
-                out[c] = self.frame[c].to_numpy(copy=True)
+                out[c] = np.array(self.column(c), copy=True)
                 continue
             unit = _units.si_unit(c) if units == "si" else _units.display_unit(c)
-            vals = self.frame[c].to_numpy(dtype=float)
+            vals = self.column(c, float)
             out[_units.header(c, unit)] = (vals.copy() if units == "si"
                                            else _units.from_si(vals, unit, c))
             given[c] = unit
@@ -534,15 +608,15 @@ class Dataset:
             The path written.
         """
         path = Path(path)
-        cols = [c for c in CANONICAL if c in self.frame.columns]
+        cols = [c for c in CANONICAL if c in self.column_names]
         headers = [_units.header(c) if c in _units.QUANTITIES else c for c in cols]
         columns: list[list[str]] = []
         for c in cols:
             if c == "surface":
-                columns.append([str(s) for s in self.frame[c]])
+                columns.append([str(s) for s in self.column(c)])
                 continue
             unit = _units.display_unit(c)
-            vals = _units.from_si(self.frame[c].to_numpy(dtype=float), unit, c)
+            vals = _units.from_si(self.column(c, float), unit, c)
             columns.append([format(float(x), ".15g") for x in vals])
         from .outputs import atomic_write  # never over a file read in this process
 
@@ -805,8 +879,7 @@ def _resolve_name(name: str) -> str | None:
 
 def _to_float(cell: Any, decimal_comma: bool) -> float | None:
     """A float, ``nan`` for a missing value, or None when not a number."""
-    if cell is None or (not isinstance(cell, str) and bool(np.ndim(cell) == 0)
-                        and pd.isna(cell)):
+    if cell is None or (not isinstance(cell, str) and _is_missing(cell)):
         return math.nan
     if isinstance(cell, (bool, np.bool_)):
         return None
@@ -823,6 +896,22 @@ def _to_float(cell: Any, decimal_comma: bool) -> float | None:
         return parse_number(text, decimal_comma=decimal_comma and "," in text)
     except ValueError:
         return None
+
+
+def _is_frame(x: Any) -> TypeGuard[pd.DataFrame]:
+    """True for a pandas DataFrame (without importing pandas: none exists before it is)."""
+    pd = sys.modules.get("pandas")
+    return pd is not None and isinstance(x, pd.DataFrame)
+
+
+def _is_missing(cell: Any) -> bool:
+    """A scalar cell that is a missing value (NaN, or pandas' NA and NaT)."""
+    if np.ndim(cell) != 0:
+        return False
+    pd = sys.modules.get("pandas")
+    if pd is not None:
+        return bool(pd.isna(cell))
+    return isinstance(cell, (float, np.floating)) and math.isnan(cell)
 
 
 def _row_label(table: _Table, i: int) -> int | None:
@@ -845,14 +934,13 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     values = _numbers(table, assigned, explicit, unit_of, notes)
     si = _to_si_checked(table, assigned, values, unit_of, notes)
     keep = _rows_to_keep(table, assigned, si, notes)
-    frame = _frame(table, assigned, si, keep)
-    units_given = {c: unit_of.get(c, "") for c in frame.columns if c != "surface"}
+    columns = _kept_columns(table, assigned, si, keep)
+    units_given = {c: unit_of.get(c, "") for c in columns if c != "surface"}
     if area is not None:
-        frame = _pressure_from_area(frame, area, table.source, units_given, notes)
-    notes.extend(_frame_notes(frame))
+        columns = _pressure_from_area(columns, area, table.source, units_given, notes)
+    notes.extend(_column_notes(columns))
     rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
-    return Dataset(frame.reset_index(drop=True), name, table.source, units_given, notes,
-                   provenance, rows)
+    return Dataset(columns, name, table.source, units_given, notes, provenance, rows)
 
 
 def _check_headers(table: _Table) -> None:
@@ -1170,20 +1258,22 @@ def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
     return keep
 
 
-def _frame(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
-           keep: np.ndarray) -> pd.DataFrame:
+def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
+                  keep: np.ndarray) -> dict[str, np.ndarray]:
     """The kept rows in SI, canonical column order, the surface column as text."""
-    frame = pd.DataFrame({c: si[c][keep] for c in CANONICAL if c in si})
+    columns = {c: si[c][keep] for c in CANONICAL if c in si}
     if "surface" in assigned:
         surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
                 for c in table.columns[assigned["surface"]]]
-        frame["surface"] = pd.Series([s for s, k in zip(surf, keep, strict=True) if k],
-                                     dtype=object)
-    return frame[[c for c in CANONICAL if c in frame.columns]]
+        text = np.empty(int(np.count_nonzero(keep)), dtype=object)
+        text[:] = [s for s, k in zip(surf, keep, strict=True) if k]
+        columns["surface"] = text
+    return {c: columns[c] for c in CANONICAL if c in columns}
 
 
-def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
-                        units_given: dict[str, str], notes: list[str]) -> pd.DataFrame:
+def _pressure_from_area(columns: dict[str, np.ndarray], area: str | float, src: str,
+                        units_given: dict[str, str], notes: list[str]
+                        ) -> dict[str, np.ndarray]:
     """p = F_N / area when the data have a load and no pressure (the area is checked anyway)."""
     try:
         a = _units.parse_quantity(area, "area", what="area", file=src)
@@ -1192,32 +1282,32 @@ def _pressure_from_area(frame: pd.DataFrame, area: str | float, src: str,
                          file=src) from None
     if not a > 0:
         raise InputError([Argument("area", str(area)), " must be > 0"], file=src)
-    if "p" in frame.columns:
+    if "p" in columns:
         notes.append(f"area {area!r} not used: the data have a pressure column")
-        return frame
-    if "F_N" not in frame.columns:
+        return columns
+    if "F_N" not in columns:
         raise InputError([Argument("area", str(area)), " needs a normal-load column F_N to "
                           "derive the pressure, and the data have none"], file=src)
-    frame.insert(1, "p", frame["F_N"].to_numpy(dtype=float) / a)
+    columns = {**columns, "p": columns["F_N"].astype(float) / a}
     units_given["p"] = f"F_N / area ({area})"
     notes.append(f"p derived as F_N / area with area = {area} = {a:.6g} m^2")
-    return frame[[c for c in CANONICAL if c in frame.columns]]
+    return {c: columns[c] for c in CANONICAL if c in columns}
 
 
-def _frame_notes(frame: pd.DataFrame) -> list[str]:
+def _column_notes(columns: Mapping[str, np.ndarray]) -> list[str]:
     """What the user should know about the values: negative v, slip outside 0..1, weights."""
     notes = []
-    if "v" in frame.columns:
-        neg = int((frame["v"] < 0).sum())
+    if "v" in columns:
+        neg = int(np.count_nonzero(columns["v"] < 0))
         if neg:
             notes.append(f"{neg} row{'s' if neg > 1 else ''} with negative v: laws use |v|")
-    if "s" in frame.columns:
-        out_range = int(((frame["s"] < 0) | (frame["s"] > 1)).sum())
+    if "s" in columns:
+        out_range = int(np.count_nonzero((columns["s"] < 0) | (columns["s"] > 1)))
         if out_range:
             notes.append(f"{out_range} row(s) with slip ratio s outside 0..1")
-    if "mu_std" in frame.columns and not (frame["mu_std"] > 0).all():
-        zero = int((frame["mu_std"] <= 0).sum())
-        alt = "sqrt(n)" if "n" in frame.columns else "none (unweighted fit)"
+    if "mu_std" in columns and not (columns["mu_std"] > 0).all():
+        zero = int(np.count_nonzero(columns["mu_std"] <= 0))
+        alt = "sqrt(n)" if "n" in columns else "none (unweighted fit)"
         notes.append(f"mu_std is 0 in {zero} row(s): weights cannot be 1/mu_std; "
                      f"weights used: {alt}")
     return notes
@@ -1346,7 +1436,7 @@ def load_dataset(
                 "apply only when reading a file or a DataFrame"
             )
         return name_or_path
-    if isinstance(name_or_path, (pd.DataFrame, Mapping)):
+    if _is_frame(name_or_path) or isinstance(name_or_path, Mapping):
         table, name = _table_in_memory(name_or_path)
         return _build(table, name, mapping, units, area, None)
     if not isinstance(name_or_path, (str, os.PathLike)):
@@ -1361,8 +1451,10 @@ def load_dataset(
 
 def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, str]:
     """A DataFrame or a dict of columns as a table, and the dataset's name."""
-    if isinstance(data, pd.DataFrame):
+    if _is_frame(data):
         return _table_from_frame(data, "<DataFrame>"), "dataframe"
+    import pandas as pd
+
     try:
         frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in data.items()})
     except ValueError as exc:

@@ -18,9 +18,11 @@ formula stays smooth, and the exporters apply the same floors.
 from __future__ import annotations
 
 import functools
+import json
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
@@ -1063,10 +1065,29 @@ class Law:
     def pretty(self) -> str:
         """Return a one-line plain-text rendering of the formula.
 
+        The text is sympy's rendering of :meth:`symbolic`.  For the built-in laws it
+        is read from a shipped cache of those renderings (``formula_text.json``), used
+        only while the law still computes the same numbers as when the cache was
+        written (:func:`formula_check`); otherwise, and for other laws, sympy renders
+        it.  So printing a formula does not load sympy, and never shows a stale one.
+
         Returns
         -------
         str
             ``"mu = ..."``.
+        """
+        cached = _cached_text(self)
+        if cached is not None:
+            return cached
+        return self.rendered_text()
+
+    def rendered_text(self) -> str:
+        """Return the plain-text formula as sympy renders it now (no cache).
+
+        Returns
+        -------
+        str
+            ``"mu = ..."``, what :meth:`pretty` shows.
         """
         import sympy
 
@@ -1265,6 +1286,96 @@ class Law:
         from .interop import lmfit_model
 
         return lmfit_model(self, values=values)
+
+
+#: The shipped cache of formula texts (see :meth:`Law.pretty`).
+FORMULA_TEXT_FILE = Path(__file__).with_name("formula_text.json")
+#: Relative agreement of :func:`formula_check` values with the cached ones.
+_CHECK_RTOL = 1e-9
+
+
+def formula_check(law: Law) -> dict[str, Any] | None:
+    """What a cached formula text of ``law`` must agree with to be used.
+
+    The names of the formula's symbols (with the variables that are floored,
+    which sympy takes as positive) and mu computed by the numpy formula at two
+    fixed points where every symbol has a value of order one (so that every term
+    counts).  A change of the formula changes these numbers.
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+
+    Returns
+    -------
+    dict or None
+        ``{"symbols": str, "mu": [float, float]}``; None when the formula cannot
+        be computed at those points (then no cached text is used for it).
+    """
+    names = [*law.variables, *law.param_names, *(st.name for st in law.settings)]
+    symbols = "|".join([",".join(law.variables), ",".join(law.param_names),
+                        ",".join(st.name for st in law.settings), ",".join(sorted(law.floors))])
+    mu = []
+    for j in (0, 1):
+        values = {n: 1.0 + 0.137 * (k + 1) + 0.291 * j for k, n in enumerate(names)}
+        try:
+            with np.errstate(all="ignore"):
+                mu.append(float(law.formula(NUMPY, **values)))
+        except Exception:  # noqa: BLE001 - a formula that cannot run here is not cached
+            return None
+    if not all(math.isfinite(m) for m in mu):
+        return None
+    return {"symbols": symbols, "mu": mu}
+
+
+@functools.lru_cache(maxsize=1)
+def _formula_texts() -> dict[str, Any]:
+    try:
+        doc = json.loads(FORMULA_TEXT_FILE.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    laws = doc.get("laws") if isinstance(doc, dict) else None
+    return laws if isinstance(laws, dict) else {}
+
+
+def _cached_text(law: Law) -> str | None:
+    """The cached text of ``law``, when it still computes what the cache recorded."""
+    entry = _formula_texts().get(law.id)
+    if not isinstance(entry, dict) or not isinstance(entry.get("text"), str):
+        return None
+    check = formula_check(law)
+    if check is None or check["symbols"] != entry.get("symbols"):
+        return None
+    recorded = entry.get("mu")
+    if not isinstance(recorded, list) or len(recorded) != len(check["mu"]):
+        return None
+    if not all(isinstance(r, (int, float)) and math.isclose(m, r, rel_tol=_CHECK_RTOL)
+               for m, r in zip(check["mu"], recorded)):
+        return None
+    return str(entry["text"])
+
+
+def formula_text_entries(laws: Iterable[Law]) -> dict[str, Any]:
+    """The content of the formula-text cache for ``laws`` (rendered with sympy).
+
+    Parameters
+    ----------
+    laws : iterable of Law
+        The laws to cache (the built-in ones).
+
+    Returns
+    -------
+    dict
+        ``{"format": 1, "laws": {id: {"text", "symbols", "mu"}}}``, what
+        ``formula_text.json`` holds; laws without a :func:`formula_check` are left out.
+    """
+    out: dict[str, Any] = {}
+    for law in laws:
+        check = formula_check(law)
+        if check is not None:
+            out[law.id] = {"text": law.rendered_text(), **check}
+    return {"format": 1, "laws": out}
 
 
 #: How a law id is looked up again (set by :mod:`frictionlaws.registry` when it loads,

@@ -17,13 +17,17 @@ Two conventions need care and are handled here:
   9.80665 m/s^2.  :func:`conversion_note` returns the sentence that a dataset
   records when the mass convention was applied.
 
-pint is imported only inside functions and its registry is built once, on
-first use, so importing this module costs nothing.
+The units this table itself declares for a quantity (no unit for a
+dimensionless one, its SI unit, its display unit with :attr:`Quantity.display_si`)
+are checked and converted from the table alone; any other unit goes to pint,
+which is imported and its registry built once, on first use.  So importing this
+module costs nothing, and data in SI or display units never load pint.
 """
 
 from __future__ import annotations
 
 import functools
+import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -77,6 +81,10 @@ class Quantity:
     example : str
         A value with its unit, quoted in messages (``"0.2 MPa"``); ``"1"`` when
         dimensionless.
+    display_si : tuple of float
+        ``(scale, offset)`` of the display unit: a value ``x`` in ``display`` is
+        ``scale * x + offset`` in ``si`` (MPa: ``(1e6, 0)``; degC: ``(1, 273.15)``).
+        A test checks every entry against pint.
     """
 
     si: str
@@ -84,6 +92,7 @@ class Quantity:
     examples: tuple[str, ...]
     display: str
     example: str = "1"
+    display_si: tuple[float, float] = (1.0, 0.0)
 
 
 #: Quantity kinds by name: the canonical dataset columns plus a few used by options.
@@ -96,19 +105,21 @@ QUANTITIES: dict[str, Quantity] = {
     "n": Quantity("", "a dimensionless count", ("-",), ""),
     "s": Quantity("", "a dimensionless slip ratio", ("-", "%"), ""),
     "p": Quantity("Pa", "a pressure", ("MPa", "kPa", "Pa", "bar", "psi", "N/mm^2"), "MPa",
-                  "0.2 MPa"),
+                  "0.2 MPa", (1e6, 0.0)),
     "v": Quantity("m/s", "a velocity", ("m/s", "mm/s", "km/h"), "m/s", "1.38 m/s"),
-    "T": Quantity("K", "a temperature", ("degC", "K", "degF"), "degC", "20 degC"),
+    "T": Quantity("K", "a temperature", ("degC", "K", "degF"), "degC", "20 degC",
+                  (1.0, 273.15)),
     "F_N": Quantity("N", "a force", ("N", "kN", "kgf", "lbf", "kg (dead weight)"), "N",
                     "49 N"),
-    "area": Quantity("m**2", "an area", ("mm^2", "cm^2", "m^2"), "mm^2", "314.16 mm^2"),
-    "length": Quantity("m", "a length", ("mm", "m"), "mm", "40 mm"),
+    "area": Quantity("m**2", "an area", ("mm^2", "cm^2", "m^2"), "mm^2", "314.16 mm^2",
+                     (1e-6, 0.0)),
+    "length": Quantity("m", "a length", ("mm", "m"), "mm", "40 mm", (1e-3, 0.0)),
     "time": Quantity("s", "a time", ("s", "ms"), "s", "10 s"),
     "torque": Quantity("N*m", "a torque", ("N*m", "N*mm"), "N*m", "0.3 N*m"),
     "frequency": Quantity("Hz", "a frequency", ("Hz", "1/s"), "Hz", "1000 Hz"),
     "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s",
                                  "331 rpm"),
-    "angle": Quantity("rad", "an angle", ("deg", "rad"), "deg"),
+    "angle": Quantity("rad", "an angle", ("deg", "rad"), "deg", "1", (math.pi / 180, 0.0)),
 }
 
 # Names of common dimensions, for "unit 'm' is a length, expected a pressure":
@@ -146,6 +157,22 @@ def unit_registry() -> Any:
 def is_no_unit(unit: str | None) -> bool:
     """True when ``unit`` means "dimensionless / no unit" (``""``, ``"-"``, ``"1"``)."""
     return unit is None or unit.strip().lower() in _NO_UNIT
+
+
+def _declared(unit: str | None, kind: Quantity) -> tuple[float, float] | None:
+    """``(scale, offset)`` to SI of a unit the table declares for ``kind``, else None.
+
+    The declared units are no unit for a dimensionless quantity, the SI unit and the
+    display unit, written exactly as in :data:`QUANTITIES`; they need no pint.
+    """
+    text = "" if unit is None else str(unit).strip()
+    if not kind.si:
+        return (1.0, 0.0) if is_no_unit(text) else None
+    if text == kind.si:
+        return (1.0, 0.0)
+    if text == kind.display:
+        return kind.display_si
+    return None
 
 
 def _kind(quantity: str) -> Quantity:
@@ -266,7 +293,8 @@ def check_unit(
     unit: str, quantity: str, *, column: str | None = None, file: str | None = None
 ) -> None:
     """Raise :class:`InputError` unless ``unit`` is a valid unit for ``quantity``."""
-    parse_unit(unit, quantity, column=column, file=file)
+    if _declared(unit, _kind(quantity)) is None:
+        parse_unit(unit, quantity, column=column, file=file)
 
 
 def _is_mass(parsed: Any) -> bool:
@@ -309,10 +337,16 @@ def to_si(
     :data:`G_THESIS` = 9.8 m/s^2; ``kgf`` uses standard gravity.
     """
     kind = _kind(quantity)
-    parsed = parse_unit(unit, quantity, column=column, file=file)
-    ureg = unit_registry()
+    declared = _declared(unit, kind)
     arr = np.asarray(values, dtype=float)
     # an overflow gives inf, which the callers refuse with the row; no NumPy warning
+    if declared is not None:
+        scale, offset = declared
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = arr * scale + offset if declared != (1.0, 0.0) else arr.copy()
+        return np.asarray(out, dtype=float)
+    parsed = parse_unit(unit, quantity, column=column, file=file)
+    ureg = unit_registry()
     with np.errstate(over="ignore", invalid="ignore"):
         if quantity == "F_N" and _is_mass(parsed):
             kg = ureg.Quantity(arr, parsed).to("kg").magnitude
@@ -324,9 +358,14 @@ def to_si(
 def from_si(values: Any, unit: str, quantity: str) -> np.ndarray:
     """Convert SI ``values`` of ``quantity`` into ``unit`` (the inverse of :func:`to_si`)."""
     kind = _kind(quantity)
+    arr = np.asarray(values, dtype=float)
+    declared = _declared(unit, kind)
+    if declared is not None:
+        scale, offset = declared
+        out = (arr - offset) * (1.0 / scale) if declared != (1.0, 0.0) else arr.copy()
+        return np.asarray(out, dtype=float)
     parsed = parse_unit(unit, quantity)
     ureg = unit_registry()
-    arr = np.asarray(values, dtype=float)
     if quantity == "F_N" and _is_mass(parsed):
         return np.asarray(
             ureg.Quantity(arr / G_THESIS, "kg").to(parsed).magnitude, dtype=float
@@ -341,7 +380,7 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
     Returns a note for a normal load given as a mass (converted with
     g = 9.8 m/s^2 as in the thesis), ``None`` otherwise.
     """
-    if quantity != "F_N" or is_no_unit(unit):
+    if quantity != "F_N" or is_no_unit(unit) or _declared(unit, _kind(quantity)) is not None:
         return None
     parsed = parse_unit(unit, quantity, column=column)
     if not _is_mass(parsed):

@@ -185,7 +185,12 @@ def test_units_module_does_not_import_pint_until_used() -> None:
         "import sys, frictionlaws.units, frictionlaws.cli\n"
         "assert 'pint' not in sys.modules, 'pint imported at module import'\n"
         "assert 'pandas' not in sys.modules, 'pandas imported by the CLI at start-up'\n"
-        "frictionlaws.units.to_si(1.0, 'MPa', 'p')\n"
+        "frictionlaws.units.check_unit('MPa', 'p')\n"
+        "assert frictionlaws.units.to_si(1.0, 'MPa', 'p') == 1e6\n"
+        "assert frictionlaws.units.from_si(293.15, 'degC', 'T') == 20.0\n"
+        "assert frictionlaws.units.conversion_note('N', 'F_N') is None\n"
+        "assert 'pint' not in sys.modules, 'pint loaded for a unit the table declares'\n"
+        "assert frictionlaws.units.to_si(1.0, 'kPa', 'p') == 1e3\n"
         "assert 'pint' in sys.modules\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
@@ -228,3 +233,38 @@ def test_to_display_is_the_one_si_to_display_conversion() -> None:
     np.testing.assert_array_equal(to_display([0.5, 1.0], "v"), [0.5, 1.0])
     np.testing.assert_array_equal(to_display(0.7, "mu"), 0.7)
     assert (display_unit("p"), display_unit("T")) == ("MPa", "degC")
+
+
+def _declared_units() -> list[tuple[str, str]]:
+    cases = []
+    for name, kind in units.QUANTITIES.items():
+        for unit in dict.fromkeys((kind.si, kind.display, "-")):
+            if unit == "-" and kind.si:
+                continue
+            cases.append((name, unit))
+    return cases
+
+
+@pytest.mark.parametrize(("quantity", "unit"), _declared_units())
+def test_declared_units_convert_as_pint_does(quantity: str, unit: str) -> None:
+    """The table's own units (SI, display, no unit) skip pint and agree with it exactly."""
+    kind = units.QUANTITIES[quantity]
+    assert units._declared(unit, kind) is not None
+    ureg = units.unit_registry()
+    parsed = units.parse_unit(unit, quantity)  # pint accepts it for this quantity
+    si = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
+    x = np.array([-40.0, 0.0, 0.0312, 0.2496, 1.0, 123.456, 1e300])
+    with np.errstate(over="ignore"):
+        expected = ureg.Quantity(x, parsed).to(si).magnitude
+    np.testing.assert_array_equal(units.to_si(x, unit, quantity), expected)
+    back = ureg.Quantity(expected, si).to(parsed).magnitude
+    np.testing.assert_array_equal(units.from_si(expected, unit, quantity), back)
+    assert np.ndim(units.to_si(2.0, unit, quantity)) == 0
+    assert units.to_si(x, unit, quantity) is not x
+
+
+@pytest.mark.parametrize(("unit", "quantity"), [("mpa", "p"), ("", "p"), ("%", "s"),
+                                                ("kg", "F_N"), ("degF", "T")])
+def test_other_units_are_not_declared(unit: str, quantity: str) -> None:
+    """Anything but the table's own spelling goes to pint (its checks and messages)."""
+    assert units._declared(unit, units.QUANTITIES[quantity]) is None

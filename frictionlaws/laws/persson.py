@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..law import P_MIN, V_MIN, Law, Param, Setting
-from ..persson.material import Material, default_material
-from ..persson.surface import SelfAffine
-from ..persson.theory import friction
 from ..registry import register
+
+if TYPE_CHECKING:
+    from ..persson.material import Material
 
 __all__ = ["persson_law", "Q0_ASPHALT", "H_ASPHALT", "H_RMS_ASPHALT"]
 
@@ -45,6 +45,11 @@ _REFERENCES = (
 
 def _numeric(material: Material | None, p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any,
              h_rms: Any) -> Any:
+    # imported here: registering the law (every get_law) must not load the theory
+    from ..persson.material import default_material
+    from ..persson.surface import SelfAffine
+    from ..persson.theory import friction
+
     mat = default_material() if material is None else material
     surface = SelfAffine.from_rms(float(q0), float(H), float(h_rms), float(q1))
     return friction(mat, surface, v, T, p, q1=float(q1))

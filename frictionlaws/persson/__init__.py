@@ -9,27 +9,46 @@
   mu(v, T, p) (fast vectorised quadrature).
 
 The registry law ``persson`` (``frictionlaws/laws/persson.py``) wraps it.
+
+The names below are imported on first use, so that discovering the registry's
+laws (which declares ``persson``) loads none of these modules.
 """
 
-from .material import (
-                       Material,
-                       Shift,
-                       default_material,
-                       fit_prony,
-                       material_from_csv,
-                       material_from_master_curve,
-)
-from .surface import (
-                       SelfAffine,
-                       TabulatedPSD,
-                       asphalt_like,
-                       one_d_to_two_d,
-                       psd_from_profile,
-                       psd_from_profile_csv,
-)
-from .theory import contact_ratio, friction, loss_angular, modulus_sq_angular
+from __future__ import annotations
 
-__all__ = ["Material", "Shift", "default_material", "fit_prony", "material_from_csv",
-           "material_from_master_curve", "SelfAffine", "TabulatedPSD", "asphalt_like",
-           "one_d_to_two_d", "psd_from_profile", "psd_from_profile_csv", "contact_ratio",
-           "friction", "loss_angular", "modulus_sq_angular"]
+from importlib import import_module
+from typing import Any
+
+#: public name -> the submodule that defines it
+_API = {
+    "Material": "material",
+    "Shift": "material",
+    "default_material": "material",
+    "fit_prony": "material",
+    "material_from_csv": "material",
+    "material_from_master_curve": "material",
+    "SelfAffine": "surface",
+    "TabulatedPSD": "surface",
+    "asphalt_like": "surface",
+    "one_d_to_two_d": "surface",
+    "psd_from_profile": "surface",
+    "psd_from_profile_csv": "surface",
+    "contact_ratio": "theory",
+    "friction": "theory",
+    "loss_angular": "theory",
+    "modulus_sq_angular": "theory",
+}
+
+__all__ = list(_API)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _API:
+        value = getattr(import_module(f"{__name__}.{_API[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

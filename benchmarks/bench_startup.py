@@ -1,0 +1,146 @@
+"""Benchmark of the start-up of ``frictionlaws fit --law thirion thesis-steel``.
+
+Baseline, measured in the same run: ``python -c "import lmfit"`` (issue 15 asks for the
+whole fit command, start to finish, in <= 1.0x that time).  The two commands run as
+subprocesses, alternately (the order swapped every round), so that the load of a shared
+machine falls on both; printed are the best and median wall times of each, their ratios
+and the median of the paired (same-round) ratios.  The fit runs in a temporary
+directory with its output captured there, so no input is touched.
+
+Then, from one more run of the fit command under ``python -X importtime``, which of
+numpy, scipy.optimize, pandas, pint, sympy, matplotlib, lmfit and scipy.stats it loads
+and their cumulative import time.
+
+With ``--tree DIR`` a third command runs in the same rounds: the same fit with the
+``frictionlaws`` package of another source tree (e.g. a checkout of the code before a
+change), so that the gain is measured in the same run too.
+
+Run: ``python benchmarks/bench_startup.py [--rounds N] [--tree DIR]`` (default 7 rounds).
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+#: The modules whose presence on the fit path is reported.
+WATCHED = ("numpy", "scipy.optimize", "pandas", "pint", "sympy", "matplotlib", "lmfit",
+           "scipy.stats")
+FIT_ARGS = ("fit", "--law", "thirion", "thesis-steel")
+TARGET = 1.0
+
+_REPORT_MODULES = (
+    "import json, sys\n"
+    "from frictionlaws.cli import main\n"
+    "code = main(sys.argv[2:])\n"
+    "with open(sys.argv[1], 'w') as fh:\n"
+    "    json.dump({'code': code, 'modules': sorted(sys.modules)}, fh)\n"
+)
+
+
+def fit_command() -> list[str]:
+    """The ``frictionlaws`` console script of this environment (else ``python -m``)."""
+    script = Path(sys.executable).with_name("frictionlaws")
+    if script.exists():
+        return [str(script), *FIT_ARGS]
+    found = shutil.which("frictionlaws")
+    return [found, *FIT_ARGS] if found else [sys.executable, "-m", "frictionlaws", *FIT_ARGS]
+
+
+def wall(cmd: list[str], cwd: Path, out: Path) -> float:
+    """Wall seconds of one run of ``cmd`` (stdout and stderr to ``out``); it must succeed."""
+    with out.open("w") as fh:
+        t0 = time.perf_counter()
+        proc = subprocess.run(cmd, cwd=cwd, stdout=fh, stderr=subprocess.STDOUT)
+        elapsed = time.perf_counter() - t0
+    if proc.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed (exit {proc.returncode}); see {out}")
+    return elapsed
+
+
+def tree_command(tree: Path) -> list[str]:
+    """The fit command run with the ``frictionlaws`` package of the source tree ``tree``."""
+    code = (f"import sys; sys.path.insert(0, {str(tree)!r}); import frictionlaws; "
+            f"assert frictionlaws.__file__.startswith({str(tree)!r}), frictionlaws.__file__; "
+            f"from frictionlaws.cli import main; sys.exit(main({list(FIT_ARGS)!r}))")
+    return [sys.executable, "-c", code]
+
+
+def alternate(rounds: int, tmp: Path, commands: dict[str, list[str]]) -> dict[str, list[float]]:
+    """Wall times of each command, one per round, the order rotated every round."""
+    names = list(commands)
+    for name in names:  # file caches, .pyc files
+        wall(commands[name], tmp, tmp / f"warm-{name}.txt")
+    times: dict[str, list[float]] = {name: [] for name in names}
+    for i in range(rounds):
+        for name in names[i % len(names):] + names[:i % len(names)]:
+            times[name].append(wall(commands[name], tmp, tmp / f"{name}.txt"))
+    return times
+
+
+def imports(tmp: Path) -> dict[str, float | None]:
+    """Watched module -> cumulative import seconds on the fit path (None: not loaded)."""
+    import json
+
+    record = tmp / "modules.json"
+    proc = subprocess.run([sys.executable, "-X", "importtime", "-c", _REPORT_MODULES,
+                           str(record), *FIT_ARGS], cwd=tmp, capture_output=True, text=True)
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"the fit command failed under -X importtime:\n{proc.stderr[-2000:]}")
+    loaded = set(json.loads(record.read_text())["modules"])
+    cumulative: dict[str, float] = {}
+    for line in proc.stderr.splitlines():
+        m = re.match(r"import time:\s+\d+ \|\s+(\d+) \|\s*(\S+)", line)
+        if m:
+            name, us = m.group(2), int(m.group(1))
+            cumulative[name] = max(cumulative.get(name, 0.0), us * 1e-6)
+    return {name: cumulative.get(name, 0.0) if name in loaded else None for name in WATCHED}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rounds", type=int, default=7, help="timed runs of each command")
+    ap.add_argument("--tree", type=Path, help="also time the fit with this source tree's package")
+    args = ap.parse_args()
+    commands = {"fit": fit_command(), "lmfit": [sys.executable, "-c", "import lmfit"]}
+    if args.tree is not None:
+        commands["tree"] = tree_command(args.tree.resolve())
+    with tempfile.TemporaryDirectory() as name:
+        tmp = Path(name)
+        times = alternate(args.rounds, tmp, commands)
+        loaded = imports(tmp)
+    fits, bases = times["fit"], times["lmfit"]
+    paired = [f / b for f, b in zip(fits, bases, strict=True)]
+    print(f"frictionlaws {' '.join(FIT_ARGS)}  vs  python -c 'import lmfit'  "
+          f"({args.rounds} alternate rounds, wall seconds)")
+    print(f"  fit command : best {min(fits):.3f} s   median {statistics.median(fits):.3f} s")
+    print(f"  import lmfit: best {min(bases):.3f} s   median {statistics.median(bases):.3f} s")
+    print(f"  ratio fit / import lmfit: best/best {min(fits) / min(bases):.2f}x   "
+          f"median/median {statistics.median(fits) / statistics.median(bases):.2f}x   "
+          f"median of paired {statistics.median(paired):.2f}x "
+          f"(range {min(paired):.2f}..{max(paired):.2f})")
+    verdict = "met" if statistics.median(paired) <= TARGET else "NOT met"
+    print(f"  target (issue 15): <= {TARGET:.1f}x  -> {verdict} (median of paired ratios)")
+    if "tree" in times:
+        tree = times["tree"]
+        ratios = [t / b for t, b in zip(tree, bases, strict=True)]
+        gain = [t / f for t, f in zip(tree, fits, strict=True)]
+        print(f"  fit with {args.tree}: best {min(tree):.3f} s   median "
+              f"{statistics.median(tree):.3f} s   / import lmfit: median of paired "
+              f"{statistics.median(ratios):.2f}x   its time / this tree's: median of paired "
+              f"{statistics.median(gain):.2f}x")
+    print("modules loaded by the fit command (cumulative import time, -X importtime):")
+    for mod, secs in loaded.items():
+        state = "not loaded" if secs is None else f"loaded ({secs * 1e3:.0f} ms)"
+        print(f"  {mod:<15} {state}")
+
+
+if __name__ == "__main__":
+    main()
