@@ -18,9 +18,7 @@ from typing import Any
 import pytest
 
 #: Modules the fit command must not load.
-HEAVY = ("sympy", "pint", "pandas", "matplotlib", "scipy.stats")
-#: Of these, the ones lmfit imports itself while the solver still goes through it.
-LMFIT_LOADS = ("pandas", "matplotlib", "scipy.stats")
+HEAVY = ("sympy", "pint", "pandas", "matplotlib", "scipy.stats", "lmfit")
 
 _SCRIPT = r'''
 import builtins, json, sys
@@ -80,11 +78,8 @@ def test_frictionlaws_code_does_not_import(fit_run: dict[str, Any], module: str)
 
 @pytest.mark.parametrize("module", HEAVY)
 def test_fit_does_not_load(fit_run: dict[str, Any], module: str) -> None:
-    """Nothing on the fit path loads a heavy module (lmfit's own imports aside, for now)."""
+    """Nothing on the fit path loads a heavy module."""
     loaded = [name for name in fit_run["modules"] if _under(name, module)]
-    if loaded and module in LMFIT_LOADS and "lmfit" in fit_run["modules"]:
-        pytest.xfail(f"lmfit, still the solver of the fit path, imports {module} "
-                     "(issue 15: the solver change removes it)")
     assert not loaded, f"the fit path loads {loaded[:5]}"
 
 
