@@ -957,7 +957,7 @@ def fit(
     on_invalid: str = "error", mapping: Mapping[str, str] | None = None,
     units: Mapping[str, str] | None = None, area: Any = None,
     method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
-    n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto",
+    n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto", lean: bool = False,
 ) -> FitResult:
     """Fit ``law`` to ``data`` (bounded least squares, several starts).
 
@@ -999,6 +999,11 @@ def fit(
     global_stage : {"auto", "on", "off"}
         Bounded differential evolution before a local polish; ``"auto"``: only when the
         local starts end worse than the mean of mu or at different minima.
+    lean : bool
+        Only the search and its goodness of fit (a refit in cross-validation or a
+        hold-out): the same values, metrics and convergence, with standard errors from
+        the solver's covariance, but no identifiability analysis, intervals, derived
+        quantities, robust errors or provenance.  Only with ``uncertainty="asymptotic"``.
 
     Returns
     -------
@@ -1015,6 +1020,10 @@ def fit(
     law = get_law(law)
     _check_fit_options(method, starts, seed, on_invalid, uncertainty, n_boot, n_jobs,
                        interval, global_stage)
+    if not isinstance(lean, bool) or (lean and uncertainty != "asymptotic"):
+        raise InputError(f"lean must be True or False, and True only with the asymptotic "
+                         f"uncertainty (got lean={lean!r}, uncertainty={uncertainty!r})",
+                         option="lean")
     setup = _setup(law, data, fix, free, initial, weights, on_invalid,
                    {"mapping": mapping, "units": units, "area": area})
     search = _Search(setup, method)
@@ -1024,6 +1033,8 @@ def fit(
         errors = search.errors
         raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "
                        f"gave a finite result{(' (' + errors[0] + ')') if errors else ''}")
+    if lean:
+        return _lean_result(setup, search)
     opts = dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval,
                 seed=seed)
     return _result(setup, search, opts)
@@ -1523,6 +1534,33 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
               "ranges": {k2: list(v) for k2, v in fd.ranges().items()}},
         notes=setup.notes, provenance=_provenance(), uncertainty=unc_info,
         local_fit=best, residual=y - fitted, best_fit=fitted, fit_data=fd)
+
+
+def _lean_result(setup: _Setup, search: _Search) -> FitResult:
+    """The values, metrics and convergence of the best fit, without its diagnostics."""
+    best, y, fd = search.best, setup.y, setup.fd
+    warn_msgs: list[str] = []
+    metrics = _metrics(y, best, len(setup.vary_names), setup.w is not None, warn_msgs)
+    success, message = _status(best, metrics["r2"], warn_msgs)
+    params = {}
+    for name in setup.names:
+        est = best.params[name]
+        fixed = name in setup.fix
+        held = fixed or name in search.best_pinned
+        se = None if held or est.stderr is None or not np.isfinite(est.stderr) else \
+            float(est.stderr)
+        params[name] = ParamEstimate(name, float(est.value), se, None, setup.unit(name),
+                                     fixed=fixed)
+    fitted = np.asarray(best.best_fit, float)
+    return FitResult(
+        law=setup.law, params=params, settings=setup.settings, metrics=metrics,
+        correlation={}, success=success, message=message, warnings=warn_msgs,
+        non_identifiable=[], derived={},
+        data={"name": fd.name, "source": fd.source, "n": int(y.size)},
+        notes=setup.notes + ["lean fit: no identifiability analysis, intervals or derived "
+                             "quantities"],
+        uncertainty={"method": "none (lean fit)"}, local_fit=best, residual=y - fitted,
+        best_fit=fitted, fit_data=fd)
 
 
 def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarray | None,

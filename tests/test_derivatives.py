@@ -163,3 +163,29 @@ def test_a_fit_does_not_import_lmfit_or_scipy_stats():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_lean_fit_gives_the_same_values_without_diagnostics():
+    full = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
+    lean = fl.fit("savkoor", "thesis-steel", on_invalid="drop", lean=True)
+    assert lean.values == full.values
+    assert lean.metrics == full.metrics
+    assert lean.success == full.success
+    assert lean.derived == {} and lean.provenance == {} and lean.non_identifiable == []
+    assert all(p.ci95 is None for p in lean.params.values())
+    assert full.non_identifiable  # the full fit did the analysis the lean one skips
+
+
+@pytest.mark.parametrize("bad", [{"lean": 1}, {"lean": "yes"},
+                                 {"lean": True, "uncertainty": "bootstrap"}])
+def test_lean_refuses_nonsense(bad):
+    with pytest.raises(fl.InputError, match="lean"):
+        fl.fit("thirion", "thesis-steel", **bad)
+
+
+def test_cross_validation_refits_are_lean():
+    from frictionlaws.comparison.cv import refit
+    from frictionlaws.fitting import as_fit_data
+
+    res = refit(fl.get_law("thirion"), as_fit_data("thesis-steel"))
+    assert res.provenance == {} and "lean fit" in " ".join(res.notes)

@@ -109,9 +109,9 @@ def refit(law: Law, data: FitData, fit_kwargs: Mapping[str, Any] | None = None) 
     Returns
     -------
     FitResult
-        The fit on ``data``; only its values are used.
+        The lean fit on ``data`` (its values and metrics; no diagnostics).
     """
-    return fit(law, data, on_invalid="error", **dict(fit_kwargs or {}))
+    return fit(law, data, on_invalid="error", lean=True, **dict(fit_kwargs or {}))
 
 
 @dataclass
