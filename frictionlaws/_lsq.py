@@ -1,5 +1,10 @@
 """The local least-squares solve of a fit, without lmfit's per-call bookkeeping.
 
+With an analytic Jacobian (large data, see :data:`frictionlaws.fitting.ANALYTIC_FROM`)
+MINPACK's Levenberg-Marquardt runs first and keeps its result when it converges
+without trying a point outside the bounds; otherwise, and always without an analytic
+Jacobian, the bounded trust region below solves the problem.
+
 :func:`solve` runs :func:`scipy.optimize.least_squares` (bounded trust region
 reflective, ``x_scale=1``, tolerances ``1e-8``) on the weighted residual
 ``(mu - model) * w`` and computes what a fit reports from it, exactly as lmfit's
@@ -170,12 +175,48 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
     if jac is not None:
         kws["jac"] = _residual_jacobian(jac, res)
     try:
+        if jac is not None and y.size > len(vary):
+            ret = _minpack_inside(res, x0, kws["jac"], max_nfev)
+            if ret is not None:
+                return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message),
+                               res.nfev)
         ret = least_squares(res, x0, bounds=(lo, hi), **kws)
     except _BudgetSpent:
         assert res.last is not None
         return _finish(res, res.last, None, False,
                        f"Fit aborted: number of function evaluations > {max_nfev}", max_nfev)
     return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message), res.nfev)
+
+
+class _LeftBounds(Exception):
+    """Raised when MINPACK tries a point outside the bounds."""
+
+
+def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], np.ndarray],
+                    max_nfev: int) -> Any:
+    """Levenberg-Marquardt (MINPACK, analytic Jacobian) while it stays inside the bounds.
+
+    Each MINPACK iteration costs one residual and one Jacobian and no decomposition
+    beyond a QR in Fortran, so on large data it is the cheapest solver; it knows no
+    bounds, so the solve is abandoned (None) at its first trial point outside them,
+    or when it does not converge, and the bounded trust region takes over from the
+    start.  A minimum it reaches inside the bounds is also the bounded problem's.
+    """
+    from scipy.optimize import least_squares
+
+    def inside(theta: np.ndarray) -> np.ndarray:
+        if np.any(theta < res.lo) or np.any(theta > res.hi):
+            raise _LeftBounds
+        return res(theta)
+
+    if np.any(x0 <= res.lo) or np.any(x0 >= res.hi):
+        return None
+    try:
+        ret = least_squares(inside, x0, jac=jac, method="lm", ftol=1e-8, xtol=1e-8, gtol=1e-8,
+                            x_scale=1.0, max_nfev=max_nfev)
+    except (_LeftBounds, ValueError, FloatingPointError, np.linalg.LinAlgError):
+        return None
+    return ret if ret.success and ret.status > 0 else None
 
 
 def _residual_jacobian(jac: Callable[[dict[str, float]], np.ndarray], res: _Residual

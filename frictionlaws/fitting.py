@@ -34,7 +34,7 @@ import json
 import math
 import warnings
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -62,6 +62,9 @@ WEAK_TOL = 1e-2
 #: costs less than the solver's own bookkeeping, so finite differences cost little, and
 #: fits follow the path of the results pinned by tests/test_pinned_*.py.
 ANALYTIC_FROM = 1000
+#: Rows on which the starts after the first are refined on large data (4x this or more):
+#: a start in the best fit's basin is recognised there at a fraction of a full solve.
+SCOUT_ROWS = 1000
 
 
 @dataclass(frozen=True)
@@ -986,8 +989,7 @@ def fit(
     mapping, units, area : optional
         Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        The minimisation method (default ``"least_squares"``: scipy's bounded trust
-        region, run directly; lmfit's other minimisers by their lmfit name).
+        ``"least_squares"`` (default: bounded trust region) or another lmfit minimiser.
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
         Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
         a bootstrap over whole conditions (a law that misses a trend); see
@@ -1000,10 +1002,8 @@ def fit(
         Bounded differential evolution before a local polish; ``"auto"``: only when the
         local starts end worse than the mean of mu or at different minima.
     lean : bool
-        Only the search and its goodness of fit (a refit in cross-validation or a
-        hold-out): the same values, metrics and convergence, with standard errors from
-        the solver's covariance, but no identifiability analysis, intervals, derived
-        quantities, robust errors or provenance.  Only with ``uncertainty="asymptotic"``.
+        Values, metrics and convergence only (refits in cross-validation): no
+        identifiability, intervals, derived quantities or provenance.
 
     Returns
     -------
@@ -1019,11 +1019,7 @@ def fit(
     """
     law = get_law(law)
     _check_fit_options(method, starts, seed, on_invalid, uncertainty, n_boot, n_jobs,
-                       interval, global_stage)
-    if not isinstance(lean, bool) or (lean and uncertainty != "asymptotic"):
-        raise InputError(f"lean must be True or False, and True only with the asymptotic "
-                         f"uncertainty (got lean={lean!r}, uncertainty={uncertainty!r})",
-                         option="lean")
+                       interval, global_stage, lean)
     setup = _setup(law, data, fix, free, initial, weights, on_invalid,
                    {"mapping": mapping, "units": units, "area": area})
     search = _Search(setup, method)
@@ -1033,16 +1029,13 @@ def fit(
         errors = search.errors
         raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "
                        f"gave a finite result{(' (' + errors[0] + ')') if errors else ''}")
-    if lean:
-        return _lean_result(setup, search)
-    opts = dict(method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval,
-                seed=seed)
-    return _result(setup, search, opts)
+    return _lean_result(setup, search) if lean else _result(setup, search, dict(
+        method=uncertainty, n_boot=n_boot, n_jobs=n_jobs, interval=interval, seed=seed))
 
 
 def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
                        uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
-                       global_stage: Any) -> None:
+                       global_stage: Any, lean: Any) -> None:
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
     from .uncertainty import check_uncertainty_options
 
@@ -1051,6 +1044,10 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
     if global_stage not in ("auto", "on", "off"):
         raise InputError(f"global_stage must be 'auto', 'on' or 'off', not {global_stage!r}",
                          option="global_stage")
+    if not isinstance(lean, bool) or (lean and uncertainty != "asymptotic"):
+        raise InputError(f"lean must be True or False, and True only with the asymptotic "
+                         f"uncertainty (got lean={lean!r}, uncertainty={uncertainty!r})",
+                         option="lean")
 
 
 @dataclass
@@ -1152,8 +1149,6 @@ def _model_law(law: Law, settings: Mapping[str, float], freed: tuple[str, ...]) 
     """The law with settings fixed to non-default values (they flow through its closure)."""
     if settings == {k: v for k, v in law.setting_values.items() if k not in freed}:
         return law
-    from dataclasses import replace
-
     from .law import Setting
 
     return replace(law, settings=tuple(
@@ -1264,16 +1259,21 @@ class _Search:
         """The model (the law with the fit's settings) at ``values`` on the data."""
         return self.setup.model_law.formula(NUMPY, **self.prepared, **self.held, **values)
 
-    def run(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
-        """One local fit from ``start``; kept when it beats the best so far."""
+    def solve_from(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
+        """One local fit from ``start`` (None when it fails; the error is kept)."""
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
                 res = self._local(start, pinned)
         except (ValueError, FloatingPointError, np.linalg.LinAlgError, TypeError) as exc:
             self.errors.append(str(exc))
-            return
-        if not np.isfinite(res.chisqr):
+            return None
+        return res if np.isfinite(res.chisqr) else None
+
+    def run(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> None:
+        """One local fit from ``start``; kept when it beats the best so far."""
+        res = self.solve_from(start, pinned)
+        if res is None:
             return
         self.finals.append(float(res.chisqr))
         if self.best is None or res.chisqr < self.best.chisqr * (1 - 1e-10):
@@ -1293,23 +1293,56 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
     if len(candidates) > 1:
         scores = [search.score(c) for c in candidates]
         candidates = [candidates[i] for i in sorted(range(len(scores)), key=scores.__getitem__)]
-    reproduced = False
-    for start in candidates:
+    reproduced = scouted = False
+    for i, start in enumerate(candidates):
         search.run(start)
         reproduced = _reproduced(search.finals)
         if reproduced:
+            break
+        if i == 0 and search.best is not None and s.y.size >= 4 * SCOUT_ROWS:
+            reproduced, scouted = _scout(search, candidates[1:]), True
             break
     # Random starts when the deterministic ones disagree (several minima) or all failed:
     # the surface is then multi-modal or hard, and more starts are worth their cost.
     finals = search.finals
     spread = (max(finals) - min(finals)) / max(min(finals), 1e-300) if finals else math.inf
+    disagree = (spread > 1e-6 or scouted) and not reproduced
     forced = starts is not None and int(starts) > 0
-    if not s.law.linear and ((spread > 1e-6 and not reproduced) or search.best is None
-                             or forced):
+    if not s.law.linear and (disagree or search.best is None or forced):
         rng = np.random.default_rng(seed)
         n_random = 6 if starts is None else int(starts)
         for start in _random_starts(s.law, s.guess, s.vary_names, n_random, rng):
             search.run(start)
+
+
+def _scout(search: _Search, candidates: list[dict[str, float]]) -> bool:
+    """Refine ``candidates`` on :data:`SCOUT_ROWS` evenly spaced rows; True when one
+    reproduces the best fit's basin there.
+
+    The best full fit is polished on the same rows first.  A candidate that ends at
+    the same chi^2 there (within 1e-6) is in the same basin: the search stops.  One
+    that ends worse is another basin, left.  One that ends better is refined on all
+    the rows, from where it ended, and joins the search.
+    """
+    s = search.setup
+    rows = np.unique(np.linspace(0, s.y.size - 1, SCOUT_ROWS).round().astype(int))
+    mask = np.zeros(s.y.size, bool)
+    mask[rows] = True
+    scout = _Search(replace(s, fd=s.fd.subset(mask), y=s.y[rows],
+                            x={k: v[rows] for k, v in s.x.items()}), search.method)
+    ref = scout.solve_from({k: search.best.params[k].value for k in s.names})
+    if ref is None:
+        return False
+    for start in candidates:
+        res = scout.solve_from(start)
+        if res is None:
+            continue
+        if _reproduced([ref.chisqr, res.chisqr]):
+            return True
+        if res.chisqr < ref.chisqr:  # a better basin: refine it on every row
+            search.run({k: res.params[k].value for k in s.names})
+            ref = res
+    return False
 
 
 def _reproduced(finals: list[float]) -> bool:
@@ -1696,8 +1729,6 @@ def _clip_interval(name: str, ci: tuple[float, float], bounds: tuple[float, floa
 def _set_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate], se: np.ndarray,
                 ci: np.ndarray) -> None:
     """Store new standard errors and intervals of the fitted parameters."""
-    from dataclasses import replace
-
     for j, k in enumerate(inp.vary):
         if k in inp.non_id:  # withheld whatever the method
             continue
@@ -1800,7 +1831,7 @@ def _versions() -> tuple[tuple[str, str], ...]:
 
     from . import __version__
 
-    return (("frictionlaws", __version__), ("lmfit", ver("lmfit")),
+    return (("frictionlaws", __version__), ("scipy", ver("scipy")),
             ("numpy", ver("numpy")))
 
 

@@ -189,3 +189,41 @@ def test_cross_validation_refits_are_lean():
 
     res = refit(fl.get_law("thirion"), as_fit_data("thesis-steel"))
     assert res.provenance == {} and "lean fit" in " ".join(res.notes)
+
+
+def _pacejka_search(n):
+    data, fix = _synthetic("pacejka", n, seed=4)
+    law = fl.get_law("pacejka")
+    setup = fitting._setup(law, data, fix, (), None, None, "error", {})
+    return setup, fitting._Search(setup, "least_squares")
+
+
+def test_large_fits_refine_later_starts_on_a_subsample(monkeypatch):
+    runs = []
+    original = fitting._Search.run
+
+    def counted(self, start, pinned=()):
+        runs.append(self.setup.y.size)
+        original(self, start, pinned)
+
+    monkeypatch.setattr(fitting._Search, "run", counted)
+    data, fix = _synthetic("pacejka", 5000, seed=4)
+    res = fl.fit("pacejka", data, fix=fix, weights=None)
+    assert res.success and runs == [5000]  # one full solve; the others on 1000 rows
+    monkeypatch.setattr(fitting, "SCOUT_ROWS", 10**6)
+    slow = fl.fit("pacejka", data, fix=fix, weights=None)
+    assert res.metrics["chisqr"] <= slow.metrics["chisqr"] * (1 + 1e-9)
+
+
+def test_a_better_basin_found_on_the_subsample_is_refined_on_every_row():
+    setup, search = _pacejka_search(5000)
+    starts = fitting._starts(setup.law, setup.guess, setup.vary_names)
+    ends = [search.solve_from(s) for s in starts]
+    chis = [e.chisqr if e is not None else np.inf for e in ends]
+    worst = int(np.argmax(np.where(np.isfinite(chis), chis, -np.inf)))
+    best = int(np.argmin(chis))
+    assert chis[worst] > chis[best] * 1.01  # two basins among the deterministic starts
+    setup, search = _pacejka_search(5000)
+    search.run(starts[worst])
+    assert not fitting._scout(search, [starts[best]])
+    assert search.best.chisqr == pytest.approx(chis[best], rel=1e-6)
