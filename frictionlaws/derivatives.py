@@ -35,8 +35,6 @@ __all__ = ["jacobian_function", "model_jacobian", "probe_point", "generate_sourc
 MODULE_PATH = Path(__file__).parent / "laws" / "_jacobians.py"
 #: Relative agreement the probe value must show for a generated entry to be used.
 PROBE_RTOL = 1e-12
-#: Rows per block of a large Jacobian (the derivative code's temporaries stay this size).
-BLOCK = 1 << 16
 
 
 def probe_point(law: Law) -> dict[str, float]:
@@ -147,8 +145,11 @@ def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
         d mu / d name, column by column (NaN or infinity where the derivative is not
         finite, e.g. d(x**c)/dc at x = 0).
     """
+    from . import law as law_module
+
     jac = np.empty((n, len(names)), order="F")
-    step = BLOCK if n > 2 * BLOCK else max(n, 1)
+    block = law_module._BLOCK  # the rows per block of the law's own large evaluations
+    step = block if n >= law_module._BLOCKED_FROM else max(n, 1)
     for start in range(0, n, step):  # blocks keep the formula's temporaries small
         part = {k: v[start:start + step] if np.ndim(v) else v for k, v in prepared.items()}
         with np.errstate(all="ignore"):

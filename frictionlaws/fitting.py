@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import ExtrapolationWarning, FitError, InputError
-from .law import NUMPY, VARIABLES, Law
+from .law import VARIABLES, Law
 from .registry import get_law
 
 if TYPE_CHECKING:
@@ -1257,7 +1257,8 @@ class _Search:
 
     def evaluate(self, values: Mapping[str, float]) -> Any:
         """The model (the law with the fit's settings) at ``values`` on the data."""
-        return self.setup.model_law.formula(NUMPY, **self.prepared, **self.held, **values)
+        return self.setup.model_law.evaluate_prepared(self.prepared, {**self.held, **values},
+                                                      self.setup.y.size)
 
     def solve_from(self, start: Mapping[str, float], pinned: tuple[str, ...] = ()) -> Any:
         """One local fit from ``start`` (None when it fails; the error is kept)."""

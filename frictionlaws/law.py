@@ -734,6 +734,39 @@ class Law:
                 return type(x)(out, index=x.index, name="mu")
         return out
 
+    def evaluate_prepared(self, prepared: Mapping[str, Any], params: Mapping[str, float],
+                          n: int) -> np.ndarray:
+        """The formula on prepared variables (:meth:`prepare_variables`), as ``n`` values.
+
+        No checks (the fitting loop's evaluation).  From :data:`_BLOCKED_FROM` values on,
+        the formula runs on blocks of :data:`_BLOCK` rows, so its temporaries stay that
+        size; the numbers are the same as in one call (the formulas act element by element).
+
+        Parameters
+        ----------
+        prepared : mapping
+            The variables as the formula takes them (arrays of ``n`` values, or scalars).
+        params : mapping
+            Every parameter and setting.
+        n : int
+            The number of rows.
+
+        Returns
+        -------
+        numpy.ndarray
+            mu at every row (NaN or infinity where the formula gives them).
+        """
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            if n < _BLOCKED_FROM:
+                out = np.asarray(self.formula(NUMPY, **prepared, **params), float)
+                return out if out.shape == (n,) else np.broadcast_to(out, (n,)).copy()
+            out = np.empty(n)
+            for start in range(0, n, _BLOCK):
+                part = {k: v[start:start + _BLOCK] if np.ndim(v) else v
+                        for k, v in prepared.items()}
+                out[start:start + _BLOCK] = self.formula(NUMPY, **part, **params)
+        return out
+
     def _refuse_missing(self, missing: list[str], params: Mapping[str, float]) -> None:
         """Raise for absent variables, unless each is optional with a neutral parameter."""
         needed = [m for m in missing if m in self.required_variables(params)]
