@@ -129,7 +129,7 @@ BISECTION_STEPS = 45
 #: Newton sweeps over the patch at most (sliding_speed="local"), Newton steps of the tip
 #: speeds per sweep, and the step below which (relative to the largest deflection) the
 #: sweeps have converged.
-NEWTON_SWEEPS = 60
+NEWTON_SWEEPS = 30
 TIP_STEPS = 3
 SWEEP_TOL = 1e-13
 #: Scan grid of x = (q_a - q)/q_a for the slowest sliding solution (sliding_speed="local").
@@ -758,9 +758,10 @@ class BrushModel:
                     v: np.ndarray, slide: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
         """Tip speeds v of sliding bristles: ``h(v) = a - v/rate - limit(pk, v) = 0``.
 
-        Newton steps from the warm start ``v`` (forward-difference slope of the limit),
-        kept inside the bracket ``[lo, hi]`` with ``h(lo) > 0 >= h(hi)`` that starts as
-        ``[0, rate a]`` and shrinks with every evaluation; at most :data:`TIP_STEPS`
+        Newton steps from the warm start ``v`` (forward-difference slope of the limit)
+        inside the bracket ``[lo, hi]`` with ``h(lo) > 0 >= h(hi)`` that starts as
+        ``[0, rate a]`` and shrinks with every evaluation (a step leaving it bisects
+        it instead); at most :data:`TIP_STEPS`
         steps (the sweeps of :meth:`_march_local_sweeps` continue them).  Every node is
         computed; only those where ``slide`` is true count.  Returns the speeds, the
         slopes ``dlimit/dv`` [s] and whether every sliding ``|h| <= 1e-14 a``.
@@ -776,7 +777,8 @@ class BrushModel:
             h = a - v / rate - lim
             lo, hi = np.where(h > 0, v, lo), np.where(h > 0, hi, v)
             settled = bool(np.all((np.abs(h) <= 1e-14 * a) | ~slide))
-            v = np.clip(v + h / (1.0 / rate + dlim), lo, hi)
+            v_new = v + h / (1.0 / rate + dlim)
+            v = np.where((v_new >= lo) & (v_new <= hi), v_new, 0.5 * (lo + hi))
             if settled:
                 break
         return v, dlim, settled
