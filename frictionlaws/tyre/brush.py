@@ -722,49 +722,49 @@ class BrushModel:
         from scipy.linalg.lapack import dtbtrs
 
         n_slips, n = d.size, p.size - 1
-        pk, ls, rate = p[1:], l_static[None, 1:], (vr / ds)[:, None]
+        pk = np.tile(p[1:], n_slips)  # flat over (slip, node)
+        ls = np.tile(l_static[1:], n_slips)
+        rate = np.repeat(vr / ds, n)
         q = self._march(l_static, d)
-        v = np.zeros((n_slips, n))
+        v = np.zeros(n_slips * n)
         band = np.zeros((2, n_slips * n))  # unit lower-bidiagonal, LAPACK band storage
         sub = band[1].reshape(n_slips, n)  # sub[:, k] couples node k + 1 to node k
         with np.errstate(all="ignore"):
             for _ in range(NEWTON_SWEEPS):
-                a = q[:, :-1] + d[:, None]
-                slide = a > ls
-                if not slide.any():
+                a = (q[:, :-1] + d[:, None]).ravel()
+                i = np.flatnonzero(a > ls)  # the sliding nodes
+                if i.size == 0:
                     break  # every bristle sticks: the static march is exact
-                v, dlim, settled = self._tip_speeds(pk, a, rate, c, v, slide)
-                f = np.where(slide, a - v / rate, a)
-                sub[:, :-1] = -np.where(slide, dlim / (1.0 / rate + dlim), 1.0)[:, 1:]
-                step = dtbtrs(band, (f - q[:, 1:]).ravel(), uplo="L", diag="U")[0]
-                step = step.reshape(n_slips, n)
-                q[:, 1:] += step
+                v[i], dlim, settled = self._tip_speeds(pk[i], a[i], rate[i], c, v[i])
+                f, slope = a.copy(), np.ones(a.size)
+                f[i] = a[i] - v[i] / rate[i]
+                slope[i] = dlim / (1.0 / rate[i] + dlim)
+                sub[:, :-1] = -slope.reshape(n_slips, n)[:, 1:]
+                step = dtbtrs(band, f - q[:, 1:].ravel(), uplo="L", diag="U")[0]
+                q[:, 1:] += step.reshape(n_slips, n)
                 if not np.all(np.isfinite(step)):
                     return None
                 if settled and np.max(np.abs(step)) <= SWEEP_TOL * np.max(np.abs(q)):
                     break
             else:
                 return None
-            a = q[:, :-1] + d[:, None]
-            slide = a > ls
-            rates = np.broadcast_to(rate, a.shape)[slide]
-            speed = rates * (a[slide] - q[:, 1:][slide])
-            pks = np.broadcast_to(pk, a.shape)[slide]
-            if not self._local_state_ok(pks, a[slide], speed, rates, c):
+            a = (q[:, :-1] + d[:, None]).ravel()
+            i = np.flatnonzero(a > ls)
+            speed = rate[i] * (a[i] - q[:, 1:].ravel()[i])
+            if not self._local_state_ok(pk[i], a[i], speed, rate[i], c):
                 return None
         return q, ((float(speed.min()), float(speed.max())) if speed.size else None)
 
     def _tip_speeds(self, pk: np.ndarray, a: np.ndarray, rate: np.ndarray, c: float,
-                    v: np.ndarray, slide: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+                    v: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
         """Tip speeds v of sliding bristles: ``h(v) = a - v/rate - limit(pk, v) = 0``.
 
         Newton steps from the warm start ``v`` (forward-difference slope of the limit)
         inside the bracket ``[lo, hi]`` with ``h(lo) > 0 >= h(hi)`` that starts as
         ``[0, rate a]`` and shrinks with every evaluation (a step leaving it bisects
         it instead); at most :data:`TIP_STEPS`
-        steps (the sweeps of :meth:`_march_local_sweeps` continue them).  Every node is
-        computed; only those where ``slide`` is true count.  Returns the speeds, the
-        slopes ``dlimit/dv`` [s] and whether every sliding ``|h| <= 1e-14 a``.
+        steps (the sweeps of :meth:`_march_local_sweeps` continue them).  Returns the
+        speeds, the slopes ``dlimit/dv`` [s] and whether every ``|h| <= 1e-14 a``.
         """
         lo, hi = np.zeros_like(a), rate * a
         v = np.clip(v, lo, hi)
@@ -776,7 +776,7 @@ class BrushModel:
             dlim = (lim_dv - lim) / dv
             h = a - v / rate - lim
             lo, hi = np.where(h > 0, v, lo), np.where(h > 0, hi, v)
-            settled = bool(np.all((np.abs(h) <= 1e-14 * a) | ~slide))
+            settled = bool(np.all(np.abs(h) <= 1e-14 * a))
             v_new = v + h / (1.0 / rate + dlim)
             v = np.where((v_new >= lo) & (v_new <= hi), v_new, 0.5 * (lo + hi))
             if settled:
