@@ -35,9 +35,12 @@ mu at the slip speed at the adhesion/sliding transition.  With
 ``sliding_speed="local"`` the tip speed of each sliding bristle,
 ``v_s = V_r (sigma - dq/ds)`` (``V_r`` the rolling speed, ``V (1 + kappa)``
 for longitudinal slip), is used instead: each node solves
-``q = mu(p, V_r (q_a - q)/ds) p w / c`` (``q_a`` the adhesion trial) by
-bisection, and a bristle sticks while its trial stays below the static limit
-``mu(p, 0) p w / c``.  The solution is unique when friction does not fall
+``q = mu(p, V_r (q_a - q)/ds) p w / c`` (``q_a`` the adhesion trial), and a
+bristle sticks while its trial stays below the static limit
+``mu(p, 0) p w / c``.  All nodes of all slips are solved together (Newton
+sweeps over the patch, a few milliseconds per load); when these do not settle
+on the node-by-node solution (e.g. strong velocity weakening) the node-by-node
+march (a scan and regula falsi per node, about 0.1 s per load) decides.  The solution is unique when friction does not fall
 with sliding speed; when several sliding speeds satisfy the law the slowest
 one is taken (stick-slip is not modelled), and when none does (a law that
 falls with speed, where the bristle must shed its deflection fast) the model
