@@ -40,11 +40,12 @@ bristle sticks while its trial stays below the static limit
 ``mu(p, 0) p w / c``.  All nodes of all slips are solved together (Newton
 sweeps over the patch, a few milliseconds per load); when these do not settle
 on the node-by-node solution (e.g. strong velocity weakening) the node-by-node
-march (a scan and regula falsi per node, about 0.1 s per load) decides.  The solution is unique when friction does not fall
-with sliding speed; when several sliding speeds satisfy the law the slowest
-one is taken (stick-slip is not modelled), and when none does (a law that
-falls with speed, where the bristle must shed its deflection fast) the model
-raises an error and ``"slip"`` should be used.
+march (a scan and regula falsi per node, about 0.1 s per load) decides.  The
+solution is unique when friction does not fall with sliding speed; when
+several sliding speeds satisfy the law the slowest one is taken (stick-slip is
+not modelled), and when none does (a law that falls with speed, where the
+bristle must shed its deflection fast) the model raises an error and
+``"slip"`` should be used.
 Laws that need the normal load F_N, the temperature T or a slip ratio s are
 rejected: a bristle only knows its pressure and sliding speed.
 
