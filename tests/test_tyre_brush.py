@@ -126,7 +126,7 @@ def test_locked_wheel_slides_at_road_speed():
 
 
 def test_local_speed_path_agrees_with_the_pressure_path():
-    """A function of (p, v) that ignores v goes through the per-node bisection march."""
+    """A function of (p, v) that ignores v goes through the local-speed march."""
     fast = BrushModel("thirion", {"a": 0.147, "b": 4.7e-6})
     slow = BrushModel(lambda p, v: 1.0 / (0.147 + 4.7e-6 * p), sliding_speed="local")
     slip = BrushModel(lambda p, v: 1.0 / (0.147 + 4.7e-6 * p))

@@ -35,13 +35,17 @@ mu at the slip speed at the adhesion/sliding transition.  With
 ``sliding_speed="local"`` the tip speed of each sliding bristle,
 ``v_s = V_r (sigma - dq/ds)`` (``V_r`` the rolling speed, ``V (1 + kappa)``
 for longitudinal slip), is used instead: each node solves
-``q = mu(p, V_r (q_a - q)/ds) p w / c`` (``q_a`` the adhesion trial) by
-bisection, and a bristle sticks while its trial stays below the static limit
-``mu(p, 0) p w / c``.  The solution is unique when friction does not fall
-with sliding speed; when several sliding speeds satisfy the law the slowest
-one is taken (stick-slip is not modelled), and when none does (a law that
-falls with speed, where the bristle must shed its deflection fast) the model
-raises an error and ``"slip"`` should be used.
+``q = mu(p, V_r (q_a - q)/ds) p w / c`` (``q_a`` the adhesion trial), and a
+bristle sticks while its trial stays below the static limit
+``mu(p, 0) p w / c``.  All nodes of all slips are solved together (Newton
+sweeps over the patch, a few milliseconds per load); when these do not settle
+on the node-by-node solution (e.g. strong velocity weakening) the node-by-node
+march (a scan and regula falsi per node, about 0.1 s per load) decides.  The
+solution is unique when friction does not fall with sliding speed; when
+several sliding speeds satisfy the law the slowest one is taken (stick-slip is
+not modelled), and when none does (a law that falls with speed, where the
+bristle must shed its deflection fast) the model raises an error and
+``"slip"`` should be used.
 Laws that need the normal load F_N, the temperature T or a slip ratio s are
 rejected: a bristle only knows its pressure and sliding speed.
 
@@ -126,6 +130,12 @@ SLIDING_SPEEDS = ("slip", "local")
 ORIGIN_STEP = 1e-4
 #: Bisection steps per node for velocity-dependent laws (relative accuracy 2**-45).
 BISECTION_STEPS = 45
+#: Newton sweeps over the patch at most (sliding_speed="local"), Newton steps of the tip
+#: speeds per sweep, and the step below which (relative to the largest deflection) the
+#: sweeps have converged.
+NEWTON_SWEEPS = 30
+TIP_STEPS = 3
+SWEEP_TOL = 1e-13
 #: Scan grid of x = (q_a - q)/q_a for the slowest sliding solution (sliding_speed="local").
 _SCAN = np.geomspace(1e-9, 1.0, 60)
 #: Allowed variables of a law used as the local friction limit.
@@ -685,19 +695,136 @@ class BrushModel:
 
     def _march_local(self, p: np.ndarray, d: np.ndarray, vr: np.ndarray, ds: float, c: float
                      ) -> tuple[np.ndarray, tuple[float, float] | None]:
-        """March with the local tip sliding speed V_r (sigma - dq/ds), solved per node."""
-        L_static = self._limit(p, 0.0, c)
+        """March with the local tip sliding speed V_r (sigma - dq/ds).
+
+        All nodes of all slips are solved together (:meth:`_march_local_sweeps`); when
+        that does not settle on the march's own solution (no steady sliding state, a
+        law with several, mu unusable) the node-by-node march
+        (:meth:`_march_local_nodes`) decides, and raises its errors.
+        """
+        l_static = self._limit(p, 0.0, c)
+        fast = self._march_local_sweeps(p, d, vr, ds, c, l_static)
+        if fast is not None:
+            return fast
+        return self._march_local_nodes(p, d, vr, ds, c, l_static)
+
+    def _march_local_sweeps(self, p: np.ndarray, d: np.ndarray, vr: np.ndarray, ds: float,
+                            c: float, l_static: np.ndarray
+                            ) -> tuple[np.ndarray, tuple[float, float] | None] | None:
+        """The local-speed march as one Newton iteration over the whole patch, or None.
+
+        Node k maps its adhesion trial ``a_k = q_{k-1} + d`` to ``q_k = F_k(a_k)``: ``a_k``
+        where it sticks (``a_k <= L_static``), else ``a_k - v/rate`` with ``v`` the tip
+        speed solving ``a_k - v/rate = limit(p_k, v)`` (``rate = V_r/ds``), and
+        ``F_k' = beta/(1 + beta)``, ``beta = rate dlimit/dv`` (1 where it sticks).  Each
+        sweep solves every node's equation at once (:meth:`_tip_speeds`, warm-started)
+        and takes the Newton step of the chain ``q_k = F_k(q_{k-1} + d)``, a
+        lower-bidiagonal system.  It starts from the march at the static limit.  Returns
+        None when it does not converge or when :meth:`_local_state_ok` rejects the
+        result, so that the node-by-node march decides.
+        """
+        from scipy.linalg.lapack import dtbtrs
+
+        n_slips, n = d.size, p.size - 1
+        pk = np.tile(p[1:], n_slips)  # flat over (slip, node)
+        ls = np.tile(l_static[1:], n_slips)
+        rate = np.repeat(vr / ds, n)
+        q = self._march(l_static, d)
+        v = np.zeros(n_slips * n)
+        band = np.zeros((2, n_slips * n))  # unit lower-bidiagonal, LAPACK band storage
+        sub = band[1].reshape(n_slips, n)  # sub[:, k] couples node k + 1 to node k
+        with np.errstate(all="ignore"):
+            for _ in range(NEWTON_SWEEPS):
+                a = (q[:, :-1] + d[:, None]).ravel()
+                i = np.flatnonzero(a > ls)  # the sliding nodes
+                if i.size == 0:
+                    break  # every bristle sticks: the static march is exact
+                v[i], dlim, settled = self._tip_speeds(pk[i], a[i], rate[i], c, v[i])
+                f, slope = a.copy(), np.ones(a.size)
+                f[i] = a[i] - v[i] / rate[i]
+                slope[i] = dlim / (1.0 / rate[i] + dlim)
+                sub[:, :-1] = -slope.reshape(n_slips, n)[:, 1:]
+                step = dtbtrs(band, f - q[:, 1:].ravel(), uplo="L", diag="U")[0]
+                q[:, 1:] += step.reshape(n_slips, n)
+                if not np.all(np.isfinite(step)):
+                    return None
+                if settled and np.max(np.abs(step)) <= SWEEP_TOL * np.max(np.abs(q)):
+                    break
+            else:
+                return None
+            a = (q[:, :-1] + d[:, None]).ravel()
+            i = np.flatnonzero(a > ls)
+            speed = rate[i] * (a[i] - q[:, 1:].ravel()[i])
+            if not self._local_state_ok(pk[i], a[i], speed, rate[i], c):
+                return None
+        return q, ((float(speed.min()), float(speed.max())) if speed.size else None)
+
+    def _tip_speeds(self, pk: np.ndarray, a: np.ndarray, rate: np.ndarray, c: float,
+                    v: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+        """Tip speeds v of sliding bristles: ``h(v) = a - v/rate - limit(pk, v) = 0``.
+
+        Newton steps from the warm start ``v`` (forward-difference slope of the limit)
+        inside the bracket ``[lo, hi]`` with ``h(lo) > 0 >= h(hi)`` that starts as
+        ``[0, rate a]`` and shrinks with every evaluation (a step leaving it bisects
+        it instead); at most :data:`TIP_STEPS`
+        steps (the sweeps of :meth:`_march_local_sweeps` continue them).  Returns the
+        speeds, the slopes ``dlimit/dv`` [s] and whether every ``|h| <= 1e-14 a``.
+        """
+        lo, hi = np.zeros_like(a), rate * a
+        v = np.clip(v, lo, hi)
+        dlim, settled = np.zeros_like(a), True
+        for _ in range(TIP_STEPS):
+            dv = 1e-7 * v + 1e-13
+            both = np.stack([v, v + dv])
+            lim, lim_dv = np.broadcast_to(self._limit(pk, both, c, check=False), both.shape)
+            dlim = (lim_dv - lim) / dv
+            h = a - v / rate - lim
+            lo, hi = np.where(h > 0, v, lo), np.where(h > 0, hi, v)
+            settled = bool(np.all(np.abs(h) <= 1e-14 * a))
+            v_new = v + h / (1.0 / rate + dlim)
+            v = np.where((v_new >= lo) & (v_new <= hi), v_new, 0.5 * (lo + hi))
+            if settled:
+                break
+        return v, dlim, settled
+
+    def _local_state_ok(self, pk: np.ndarray, a: np.ndarray, speed: np.ndarray,
+                        rate: np.ndarray, c: float) -> bool:
+        """Whether the sweeps' sliding states are those the node-by-node march picks.
+
+        That march takes the first point of the log grid :data:`_SCAN` of
+        ``x = (a - q)/a`` where the limit holds and the root between it and the point
+        before; the state at ``x = speed/(rate a)`` must lie in that interval (it always
+        does when the limit does not fall with speed: the root is then unique), and mu
+        there must be usable.
+        """
+        if a.size == 0:
+            return True
+        lim = self._limit(pk[:, None], (rate * a)[:, None] * _SCAN[None, :], c, check=False)
+        below = (a[:, None] * (1.0 - _SCAN[None, :])) <= lim
+        first = np.argmax(below, axis=1)
+        upper = _SCAN[first]
+        lower = np.where(first > 0, _SCAN[np.maximum(first - 1, 0)], 0.0)
+        x = speed / (rate * a)
+        mu = np.asarray(self.mu(pk, speed), float)
+        return bool(np.all(below[np.arange(a.size), first]) and np.all(x <= upper * (1 + 1e-9))
+                    and np.all(x >= lower * (1 - 1e-9)) and np.all(np.isfinite(mu))
+                    and np.all(mu >= 0))
+
+    def _march_local_nodes(self, p: np.ndarray, d: np.ndarray, vr: np.ndarray, ds: float,
+                           c: float, l_static: np.ndarray
+                           ) -> tuple[np.ndarray, tuple[float, float] | None]:
+        """The local-speed march node by node (a scan and regula falsi per node)."""
         q = np.zeros((d.size, p.size))
         qn = np.zeros(d.size)
         vs_min, vs_max = math.inf, -math.inf
         for k in range(1, p.size):
             qa = qn + d
-            stick = qa <= L_static[k]
+            stick = qa <= l_static[k]
             if not stick.all():
                 slide = ~stick
                 qs, vrs = qa[slide], vr[slide]
                 pk = p[k]
-                x = self._slowest_slide(pk, qs, vrs, ds, c, L_static[k])
+                x = self._slowest_slide(pk, qs, vrs, ds, c, l_static[k])
                 qslide = qs * (1.0 - x)
                 vs = vrs * (qs - qslide) / ds
                 with np.errstate(all="ignore"):
