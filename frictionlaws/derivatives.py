@@ -8,8 +8,9 @@ to every parameter and setting; the derivatives share their common subexpression
 use that code without importing sympy.
 
 A generated entry is used only while it still describes the law: the module stores the
-law's value at a probe point, and :func:`jacobian_function` compares it with the law's
-formula evaluated there now.  A law changed since the module was written, a law
+law's :func:`~frictionlaws.law.formula_check` (its symbols and mu at two points, the check
+the cached formula text uses too), and :func:`jacobian_function` compares it with the
+law's formula now.  A law changed since the module was written, a law
 registered by a plugin, or a law whose formula sympy cannot differentiate (Persson's
 numerical integral) gets ``None``, and the fit falls back to finite differences.
 ``tests/test_derivatives.py`` checks that the module is current for every built-in law
@@ -19,70 +20,28 @@ and compares every analytic Jacobian with a numerical one.
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .law import NUMPY, Law
+from .law import NUMPY, Law, formula_check, formula_matches
 
-__all__ = ["jacobian_function", "model_jacobian", "probe_point", "generate_source",
-           "write_module", "MODULE_PATH"]
+__all__ = ["jacobian_function", "model_jacobian", "generate_source", "write_module",
+           "MODULE_PATH"]
 
 #: Where the generated derivative code lives.
 MODULE_PATH = Path(__file__).parent / "laws" / "_jacobians.py"
-#: Relative agreement the probe value must show for a generated entry to be used.
-PROBE_RTOL = 1e-12
-
-
-def probe_point(law: Law) -> dict[str, float]:
-    """A point where the law is evaluated to recognise its generated derivative code.
-
-    Parameters
-    ----------
-    law : Law
-        The law.
-
-    Returns
-    -------
-    dict
-        Variables (inside their typical range, away from floors and zero) and every
-        parameter and setting (their declared defaults, nudged off round values so
-        that a changed formula shows).
-    """
-    out: dict[str, float] = {}
-    for k in law.variables:
-        lo, hi = law.typical_range(k)
-        out[k] = lo + 0.37 * (hi - lo) if k != "s" else 0.0731
-    for p in law.params:
-        out[p.name] = _nudge(p.default, p.bounds)
-    for s in law.settings:
-        out[s.name] = _nudge(s.value, s.bounds)
-    return out
-
-
-def _nudge(value: float, bounds: tuple[float, float]) -> float:
-    moved = value * 1.0137 + 0.0011 if value != 0 else 0.0123
-    return moved if bounds[0] <= moved <= bounds[1] else value
-
-
-def _probe_value(law: Law, point: dict[str, float]) -> float:
-    with np.errstate(all="ignore"):
-        try:
-            return float(law.formula(NUMPY, **{k: np.float64(v) for k, v in point.items()}))
-        except (TypeError, ValueError, ZeroDivisionError, OverflowError):
-            return math.nan
 
 
 @functools.cache
-def _table() -> dict[str, tuple[dict[str, float], float, Callable[..., Any]]]:
+def _table() -> dict[str, tuple[dict[str, Any], Callable[..., Any]]]:
     try:
         from .laws import _jacobians
     except ImportError:  # pragma: no cover - the module ships with the package
         return {}
-    table: dict[str, tuple[dict[str, float], float, Callable[..., Any]]] = dict(
+    table: dict[str, tuple[dict[str, Any], Callable[..., Any]]] = dict(
         _jacobians.JACOBIANS)  # type: ignore[arg-type]
     return table
 
@@ -95,13 +54,7 @@ def _current(law: Law) -> bool:
     key = id(law.formula)
     if key not in _CHECKED:
         entry = _table().get(law.id)
-        ok = False
-        if entry is not None:
-            point, value, _func = entry
-            now = _probe_value(law, point)
-            ok = set(point) == set(probe_point(law)) and math.isfinite(now) and (
-                abs(now - value) <= PROBE_RTOL * max(abs(value), 1e-300))
-        _CHECKED[key] = ok
+        _CHECKED[key] = entry is not None and formula_matches(law, entry[0])
     return _CHECKED[key]
 
 
@@ -119,7 +72,7 @@ def jacobian_function(law: Law) -> Callable[..., Any] | None:
         ``func(m, names, **variables_params_settings)`` returning one column (array or
         scalar) per name in ``names``; None when there is no current generated entry.
     """
-    return _table()[law.id][2] if _current(law) else None
+    return _table()[law.id][1] if _current(law) else None
 
 
 def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
@@ -208,8 +161,8 @@ def generate_source(laws: list[Law]) -> str:
     Returns
     -------
     str
-        Python source defining ``JACOBIANS``: law id -> (probe point, value there,
-        derivative function).
+        Python source defining ``JACOBIANS``: law id -> (the law's
+        :func:`~frictionlaws.law.formula_check` when written, derivative function).
     """
     head = ['"""Analytic Jacobians of the built-in laws: GENERATED, do not edit.',
             "",
@@ -222,13 +175,12 @@ def generate_source(laws: list[Law]) -> str:
         src = _entry_source(law)
         if src is None:
             continue
-        point = probe_point(law)
-        value = _probe_value(law, point)
-        if not math.isfinite(value):
+        check = formula_check(law)
+        if check is None:
             continue
         body.append(src)
         fname = "_d_" + law.id.replace("-", "_").replace("+", "_")
-        table.append(f"    {law.id!r}: ({point!r}, {value!r}, {fname}),")
+        table.append(f"    {law.id!r}: ({check!r}, {fname}),")
     return ("\n".join(head) + "\n\n\n".join(body) + "\n\n\nJACOBIANS = {\n"
             + "\n".join(table) + "\n}\n")
 

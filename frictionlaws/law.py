@@ -1377,16 +1377,33 @@ def _cached_text(law: Law) -> str | None:
     entry = _formula_texts().get(law.id)
     if not isinstance(entry, dict) or not isinstance(entry.get("text"), str):
         return None
+    return str(entry["text"]) if formula_matches(law, entry) else None
+
+
+def formula_matches(law: Law, recorded: Mapping[str, Any]) -> bool:
+    """True when ``law`` still computes what :func:`formula_check` recorded for it.
+
+    Parameters
+    ----------
+    law : Law
+        The law now.
+    recorded : mapping
+        A :func:`formula_check` result stored earlier (with code or text derived from
+        the formula then).
+
+    Returns
+    -------
+    bool
+        Same symbols and the same mu at the check points (to 1e-9).
+    """
     check = formula_check(law)
-    if check is None or check["symbols"] != entry.get("symbols"):
-        return None
-    recorded = entry.get("mu")
-    if not isinstance(recorded, list) or len(recorded) != len(check["mu"]):
-        return None
-    if not all(isinstance(r, (int, float)) and math.isclose(m, r, rel_tol=_CHECK_RTOL)
-               for m, r in zip(check["mu"], recorded)):
-        return None
-    return str(entry["text"])
+    if check is None or check["symbols"] != recorded.get("symbols"):
+        return False
+    mu = recorded.get("mu")
+    if not isinstance(mu, list) or len(mu) != len(check["mu"]):
+        return False
+    return all(isinstance(r, (int, float)) and math.isclose(m, r, rel_tol=_CHECK_RTOL)
+               for m, r in zip(check["mu"], mu))
 
 
 def formula_text_entries(laws: Iterable[Law]) -> dict[str, Any]:
