@@ -754,7 +754,8 @@ class Law:
         Returns
         -------
         numpy.ndarray
-            mu at every row (NaN or infinity where the formula gives them).
+            The friction coefficient at every row (NaN or infinity where the formula
+            gives them).
         """
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             if n < _BLOCKED_FROM:
