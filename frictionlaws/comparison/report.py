@@ -52,6 +52,10 @@ BIN_ABOVE = 24
 SCATTERED = 8
 #: Resolution of the PNG figures (dots per inch): the report is read on a screen.
 DPI = 80
+#: matplotlib settings of every figure.  A fixed title height (``axes.titley``) spares
+#: matplotlib measuring every tick label of the figure to lift each title above the top
+#: ticks: these axes have none there, and the PNG is the same.
+RC: dict[str, Any] = {"font.size": 9, "axes.titlesize": 9, "axes.titley": 1.0}
 
 
 # ------------------------------------------------------------------ helpers
@@ -71,9 +75,24 @@ def _num(x: Any, fmt: str = ".3g") -> str:
     return format(xf, fmt)
 
 
+#: Display conversion of each variable as (offset, scale): display = offset + scale * SI.
+#: Every display unit is an affine function of the SI one (MPa, degC...), so two values of
+#: :func:`~frictionlaws.units.to_display` give it; a figure converts hundreds of arrays.
+_AFFINE: dict[str, tuple[float, float]] = {}
+
+
+def _affine(var: str) -> tuple[float, float]:
+    """(offset, scale) of ``var``'s display conversion, worked out once per process."""
+    if var not in _AFFINE:
+        zero, one = (float(v) for v in to_display(np.array([0.0, 1.0]), var))
+        _AFFINE[var] = (zero, one - zero)
+    return _AFFINE[var]
+
+
 def _disp(var: str, x: Any) -> Any:
     """SI -> display unit (MPa, degC)."""
-    return to_display(x, var)
+    offset, scale = _affine(var)
+    return offset + scale * np.asarray(x, dtype=float)
 
 
 def _label(var: str) -> str:
@@ -702,7 +721,7 @@ def _draw(cmp: Comparison, index: int) -> Figure | None:
     import matplotlib
 
     draw, args = _figure_plan(cmp)[index]
-    with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 9}):
+    with matplotlib.rc_context(RC):  # type: ignore[arg-type]
         return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
 
 
