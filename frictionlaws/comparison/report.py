@@ -36,6 +36,7 @@ from ..errors import InputError
 from ..law import VARIABLES
 from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
+from .residuals import ALPHA
 
 if TYPE_CHECKING:  # pragma: no cover
     from .results import Comparison, LawComparison
@@ -54,8 +55,14 @@ SCATTERED = 8
 DPI = 80
 #: matplotlib settings of every figure.  A fixed title height (``axes.titley``) spares
 #: matplotlib measuring every tick label of the figure to lift each title above the top
-#: ticks: these axes have none there, and the PNG is the same.
-RC: dict[str, Any] = {"font.size": 9, "axes.titlesize": 9, "axes.titley": 1.0}
+#: ticks: these axes have none there, and the PNG is the same.  Text without FreeType
+#: hinting lays out and renders in about half the time (it dominates these figures) and
+#: stays legible at :data:`DPI`, a little softer.
+RC: dict[str, Any] = {"font.size": 9, "axes.titlesize": 9, "axes.titley": 1.0,
+                      "text.hinting": "none"}
+#: zlib level of the PNG files: 3 compresses as tightly as the default 6 on these
+#: flat-coloured figures, in about two thirds of the time.
+PNG_COMPRESSION = 3
 
 
 # ------------------------------------------------------------------ helpers
@@ -307,7 +314,7 @@ def _legend_width(handles: Sequence[Any]) -> float:
 
 def _png(fig: Any) -> bytes:
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI)
+    fig.savefig(buf, format="png", dpi=DPI, pil_kwargs={"compress_level": PNG_COMPRESSION})
     return buf.getvalue()
 
 
@@ -425,24 +432,57 @@ def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
 #: Vertical distance between the strips of two laws in the residuals figure, in
 #: standardised residuals (residual / the law's RMSE).
 STRIP = 9.0
+#: Colour of the band behind a residual strip whose test finds structure.
+FLAG_COLOUR = "#fbd5d5"
+
+
+def _test_p(r: LawComparison, column: str) -> dict[str, float | None]:
+    """The p-values of one law's residual tests in one column ("qq": Shapiro-Wilk)."""
+    if column == "qq":
+        return {"Shapiro-Wilk": r.residuals.shapiro_p}
+    t = r.residuals.tests.get(column, {})
+    return {"runs": (t.get("runs") or {}).get("p_value"), "Kendall": t.get("kendall_p")}
+
+
+def _flagged(p: float | None) -> bool:
+    """True when a p-value finds structure at the report's level (:data:`ALPHA`)."""
+    return p is not None and math.isfinite(p) and p < ALPHA
 
 
 def _strip(cmp: Comparison, r: LawComparison, column: str
-           ) -> tuple[np.ndarray, np.ndarray, str]:
-    """x, standardised y and the test text of one law's strip in one residual panel."""
+           ) -> tuple[np.ndarray, np.ndarray, bool]:
+    """x, standardised y, and whether a test flags it, of one law's strip in one panel."""
     scale = r.metrics["rmse"] if r.metrics["rmse"] > 0 else 1.0
+    flagged = any(_flagged(p) for p in _test_p(r, column).values())
     if column == "qq":
         osm, osr = r.residuals.normal_quantiles
-        return osm, osr / scale, f"Shapiro-Wilk p {_num(r.residuals.shapiro_p, '.2g')}"
+        return osm, osr / scale, flagged
     if column == "fitted":
         xv = r.fit.best_fit
     else:
         xv = _disp(column, cmp.data.arrays[column][r.rows])
-    t = r.residuals.tests.get(column, {})
-    runs_p = (t.get("runs") or {}).get("p_value")
-    text = f"runs p {_num(runs_p, '.2g')}, Kendall p {_num(t.get('kendall_p'), '.2g')}"
     resid = np.asarray(r.fit.residual, float)
-    return np.asarray(xv, float), resid / scale, text
+    return np.asarray(xv, float), resid / scale, flagged
+
+
+def _strip_lines(ax: Any, offsets: np.ndarray, flagged: list[bool]) -> None:
+    """The zero line of every strip and a band behind the flagged ones, as two artists.
+
+    One polyline (broken by NaN) and one collection cost a fraction of a line or a
+    patch per strip; both span the panel's width (x in axes coordinates).
+    """
+    from matplotlib.collections import PolyCollection
+    from matplotlib.lines import Line2D
+
+    trans = ax.get_yaxis_transform()
+    half = 0.48 * STRIP  # a thin white gap between neighbouring bands
+    bands = [[(0, off - half), (1, off - half), (1, off + half), (0, off + half)]
+             for off, f in zip(offsets, flagged) if f]
+    if bands:
+        ax.add_collection(PolyCollection(bands, facecolors=FLAG_COLOUR, edgecolors="none",
+                                         transform=trans, zorder=0), autolim=False)
+    ax.add_line(Line2D(np.tile([0.0, 1.0, np.nan], offsets.size), np.repeat(offsets, 3),
+                       color="grey", lw=0.6, transform=trans, zorder=1))
 
 
 def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
@@ -453,29 +493,31 @@ def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
                  sharey=True)[0]
     offsets = -STRIP * np.arange(n)
     for ax, c in zip(axes, cols):
-        for off in offsets:
-            ax.axhline(off, color="grey", lw=0.6)
+        flagged = []
         for r, off in zip(cmp.results, offsets):
-            xv, yv, text = _strip(cmp, r, c)
-            ax.plot(xv, yv + off, "o", ms=3, color=styles[r.law.id]["color"])
-            ax.text(0.99, off + 0.5 * STRIP, text, transform=ax.get_yaxis_transform(),
-                    ha="right", va="center", fontsize=6.5, color="0.3")
+            xv, yv, flag = _strip(cmp, r, c)
+            ax.plot(xv, yv + off, "o", ms=3, color=styles[r.law.id]["color"], zorder=2)
+            flagged.append(flag)
+        _strip_lines(ax, offsets, flagged)
         ax.set_xlabel("normal quantile [-]" if c == "qq" else
                       "fitted mu [-]" if c == "fitted" else _label(c), fontsize=8)
-        ax.set_title("normal Q-Q" if c == "qq" else
-                     f"vs {'the fitted value' if c == 'fitted' else c}", fontsize=9)
+        ax.set_title("normal Q-Q (Shapiro-Wilk)" if c == "qq" else
+                     f"vs {'the fitted value' if c == 'fitted' else c} (runs, Kendall)",
+                     fontsize=9)
         ax.grid(axis="x", alpha=0.3)
         ax.tick_params(labelsize=7)
     axes[0].set_yticks(offsets, [f"{r.rank}. {r.law.id}" for r in cmp.results], fontsize=7)
-    axes[0].set_ylim(offsets[-1] - 0.5 * STRIP, 0.65 * STRIP)
+    axes[0].set_ylim(offsets[-1] - 0.5 * STRIP, 0.5 * STRIP)
     fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order, "
-                 "divided by the law's RMSE", fontsize=11)
+                 "divided by the law's RMSE; red band: a test finds structure (p < "
+                 f"{ALPHA:g})", fontsize=11)
     caption = ("Residuals of each fitted law (one strip per law, in rank order, each divided "
                "by that law's RMSE so that every strip has the same scale; the grey line is "
                "zero) against each variable and against the fitted value, and the normal Q-Q "
-               "plot. The text gives the one-sided runs-test p-value (small: residual signs "
-               "cluster along the variable, a systematic misfit), the Kendall-trend p-value "
-               "and the Shapiro-Wilk p-value.")
+               f"plot. A strip on a red band: in that panel the one-sided runs test (residual "
+               f"signs cluster along the variable, a systematic misfit) or the Kendall trend "
+               f"test, or in the Q-Q panel the Shapiro-Wilk test, has p < {ALPHA:g}. Every "
+               "p-value is in the table of residual tests.")
     return Figure("residuals", "residuals", caption, _png(fig))
 
 
@@ -653,11 +695,26 @@ def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
                   _png(fig))
 
 
+def _log_axis(ax: Any, lo: float, hi: float) -> None:
+    """A log x axis from ``lo`` to ``hi`` ticked and labelled at 1, 2, 5 x 10^k in plain numbers.
+
+    Plain labels are drawn as text; the default 10^k labels go through mathtext, and the
+    minor ticks the 1-2-5 ticks replace cost a tick each.
+    """
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
+
+    ax.set_xscale("log")
+    ax.set_xlim(lo, hi)
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+    ax.xaxis.set_minor_locator(NullLocator())
+
+
 def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     res = cmp.results
     n = len(res)
-    fig = _new_figure(10, 0.45 * n + 1.6)
-    ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.45, bottom_in=0.55)[0, 0]
+    fig = _new_figure(10, 0.45 * n + 2.0)
+    ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.85, bottom_in=0.55)[0, 0]
     k = cmp.settings["folds"]
     series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6"),
               (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan")]
@@ -678,13 +735,9 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
         for yi, v in zip(yy, vals):
             if v is None or not math.isfinite(v):
                 ax.text(vmin * 0.55, yi, "n/a", va="center", fontsize=7)
-            else:
-                ax.text(v * 1.04, yi, f"{v:.3g}", va="center", fontsize=7)
-    ax.set_xscale("log")
-    ax.set_xlim(vmin * 0.5, vmax * 3.0)
-    ax.set_yticks(y)
-    ax.set_yticklabels([f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
-                        for r in res])
+    _log_axis(ax, vmin * 0.5, vmax * 2.0)
+    ax.set_yticks(y, [f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
+                      for r in res])
     for lab, r in zip(ax.get_yticklabels(), res):
         if not r.plausible:
             lab.set_color("tab:red")
@@ -692,12 +745,14 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     ax.set_xlabel("RMSE of mu [-] (log scale)")
     ax.set_ylabel("law (rank by CV RMSE)")
     ax.grid(axis="x", alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8)
-    ax.set_title(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2, fontsize=8,
+              frameon=False, borderaxespad=0.2)
+    fig.suptitle(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
                  "upper range", fontsize=10)
     caption = ("Fit RMSE (on the rows fitted), cross-validated RMSE (on rows left out of "
                "each fit; the ranking criterion) and extrapolation RMSE (on the held-out "
-               "upper range), per law in rank order; implausible laws in red.")
+               "upper range), per law in rank order, on a log scale; implausible laws in "
+               "red; n/a: not available. The values are in the ranking table.")
     return Figure("metrics", "metrics", caption, _png(fig))
 
 
@@ -841,6 +896,40 @@ def _method(cmp: Comparison) -> list[str]:
     ]
 
 
+RESIDUAL_TESTS_NOTE = (
+    "One-sided Wald-Wolfowitz runs test on the signs of the residuals put in order of each "
+    "variable and of the fitted value (small p: residuals of one sign cluster, a systematic "
+    "misfit), Kendall's tau test of a monotone trend, and the Shapiro-Wilk test of "
+    "normal-looking residuals; each at the 5 % level on its own. Marked: p < 0.05 (a red band "
+    "in the residuals figure). n/a: the test does not apply (a constant variable, or "
+    "residuals all of one sign).")
+
+
+def _residual_table(cmp: Comparison) -> tuple[list[str], list[list[tuple[str, bool]]]]:
+    """Every residual test's p-value per law: header, rows of (text, below ALPHA)."""
+    cols = [*cmp.design.varying, "fitted"]
+    head = ["law"]
+    for c in cols:
+        name = "fitted mu" if c == "fitted" else c
+        head += [f"runs p ({name})", f"Kendall p ({name})"]
+    head.append("Shapiro-Wilk p")
+    rows = []
+    for r in cmp.results:
+        ps = [p for c in cols for p in _test_p(r, c).values()] + [r.residuals.shapiro_p]
+        rows.append([(f"{r.rank}. {r.law.id}", False)]
+                    + [(_num(p, ".2g"), _flagged(p)) for p in ps])
+    return head, rows
+
+
+def _md_residual_tests(cmp: Comparison) -> list[str]:
+    """The table of residual-test p-values in Markdown, the flagged ones in bold."""
+    head, rows = _residual_table(cmp)
+    lines = ["## Residual tests (p-values)", "", RESIDUAL_TESTS_NOTE, "",
+             "| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    return lines + ["| " + " | ".join(f"**{t}**" if bad else t.replace("|", "\\|")
+                                      for t, bad in row) + " |" for row in rows]
+
+
 def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """The report as Markdown, linking the PNG files."""
     d = cmp.data
@@ -866,7 +955,7 @@ def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
             else:
                 lines.append(f"- {esc(item)}")
         lines.append("")
-    lines += ["## Figures", ""]
+    lines += _md_residual_tests(cmp) + ["", "## Figures", ""]
     for f in figures:
         lines += [f"### {f.title}", "", f"![{f.title}]({f.name}.png)", "", f.caption, ""]
     return "\n".join(lines)
@@ -936,6 +1025,22 @@ def _html_sections(cmp: Comparison) -> list[str]:
     return parts
 
 
+def _html_residual_tests(cmp: Comparison) -> list[str]:
+    """The table of residual-test p-values in HTML, the flagged ones marked."""
+    e = html.escape
+    head, rows = _residual_table(cmp)
+    parts = ["<h2>Residual tests (p-values)</h2>", f"<p>{e(RESIDUAL_TESTS_NOTE)}</p>",
+             "<table><tr>" + "".join(f"<th class='{'l' if i == 0 else ''}'>{e(h)}</th>"
+                                     for i, h in enumerate(head)) + "</tr>"]
+    for row in rows:
+        cells = [f"<td class='l'>{e(row[0][0])}</td>"]
+        cells += [f"<td><span class='bad-word'>{e(t)}</span></td>" if bad else f"<td>{e(t)}</td>"
+                  for t, bad in row[1:]]
+        parts.append("<tr>" + "".join(cells) + "</tr>")
+    parts.append("</table>")
+    return parts
+
+
 def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """Write the report as one self-contained HTML page (figures embedded as base64 PNG).
 
@@ -964,7 +1069,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
              "<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
              "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
              "alone in its group has weight 1 trivially).</p>",
-             *_html_sections(cmp), "<h2>Figures</h2>"]
+             *_html_sections(cmp), *_html_residual_tests(cmp), "<h2>Figures</h2>"]
     for f in figures:
         b64 = base64.b64encode(f.png).decode("ascii")
         parts.append(f"<figure id='{e(f.name)}'><h3>{e(f.title)}</h3>"
