@@ -34,7 +34,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..law import VARIABLES
-from ..units import to_display
+from ..units import display_unit, to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 from .residuals import ALPHA
 
@@ -100,6 +100,18 @@ def _disp(var: str, x: Any) -> Any:
     """SI -> display unit (MPa, degC)."""
     offset, scale = _affine(var)
     return offset + scale * np.asarray(x, dtype=float)
+
+
+def _fmt(var: str, x: float) -> str:
+    """:func:`~frictionlaws.comparison.extrapolation.fmt_value` through :func:`_disp`.
+
+    The same text (a test compares them), without a unit registry in a worker process.
+    """
+    if var == "mu":
+        return fmt_value(var, x)
+    unit = display_unit(var)
+    value = float(_disp(var, x))
+    return f"{value:.4g} {unit}" if unit else f"{value:.4g}"
 
 
 def _label(var: str) -> str:
@@ -350,7 +362,7 @@ def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[st
 
 
 def _at_text(level: dict[str, float]) -> str:
-    return ", ".join(f"{k} = {fmt_value(k, v)}" for k, v in level.items())
+    return ", ".join(f"{k} = {_fmt(k, v)}" for k, v in level.items())
 
 
 def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
@@ -362,9 +374,9 @@ def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
 def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: str) -> str:
     if kind == "bin":
         gm = cmp.data.arrays[g][mask]
-        title = f"{g} {fmt_value(g, float(gm.min()))} .. {fmt_value(g, float(gm.max()))}"
+        title = f"{g} {_fmt(g, float(gm.min()))} .. {_fmt(g, float(gm.max()))}"
     else:
-        title = f"{g} = {fmt_value(g, level)}"
+        title = f"{g} = {_fmt(g, level)}"
     nr = int(mask.sum())
     return f"{title} ({nr} row{'s' if nr != 1 else ''})"
 
@@ -552,7 +564,7 @@ def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any
     ax.set_xlabel(_label(x))
     ax.set_ylabel(_label("mu"))
     at = f" at {_at_text(level)}" if level else ""
-    ax.set_title(f"fitted on {x} <= {fmt_value(x, thr)}, scored above"
+    ax.set_title(f"fitted on {x} <= {_fmt(x, thr)}, scored above"
                  f"\n({int(test.sum())} held-out rows; curves{at})", fontsize=9)
     ax.grid(alpha=0.3)
 
@@ -772,12 +784,23 @@ def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
 
 
 def _draw(cmp: Comparison, index: int) -> Figure | None:
-    """Draw figure ``index`` of the report's plan (module-level: joblib runs it elsewhere)."""
+    """Draw figure ``index`` of the report's plan."""
     import matplotlib
 
     draw, args = _figure_plan(cmp)[index]
     with matplotlib.rc_context(RC):  # type: ignore[arg-type]
         return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
+
+
+def _draw_share(cmp: Comparison, indices: Sequence[int],
+                affine: dict[str, tuple[float, float]]) -> list[Figure | None]:
+    """Draw several figures of the plan in a worker process (module-level for joblib).
+
+    ``affine`` carries the parent's display conversions, so that a worker does not
+    build a unit registry to work them out again.
+    """
+    _AFFINE.update(affine)
+    return [_draw(cmp, i) for i in indices]
 
 
 def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
@@ -791,20 +814,37 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
     cmp : Comparison
         The comparison to draw.
     jobs : int
-        Processes (joblib) drawing the figures; 1 draws them here, one after another.
+        Processes drawing the figures (-1: one per core); 1 draws them here, one after
+        another.  With more, each of ``jobs`` joblib workers draws one share of the
+        figures, sent the comparison once.  A worker that has not drawn yet first
+        imports the plotting code (a few tenths of a second), so two processes gain
+        little on one report.
 
     Returns
     -------
     list of Figure
-        The PNG figures in report order.
+        The PNG figures in report order, the same with any ``jobs``.
     """
-    indices = range(len(_figure_plan(cmp)))
-    if jobs == 1:
-        figs = [_draw(cmp, i) for i in indices]
-    else:
-        from joblib import Parallel, delayed
+    count = len(_figure_plan(cmp))
+    drawers = 1
+    if jobs != 1:
+        from joblib import effective_n_jobs
 
-        figs = Parallel(n_jobs=jobs)(delayed(_draw)(cmp, i) for i in indices)
+        drawers = max(1, min(count, effective_n_jobs(jobs)))
+    if drawers == 1:
+        return [f for f in (_draw(cmp, i) for i in range(count)) if f is not None]
+    from joblib import Parallel, delayed
+
+    for var in cmp.data.arrays:
+        if var in VARIABLES:
+            _affine(var)
+    shares = [list(range(w, count, drawers)) for w in range(drawers)]
+    drawn = Parallel(n_jobs=drawers)(delayed(_draw_share)(cmp, share, dict(_AFFINE))
+                                     for share in shares)
+    figs: list[Figure | None] = [None] * count
+    for share, figures in zip(shares, drawn):
+        for i, f in zip(share, figures):
+            figs[i] = f
     return [f for f in figs if f is not None]
 
 
