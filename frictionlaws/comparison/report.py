@@ -501,10 +501,13 @@ def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     cols = list(cmp.design.varying) + ["fitted", "qq"]
     n = len(cmp.results)
     fig = _new_figure(3.3 * len(cols) + 1.8, 0.6 * n + 1.7)
-    axes = _grid(fig, 1, len(cols), left_in=1.7, top_in=0.75, bottom_in=0.6, wspace=0.08,
-                 sharey=True)[0]
+    axes = _grid(fig, 1, len(cols), left_in=1.7, top_in=0.75, bottom_in=0.6, wspace=0.08)[0]
     offsets = -STRIP * np.arange(n)
     for ax, c in zip(axes, cols):
+        # the same strips in every panel, named on the first: the others need no y ticks
+        # (a shared axis would make and draw them, hidden, in every panel)
+        ax.set_ylim(offsets[-1] - 0.5 * STRIP, 0.5 * STRIP)
+        ax.set_yticks([] if c != cols[0] else offsets)
         flagged = []
         for r, off in zip(cmp.results, offsets):
             xv, yv, flag = _strip(cmp, r, c)
@@ -519,7 +522,6 @@ def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
         ax.grid(axis="x", alpha=0.3)
         ax.tick_params(labelsize=7)
     axes[0].set_yticks(offsets, [f"{r.rank}. {r.law.id}" for r in cmp.results], fontsize=7)
-    axes[0].set_ylim(offsets[-1] - 0.5 * STRIP, 0.5 * STRIP)
     fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order, "
                  "divided by the law's RMSE; red band: a test finds structure (p < "
                  f"{ALPHA:g})", fontsize=11)
