@@ -948,9 +948,9 @@ RESIDUAL_TESTS_NOTE = (
     "One-sided Wald-Wolfowitz runs test on the signs of the residuals put in order of each "
     "variable and of the fitted value (small p: residuals of one sign cluster, a systematic "
     "misfit), Kendall's tau test of a monotone trend, and the Shapiro-Wilk test of "
-    "normal-looking residuals; each at the 5 % level on its own. Marked: p < 0.05 (a red band "
-    "in the residuals figure). n/a: the test does not apply (a constant variable, or "
-    "residuals all of one sign).")
+    f"normal-looking residuals; each at the {ALPHA * 100:g} % level on its own. Marked: p < "
+    f"{ALPHA:g} (a red band in the residuals figure). n/a: the test does not apply (a "
+    "constant variable, or residuals all of one sign).")
 
 
 def _residual_table(cmp: Comparison) -> tuple[list[str], list[list[tuple[str, bool]]]]:
