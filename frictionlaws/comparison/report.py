@@ -7,13 +7,19 @@ Figures (matplotlib with the Agg backend, imported only here):
   v per pressure); each curve spans the range of the rows its law was fitted
   on, and a law is not drawn in a panel all of whose rows it had to drop;
 * ``residuals.png``: for every law, residuals against each variable and the
-  fitted value, and the normal Q-Q plot, with the test p-values;
+  fitted value, and the normal Q-Q plot, a red band where a test finds structure
+  (the p-values are in the residual-tests table of ``report.md`` and ``report.html``);
 * ``extrapolation_holdout.png``: each law fitted below the holdout threshold,
   with the held-out points it is scored on;
 * ``extrapolation_box.png``: each fully fitted law over the extended box, with
   the measured range, the physical limits and the points where the
   plausibility scan flagged it;
-* ``metrics.png``: fit RMSE, cross-validated RMSE and extrapolation RMSE per law.
+* ``metrics.png``: fit RMSE, cross-validated RMSE and extrapolation RMSE per law
+  (the values are in the ranking table).
+
+Figures cost little to draw (issue 15): few axes with fixed layouts, one artist for
+many repeated marks, unhinted text, no mathtext; ``benchmarks/bench_report.py`` times
+them.
 
 ``report.html`` embeds every PNG as base64 and needs nothing else; ``report.md``
 links the PNG files next to it; ``comparison.json`` is :meth:`Comparison.to_json`.
@@ -34,8 +40,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..law import VARIABLES
-from ..units import to_display
+from ..units import display_unit, to_display
 from .extrapolation import Split, evaluate_on, fmt_value
+from .residuals import ALPHA
 
 if TYPE_CHECKING:  # pragma: no cover
     from .results import Comparison, LawComparison
@@ -52,6 +59,16 @@ BIN_ABOVE = 24
 SCATTERED = 8
 #: Resolution of the PNG figures (dots per inch): the report is read on a screen.
 DPI = 80
+#: matplotlib settings of every figure.  A fixed title height (``axes.titley``) spares
+#: matplotlib measuring every tick label of the figure to lift each title above the top
+#: ticks: these axes have none there, and the PNG is the same.  Text without FreeType
+#: hinting lays out and renders in about half the time (it dominates these figures) and
+#: stays legible at :data:`DPI`, a little softer.
+RC: dict[str, Any] = {"font.size": 9, "axes.titlesize": 9, "axes.titley": 1.0,
+                      "text.hinting": "none"}
+#: zlib level of the PNG files: 3 compresses as tightly as the default 6 on these
+#: flat-coloured figures, in about two thirds of the time.
+PNG_COMPRESSION = 3
 
 
 # ------------------------------------------------------------------ helpers
@@ -71,9 +88,36 @@ def _num(x: Any, fmt: str = ".3g") -> str:
     return format(xf, fmt)
 
 
+#: Display conversion of each variable as (offset, scale): display = offset + scale * SI.
+#: Every display unit is an affine function of the SI one (MPa, degC...), so two values of
+#: :func:`~frictionlaws.units.to_display` give it; a figure converts hundreds of arrays.
+_AFFINE: dict[str, tuple[float, float]] = {}
+
+
+def _affine(var: str) -> tuple[float, float]:
+    """(offset, scale) of ``var``'s display conversion, worked out once per process."""
+    if var not in _AFFINE:
+        zero, one = (float(v) for v in to_display(np.array([0.0, 1.0]), var))
+        _AFFINE[var] = (zero, one - zero)
+    return _AFFINE[var]
+
+
 def _disp(var: str, x: Any) -> Any:
     """SI -> display unit (MPa, degC)."""
-    return to_display(x, var)
+    offset, scale = _affine(var)
+    return offset + scale * np.asarray(x, dtype=float)
+
+
+def _fmt(var: str, x: float) -> str:
+    """:func:`~frictionlaws.comparison.extrapolation.fmt_value` through :func:`_disp`.
+
+    The same text (a test compares them), without a unit registry in a worker process.
+    """
+    if var == "mu":
+        return fmt_value(var, x)
+    unit = display_unit(var)
+    value = float(_disp(var, x))
+    return f"{value:.4g} {unit}" if unit else f"{value:.4g}"
 
 
 def _label(var: str) -> str:
@@ -288,7 +332,7 @@ def _legend_width(handles: Sequence[Any]) -> float:
 
 def _png(fig: Any) -> bytes:
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI)
+    fig.savefig(buf, format="png", dpi=DPI, pil_kwargs={"compress_level": PNG_COMPRESSION})
     return buf.getvalue()
 
 
@@ -324,7 +368,7 @@ def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[st
 
 
 def _at_text(level: dict[str, float]) -> str:
-    return ", ".join(f"{k} = {fmt_value(k, v)}" for k, v in level.items())
+    return ", ".join(f"{k} = {_fmt(k, v)}" for k, v in level.items())
 
 
 def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
@@ -336,9 +380,9 @@ def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
 def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: str) -> str:
     if kind == "bin":
         gm = cmp.data.arrays[g][mask]
-        title = f"{g} {fmt_value(g, float(gm.min()))} .. {fmt_value(g, float(gm.max()))}"
+        title = f"{g} {_fmt(g, float(gm.min()))} .. {_fmt(g, float(gm.max()))}"
     else:
-        title = f"{g} = {fmt_value(g, level)}"
+        title = f"{g} = {_fmt(g, level)}"
     nr = int(mask.sum())
     return f"{title} ({nr} row{'s' if nr != 1 else ''})"
 
@@ -406,57 +450,94 @@ def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
 #: Vertical distance between the strips of two laws in the residuals figure, in
 #: standardised residuals (residual / the law's RMSE).
 STRIP = 9.0
+#: Colour of the band behind a residual strip whose test finds structure.
+FLAG_COLOUR = "#fbd5d5"
+
+
+def _test_p(r: LawComparison, column: str) -> dict[str, float | None]:
+    """The p-values of one law's residual tests in one column ("qq": Shapiro-Wilk)."""
+    if column == "qq":
+        return {"Shapiro-Wilk": r.residuals.shapiro_p}
+    t = r.residuals.tests.get(column, {})
+    return {"runs": (t.get("runs") or {}).get("p_value"), "Kendall": t.get("kendall_p")}
+
+
+def _flagged(p: float | None) -> bool:
+    """True when a p-value finds structure at the report's level (:data:`ALPHA`)."""
+    return p is not None and math.isfinite(p) and p < ALPHA
 
 
 def _strip(cmp: Comparison, r: LawComparison, column: str
-           ) -> tuple[np.ndarray, np.ndarray, str]:
-    """x, standardised y and the test text of one law's strip in one residual panel."""
+           ) -> tuple[np.ndarray, np.ndarray, bool]:
+    """x, standardised y, and whether a test flags it, of one law's strip in one panel."""
     scale = r.metrics["rmse"] if r.metrics["rmse"] > 0 else 1.0
+    flagged = any(_flagged(p) for p in _test_p(r, column).values())
     if column == "qq":
         osm, osr = r.residuals.normal_quantiles
-        return osm, osr / scale, f"Shapiro-Wilk p {_num(r.residuals.shapiro_p, '.2g')}"
+        return osm, osr / scale, flagged
     if column == "fitted":
         xv = r.fit.best_fit
     else:
         xv = _disp(column, cmp.data.arrays[column][r.rows])
-    t = r.residuals.tests.get(column, {})
-    runs_p = (t.get("runs") or {}).get("p_value")
-    text = f"runs p {_num(runs_p, '.2g')}, Kendall p {_num(t.get('kendall_p'), '.2g')}"
     resid = np.asarray(r.fit.residual, float)
-    return np.asarray(xv, float), resid / scale, text
+    return np.asarray(xv, float), resid / scale, flagged
+
+
+def _strip_lines(ax: Any, offsets: np.ndarray, flagged: list[bool]) -> None:
+    """The zero line of every strip and a band behind the flagged ones, as two artists.
+
+    One polyline (broken by NaN) and one collection cost a fraction of a line or a
+    patch per strip; both span the panel's width (x in axes coordinates).
+    """
+    from matplotlib.collections import PolyCollection
+    from matplotlib.lines import Line2D
+
+    trans = ax.get_yaxis_transform()
+    half = 0.48 * STRIP  # a thin white gap between neighbouring bands
+    bands = [[(0, off - half), (1, off - half), (1, off + half), (0, off + half)]
+             for off, f in zip(offsets, flagged) if f]
+    if bands:
+        ax.add_collection(PolyCollection(bands, facecolors=FLAG_COLOUR, edgecolors="none",
+                                         transform=trans, zorder=0), autolim=False)
+    ax.add_line(Line2D(np.tile([0.0, 1.0, np.nan], offsets.size), np.repeat(offsets, 3),
+                       color="grey", lw=0.6, transform=trans, zorder=1))
 
 
 def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     cols = list(cmp.design.varying) + ["fitted", "qq"]
     n = len(cmp.results)
     fig = _new_figure(3.3 * len(cols) + 1.8, 0.6 * n + 1.7)
-    axes = _grid(fig, 1, len(cols), left_in=1.7, top_in=0.75, bottom_in=0.6, wspace=0.08,
-                 sharey=True)[0]
+    axes = _grid(fig, 1, len(cols), left_in=1.7, top_in=0.75, bottom_in=0.6, wspace=0.08)[0]
     offsets = -STRIP * np.arange(n)
     for ax, c in zip(axes, cols):
-        for off in offsets:
-            ax.axhline(off, color="grey", lw=0.6)
+        # the same strips in every panel, named on the first: the others need no y ticks
+        # (a shared axis would make and draw them, hidden, in every panel)
+        ax.set_ylim(offsets[-1] - 0.5 * STRIP, 0.5 * STRIP)
+        ax.set_yticks([] if c != cols[0] else offsets)
+        flagged = []
         for r, off in zip(cmp.results, offsets):
-            xv, yv, text = _strip(cmp, r, c)
-            ax.plot(xv, yv + off, "o", ms=3, color=styles[r.law.id]["color"])
-            ax.text(0.99, off + 0.5 * STRIP, text, transform=ax.get_yaxis_transform(),
-                    ha="right", va="center", fontsize=6.5, color="0.3")
+            xv, yv, flag = _strip(cmp, r, c)
+            ax.plot(xv, yv + off, "o", ms=3, color=styles[r.law.id]["color"], zorder=2)
+            flagged.append(flag)
+        _strip_lines(ax, offsets, flagged)
         ax.set_xlabel("normal quantile [-]" if c == "qq" else
                       "fitted mu [-]" if c == "fitted" else _label(c), fontsize=8)
-        ax.set_title("normal Q-Q" if c == "qq" else
-                     f"vs {'the fitted value' if c == 'fitted' else c}", fontsize=9)
+        ax.set_title("normal Q-Q (Shapiro-Wilk)" if c == "qq" else
+                     f"vs {'the fitted value' if c == 'fitted' else c} (runs, Kendall)",
+                     fontsize=9)
         ax.grid(axis="x", alpha=0.3)
         ax.tick_params(labelsize=7)
     axes[0].set_yticks(offsets, [f"{r.rank}. {r.law.id}" for r in cmp.results], fontsize=7)
-    axes[0].set_ylim(offsets[-1] - 0.5 * STRIP, 0.65 * STRIP)
     fig.suptitle(f"{cmp.data.name}: residuals (data - fit) of each law, in rank order, "
-                 "divided by the law's RMSE", fontsize=11)
+                 "divided by the law's RMSE; red band: a test finds structure (p < "
+                 f"{ALPHA:g})", fontsize=11)
     caption = ("Residuals of each fitted law (one strip per law, in rank order, each divided "
                "by that law's RMSE so that every strip has the same scale; the grey line is "
                "zero) against each variable and against the fitted value, and the normal Q-Q "
-               "plot. The text gives the one-sided runs-test p-value (small: residual signs "
-               "cluster along the variable, a systematic misfit), the Kendall-trend p-value "
-               "and the Shapiro-Wilk p-value.")
+               f"plot. A strip on a red band: in that panel the one-sided runs test (residual "
+               f"signs cluster along the variable, a systematic misfit) or the Kendall trend "
+               f"test, or in the Q-Q panel the Shapiro-Wilk test, has p < {ALPHA:g}. Every "
+               "p-value is in the table of residual tests.")
     return Figure("residuals", "residuals", caption, _png(fig))
 
 
@@ -491,7 +572,7 @@ def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any
     ax.set_xlabel(_label(x))
     ax.set_ylabel(_label("mu"))
     at = f" at {_at_text(level)}" if level else ""
-    ax.set_title(f"fitted on {x} <= {fmt_value(x, thr)}, scored above"
+    ax.set_title(f"fitted on {x} <= {_fmt(x, thr)}, scored above"
                  f"\n({int(test.sum())} held-out rows; curves{at})", fontsize=9)
     ax.grid(alpha=0.3)
 
@@ -634,11 +715,26 @@ def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
                   _png(fig))
 
 
+def _log_axis(ax: Any, lo: float, hi: float) -> None:
+    """A log x axis from ``lo`` to ``hi`` ticked and labelled at 1, 2, 5 x 10^k in plain numbers.
+
+    Plain labels are drawn as text; the default 10^k labels go through mathtext, and the
+    minor ticks the 1-2-5 ticks replace cost a tick each.
+    """
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
+
+    ax.set_xscale("log")
+    ax.set_xlim(lo, hi)
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+    ax.xaxis.set_minor_locator(NullLocator())
+
+
 def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     res = cmp.results
     n = len(res)
-    fig = _new_figure(10, 0.45 * n + 1.6)
-    ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.45, bottom_in=0.55)[0, 0]
+    fig = _new_figure(10, 0.45 * n + 2.0)
+    ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.85, bottom_in=0.55)[0, 0]
     k = cmp.settings["folds"]
     series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6"),
               (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan")]
@@ -659,13 +755,9 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
         for yi, v in zip(yy, vals):
             if v is None or not math.isfinite(v):
                 ax.text(vmin * 0.55, yi, "n/a", va="center", fontsize=7)
-            else:
-                ax.text(v * 1.04, yi, f"{v:.3g}", va="center", fontsize=7)
-    ax.set_xscale("log")
-    ax.set_xlim(vmin * 0.5, vmax * 3.0)
-    ax.set_yticks(y)
-    ax.set_yticklabels([f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
-                        for r in res])
+    _log_axis(ax, vmin * 0.5, vmax * 2.0)
+    ax.set_yticks(y, [f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
+                      for r in res])
     for lab, r in zip(ax.get_yticklabels(), res):
         if not r.plausible:
             lab.set_color("tab:red")
@@ -673,12 +765,14 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     ax.set_xlabel("RMSE of mu [-] (log scale)")
     ax.set_ylabel("law (rank by CV RMSE)")
     ax.grid(axis="x", alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8)
-    ax.set_title(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2, fontsize=8,
+              frameon=False, borderaxespad=0.2)
+    fig.suptitle(f"{cmp.data.name}: error on fitted rows, unseen rows and the held-out "
                  "upper range", fontsize=10)
     caption = ("Fit RMSE (on the rows fitted), cross-validated RMSE (on rows left out of "
                "each fit; the ranking criterion) and extrapolation RMSE (on the held-out "
-               "upper range), per law in rank order; implausible laws in red.")
+               "upper range), per law in rank order, on a log scale; implausible laws in "
+               "red; n/a: not available. The values are in the ranking table.")
     return Figure("metrics", "metrics", caption, _png(fig))
 
 
@@ -698,12 +792,23 @@ def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
 
 
 def _draw(cmp: Comparison, index: int) -> Figure | None:
-    """Draw figure ``index`` of the report's plan (module-level: joblib runs it elsewhere)."""
+    """Draw figure ``index`` of the report's plan."""
     import matplotlib
 
     draw, args = _figure_plan(cmp)[index]
-    with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 9}):
+    with matplotlib.rc_context(RC):  # type: ignore[arg-type]
         return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
+
+
+def _draw_share(cmp: Comparison, indices: Sequence[int],
+                affine: dict[str, tuple[float, float]]) -> list[Figure | None]:
+    """Draw several figures of the plan in a worker process (module-level for joblib).
+
+    ``affine`` carries the parent's display conversions, so that a worker does not
+    build a unit registry to work them out again.
+    """
+    _AFFINE.update(affine)
+    return [_draw(cmp, i) for i in indices]
 
 
 def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
@@ -717,20 +822,37 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
     cmp : Comparison
         The comparison to draw.
     jobs : int
-        Processes (joblib) drawing the figures; 1 draws them here, one after another.
+        Processes drawing the figures (-1: one per core); 1 draws them here, one after
+        another.  With more, each of ``jobs`` joblib workers draws one share of the
+        figures, sent the comparison once.  A worker that has not drawn yet first
+        imports the plotting code (a few tenths of a second), so two processes gain
+        little on one report.
 
     Returns
     -------
     list of Figure
-        The PNG figures in report order.
+        The PNG figures in report order, the same with any ``jobs``.
     """
-    indices = range(len(_figure_plan(cmp)))
-    if jobs == 1:
-        figs = [_draw(cmp, i) for i in indices]
-    else:
-        from joblib import Parallel, delayed
+    count = len(_figure_plan(cmp))
+    drawers = 1
+    if jobs != 1:
+        from joblib import effective_n_jobs
 
-        figs = Parallel(n_jobs=jobs)(delayed(_draw)(cmp, i) for i in indices)
+        drawers = max(1, min(count, effective_n_jobs(jobs)))
+    if drawers == 1:
+        return [f for f in (_draw(cmp, i) for i in range(count)) if f is not None]
+    from joblib import Parallel, delayed
+
+    for var in cmp.data.arrays:
+        if var in VARIABLES:
+            _affine(var)
+    shares = [list(range(w, count, drawers)) for w in range(drawers)]
+    drawn = Parallel(n_jobs=drawers)(delayed(_draw_share)(cmp, share, dict(_AFFINE))
+                                     for share in shares)
+    figs: list[Figure | None] = [None] * count
+    for share, figures in zip(shares, drawn):
+        for i, f in zip(share, figures):
+            figs[i] = f
     return [f for f in figs if f is not None]
 
 
@@ -822,6 +944,40 @@ def _method(cmp: Comparison) -> list[str]:
     ]
 
 
+RESIDUAL_TESTS_NOTE = (
+    "One-sided Wald-Wolfowitz runs test on the signs of the residuals put in order of each "
+    "variable and of the fitted value (small p: residuals of one sign cluster, a systematic "
+    "misfit), Kendall's tau test of a monotone trend, and the Shapiro-Wilk test of "
+    f"normal-looking residuals; each at the {ALPHA * 100:g} % level on its own. Marked: p < "
+    f"{ALPHA:g} (a red band in the residuals figure). n/a: the test does not apply (a "
+    "constant variable, or residuals all of one sign).")
+
+
+def _residual_table(cmp: Comparison) -> tuple[list[str], list[list[tuple[str, bool]]]]:
+    """Every residual test's p-value per law: header, rows of (text, below ALPHA)."""
+    cols = [*cmp.design.varying, "fitted"]
+    head = ["law"]
+    for c in cols:
+        name = "fitted mu" if c == "fitted" else c
+        head += [f"runs p ({name})", f"Kendall p ({name})"]
+    head.append("Shapiro-Wilk p")
+    rows = []
+    for r in cmp.results:
+        ps = [p for c in cols for p in _test_p(r, c).values()] + [r.residuals.shapiro_p]
+        rows.append([(f"{r.rank}. {r.law.id}", False)]
+                    + [(_num(p, ".2g"), _flagged(p)) for p in ps])
+    return head, rows
+
+
+def _md_residual_tests(cmp: Comparison) -> list[str]:
+    """The table of residual-test p-values in Markdown, the flagged ones in bold."""
+    head, rows = _residual_table(cmp)
+    lines = ["## Residual tests (p-values)", "", RESIDUAL_TESTS_NOTE, "",
+             "| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    return lines + ["| " + " | ".join(f"**{t}**" if bad else t.replace("|", "\\|")
+                                      for t, bad in row) + " |" for row in rows]
+
+
 def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """The report as Markdown, linking the PNG files."""
     d = cmp.data
@@ -847,7 +1003,7 @@ def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
             else:
                 lines.append(f"- {esc(item)}")
         lines.append("")
-    lines += ["## Figures", ""]
+    lines += _md_residual_tests(cmp) + ["", "## Figures", ""]
     for f in figures:
         lines += [f"### {f.title}", "", f"![{f.title}]({f.name}.png)", "", f.caption, ""]
     return "\n".join(lines)
@@ -917,6 +1073,22 @@ def _html_sections(cmp: Comparison) -> list[str]:
     return parts
 
 
+def _html_residual_tests(cmp: Comparison) -> list[str]:
+    """The table of residual-test p-values in HTML, the flagged ones marked."""
+    e = html.escape
+    head, rows = _residual_table(cmp)
+    parts = ["<h2>Residual tests (p-values)</h2>", f"<p>{e(RESIDUAL_TESTS_NOTE)}</p>",
+             "<table><tr>" + "".join(f"<th class='{'l' if i == 0 else ''}'>{e(h)}</th>"
+                                     for i, h in enumerate(head)) + "</tr>"]
+    for row in rows:
+        cells = [f"<td class='l'>{e(row[0][0])}</td>"]
+        cells += [f"<td><span class='bad-word'>{e(t)}</span></td>" if bad else f"<td>{e(t)}</td>"
+                  for t, bad in row[1:]]
+        parts.append("<tr>" + "".join(cells) + "</tr>")
+    parts.append("</table>")
+    return parts
+
+
 def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """Write the report as one self-contained HTML page (figures embedded as base64 PNG).
 
@@ -945,7 +1117,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
              "<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
              "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
              "alone in its group has weight 1 trivially).</p>",
-             *_html_sections(cmp), "<h2>Figures</h2>"]
+             *_html_sections(cmp), *_html_residual_tests(cmp), "<h2>Figures</h2>"]
     for f in figures:
         b64 = base64.b64encode(f.png).decode("ascii")
         parts.append(f"<figure id='{e(f.name)}'><h3>{e(f.title)}</h3>"

@@ -1,0 +1,126 @@
+"""Time of ``Comparison.write_report`` on the packaged thesis-steel data (issue 15: < 2.5 s wall).
+
+The comparison is computed once (every sliding law, or five with ``--quick``); then the
+report is written ``--rounds`` times into fresh temporary directories, serially, and
+with the figures drawn by ``--jobs`` processes.  Printed from this one run:
+
+* the first report of the process (it loads fonts and caches text metrics) and the median
+  and best of the following ones, wall and CPU seconds;
+* the CPU seconds of each figure (best of the rounds);
+* the serial / ``jobs`` wall ratio;
+* with ``--against REF``: the report module of the git revision ``REF`` (e.g. ``main``),
+  loaded beside the current one and timed alternately with it on the same comparison,
+  and the median of the paired wall and CPU ratios (current / REF).
+
+Wall times on a shared machine are noisy; CPU seconds and paired ratios are steadier.
+
+Run: ``python benchmarks/bench_report.py [--quick] [--rounds 5] [--jobs 2] [--against main]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+from frictionlaws.comparison import compare, report
+from frictionlaws.fitting import as_fit_data
+from frictionlaws.registry import list_laws
+
+QUICK = ["coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"]
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def load_revision(ref: str) -> ModuleType:
+    """``frictionlaws/comparison/report.py`` as it is at git revision ``ref``, as a module."""
+    path = "frictionlaws/comparison/report.py"
+    try:
+        source = subprocess.run(["git", "show", f"{ref}:{path}"], cwd=ROOT, check=True,
+                                capture_output=True, text=True).stdout
+    except (OSError, subprocess.CalledProcessError) as exc:
+        sys.exit(f"bench_report: cannot read {path} at {ref!r} with git: {exc}")
+    name = "frictionlaws.comparison._report_at_ref"
+    spec = importlib.util.spec_from_loader(name, loader=None)
+    assert spec is not None
+    module = importlib.util.module_from_spec(spec)
+    module.__package__ = "frictionlaws.comparison"  # its relative imports resolve as usual
+    sys.modules[name] = module
+    exec(compile(source, f"{ref}:{path}", "exec"), module.__dict__)  # noqa: S102
+    return module
+
+
+def timed_report(module: Any, cmp: Any, jobs: int = 1) -> tuple[float, float]:
+    """Wall and CPU seconds of one ``module.write_report`` into a fresh directory."""
+    with tempfile.TemporaryDirectory() as tmp:
+        w0, c0 = time.perf_counter(), time.process_time()
+        module.write_report(cmp, Path(tmp) / "report", jobs)
+        return time.perf_counter() - w0, time.process_time() - c0
+
+
+def figure_seconds(cmp: Any, rounds: int) -> dict[str, float]:
+    """Best CPU seconds of each figure of the current report over ``rounds`` drawings."""
+    best: dict[str, float] = {}
+    for _ in range(rounds):
+        for index in range(len(report._figure_plan(cmp))):
+            c0 = time.process_time()
+            fig = report._draw(cmp, index)
+            spent = time.process_time() - c0
+            if fig is not None:
+                best[fig.name] = min(best.get(fig.name, spent), spent)
+    return best
+
+
+def summary(label: str, runs: list[tuple[float, float]]) -> str:
+    walls, cpus = [w for w, _ in runs], [c for _, c in runs]
+    return (f"{label:34s} median {statistics.median(walls):6.2f} s wall "
+            f"{statistics.median(cpus):6.2f} s cpu; best {min(walls):6.2f} s wall")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="five laws instead of all")
+    ap.add_argument("--rounds", type=int, default=5, help="reports timed per variant")
+    ap.add_argument("--jobs", type=int, default=2, help="processes of the parallel run")
+    ap.add_argument("--against", metavar="REF", help="git revision whose report to time too")
+    args = ap.parse_args()
+    data = as_fit_data("thesis-steel")
+    laws = QUICK if args.quick else [
+        law.id for law in list_laws("sliding") if all(v in data.variables for v in law.variables)]
+    cmp = compare(laws, data, progress=False)
+    old = load_revision(args.against) if args.against else None
+
+    first = timed_report(report, cmp)
+    now: list[tuple[float, float]] = []
+    then: list[tuple[float, float]] = []
+    for _ in range(args.rounds):  # alternately, so both see the same machine load
+        now.append(timed_report(report, cmp))
+        if old is not None:
+            then.append(timed_report(old, cmp))
+    par = [timed_report(report, cmp, args.jobs) for _ in range(args.rounds)]
+
+    print(f"laws: {len(laws)}; figures: {len(report.make_figures(cmp))}")
+    print(f"first report of the process:         {first[0]:6.2f} s wall {first[1]:6.2f} s cpu"
+          "  (target < 2.5 s wall)")
+    print(summary("report, serial:", now))
+    speedup = statistics.median(w for w, _ in now) / statistics.median(w for w, _ in par)
+    print(summary(f"report, figures with jobs={args.jobs}:", par)
+          + f"; serial / jobs wall {speedup:5.2f}x")
+    for name, sec in figure_seconds(cmp, args.rounds).items():
+        print(f"  figure {name:28s} {sec:6.3f} s cpu")
+    if old is not None:
+        print(summary(f"report at {args.against}, serial:", then))
+        wall = statistics.median(a[0] / b[0] for a, b in zip(now, then))
+        cpu = statistics.median(a[1] / b[1] for a, b in zip(now, then))
+        print(f"paired ratio now / {args.against}: {wall:5.2f}x wall, {cpu:5.2f}x cpu "
+              f"(median of {len(now)} pairs)")
+
+
+if __name__ == "__main__":
+    main()
