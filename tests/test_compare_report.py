@@ -11,12 +11,10 @@ from __future__ import annotations
 import html
 import math
 
-import numpy as np
 import pytest
 
 from frictionlaws.comparison import Comparison, compare
 from frictionlaws.comparison import report as rep
-from frictionlaws.comparison.extrapolation import fmt_value
 from frictionlaws.comparison.residuals import ALPHA
 
 LAWS = ["coulomb", "thirion", "savkoor"]  # coulomb leaves structure; savkoor drops v = 0
@@ -70,23 +68,6 @@ def test_the_red_bands_of_the_residuals_figure_agree_with_the_table(cmp: Compari
         assert rep._strip(cmp, r, "qq")[2] == flags[-1]
     assert any(rep._strip(cmp, r, "p")[2] for r in cmp.results)
     assert not all(rep._strip(cmp, r, "qq")[2] for r in cmp.results)
-
-
-@pytest.mark.parametrize("var, values", [("p", [3.119e4, 1.0e5, 2.5e6, 0.0]),
-                                         ("v", [0.0, 1.38, 2.77, 1e-4]),
-                                         ("T", [273.15, 293.15, 400.0]),
-                                         ("mu", [0.123456, 2.0])])
-def test_panel_values_read_as_in_the_rest_of_the_report(var: str, values: list[float]) -> None:
-    for x in values:
-        assert rep._fmt(var, x) == fmt_value(var, x)
-
-
-def test_display_conversion_of_the_figures_is_the_units_one() -> None:
-    from frictionlaws.units import to_display
-
-    x = np.array([0.0, 3.119e4, 1.0e5, 2.5e6, 293.15])
-    for var in ("p", "v", "T", "F_N"):
-        assert np.allclose(rep._disp(var, x), to_display(x, var), rtol=1e-15, atol=0)
 
 
 def test_the_metrics_axis_is_labelled_in_plain_numbers() -> None:

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..law import VARIABLES
-from ..units import display_unit, to_display
+from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 from .residuals import ALPHA
 
@@ -88,36 +88,9 @@ def _num(x: Any, fmt: str = ".3g") -> str:
     return format(xf, fmt)
 
 
-#: Display conversion of each variable as (offset, scale): display = offset + scale * SI.
-#: Every display unit is an affine function of the SI one (MPa, degC...), so two values of
-#: :func:`~frictionlaws.units.to_display` give it; a figure converts hundreds of arrays.
-_AFFINE: dict[str, tuple[float, float]] = {}
-
-
-def _affine(var: str) -> tuple[float, float]:
-    """(offset, scale) of ``var``'s display conversion, worked out once per process."""
-    if var not in _AFFINE:
-        zero, one = (float(v) for v in to_display(np.array([0.0, 1.0]), var))
-        _AFFINE[var] = (zero, one - zero)
-    return _AFFINE[var]
-
-
 def _disp(var: str, x: Any) -> Any:
-    """SI -> display unit (MPa, degC)."""
-    offset, scale = _affine(var)
-    return offset + scale * np.asarray(x, dtype=float)
-
-
-def _fmt(var: str, x: float) -> str:
-    """:func:`~frictionlaws.comparison.extrapolation.fmt_value` through :func:`_disp`.
-
-    The same text (a test compares them), without a unit registry in a worker process.
-    """
-    if var == "mu":
-        return fmt_value(var, x)
-    unit = display_unit(var)
-    value = float(_disp(var, x))
-    return f"{value:.4g} {unit}" if unit else f"{value:.4g}"
+    """SI -> display unit (MPa, degC), by :func:`~frictionlaws.units.to_display`."""
+    return to_display(x, var)
 
 
 def _label(var: str) -> str:
@@ -368,7 +341,7 @@ def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[st
 
 
 def _at_text(level: dict[str, float]) -> str:
-    return ", ".join(f"{k} = {_fmt(k, v)}" for k, v in level.items())
+    return ", ".join(f"{k} = {fmt_value(k, v)}" for k, v in level.items())
 
 
 def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
@@ -380,9 +353,9 @@ def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
 def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: str) -> str:
     if kind == "bin":
         gm = cmp.data.arrays[g][mask]
-        title = f"{g} {_fmt(g, float(gm.min()))} .. {_fmt(g, float(gm.max()))}"
+        title = f"{g} {fmt_value(g, float(gm.min()))} .. {fmt_value(g, float(gm.max()))}"
     else:
-        title = f"{g} = {_fmt(g, level)}"
+        title = f"{g} = {fmt_value(g, level)}"
     nr = int(mask.sum())
     return f"{title} ({nr} row{'s' if nr != 1 else ''})"
 
@@ -572,7 +545,7 @@ def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any
     ax.set_xlabel(_label(x))
     ax.set_ylabel(_label("mu"))
     at = f" at {_at_text(level)}" if level else ""
-    ax.set_title(f"fitted on {x} <= {_fmt(x, thr)}, scored above"
+    ax.set_title(f"fitted on {x} <= {fmt_value(x, thr)}, scored above"
                  f"\n({int(test.sum())} held-out rows; curves{at})", fontsize=9)
     ax.grid(alpha=0.3)
 
@@ -800,14 +773,8 @@ def _draw(cmp: Comparison, index: int) -> Figure | None:
         return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
 
 
-def _draw_share(cmp: Comparison, indices: Sequence[int],
-                affine: dict[str, tuple[float, float]]) -> list[Figure | None]:
-    """Draw several figures of the plan in a worker process (module-level for joblib).
-
-    ``affine`` carries the parent's display conversions, so that a worker does not
-    build a unit registry to work them out again.
-    """
-    _AFFINE.update(affine)
+def _draw_share(cmp: Comparison, indices: Sequence[int]) -> list[Figure | None]:
+    """Draw several figures of the plan in a worker process (module-level for joblib)."""
     return [_draw(cmp, i) for i in indices]
 
 
@@ -843,12 +810,8 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
         return [f for f in (_draw(cmp, i) for i in range(count)) if f is not None]
     from joblib import Parallel, delayed
 
-    for var in cmp.data.arrays:
-        if var in VARIABLES:
-            _affine(var)
     shares = [list(range(w, count, drawers)) for w in range(drawers)]
-    drawn = Parallel(n_jobs=drawers)(delayed(_draw_share)(cmp, share, dict(_AFFINE))
-                                     for share in shares)
+    drawn = Parallel(n_jobs=drawers)(delayed(_draw_share)(cmp, share) for share in shares)
     figs: list[Figure | None] = [None] * count
     for share, figures in zip(shares, drawn):
         for i, f in zip(share, figures):
