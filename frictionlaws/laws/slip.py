@@ -212,7 +212,7 @@ def _burckhardt_mu_peak(m, c1, c2, c3, **_):
 
 def _burckhardt_guess(d):
     """Grid over (c2, c4); for each, c1 and c3 >= 0 by linear least squares (2x2, vectorised)."""
-    d = _subsample(d)
+    d = _subsample(d, 500)
     s, v, mu = d["s"], np.abs(d["v"]), d["mu"]
     c4_grid = [0.0] + (list(np.geomspace(1e-3, 0.2, 20)) if np.ptp(v) > 0 else [])
     c2_grid = np.geomspace(1.0, 1000.0, 60)
