@@ -188,8 +188,10 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
 
 #: Inputs read or named in this process (real paths): never replaced.
 _PROTECTED: set[str] = set()
-#: The same files as (device, inode): a hard link to one is refused too.
-_PROTECTED_IDS: set[tuple[int, int]] = set()
+#: The same files as (device, inode) -> (mtime in ns, size) when read: a hard link to one
+#: is refused too, while the inode still holds that content (a deleted file's inode is
+#: handed to new files, whose time and size differ).
+_PROTECTED_IDS: dict[tuple[int, int], tuple[int, int]] = {}
 #: Files written by this module in this process (real paths): not registered when read.
 _WRITTEN: set[str] = set()
 
@@ -200,7 +202,7 @@ def _register(path: Path, st: os.stat_result | None) -> None:
         return
     _PROTECTED.add(key)
     if st is not None:
-        _PROTECTED_IDS.add((st.st_dev, st.st_ino))
+        _PROTECTED_IDS[(st.st_dev, st.st_ino)] = (st.st_mtime_ns, st.st_size)
 
 
 def protect_input(path: PathLike) -> None:
@@ -244,7 +246,7 @@ def is_protected(path: PathLike) -> bool:
         st = p.stat()
     except OSError:
         return False
-    return (st.st_dev, st.st_ino) in _PROTECTED_IDS
+    return _PROTECTED_IDS.get((st.st_dev, st.st_ino)) == (st.st_mtime_ns, st.st_size)
 
 
 def _refuse_protected(path: Path, what: str = "output file") -> None:

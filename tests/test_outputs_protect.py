@@ -34,7 +34,7 @@ BOX = {"p": (1e4, 1e6, 5)}
 def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> None:
     """Each test starts with no file registered (the registry is per process)."""
     monkeypatch.setattr(outputs, "_PROTECTED", set())
-    monkeypatch.setattr(outputs, "_PROTECTED_IDS", set())
+    monkeypatch.setattr(outputs, "_PROTECTED_IDS", {})
     monkeypatch.setattr(outputs, "_WRITTEN", set())
 
 
@@ -92,7 +92,7 @@ def test_a_saved_fit_refuses_its_data_file_even_when_this_process_never_read_it(
     saved = tmp_path / "fit.json"
     fl.fit("thirion", data).save(saved)
     for name in ("_PROTECTED", "_PROTECTED_IDS", "_WRITTEN"):  # a new session
-        monkeypatch.setattr(outputs, name, set())
+        monkeypatch.setattr(outputs, name, type(getattr(outputs, name))())
     res = fl.load_result(saved)
     assert not outputs.is_protected(data)
     before = data.read_bytes()
@@ -202,3 +202,27 @@ def test_a_read_file_is_never_replaced_whatever_name_reaches_it(
             os.chdir(cwd)
         assert data.read_bytes() == before
         assert not [p for p in root.rglob("*.part")]
+
+
+def test_a_reused_inode_of_a_deleted_input_protects_nothing(tmp_path: Path) -> None:
+    """An input read, then deleted: a new file that gets its inode is not that input."""
+    gone = tmp_path / "gone.csv"
+    gone.write_text("mu\n0.5\n", encoding="utf-8")
+    outputs.protect_input(gone)
+    new = tmp_path / "new.csv"
+    new.write_text("mu\n0.6\n", encoding="utf-8")
+    st, old = new.stat(), gone.stat()
+    gone.unlink()
+    # what the file system does when it hands the deleted file's inode to a new file
+    outputs._PROTECTED_IDS[(st.st_dev, st.st_ino)] = (old.st_mtime_ns - 1, old.st_size)
+    assert not outputs.is_protected(new)
+    assert outputs.is_protected(gone)  # the name read stays protected
+
+
+def test_a_hard_link_to_an_input_is_protected(tmp_path: Path) -> None:
+    src = tmp_path / "in.csv"
+    src.write_text("mu\n0.5\n", encoding="utf-8")
+    outputs.protect_input(src)
+    link = tmp_path / "link.csv"
+    os.link(src, link)
+    assert outputs.is_protected(link)
