@@ -1395,12 +1395,7 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
     full_values = {**setup.settings, **values}
 
     def residual_vec(theta: np.ndarray) -> np.ndarray:
-        vals = dict(full_values)
-        vals.update(dict(zip(vary, theta)))
-        with np.errstate(all="ignore"):
-            out = law.evaluate(setup.x, vals) if law.variables else np.broadcast_to(
-                law.evaluate({}, vals), setup.y.shape)
-        out = np.asarray(out, float)
+        out = search.evaluate({**values, **dict(zip(vary, (float(t) for t in theta)))})
         return out * (w if w is not None else 1.0)
 
     jac = search.jacobian(values, vary)
