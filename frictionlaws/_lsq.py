@@ -176,10 +176,9 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
         kws["jac"] = _residual_jacobian(jac, res)
     try:
         if jac is not None and y.size > len(vary):
-            ret = _minpack_inside(res, x0, kws["jac"], max_nfev)
-            if ret is not None:
-                return _finish(res, ret.x, ret.jac, bool(ret.success), str(ret.message),
-                               res.nfev)
+            lm = _minpack_inside(res, x0, kws["jac"], max_nfev)
+            if lm is not None:
+                return _finish(res, lm[0], lm[1], True, lm[2], res.nfev)
         ret = least_squares(res, x0, bounds=(lo, hi), **kws)
     except _BudgetSpent:
         assert res.last is not None
@@ -201,8 +200,14 @@ def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], 
     bounds, so the solve is abandoned (None) at its first trial point outside them,
     or when it does not converge, and the bounded trust region takes over from the
     start.  A minimum it reaches inside the bounds is also the bounded problem's.
+
+    MINPACK is called through :func:`scipy.optimize.leastsq`, which hands it the
+    Jacobian without the copies ``least_squares(method="lm")`` keeps (four of the
+    Jacobian and four of the residual on a 2e6-row fit); the arguments are those
+    ``least_squares`` passes (``x_scale=1``, ``factor=100``), so the steps are the same.
+    Returns ``(x, J, message)``, J the Jacobian at x, as ``least_squares`` gives it.
     """
-    from scipy.optimize import least_squares
+    from scipy.optimize import leastsq
 
     def inside(theta: np.ndarray) -> np.ndarray:
         if np.any(theta < res.lo) or np.any(theta > res.hi):
@@ -212,11 +217,15 @@ def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], 
     if np.any(x0 <= res.lo) or np.any(x0 >= res.hi):
         return None
     try:
-        ret = least_squares(inside, x0, jac=jac, method="lm", ftol=1e-8, xtol=1e-8, gtol=1e-8,
-                            x_scale=1.0, max_nfev=max_nfev)
+        x, _, _, message, ier = leastsq(inside, x0.copy(), Dfun=jac, full_output=True,
+                                        ftol=1e-8, xtol=1e-8, gtol=1e-8, maxfev=max_nfev,
+                                        factor=100.0, diag=np.ones(x0.size))
     except (_LeftBounds, ValueError, FloatingPointError, np.linalg.LinAlgError):
         return None
-    return ret if ret.success and ret.status > 0 else None
+    if ier not in (1, 2, 3, 4):
+        return None
+    x = np.atleast_1d(x)
+    return x, jac(x), str(message)
 
 
 def _residual_jacobian(jac: Callable[[dict[str, float]], np.ndarray], res: _Residual

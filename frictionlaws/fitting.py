@@ -927,6 +927,27 @@ def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.
     return jac
 
 
+def _unit_columns_r(jac: np.ndarray, cols: list[int], norms: np.ndarray) -> np.ndarray:
+    """The columns ``cols`` of ``jac`` scaled to unit length, or on large data their R factor.
+
+    ``J = Q R`` leaves the singular values and right singular vectors unchanged, and R is
+    built block by block (``R = qr([R; J_block])``), so a fit on millions of rows needs no
+    scaled copy of the Jacobian nor an n-row U of its SVD.
+    """
+    from .law import _BLOCK, _BLOCKED_FROM
+
+    n = jac.shape[0]
+    if n < _BLOCKED_FROM:
+        return jac[:, cols] / norms
+    r = np.zeros((0, len(cols)))
+    for start in range(0, n, _BLOCK):
+        block = jac[start:start + _BLOCK, cols] / norms
+        if not np.all(np.isfinite(block)):
+            return block
+        r = np.linalg.qr(np.vstack([r, block]), mode="r")
+    return r
+
+
 def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list[str], float]:
     """Names of non-identifiable and poorly determined parameters, and the ratio s_min/s_max."""
     norms = np.linalg.norm(jac, axis=0)
@@ -934,7 +955,7 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
     ok = [j for j in range(len(names)) if np.isfinite(norms[j]) and norms[j] > 0]
     if not ok:
         return list(names), [], 0.0
-    jn = jac[:, ok] / norms[ok]
+    jn = _unit_columns_r(jac, ok, norms[ok])
     if not np.all(np.isfinite(jn)):
         return list(names), [], 0.0
     _, s, vt = np.linalg.svd(jn, full_matrices=False)
