@@ -944,7 +944,7 @@ def _unit_columns_r(jac: np.ndarray, cols: list[int], norms: np.ndarray) -> np.n
         block = jac[start:start + _BLOCK, cols] / norms
         if not np.all(np.isfinite(block)):
             return block
-        r = np.linalg.qr(np.vstack([r, block]), mode="r")
+        r = np.asarray(np.linalg.qr(np.vstack([r, block]), mode="r"))
     return r
 
 
