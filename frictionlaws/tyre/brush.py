@@ -773,15 +773,21 @@ class BrushModel:
         lo, hi = np.zeros_like(a), rate * a
         v = np.clip(v, lo, hi)
         dlim, settled = np.zeros_like(a), True
+        scale = pk * (self.tyre.width / c)  # limit = mu scale
+        inv_rate, tol = 1.0 / rate, 1e-14 * a
+        both = np.empty((2, a.size))
         for _ in range(TIP_STEPS):
             dv = 1e-7 * v + 1e-13
-            both = np.stack([v, v + dv])
-            lim, lim_dv = np.broadcast_to(self._limit(pk, both, c, check=False), both.shape)
-            dlim = (lim_dv - lim) / dv
-            h = a - v / rate - lim
-            lo, hi = np.where(h > 0, v, lo), np.where(h > 0, hi, v)
-            settled = bool(np.all(np.abs(h) <= 1e-14 * a))
-            v_new = v + h / (1.0 / rate + dlim)
+            both[0] = v
+            np.add(v, dv, out=both[1])
+            mu = np.broadcast_to(np.asarray(self.mu(pk, both), dtype=float), both.shape)
+            lim = mu[0] * scale
+            dlim = (mu[1] * scale - lim) / dv
+            h = a - v / rate - lim  # as the sweep divides (q = 0 exactly where p = 0)
+            pos = h > 0
+            lo, hi = np.where(pos, v, lo), np.where(pos, hi, v)
+            settled = bool(np.all(np.abs(h) <= tol))
+            v_new = v + h / (inv_rate + dlim)
             v = np.where((v_new >= lo) & (v_new <= hi), v_new, 0.5 * (lo + hi))
             if settled:
                 break
