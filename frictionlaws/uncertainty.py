@@ -191,6 +191,19 @@ def _norm_cdf(z: float) -> float:
     return 0.5 * math.erfc(-z / math.sqrt(2.0))
 
 
+def _order_by(key: np.ndarray, others: list[np.ndarray]) -> np.ndarray:
+    """``np.lexsort([*others, key])``: rows by ``key``, ties by ``others`` then by row.
+
+    Without ties in ``key`` that order is the one any sort gives, so the (several times
+    faster) default sort is used; with ties, the stable lexicographic sort.
+    """
+    order = np.argsort(key)
+    ranked = key[order]
+    if np.any(ranked[1:] == ranked[:-1]):
+        return np.lexsort([*others, key])
+    return order
+
+
 def residual_structure(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
                        variables: Sequence[str]) -> Structure | None:
     """The strongest residual structure along any variable (None with too few rows).
@@ -204,11 +217,10 @@ def residual_structure(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
     if resid.size < 8 or not np.all(np.isfinite(resid)):
         return None
     found: list[tuple[float, str, str, float]] = []
-    present = [v for v in variables if v in arrays and np.unique(arrays[v]).size >= 2]
+    present = [v for v in variables if v in arrays and np.ptp(arrays[v]) > 0]
     for var in present:
         others = [np.asarray(arrays[o], float) for o in reversed(present) if o != var]
-        order = np.lexsort([*others, np.asarray(arrays[var], float)])
-        e = resid[order]
+        e = resid[_order_by(np.asarray(arrays[var], float), others)]
         runs, p_runs = _runs_p(e)
         r1, p_lag = _lag1_p(e)
         if math.isfinite(p_runs):

@@ -252,3 +252,17 @@ def test_cli_shared_refuses_uncertainty(capsys, tmp_path) -> None:
                  "--uncertainty", "sandwich"])
     err = capsys.readouterr().err
     assert code == 2 and "--uncertainty" in err
+
+
+@pytest.mark.parametrize("levels", [None, 3, 40])
+def test_residual_order_is_lexsorts_with_and_without_ties(levels):
+    """The fast order of residual_structure is exactly np.lexsort's (ties: others, then row)."""
+    from frictionlaws.uncertainty import _order_by
+
+    rng = np.random.default_rng(levels or 0)
+    for n in (8, 57, 3000):
+        key = (rng.uniform(0, 1, n) if levels is None
+               else rng.integers(0, levels, n).astype(float))
+        others = [rng.integers(0, 4, n).astype(float), rng.uniform(0, 1, n)]
+        for extra in ([], others[:1], others):
+            assert np.array_equal(_order_by(key, extra), np.lexsort([*extra, key]))

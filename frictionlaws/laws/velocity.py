@@ -56,18 +56,18 @@ def _bell_fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float, float]
     lo, hi = float(np.min(x)), float(np.max(x))
     xm_grid = np.linspace(lo - 1.0, hi + 1.0, 49)
     h_grid = np.geomspace(0.05, 2.0, 32)
-    dx = x[None, None, :] - xm_grid[:, None, None]
-    g = np.exp(-(h_grid[None, :, None] * dx) ** 2)
-    gm = g.mean(axis=2, keepdims=True)
-    ym = y.mean()
-    gc = g - gm
-    var = np.sum(gc**2, axis=2)
-    cov = np.sum(gc * (y - ym)[None, None, :], axis=2)
+    dx2 = (x[None, :] - xm_grid[:, None]) ** 2
+    gc = np.exp(-(h_grid**2)[None, :, None] * dx2[:, None, :])      # (xm, h, row)
+    gm = gc.mean(axis=2)
+    gc -= gm[..., None]  # centred in place: one grid-sized array in all
+    yc = y - y.mean()
+    var = np.einsum("ijk,ijk->ij", gc, gc)
+    cov = gc @ yc
     with np.errstate(all="ignore"):
         b = np.where(var > 1e-12, cov / var, 0.0)
     b = np.maximum(b, 0.0)
-    a = ym - b * gm[..., 0]
-    sse = np.sum((y[None, None, :] - a[..., None] - b[..., None] * g) ** 2, axis=2)
+    a = y.mean() - b * gm
+    sse = float(yc @ yc) - 2.0 * b * cov + b * b * var  # sum((yc - b gc)^2), expanded
     i, j = np.unravel_index(np.argmin(sse), sse.shape)
     return float(a[i, j]), float(a[i, j] + b[i, j]), float(h_grid[j]), float(xm_grid[i])
 
