@@ -137,11 +137,11 @@ def _entry_source(law: Law) -> str | None:
     lines = [f"def {fname}(m, names, {args}):"]
     for sym, sub in reps:
         lines.append(f"    {sym} = {printer.doprint(sub)}")
-    lines.append("    d = {")
+    lines.append("    _cols = {")  # columns as functions: only the requested ones are computed
     for k, d in zip(names, reduced):
-        lines.append(f"        {k!r}: {printer.doprint(d)},")
+        lines.append(f"        {k!r}: lambda: {printer.doprint(d)},")
     lines.append("    }")
-    lines.append("    return [d[k] for k in names]")
+    lines.append("    return [_cols[k]() for k in names]")
     text = "\n".join(lines)
     if "numpy." in text.replace("numpy.", "", 0) and "# Not supported" in text:
         return None

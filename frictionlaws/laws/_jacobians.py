@@ -12,19 +12,19 @@ import numpy
 __all__ = ["JACOBIANS"]
 
 def _d_coulomb(m, names, mu0):
-    d = {
-        'mu0': 1,
+    _cols = {
+        'mu0': lambda: 1,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_thirion(m, names, p, a, b):
     x0 = 1.0/(a + b*p)**2
-    d = {
-        'a': -x0,
-        'b': -p*x0,
+    _cols = {
+        'a': lambda: -x0,
+        'b': lambda: -p*x0,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_schallamach(m, names, F_N, mu_ref, n, F_ref):
@@ -32,24 +32,24 @@ def _d_schallamach(m, names, F_N, mu_ref, n, F_ref):
     x1 = F_N*x0
     x2 = x1**(-n)
     x3 = mu_ref*x2
-    d = {
-        'mu_ref': x2,
-        'n': -x3*numpy.log(x1),
-        'F_ref': n*x0*x3,
+    _cols = {
+        'mu_ref': lambda: x2,
+        'n': lambda: -x3*numpy.log(x1),
+        'F_ref': lambda: n*x0*x3,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_denny(m, names, p, a, b, E_v):
     x0 = p/E_v
     x1 = b*x0 + 1.0
     x2 = 1.0/(a*x1**2)
-    d = {
-        'a': -1.0/(a**2*x1),
-        'b': -x0*x2,
-        'E_v': b*p*x2/E_v**2,
+    _cols = {
+        'a': lambda: -1.0/(a**2*x1),
+        'b': lambda: -x0*x2,
+        'E_v': lambda: b*p*x2/E_v**2,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_exponential_decay(m, names, v, mu_s, mu_d, v_c, delta):
@@ -58,49 +58,49 @@ def _d_exponential_decay(m, names, v, mu_s, mu_d, v_c, delta):
     x2 = x1**delta
     x3 = numpy.exp(-x2)
     x4 = x2*x3*(mu_d - mu_s)
-    d = {
-        'mu_s': x3,
-        'mu_d': 1 - x3,
-        'v_c': -delta*x0*x4,
-        'delta': x4*numpy.log(x1),
+    _cols = {
+        'mu_s': lambda: x3,
+        'mu_d': lambda: 1 - x3,
+        'v_c': lambda: -delta*x0*x4,
+        'delta': lambda: x4*numpy.log(x1),
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_quadratic_pv(m, names, p, v, c0, c1, c2, c3, c4, c5):
-    d = {
-        'c0': 1,
-        'c1': p,
-        'c2': v,
-        'c3': p*v,
-        'c4': p**2,
-        'c5': v**2,
+    _cols = {
+        'c0': lambda: 1,
+        'c1': lambda: p,
+        'c2': lambda: v,
+        'c3': lambda: p*v,
+        'c4': lambda: p**2,
+        'c5': lambda: v**2,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_thesis_poly2(m, names, p, v, a0, a1, a2, a3, a4):
-    d = {
-        'a0': 1,
-        'a1': 1.0e-6*p,
-        'a2': 1.0e-12*p**2,
-        'a3': v,
-        'a4': v**2,
+    _cols = {
+        'a0': lambda: 1,
+        'a1': lambda: 1.0e-6*p,
+        'a2': lambda: 1.0e-12*p**2,
+        'a3': lambda: v,
+        'a4': lambda: v**2,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_thesis_poly3(m, names, p, v, a0, a1, a2, a3, a4, a5, a6):
-    d = {
-        'a0': 1,
-        'a1': 1.0e-6*p,
-        'a2': 1.0e-12*p**2,
-        'a3': 1.0e-18*p**3,
-        'a4': v,
-        'a5': v**2,
-        'a6': v**3,
+    _cols = {
+        'a0': lambda: 1,
+        'a1': lambda: 1.0e-6*p,
+        'a2': lambda: 1.0e-12*p**2,
+        'a3': lambda: 1.0e-18*p**3,
+        'a4': lambda: v,
+        'a5': lambda: v**2,
+        'a6': lambda: v**3,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_savkoor(m, names, p, v, mu_s, mu_m, h10, v_m, n, p_ref):
@@ -117,15 +117,15 @@ def _d_savkoor(m, names, p, v, mu_s, mu_m, h10, v_m, n, p_ref):
     x10 = mu_m - mu_s
     x11 = 2*x10*x9
     x12 = x2*(mu_s + x10*x8)
-    d = {
-        'mu_s': x2*(1 - x8),
-        'mu_m': x9,
-        'h10': -h10*x11*x7,
-        'v_m': x11*x3*x4*x5*x6,
-        'n': x12*numpy.log(x1),
-        'p_ref': -n*x0*x12,
+    _cols = {
+        'mu_s': lambda: x2*(1 - x8),
+        'mu_m': lambda: x9,
+        'h10': lambda: -h10*x11*x7,
+        'v_m': lambda: x11*x3*x4*x5*x6,
+        'n': lambda: x12*numpy.log(x1),
+        'p_ref': lambda: -n*x0*x12,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_nackenhorst(m, names, p, v, A, n, b0, b1, b2, p_ref, v_ref):
@@ -135,16 +135,16 @@ def _d_nackenhorst(m, names, p, v, A, n, b0, b1, b2, p_ref, v_ref):
     x3 = A*x2
     x4 = v_ref**(-1.0)
     x5 = numpy.log(v*x4)
-    d = {
-        'A': x2,
-        'n': x3*numpy.log(x1),
-        'b0': 1,
-        'b1': x5,
-        'b2': x5**2,
-        'p_ref': -n*x0*x3,
-        'v_ref': -x4*(b1 + 2*b2*x5),
+    _cols = {
+        'A': lambda: x2,
+        'n': lambda: x3*numpy.log(x1),
+        'b0': lambda: 1,
+        'b1': lambda: x5,
+        'b2': lambda: x5**2,
+        'p_ref': lambda: -n*x0*x3,
+        'v_ref': lambda: -x4*(b1 + 2*b2*x5),
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_nackenhorst_thesis(m, names, p, v, c1, c2, c3, c4, c5, c6, c7):
@@ -154,16 +154,16 @@ def _d_nackenhorst_thesis(m, names, p, v, c1, c2, c3, c4, c5, c6, c7):
     x3 = c1*x2
     x4 = c5**(-1.0)
     x5 = c7**(-1.0)
-    d = {
-        'c1': x2,
-        'c2': -c3*x0*x3,
-        'c3': x3*numpy.log(x1),
-        'c4': numpy.log(v*x4),
-        'c5': -c4*x4,
-        'c6': -numpy.log(v*x5),
-        'c7': c6*x5,
+    _cols = {
+        'c1': lambda: x2,
+        'c2': lambda: -c3*x0*x3,
+        'c3': lambda: x3*numpy.log(x1),
+        'c4': lambda: numpy.log(v*x4),
+        'c5': lambda: -c4*x4,
+        'c6': lambda: -numpy.log(v*x5),
+        'c7': lambda: c6*x5,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_huemer(m, names, p, v, alpha, beta, n, m_v, b, c, p_ref, v_ref):
@@ -184,17 +184,17 @@ def _d_huemer(m, names, p, v, alpha, beta, n, m_v, b, c, p_ref, v_ref):
     x14 = alpha*x13
     x15 = (alpha*x3 + beta)/x11**2
     x16 = x15*(2.0*x10 + 1.0*x8)
-    d = {
-        'alpha': x13,
-        'beta': x12,
-        'n': x14*numpy.log(x1),
-        'm_v': -x16*numpy.log(x5)/m_v**2,
-        'b': -x15*x7,
-        'c': -x15*x9,
-        'p_ref': -x0*x14*x2,
-        'v_ref': -x16*x4*x6,
+    _cols = {
+        'alpha': lambda: x13,
+        'beta': lambda: x12,
+        'n': lambda: x14*numpy.log(x1),
+        'm_v': lambda: -x16*numpy.log(x5)/m_v**2,
+        'b': lambda: -x15*x7,
+        'c': lambda: -x15*x9,
+        'p_ref': lambda: -x0*x14*x2,
+        'v_ref': lambda: -x16*x4*x6,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_wriggers(m, names, p, v, a, b, c, d):
@@ -205,13 +205,13 @@ def _d_wriggers(m, names, p, v, a, b, c, d):
     x4 = x3**c
     x5 = x4*numpy.arctan(d*p)/p
     x6 = b*x5
-    d = {
-        'a': -0.5*c*x6*(4.0*x1*x2 - 2.0)/a,
-        'b': x5,
-        'c': x6*numpy.log(x3),
-        'd': b*x4/(d**2*x0 + 1),
+    _cols = {
+        'a': lambda: -0.5*c*x6*(4.0*x1*x2 - 2.0)/a,
+        'b': lambda: x5,
+        'c': lambda: x6*numpy.log(x3),
+        'd': lambda: b*x4/(d**2*x0 + 1),
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_park(m, names, p, v, T, n, mu_s, mu_m, h10, v_m, p0, C1, C2, T_ref):
@@ -233,18 +233,18 @@ def _d_park(m, names, p, v, T, n, mu_s, mu_m, h10, v_m, p0, C1, C2, T_ref):
     x15 = 2*x13*x2
     x16 = x10*x15*x3
     x17 = C1*x16
-    d = {
-        'n': -x14*numpy.log(x1),
-        'mu_s': x2*(1 - x12),
-        'mu_m': x12*x2,
-        'h10': -h10*x11*x15,
-        'v_m': -x16*x4*x5,
-        'p0': n*x0*x14,
-        'C1': -x16*x9,
-        'C2': x17*x6/x7**2,
-        'T_ref': -x17*x8*(x9 - 1),
+    _cols = {
+        'n': lambda: -x14*numpy.log(x1),
+        'mu_s': lambda: x2*(1 - x12),
+        'mu_m': lambda: x12*x2,
+        'h10': lambda: -h10*x11*x15,
+        'v_m': lambda: -x16*x4*x5,
+        'p0': lambda: n*x0*x14,
+        'C1': lambda: -x16*x9,
+        'C2': lambda: x17*x6/x7**2,
+        'T_ref': lambda: -x17*x8*(x9 - 1),
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_pacejka(m, names, s, B, C, D, E, S_h, S_v):
@@ -257,15 +257,15 @@ def _d_pacejka(m, names, s, B, C, D, E, S_h, S_v):
     x6 = C*x5
     x7 = D*numpy.cos(x6)
     x8 = C*x7/(x4**2 + 1)
-    d = {
-        'B': x8*(-E*(-x0*x1 + x0) + x0),
-        'C': x5*x7,
-        'D': numpy.sin(x6),
-        'E': -x3*x8,
-        'S_h': B*x8*(-E*(1 - x1) + 1),
-        'S_v': 1,
+    _cols = {
+        'B': lambda: x8*(-E*(-x0*x1 + x0) + x0),
+        'C': lambda: x5*x7,
+        'D': lambda: numpy.sin(x6),
+        'E': lambda: -x3*x8,
+        'S_h': lambda: B*x8*(-E*(1 - x1) + 1),
+        'S_v': lambda: 1,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_burckhardt(m, names, s, v, c1, c2, c3, c4):
@@ -273,42 +273,42 @@ def _d_burckhardt(m, names, s, v, c1, c2, c3, c4):
     x1 = numpy.exp(-c2*s)
     x2 = 1.0 - x1
     x3 = s*x0
-    d = {
-        'c1': x0*x2,
-        'c2': c1*x1*x3,
-        'c3': -x3,
-        'c4': -v*x0*(c1*x2 - c3*s),
+    _cols = {
+        'c1': lambda: x0*x2,
+        'c2': lambda: c1*x1*x3,
+        'c3': lambda: -x3,
+        'c4': lambda: -v*x0*(c1*x2 - c3*s),
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_burckhardt_sqrt(m, names, s, c1, c2):
-    d = {
-        'c1': numpy.sqrt(s),
-        'c2': -s,
+    _cols = {
+        'c1': lambda: numpy.sqrt(s),
+        'c2': lambda: -s,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_kiencke_daiss(m, names, s, k_s, c1, c2):
     x0 = s**2
     x1 = c1*x0 + c2*s + 1.0
     x2 = k_s/x1**2
-    d = {
-        'k_s': s/x1,
-        'c1': -s**3*x2,
-        'c2': -x0*x2,
+    _cols = {
+        'k_s': lambda: s/x1,
+        'c1': lambda: -s**3*x2,
+        'c2': lambda: -x0*x2,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 def _d_germann(m, names, s, a0, a1, a2):
-    d = {
-        'a0': 1,
-        'a1': s,
-        'a2': s**2,
+    _cols = {
+        'a0': lambda: 1,
+        'a1': lambda: s,
+        'a2': lambda: s**2,
     }
-    return [d[k] for k in names]
+    return [_cols[k]() for k in names]
 
 
 JACOBIANS = {

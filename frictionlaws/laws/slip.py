@@ -86,6 +86,23 @@ def pacejka_peak(B: float, C: float, D: float, E: float, S_h: float = 0.0, S_v: 
     return max(cands, key=lambda t: t[1])
 
 
+def _pacejka_jacobian(s: np.ndarray) -> Any:
+    """d mu / d(B, C, D, E) at S_h = S_v = 0 from the law's generated derivatives
+    (two-point differences when there are none)."""
+    from ..derivatives import jacobian_function
+    from ..registry import get_law
+
+    func = jacobian_function(get_law("pacejka"))
+    if func is None:
+        return "2-point"
+
+    def jac(q: np.ndarray) -> np.ndarray:
+        cols = func(NUMPY, ["B", "C", "D", "E"], s=s, B=q[0], C=q[1], D=q[2], E=q[3],
+                    S_h=0.0, S_v=0.0)
+        return np.column_stack(np.broadcast_arrays(*cols)).astype(float)
+    return jac
+
+
 def _pacejka_guess(d):
     """Grid over (B, C, E) with D in closed form, then the best few cells polished.
 
@@ -122,11 +139,12 @@ def _pacejka_guess(d):
     def resid(q):
         return _mf(s, q[0], q[1], q[2], q[3], 0.0, 0.0) - mu
 
+    jac = _pacejka_jacobian(s)
     for cell in cells[:4]:
         x0 = np.clip(np.array(cell[1:]), np.array(lo) + 1e-9, np.array(hi) - 1e-9)
         try:
             with np.errstate(all="ignore"):
-                res = least_squares(resid, x0, bounds=(lo, hi), max_nfev=200)
+                res = least_squares(resid, x0, jac=jac, bounds=(lo, hi), max_nfev=200)
         except ValueError:
             continue
         sse = float(np.sum(res.fun**2))
