@@ -229,26 +229,34 @@ def _burckhardt_mu_peak(m, c1, c2, c3, **_):
 
 
 def _burckhardt_guess(d):
-    """Grid over (c2, c4); for each, c1 and c3 >= 0 by linear least squares (2x2, vectorised)."""
+    """Grid over (c2, c4); for each, c1 and c3 >= 0 by linear least squares (2x2, vectorised).
+
+    With ``r = 1 - exp(-c2 s)`` and ``e = exp(-c4 v)`` the columns are ``a = r e`` and
+    ``b = -s e``, so every sum the 2x2 systems need is a product of the c2-grid's
+    ``r`` (and ``r^2``) with a vector of the rows, and the error of each cell follows
+    from them: no grid-sized array per c4.
+    """
     d = _subsample(d, 500)
     s, v, mu = d["s"], np.abs(d["v"]), d["mu"]
     c4_grid = [0.0] + (list(np.geomspace(1e-3, 0.2, 20)) if np.ptp(v) > 0 else [])
     c2_grid = np.geomspace(1.0, 1000.0, 60)
     best = None
     with np.errstate(all="ignore"):
+        rise = 1.0 - np.exp(-np.outer(s, c2_grid))  # column per c2, the same for every c4
+        rise2, mm = rise * rise, float(mu @ mu)
         for c4 in c4_grid:
             ev = np.exp(-c4 * v)
-            a = (1.0 - np.exp(-np.outer(s, c2_grid))) * ev[:, None]   # column per c2
             b = -s * ev
-            aa, ab, bb = np.sum(a * a, 0), a.T @ b, float(b @ b)
-            am, bm = a.T @ mu, float(b @ mu)
+            aa, ab, am = (ev * ev) @ rise2, (b * ev) @ rise, (mu * ev) @ rise
+            bb, bm = float(b @ b), float(b @ mu)
             det = aa * bb - ab**2
             c1 = np.where(det > 0, (am * bb - ab * bm) / det, am / aa)
             c3 = np.where(det > 0, (aa * bm - ab * am) / det, 0.0)
             neg = c3 < 0                                  # c3 >= 0: refit c1 alone
             c1 = np.where(neg, am / aa, c1)
             c3 = np.where(neg, 0.0, c3)
-            sse = np.sum((a * c1 + b[:, None] * c3 - mu[:, None]) ** 2, 0)
+            sse = (mm - 2.0 * (c1 * am + c3 * bm) + c1 * c1 * aa + 2.0 * c1 * c3 * ab
+                   + c3 * c3 * bb)
             sse = np.where(np.isfinite(sse), sse, np.inf)
             j = int(np.argmin(sse))
             if best is None or sse[j] < best[0]:
