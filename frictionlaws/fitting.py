@@ -1318,14 +1318,14 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
         scores = [search.score(c) for c in candidates]
         candidates = [candidates[i] for i in sorted(range(len(scores)), key=scores.__getitem__)]
     reproduced = scouted = False
-    for i, start in enumerate(candidates):
-        search.run(start)
-        reproduced = _reproduced(search.finals)
-        if reproduced:
-            break
-        if i == 0 and search.best is not None and s.y.size >= 4 * SCOUT_ROWS:
-            reproduced, scouted = _scout(search, candidates[1:]), True
-            break
+    if s.y.size >= 4 * SCOUT_ROWS:
+        reproduced, scouted = _scout(search, candidates), True
+    else:
+        for start in candidates:
+            search.run(start)
+            reproduced = _reproduced(search.finals)
+            if reproduced:
+                break
     # Random starts when the deterministic ones disagree (several minima) or all failed:
     # the surface is then multi-modal or hard, and more starts are worth their cost.
     finals = search.finals
@@ -1340,13 +1340,13 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
 
 
 def _scout(search: _Search, candidates: list[dict[str, float]]) -> bool:
-    """Refine ``candidates`` on :data:`SCOUT_ROWS` evenly spaced rows; True when one
-    reproduces the best fit's basin there.
+    """Refine ``candidates`` on :data:`SCOUT_ROWS` evenly spaced rows, then the best on all.
 
-    The best full fit is polished on the same rows first.  A candidate that ends at
-    the same chi^2 there (within 1e-6) is in the same basin: the search stops.  One
-    that ends worse is another basin, left.  One that ends better is refined on all
-    the rows, from where it ended, and joins the search.
+    The candidates (best scored first) are refined on the subsample until one ends
+    where an earlier one did (chi^2 within 1e-6 there): the rows span the data evenly,
+    so their basins are the full data's, at a fraction of the cost.  The best of them
+    is then refined on every row, from next to its minimum.  Returns True when a
+    candidate reproduced the best on the subsample.
     """
     s = search.setup
     rows = np.unique(np.linspace(0, s.y.size - 1, SCOUT_ROWS).round().astype(int))
@@ -1354,19 +1354,15 @@ def _scout(search: _Search, candidates: list[dict[str, float]]) -> bool:
     mask[rows] = True
     scout = _Search(replace(s, fd=s.fd.subset(mask), y=s.y[rows],
                             x={k: v[rows] for k, v in s.x.items()}), search.method)
-    ref = scout.solve_from({k: search.best.params[k].value for k in s.names})
-    if ref is None:
-        return False
     for start in candidates:
-        res = scout.solve_from(start)
-        if res is None:
-            continue
-        if _reproduced([ref.chisqr, res.chisqr]):
-            return True
-        if res.chisqr < ref.chisqr:  # a better basin: refine it on every row
-            search.run({k: res.params[k].value for k in s.names})
-            ref = res
-    return False
+        scout.run(start)
+        if _reproduced(scout.finals):
+            break
+    if scout.best is not None:
+        search.run({k: scout.best.params[k].value for k in s.names})
+    if search.best is None:  # nothing converged on the subsample: every row, first start
+        search.run(candidates[0])
+    return _reproduced(scout.finals)
 
 
 def _reproduced(finals: list[float]) -> bool:
@@ -1429,8 +1425,8 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
         jac = _jacobian(residual_vec, theta0, scales)
     non_id, weak, ratio = _identifiability(jac, vary)
     for var in (v for v in law.variables if v in setup.fd.arrays):
-        xs = np.unique(setup.fd.arrays[var])
-        if xs.size == 1:
+        xs = setup.fd.arrays[var]
+        if xs.size and np.ptp(xs) == 0:
             warn_msgs.append(
                 f"the data have a single value of {var} ({_fmt_range(var, xs[0], xs[0])}); "
                 f"parameters acting through {var} cannot be determined")
