@@ -9,6 +9,7 @@ declared once here.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 from typing import Any
@@ -58,6 +59,13 @@ def pacejka_peak(B: float, C: float, D: float, E: float, S_h: float = 0.0, S_v: 
     -------
     (s_peak, mu_peak)
     """
+    return _pacejka_peak(float(B), float(C), float(D), float(E), float(S_h), float(S_v),
+                         (float(s_range[0]), float(s_range[1])))
+
+
+@functools.lru_cache(maxsize=256)  # s_peak and mu_peak of one fit ask for the same point
+def _pacejka_peak(B: float, C: float, D: float, E: float, S_h: float, S_v: float,
+                  s_range: tuple[float, float]) -> tuple[float, float]:
     from scipy.optimize import brentq
 
     lo, hi = s_range
@@ -87,70 +95,74 @@ def pacejka_peak(B: float, C: float, D: float, E: float, S_h: float = 0.0, S_v: 
 
 
 def _pacejka_jacobian(s: np.ndarray) -> Any:
-    """d mu / d(B, C, D, E) at S_h = S_v = 0 from the law's generated derivatives
-    (two-point differences when there are none)."""
+    """d mu / d(B, C, D, E) at S_h = S_v = 0, from the law's generated derivatives
+    (None when there are none: the solver then differences)."""
     from ..derivatives import jacobian_function
     from ..registry import get_law
 
     func = jacobian_function(get_law("pacejka"))
     if func is None:
-        return "2-point"
+        return None
 
-    def jac(q: np.ndarray) -> np.ndarray:
-        cols = func(NUMPY, ["B", "C", "D", "E"], s=s, B=q[0], C=q[1], D=q[2], E=q[3],
-                    S_h=0.0, S_v=0.0)
+    def jac(q: Mapping[str, float]) -> np.ndarray:
+        cols = func(NUMPY, _PACEJKA_SHAPE, s=s, S_h=0.0, S_v=0.0,
+                    **{k: q[k] for k in _PACEJKA_SHAPE})
         return np.column_stack(np.broadcast_arrays(*cols)).astype(float)
     return jac
 
 
-def _pacejka_guess(d):
-    """Grid over (B, C, E) with D in closed form, then the best few cells polished.
+_PACEJKA_SHAPE = ["B", "C", "D", "E"]
 
-    C and E trade off (distinct minima fit almost equally well), so the four
-    best grid cells are each refined by a short bounded least-squares run and
-    the best result is returned.
-    """
-    from scipy.optimize import least_squares
 
-    d = _subsample(d, 200)
-    s, mu = d["s"], d["mu"]
+def _pacejka_grid(s: np.ndarray, mu: np.ndarray) -> list[tuple[float, ...]]:
+    """(sse, B, C, D, E) of every finite cell of the (B, C, E) grid, D in closed form."""
     B_grid = np.geomspace(1.0, 60.0, 15)
     C_grid = np.linspace(1.0, 2.5, 8)
     E_grid = np.linspace(-3.0, 1.0, 9)
-    cells = []
+    Bs = B_grid[:, None] * s[None, :]                                               # (nB, N)
     with np.errstate(all="ignore"):
-        for B in B_grid:
-            Bs = B * s
-            phi = Bs[None, :] - E_grid[:, None] * (Bs - np.arctan(Bs))[None, :]      # (nE, N)
-            g = np.sin(C_grid[:, None, None] * np.arctan(phi)[None, :, :])          # (nC, nE, N)
-            gg = np.sum(g * g, axis=2)
-            D = np.where(gg > 0, np.sum(g * mu, axis=2) / gg, 0.0)
-            D = np.maximum(D, 1e-6)
-            sse = np.sum((mu - D[..., None] * g) ** 2, axis=2)
-            for i in range(C_grid.size):
-                for j in range(E_grid.size):
-                    if np.isfinite(sse[i, j]):
-                        cells.append((float(sse[i, j]), B, float(C_grid[i]), float(D[i, j]),
-                                      float(E_grid[j])))
-    cells.sort(key=lambda c: c[0])
-    best = cells[0]
-    lo, hi = [1e-6, 1.0, 1e-9, -10.0], [np.inf, 2.5, np.inf, 1.0]
+        phi = Bs[:, None, :] - E_grid[None, :, None] * (Bs - np.arctan(Bs))[:, None, :]
+        g = np.sin(C_grid[None, :, None, None] * np.arctan(phi)[:, None, :, :])  # B, C, E, N
+        gg = np.einsum("bcen,bcen->bce", g, g)
+        gm = g @ mu
+        D = np.maximum(np.where(gg > 0, gm / gg, 0.0), 1e-6)
+        sse = float(mu @ mu) - 2.0 * D * gm + D * D * gg  # sum((mu - D g)^2), expanded
+    b, c, e = np.nonzero(np.isfinite(sse))
+    return sorted(zip(sse[b, c, e].tolist(), B_grid[b].tolist(), C_grid[c].tolist(),
+                      D[b, c, e].tolist(), E_grid[e].tolist()))
 
-    def resid(q):
-        return _mf(s, q[0], q[1], q[2], q[3], 0.0, 0.0) - mu
 
+def _pacejka_guess(d):
+    """Grid over (B, C, E) with D in closed form, then the best few cells refined.
+
+    C and E trade off (distinct minima fit almost equally well), so the four best
+    grid cells are each refined by the fit's own local solver (MINPACK with the law's
+    derivatives while inside the bounds) and the best result is returned; all on at
+    most 200 rows.
+    """
+    from .._lsq import solve
+
+    d = _subsample(d, 200)
+    s, mu = d["s"], d["mu"]
+    cells = _pacejka_grid(s, mu)
+    bounds = {"B": (1e-6, INF), "C": (1.0, 2.5), "D": (1e-9, INF), "E": (-10.0, 1.0)}
     jac = _pacejka_jacobian(s)
+
+    def model(q: Mapping[str, float]) -> np.ndarray:
+        return _mf(s, q["B"], q["C"], q["D"], q["E"], 0.0, 0.0)
+
+    refined = []
     for cell in cells[:4]:
-        x0 = np.clip(np.array(cell[1:]), np.array(lo) + 1e-9, np.array(hi) - 1e-9)
+        start = {k: min(max(v, bounds[k][0] + 1e-9), bounds[k][1] - 1e-9)
+                 for k, v in zip(_PACEJKA_SHAPE, cell[1:])}
         try:
             with np.errstate(all="ignore"):
-                res = least_squares(resid, x0, jac=jac, bounds=(lo, hi), max_nfev=200)
+                res = solve(model, mu, None, start, _PACEJKA_SHAPE, bounds, 200, jac)
         except ValueError:
             continue
-        sse = float(np.sum(res.fun**2))
-        if np.isfinite(sse) and sse < best[0]:
-            best = (sse, *map(float, res.x))
-    _, B, C, D, E = best
+        if np.isfinite(res.chisqr):
+            refined.append((res.chisqr, *(res.params[k].value for k in _PACEJKA_SHAPE)))
+    _, B, C, D, E = min([*refined, *cells[:1]])
     return {"B": B, "C": C, "D": D, "E": E, "S_h": 0.0, "S_v": 0.0}
 
 
