@@ -832,6 +832,9 @@ class Law:
 
     def _mu_ok(self, mu: np.ndarray) -> bool:
         """Cheap test (reductions only) that mu is finite and, if sliding, not negative."""
+        if mu.ndim == 0:  # one value (a constant law): no array machinery
+            m = float(mu)
+            return math.isfinite(m) and (self.family != "sliding" or m >= 0)
         if not _all_finite(mu):
             return False
         return self.family != "sliding" or mu.size == 0 or float(mu.min()) >= 0
