@@ -135,3 +135,26 @@ def test_non_identifiable_laws_are_marked_and_ranked_last(default_run) -> None:
     assert "NOT IDENTIFIABLE from these data" in text
     assert "thesis-poly3: cannot determine a4, a5, a6" in text  # 3 velocity levels, 4 terms
     assert "<th class=''>identifiable</th>" in (out / "report.html").read_text()
+
+
+def test_jobs_spread_one_comparison_and_its_report(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture) -> None:
+    """--jobs on one dataset: the laws' fits and folds, then the figures, in 2 processes;
+    the same comparison as in one (the refits are scheduled, not changed)."""
+    argv = ["compare", "thesis-steel", "--laws", "thirion,savkoor,thesis-poly2", "--json",
+            "--folds", "3"]
+    assert main(argv) == 0
+    serial = json.loads(capsys.readouterr().out)
+    out = tmp_path / "report"
+    assert main([*argv, "--jobs", "2", "--report", str(out)]) == 0
+    parallel = json.loads(capsys.readouterr().out)
+    assert parallel["ranking"] == serial["ranking"]
+    for a, b in zip(serial["laws"], parallel["laws"]):
+        assert a["id"] == b["id"] and a["cv_rmse"] == b["cv_rmse"] and a["aic"] == b["aic"]
+    assert (out / "report.html").is_file() and len(list(out.glob("*.png"))) >= 4
+
+
+def test_scheduler_still_needs_a_campaign(capsys: pytest.CaptureFixture) -> None:
+    rc = main(["compare", "thesis-steel", "--scheduler", "tcp://127.0.0.1:1"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "one dataset and no --by" in err

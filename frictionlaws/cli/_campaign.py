@@ -14,7 +14,9 @@ __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_
            "campaign_progress"]
 
 
-def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> None:
+def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True,
+                         jobs_help: str = "worker processes for several datasets (default 1; "
+                                          "-1 = one per core)") -> None:
     """Add ``--by``, ``--shared``, ``--jobs``, ``--scheduler``, ``--out`` and ``--progress``.
 
     Parameters
@@ -23,6 +25,8 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
         The command's parser.
     shared : bool
         Whether the command takes ``--shared`` (a global fit across groups).
+    jobs_help : str
+        The help of ``--jobs`` (what the command spreads over the processes).
     """
     g = p.add_argument_group("campaigns (several datasets, groups, parallel work)")
     g.add_argument("--by", metavar="COLUMN[,COLUMN]", action="append", default=[],
@@ -33,8 +37,7 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True) -> 
         g.add_argument("--shared", metavar="NAME[,NAME]", action="append", default=[],
                        help="with --by: one global fit in which these parameters are common "
                             "to all groups and the others per group, e.g. --shared b")
-    g.add_argument("--jobs", type=_jobs, default=1, metavar="N",
-                   help="worker processes for several datasets (default 1; -1 = one per core)")
+    g.add_argument("--jobs", type=_jobs, default=1, metavar="N", help=jobs_help)
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run the datasets on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
                         "(default: $FRICTIONLAWS_SCHEDULER; needs the 'dask' extra)")
@@ -102,11 +105,16 @@ def split_names(items: list[str]) -> list[str]:
     return out
 
 
-def refuse_campaign_options(args: argparse.Namespace) -> None:
-    """One dataset and no groups: the options that spread work are an error, not ignored."""
+def refuse_campaign_options(args: argparse.Namespace, spread: tuple[str, ...] = ("jobs",)
+                            ) -> None:
+    """One dataset and no groups: the options that spread work are an error, not ignored.
+
+    ``spread`` names those that spread only a campaign's work (a command that spreads
+    one dataset's work over ``--jobs`` leaves it out).
+    """
     from ._common import refuse_unused
 
-    refuse_unused(args, ("jobs", "scheduler"),
+    refuse_unused(args, (*spread, "scheduler"),
                   "with one dataset and no --by (they spread several datasets or groups)")
 
 

@@ -66,7 +66,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "output directory; a failed run creates nothing)")
     p.add_argument("--json", action="store_true",
                    help="print the comparison as one JSON object instead of the table")
-    add_campaign_options(p, shared=False)
+    add_campaign_options(p, shared=False, jobs_help=(
+        "worker processes (default 1; -1 = one per core): the laws' fits and folds of one "
+        "dataset and the report's figures, or several datasets"))
     return p
 
 
@@ -127,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         raise InputError("--out writes a campaign table; for one comparison use --json or "
                          "--report")
-    refuse_campaign_options(args)
+    refuse_campaign_options(args, spread=())
     return _run_one(args, args.data[0])
 
 
@@ -139,13 +141,13 @@ def _run_one(args: argparse.Namespace, data: str) -> int:
 
     with data_source(data) as source:
         cmp = compare(args.laws, source, **_options(args),
-                      progress=progress_value(args),
+                      progress=progress_value(args), jobs=args.jobs,
                       **data_kwargs(args))
     written = {}
     if args.report:
         with atomic_dir(args.report) as tmp:
             written = {k: Path(args.report) / Path(v).relative_to(tmp)
-                       for k, v in cmp.write_report(tmp).items()}
+                       for k, v in cmp.write_report(tmp, jobs=args.jobs).items()}
     if args.json:
         print(cmp.to_json())
     else:
