@@ -771,7 +771,13 @@ def _starts(law: Law, guess: dict[str, float], names: list[str]) -> list[dict[st
     starts.append({**guess, **{k: law.param(k).default for k in names if k in law.param_names}})
     for preset in law.presets.values():
         starts.append({**guess, **{k: v for k, v in preset.items() if k in names}})
-    return starts
+    # one start once: a preset equal to the defaults (pacejka's dry road) would otherwise
+    # "reproduce" it without telling anything about the surface
+    unique: list[dict[str, float]] = []
+    for start in starts:
+        if all(any(start[k] != seen[k] for k in names) for seen in unique):
+            unique.append(start)
+    return unique
 
 
 def _random_starts(law: Law, guess: dict[str, float], names: list[str], n_random: int,

@@ -228,3 +228,16 @@ def test_the_best_basin_found_on_the_subsample_is_refined_on_every_row():
     assert not fitting._scout(search, [starts[worst], starts[best]])  # two basins
     assert search.finals == [search.best.chisqr]  # one solve on every row, from the best
     assert search.best.chisqr == pytest.approx(chis[best], rel=1e-6)
+
+
+@pytest.mark.parametrize("law_id", ["pacejka", "schallamach"])
+def test_a_start_equal_to_an_earlier_one_is_not_tried_twice(law_id):
+    """A preset equal to the defaults (pacejka's dry road, schallamach's hertz) is one
+    start, so it cannot "reproduce" itself and end the search."""
+    law = fl.get_law(law_id)
+    names = [k for k in law.param_names if k not in ("S_h", "S_v")]
+    guess = law.initial_guess(_synthetic(law_id, 60)[0])
+    starts = fitting._starts(law, guess, names)
+    keys = [tuple(s[k] for k in names) for s in starts]
+    assert len(keys) == len(set(keys))
+    assert len(starts) == 1 + len(law.presets)  # the guess, and defaults = one preset
