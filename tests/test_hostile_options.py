@@ -412,7 +412,8 @@ def test_values_starting_with_a_minus_reach_the_check_that_explains_them(tmp_pat
 @pytest.mark.parametrize("argv", [
     ["fit", "--law", "thirion", "thesis-steel", "--jobs", "2"],
     ["fit", "--law", "thirion", "thesis-steel", "--scheduler", "tcp://127.0.0.1:1"],
-    ["compare", "thesis-steel", "--laws", "thirion,coulomb", "--jobs", "2"],
+    # one comparison spreads its fits over --jobs, but a cluster is for campaigns
+    ["compare", "thesis-steel", "--laws", "thirion,coulomb", "--scheduler", "tcp://127.0.0.1:1"],
     ["tyre", "thesis", "--laws", ""],
 ])
 def test_options_that_cannot_apply_are_refused(capsys, argv):
