@@ -94,20 +94,18 @@ def _pacejka_peak(B: float, C: float, D: float, E: float, S_h: float, S_v: float
     return max(cands, key=lambda t: t[1])
 
 
-def _pacejka_jacobian(s: np.ndarray) -> Any:
+def _pacejka_jacobian(law: Law, s: np.ndarray) -> Any:
     """d mu / d(B, C, D, E) at S_h = S_v = 0, from the law's generated derivatives
     (None when there are none: the solver then differences)."""
-    from ..derivatives import jacobian_function
-    from ..registry import get_law
+    from ..derivatives import jacobian_function, model_jacobian
 
-    func = jacobian_function(get_law("pacejka"))
+    func = jacobian_function(law)
     if func is None:
         return None
 
     def jac(q: Mapping[str, float]) -> np.ndarray:
-        cols = func(NUMPY, _PACEJKA_SHAPE, s=s, S_h=0.0, S_v=0.0,
-                    **{k: q[k] for k in _PACEJKA_SHAPE})
-        return np.column_stack(np.broadcast_arrays(*cols)).astype(float)
+        return model_jacobian(func, {"s": s}, {**q, "S_h": 0.0, "S_v": 0.0},
+                              _PACEJKA_SHAPE, s.size)
     return jac
 
 
@@ -141,12 +139,15 @@ def _pacejka_guess(d):
     most 200 rows.
     """
     from .._lsq import solve
+    from ..registry import get_law
 
     d = _subsample(d, 200)
     s, mu = d["s"], d["mu"]
     cells = _pacejka_grid(s, mu)
-    bounds = {"B": (1e-6, INF), "C": (1.0, 2.5), "D": (1e-9, INF), "E": (-10.0, 1.0)}
-    jac = _pacejka_jacobian(s)
+    law = get_law("pacejka")
+    bounds = {k: law.param(k).bounds for k in _PACEJKA_SHAPE}
+    bounds["E"] = (max(bounds["E"][0], -10.0), bounds["E"][1])  # the refinements' E range
+    jac = _pacejka_jacobian(law, s)
 
     def model(q: Mapping[str, float]) -> np.ndarray:
         return _mf(s, q["B"], q["C"], q["D"], q["E"], 0.0, 0.0)
