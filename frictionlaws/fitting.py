@@ -1031,8 +1031,8 @@ def fit(
         Bounded differential evolution before a local polish; ``"auto"``: only when the
         local starts end worse than the mean of mu or at different minima.
     lean : bool
-        Values, metrics and convergence only (refits in cross-validation): no
-        identifiability, intervals, derived quantities or provenance.
+        Values, metrics, convergence and the names the data cannot determine only
+        (refits in cross-validation): no intervals, derived quantities or provenance.
 
     Returns
     -------
@@ -1591,9 +1591,15 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
 
 
 def _lean_result(setup: _Setup, search: _Search) -> FitResult:
-    """The values, metrics and convergence of the best fit, without its diagnostics."""
+    """The values, metrics, convergence and identifiability of the best fit, nothing else.
+
+    The identifiability check (one Jacobian and its SVD) stays: a refit whose rows cannot
+    determine a parameter predicts the rows left out from an arbitrary point of a flat
+    valley, and a comparison must say so.
+    """
     best, y, fd = search.best, setup.y, setup.fd
     warn_msgs: list[str] = []
+    non_id = _diagnose(setup, search, []).non_id
     metrics = _metrics(y, best, len(setup.vary_names), setup.w is not None, warn_msgs)
     success, message = _status(best, metrics["r2"], warn_msgs)
     params = {}
@@ -1601,18 +1607,18 @@ def _lean_result(setup: _Setup, search: _Search) -> FitResult:
         est = best.params[name]
         fixed = name in setup.fix
         held = fixed or name in search.best_pinned
-        se = None if held or est.stderr is None or not np.isfinite(est.stderr) else \
-            float(est.stderr)
+        se = None if held or name in non_id or est.stderr is None or \
+            not np.isfinite(est.stderr) else float(est.stderr)
         params[name] = ParamEstimate(name, float(est.value), se, None, setup.unit(name),
-                                     fixed=fixed)
+                                     fixed=fixed, identifiable=name not in non_id)
     fitted = np.asarray(best.best_fit, float)
     return FitResult(
         law=setup.law, params=params, settings=setup.settings, metrics=metrics,
         correlation={}, success=success, message=message, warnings=warn_msgs,
-        non_identifiable=[], derived={},
+        non_identifiable=non_id, derived={},
         data={"name": fd.name, "source": fd.source, "n": int(y.size)},
-        notes=setup.notes + ["lean fit: no identifiability analysis, intervals or derived "
-                             "quantities"],
+        notes=setup.notes + ["lean fit: values, goodness of fit and identifiability only "
+                             "(no intervals or derived quantities)"],
         uncertainty={"method": "none (lean fit)"}, local_fit=best, residual=y - fitted,
         best_fit=fitted, fit_data=fd)
 

@@ -199,6 +199,27 @@ def test_cv_reports_folds_that_cannot_be_fitted(steel: FitData) -> None:
     assert math.isnan(res.rmse)
 
 
+def test_cv_names_folds_whose_rows_leave_parameters_undetermined(steel: FitData) -> None:
+    # thesis-steel has one row at v = 2.77 m/s: the fold holding it out (and the
+    # hold-out above v = 1.94 m/s) leaves two velocities for a quadratic in v, whose
+    # curvature the other rows cannot then determine
+    c = compare(["thesis-poly2", "thirion"], steel, progress=False)
+    poly = c["thesis-poly2"]
+    assert [u["params"] for u in poly.cv.undetermined] == [["a3", "a4"]]
+    left_out = steel.arrays["v"][c.folds == poly.cv.undetermined[0]["fold"] - 1]
+    assert 2.77 in np.round(left_out, 2)
+    notes = [n for n in poly.extra_notes if "cannot determine a3, a4 (all rows can)" in n]
+    assert len(notes) == 2 and "extrapolation test along v" in notes[1]
+    assert "arbitrary point of a flat valley" in notes[0]
+    doc = json.loads(c.to_json())
+    law = next(x for x in doc["laws"] if x["id"] == "thesis-poly2")
+    assert law["cv"]["undetermined"][0]["params"] == ["a3", "a4"]
+    assert any(h["undetermined"] == ["a3", "a4"] for h in law["extrapolation"])
+    # every fold determines thirion's two parameters: nothing to say
+    assert c["thirion"].cv.undetermined == []
+    assert not any("cannot determine" in n for n in c["thirion"].extra_notes)
+
+
 # ------------------------------------------------------------- comparison
 
 

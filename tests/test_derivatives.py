@@ -171,9 +171,12 @@ def test_lean_fit_gives_the_same_values_without_diagnostics():
     assert lean.values == full.values
     assert lean.metrics == full.metrics
     assert lean.success == full.success
-    assert lean.derived == {} and lean.provenance == {} and lean.non_identifiable == []
+    assert lean.derived == {} and lean.provenance == {}
     assert all(p.ci95 is None for p in lean.params.values())
-    assert full.non_identifiable  # the full fit did the analysis the lean one skips
+    # the identifiability check stays: the same names, their errors withheld
+    assert full.non_identifiable and lean.non_identifiable == full.non_identifiable
+    for name in lean.non_identifiable:
+        assert lean.params[name].stderr is None and not lean.params[name].identifiable
 
 
 @pytest.mark.parametrize("bad", [{"lean": 1}, {"lean": "yes"},

@@ -58,7 +58,7 @@ from ..errors import DomainError, FitError, InputError
 from ..fitting import FitData, as_fit_data, fit
 from ..law import VARIABLES, Law
 from ..registry import get_law, list_laws
-from .cv import combine_folds, error_text, kfold_assignment, score_fold
+from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
 from .extrapolation import (
     MU_LIMITS,
     TREND_ALPHA,
@@ -332,6 +332,32 @@ def _pooled_rmse(holds: list[HoldoutResult]) -> float:
     return math.sqrt(sq / n_err) if math.isfinite(sq) else math.inf
 
 
+def _undetermined_notes(full: Sequence[str], cv: CVResult, holds: list[HoldoutResult]
+                        ) -> list[str]:
+    """Notes on the refits whose rows cannot determine parameters all the rows determine.
+
+    Such a refit predicts the rows left out from an arbitrary point of a flat valley of
+    chi^2 (another start or solver stops elsewhere, with other predictions), so its
+    score measures where the solver stopped rather than the law.  Parameters the full
+    fit cannot determine either are already named by its own warning.
+    """
+    refits = [(f"cross-validation fold {u['fold']}", u["n_train"], u["n_test"], u["params"])
+              for u in cv.undetermined]
+    refits += [(f"extrapolation test along {h.variable}", h.n_train, h.n_test,
+                h.fit.non_identifiable) for h in holds if h.fit is not None]
+    notes = []
+    for what, n_train, n_test, names in refits:
+        new = [k for k in names if k not in full]
+        if new:
+            notes.append(f"{what}: its {n_train} training rows cannot determine "
+                         f"{', '.join(new)} (all rows can), so its predictions of the "
+                         f"{n_test} row{'' if n_test == 1 else 's'} left out come from an "
+                         "arbitrary point of a flat "
+                         "valley of chi^2: its score measures where the solver stopped, "
+                         "not the law")
+    return notes
+
+
 def _assemble(law: Law, setup: _Setup, outputs: list[Any]) -> LawComparison | dict[str, str]:
     """One law's comparison from its fits (full, folds, hold-outs), or its failure."""
     fd = setup.fd
@@ -347,6 +373,7 @@ def _assemble(law: Law, setup: _Setup, outputs: list[Any]) -> LawComparison | di
              if h.error is not None]
     extra += [f"cross-validation fold {f['fold']} ({f['n_train']} training rows): "
               f"{f['error']}" for f in cv.failed]
+    extra += _undetermined_notes(res.non_identifiable, cv, holds)
     plaus = scan_plausibility(law, res.values, fd, setup.design, setup.box, setup.trends,
                               limits=setup.limits)
     sub = fd.subset(rows)

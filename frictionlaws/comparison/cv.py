@@ -18,6 +18,11 @@ that law at all: they are neither trained on nor scored.  A fold whose fit
 fails (too few rows for the parameters, an optimiser failure) or whose
 predictions are not finite is *reported* in :attr:`CVResult.failed`, and the
 RMSE then covers the other folds only (:attr:`CVResult.complete` is False).
+A fold whose training rows cannot determine some of the law's parameters (the
+refit's identifiability check names them) is scored but listed in
+:attr:`CVResult.undetermined`: its predictions come from an arbitrary point of a
+flat valley of chi^2, as with ``thesis-poly2`` above, whose fold without the one
+row at v = 2.77 m/s has two velocities left for a quadratic in v.
 """
 
 from __future__ import annotations
@@ -78,6 +83,7 @@ class CVResult:
     fold_rmse: list[float | None]
     failed: list[dict[str, Any]] = field(default_factory=list)
     predictions: np.ndarray | None = None
+    undetermined: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def complete(self) -> bool:
@@ -87,7 +93,8 @@ class CVResult:
     def to_dict(self) -> dict[str, Any]:
         return {"folds": self.folds, "seed": self.seed, "rmse": self.rmse, "mae": self.mae,
                 "n_scored": self.n_scored, "fold_rmse": list(self.fold_rmse),
-                "complete": self.complete, "failed": list(self.failed)}
+                "complete": self.complete, "failed": list(self.failed),
+                "undetermined": list(self.undetermined)}
 
 
 def refit(law: Law, data: FitData, fit_kwargs: Mapping[str, Any] | None = None) -> FitResult:
@@ -122,6 +129,9 @@ class FoldOutcome:
     test: np.ndarray
     predictions: np.ndarray | None = None
     failure: dict[str, Any] | None = None
+    #: The fold, its row counts and the parameters its training rows cannot determine
+    #: (None when they determine every one).
+    undetermined: dict[str, Any] | None = None
 
 
 def score_fold(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, fold: int, *,
@@ -147,7 +157,8 @@ def score_fold(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, 
     -------
     FoldOutcome
         The predictions of the held-out rows, or the failure (a fit that failed or
-        non-finite predictions); neither when the fold has no usable rows.
+        non-finite predictions); neither when the fold has no usable rows.  The
+        parameters the training rows cannot determine are named with the predictions.
     """
     test = usable & (assign == fold)
     train = usable & (assign != fold)
@@ -166,7 +177,9 @@ def score_fold(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, 
         return FoldOutcome(fold, test, failure={
             **where, "error": f"the fitted law predicts non-finite mu at "
                               f"{int(np.sum(~np.isfinite(p)))} held-out rows"})
-    return FoldOutcome(fold, test, predictions=p)
+    undetermined = ({**where, "params": list(res.non_identifiable)}
+                    if res.non_identifiable else None)
+    return FoldOutcome(fold, test, predictions=p, undetermined=undetermined)
 
 
 def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> CVResult:
@@ -184,12 +197,14 @@ def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> 
     Returns
     -------
     CVResult
-        RMSE and MAE over every scored row, the RMSE of each fold, the failures.
+        RMSE and MAE over every scored row, the RMSE of each fold, the failures and
+        the folds that left parameters undetermined.
     """
     y = data.arrays["mu"]
     pred = np.full(data.n, np.nan)
     fold_rmse: list[float | None] = []
     failed: list[dict[str, Any]] = []
+    undetermined = [o.undetermined for o in outcomes if o.undetermined is not None]
     for o in outcomes:
         if o.predictions is None:
             fold_rmse.append(None)
@@ -203,7 +218,7 @@ def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> 
     rmse = float(np.sqrt(np.mean(err**2))) if err.size else math.nan
     mae = float(np.mean(np.abs(err))) if err.size else math.nan
     return CVResult(len(outcomes), seed, rmse, mae, int(scored.sum()), fold_rmse, failed,
-                    pred)
+                    pred, undetermined)
 
 
 def cross_validate(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, *,

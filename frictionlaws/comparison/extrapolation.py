@@ -527,7 +527,8 @@ class HoldoutResult:
     def to_dict(self) -> dict[str, Any]:
         return {"variable": self.variable, "n_train": self.n_train, "n_test": self.n_test,
                 "rmse": self.rmse, "max_abs_error": self.max_abs, "error": self.error,
-                "params": None if self.fit is None else self.fit.param_values}
+                "params": None if self.fit is None else self.fit.param_values,
+                "undetermined": [] if self.fit is None else list(self.fit.non_identifiable)}
 
 
 def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
