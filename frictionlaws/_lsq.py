@@ -105,7 +105,7 @@ class _Residual:
         """Every parameter's value at ``theta`` (varied ones kept inside their bounds)."""
         vals = dict(self.held)
         clipped = np.minimum(np.maximum(theta, self.lo), self.hi)
-        vals.update(zip(self.names, (float(t) for t in clipped)))
+        vals.update(zip(self.names, clipped.tolist()))
         return vals
 
     def model_at(self, theta: np.ndarray) -> np.ndarray:
@@ -113,7 +113,7 @@ class _Residual:
         out = np.asarray(self.model(self.values(theta)), dtype=float)
         if out.shape != self.y.shape:
             out = np.broadcast_to(out, self.y.shape)
-        if not np.all(np.isfinite(out)):
+        if not np.isfinite(out).all():
             raise ValueError(NAN_MESSAGE)
         return out
 
@@ -199,7 +199,9 @@ def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], 
     beyond a QR in Fortran, so on large data it is the cheapest solver; it knows no
     bounds, so the solve is abandoned (None) at its first trial point outside them,
     or when it does not converge, and the bounded trust region takes over from the
-    start.  A minimum it reaches inside the bounds is also the bounded problem's.
+    start.  A minimum it reaches inside the bounds is also the bounded problem's.  A
+    start on a bound (a preset's E = 1 of the Magic Formula) is moved 1e-6 (relative)
+    inside it, so MINPACK can try it too.
 
     MINPACK is called through :func:`scipy.optimize.leastsq`, which hands it the
     Jacobian without the copies ``least_squares(method="lm")`` keeps (four of the
@@ -210,10 +212,12 @@ def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], 
     from scipy.optimize import leastsq
 
     def inside(theta: np.ndarray) -> np.ndarray:
-        if np.any(theta < res.lo) or np.any(theta > res.hi):
+        if (theta < res.lo).any() or (theta > res.hi).any():
             raise _LeftBounds
         return res(theta)
 
+    gap = 1e-6 * np.maximum(np.abs(x0), 1.0)
+    x0 = np.minimum(np.maximum(x0, res.lo + gap), res.hi - gap)
     if np.any(x0 <= res.lo) or np.any(x0 >= res.hi):
         return None
     try:
@@ -237,7 +241,7 @@ def _residual_jacobian(jac: Callable[[dict[str, float]], np.ndarray], res: _Resi
         out *= -1.0
         if res.w is not None:
             out *= res.w[:, None]
-        bad = np.flatnonzero(~np.all(np.isfinite(out), axis=0))
+        bad = np.flatnonzero(~np.isfinite(out).all(axis=0))
         if bad.size:  # e.g. d(x**c)/dc = x**c log x at x = 0: differences there
             _difference_columns(res, out, theta, bad)
         return out
