@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from ._workers import local_workers
 from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
@@ -505,10 +506,10 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
     """``func`` over ``items`` on ``jobs`` local processes (loky), in batches, in order."""
     joblib = importlib.import_module("joblib")  # untyped library: Any
 
-    workers = joblib.effective_n_jobs(jobs)
+    workers = local_workers(jobs, total)
     size = batch_size(total, workers)
     tasks = (joblib.delayed(_run_batch)(func, batch) for batch in _batches(items, size))
-    parallel = joblib.Parallel(n_jobs=jobs, batch_size=1, pre_dispatch=_WINDOW * workers,
+    parallel = joblib.Parallel(n_jobs=workers, batch_size=1, pre_dispatch=_WINDOW * workers,
                                return_as="generator")
     for part in parallel(tasks):
         yield from part

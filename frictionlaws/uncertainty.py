@@ -329,9 +329,11 @@ def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: i
     if n_jobs == 1:
         out = _solve_many(refit, theta0, all_rows)
     else:
-        from joblib import Parallel, cpu_count, delayed
+        from joblib import Parallel, delayed
 
-        workers = min(cpu_count() if n_jobs == -1 else n_jobs, len(all_rows))
+        from ._workers import local_workers
+
+        workers = local_workers(n_jobs, len(all_rows))
         chunks = [all_rows[i::workers] for i in range(workers)]
         parts = Parallel(n_jobs=workers)(delayed(_solve_many)(refit, theta0, c) for c in chunks)
         out = np.empty((len(all_rows), theta0.size))

@@ -365,3 +365,34 @@ def test_default_family_tells_tyre_slip_from_pin_on_disc_data() -> None:
     assert default_family(pin) == "sliding"
     fixed_pin = as_fit_data({"mu": np.ones(6), "p": np.linspace(3e4, 2e5, 6), "s": np.ones(6)})
     assert default_family(fixed_pin) == "sliding"
+
+
+@pytest.mark.parametrize("spec", ["T=0.3", "p=0.3,T=0.2", {"T": 0.3}])
+def test_a_holdout_naming_a_variable_the_data_lack_is_refused(steel: FitData, spec) -> None:
+    with pytest.raises(InputError, match="have no T to hold out; their variables are p, v"):
+        compare(["thirion"], steel, holdout=spec)
+    # a bare fraction holds out p and v where the data have them: no complaint
+    assert [s.variable for s in compare(["coulomb"], steel, holdout=0.3).splits] == ["p", "v"]
+
+
+def test_jobs_is_a_ceiling_not_a_demand(steel: FitData, monkeypatch: pytest.MonkeyPatch
+                                        ) -> None:
+    import joblib
+
+    from frictionlaws._workers import local_workers
+
+    monkeypatch.setattr(joblib, "cpu_count", lambda *a, **k: 8)
+    assert [local_workers(j) for j in (1, 2, 8, 9, 1024, -1)] == [1, 2, 8, 8, 8, 8]
+    assert local_workers(1024, tasks=3) == 3 and local_workers(-1, tasks=0) == 1
+    assert local_workers(1, tasks=50) == 1
+    seen: list[int] = []
+
+    class Spy(joblib.Parallel):  # type: ignore[misc]
+        def __init__(self, n_jobs: int, **kw: object) -> None:
+            seen.append(n_jobs)
+            super().__init__(n_jobs=n_jobs, **kw)
+
+    monkeypatch.setattr(joblib, "Parallel", Spy)
+    c = compare(["coulomb"], steel, folds=2, holdout=None, jobs=1024)
+    assert seen == [3]  # the full fit and two folds: three tasks, three processes
+    assert c.ranking == ["coulomb"]

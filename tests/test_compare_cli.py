@@ -158,3 +158,58 @@ def test_scheduler_still_needs_a_campaign(capsys: pytest.CaptureFixture) -> None
     rc = main(["compare", "thesis-steel", "--scheduler", "tcp://127.0.0.1:1"])
     err = capsys.readouterr().err
     assert rc == 2 and "one dataset and no --by" in err
+
+
+def _children(pid: int) -> set[int]:
+    """The live processes whose parent is ``pid`` (from /proc), and theirs."""
+    out: set[int] = set()
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            out |= {int(entry.name)} | _children(int(entry.name))
+    return out
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+def test_sigterm_unwinds_like_ctrl_c(tmp_path: Path) -> None:
+    """SIGTERM during a parallel comparison: exit 143, no report, no worker left running."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    report = tmp_path / "rep"
+    proc = subprocess.Popen([sys.executable, "-m", "frictionlaws", "compare", "thesis-steel",
+                             "--jobs", "2", "--report", str(report)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    workers: set[int] = set()
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and len(workers) < 2 and proc.poll() is None:
+        time.sleep(0.2)
+        workers = _children(proc.pid)
+    assert proc.poll() is None and workers, "the comparison ended before its workers started"
+    time.sleep(1.0)
+    workers = _children(proc.pid)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    # (loky's resource tracker, a process of its own, may add a warning about a semaphore
+    # it finds already removed: not ours to silence)
+    assert proc.returncode == 143 and "terminated" in err.splitlines(), err
+    assert "Traceback" not in err
+    assert not report.exists()
+    deadline = time.monotonic() + 20
+    alive = workers
+    while alive and time.monotonic() < deadline:
+        time.sleep(0.2)
+        alive = {p for p in workers if Path(f"/proc/{p}").exists()
+                 and "Z" not in (Path(f"/proc/{p}/stat").read_text().rsplit(")", 1)[1][:3])}
+    for pid in alive:  # do not leave them to the next test
+        os.kill(pid, signal.SIGKILL)
+    assert not alive, f"workers still running after SIGTERM: {sorted(alive)}"

@@ -216,3 +216,19 @@ def test_one_progress_flag_everywhere() -> None:
         if "--jobs" in flags:
             assert "--progress" in flags, f"{name} has --jobs but no --progress"
     assert {"fit", "compare", "process"} <= set(seen)
+
+
+def test_every_option_refuses_an_empty_value(capsys: pytest.CaptureFixture) -> None:
+    from frictionlaws.cli import build_parser, main
+
+    cases = [(name.split(), opt) for name, parser in _commands(build_parser())
+             for a in parser._actions if a.nargs != 0 for opt in a.option_strings]
+    assert len(cases) > 100 and (["compare"], "--report") in cases
+    for words, opt in cases:
+        for argv in ([*words, opt, ""], [*words, f"{opt}="] if opt.startswith("--") else None):
+            if argv is None:
+                continue
+            assert main(argv) == 2, argv
+            err = capsys.readouterr().err.strip().splitlines()
+            assert err == [f"error: {opt}: empty value; give one (an empty value means "
+                           "neither everything nor nothing)"], (argv, err)

@@ -30,7 +30,9 @@ import argparse
 import contextlib
 import io
 import re
+import signal
 import sys
+import threading
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from importlib import import_module
@@ -409,7 +411,42 @@ def _without_command(parser: argparse.ArgumentParser,
     return None
 
 
+def _valued_options(parser: argparse.ArgumentParser) -> set[str]:
+    """Every option string, of ``parser`` and its sub-commands, that takes a value."""
+    out: set[str] = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                out |= _valued_options(sub)
+        elif action.option_strings and action.nargs != 0:
+            out.update(action.option_strings)
+    return out
+
+
+def _empty_value(parser: argparse.ArgumentParser, argv: Sequence[str]) -> str | None:
+    """The first option given an empty value (``--report ''``, ``--out=``), or None.
+
+    An empty value never means "everything" or "nothing": ``--report ''`` would
+    otherwise write no report and ``--holdout ''`` run no extrapolation test, silently.
+    """
+    valued = _valued_options(parser)
+    for i, token in enumerate(argv):
+        if token == "--":
+            return None
+        name, eq, value = token.partition("=")
+        if eq and not value and name in valued:
+            return name
+        if token == "" and i > 0 and argv[i - 1] in valued:
+            return argv[i - 1]
+    return None
+
+
 def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
+    empty = _empty_value(parser, argv)
+    if empty is not None:
+        print(f"error: {empty}: empty value; give one (an empty value means neither "
+              "everything nor nothing)", file=sys.stderr)
+        return 2
     try:
         return parser.parse_args(_join_negative_values(parser, argv))
     except _ParseError as exc:
@@ -447,7 +484,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _usage_error(f"{missing.prog}: no command given; choose one of: {names}",
                             missing.format_usage(), argv_list)
     collected = _Warnings()
-    with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet):
+    with warnings.catch_warnings(record=True) as records, _quiet_stderr(args.quiet), \
+            _terminate_as_interrupt():
         warnings.simplefilter("always")
         with _strict_json_stdout(bool(getattr(args, "json", False))):
             code = _dispatch(args)
@@ -458,12 +496,40 @@ def main(argv: Sequence[str] | None = None) -> int:
     return code
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the command runs: it unwinds as an interrupt does."""
+
+
+def _raise_terminated(signum: int, frame: Any) -> None:
+    raise _Terminated
+
+
+@contextlib.contextmanager
+def _terminate_as_interrupt() -> Iterator[None]:
+    """While a command runs, SIGTERM unwinds it as Ctrl-C does.
+
+    The worker pools are then shut down and partial outputs removed on the way out,
+    instead of the process dying at once and leaving its workers running.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def _dispatch(args: argparse.Namespace) -> int:
     """Run the command; turn every failure into an exit code and one stderr line."""
     try:
         return int(args._run(args) or 0)
     except BrokenPipeError:
         return 0
+    except _Terminated:
+        print("terminated", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130

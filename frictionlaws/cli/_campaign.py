@@ -16,7 +16,8 @@ __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_
 
 def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True,
                          jobs_help: str = "worker processes for several datasets (default 1; "
-                                          "-1 = one per core)") -> None:
+                                          "-1 = one per core; never more than the cores "
+                                          "or the tasks)") -> None:
     """Add ``--by``, ``--shared``, ``--jobs``, ``--scheduler``, ``--out`` and ``--progress``.
 
     Parameters

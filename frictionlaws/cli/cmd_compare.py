@@ -67,8 +67,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true",
                    help="print the comparison as one JSON object instead of the table")
     add_campaign_options(p, shared=False, jobs_help=(
-        "worker processes (default 1; -1 = one per core): the laws' fits and folds of one "
-        "dataset and the report's figures, or several datasets"))
+        "worker processes (default 1; -1 = one per core; never more than the cores or the "
+        "tasks): the laws' fits and folds of one dataset and the report's figures, or "
+        "several datasets"))
     return p
 
 

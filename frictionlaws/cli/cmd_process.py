@@ -53,7 +53,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "its parents if missing, and only when the datasets are written)")
     p.add_argument("--jobs", type=_jobs, default=-1, metavar="N",
                    help="worker processes for the records (default -1: one per core; 1 = "
-                        "serial; 1..1024)")
+                        "serial; 1..1024; never more than the cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="process the records on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
                         "(default: $FRICTIONLAWS_SCHEDULER; the record files must be "

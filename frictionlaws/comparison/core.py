@@ -54,6 +54,7 @@ from typing import Any
 
 import numpy as np
 
+from .._workers import local_workers
 from ..errors import DomainError, FitError, InputError
 from ..fitting import FitData, as_fit_data, fit
 from ..law import VARIABLES, Law
@@ -247,6 +248,21 @@ def subsample(fd: FitData, max_rows: int | None, seed: int) -> tuple[FitData, st
     return fd.subset(keep), note
 
 
+def _check_named_holdout(spec: Any, fractions: Mapping[str, float], fd: FitData) -> None:
+    """Refuse a holdout that names a variable the data do not have (``T=0.3``).
+
+    A bare fraction holds out pressure and velocity where the data have them; a
+    variable named on purpose that cannot be held out is a mistake to report.
+    """
+    if not (isinstance(spec, Mapping) or (isinstance(spec, str) and "=" in spec)):
+        return
+    missing = [k for k in fractions if k not in fd.arrays]
+    if missing:
+        have = [k for k in VARIABLES if k in fd.arrays and k != "mu"]
+        raise InputError(f"data '{fd.name}' have no {', '.join(missing)} to hold out; "
+                         f"their variables are {', '.join(have) or 'none'}", option="holdout")
+
+
 def _check_max_rows(max_rows: Any) -> int | None:
     if max_rows is None:
         return None
@@ -307,12 +323,13 @@ def _run_tasks(laws: list[Law], setup: _Setup, jobs: int, bar: Any) -> list[list
     tasks = [(law, "full", 0) for law in laws]
     tasks += [(law, "fold", f) for law in laws for f in range(setup.folds)]
     tasks += [(law, "holdout", i) for law in laws for i in range(len(setup.active))]
-    if jobs == 1:
+    workers = local_workers(jobs, len(tasks))
+    if workers == 1:
         outputs: Iterable[Any] = (_task(law, setup, kind, i) for law, kind, i in tasks)
     else:
         from joblib import Parallel, delayed
 
-        outputs = Parallel(n_jobs=jobs, return_as="generator")(
+        outputs = Parallel(n_jobs=workers, return_as="generator")(
             delayed(_task)(law, setup, kind, i) for law, kind, i in tasks)
     per_law: dict[str, list[Any]] = {law.id: [] for law in laws}
     for (law, _kind, _i), out in zip(tasks, outputs):
@@ -555,6 +572,7 @@ def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: An
     if sub_note:
         notes.insert(0, sub_note)
     fractions = parse_holdout(holdout)
+    _check_named_holdout(holdout, fractions, fd)
     candidates, skipped, what = _select_laws(laws, family, fd)
     if not candidates:
         reasons = "; ".join(s["reason"] for s in skipped)

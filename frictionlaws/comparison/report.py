@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._workers import local_workers
 from ..errors import InputError
 from ..law import VARIABLES
 from ..units import to_display
@@ -807,11 +808,7 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
         The PNG figures in report order, the same with any ``jobs``.
     """
     count = len(_figure_plan(cmp))
-    drawers = 1
-    if jobs != 1:
-        from joblib import effective_n_jobs
-
-        drawers = max(1, min(count, effective_n_jobs(jobs)))
+    drawers = local_workers(jobs, count)
     if drawers == 1:
         return [f for f in (_draw(cmp, i) for i in range(count)) if f is not None]
     from joblib import Parallel, delayed

@@ -83,6 +83,7 @@ from typing import Any
 
 import numpy as np
 
+from .._workers import local_workers
 from ..errors import InputError
 from .records import Record, read_record, split_header
 from .rig import RPM, Rig, RigError, check_cutoff
@@ -1321,7 +1322,7 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
     jobs = _workers(jobs)
     _check_jobs(jobs)
     remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
-    workers = (os.cpu_count() or 1) if jobs == -1 else jobs
+    workers = local_workers(jobs)
     if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
         jobs = 1
     # one record per item: the campaign runner batches the items into tasks itself
