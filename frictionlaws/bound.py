@@ -122,6 +122,9 @@ class BoundLaw:
         Warnings of the fit the values came from.
     converged : bool
         False when the values come from a fit that did not converge.
+    undetermined : tuple of str
+        Parameters the fit's data could not determine (their values are one arbitrary
+        point of a flat valley of chi^2); an FE export refuses them.
     """
 
     law: Law
@@ -132,6 +135,7 @@ class BoundLaw:
     fixed: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
     converged: bool = True
+    undetermined: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.law, Law):
@@ -150,6 +154,7 @@ class BoundLaw:
         object.__setattr__(self, "stderr", {k: float(v) for k, v in self.stderr.items()})
         object.__setattr__(self, "fixed", tuple(self.fixed))
         object.__setattr__(self, "notes", tuple(self.notes))
+        object.__setattr__(self, "undetermined", tuple(self.undetermined))
 
     # ------------------------------------------------------------ evaluation
     @property
@@ -227,7 +232,7 @@ class BoundLaw:
         -------
         dict
             ``law``, ``values`` (value, unit, stderr), ``source``, ``fitted_ranges``,
-            ``fixed``, ``notes`` and ``converged``.
+            ``fixed``, ``notes``, ``converged`` and ``undetermined``.
         """
         units = {p.name: p.unit for p in self.law.params}
         units.update({s.name: s.unit for s in self.law.settings})
@@ -238,7 +243,7 @@ class BoundLaw:
                 "fitted_ranges": {k: {"min": lo, "max": hi, "unit": VARIABLES[k].unit}
                                   for k, (lo, hi) in self.fitted_ranges.items()},
                 "fixed": list(self.fixed), "notes": list(self.notes),
-                "converged": self.converged}
+                "converged": self.converged, "undetermined": list(self.undetermined)}
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, BoundLaw):
@@ -352,7 +357,8 @@ def bound_from_result(result: FitResult, source: Source | None = None, *,
         result.law, result.values, source, fitted_ranges=data.get("ranges") or {},
         stderr={k: p.stderr for k, p in result.params.items() if p.stderr is not None},
         fixed=tuple(k for k, p in result.params.items() if p.fixed),
-        notes=tuple(result.warnings), converged=bool(result.success))
+        notes=tuple(result.warnings), converged=bool(result.success),
+        undetermined=tuple(result.non_identifiable))
 
 
 def as_bound(obj: Any, *, law: Law | str | None = None) -> BoundLaw:

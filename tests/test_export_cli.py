@@ -240,3 +240,26 @@ def test_a_range_the_law_does_not_use_is_refused_in_the_api_and_named_on_the_cli
     assert main(["export", "--law", "thirion", "--set", "a=0.2,b=3e-6", "--format", "csv",
                  "--p", "0.01:0.5", "--v", "0:1", "-o", str(tmp_path / "x.csv")]) == 2
     assert capsys.readouterr().err.startswith("error: --v: law 'thirion' does not depend on v")
+
+
+def test_a_fit_that_cannot_determine_its_parameters_exports_nothing(tmp_path, capsys):
+    """One pressure: thirion's a and b trade off, so a deck over 0.01..0.5 MPa is arbitrary."""
+    import frictionlaws as fl
+
+    data = tmp_path / "one_p.csv"
+    data.write_text("mu,p [MPa],v [m/s]\n1.10,0.03,0.5\n1.12,0.03,1.0\n1.09,0.03,1.5\n")
+    deck = tmp_path / "f.inp"
+    code = main(["export", "--law", "thirion", "--fit", str(data), "--format", "abaqus",
+                 "--p", "0.01MPa:0.5MPa", "-o", str(deck)])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.startswith("error")]
+    assert code == 2 and not deck.exists()
+    assert len(err) == 1 and "cannot determine a, b" in err[0] and "--fix a=VALUE" in err[0]
+    res = fl.fit("thirion", str(data))
+    assert res.bound.undetermined == ("a", "b") and res.bound.to_dict()["undetermined"] == [
+        "a", "b"]
+    with pytest.raises(fl.InputError, match=r"cannot determine a, b.*fix='a=VALUE'"):
+        fl.export(res.bound, format="csv", box={"p": (1e4, 5e5)})
+    # holding b, the data determine a: the deck is written
+    assert main(["export", "--law", "thirion", "--fit", str(data), "--fix", "b=2e-6",
+                 "--format", "abaqus", "--p", "0.01MPa:0.5MPa", "-o", str(deck)]) == 0
+    assert deck.exists()

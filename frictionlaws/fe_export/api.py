@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 from ..law import VARIABLES, Law
 from .fortran import FORTRAN_FORMATS
 from .grid import MAX_ROWS, AxisSpec, Grid
@@ -514,6 +514,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     """
     _check_format(format, tol)
     bound = _bound(law, params, preset)
+    _check_determined(bound)
     _check_path(path, bound)
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
@@ -526,6 +527,19 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     written = writer(job)
     return _result(job, written, _write(path, written.text, _inputs_of(bound)))
+
+
+def _check_determined(bound: BoundLaw) -> None:
+    """Refuse values a fit could not determine: every mu written from them is arbitrary."""
+    if not bound.undetermined:
+        return
+    names = ", ".join(bound.undetermined)
+    raise InputError([
+        f"law '{bound.law.id}': the data of {bound.source.describe()} cannot determine "
+        f"{names}: their values are one arbitrary point of a flat valley of chi^2, and so "
+        "would be the mu written from them outside the measured points; hold them in the "
+        "fit (", Argument("fix", f"{bound.undetermined[0]}=VALUE"), ") or fit data that vary "
+        "what they act through"])
 
 
 def _result(job: Job, written: Written, path: str | None) -> ExportResult:
