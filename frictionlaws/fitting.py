@@ -1567,7 +1567,11 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
     n, k = y.size, len(setup.vary_names)
     dof = n - k
     tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.inf
-    estimates = _estimates(setup, search, diag, tval, dof, warn_msgs)
+    est_msgs: list[str] = []
+    estimates = _estimates(setup, search, diag, tval, dof, est_msgs)
+    if opts["method"] == "bootstrap":  # its intervals replace the symmetric ones: no advice
+        est_msgs = [m for m in est_msgs if not m.startswith(_CUT_PREFIX)]
+    warn_msgs += est_msgs
     corr = _correlation(best)
     metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
     success, message = _status(best, metrics["r2"], warn_msgs)
@@ -1741,13 +1745,17 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
                          f"narrow for these data; the {method} values are reported")
 
 
+#: How the warning of a symmetric interval cut at a bound begins.
+_CUT_PREFIX = "the 95 % interval of "
+
+
 def _clip_interval(name: str, ci: tuple[float, float], bounds: tuple[float, float],
                    warn_msgs: list[str]) -> tuple[float, float]:
     """A symmetric interval cut at the parameter's bounds, with a warning when cut."""
     lo, hi = max(ci[0], bounds[0]), min(ci[1], bounds[1])
     if (lo, hi) != tuple(ci):
         warn_msgs.append(
-            f"the 95 % interval of {name} ({ci[0]:.4g} .. {ci[1]:.4g}) reaches past its "
+            f"{_CUT_PREFIX}{name} ({ci[0]:.4g} .. {ci[1]:.4g}) reaches past its "
             f"bounds [{bounds[0]:g}, {bounds[1]:g}] and is shown cut there: the symmetric "
             "interval describes this fit poorly; uncertainty 'bootstrap' gives a better one")
     return float(lo), float(hi)
@@ -1804,7 +1812,7 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     groups = condition_ids(inp.fd.arrays, _condition_vars(inp.fd), inp.fd.conditions)
     theta = np.array([inp.values[k] for k in inp.vary])
     boot = bootstrap(refit, theta, groups, n_boot=opts["n_boot"], seed=opts["seed"],
-                     n_jobs=opts["n_jobs"])
+                     n_jobs=opts["n_jobs"], jackknife=opts["interval"] == "bca")
     se, ci, used = intervals(boot.samples, theta, boot.jackknife, kind=opts["interval"])
     _set_errors(inp, estimates, se, ci)
     ok = np.all(np.isfinite(boot.samples), axis=1)

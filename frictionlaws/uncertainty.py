@@ -22,9 +22,10 @@ misses a trend and the asymptotic errors are too narrow.
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -293,7 +294,7 @@ def _solve_many(refit: Refit, theta0: np.ndarray, rows_list: list[np.ndarray]
 
 @dataclass
 class BootstrapResult:
-    """Replicate parameters (B x k), leave-one-condition-out ones (G x k), failures."""
+    """Replicate parameters (B x k), leave-out-conditions ones (J x k), failures."""
 
     samples: np.ndarray
     jackknife: np.ndarray
@@ -301,9 +302,65 @@ class BootstrapResult:
     failed: int
 
 
+#: Leave-out sets of the BCa jackknife at most.  With more conditions than this, the
+#: conditions are left out in this many blocks of consecutive ids (a grouped, delete-d
+#: jackknife, whose acceleration estimate serves BCa as well): G single leave-outs would
+#: cost G refits of the whole data.
+JACKKNIFE_SETS = 100
+#: Row indices per task of a parallel bootstrap at most (16 MB), so the tasks in
+#: flight stay small whatever the data size.
+_TASK_INDICES = 2_000_000
+
+
+class _Resampler:
+    """The rows of bootstrap replicates and jackknife sets, made one set at a time.
+
+    Rows are grouped by condition once (a stable sort), so a replicate's rows are a
+    few vectorised operations on the drawn conditions: the same rows, in the same
+    order, as concatenating each drawn condition's rows, without a Python loop over
+    the conditions or any set built before it is needed.
+    """
+
+    def __init__(self, groups: np.ndarray) -> None:
+        self.order = np.argsort(groups, kind="stable")
+        _, self.starts, self.sizes = np.unique(groups[self.order], return_index=True,
+                                               return_counts=True)
+        self.n_groups = int(self.sizes.size)
+
+    def rows(self, chosen: np.ndarray) -> np.ndarray:
+        """The rows of the conditions ``chosen`` (with repeats), condition after condition."""
+        lens = self.sizes[chosen]
+        offsets = np.cumsum(lens) - lens
+        idx = np.arange(int(lens.sum())) - np.repeat(offsets - self.starts[chosen], lens)
+        return self.order[idx]
+
+    def replicates(self, n_boot: int, seed: int) -> Iterator[np.ndarray]:
+        """The rows of each of ``n_boot`` resamples of whole conditions (seeded)."""
+        rng = np.random.default_rng(seed)
+        for _ in range(n_boot):
+            yield self.rows(rng.integers(0, self.n_groups, size=self.n_groups))
+
+    def jackknife(self) -> Iterator[np.ndarray]:
+        """The rows left when each condition, or each block of them, is left out."""
+        ids = np.arange(self.n_groups)
+        sets = min(self.n_groups, JACKKNIFE_SETS)
+        block = ids * sets // self.n_groups
+        for b in range(sets):
+            yield self.rows(ids[block != b])
+
+
+def _tasks(sets: Iterator[np.ndarray], per_task: int) -> Iterator[list[np.ndarray]]:
+    """Consecutive row sets, ``per_task`` to a list."""
+    while chunk := list(itertools.islice(sets, per_task)):
+        yield chunk
+
+
 def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: int,
-              seed: int, n_jobs: int = 1) -> BootstrapResult:
-    """Refit on ``n_boot`` resamples of whole conditions (and the G jackknife sets).
+              seed: int, n_jobs: int = 1, jackknife: bool = True) -> BootstrapResult:
+    """Refit on ``n_boot`` resamples of whole conditions (and the jackknife sets).
+
+    The row sets are made as the refits consume them, so memory stays near the data
+    size, however many conditions and replicates.
 
     Parameters
     ----------
@@ -317,31 +374,31 @@ def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: i
         Replicates and the seed that makes them reproducible.
     n_jobs : int
         joblib workers (1: in this process).
+    jackknife : bool
+        Also refit the leave-out sets BCa needs (one per condition, or
+        :data:`JACKKNIFE_SETS` blocks); percentile intervals need none.
     """
-    members = [np.flatnonzero(groups == g) for g in np.unique(groups)]
-    n_groups = len(members)
-    rng = np.random.default_rng(seed)
-    draws = rng.integers(0, n_groups, size=(n_boot, n_groups))
-    rows_list = [np.concatenate([members[g] for g in d]) for d in draws]
-    jack_rows = [np.concatenate([m for j, m in enumerate(members) if j != g])
-                 for g in range(n_groups)]
-    all_rows = rows_list + jack_rows
-    if n_jobs == 1:
-        out = _solve_many(refit, theta0, all_rows)
+    res = _Resampler(groups)
+    sets = itertools.chain(res.replicates(n_boot, seed),
+                           res.jackknife() if jackknife else iter(()))
+    total = n_boot + (min(res.n_groups, JACKKNIFE_SETS) if jackknife else 0)
+    workers = 1
+    if n_jobs != 1:
+        from ._workers import local_workers
+
+        workers = local_workers(n_jobs, total)
+    if workers == 1:
+        out = np.array([refit.solve(theta0, rows) for rows in sets]).reshape(total, -1)
     else:
         from joblib import Parallel, delayed
 
-        from ._workers import local_workers
-
-        workers = local_workers(n_jobs, len(all_rows))
-        chunks = [all_rows[i::workers] for i in range(workers)]
-        parts = Parallel(n_jobs=workers)(delayed(_solve_many)(refit, theta0, c) for c in chunks)
-        out = np.empty((len(all_rows), theta0.size))
-        for i, part in enumerate(parts):
-            out[i::workers] = part
+        per_task = max(1, min(-(-total // (4 * workers)), _TASK_INDICES // max(groups.size, 1)))
+        parts = Parallel(n_jobs=workers, return_as="generator")(
+            delayed(_solve_many)(refit, theta0, chunk) for chunk in _tasks(sets, per_task))
+        out = np.concatenate(list(parts)).reshape(total, -1)
     samples, jack = out[:n_boot], out[n_boot:]
     failed = int(np.sum(~np.all(np.isfinite(samples), axis=1)))
-    return BootstrapResult(samples, jack, n_groups, failed)
+    return BootstrapResult(samples, jack, res.n_groups, failed)
 
 
 def intervals(samples: np.ndarray, hat: np.ndarray, jack: np.ndarray, *,

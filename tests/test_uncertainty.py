@@ -6,6 +6,8 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import least_squares
 
 import frictionlaws as fl
@@ -266,3 +268,61 @@ def test_residual_order_is_lexsorts_with_and_without_ties(levels):
         others = [rng.integers(0, 4, n).astype(float), rng.uniform(0, 1, n)]
         for extra in ([], others[:1], others):
             assert np.array_equal(_order_by(key, extra), np.lexsort([*extra, key]))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(0, 12), min_size=1, max_size=80), st.integers(0, 2**32 - 1))
+def test_resampled_rows_are_the_drawn_conditions_rows_in_order(groups, seed):
+    from frictionlaws.uncertainty import _Resampler
+
+    g = np.asarray(groups)
+    res = _Resampler(g)
+    members = [np.flatnonzero(g == u) for u in np.unique(g)]
+    chosen = np.random.default_rng(seed).integers(0, len(members), size=len(members))
+    assert np.array_equal(res.rows(chosen), np.concatenate([members[c] for c in chosen]))
+    jack = list(res.jackknife())
+    assert len(jack) == len(members)  # at most JACKKNIFE_SETS conditions: one left out each
+    for j, rows in enumerate(jack):  # the other conditions' rows, condition after condition
+        assert np.array_equal(rows, np.concatenate(
+            [m for i, m in enumerate(members) if i != j] or [np.zeros(0, int)]))
+
+
+class _CountRows:
+    """A stand-in refit: the 'parameter' of a row set is its size."""
+
+    def solve(self, theta0, rows):
+        return np.array([float(rows.size)])
+
+
+def test_bootstrap_memory_stays_near_the_data_with_many_conditions():
+    """20 000 rows, every one its own condition: the leave-one-out sets alone were
+    G x N = 4e8 indices (3.2 GB); now blocks of conditions, made one at a time."""
+    import tracemalloc
+
+    from frictionlaws.uncertainty import JACKKNIFE_SETS, bootstrap
+
+    n = 20_000
+    groups = np.arange(n)
+    tracemalloc.start()
+    try:
+        res = bootstrap(_CountRows(), np.zeros(1), groups, n_boot=30, seed=1)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 40 * 8 * n  # a few dozen index arrays of the data's size, not G of them
+    assert res.samples.shape == (30, 1) and np.all(res.samples == n)
+    assert res.jackknife.shape == (JACKKNIFE_SETS, 1)
+    assert np.all(res.jackknife == n - n // JACKKNIFE_SETS)  # one block of 200 left out
+    pct = bootstrap(_CountRows(), np.zeros(1), groups, n_boot=30, seed=1, jackknife=False)
+    assert pct.jackknife.shape == (0, 1) and np.array_equal(pct.samples, res.samples)
+
+
+def test_bootstrap_does_not_advise_itself_about_a_cut_symmetric_interval():
+    rng = np.random.default_rng(3)
+    p = np.repeat(np.linspace(1e4, 3e5, 12), 3)
+    data = {"p": p, "mu": 0.6 + 0.01 * rng.standard_normal(p.size)}  # b at its bound 0
+    cut = [w for w in fl.fit("thirion", data).warnings if "reaches past its bounds" in w]
+    assert len(cut) == 1 and "uncertainty 'bootstrap' gives a better one" in cut[0]
+    boot = fl.fit("thirion", data, uncertainty="bootstrap", n_boot=50)
+    assert not [w for w in boot.warnings if "reaches past its bounds" in w]
+    assert boot.params["b"].ci95[0] >= 0.0
