@@ -396,8 +396,8 @@ def _holdout_items(text: str) -> dict[str, Any]:
                              f"got '{part.strip()}'", option="holdout")
         k, v = (s.strip() for s in part.split("=", 1))
         if k in items:
-            raise InputError(f"holdout: '{k}' is given twice ({items[k]} and {v}); "
-                             "give each variable once")
+            raise InputError(f"'{k}' is given twice ({items[k]} and {v}); give each "
+                             "variable once", option="holdout")
         items[k] = v
     return items
 

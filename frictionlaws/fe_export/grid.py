@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 
 __all__ = [
     "AxisSpec",
@@ -677,10 +677,16 @@ def _too_many(grid: Grid, tol: float, max_rows: int) -> InputError:
             where.append(f"{name} = {0.5 * (pts[j] + pts[j + 1]):.6g}")
     near = (f"; the points crowd near {', '.join(where)} (SI), where the law changes "
             "fastest (a pole or a step?)" if where else "")
-    return InputError(
+    return InputError([
         f"meeting tol {tol:.3g} needs more than {max_rows} table rows "
-        f"(reached {' x '.join(map(str, grid.shape))} = {grid.rows}){near}; relax the "
-        "tolerance, shrink the box, or raise the row limit (--max-rows)")
+        f"(reached {_shape_text(grid)}){near}; relax the tolerance, shrink the box, or "
+        "raise the row limit (", Argument("max_rows"), ")"])
+
+
+def _shape_text(grid: Grid) -> str:
+    """``12 x 9 = 108`` rows; ``7`` for one variable."""
+    dims = " x ".join(map(str, grid.shape))
+    return dims if len(grid.shape) == 1 else f"{dims} = {grid.rows}"
 
 
 def _error_marks(func: Func, grid: Grid, exact: np.ndarray, samples: list[np.ndarray],
