@@ -411,25 +411,13 @@ def _without_command(parser: argparse.ArgumentParser,
     return None
 
 
-def _valued_options(parser: argparse.ArgumentParser) -> set[str]:
-    """Every option string, of ``parser`` and its sub-commands, that takes a value."""
-    out: set[str] = set()
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction):
-            for sub in action.choices.values():
-                out |= _valued_options(sub)
-        elif action.option_strings and action.nargs != 0:
-            out.update(action.option_strings)
-    return out
-
-
 def _empty_value(parser: argparse.ArgumentParser, argv: Sequence[str]) -> str | None:
     """The first option given an empty value (``--report ''``, ``--out=``), or None.
 
     An empty value never means "everything" or "nothing": ``--report ''`` would
     otherwise write no report and ``--holdout ''`` run no extrapolation test, silently.
     """
-    valued = _valued_options(parser)
+    valued = _value_options(parser)
     for i, token in enumerate(argv):
         if token == "--":
             return None
