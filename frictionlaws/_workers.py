@@ -8,7 +8,11 @@ for them, each process paying its start-up and its memory) or than there are tas
 
 from __future__ import annotations
 
-__all__ = ["local_workers"]
+import itertools
+from collections.abc import Iterable, Iterator
+from typing import Any
+
+__all__ = ["local_workers", "batches"]
 
 
 def local_workers(jobs: int, tasks: int | None = None) -> int:
@@ -36,3 +40,10 @@ def local_workers(jobs: int, tasks: int | None = None) -> int:
     if tasks is not None:
         workers = min(workers, max(1, int(tasks)))
     return max(1, workers)
+
+
+def batches(items: Iterable[Any], size: int) -> Iterator[list[Any]]:
+    """``items`` in lists of ``size`` (the last one shorter), read lazily."""
+    it = iter(items)
+    while batch := list(itertools.islice(it, size)):
+        yield batch

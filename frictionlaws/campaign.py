@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ._workers import local_workers
+from ._workers import batches, local_workers
 from .errors import FitError, InputError
 
 __all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
@@ -474,13 +474,6 @@ def batch_size(total: int | None, workers: int) -> int:
     return max(1, min(MAX_BATCH, total // (_TASKS_PER_WORKER * max(workers, 1))))
 
 
-def _batches(items: Iterable[Any], size: int) -> Iterator[list[Any]]:
-    """``items`` in lists of ``size`` (the last one shorter), read lazily."""
-    it = iter(items)
-    while batch := list(itertools.islice(it, size)):
-        yield batch
-
-
 def _run_batch(func: Callable[[Any], Any], batch: Sequence[Any]) -> list[Any]:
     """One task: ``func`` over a batch of items (runs on a worker)."""
     return [func(item) for item in batch]
@@ -508,7 +501,7 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
 
     workers = local_workers(jobs, total)
     size = batch_size(total, workers)
-    tasks = (joblib.delayed(_run_batch)(func, batch) for batch in _batches(items, size))
+    tasks = (joblib.delayed(_run_batch)(func, batch) for batch in batches(items, size))
     parallel = joblib.Parallel(n_jobs=workers, batch_size=1, pre_dispatch=_WINDOW * workers,
                                return_as="generator")
     for part in parallel(tasks):
@@ -541,7 +534,7 @@ def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str,
         threads = sum(client.nthreads().values()) or 1
         size = batch_size(total, threads)
         window: deque[Any] = deque()
-        for batch in _batches(items, size):
+        for batch in batches(items, size):
             window.append(client.submit(_run_batch, func, batch, pure=False))
             if len(window) >= _WINDOW * threads:
                 yield from window.popleft().result()

@@ -1448,18 +1448,22 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
 
 
 def _estimates(setup: _Setup, search: _Search, diag: _Diagnosis, tval: float, dof: int,
-               warn_msgs: list[str]) -> dict[str, ParamEstimate]:
-    """Value, standard error and 95 % interval of every parameter, with their warnings."""
+               warn_msgs: list[str], cut_msgs: list[str]) -> dict[str, ParamEstimate]:
+    """Value, standard error and 95 % interval of every parameter, with their warnings.
+
+    The warnings of symmetric intervals cut at a bound go to ``cut_msgs``.
+    """
     estimates: dict[str, ParamEstimate] = {}
     for name in setup.names:
-        estimates[name] = _estimate(setup, search, diag, name, tval, dof, warn_msgs)
+        estimates[name] = _estimate(setup, search, diag, name, tval, dof, warn_msgs,
+                                    cut_msgs)
         if name not in setup.fix and name not in search.best_pinned:
             _warn_at_bound(setup, name, diag.values[name], warn_msgs)
     return estimates
 
 
 def _estimate(setup: _Setup, search: _Search, diag: _Diagnosis, name: str, tval: float,
-              dof: int, warn_msgs: list[str]) -> ParamEstimate:
+              dof: int, warn_msgs: list[str], cut_msgs: list[str]) -> ParamEstimate:
     """One parameter's estimate (fixed, pinned at a bound, or fitted)."""
     law, value, unit, non_id = setup.law, diag.values[name], setup.unit(name), diag.non_id
     if name in setup.fix:
@@ -1472,7 +1476,7 @@ def _estimate(setup: _Setup, search: _Search, diag: _Diagnosis, name: str, tval:
     se = search.best.params[name].stderr
     if name not in non_id and se is not None and np.isfinite(se) and dof > 0:
         limits = (law.setting(name) if name in setup.freed else law.param(name)).bounds
-        ci = _clip_interval(name, (value - tval * se, value + tval * se), limits, warn_msgs)
+        ci = _clip_interval(name, (value - tval * se, value + tval * se), limits, cut_msgs)
         return ParamEstimate(name, value, float(se), ci, unit)
     if name not in non_id:
         why = (" (as many parameters as data points)" if dof <= 0 else
@@ -1567,11 +1571,9 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
     n, k = y.size, len(setup.vary_names)
     dof = n - k
     tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.inf
-    est_msgs: list[str] = []
-    estimates = _estimates(setup, search, diag, tval, dof, est_msgs)
-    if opts["method"] == "bootstrap":  # its intervals replace the symmetric ones: no advice
-        est_msgs = [m for m in est_msgs if not m.startswith(_CUT_PREFIX)]
-    warn_msgs += est_msgs
+    # the bootstrap's intervals replace the symmetric ones: a cut one needs no warning
+    cut_msgs: list[str] = [] if opts["method"] == "bootstrap" else warn_msgs
+    estimates = _estimates(setup, search, diag, tval, dof, warn_msgs, cut_msgs)
     corr = _correlation(best)
     metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
     success, message = _status(best, metrics["r2"], warn_msgs)
@@ -1745,17 +1747,13 @@ def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
                          f"narrow for these data; the {method} values are reported")
 
 
-#: How the warning of a symmetric interval cut at a bound begins.
-_CUT_PREFIX = "the 95 % interval of "
-
-
 def _clip_interval(name: str, ci: tuple[float, float], bounds: tuple[float, float],
                    warn_msgs: list[str]) -> tuple[float, float]:
     """A symmetric interval cut at the parameter's bounds, with a warning when cut."""
     lo, hi = max(ci[0], bounds[0]), min(ci[1], bounds[1])
     if (lo, hi) != tuple(ci):
         warn_msgs.append(
-            f"{_CUT_PREFIX}{name} ({ci[0]:.4g} .. {ci[1]:.4g}) reaches past its "
+            f"the 95 % interval of {name} ({ci[0]:.4g} .. {ci[1]:.4g}) reaches past its "
             f"bounds [{bounds[0]:g}, {bounds[1]:g}] and is shown cut there: the symmetric "
             "interval describes this fit poorly; uncertainty 'bootstrap' gives a better one")
     return float(lo), float(hi)

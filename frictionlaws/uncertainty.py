@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ._workers import batches, local_workers
 from .errors import InputError
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
@@ -349,12 +350,6 @@ class _Resampler:
             yield self.rows(ids[block != b])
 
 
-def _tasks(sets: Iterator[np.ndarray], per_task: int) -> Iterator[list[np.ndarray]]:
-    """Consecutive row sets, ``per_task`` to a list."""
-    while chunk := list(itertools.islice(sets, per_task)):
-        yield chunk
-
-
 def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: int,
               seed: int, n_jobs: int = 1, jackknife: bool = True) -> BootstrapResult:
     """Refit on ``n_boot`` resamples of whole conditions (and the jackknife sets).
@@ -382,11 +377,7 @@ def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: i
     sets = itertools.chain(res.replicates(n_boot, seed),
                            res.jackknife() if jackknife else iter(()))
     total = n_boot + (min(res.n_groups, JACKKNIFE_SETS) if jackknife else 0)
-    workers = 1
-    if n_jobs != 1:
-        from ._workers import local_workers
-
-        workers = local_workers(n_jobs, total)
+    workers = local_workers(n_jobs, total)
     if workers == 1:
         out = np.array([refit.solve(theta0, rows) for rows in sets]).reshape(total, -1)
     else:
@@ -394,7 +385,7 @@ def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: i
 
         per_task = max(1, min(-(-total // (4 * workers)), _TASK_INDICES // max(groups.size, 1)))
         parts = Parallel(n_jobs=workers, return_as="generator")(
-            delayed(_solve_many)(refit, theta0, chunk) for chunk in _tasks(sets, per_task))
+            delayed(_solve_many)(refit, theta0, chunk) for chunk in batches(sets, per_task))
         out = np.concatenate(list(parts)).reshape(total, -1)
     samples, jack = out[:n_boot], out[n_boot:]
     failed = int(np.sum(~np.all(np.isfinite(samples), axis=1)))

@@ -295,7 +295,7 @@ def _grid(fig: Any, nrows: int, ncols: int, *, legend_in: float = 0.0, top_in: f
     """
     w, h = fig.get_size_inches()
     axes = fig.subplots(nrows, ncols, squeeze=False, sharey=sharey)
-    for ax in axes.ravel():  # a tick costs two lines and two texts to make and draw
+    for ax in axes.ravel():
         ax.locator_params(nbins=TICKS)
     fig.subplots_adjust(left=left_in / w, right=1.0 - (legend_in + 0.15) / w,
                         bottom=bottom_in / h, top=1.0 - top_in / h, hspace=hspace,

@@ -604,7 +604,11 @@ class BrushModel:
             mu = np.asarray(self.mu(p, v), dtype=float)
         if check:
             self._check_mu(mu, p, v)
-        return mu * p * self.tyre.width / c
+        return mu * self._limit_scale(p, c)
+
+    def _limit_scale(self, p: Any, c: float) -> Any:
+        """The deflection limit per unit mu, p w / c [m]."""
+        return p * (self.tyre.width / c)
 
     def _check_mu(self, mu: np.ndarray, p: Any, v: Any) -> None:
         bad = ~np.isfinite(mu) | (mu < 0)
@@ -773,7 +777,7 @@ class BrushModel:
         lo, hi = np.zeros_like(a), rate * a
         v = np.clip(v, lo, hi)
         dlim, settled = np.zeros_like(a), True
-        scale = pk * (self.tyre.width / c)  # limit = mu scale
+        scale = self._limit_scale(pk, c)  # limit = mu scale
         inv_rate, tol = 1.0 / rate, 1e-14 * a
         both = np.empty((2, a.size))
         for _ in range(TIP_STEPS):
