@@ -129,9 +129,11 @@ class TabulatedPSD:
 
     def rms(self, q1: float | None = None) -> float:
         """rms height [m] of the band q0..q1 (trapezoid in log q)."""
+        from scipy.integrate import trapezoid  # numpy < 2 has no np.trapezoid
+
         q1 = self.q1 if q1 is None else q1
         q = self.q[self.q <= q1]
-        return math.sqrt(2 * math.pi * float(np.trapezoid(q**2 * self.C(q), np.log(q))))
+        return math.sqrt(2 * math.pi * float(trapezoid(q**2 * self.C(q), np.log(q))))
 
 
 def asphalt_like(q1: float = 1e6) -> SelfAffine:
