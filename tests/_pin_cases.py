@@ -1,7 +1,7 @@
 """The fits pinned by tests/test_pinned_fits.py, and the script that produced the pins.
 
 Run ``python tests/_pin_cases.py`` to print the table of pinned values (it was run on the
-main code before the fit-speed work of issue 15, commit bf71f47, and its output pasted
+main code before the fit-speed work (commit bf71f47), and its output pasted
 into tests/test_pinned_fits.py).  Never regenerate the pins to make a failing test pass.
 """
 

@@ -1,4 +1,4 @@
-"""Campaigns: groups, many datasets, shared parameters, parallel and Dask (issue 17)."""
+"""Campaigns: groups, many datasets, shared parameters, parallel and Dask."""
 
 from __future__ import annotations
 
@@ -84,7 +84,7 @@ def test_many_files_and_a_directory_give_the_same_records(tmp_path):
 
 
 def test_an_unreadable_dataset_refuses_the_campaign_before_any_fit(tmp_path):
-    """A campaign half done looks complete: every dataset is read first (issue 12)."""
+    """A campaign half done looks complete: every dataset is read first."""
     from frictionlaws.campaign import UnreadableDatasets
 
     good = _two_surfaces(tmp_path)

@@ -1,4 +1,4 @@
-"""The comparison report's content after the cheap-figure rework (issue 15).
+"""The comparison report's content: tables, captions and cheap figures.
 
 The residual p-values left the residuals figure for a table in report.md and report.html;
 the figure marks the strips whose tests find structure.  These tests pin that nothing was

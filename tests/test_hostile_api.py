@@ -41,7 +41,7 @@ pytestmark = pytest.mark.hostile
 
 
 def covers(area: str) -> pytest.MarkDecorator:
-    """The area (issue 12 class) a case guards; every case must pass."""
+    """The area a case guards; every case must pass."""
     return pytest.mark.hostile
 
 
@@ -99,7 +99,7 @@ ARRAY_VALUES = st.one_of(
 @given(mu=st.lists(ARRAY_VALUES, min_size=0, max_size=6),
        p=st.lists(ARRAY_VALUES, min_size=0, max_size=6))
 def test_fit_arrays_hostile(mu: list[float], p: list[float]) -> None:
-    """fit() on arrays makes the checks the CSV loader makes (issue 12 class 2)."""
+    """fit() on arrays makes the checks the CSV loader makes."""
     res = check_api(lambda: fl.fit("thirion", {"mu": mu, "p": p}))
     if not isinstance(res, Exception):
         assert all(math.isfinite(x) and x >= 0 for x in mu), "bad mu accepted"
@@ -112,7 +112,7 @@ VARIABLE_VALUES = st.one_of(
 )
 
 
-@covers("fit")  # laws evaluated outside their domain give negative mu (issue 12 class 2)
+@covers("fit")  # laws evaluated outside their domain give negative mu
 @hostile(60)
 @example(law="thesis-poly2", p=0.0, v=7.0, s=0.0, T=0.0, F_N=0.0)  # mu = -2.3
 @given(law=st.sampled_from(["thirion", "coulomb", "thesis-poly2", "savkoor", "pacejka",

@@ -39,19 +39,19 @@ pytestmark = pytest.mark.hostile
 
 
 
-#: The areas of the library the cases guard (issue 12 classes).
+#: The areas of the library the cases guard.
 AREAS = {
-    "input": "input layer (issue 12 classes 3, 5: one table reader, number policy)",
-    "fit": "fit command/API (issue 12 classes 1, 7, 9)",
-    "export": "export (issue 12 classes 1, 4, 5)",
-    "mf": "Magic Formula property files (issue 12 class 6)",
-    "tribo": "process / rig files (issue 12 classes 3, 5)",
-    "compare": "compare (issue 12 classes 7, 8)",
+    "input": "input layer (one table reader, number policy)",
+    "fit": "fit command/API",
+    "export": "export",
+    "mf": "Magic Formula property files",
+    "tribo": "process / rig files",
+    "compare": "compare",
 }
 
 
 def covers(area: str) -> pytest.MarkDecorator:
-    """The area (issue 12 class) a case guards; every case must pass."""
+    """The area a case guards; every case must pass."""
     return pytest.mark.hostile
 
 
@@ -122,7 +122,7 @@ FIT_LAWS = st.sampled_from(["thirion", "coulomb", "quadratic-pv", "exponential-d
 # ------------------------------------------------------------------------------ fit
 
 
-@covers("input")  # mu = 5e307 is accepted; lmfit overflows: exit 3 (issue 12 class 3)
+@covers("input")  # mu = 5e307 is accepted; lmfit overflows: exit 3
 @hostile(60)
 @example(data=b"mu,p [MPa]\n5e307,0.1\n1.5,0.2\n1.9,0.3\n", law="coulomb", opts=[],
          json_out=True, save=None)

@@ -1,4 +1,4 @@
-"""Hostile-input harness for raw tribometer records (issue 12, classes 3 and 5).
+"""Hostile-input harness for raw tribometer records.
 
 A record follows the table rules of every other input (datasets, manifests): the one
 encoding rule, a ``;``, tab or ``,`` delimiter read from the header line, decimal commas

@@ -1,4 +1,4 @@
-"""The README's test command tests the installed package, not the source tree (issue 16)."""
+"""The README's test command tests the installed package, not the source tree."""
 
 from __future__ import annotations
 

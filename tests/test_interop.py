@@ -1,4 +1,4 @@
-"""lmfit, pandas, xarray and Jupyter interoperability (issue 16)."""
+"""lmfit, pandas, xarray and Jupyter interoperability."""
 
 from __future__ import annotations
 

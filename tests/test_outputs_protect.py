@@ -1,4 +1,4 @@
-"""The output guard's input rule (issue 12): a file read in this process is never replaced.
+"""The output guard's input rule: a file read in this process is never replaced.
 
 Rules checked here (stated in :mod:`frictionlaws.outputs`):
 

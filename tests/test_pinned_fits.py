@@ -1,4 +1,4 @@
-"""Today's fitted values, pinned (issue 15: faster fits must not change the results).
+"""Today's fitted values, pinned (faster fits must not change the results).
 
 Every case of ``tests/_pin_cases.py`` (the sliding laws on the packaged thesis-steel data,
 three of them on the thesis' own table layout, and the laws on seeded synthetic data from

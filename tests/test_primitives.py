@@ -1,4 +1,4 @@
-"""The shared primitives: strict JSON, the number parser and the output guard (issue 12)."""
+"""The shared primitives: strict JSON, the number parser and the output guard."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``process`` with several manifests, ``--json``, and the campaign runner (issues 16, 17)."""
+"""``process`` with several manifests, ``--json``, and the campaign runner."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The Magic Formula keeps xarray's named dimensions, as the laws do (issue 16)."""
+"""The Magic Formula keeps xarray's named dimensions, as the laws do."""
 
 from __future__ import annotations
 

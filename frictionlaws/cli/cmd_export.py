@@ -108,7 +108,7 @@ __all__ = ["add_parser", "run"]
 
 #: The variables a box may give ranges of (one flag each: --p, --v, ...): the law
 #: variables.  The flags are made when the parser is built, which imports no numpy, so
-#: this is not read from ``law.VARIABLES``; tests/test_house.py checks the two agree.
+#: this is not read from ``law.VARIABLES``; tests/test_code_rules.py checks the two agree.
 _BOX = ("p", "v", "T", "F_N", "s")
 
 

@@ -1,4 +1,4 @@
-"""``compare`` on large data is bounded: more than ``max_rows`` rows are subsampled (issue 12).
+"""``compare`` on large data is bounded: more than ``max_rows`` rows are subsampled.
 
 Rule (module docstring of :mod:`frictionlaws.comparison.core`): data with more than
 ``max_rows`` rows (default :data:`~frictionlaws.comparison.core.MAX_ROWS`) are compared

@@ -1,4 +1,4 @@
-"""Rules behind the last findings of the third hostile corpus (issue 12), part two.
+"""Hostile usage, campaigns, rigs and Magic Formula fits: rules found by a hostile corpus.
 
 Each test states a general rule and checks it on generated or hand-built inputs (the
 corpus itself stays outside the project):

@@ -1,4 +1,4 @@
-"""Ecosystem conventions (issue 16): dependencies declared where they are imported,
+"""Packaging conventions: dependencies declared where they are imported,
 comparisons as DataFrames, ``validate --list --json`` as strict JSON."""
 
 from __future__ import annotations

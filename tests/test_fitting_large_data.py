@@ -1,5 +1,5 @@
 """Large fits: MINPACK through leastsq, identifiability from a blockwise R, and the
-memory they hold (issue 15).  Timings live in benchmarks/; these are exact checks."""
+memory they hold.  Timings live in benchmarks/; these are exact checks."""
 
 from __future__ import annotations
 

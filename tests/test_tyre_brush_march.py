@@ -1,6 +1,6 @@
-"""The brush model's local-speed march agrees with the march it replaced (issue 15).
+"""The brush model's local-speed march agrees with the march it replaced.
 
-Two references: the pre-issue-15 march (log-grid scan, then 45 bisection steps per
+Two references: the earlier march (log-grid scan, then 45 bisection steps per
 sliding node, vectorised over slips), kept as the baseline of
 ``benchmarks/bench_brush.py`` and loaded from there; and a plain-float march written
 here one slip and one node at a time (:func:`scalar_march`).  The model solves all

@@ -1,4 +1,4 @@
-"""The house rules of issue 13, checked on the installed package's source.
+"""The code rules, checked on the installed package's source.
 
 * no function in ``frictionlaws/`` longer than 80 lines;
 * none above cyclomatic complexity 15 (ruff's C901);

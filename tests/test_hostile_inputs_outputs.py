@@ -1,4 +1,4 @@
-"""Rules behind what the third hostile corpus (kept outside the project) found (issue 12).
+"""Hostile inputs and outputs: rules found by a hostile corpus kept outside the project.
 
 Each test states the general rule, then checks it on the kinds of input that broke it:
 
