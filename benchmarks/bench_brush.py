@@ -7,7 +7,7 @@ law.  The model (``BrushModel._march_local``) solves all nodes of all slips toge
 Newton sweeps over the patch with vectorised tip-speed Newton steps, then a check that
 each sliding state is the one the node-by-node march picks; its own node-by-node march
 (scan + regula falsi), which decides when the sweeps do not settle, is timed as well.
-Printed: CPU milliseconds per load of each, the ratios, the target (issue 15: <= 5 ms
+Printed: CPU milliseconds per load of each, the ratios, the target (<= 5 ms
 per load) and the largest relative difference of the forces against the baseline.
 ``tests/test_tyre_brush_march.py`` checks the agreement.
 

@@ -1,5 +1,5 @@
 """Campaign throughput: many synthetic datasets x 3 laws, serial vs 2 local processes vs a
-2-worker Dask LocalCluster, measured in one run (issue 17).
+2-worker Dask LocalCluster, measured in one run.
 
 For each way of running it prints the wall time, datasets per second and the ratio to
 the serial run of the same round, and the CPU time spent by the calling process and

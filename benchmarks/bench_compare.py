@@ -6,10 +6,10 @@ cross-validation fold and once per holdout split, so its cost in one process is 
 to ``1 + K + splits`` baselines; ``jobs=2`` spreads those fits over two processes.
 Printed, all from this one run:
 
-* compare / one fit per law, serial and with ``jobs=2`` (issue 15 asks for <= 2.5x);
+* compare / one fit per law, serial and with ``jobs=2`` (target <= 2.5x);
 * the overhead beyond the refits (plausibility scan, residual tests, bookkeeping);
 * the report (six PNG figures, HTML, Markdown, JSON): wall and CPU seconds, the best
-  and the median of ``--report-runs`` serial runs (issue 15 asks for under 2.5 s
+  and the median of ``--report-runs`` serial runs (target under 2.5 s
   wall), its ratio to the comparison, and its wall time with the figures drawn by
   ``jobs`` processes.
 

@@ -1,4 +1,4 @@
-"""Fit time against ``scipy.optimize.curve_fit`` with the same model and start (issue 15).
+"""Fit time against ``scipy.optimize.curve_fit`` with the same model and start.
 
 For thirion, pacejka, burckhardt and savkoor on synthetic data (2e4 and 200 rows), times
 ``frictionlaws.fit`` and ``curve_fit`` (the law's independent reference form on numpy

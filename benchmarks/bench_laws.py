@@ -1,7 +1,7 @@
 """Benchmarks of the foundation, each printed as a ratio against a baseline from the same run.
 
 1. Evaluation of every law on 1e6 points through ``law(...)`` against a hand-written numpy
-   expression of the same formula (with the same floors).  Target (issue 15): at most 1.2x.
+   expression of the same formula (with the same floors).  Target: at most 1.2x.
 2. Fit time per law with ``frictionlaws.fit`` (lmfit, diagnostics, identifiability check)
    against ``scipy.optimize.curve_fit`` of the hand-written expression on the same data.
 3. CLI start-up (``python -m frictionlaws laws`` and ``--version``) against

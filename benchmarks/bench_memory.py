@@ -1,4 +1,4 @@
-"""Peak memory of a 2e6-row fit against lmfit's leastsq on the same data (issue 15).
+"""Peak memory of a 2e6-row fit against lmfit's leastsq on the same data.
 
 Each side runs in its own subprocess: it builds the same synthetic thirion data (2e6 rows,
 seeded), records the resident set size, fits, and reports the growth of the peak resident

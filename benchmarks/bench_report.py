@@ -1,4 +1,4 @@
-"""Time of ``Comparison.write_report`` on the packaged thesis-steel data (issue 15: < 2.5 s wall).
+"""Time of ``Comparison.write_report`` on the packaged thesis-steel data (< 2.5 s wall).
 
 The comparison is computed once (every sliding law, or five with ``--quick``); then the
 report is written ``--rounds`` times into fresh temporary directories, serially, and

@@ -1,6 +1,6 @@
 """Benchmark of the start-up of ``frictionlaws fit --law thirion thesis-steel``.
 
-Baseline, measured in the same run: ``python -c "import lmfit"`` (issue 15 asks for the
+Baseline, measured in the same run: ``python -c "import lmfit"`` (target: the
 whole fit command, start to finish, in <= 1.0x that time).  The two commands run as
 subprocesses, alternately (the order swapped every round), so that the load of a shared
 machine falls on both; printed are the best and median wall times of each, their ratios
@@ -127,7 +127,7 @@ def main() -> None:
           f"median of paired {statistics.median(paired):.2f}x "
           f"(range {min(paired):.2f}..{max(paired):.2f})")
     verdict = "met" if statistics.median(paired) <= TARGET else "NOT met"
-    print(f"  target (issue 15): <= {TARGET:.1f}x  -> {verdict} (median of paired ratios)")
+    print(f"  target: <= {TARGET:.1f}x  -> {verdict} (median of paired ratios)")
     if "tree" in times:
         tree = times["tree"]
         ratios = [t / b for t, b in zip(tree, bases, strict=True)]
