@@ -1,6 +1,6 @@
 """Benchmark of the brush model's local-sliding-speed mode (``sliding_speed="local"``).
 
-Baseline, measured in the same run: the node-by-node march as it was before issue 15
+Baseline, measured in the same run: the node-by-node march as it was before the bisection-free rework
 (a log-grid scan for the slowest sliding speed, then 45 bisection steps per sliding
 node), kept here as :func:`march_local_bisection` and run on the same patch, slips and
 law.  The model (``BrushModel._march_local``) solves all nodes of all slips together:
@@ -31,13 +31,13 @@ LAW = {"mu_s": 0.6, "mu_d": 1.0, "v_c": 0.05, "delta": 1.0}
 #: The pre-issue-15 constants of the march.
 BISECTION_STEPS = 45
 SCAN = np.geomspace(1e-9, 1.0, 60)
-#: Issue 15's target for the model's march [ms per load].
+#: The target for the model's march [ms per load].
 TARGET_MS = 5.0
 
 
 def march_local_bisection(model: BrushModel, p: np.ndarray, d: np.ndarray, vr: np.ndarray,
                           ds: float, c: float) -> tuple[np.ndarray, Any]:
-    """The local-speed march of :class:`BrushModel` before issue 15 (the baseline).
+    """The local-speed march of :class:`BrushModel` before the bisection-free rework (the baseline).
 
     Parameters
     ----------
