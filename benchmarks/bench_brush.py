@@ -28,7 +28,7 @@ from frictionlaws.tyre.brush import BrushModel
 
 #: A law whose friction rises with the sliding speed (a unique local steady state).
 LAW = {"mu_s": 0.6, "mu_d": 1.0, "v_c": 0.05, "delta": 1.0}
-#: The pre-issue-15 constants of the march.
+#: The earlier march's constants.
 BISECTION_STEPS = 45
 SCAN = np.geomspace(1e-9, 1.0, 60)
 #: The target for the model's march [ms per load].
