@@ -130,11 +130,16 @@ def test_non_identifiable_laws_are_marked_and_ranked_last(default_run) -> None:
     _, text, out = default_run
     doc = json.loads((out / "comparison.json").read_text())
     laws = doc["laws"]
-    unid = [bool(law["non_identifiable"]) for law in laws]
+    scored = [law for law in laws if law["cv_rmse_common"] is not None]
+    assert laws[:len(scored)] == scored  # unscored (n/d) laws after every scored one
+    unid = [bool(law["non_identifiable"]) for law in scored]
     assert any(unid) and unid == sorted(unid)
+    assert all(law["rank_basis"].startswith("unscored") for law in laws[len(scored):])
     assert "NOT IDENTIFIABLE from these data" in text
     assert "thesis-poly3: cannot determine a4, a5, a6" in text  # 3 velocity levels, 4 terms
-    assert "<th class=''>identifiable</th>" in (out / "report.html").read_text()
+    html = (out / "report.html").read_text()
+    assert "<th class=''>identifiable</th>" in html and "<th class=''>group</th>" in html
+    assert "<th class=''>rank basis</th>" in html and "<td class=''>n/d</td>" in html
 
 
 def test_jobs_spread_one_comparison_and_its_report(tmp_path: Path,
