@@ -1032,7 +1032,9 @@ def fit(
         local starts end worse than the mean of mu or at different minima.
     lean : bool
         Values, metrics, convergence and the names the data cannot determine only
-        (refits in cross-validation): no intervals, derived quantities or provenance.
+        (refits in cross-validation): no intervals, derived quantities or provenance; the
+        best fit is polished to tight tolerances (:func:`_polish`), so that the refit's
+        optimum does not depend on the solver's path or the scipy version.
 
     Returns
     -------
