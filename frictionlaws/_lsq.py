@@ -132,7 +132,8 @@ class _Residual:
 def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray | None,
           start: Mapping[str, float], vary: list[str],
           bounds: Mapping[str, tuple[float, float]], max_nfev: int,
-          jac: Callable[[dict[str, float]], np.ndarray] | None = None) -> LocalFit:
+          jac: Callable[[dict[str, float]], np.ndarray] | None = None,
+          tol: float = 1e-8) -> LocalFit:
     """Minimise ``sum(((y - model(values)) * w)**2)`` over the ``vary`` parameters.
 
     Parameters
@@ -152,6 +153,10 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
     jac : callable, optional
         ``jac(values) -> (n, len(vary))`` Jacobian of the model; None: finite
         differences (two-point, as lmfit's default).
+    tol : float
+        ``ftol``, ``xtol`` and ``gtol`` of the solver (lmfit's 1e-8 by default).  A
+        tighter one also scales the steps by the Jacobian's columns (``x_scale="jac"``),
+        so that parameters of very different sizes converge alike (a polish).
 
     Returns
     -------
@@ -170,13 +175,14 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
     held = {k: float(v) for k, v in start.items() if k not in vary}
     res = _Residual(model, y, w, held, list(vary), lo, hi, max_nfev)
     x0 = np.array([float(start[k]) for k in vary])
-    kws: dict[str, Any] = dict(jac="2-point", method="trf", ftol=1e-8, xtol=1e-8, gtol=1e-8,
-                               x_scale=1.0, loss="linear", max_nfev=2 * max_nfev)
+    kws: dict[str, Any] = dict(jac="2-point", method="trf", ftol=tol, xtol=tol, gtol=tol,
+                               x_scale=1.0 if tol >= 1e-8 else "jac", loss="linear",
+                               max_nfev=2 * max_nfev)
     if jac is not None:
         kws["jac"] = _residual_jacobian(jac, res)
     try:
         if jac is not None and y.size > len(vary):
-            lm = _minpack_inside(res, x0, kws["jac"], max_nfev)
+            lm = _minpack_inside(res, x0, kws["jac"], max_nfev, tol)
             if lm is not None:
                 return _finish(res, lm[0], lm[1], True, lm[2], res.nfev)
         ret = least_squares(res, x0, bounds=(lo, hi), **kws)
@@ -192,7 +198,7 @@ class _LeftBounds(Exception):
 
 
 def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], np.ndarray],
-                    max_nfev: int) -> Any:
+                    max_nfev: int, tol: float = 1e-8) -> Any:
     """Levenberg-Marquardt (MINPACK, analytic Jacobian) while it stays inside the bounds.
 
     Each MINPACK iteration costs one residual and one Jacobian and no decomposition
@@ -222,7 +228,7 @@ def _minpack_inside(res: _Residual, x0: np.ndarray, jac: Callable[[np.ndarray], 
         return None
     try:
         x, _, _, message, ier = leastsq(inside, x0.copy(), Dfun=jac, full_output=True,
-                                        ftol=1e-8, xtol=1e-8, gtol=1e-8, maxfev=max_nfev,
+                                        ftol=tol, xtol=tol, gtol=tol, maxfev=max_nfev,
                                         factor=100.0, diag=np.ones(x0.size))
     except (_LeftBounds, ValueError, FloatingPointError, np.linalg.LinAlgError):
         return None

@@ -6,9 +6,12 @@ import importlib
 import itertools
 import json
 import math
+import re
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import stats
 
 import frictionlaws
@@ -182,7 +185,9 @@ def test_cv_is_identical_on_rerun_with_the_same_seed(steel: FitData, cmp: Compar
         assert a.law.id == b.law.id
         assert a.cv.to_dict() == b.cv.to_dict()
         assert np.array_equal(a.cv.predictions, b.cv.predictions, equal_nan=True)
-        assert a.cv_rmse_common == b.cv_rmse_common
+        assert a.cv_rmse_common == b.cv_rmse_common or (
+            math.isnan(a.cv_rmse_common) and math.isnan(b.cv_rmse_common))
+        assert a.rank_basis == b.rank_basis
     assert np.array_equal(cmp.folds, again.folds)
     other = compare(["thirion"], steel, seed=4)
     assert not np.array_equal(other.folds, cmp.folds)
@@ -202,22 +207,86 @@ def test_cv_reports_folds_that_cannot_be_fitted(steel: FitData) -> None:
 def test_cv_names_folds_whose_rows_leave_parameters_undetermined(steel: FitData) -> None:
     # thesis-steel has one row at v = 2.77 m/s: the fold holding it out (and the
     # hold-out above v = 1.94 m/s) leaves two velocities for a quadratic in v, whose
-    # curvature the other rows cannot then determine
+    # curvature the other rows cannot then determine, and with it the prediction there
     c = compare(["thesis-poly2", "thirion"], steel, progress=False)
     poly = c["thesis-poly2"]
     assert [u["params"] for u in poly.cv.undetermined] == [["a3", "a4"]]
+    assert poly.cv.undetermined[0]["n_undetermined"] == 1
     left_out = steel.arrays["v"][c.folds == poly.cv.undetermined[0]["fold"] - 1]
     assert 2.77 in np.round(left_out, 2)
-    notes = [n for n in poly.extra_notes if "cannot determine a3, a4 (all rows can)" in n]
+    assert np.round(steel.arrays["v"][poly.cv.undetermined_mask], 2).tolist() == [2.77]
+    notes = [n for n in poly.extra_notes if "cannot determine a3, a4, on which" in n]
     assert len(notes) == 2 and "extrapolation test along v" in notes[1]
-    assert "arbitrary point of a flat valley" in notes[0]
+    assert "arbitrary point of a flat valley" in notes[0] and "(n/d)" in notes[0]
+    # the scores it enters are undetermined: NaN, null in JSON, n/d in the table, unranked
+    assert math.isnan(poly.cv.rmse) and math.isnan(poly.cv_rmse_common)
+    assert math.isnan(poly.extrapolation_rmse) and poly.extrapolation_status == "undetermined"
+    assert poly.undetermined_scores == ["cv_rmse", "cv_rmse_common", "extrapolation_rmse"]
+    assert c.ranking == ["thirion", "thesis-poly2"]
+    assert poly.rank_basis == "unscored: CV RMSE n/d (fold 3)"
+    # the other folds' predictions do not depend on the curvature: they keep a score
+    assert [f is None for f in poly.cv.fold_rmse] == [False, False, True, False, False]
     doc = json.loads(c.to_json())
     law = next(x for x in doc["laws"] if x["id"] == "thesis-poly2")
     assert law["cv"]["undetermined"][0]["params"] == ["a3", "a4"]
-    assert any(h["undetermined"] == ["a3", "a4"] for h in law["extrapolation"])
+    assert law["cv_rmse"] is None and law["cv_rmse_common"] is None
+    assert law["extrapolation_rmse"] is None and law["cv"]["determined"] is False
+    assert law["undetermined_scores"] == ["cv_rmse", "cv_rmse_common", "extrapolation_rmse"]
+    hold_v = next(h for h in law["extrapolation"] if h["variable"] == "v")
+    assert hold_v["undetermined"] == ["a3", "a4"] and hold_v["status"] == "undetermined"
+    assert hold_v["rmse"] is None and hold_v["n_undetermined"] == 1
+    lines = c.table().splitlines()
+    head = re.split(r"\s{2,}", next(line for line in lines if line.startswith("rank  law")))
+    row = re.split(r"\s{2,}", next(line for line in lines if " thesis-poly2 " in line).strip())
+    cells = dict(zip(head, row))
+    assert cells["CV RMSE"] == "n/d" and cells["extrap.RMSE"] == "n/d"
+    assert cells["rank basis"] == "unscored: CV RMSE n/d (fold 3)"
+    assert c.to_frame().loc[1, "undetermined"] == "cv_rmse, cv_rmse_common, extrapolation_rmse"
     # every fold determines thirion's two parameters: nothing to say
-    assert c["thirion"].cv.undetermined == []
+    assert c["thirion"].cv.undetermined == [] and c["thirion"].undetermined_scores == []
+    assert c["thirion"].rank_basis.startswith("CV RMSE 0.33")
     assert not any("cannot determine" in n for n in c["thirion"].extra_notes)
+
+
+def test_undetermined_rows_follow_the_valley_not_the_names(steel: FitData) -> None:
+    """A refit whose rows cannot determine some parameters still predicts the rows its
+    valley leaves alone: only predictions that move along the valley are undetermined."""
+    from frictionlaws.comparison.cv import refit, undetermined_rows
+    from frictionlaws.registry import get_law
+
+    law = get_law("nackenhorst")  # b0 + b1 ln v + b2 ln^2 v: 3 terms, 2 velocities > 0
+    moving = steel.arrays["v"] > 0
+    fd = steel.subset(moving)
+    v = fd.arrays["v"]
+    for train_mask, expect in ((v < 2, [True]), (v > 0, [False])):
+        train = fd.subset(train_mask if expect[0] else np.arange(fd.n) != 0)
+        res = refit(law, train, {"seed": 0})
+        assert res.non_identifiable  # b0, b1, b2 either way
+        test = {k: fd.arrays[k][~train_mask if expect[0] else [0]] for k in law.variables}
+        assert undetermined_rows(law, res, train, test, 1).tolist() == expect
+
+
+def test_implausible_holdout_predictions_are_not_averaged(steel: FitData) -> None:
+    """thesis-poly3 fitted below p = 0.18 MPa predicts mu < 0 above it: reported as
+    implausible, not folded into an RMSE; with a wider plausible range it is scored."""
+    from frictionlaws.comparison.extrapolation import score_holdout
+    from frictionlaws.registry import get_law
+
+    law = get_law("thesis-poly3")
+    split = holdout_splits(steel, {"p": 0.3}, design_of(steel))[0]
+    usable = np.ones(steel.n, bool)
+    h = score_holdout(law, steel, usable, split)
+    assert h.status == "implausible" and math.isnan(h.rmse)
+    assert h.implausible is not None and "mu = -0.383 at p = 0.2496 MPa" in h.implausible
+    wide = score_holdout(law, steel, usable, split, limits=(-10.0, 10.0))
+    assert wide.status == "scored" and wide.rmse > 0.5
+    assert np.allclose(wide.predictions, h.predictions)
+    c = compare(["thesis-poly3"], steel, holdout="p=0.3", progress=False)
+    r = c["thesis-poly3"]
+    assert r.extrapolation_status == "implausible" and math.isnan(r.extrapolation_rmse)
+    assert any("reported as implausible" in n for n in r.extra_notes)
+    assert "implausible" in next(line for line in c.table().splitlines()
+                                 if " thesis-poly3 " in line)
 
 
 # ------------------------------------------------------------- comparison
@@ -230,12 +299,19 @@ def test_ranking_and_row_groups(cmp: Comparison) -> None:
     # ranked by the CV RMSE over the rows all laws share (savkoor cannot use v = 0)
     assert cmp.settings["ranking_metric"] == "cv_rmse_common"
     assert cmp.settings["common_rows"] == 11
-    # identifiable laws first, each group by CV RMSE over the common rows
-    flags = [bool(r.fit.non_identifiable) for r in cmp.results]
+    # scored laws first: identifiable ones, each group by CV RMSE over the common rows;
+    # then the unscored ones (an undetermined CV RMSE) by fewer parameters, then id
+    scored = [math.isfinite(r.cv_rmse_common) for r in cmp.results]
+    assert scored == sorted(scored, reverse=True)
+    head = [r for r in cmp.results if math.isfinite(r.cv_rmse_common)]
+    flags = [bool(r.fit.non_identifiable) for r in head]
     assert flags == sorted(flags)
     for flag in (False, True):
-        keys = [r.cv_rmse_common for r in cmp.results if bool(r.fit.non_identifiable) == flag]
+        keys = [r.cv_rmse_common for r in head if bool(r.fit.non_identifiable) == flag]
         assert keys == sorted(keys)
+    tail = [(r.metrics["k"], r.id) for r in cmp.results if not math.isfinite(r.cv_rmse_common)]
+    assert tail == sorted(tail) and all(r.rank_basis.startswith("unscored: CV common n/d")
+                                        for r in cmp.results[len(head):])
     # Akaike weights only among laws fitted to the same rows
     groups: dict[int, list[float]] = {}
     for r in cmp.results:
@@ -259,7 +335,8 @@ def test_thesis_polynomials_flagged_outside_the_pressure_range(cmp: Comparison) 
     assert "data show mu falling with p" in poly2
     assert "mu < 0" in " ".join(cmp["thesis-poly3"].plausibility.reasons)
     assert cmp["thirion"].plausible and cmp["coulomb"].plausible
-    assert math.isfinite(cmp["thesis-poly3"].extrapolation_rmse)
+    # its fit below v = 1.94 m/s cannot determine the prediction at 2.77 m/s
+    assert cmp["thesis-poly3"].extrapolation_status == "undetermined"
 
 
 def test_json_holds_every_metric(cmp: Comparison) -> None:
@@ -396,3 +473,49 @@ def test_jobs_is_a_ceiling_not_a_demand(steel: FitData, monkeypatch: pytest.Monk
     c = compare(["coulomb"], steel, folds=2, holdout=None, jobs=1024)
     assert seen == [3]  # the full fit and two folds: three tasks, three processes
     assert c.ranking == ["coulomb"]
+
+
+@pytest.mark.parametrize("law_id", ["thirion", "wriggers", "savkoor", "huemer"])
+def test_refit_optimum_does_not_depend_on_row_order(steel: FitData, law_id: str) -> None:
+    """A comparison's refit reaches the optimum of its rows, not of their order: chi^2
+    the same to 1e-9 relative for shuffled rows (the polish ends every path at the
+    optimum; Wriggers' optimum sits on a bound, savkoor's and huemer's in a valley)."""
+    from frictionlaws.comparison.core import usable_rows
+    from frictionlaws.comparison.cv import refit
+    from frictionlaws.registry import get_law
+
+    law = get_law(law_id)
+    rows = np.flatnonzero(usable_rows(law, steel))
+    chi2 = refit(law, steel.subset(rows), {"seed": 0}).metrics["chisqr"]
+    for seed in range(2):
+        perm = np.random.default_rng(seed).permutation(rows)
+        again = refit(law, steel.subset(perm), {"seed": 0}).metrics["chisqr"]
+        assert again == pytest.approx(chi2, rel=1e-9, abs=0.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(tenths=st.lists(st.integers(1, 50), min_size=1, max_size=4, unique=True),
+       new_tenths=st.integers(1, 50), seed=st.integers(0, 2**16))
+def test_undetermined_rows_of_a_quadratic_in_v(tenths: list[int], new_tenths: int,
+                                               seed: int) -> None:
+    """thesis-poly2 is quadratic in V: trained on fewer than 3 velocities, its prediction
+    at another velocity is undetermined and at a trained one determined; trained on 3 or
+    more, every prediction is determined."""
+    from frictionlaws.comparison.cv import refit, undetermined_rows
+    from frictionlaws.registry import get_law
+
+    law = get_law("thesis-poly2")
+    levels, new = [t / 10 for t in tenths], new_tenths / 10  # velocities 0.1 m/s apart
+    rng = np.random.default_rng(seed)
+    p = np.tile([0.05e6, 0.08e6, 0.1e6, 0.15e6, 0.2e6, 0.25e6], len(levels))
+    v = np.repeat(levels, 6)
+    mu = 1.5 - 2e-6 * p + 0.1 * v + 0.02 * rng.standard_normal(p.size)
+    train = as_fit_data({"mu": mu, "p": p, "v": v})
+    res = refit(law, train, {"seed": 0})
+    test = {"p": np.array([0.12e6, 0.12e6]), "v": np.array([levels[0], new])}
+    got = undetermined_rows(law, res, train, test, 2).tolist()
+    far = new_tenths not in tenths
+    if len(levels) >= 3:
+        assert got == [False, False]
+    else:
+        assert got == [False, far]

@@ -156,7 +156,11 @@ def test_sweeps_match_a_scalar_reference(name: str,
     q, vs = model._march_local(p, sigma * ds, vr, ds, c)
     assert np.allclose(q, want, rtol=1e-10, atol=1e-15 * want.max())
     adhesion = np.arange(p.size) * sigma[:, None] * ds
-    assert not q[:, -1].any()  # zero pressure at the trailing edge: the bristle lets go
+    # zero pressure at the trailing edge: the bristle lets go.  Its deflection there is
+    # the difference of two numbers of the size of the deflections (the adhesion
+    # displacement and the sliding correction), so rounding leaves a few units in the
+    # last place of max|q| (2.2e-19 m of 5e-3 m in the viscous case), not exactly 0
+    assert np.all(np.abs(q[:, -1]) <= 8 * np.finfo(float).eps * np.abs(q).max())
     if name != "viscous":  # with static friction the two smallest slips stick throughout
         assert np.allclose(q[:2, :-1], adhesion[:2, :-1], rtol=1e-14, atol=0.0)
     sliding = q[2:, 1:-1] < adhesion[2:, 1:-1] * (1 - 1e-9)

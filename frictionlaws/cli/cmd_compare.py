@@ -165,6 +165,7 @@ def _run_one(args: argparse.Namespace, data: str) -> int:
 def _run_many(args: argparse.Namespace) -> int:
     from frictionlaws import jsonio
     from frictionlaws.campaign import compare_many
+    from frictionlaws.comparison.results import mark_undetermined
     from frictionlaws.outputs import write_text_atomic
 
     laws = split_names([args.laws]) if args.laws else None
@@ -172,14 +173,15 @@ def _run_many(args: argparse.Namespace) -> int:
     frame = compare_many(args.data, laws, by=split_names(args.by), jobs=args.jobs,
                          scheduler=args.scheduler, progress=campaign_progress(args),
                          load_options=load, **_options(args))
+    shown = mark_undetermined(frame)  # undetermined scores as n/d in text and CSV
     if args.out:
-        text = (frame.to_csv(index=False, float_format="%.10g")
+        text = (shown.to_csv(index=False, float_format="%.10g")
                 if args.out.lower().endswith(".csv")
                 else jsonio.dumps(frame.to_dict("records")) + "\n")
         write_text_atomic(args.out, text)
     if args.json:
         print(jsonio.dumps(frame.to_dict("records")))
     else:
-        print(frame.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+        print(shown.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
     errors = int(frame["error"].notna().sum()) if "error" in frame else 0
     return 1 if errors else 0

@@ -37,11 +37,20 @@ the rows *every* fitted law could use (each law's out-of-fold predictions of
 those rows; laws fitted to more rows trained on them too, which is their
 advantage).  Both numbers are reported.  Laws with parameters the data cannot
 determine (named by the fitter) come after the identifiable ones, whatever
-their CV RMSE: their parameters mean nothing, and their CV scores depend on
-where the optimiser happened to stop.  Laws whose cross-validation is
-incomplete (a fold could not be fitted) come after the complete ones, and laws
-without a CV RMSE come last; ties go to the law with fewer parameters, then to
-the id.
+their CV RMSE: their parameters mean nothing.  Laws whose cross-validation is
+incomplete (a fold could not be fitted) come after the complete ones; ties go to
+the law with fewer parameters, then to the id.
+
+Scores are properties of the law and the data, the same under every supported
+numpy and scipy: every refit is polished to its optimum
+(:func:`frictionlaws.fitting.fit` with ``lean=True``), and a score whose held-out
+predictions depend on parameters the refit's rows cannot determine
+(:func:`.cv.undetermined_rows`) is *undetermined*: NaN here, null in JSON, "n/d" in
+tables, named in the notes.  An undetermined ranking score ranks nothing: such laws
+(and those without a CV RMSE) come after every scored law, by fewer parameters then
+id.  A hold-out prediction outside the plausible range of mu (``mu_limits``) makes
+the extrapolation RMSE "implausible" instead of entering it.  Each law's
+``rank_basis`` says which of these rules placed it.
 """
 
 from __future__ import annotations
@@ -89,8 +98,9 @@ MAX_ROWS = 2000
 
 RANKING = ("cross-validated RMSE (ascending), over the rows common to all fitted laws when "
            "they were fitted to different rows; laws with parameters the data cannot determine "
-           "after identifiable ones, laws with incomplete cross-validation after complete ones, "
-           "laws without a CV RMSE last; ties: fewer parameters, then id")
+           "after identifiable ones, laws with incomplete cross-validation after complete ones; "
+           "laws without a determined CV RMSE (undetermined: n/d, or none) after every scored "
+           "law, by fewer parameters then id; ties: fewer parameters, then id")
 
 
 def usable_rows(law: Law, data: FitData) -> np.ndarray:
@@ -189,10 +199,30 @@ def _akaike(results: list[LawComparison]) -> None:
 
 
 def _rank_key(r: LawComparison) -> tuple[Any, ...]:
+    """Scored laws first (identifiable, then complete CV, then by score); unscored laws
+    after them by fewer parameters then id, whatever their other numbers."""
     cv = r.cv_rmse_common
-    bad = not math.isfinite(cv)
-    return (bad, bool(r.fit.non_identifiable), not r.cv.complete, math.inf if bad else cv,
+    if not math.isfinite(cv):
+        return (True, False, False, 0.0, r.fit.metrics["k"], r.law.id)
+    return (False, bool(r.fit.non_identifiable), not r.cv.complete, cv,
             r.fit.metrics["k"], r.law.id)
+
+
+def _rank_basis(r: LawComparison, label: str, rows: np.ndarray, assign: np.ndarray) -> str:
+    """Why ``r`` ranks where it does: its ranking score, or why it has none (short)."""
+    cv = r.cv_rmse_common
+    if math.isfinite(cv):
+        parts = [f"{label} {cv:.6g}"]
+        if r.fit.non_identifiable:
+            parts.insert(0, "not identifiable")
+        if not r.cv.complete:
+            parts.insert(0, "CV incomplete")
+        return "; ".join(parts)
+    und = r.cv.undetermined_mask
+    if und is not None and np.any(und & rows):
+        folds = ", ".join(str(int(f) + 1) for f in np.unique(assign[und & rows]))
+        return f"unscored: {label} n/d (fold {folds})"
+    return f"unscored: no {label}"
 
 
 def _check_options(fd: FitData, folds: Any, mu_limits: Sequence[float], jobs: Any
@@ -311,7 +341,8 @@ def _task(law: Law, setup: _Setup, kind: str, index: int) -> Any:
     if kind == "fold":
         return score_fold(law, fd, rows, setup.assign, index, fit_kwargs=setup.fit_kw)
     if kind == "holdout":
-        return score_holdout(law, fd, rows, setup.active[index], fit_kwargs=setup.fit_kw)
+        return score_holdout(law, fd, rows, setup.active[index], fit_kwargs=setup.fit_kw,
+                             limits=setup.limits)
     try:
         return fit(law, fd, on_invalid="drop", **setup.fit_kw)
     except Exception as exc:  # noqa: BLE001 - any law may fail; list it, go on
@@ -339,39 +370,52 @@ def _run_tasks(laws: list[Law], setup: _Setup, jobs: int, bar: Any) -> list[list
     return [per_law[law.id] for law in laws]
 
 
-def _pooled_rmse(holds: list[HoldoutResult]) -> float:
-    """RMSE over the held-out rows of every split that could be scored."""
-    errs = [h for h in holds if h.error is None]
+def _extrapolation_score(holds: list[HoldoutResult]) -> tuple[float, str]:
+    """The law's extrapolation RMSE and its status.
+
+    The RMSE pools the held-out rows of every split that could be scored (a split
+    whose fit failed is left out, as its note says).  It is undetermined (NaN,
+    ``"undetermined"``) when a split's predictions depend on parameters its training
+    rows cannot determine, and withheld (NaN, ``"implausible"``) when a split predicts
+    mu outside the plausible range: neither belongs in an average.  ``"none"``: no
+    split could be scored.
+    """
+    if any(h.status == "undetermined" for h in holds):
+        return math.nan, "undetermined"
+    if any(h.status == "implausible" for h in holds):
+        return math.nan, "implausible"
+    errs = [h for h in holds if h.status == "scored"]
     n_err = sum(h.n_test for h in errs)
     if not errs or not n_err:
-        return math.nan
+        return math.nan, "none"
     sq = sum(h.rmse**2 * h.n_test for h in errs)
-    return math.sqrt(sq / n_err) if math.isfinite(sq) else math.inf
+    return (math.sqrt(sq / n_err) if math.isfinite(sq) else math.inf), "scored"
 
 
-def _undetermined_notes(full: Sequence[str], cv: CVResult, holds: list[HoldoutResult]
-                        ) -> list[str]:
-    """Notes on the refits whose rows cannot determine parameters all the rows determine.
+def _undetermined_notes(cv: CVResult, holds: list[HoldoutResult]) -> list[str]:
+    """Notes on the refits whose held-out predictions the training rows cannot determine.
 
-    Such a refit predicts the rows left out from an arbitrary point of a flat valley of
-    chi^2 (another start or solver stops elsewhere, with other predictions), so its
-    score measures where the solver stopped rather than the law.  Parameters the full
-    fit cannot determine either are already named by its own warning.
+    Such a refit predicts those rows from an arbitrary point of a flat valley of chi^2
+    (another start, solver or library version stops elsewhere, with other predictions),
+    so the score they enter is undetermined: reported as n/d and not used to rank.
+    Implausible hold-out predictions are named too.
     """
-    refits = [(f"cross-validation fold {u['fold']}", u["n_train"], u["n_test"], u["params"])
-              for u in cv.undetermined]
+    refits = [(f"cross-validation fold {u['fold']}", u["n_train"], u["n_test"], u["params"],
+               u.get("n_undetermined", 0), "the CV RMSE") for u in cv.undetermined]
     refits += [(f"extrapolation test along {h.variable}", h.n_train, h.n_test,
-                h.fit.non_identifiable) for h in holds if h.fit is not None]
+                h.fit.non_identifiable, h.n_undetermined, "the extrapolation RMSE")
+               for h in holds if h.fit is not None]
     notes = []
-    for what, n_train, n_test, names in refits:
-        new = [k for k in names if k not in full]
-        if new:
+    for what, n_train, n_test, names, n_und, score in refits:
+        if n_und:
             notes.append(f"{what}: its {n_train} training rows cannot determine "
-                         f"{', '.join(new)} (all rows can), so its predictions of the "
-                         f"{n_test} row{'' if n_test == 1 else 's'} left out come from an "
-                         "arbitrary point of a flat "
-                         "valley of chi^2: its score measures where the solver stopped, "
-                         "not the law")
+                         f"{', '.join(names)}, on which the predictions of {n_und} of its "
+                         f"{n_test} held-out row{'' if n_test == 1 else 's'} depend: they "
+                         "come from an arbitrary point of a flat valley of chi^2, so "
+                         f"{score} is undetermined (n/d) and not used to rank")
+    notes += [f"extrapolation test along {h.variable}: the law fitted below the threshold "
+              f"{h.implausible}; reported as implausible, not folded into the extrapolation "
+              "RMSE" for h in holds if h.implausible and not h.n_undetermined]
     return notes
 
 
@@ -390,7 +434,7 @@ def _assemble(law: Law, setup: _Setup, outputs: list[Any]) -> LawComparison | di
              if h.error is not None]
     extra += [f"cross-validation fold {f['fold']} ({f['n_train']} training rows): "
               f"{f['error']}" for f in cv.failed]
-    extra += _undetermined_notes(res.non_identifiable, cv, holds)
+    extra += _undetermined_notes(cv, holds)
     plaus = scan_plausibility(law, res.values, fd, setup.design, setup.box, setup.trends,
                               limits=setup.limits)
     sub = fd.subset(rows)
@@ -398,11 +442,13 @@ def _assemble(law: Law, setup: _Setup, outputs: list[Any]) -> LawComparison | di
         res.residual, res.best_fit, {k: sub.arrays[k] for k in setup.design.varying},
         describe=lambda k: "the fitted value" if k == "fitted" else k)
     law_notes = [n for n in res.notes if n not in fd.notes]
-    return LawComparison(law, res, rows, law_notes, cv, holds, _pooled_rmse(holds), plaus,
-                         resid, extra_notes=extra)
+    ex_rmse, ex_status = _extrapolation_score(holds)
+    return LawComparison(law, res, rows, law_notes, cv, holds, ex_rmse, plaus,
+                         resid, extra_notes=extra, extrapolation_status=ex_status)
 
 
-def _rank(results: list[LawComparison], fd: FitData, notes: list[str]) -> tuple[bool, int]:
+def _rank(results: list[LawComparison], fd: FitData, notes: list[str], assign: np.ndarray
+          ) -> tuple[bool, int]:
     """Akaike weights, the common-rows CV RMSE and the ranks (in place); notes on rows.
 
     Returns whether the ranking used each law's own CV RMSE, and the common rows.
@@ -421,11 +467,17 @@ def _rank(results: list[LawComparison], fd: FitData, notes: list[str]) -> tuple[
     for r in results:
         if same_rows:
             r.cv_rmse_common = r.cv.rmse
+            r.common_undetermined = not r.cv.determined
+        elif not r.cv.determined_on(common):
+            r.cv_rmse_common = math.nan
+            r.common_undetermined = True
         else:
             pred = r.cv.predictions[common] if r.cv.predictions is not None else np.array([])
             ok = np.isfinite(pred)
             err = fd.arrays["mu"][common][ok] - pred[ok]
             r.cv_rmse_common = float(np.sqrt(np.mean(err**2))) if err.size else math.nan
+        r.rank_basis = _rank_basis(r, "CV RMSE" if same_rows else "CV common",
+                                   r.rows if same_rows else common, assign)
     results.sort(key=_rank_key)
     for i, r in enumerate(results, start=1):
         r.rank = i
@@ -522,7 +574,8 @@ def compare(
         As in :func:`~frictionlaws.fitting.fit`.  CV and extrapolation errors are
         unweighted.
     mu_limits : (float, float)
-        Physical limits of mu in the plausibility scan (default 0 and 5).
+        The plausible range of mu (default 0 and 5): the limits of the plausibility scan,
+        and of hold-out predictions that can enter the extrapolation RMSE.
     mapping, units, area : optional
         Column mapping, units of columns whose header has none, and the nominal contact
         area (``"314.16 mm^2"`` or m^2) for reading a user's file, as in
@@ -594,7 +647,7 @@ def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: An
     if not results:
         raise FitError(f"none of {what} could be fitted to data '{fd.name}': "
                        + "; ".join(f"{f['id']}: {f['error']}" for f in failed))
-    same_rows, common = _rank(results, fd, notes)
+    same_rows, common = _rank(results, fd, notes, setup.assign)
     settings = _settings(setup, what, starts, fractions, same_rows, common,
                          {"data": n_data, "used": fd.n, "max_rows": limit})
     return Comparison(fd, results, skipped, failed, design, setup.trends, setup.box,

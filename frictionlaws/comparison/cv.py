@@ -19,10 +19,16 @@ fails (too few rows for the parameters, an optimiser failure) or whose
 predictions are not finite is *reported* in :attr:`CVResult.failed`, and the
 RMSE then covers the other folds only (:attr:`CVResult.complete` is False).
 A fold whose training rows cannot determine some of the law's parameters (the
-refit's identifiability check names them) is scored but listed in
-:attr:`CVResult.undetermined`: its predictions come from an arbitrary point of a
-flat valley of chi^2, as with ``thesis-poly2`` above, whose fold without the one
-row at v = 2.77 m/s has two velocities left for a quadratic in v.
+refit's identifiability check names them) is listed in :attr:`CVResult.undetermined`.
+Its held-out rows whose predictions depend on what those rows cannot determine
+(:func:`undetermined_rows`) have no score: their predictions come from an arbitrary
+point of a flat valley of chi^2, as with ``thesis-poly2`` above, whose fold without
+the one row at v = 2.77 m/s has two velocities left for a quadratic in v (another
+start, solver or library version stops elsewhere in the valley, with another
+prediction there).  The CV RMSE is then *undetermined* (:attr:`CVResult.determined`
+is False, the RMSE NaN, null in JSON): a score of where a solver stopped is not a
+property of the law and the data.  Held-out rows the valley does not move (rows at
+the velocities the training rows share) keep their predictions.
 """
 
 from __future__ import annotations
@@ -35,11 +41,20 @@ from typing import Any
 import numpy as np
 
 from ..errors import FitError, InputError
-from ..fitting import FitData, FitResult, fit
+from ..fitting import RANK_TOL, FitData, FitResult, _jacobian, fit
 from ..law import Law
 
 __all__ = ["kfold_assignment", "CVResult", "cross_validate", "error_text", "refit",
-           "FoldOutcome", "score_fold", "combine_folds"]
+           "FoldOutcome", "score_fold", "combine_folds", "undetermined_rows",
+           "PREDICTION_TOL"]
+
+#: A held-out row is undetermined when a direction of the parameters that the training
+#: rows cannot determine (singular-value ratio below the fitter's ``RANK_TOL``, 1e-5)
+#: moves its prediction by more than this fraction of the training rows' strongest
+#: response: a step along the valley that leaves chi^2 unchanged then moves the
+#: prediction at least 100 times more than the training rows notice.  Rows the valley
+#: leaves alone respond at round-off (about 1e-9 here), rows it moves at 1e-1 or more.
+PREDICTION_TOL = 1e-3
 
 
 def error_text(exc: BaseException) -> str:
@@ -84,17 +99,29 @@ class CVResult:
     failed: list[dict[str, Any]] = field(default_factory=list)
     predictions: np.ndarray | None = None
     undetermined: list[dict[str, Any]] = field(default_factory=list)
+    #: Rows of the data whose out-of-fold prediction is undetermined (None: none).
+    undetermined_mask: np.ndarray | None = None
 
     @property
     def complete(self) -> bool:
         """True when every fold with rows of this law was fitted and scored."""
         return not self.failed
 
+    @property
+    def determined(self) -> bool:
+        """False when some scored row's prediction is undetermined (module docstring)."""
+        return self.undetermined_mask is None or not bool(self.undetermined_mask.any())
+
+    def determined_on(self, rows: np.ndarray) -> bool:
+        """True when no row of ``rows`` (a mask of the data) has an undetermined prediction."""
+        return self.undetermined_mask is None or not bool(
+            np.any(self.undetermined_mask & rows))
+
     def to_dict(self) -> dict[str, Any]:
         return {"folds": self.folds, "seed": self.seed, "rmse": self.rmse, "mae": self.mae,
                 "n_scored": self.n_scored, "fold_rmse": list(self.fold_rmse),
-                "complete": self.complete, "failed": list(self.failed),
-                "undetermined": list(self.undetermined)}
+                "complete": self.complete, "determined": self.determined,
+                "failed": list(self.failed), "undetermined": list(self.undetermined)}
 
 
 def refit(law: Law, data: FitData, fit_kwargs: Mapping[str, Any] | None = None) -> FitResult:
@@ -129,9 +156,11 @@ class FoldOutcome:
     test: np.ndarray
     predictions: np.ndarray | None = None
     failure: dict[str, Any] | None = None
-    #: The fold, its row counts and the parameters its training rows cannot determine
-    #: (None when they determine every one).
+    #: The fold, its row counts, the parameters its training rows cannot determine and
+    #: how many held-out predictions depend on them (None when they determine every one).
     undetermined: dict[str, Any] | None = None
+    #: Held-out rows (of ``test``'s True rows, in order) whose prediction is undetermined.
+    undetermined_rows: np.ndarray | None = None
 
 
 def score_fold(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, fold: int, *,
@@ -177,9 +206,89 @@ def score_fold(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, 
         return FoldOutcome(fold, test, failure={
             **where, "error": f"the fitted law predicts non-finite mu at "
                               f"{int(np.sum(~np.isfinite(p)))} held-out rows"})
-    undetermined = ({**where, "params": list(res.non_identifiable)}
-                    if res.non_identifiable else None)
-    return FoldOutcome(fold, test, predictions=p, undetermined=undetermined)
+    if not res.non_identifiable:
+        return FoldOutcome(fold, test, predictions=p)
+    und = undetermined_rows(law, res, data.subset(train), xs, int(test.sum()))
+    return FoldOutcome(fold, test, predictions=p, undetermined={
+        **where, "params": list(res.non_identifiable), "n_undetermined": int(und.sum())},
+        undetermined_rows=und)
+
+
+def undetermined_rows(law: Law, res: FitResult, train: FitData,
+                      test: Mapping[str, np.ndarray], n_test: int) -> np.ndarray:
+    """Held-out rows whose prediction depends on what the training rows cannot determine.
+
+    The Jacobian of the law by the fitted parameters (central differences at the
+    refit's optimum) over the training and held-out rows, each column scaled to unit
+    length over both, is split into its training rows A and held-out rows B.  The
+    right singular vectors u of A whose singular value is below ``RANK_TOL`` of the
+    largest s_0 are directions along which chi^2 of the training rows does not change
+    (a flat valley); a held-out row r is undetermined when ``|B[r] u|`` exceeds
+    :data:`PREDICTION_TOL` times s_0 for one of them.  Only the parameters the refit's
+    last local solve varied enter (a parameter held at a bound is not in a valley).
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+    res : FitResult
+        The refit on ``train``.
+    train : FitData
+        Its training rows (weighted as the refit was).
+    test : mapping
+        The held-out rows' variables (SI).
+    n_test : int
+        Number of held-out rows.
+
+    Returns
+    -------
+    ndarray of bool
+        One flag per held-out row (all False when the refit names no parameter as
+        undetermined; all True when the Jacobian is not finite).
+    """
+    out = np.zeros(n_test, dtype=bool)
+    # the parameters the final local solve varied (not those fixed or held at a bound
+    # where the law changes form, as Wriggers' c = 0)
+    varied = getattr(res.local_fit, "var_names", None)
+    names = (list(varied) if varied is not None
+             else [k for k, p in res.params.items() if not p.fixed])
+    if not res.non_identifiable or not names or not n_test:
+        return out
+    n_tr = train.n
+    xs = {k: np.concatenate([np.asarray(train.arrays[k], float),
+                             np.broadcast_to(np.asarray(test[k], float), (n_test,))])
+          for k in law.variables if k in train.arrays and k in test}
+    base = dict(res.values)
+
+    def model(theta: np.ndarray) -> np.ndarray:
+        values = {**base, **dict(zip(names, (float(t) for t in theta)))}
+        with np.errstate(all="ignore"):
+            return np.array(np.broadcast_to(np.asarray(law.evaluate(xs, values), float),
+                                            (n_tr + n_test,)))
+
+    scales = np.array([law.param(k).default if k in law.param_names else 0.0 for k in names])
+    jac = _jacobian(model, np.array([base[k] for k in names], float), scales)
+    if not np.all(np.isfinite(jac)):
+        out[:] = True
+        return out
+    if train.weights is not None:
+        jac[:n_tr] *= np.asarray(train.weights, float)[:, None]
+    norms = np.linalg.norm(jac, axis=0)
+    jac = jac[:, norms > 0] / norms[norms > 0]
+    a, b = jac[:n_tr], jac[n_tr:]
+    if a.shape[0] < a.shape[1]:  # fewer training rows than parameters: pad with zero rows
+        a = np.vstack([a, np.zeros((a.shape[1] - a.shape[0], a.shape[1]))])
+    try:
+        _, s, vt = np.linalg.svd(a, full_matrices=False)
+    except np.linalg.LinAlgError:
+        s = np.zeros(0)
+    if not s.size or s[0] <= 0:
+        out[:] = True
+        return out
+    null = vt[s < RANK_TOL * s[0]]
+    if null.size:
+        out |= np.max(np.abs(b @ null.T), axis=1) > PREDICTION_TOL * s[0]
+    return out
 
 
 def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> CVResult:
@@ -202,6 +311,7 @@ def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> 
     """
     y = data.arrays["mu"]
     pred = np.full(data.n, np.nan)
+    und = np.zeros(data.n, dtype=bool)
     fold_rmse: list[float | None] = []
     failed: list[dict[str, Any]] = []
     undetermined = [o.undetermined for o in outcomes if o.undetermined is not None]
@@ -212,13 +322,19 @@ def combine_folds(data: FitData, outcomes: Sequence[FoldOutcome], seed: int) -> 
                 failed.append(o.failure)
             continue
         pred[o.test] = o.predictions
+        if o.undetermined_rows is not None and o.undetermined_rows.any():
+            und[np.flatnonzero(o.test)[o.undetermined_rows]] = True
+            fold_rmse.append(None)
+            continue
         fold_rmse.append(float(np.sqrt(np.mean((y[o.test] - o.predictions) ** 2))))
     scored = np.isfinite(pred)
     err = y[scored] - pred[scored]
-    rmse = float(np.sqrt(np.mean(err**2))) if err.size else math.nan
-    mae = float(np.mean(np.abs(err))) if err.size else math.nan
+    rmse = mae = math.nan
+    if err.size and not und.any():
+        rmse = float(np.sqrt(np.mean(err**2)))
+        mae = float(np.mean(np.abs(err)))
     return CVResult(len(outcomes), seed, rmse, mae, int(scored.sum()), fold_rmse, failed,
-                    pred, undetermined)
+                    pred, undetermined, und)
 
 
 def cross_validate(law: Law, data: FitData, usable: np.ndarray, assign: np.ndarray, *,

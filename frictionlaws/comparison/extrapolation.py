@@ -63,7 +63,7 @@ from ..errors import InputError
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
 from ..units import display_unit, to_display
-from .cv import error_text, refit
+from .cv import error_text, refit, undetermined_rows
 
 __all__ = ["MU_LIMITS", "TREND_TOL", "TREND_REL", "TREND_ALPHA", "Design", "design_of", "Trend",
            "data_trend", "data_trends", "extended_box", "Split", "holdout_splits",
@@ -512,7 +512,15 @@ def holdout_splits(data: FitData, fractions: Mapping[str, float],
 
 @dataclass
 class HoldoutResult:
-    """A law fitted below a split's threshold and scored above it."""
+    """A law fitted below a split's threshold and scored above it.
+
+    ``rmse`` is NaN when there is no score: the fit failed (``error``), a held-out
+    prediction depends on parameters the rows below the threshold cannot determine
+    (``n_undetermined`` rows; :func:`~frictionlaws.comparison.cv.undetermined_rows`),
+    or a held-out prediction lies outside the plausible range of mu (``implausible``
+    says where): a friction coefficient below 0 or above the comparison's upper limit is
+    a failure of the extrapolation, not an error to average with the others.
+    """
 
     variable: str
     n_train: int
@@ -523,17 +531,50 @@ class HoldoutResult:
     predictions: np.ndarray | None = None
     test: np.ndarray | None = None
     error: str | None = None
+    n_undetermined: int = 0
+    implausible: str | None = None
+
+    @property
+    def status(self) -> str:
+        """``"scored"``, ``"error"``, ``"undetermined"`` or ``"implausible"``."""
+        if self.error is not None:
+            return "error"
+        if self.n_undetermined:
+            return "undetermined"
+        return "implausible" if self.implausible else "scored"
 
     def to_dict(self) -> dict[str, Any]:
         return {"variable": self.variable, "n_train": self.n_train, "n_test": self.n_test,
                 "rmse": self.rmse, "max_abs_error": self.max_abs, "error": self.error,
+                "status": self.status, "n_undetermined": self.n_undetermined,
+                "implausible": self.implausible,
                 "params": None if self.fit is None else self.fit.param_values,
                 "undetermined": [] if self.fit is None else list(self.fit.non_identifiable)}
 
 
+def _implausible(law: Law, data: FitData, test: np.ndarray, pred: np.ndarray,
+                 limits: tuple[float, float]) -> str | None:
+    """Where the held-out predictions leave ``limits`` (the worst one), or None."""
+    bad = (pred < limits[0]) | (pred > limits[1])
+    if not bad.any():
+        return None
+    dev = np.where(pred < limits[0], limits[0] - pred, pred - limits[1])
+    i = int(np.argmax(np.where(bad, dev, -np.inf)))
+    row = int(np.flatnonzero(test)[i])
+    at = ", ".join(f"{k} = {fmt_value(k, float(data.arrays[k][row]))}"
+                   for k in law.variables if k in data.arrays)
+    return (f"predicts mu outside the plausible range {limits[0]:g} .. {limits[1]:g} at "
+            f"{int(bad.sum())} of {pred.size} held-out rows (mu = {pred[i]:.3g} at {at})")
+
+
 def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
-                  fit_kwargs: Mapping[str, Any] | None = None) -> HoldoutResult:
-    """Fit ``law`` on the usable rows below the split and score the usable rows above."""
+                  fit_kwargs: Mapping[str, Any] | None = None,
+                  limits: tuple[float, float] = MU_LIMITS) -> HoldoutResult:
+    """Fit ``law`` on the usable rows below the split and score the usable rows above.
+
+    The score is withheld (see :class:`HoldoutResult`) when a held-out prediction is
+    undetermined or outside ``limits``, the plausible range of mu.
+    """
     if split.test is None:
         raise InputError(f"the holdout along {split.variable} is not usable: {split.reason}")
     test = usable & split.test
@@ -549,14 +590,20 @@ def score_holdout(law: Law, data: FitData, usable: np.ndarray, split: Split, *,
                              error=error_text(exc))
     xs = {k: data.arrays[k][test] for k in law.variables if k in data.arrays}
     with np.errstate(all="ignore"):
-        pred = np.broadcast_to(np.asarray(law.evaluate(xs, res.values), float), (n_te,))
+        pred = np.array(np.broadcast_to(np.asarray(law.evaluate(xs, res.values), float),
+                                        (n_te,)))
     err = data.arrays["mu"][test] - pred
     if not np.all(np.isfinite(err)):
         return HoldoutResult(split.variable, n_tr, n_te, math.inf, math.inf, res, pred, test,
                              "the law fitted below the threshold predicts non-finite mu "
                              "above it")
+    und = int(undetermined_rows(law, res, data.subset(train), xs, n_te).sum())
+    odd = _implausible(law, data, test, pred, limits)
+    if und or odd:
+        return HoldoutResult(split.variable, n_tr, n_te, math.nan, math.nan, res, pred, test,
+                             n_undetermined=und, implausible=odd)
     return HoldoutResult(split.variable, n_tr, n_te, float(np.sqrt(np.mean(err**2))),
-                         float(np.max(np.abs(err))), res, np.array(pred), test)
+                         float(np.max(np.abs(err))), res, pred, test)
 
 
 # ----------------------------------------------------------- plausibility

@@ -118,6 +118,23 @@ def _yes(r: LawComparison) -> str:
     return "yes" if r.plausible else "NO"
 
 
+#: Table text of a score the refits' rows cannot determine (null in JSON).
+UNDETERMINED = "n/d"
+
+
+def _score(r: LawComparison, key: str, fmt: str = ".4f") -> str:
+    """A CV or extrapolation score of ``r`` as table text: the number, "n/d" when it is
+    undetermined, "implausible" for an extrapolation outside the plausible mu."""
+    if key in r.undetermined_scores:
+        return UNDETERMINED
+    if key == "extrapolation_rmse":
+        if r.extrapolation_status == "implausible":
+            return "implausible"
+        return _num(r.extrapolation_rmse, fmt)
+    value = r.cv.rmse if key == "cv_rmse" else r.cv_rmse_common
+    return _num(value, fmt) + ("" if r.cv.complete else "*")
+
+
 # -------------------------------------------------------------------- table
 
 
@@ -129,22 +146,22 @@ def _columns(cmp: Comparison) -> list[str]:
     cols = ["rank", "law", "k", "n", "R^2", "adj.R^2", "RMSE", "CV RMSE"]
     if _common(cmp):
         cols.append("CV common")
-    return cols + ["extrap.RMSE", "AICc", "grp", "weight", "identifiable", "plausible", "resid."]
+    return cols + ["extrap.RMSE", "AICc", "grp", "weight", "identifiable", "plausible", "resid.",
+                   "rank basis"]
 
 
 def _rows(cmp: Comparison) -> list[list[str]]:
     out = []
     for r in cmp.results:
         m = r.metrics
-        star = "" if r.cv.complete else "*"
         row = [str(r.rank), r.law.id, str(m["k"]), str(m["n"]), _num(m["r2"], ".3f"),
-               _num(m["adj_r2"], ".3f"), _num(m["rmse"], ".4f"), _num(r.cv.rmse, ".4f") + star]
+               _num(m["adj_r2"], ".3f"), _num(m["rmse"], ".4f"), _score(r, "cv_rmse")]
         if _common(cmp):
-            row.append(_num(r.cv_rmse_common, ".4f") + star)
-        row += [_num(r.extrapolation_rmse, ".4f"), _num(m["aicc"], ".1f"),
+            row.append(_score(r, "cv_rmse_common"))
+        row += [_score(r, "extrapolation_rmse"), _num(m["aicc"], ".1f"),
                 str(r.aic_group), _num(r.akaike_weight, ".3f"),
                 "NO" if r.fit.non_identifiable else "yes", _yes(r),
-                "structure" if r.residuals.structured else "ok"]
+                "structure" if r.residuals.structured else "ok", r.rank_basis]
         out.append(row)
     return out
 
@@ -178,15 +195,43 @@ def _table_footer(cmp: Comparison) -> list[str]:
                    "could use (the ranking criterion, as the laws were fitted to different rows)")
     if any(not r.cv.complete for r in cmp.results):
         out.append("* cross-validation incomplete (a fold could not be fitted; see notes)")
-    out.append("grp: laws fitted to the same rows; AICc and Akaike weights compare laws "
-               "within a group only")
+    out += _legend(cmp)
     return out
+
+
+def _legend(cmp: Comparison) -> list[str]:
+    """What the n/d, weight and rank-basis entries mean (every table format)."""
+    out = []
+    if any(r.undetermined_scores for r in cmp.results):
+        out.append(f"{UNDETERMINED}: undetermined: a refit's rows cannot determine "
+                   "parameters its held-out predictions depend on (see notes); not used "
+                   "to rank")
+    if any(r.extrapolation_status == "implausible" for r in cmp.results):
+        out.append("implausible: a hold-out prediction lies outside the plausible range "
+                   f"{cmp.settings['mu_limits'][0]:g} <= mu <= "
+                   f"{cmp.settings['mu_limits'][1]:g} (not averaged into an RMSE)")
+    sizes = {r.aic_group: r.aic_group_size for r in cmp.results}
+    out.append(f"grp: laws fitted to the same rows ({len(sizes)} group"
+               f"{'' if len(sizes) == 1 else 's'}); weight: Akaike weight over the laws of "
+               "the same grp only (AIC compares likelihoods of the same rows), so weights of "
+               "different groups are not comparable, and a law alone in its group has "
+               "weight 1 trivially")
+    out.append("rank basis: why the law ranks where it does; " + RANK_RULE)
+    return out
+
+
+#: The ranking rule in words, under every ranked table.
+RANK_RULE = ("laws with a determined ranking CV RMSE first (identifiable before not "
+             "identifiable, complete cross-validation before incomplete, then by that CV "
+             "RMSE), then the unscored ones (n/d: the fold named cannot determine its "
+             "predictions; or no CV RMSE) by fewer parameters, then id")
 
 
 def _table_sections(cmp: Comparison) -> list[str]:
     """The flags, trends, warnings, notes, skipped and failed laws under the table."""
     res = cmp.results
-    out = _section("NOT IDENTIFIABLE from these data (ranked after the identifiable laws):",
+    out = _section("NOT IDENTIFIABLE from these data (ranked after the identifiable laws "
+                   "with a score):",
                    [f"  {r.law.id}: cannot determine {', '.join(r.fit.non_identifiable)}"
                     for r in res if r.fit.non_identifiable])
     out += _section("IMPLAUSIBLE outside the measured range (extended box):",
@@ -225,7 +270,7 @@ def format_table(cmp: Comparison) -> str:
     columns = _columns(cmp)
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h)
               for i, h in enumerate(columns)]
-    left = {1}
+    left = {1, len(columns) - 1}
 
     def line(cells: Sequence[str]) -> str:
         return "  ".join(c.ljust(w) if i in left else c.rjust(w)
@@ -569,7 +614,7 @@ def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
                       label="held-out rows"),
                Line2D([], [], marker="o", ls="", color="0.75", label="rows at other levels"),
                Patch(color="tab:red", alpha=0.15, label="held-out range")]
-    handles += _law_handles(cmp, styles, {r.law.id: f" ({_num(r.extrapolation_rmse, '.3f')})"
+    handles += _law_handles(cmp, styles, {r.law.id: f" ({_score(r, 'extrapolation_rmse', '.3f')})"
                                           for r in cmp.results})
     legend_in = _legend_width(handles)
     fig = _new_figure(4.6 * len(splits) + legend_in + 0.9, 4.6)
@@ -716,25 +761,27 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     fig = _new_figure(10, 0.45 * n + 2.0)
     ax = _grid(fig, 1, 1, left_in=2.6, top_in=0.85, bottom_in=0.55)[0, 0]
     k = cmp.settings["folds"]
-    series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6"),
-              (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan")]
+    series = [("fit RMSE", [r.metrics["rmse"] for r in res], "0.6", ""),
+              (f"{k}-fold CV RMSE (own rows)", [r.cv.rmse for r in res], "tab:cyan", "cv_rmse")]
     if _common(cmp):
         series.append((f"{k}-fold CV RMSE, rows all laws share (ranking)",
-                       [r.cv_rmse_common for r in res], "tab:blue"))
-    series.append(("extrapolation RMSE", [r.extrapolation_rmse for r in res], "tab:orange"))
+                       [r.cv_rmse_common for r in res], "tab:blue", "cv_rmse_common"))
+    series.append(("extrapolation RMSE", [r.extrapolation_rmse for r in res], "tab:orange",
+                   "extrapolation_rmse"))
     hgt = 0.8 / len(series)
     y = np.arange(n)
-    allv = [v for _, vals, _ in series for v in vals if v is not None and math.isfinite(v)
+    allv = [v for _, vals, _, _ in series for v in vals if v is not None and math.isfinite(v)
             and v > 0]
     vmin = min(allv) if allv else 1e-3
     vmax = max(allv) if allv else 1.0
-    for j, (name, vals, colour) in enumerate(series):
+    for j, (name, vals, colour, key) in enumerate(series):
         yy = y + (j - (len(series) - 1) / 2) * hgt
         good = [v if v is not None and math.isfinite(v) and v > 0 else np.nan for v in vals]
         ax.barh(yy, good, height=hgt, color=colour, label=name)
-        for yi, v in zip(yy, vals):
+        for yi, v, r in zip(yy, vals, res):
             if v is None or not math.isfinite(v):
-                ax.text(vmin * 0.55, yi, "n/a", va="center", fontsize=7)
+                text = _score(r, key).rstrip("*") if key else "n/a"
+                ax.text(vmin * 0.55, yi, text, va="center", fontsize=7)
     _log_axis(ax, vmin * 0.5, vmax * 2.0)
     ax.set_yticks(y, [f"{r.rank}. {r.law.id}" + ("" if r.plausible else " (implausible)")
                       for r in res])
@@ -752,7 +799,8 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     caption = ("Fit RMSE (on the rows fitted), cross-validated RMSE (on rows left out of "
                "each fit; the ranking criterion) and extrapolation RMSE (on the held-out "
                "upper range), per law in rank order, on a log scale; implausible laws in "
-               "red; n/a: not available. The values are in the ranking table.")
+               f"red; n/a: not available; {UNDETERMINED}: undetermined (the refits' rows cannot "
+               "determine the predictions). The values are in the ranking table.")
     return Figure("metrics", "metrics", caption, _png(fig))
 
 
@@ -827,8 +875,9 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
 
 def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
     head = ["rank", "law", "title", "k", "n", "R²", "adj. R²", "RMSE", "MAE", "max |res|",
-            "AIC", "AICc", "BIC", "group", "Akaike w.", "CV RMSE", "CV RMSE (common rows)",
-            "extrap. RMSE", "identifiable", "plausible", "residuals"]
+            "AIC", "AICc", "BIC", "group", "Akaike w. (in group)", "CV RMSE",
+            "CV RMSE (common rows)", "extrap. RMSE", "identifiable", "plausible", "residuals",
+            "rank basis"]
     rows = []
     for r in cmp.results:
         m = r.metrics
@@ -837,11 +886,11 @@ def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
                      _num(m["mae"], ".4f"), _num(m["max_abs_residual"], ".4f"),
                      _num(m["aic"], ".2f"), _num(m["aicc"], ".2f"), _num(m["bic"], ".2f"),
                      str(r.aic_group), _num(r.akaike_weight, ".3f"),
-                     _num(r.cv.rmse, ".4f") + ("" if r.cv.complete else " *"),
-                     _num(r.cv_rmse_common, ".4f") + ("" if r.cv.complete else " *"),
-                     _num(r.extrapolation_rmse, ".4f"),
+                     _score(r, "cv_rmse").replace("*", " *"),
+                     _score(r, "cv_rmse_common").replace("*", " *"),
+                     _score(r, "extrapolation_rmse"),
                      "NO" if r.fit.non_identifiable else "yes", _yes(r),
-                     "structure" if r.residuals.structured else "ok"])
+                     "structure" if r.residuals.structured else "ok", r.rank_basis])
     return head, rows
 
 
@@ -859,18 +908,25 @@ def _sections(cmp: Comparison) -> list[tuple[str, list[Any]]]:
     out.append(("Trends the data show", [t.describe() for t in cmp.trends.values()]))
     ex = []
     for r in cmp.results:
-        parts = [f"{h.variable}: RMSE {_num(h.rmse, '.4f')} on {h.n_test} held-out rows "
-                 f"(fitted on {h.n_train})" if h.error is None else
-                 f"{h.variable}: {h.error}" for h in r.holdouts]
+        parts = [f"{h.variable}: {h.error}" if h.error is not None else
+                 f"{h.variable}: RMSE {UNDETERMINED} ({h.n_undetermined} of {h.n_test} "
+                 f"held-out predictions undetermined; fitted on {h.n_train})"
+                 if h.n_undetermined else
+                 f"{h.variable}: implausible: {h.implausible} (fitted on {h.n_train})"
+                 if h.implausible else
+                 f"{h.variable}: RMSE {_num(h.rmse, '.4f')} on {h.n_test} held-out rows "
+                 f"(fitted on {h.n_train})" for h in r.holdouts]
         ex.append(f"{r.law.id}: " + ("; ".join(parts) or "no holdout"))
     out.append(("Extrapolation to the held-out upper range", ex))
     cv = []
     for r in cmp.results:
-        folds = ", ".join("no rows" if f is None and i + 1 not in
-                          {x["fold"] for x in r.cv.failed} else
-                          ("failed" if f is None else _num(f, ".3f"))
+        failed = {x["fold"] for x in r.cv.failed}
+        und = {x["fold"] for x in r.cv.undetermined if x.get("n_undetermined")}
+        folds = ", ".join(_num(f, ".3f") if f is not None else "failed" if i + 1 in failed
+                          else UNDETERMINED if i + 1 in und else "no rows"
                           for i, f in enumerate(r.cv.fold_rmse))
-        cv.append(f"{r.law.id}: CV RMSE {_num(r.cv.rmse, '.4f')} over {r.cv.n_scored} rows; "
+        cv.append(f"{r.law.id}: CV RMSE {_score(r, 'cv_rmse').rstrip('*')} over "
+                  f"{r.cv.n_scored} rows; "
                   f"per fold {folds}" + ("" if r.cv.complete else
                                          f"; {len(r.cv.failed)} fold(s) failed"))
     out.append(("Cross-validation", cv))
@@ -960,6 +1016,7 @@ def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
     lines += ["| " + " | ".join(esc(c) for c in r) + " |" for r in rows]
     lines += ["", "`*` cross-validation incomplete. Groups: laws fitted to the same rows; "
               "AIC-based numbers compare within a group only.", ""]
+    lines += [f"- {esc(t)}" for t in _legend(cmp)] + [""]
     for heading, items in _sections(cmp):
         lines += [f"## {heading}", ""]
         for item in items:
@@ -1083,6 +1140,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
              "<p>* cross-validation incomplete. Group: laws fitted to the same rows; "
              "AIC, AICc, BIC and Akaike weights compare laws within a group only (a law "
              "alone in its group has weight 1 trivially).</p>",
+             "<ul>" + "".join(f"<li>{e(t)}</li>" for t in _legend(cmp)) + "</ul>",
              *_html_sections(cmp), *_html_residual_tests(cmp), "<h2>Figures</h2>"]
     for f in figures:
         b64 = base64.b64encode(f.png).decode("ascii")

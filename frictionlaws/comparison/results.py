@@ -25,7 +25,8 @@ from .cv import CVResult
 from .extrapolation import Design, HoldoutResult, Plausibility, Split, Trend, fmt_value
 from .residuals import ResidualAnalysis
 
-__all__ = ["Comparison", "LawComparison", "COMPARISON_FORMAT", "COMPARISON_VERSION"]
+__all__ = ["Comparison", "LawComparison", "COMPARISON_FORMAT", "COMPARISON_VERSION",
+           "FRAME_COLUMNS", "mark_undetermined"]
 
 COMPARISON_FORMAT = "frictionlaws-comparison"
 COMPARISON_VERSION = 1
@@ -51,6 +52,13 @@ class LawComparison:
     rank: int = 0
     cv_rmse_common: float = math.nan
     extra_notes: list[str] = field(default_factory=list)
+    #: ``"scored"``, ``"undetermined"``, ``"implausible"`` or ``"none"``
+    #: (:func:`~frictionlaws.comparison.core._extrapolation_score`).
+    extrapolation_status: str = "scored"
+    #: True when ``cv_rmse_common`` is undetermined (a prediction of a common row is).
+    common_undetermined: bool = False
+    #: Why the law ranks where it does (its ranking score, or why it has none).
+    rank_basis: str = ""
 
     @property
     def id(self) -> str:
@@ -63,6 +71,18 @@ class LawComparison:
     @property
     def plausible(self) -> bool:
         return self.plausibility.plausible
+
+    @property
+    def undetermined_scores(self) -> list[str]:
+        """The scores that are undetermined (null, n/d): ``cv_rmse``, ``cv_rmse_common``,
+        ``extrapolation_rmse``; each is one whose held-out predictions depend on parameters
+        the refit's rows cannot determine."""
+        out = [] if self.cv.determined else ["cv_rmse"]
+        if self.common_undetermined:
+            out.append("cv_rmse_common")
+        if self.extrapolation_status == "undetermined":
+            out.append("extrapolation_rmse")
+        return out
 
     @property
     def n_dropped(self) -> int:
@@ -84,8 +104,11 @@ class LawComparison:
             "aic_group": self.aic_group, "aic_group_size": self.aic_group_size,
             "cv_rmse": self.cv.rmse,
             "cv_rmse_common": self.cv_rmse_common,
+            "undetermined_scores": self.undetermined_scores,
+            "rank_basis": self.rank_basis,
             "cv": self.cv.to_dict(),
             "extrapolation_rmse": self.extrapolation_rmse,
+            "extrapolation_status": self.extrapolation_status,
             "extrapolation": [h.to_dict() for h in self.holdouts],
             "plausible": self.plausible,
             "plausibility_reasons": self.plausibility.reasons,
@@ -99,6 +122,43 @@ class LawComparison:
             "params": {k: p.to_dict() for k, p in self.fit.params.items()},
             "settings": dict(self.fit.settings),
         }
+
+
+#: The columns of :meth:`Comparison.to_frame` (and of a campaign's comparison table).
+FRAME_COLUMNS = ("rank", "id", "k", "n", "r2", "rmse", "aic", "bic", "cv_rmse",
+                 "cv_rmse_common", "extrapolation_rmse", "extrapolation_status",
+                 "akaike_weight", "aic_group", "identifiable", "plausible", "converged",
+                 "undetermined", "rank_basis")
+#: The scores a frame row may name as undetermined.
+SCORES = ("cv_rmse", "cv_rmse_common", "extrapolation_rmse")
+
+
+def mark_undetermined(frame: Any) -> Any:
+    """A copy of a comparison frame for display or CSV: each undetermined score "n/d".
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        :meth:`Comparison.to_frame` (or a campaign table made of them): the rows name
+        their undetermined scores in the ``undetermined`` column.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The same table, the score cells the ``undetermined`` column names replaced by
+        ``"n/d"`` (those columns become text); the frame itself is unchanged.
+    """
+    if "undetermined" not in frame.columns:
+        return frame
+    out = frame.copy()
+    names = out["undetermined"].fillna("").astype(str)
+    for col in SCORES:
+        if col in out.columns:
+            hit = names.str.split(", ").apply(lambda xs, c=col: c in xs)
+            if hit.any():
+                out[col] = out[col].astype(object)
+                out.loc[hit, col] = "n/d"
+    return out
 
 
 @dataclass
@@ -188,22 +248,34 @@ class Comparison:
         return _dumps(self.to_dict(), indent=indent)
 
     def to_frame(self) -> Any:
-        """One row per ranked law: rank, metrics, CV and extrapolation RMSE, flags."""
+        """One row per ranked law: rank, metrics, CV and extrapolation RMSE, flags.
+
+        A score that is undetermined (see :mod:`frictionlaws.comparison.cv`) is NaN and
+        named in the ``undetermined`` column; ``rank_basis`` says why each law ranks
+        where it does; ``aic_group`` is the group of laws fitted to the same rows within
+        which ``akaike_weight`` compares them.
+        """
         import pandas as pd
 
-        cols = ("rank", "id", "k", "n", "r2", "rmse", "aic", "bic", "cv_rmse",
-                "extrapolation_rmse", "akaike_weight", "plausible", "converged")
-        rows = [{c: r.to_dict()[c] for c in cols} for r in self.results]
-        frame = pd.DataFrame(rows, columns=list(cols)).rename(columns={"id": "law"})
-        frame.attrs["units"] = "mu, rmse, cv_rmse, extrapolation_rmse: - (dimensionless)"
+        rows = []
+        for r in self.results:
+            d = r.to_dict()
+            row = {c: d[c] for c in FRAME_COLUMNS if c in d}
+            row["identifiable"] = not r.fit.non_identifiable
+            row["undetermined"] = ", ".join(r.undetermined_scores)
+            rows.append(row)
+        frame = pd.DataFrame(rows, columns=list(FRAME_COLUMNS)).rename(columns={"id": "law"})
+        frame.attrs["units"] = ("mu, rmse, cv_rmse, cv_rmse_common, extrapolation_rmse: - "
+                                "(dimensionless)")
         return frame
 
     def _repr_html_(self) -> str:
         from ..interop import table_html
 
-        rows = self.to_frame().to_dict("records")
+        rows = mark_undetermined(self.to_frame()).to_dict("records")
         return table_html(rows, caption=f"laws compared on {self.data.name} "
-                                        f"({self.data.n} rows), best first")
+                                        f"({self.data.n} rows), best first; n/d: "
+                                        "undetermined; akaike_weight within aic_group")
 
     def table(self) -> str:
         """The ranked console table with the flags, skipped and failed laws."""
