@@ -1,6 +1,6 @@
 """Benchmark of the brush model's local-sliding-speed mode (``sliding_speed="local"``).
 
-Baseline, measured in the same run: the node-by-node march as it was before the bisection-free rework
+Baseline, measured in the same run: the node-by-node march as it was before the rework
 (a log-grid scan for the slowest sliding speed, then 45 bisection steps per sliding
 node), kept here as :func:`march_local_bisection` and run on the same patch, slips and
 law.  The model (``BrushModel._march_local``) solves all nodes of all slips together:
