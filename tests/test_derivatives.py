@@ -181,8 +181,17 @@ def test_a_fit_does_not_import_lmfit_or_scipy_stats():
 def test_lean_fit_gives_the_same_values_without_diagnostics():
     full = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
     lean = fl.fit("savkoor", "thesis-steel", on_invalid="drop", lean=True)
-    assert lean.values == full.values
-    assert lean.metrics == full.metrics
+    # savkoor has parameters these data cannot determine: their values are one point of a
+    # flat valley, which the solver's path picks (rounding in the linear algebra moves it
+    # by 1e-3), so they are compared through what is determined: the optimum's chi^2 to
+    # 1e-9, every other metric and the determined parameters to 1e-6.
+    assert lean.metrics.keys() == full.metrics.keys()
+    for key, value in full.metrics.items():
+        rel = 1e-9 if key == "chisqr" else 1e-6
+        assert lean.metrics[key] == pytest.approx(value, rel=rel, abs=1e-12), key
+    for name, value in full.values.items():
+        if name not in full.non_identifiable:
+            assert lean.values[name] == pytest.approx(value, rel=1e-6), name
     assert lean.success == full.success
     assert lean.derived == {} and lean.provenance == {}
     assert all(p.ci95 is None for p in lean.params.values())
