@@ -626,8 +626,9 @@ class Campaign:
         if target.suffix.lower() != ".csv":
             raise InputError("campaign results are written as .csv or .json",
                              file=str(target))
-        return write_text_atomic(target, self.to_frame().to_csv(index=False,
-                                                                float_format="%.10g"))
+        from .sanitize import frame_csv
+
+        return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
 
     def summary(self) -> str:
         """One line per record: dataset, group, law, R^2, RMSE or the error."""
@@ -713,6 +714,7 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
 
     from . import jsonio
     from .outputs import atomic_write
+    from .sanitize import csv_row
 
     count, failed = 0, []
     as_csv = output.suffix.lower() == ".csv"
@@ -728,7 +730,7 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
                 if "error" in rec:
                     failed.append(rec)
                 if writer is not None:
-                    writer.writerows(jsonio.to_jsonable(row) for row in _tidy(rec, by))
+                    writer.writerows(csv_row(jsonio.to_jsonable(row)) for row in _tidy(rec, by))
                 else:
                     fh.write(jsonio.dumps(rec, indent=None) + "\n")
     return Campaign([], by, laws, path=output, count=count, failed=failed)

@@ -111,7 +111,11 @@ def loads(text: str) -> Any:
         ``json.JSONDecodeError`` (with line and column), a duplicate key or constant, or
         nesting too deep for the parser.
     """
+    from .limits import check_nesting, nesting_error
+
     try:
-        return json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
+        doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
     except RecursionError:  # e.g. 100000 nested arrays: not a parameter file
-        raise ValueError("the JSON is nested too deeply to be a parameter file") from None
+        raise nesting_error("JSON document") from None
+    check_nesting(doc, "JSON document")
+    return doc

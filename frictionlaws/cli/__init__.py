@@ -170,7 +170,10 @@ def _mark_nested(p: argparse.ArgumentParser) -> None:
 
 
 def _one_line(text: str) -> str:
-    return " ".join(str(text).split())
+    """A message on one line, at most :data:`~frictionlaws.limits.MAX_MESSAGE_CHARS` long."""
+    from frictionlaws.errors import bounded_message
+
+    return bounded_message(" ".join(str(text).split()))
 
 
 _PATH = re.compile(r"(?:[A-Za-z]:)?[\\/][^\s'\"]*?(?:site|dist)-packages[\\/]\S*")
@@ -178,7 +181,10 @@ _PATH = re.compile(r"(?:[A-Za-z]:)?[\\/][^\s'\"]*?(?:site|dist)-packages[\\/]\S*
 
 def _clean(text: str) -> str:
     """One line, without library source paths (``.../site-packages/x/y.py:12``)."""
-    return _one_line(_PATH.sub("<library>", str(text)))
+    from frictionlaws.errors import bounded_message
+
+    # bounded before the search: the lazy path pattern costs length x slashes
+    return _one_line(_PATH.sub("<library>", bounded_message(str(text), 4000)))
 
 
 def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:

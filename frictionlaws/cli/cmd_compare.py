@@ -173,7 +173,9 @@ def _run_many(args: argparse.Namespace) -> int:
                          scheduler=args.scheduler, progress=campaign_progress(args),
                          load_options=load, **_options(args))
     if args.out:
-        text = (frame.to_csv(index=False, float_format="%.10g")
+        from frictionlaws.sanitize import frame_csv
+
+        text = (frame_csv(frame, float_format="%.10g")
                 if args.out.lower().endswith(".csv")
                 else jsonio.dumps(frame.to_dict("records")) + "\n")
         write_text_atomic(args.out, text)

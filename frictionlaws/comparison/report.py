@@ -41,6 +41,7 @@ import numpy as np
 from .._workers import local_workers
 from ..errors import InputError
 from ..law import VARIABLES
+from ..sanitize import markdown_text
 from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 from .residuals import ALPHA
@@ -940,20 +941,19 @@ def _md_residual_tests(cmp: Comparison) -> list[str]:
     head, rows = _residual_table(cmp)
     lines = ["## Residual tests (p-values)", "", RESIDUAL_TESTS_NOTE, "",
              "| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
-    return lines + ["| " + " | ".join(f"**{t}**" if bad else t.replace("|", "\\|")
+    return lines + ["| " + " | ".join(f"**{markdown_text(t)}**" if bad else markdown_text(t)
                                       for t, bad in row) + " |" for row in rows]
 
 
 def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """The report as Markdown, linking the PNG files."""
     d = cmp.data
+    esc = markdown_text  # every text from data, files or laws: one line, HTML escaped
 
-    def esc(t: str) -> str:
-        return t.replace("|", "\\|")
-
-    lines = [f"# Comparison of friction laws on {d.name}", "",
-             f"Data: {d.name} ({d.source}), {d.n} rows; {_ranges_text(cmp)}.", ""]
-    lines += [f"- {m}" for m in _method(cmp)] + [""]
+    lines = [f"# Comparison of friction laws on {esc(d.name)}", "",
+             f"Data: {esc(d.name)} ({esc(d.source)}), {d.n} rows; {esc(_ranges_text(cmp))}.",
+             ""]
+    lines += [f"- {esc(m)}" for m in _method(cmp)] + [""]
     head, rows = _metric_table(cmp)
     lines += ["## Ranking", "", "| " + " | ".join(esc(h) for h in head) + " |",
               "|" + "|".join("---" for _ in head) + "|"]
@@ -971,7 +971,8 @@ def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
         lines.append("")
     lines += _md_residual_tests(cmp) + ["", "## Figures", ""]
     for f in figures:
-        lines += [f"### {f.title}", "", f"![{f.title}]({f.name}.png)", "", f.caption, ""]
+        lines += [f"### {esc(f.title)}", "", f"![{esc(f.title)}]({esc(f.name)}.png)", "",
+                  esc(f.caption), ""]
     return "\n".join(lines)
 
 
