@@ -509,17 +509,10 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
 
 
 def _dask_client(address: str) -> Any:
-    """A Dask client connected to ``address``; InputError when that cannot be done."""
-    try:
-        from dask.distributed import Client
-    except ImportError:
-        raise InputError("a Dask scheduler was given but dask.distributed is not installed "
-                         "(install the 'dask' extra: pip install 'frictionlaws[dask]')"
-                         ) from None
-    try:
-        return Client(address, timeout="10s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise InputError(f"cannot reach the Dask scheduler at {address!r} ({exc})") from None
+    """A Dask client connected to ``address`` within one deadline; InputError naming why not."""
+    from ._network import connect_scheduler
+
+    return connect_scheduler(address)
 
 
 def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str,

@@ -122,6 +122,19 @@ def _check_file_target(out: Path, what: str) -> None:
         raise InputError(f"the directory of the {what} is not writable", file=str(out))
 
 
+def _refuse_file_over_dir(out: Path, files: Iterable[Path]) -> None:
+    """Refuse an output directory that is, or lies inside, an output file of the same call.
+
+    One of the two would fail only after the other was written.
+    """
+    key = _key(out)
+    for f in files:
+        fk = _key(f)
+        if key == fk or key.startswith(fk.rstrip(os.sep) + os.sep):
+            raise InputError(f"the output directory would be inside the output file '{f}' "
+                             "(or be it); give them different names", file=str(out))
+
+
 def _check_dir_target(out: Path, what: str) -> None:
     if out.exists():
         if not out.is_dir():
@@ -181,6 +194,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         for src in ins:
             if _same_file(out, src):
                 raise InputError("the output directory is also an input", file=str(out))
+        _refuse_file_over_dir(out, seen.values())
         _check_dir_target(out, "output directory")
     for src in ins:
         protect_input(src)
@@ -272,16 +286,23 @@ def atomic_write(path: PathLike, mode: str = "w", *, encoding: str | None = "utf
         with os.fdopen(fd, mode, encoding=None if binary else encoding,
                        newline=None if binary else newline) as fh:
             yield fh
-        try:
-            os.chmod(tmp, 0o666 & ~_umask())
-        except OSError:
-            pass
+        with contextlib.suppress(OSError):
+            os.chmod(tmp, _mode_for(target))
         os.replace(tmp, target)
         _WRITTEN.add(_key(target))
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+def _mode_for(target: Path) -> int:
+    """The permissions of a file written over ``target``: those of the file it replaces
+    (a private 0600 file stays private), else the default of a new file (0666 - umask)."""
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except OSError:
+        return 0o666 & ~_umask()
 
 
 def _umask() -> int:
@@ -329,6 +350,8 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
             if item.is_dir():
                 dest.mkdir(parents=True, exist_ok=True)
             else:
+                with contextlib.suppress(OSError):
+                    os.chmod(item, _mode_for(dest))
                 os.replace(item, dest)
                 _WRITTEN.add(_key(dest))
     finally:
