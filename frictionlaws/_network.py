@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import concurrent.futures
+import socket
 import time
 from typing import Any
 
@@ -42,27 +43,46 @@ def _identify(address: str, timeout: float) -> dict[str, Any]:
     return asyncio.run(asyncio.wait_for(_identity(address, timeout), timeout))
 
 
+def _reach(address: str, where: str, timeout: float) -> None:
+    """Open and close a TCP connection to a ``tcp://`` address: refused, unknown or silent
+    hosts are named here, before any Dask protocol."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:
+        scheme, location = parse_address(address)
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise InputError(f"{where} is not a valid address ({str(exc)[:200]})") from None
+    if scheme != "tcp":
+        return
+    try:
+        socket.create_connection((host, port), timeout=timeout).close()
+    except OSError as exc:
+        reason = "no answer" if isinstance(exc, TimeoutError) else (
+            exc.strerror or type(exc).__name__)
+        raise InputError(f"cannot reach {where} ({reason} within {timeout:g} s)") from None
+
+
 def _probe(address: str, timeout: float) -> None:
     """Raise :class:`InputError` naming the cause unless a Dask scheduler answers in time."""
     where = f"the Dask scheduler address {address!r}"
+    limit, start = timeout, time.monotonic()
+    _reach(address, where, timeout)
+    timeout = max(timeout - (time.monotonic() - start), 0.5)
     pool = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="frictionlaws-probe")
     try:
         reply = pool.submit(_identify, address, timeout).result(timeout + 1.0)
-    except (TimeoutError, asyncio.TimeoutError, concurrent.futures.TimeoutError) as exc:
-        text = str(exc)
-        if "connect" in text.lower():
-            raise InputError(f"cannot reach {where}: no connection within {timeout:g} s "
-                             f"({text[:160]})") from None
+    except (TimeoutError, asyncio.TimeoutError, concurrent.futures.TimeoutError):
         raise InputError(f"{where} accepted the connection but gave no Dask handshake "
-                         f"within {timeout:g} s: not a Dask scheduler, or a stalled one"
+                         f"within {limit:g} s: not a Dask scheduler, or a stalled one"
                          ) from None
     except OSError as exc:
         raise InputError(f"cannot reach {where} ({str(exc)[:200]})") from None
     except (ValueError, TypeError) as exc:
         raise InputError(f"{where} is not a valid address ({str(exc)[:200]})") from None
     except Exception as exc:  # noqa: BLE001 - a non-Dask peer's bytes fail in many ways
-        raise InputError(f"{where} did not answer as a Dask scheduler: not a Dask "
-                         f"scheduler? ({type(exc).__name__}: {str(exc)[:160]})") from None
+        raise InputError(f"{where} did not answer in the Dask protocol: not a Dask "
+                         f"scheduler ({type(exc).__name__}: {str(exc)[:80]})") from None
     finally:
         pool.shutdown(wait=False)
     if reply.get("type") != "Scheduler":

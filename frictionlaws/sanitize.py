@@ -183,7 +183,7 @@ def markdown_text(text: object) -> str:
     s = one_line(text)
     for ch in "\\`[]|":
         s = s.replace(ch, "\\" + ch)
-    return html.escape(s, quote=True)
+    return html.escape(s, quote=False)  # quotes are plain text in Markdown
 
 
 def html_text(text: object) -> str:
