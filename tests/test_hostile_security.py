@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import os
@@ -434,6 +435,28 @@ def test_a_long_number_option_is_read_in_linear_time(tmp_path: Path) -> None:
                   timeout=5)
     check_outcome(res, codes=[2])
     assert res.seconds < 2
+
+
+@pytest.mark.parametrize("line", ["FNOMIN = " + "1" * 40000 + "x",
+                                  "FNOMIN = '" + "1" * 40000,
+                                  "{" + "} " * 40000 + "x"])
+def test_a_long_tir_line_is_read_in_linear_time(line: str) -> None:
+    from frictionlaws.errors import InputError
+    from frictionlaws.tyre.tir import read_tir
+
+    with time_limit(2.0), contextlib.suppress(InputError):
+        read_tir(f"[VERTICAL]\n{line}\n")
+
+
+@hostile(6)
+@given(word=st.sampled_from(["/", "a/", "site-packages/", "C:\\", "'"]),
+       n=st.sampled_from([20000, 100000]))
+def test_a_long_message_is_cleaned_in_linear_time(word: str, n: int) -> None:
+    from frictionlaws.cli import _clean
+
+    with time_limit(1.0):
+        text = _clean(word * n)
+    assert len(text) <= 2100
 
 
 # ------------------------------------------------------------------ network

@@ -55,7 +55,9 @@ Value = float | str
 _SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
 _KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eEdD][-+]?\d+)?$")
+#: Linear time: ``\d+\.?\d*`` (an optional point between two digit runs) backtracks
+#: quadratically on a long run of digits that is not a number.
+_NUMBER = re.compile(r"^[-+]?(\d+(?:\.\d*)?|\.\d+)([eEdD][-+]?\d+)?$")
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eEdD][-+]?\d+)?$")
 
 #: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`.
