@@ -959,12 +959,19 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     si = _to_si_checked(table, assigned, values, unit_of, notes)
     keep = _rows_to_keep(table, assigned, si, notes)
     columns = _kept_columns(table, assigned, si, keep)
-    units_given = {c: unit_of.get(c, "") for c in columns if c != "surface"}
+    units_given = {c: _written_unit(unit_of.get(c, ""), c) for c in columns if c != "surface"}
     if area is not None:
         columns = _pressure_from_area(columns, area, table.source, units_given, notes)
     notes.extend(_column_notes(columns))
     rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
     return Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+
+
+def _written_unit(unit: str, column: str) -> str:
+    """A unit as a dataset keeps it for its outputs: canonical (``N/mm^2``), never as typed."""
+    if _units.is_no_unit(unit):
+        return unit
+    return _units.canonical_unit(unit, column)
 
 
 def _check_headers(table: _Table) -> None:

@@ -632,7 +632,8 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
         return None
     where = f"column '{column}'" if column else "F_N"
     return (
-        f"{where}: normal load given as a mass in '{unit}' (dead weight), converted to "
+        f"{where}: normal load given as a mass in '{parse_unit_text(unit).canonical()}' "
+        "(dead weight), converted to "
         f"newtons with g = {G_THESIS} m/s^2 as the thesis did; write the unit as 'kgf' to "
         f"use standard gravity {G_STANDARD} m/s^2 instead"
     )

@@ -299,6 +299,60 @@ def test_the_unit_grammar_reads_or_refuses_every_text_it_is_given(text: str) -> 
     assert parse_unit_text(parsed.canonical()) == parsed
 
 
+unit_text = st.lists(st.one_of(st.sampled_from(["MPa", "N", "mm", "km", "h", "s", "degC", "kgf",
+                                                 "psi", "bar", "%", "m", "kg"]),
+                                st.sampled_from(["*", "/", " ", "^2", "**-1", "²", "(", ")",
+                                                 "1/", "**3", "·"])),
+                     min_size=1, max_size=7).map("".join)
+
+
+@contextlib.contextmanager
+def _pint_inputs() -> Iterator[list[str]]:
+    """Every text handed to pint's parsers while the block runs."""
+    from frictionlaws.units import unit_registry
+
+    ureg = unit_registry()
+    seen: list[str] = []
+    names = ("parse_units", "parse_expression", "parse_units_as_container", "parse_pattern")
+    originals = {n: getattr(ureg, n) for n in names}
+
+    def spy(name: str) -> object:
+        def call(text: object, *args: object, **kwargs: object) -> object:
+            seen.append(str(text))
+            return originals[name](text, *args, **kwargs)
+        return call
+
+    for n in names:
+        setattr(ureg, n, spy(n))
+    try:
+        yield seen
+    finally:
+        for n in names:
+            delattr(ureg, n)
+
+
+@hostile(40)
+@given(unit=unit_text, kind=st.sampled_from(["p", "v", "T", "F_N", "length", "area"]))
+def test_pint_sees_only_single_unit_names_never_an_expression(unit: str, kind: str) -> None:
+    from frictionlaws.errors import InputError
+    from frictionlaws.units import QUANTITIES, parse_quantity, to_si
+
+    constants = {q.si for q in QUANTITIES.values()} | {q.display for q in QUANTITIES.values()}
+    with _pint_inputs() as seen:
+        for call in (lambda: to_si(2.0, unit, kind), lambda: parse_quantity(f"2 {unit}", kind)):
+            with contextlib.suppress(InputError):
+                call()
+    names = re.compile(r"[^\W\d][\w\u00b0]*|%|dimensionless")
+    assert all(names.fullmatch(t) or t in constants for t in seen), (unit, seen)
+
+
+def test_a_dataset_keeps_its_units_in_canonical_form() -> None:
+    from frictionlaws.io import load_dataset
+
+    ds = load_dataset(_tmp_csv("mu,p [N / mm**2],v [km / h]\n0.5,1,2\n0.4,2,3\n"))
+    assert (ds.units["p"], ds.units["v"]) == ("N/mm^2", "km/h")
+
+
 BAD_UNIT = "m**99999999"
 
 
