@@ -144,6 +144,27 @@ def test_a_tir_file_written_from_hostile_text_reads_back_with_the_same_keys(
 
 
 @hostile(15)
+@given(name=st.sampled_from(["FNOMIN = 1 $", "A]\n[MODEL", "x y", "1ABC", "K\u2028FNOMIN", ""]),
+       where=st.sampled_from(["section", "key"]))
+def test_a_json_property_file_with_a_name_a_tir_cannot_hold_is_refused(
+        tmp_path_factory: pytest.TempPathFactory, name: str, where: str) -> None:
+    import json
+
+    from frictionlaws.errors import InputError
+    from frictionlaws.tyre.tir import read_property_file
+
+    doc = {"MODEL": {"FITTYP": 6}, "VERTICAL": {"FNOMIN": 4000.0}}
+    if where == "section":
+        doc[name] = {"A": 1.0}
+    else:
+        doc["VERTICAL"][name] = 1.0
+    path = tmp_path_factory.mktemp("json") / "p.json"
+    path.write_text(json.dumps(doc), encoding="utf-8")
+    with pytest.raises(InputError, match="not a property-file name"):
+        read_property_file(path)
+
+
+@hostile(15)
 @given(provenance=hostile_text, surfaces=st.lists(hostile_text, min_size=2, max_size=4))
 def test_a_dataset_written_with_hostile_provenance_and_cells_reads_back_row_for_row(
         tmp_path_factory: pytest.TempPathFactory, provenance: str, surfaces: list[str]) -> None:

@@ -28,7 +28,6 @@ links the PNG files next to it; ``comparison.json`` is :meth:`Comparison.to_json
 from __future__ import annotations
 
 import base64
-import html
 import io
 import math
 from collections.abc import Sequence
@@ -41,7 +40,7 @@ import numpy as np
 from .._workers import local_workers
 from ..errors import InputError
 from ..law import VARIABLES
-from ..sanitize import markdown_text
+from ..sanitize import html_text, markdown_text
 from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 from .residuals import ALPHA
@@ -996,7 +995,7 @@ li{margin:0.2em 0}
 
 def _html_ranking(cmp: Comparison) -> list[str]:
     """The ranking table in HTML; each law's title under its id."""
-    e = html.escape
+    e = html_text
     head, rows = _metric_table(cmp)
     # the title goes under the law id (a separate column makes the table too wide)
     skip = head.index("title")
@@ -1022,7 +1021,7 @@ def _html_ranking(cmp: Comparison) -> list[str]:
 
 def _html_sections(cmp: Comparison) -> list[str]:
     """The prose sections as HTML lists, IMPLAUSIBLE highlighted."""
-    e = html.escape
+    e = html_text
 
     def mark(text: str) -> str:
         return e(text).replace("IMPLAUSIBLE", "<span class='bad-word'>IMPLAUSIBLE</span>")
@@ -1042,7 +1041,7 @@ def _html_sections(cmp: Comparison) -> list[str]:
 
 def _html_residual_tests(cmp: Comparison) -> list[str]:
     """The table of residual-test p-values in HTML, the flagged ones marked."""
-    e = html.escape
+    e = html_text
     head, rows = _residual_table(cmp)
     parts = ["<h2>Residual tests (p-values)</h2>", f"<p>{e(RESIDUAL_TESTS_NOTE)}</p>",
              "<table><tr>" + "".join(f"<th class='{'l' if i == 0 else ''}'>{e(h)}</th>"
@@ -1071,7 +1070,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     str
         The HTML page.
     """
-    e = html.escape
+    e = html_text
     d = cmp.data
     parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
              f"<title>Comparison of friction laws on {e(d.name)}</title>",

@@ -53,6 +53,7 @@ CHRONO_PROVENANCE = ("Project Chrono, data/vehicle/generic/tire/ (commit 7689fbc
 Value = float | str
 
 _SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
 #: Linear time: ``\d+\.?\d*`` (an optional point between two digit runs) backtracks
@@ -366,7 +367,7 @@ def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> Pro
     metadata: dict[str, Any] = {}
     for name, body in doc.items():
         if isinstance(body, Mapping):
-            sec = str(name).upper()
+            sec = _tir_name(str(name), "section", source)
             if sec in sections:
                 raise InputError(f"section '{name}' appears twice (case-insensitive)",
                                  file=source)
@@ -391,11 +392,24 @@ def _json_document(text: str, source: str) -> Any:
         raise InputError(str(exc), file=source) from None
 
 
+def _tir_name(name: str, what: str, source: str) -> str:
+    """A JSON member's name as a ``.tir`` name (upper case), refused unless it is one.
+
+    A ``.tir`` file can only hold names made of letters, digits and ``_``: anything else
+    (``=``, ``$``, a bracket, a line break) would change the file written from it.
+    """
+    if not _NAME.fullmatch(name):
+        shown = ascii_line(name)[:40]
+        raise InputError(f"{what} '{shown}' is not a property-file name (letters, digits "
+                         "and '_', not starting with a digit)", file=source)
+    return name.upper()
+
+
 def _json_section(sec: str, body: Mapping[str, Any], source: str) -> dict[str, Value]:
     """One JSON section: keys upper-cased (unique), values finite numbers or strings."""
     entries: dict[str, Value] = {}
     for key, value in body.items():
-        k = str(key).upper()
+        k = _tir_name(str(key), f"[{sec}] key", source)
         if k in entries:
             raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
                              file=source)
