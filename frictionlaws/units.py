@@ -213,7 +213,7 @@ def _unit_tokens(text: str) -> list[str]:
     i, n = 0, len(text)
     while i < n:
         ch = text[i]
-        if ch.isspace():
+        if ch in " \t":  # no other white space: a line break is never part of a unit
             i += 1
             continue
         if ch.isalpha() or ch in "_\u00b0":
@@ -245,13 +245,13 @@ def _unit_tokens(text: str) -> list[str]:
             tokens.append("1")
             i += 1
             continue
-        raise UnitSyntaxError(f"unexpected {ch!r} at character {i + 1}")
+        raise UnitSyntaxError(f"unexpected {ascii(ch)} at character {i + 1}")
     return tokens
 
 
 def _exponent(text: str, i: int) -> tuple[int, int]:
     """The integer power written at ``text[i:]`` (a sign and one or two digits)."""
-    while i < len(text) and text[i] == " ":
+    while i < len(text) and text[i] in " \t":
         i += 1
     j = i + 1 if i < len(text) and text[i] in "+-" else i
     k = j
@@ -343,8 +343,9 @@ def parse_unit_text(text: str) -> UnitText:
 
 
 def _shown_unit(text: str) -> str:
-    """``text`` as quoted in a message: at most 40 characters."""
-    return text if len(text) <= 40 else text[:37] + "..."
+    """``text`` as quoted in a message: on one line (controls escaped), at most 40 characters."""
+    shown = text if text.isprintable() else ascii(text)[1:-1]
+    return shown if len(shown) <= 40 else shown[:37] + "..."
 
 
 def _pint_unit(text: str) -> Any:
