@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import io
+import math
 import os
 import re
 import socket
@@ -26,7 +27,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from hostile import MF52_TIR, Snapshot, check_outcome, hostile, run_cli, time_limit
+from hostile import MF52_TIR, NASTY_NUMBERS, Snapshot, check_outcome, hostile, run_cli, time_limit
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -372,6 +373,29 @@ def test_a_dataset_keeps_its_units_in_canonical_form() -> None:
 
     ds = load_dataset(_tmp_csv("mu,p [N / mm**2],v [km / h]\n0.5,1,2\n0.4,2,3\n"))
     assert (ds.units["p"], ds.units["v"]) == ("N/mm^2", "km/h")
+
+
+@hostile(60)
+@given(bound=st.sampled_from(NASTY_NUMBERS + ["2**9**9", "1e5**9", "(1)", "1_0 MPa"]),
+       count=st.sampled_from(["3", "\uff13", "1_0", "9" * 30, "-2", "3.0"]),
+       where=st.integers(0, 2))
+def test_every_number_of_a_range_goes_through_the_one_number_parser(
+        bound: str, count: str, where: int) -> None:
+    from frictionlaws.errors import InputError
+    from frictionlaws.fe_export.api import parse_range
+    from frictionlaws.numbers import parse_number
+
+    parts = ["0.01", "0.5", "3"]
+    parts[where] = bound if where < 2 else count
+    try:
+        spec = parse_range("p", ":".join(parts), "mm-N-s")
+    except InputError:
+        return
+    assert all(map(math.isfinite, (spec.lo, spec.hi)))
+    if where < 2:
+        assert [spec.lo, spec.hi][where] == pytest.approx(parse_number(bound) * 1e6)
+    else:
+        assert count.isascii() and count.isdigit() and spec.n == int(count)
 
 
 BAD_UNIT = "m**99999999"
