@@ -58,6 +58,7 @@ __all__ = [
     "write_text_atomic",
     "write_bytes_atomic",
     "atomic_dir",
+    "check_dir_move",
     "STDOUT",
 ]
 
@@ -325,6 +326,39 @@ def write_bytes_atomic(path: PathLike, data: bytes) -> Path:
     return Path(path)
 
 
+def check_dir_move(tmp: PathLike, target: PathLike) -> None:
+    """Raise now what moving the files built in ``tmp`` into ``target`` would raise.
+
+    A command that writes other files besides a directory of outputs calls this before
+    writing them, so that a directory that cannot be moved in fails before anything is
+    written (no partial output).
+
+    Parameters
+    ----------
+    tmp : path-like
+        The temporary directory :func:`atomic_dir` yielded.
+    target : path-like
+        The output directory.
+
+    Raises
+    ------
+    InputError
+        When a file would replace an input of this session, or a file or directory
+        stands where the other is needed.
+    """
+    tmp, target = Path(tmp), Path(target)
+    if target.exists() and not target.is_dir():
+        raise InputError("the output directory exists and is not a directory", file=str(target))
+    for item in sorted(tmp.rglob("*")):
+        dest = target / item.relative_to(tmp)
+        if item.is_file():
+            _refuse_protected(dest)
+            if dest.is_dir():
+                raise InputError("an output file would replace a directory", file=str(dest))
+        elif dest.exists() and not dest.is_dir():
+            raise InputError("an output directory would replace a file", file=str(dest))
+
+
 @contextlib.contextmanager
 def atomic_dir(path: PathLike) -> Iterator[Path]:
     """Build a directory of outputs in a temporary directory, then move it into place.
@@ -341,9 +375,7 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
     tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".part", dir=str(base)))
     try:
         yield tmp
-        for item in sorted(tmp.rglob("*")):
-            if item.is_file():
-                _refuse_protected(target / item.relative_to(tmp))
+        check_dir_move(tmp, target)
         target.mkdir(parents=True, exist_ok=True)
         for item in sorted(tmp.rglob("*")):
             dest = target / item.relative_to(tmp)

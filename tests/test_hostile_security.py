@@ -640,8 +640,9 @@ def test_an_output_keeps_the_permissions_of_the_file_it_replaces(tmp_path: Path)
     assert saved.stat().st_mode & 0o777 == 0o600 and saved.read_text() != "{}"
 
 
-@pytest.mark.parametrize("plots", ["ds.csv", "ds.csv/sub"])
+@pytest.mark.parametrize("plots", ["ds.csv", "ds.csv/sub", "plots"])
 def test_a_failing_process_leaves_no_dataset_behind(small_campaign: Path, plots: str) -> None:
+    (small_campaign / "plots" / "conditions.png").mkdir(parents=True, exist_ok=True)
     snap = Snapshot.take([small_campaign])
     res = run_cli(["process", str(small_campaign / "manifest.csv"), "--rig",
                    str(small_campaign / "rig.toml"), "-o", str(small_campaign / "ds.csv"),
