@@ -398,6 +398,18 @@ def test_every_number_of_a_range_goes_through_the_one_number_parser(
         assert count.isascii() and count.isdigit() and spec.n == int(count)
 
 
+@pytest.mark.parametrize(("value", "fragment"), [("1e999", "overflows"),
+                                                 ("1" + "0" * 5000, "limit of 40")])
+def test_a_json_number_beyond_the_limits_is_refused(tmp_path: Path, value: str,
+                                                    fragment: str) -> None:
+    params = tmp_path / "p.json"
+    params.write_text(PARAMS.replace("1.2", value), encoding="utf-8")
+    res = run_cli(["export", "--params", str(params), "--format", "csv", "--p", "0.01:0.5:3",
+                   "-o", str(tmp_path / "o.csv")])
+    check_outcome(res, codes=[2])
+    assert fragment in res.err
+
+
 BAD_UNIT = "m**99999999"
 
 
