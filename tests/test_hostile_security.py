@@ -624,17 +624,22 @@ def test_a_peer_that_answers_garbage_is_named_not_dask() -> None:
 
     server = socket.socket()
     server.bind(("127.0.0.1", 0))
-    server.listen(1)
+    server.listen(4)
+    held: list[socket.socket] = []
 
     def reply() -> None:
-        conn, _ = server.accept()
-        conn.sendall(b"HTTP/1.1 400 Bad Request\r\n\r\n" * 4)
-        time.sleep(1.0)
-        conn.close()
+        for _ in range(2):  # the plain TCP check, then the Dask handshake
+            conn, _ = server.accept()
+            conn.sendall(b"HTTP/1.1 400 Bad Request\r\n\r\n" * 4)
+            held.append(conn)
 
     threading.Thread(target=reply, daemon=True).start()
-    with time_limit(6.0), pytest.raises(InputError, match="not a Dask scheduler"):
+    t0 = time.perf_counter()
+    with time_limit(6.0), pytest.raises(InputError, match="not answer in the Dask protocol"):
         connect_scheduler(f"tcp://127.0.0.1:{server.getsockname()[1]}", timeout=2.0)
+    assert time.perf_counter() - t0 < 1.5
+    for conn in held:
+        conn.close()
     server.close()
 
 
