@@ -16,9 +16,9 @@ solver decks, Fortran, ``.tir``     :func:`ascii_line` (comments: ``$``, ``!``,
                                     ``**``, ``#``, ``C``); ``.tir`` strings:
                                     :func:`tir_string`
 CSV comment blocks (``#`` lines)    :func:`comment_lines`
-CSV text cells                      :func:`csv_cell`
+CSV text cells                      :func:`csv_cell` (:func:`csv_row`, :func:`frame_csv`)
 Markdown                            :func:`markdown_text`
-HTML                                :func:`html.escape` of :func:`one_line`
+HTML                                :func:`html_text`
 ==================================  ==========================================
 
 Units are written in the canonical form of :func:`frictionlaws.units.canonical_unit`,
