@@ -201,9 +201,13 @@ class UnitText:
         ureg = unit_registry()
         unit = ureg.dimensionless
         for name, e in self.factors:
-            if name not in ureg:
+            try:  # one name, never an expression; pint fails in several ways on odd ones
+                found = ureg.Unit(name) if name in ureg else None
+            except Exception:  # noqa: BLE001
+                found = None
+            if found is None:
                 raise UnitSyntaxError(f"unknown unit '{name}'")
-            unit = unit * ureg.Unit(name) ** e
+            unit = unit * found ** e
         return unit
 
 
@@ -216,7 +220,7 @@ def _unit_tokens(text: str) -> list[str]:
         if ch in " \t":  # no other white space: a line break is never part of a unit
             i += 1
             continue
-        if ch.isalpha() or ch in "_\u00b0":
+        if ch.isalpha() or ch == "\u00b0":
             j = i + 1
             while j < n and (text[j].isalnum() and text[j].isascii() or text[j].isalpha()
                              or text[j] in "_\u00b0"):

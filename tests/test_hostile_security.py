@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pytest
 from hostile import MF52_TIR, NASTY_NUMBERS, Snapshot, check_outcome, hostile, run_cli, time_limit
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 pytestmark = pytest.mark.hostile
@@ -408,6 +408,22 @@ def test_a_json_number_beyond_the_limits_is_refused(tmp_path: Path, value: str,
                    "-o", str(tmp_path / "o.csv")])
     check_outcome(res, codes=[2])
     assert fragment in res.err
+
+
+@hostile(80)
+@given(unit=st.text(max_size=16) | st.text(alphabet="mNsPak\u00b0\u00b5_()*/^ 019-\u00b2%.e",
+                                             max_size=16),
+       kind=st.sampled_from(["p", "v", "T", "F_N", "s", "angle", "mu"]))
+@example(unit="_", kind="p")
+@example(unit="N_", kind="F_N")
+def test_any_unit_text_is_read_or_refused_as_bad_input(unit: str, kind: str) -> None:
+    from frictionlaws.errors import InputError
+    from frictionlaws.units import canonical_unit, parse_quantity, to_si
+
+    for call in (lambda: to_si(1.0, unit, kind), lambda: parse_quantity(f"1 {unit}", kind),
+                 lambda: canonical_unit(unit, kind)):
+        with contextlib.suppress(InputError):
+            call()
 
 
 BAD_UNIT = "m**99999999"
