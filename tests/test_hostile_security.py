@@ -227,6 +227,25 @@ def test_a_unit_is_written_in_canonical_form_not_as_typed(tmp_path: Path) -> Non
     assert "p [N/mm^2]" in out.read_text(encoding="utf-8")
 
 
+@hostile(12)
+@given(unit=st.lists(st.sampled_from(["MPa", " ", "\u2028", "\n", "*KEYWORD", "/", "mm^2", "N",
+                                      "\r", "# x", "=1", "kPa", "\x85", "**2"]),
+                     min_size=1, max_size=5).map("".join))
+def test_a_unit_option_reaches_a_deck_only_in_canonical_form(
+        tmp_path_factory: pytest.TempPathFactory, unit: str) -> None:
+    tmp = tmp_path_factory.mktemp("units")
+    (tmp / "p.json").write_text(PARAMS, encoding="utf-8")
+    out = tmp / "o.csv"
+    res = run_cli(["export", "--params", str(tmp / "p.json"), "--format", "csv", "--p",
+                   "0.01:0.5:3", "--units", f"mm-N-s,p={unit}", "-o", str(out)])
+    check_outcome(res, codes=[0, 2])
+    if res.code == 0:
+        lines = out.read_text(encoding="utf-8").split("\n")
+        header = next(ln for ln in lines if ln and not ln.startswith("#"))
+        assert re.fullmatch(r"p \[[A-Za-z]+(\^\d)?(/[A-Za-z]+(\^\d)?)*\],mu \[-\]", header), header
+        assert all(_one_line(ln) for ln in lines)
+
+
 # ------------------------------------------------------------------ readers
 
 
