@@ -49,7 +49,7 @@ import numpy as np
 from . import units as _units
 from .errors import Argument, InputError
 from .law import VARIABLES
-from .sanitize import comment_lines, csv_cell, split_lines
+from .sanitize import comment_lines, csv_cell, csv_cell_text, split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
@@ -1294,7 +1294,8 @@ def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, n
     """The kept rows in SI, canonical column order, the surface column as text."""
     columns = {c: si[c][keep] for c in CANONICAL if c in si}
     if "surface" in assigned:
-        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
+        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else
+                csv_cell_text(str(c).strip()) if table.from_file else str(c).strip()
                 for c in table.columns[assigned["surface"]]]
         text = np.empty(int(np.count_nonzero(keep)), dtype=object)
         text[:] = [s for s, k in zip(surf, keep, strict=True) if k]

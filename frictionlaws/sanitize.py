@@ -16,7 +16,8 @@ solver decks, Fortran, ``.tir``     :func:`ascii_line` (comments: ``$``, ``!``,
                                     ``**``, ``#``, ``C``); ``.tir`` strings:
                                     :func:`tir_string`
 CSV comment blocks (``#`` lines)    :func:`comment_lines`
-CSV text cells                      :func:`csv_cell` (:func:`csv_row`, :func:`frame_csv`)
+CSV text cells                      :func:`csv_cell` (:func:`csv_row`, :func:`frame_csv`;
+                                    read back by :func:`csv_cell_text`)
 Markdown                            :func:`markdown_text`
 HTML                                :func:`html_text`
 ==================================  ==========================================
@@ -33,7 +34,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 __all__ = ["split_lines", "one_line", "ascii_line", "comment_lines", "csv_cell",
-           "csv_row", "frame_csv", "markdown_text", "html_text", "tir_string"]
+           "csv_cell_text", "csv_row", "frame_csv", "markdown_text", "html_text", "tir_string"]
 
 #: Unicode categories that never belong inside one line of a generated file: control
 #: characters (``\\r``, ``\\v``, ``\\f``, U+0085...), format characters (bidirectional
@@ -117,11 +118,21 @@ def comment_lines(lines: Iterable[object], prefix: str = "# ") -> list[str]:
     return [f"{prefix}{one_line(line)}".rstrip() for line in lines]
 
 
+def _formula_like(text: str) -> bool:
+    """True when a spreadsheet would read ``text`` as a formula (not a plain number)."""
+    from .numbers import is_number
+
+    head = text.lstrip()
+    return head.startswith(_FORMULA_START) and len(head) > 1 and not is_number(text)
+
+
 def csv_cell(text: object) -> str:
     """A text cell of a CSV table: one line, and never a spreadsheet formula.
 
     A cell that starts with ``=``, ``+``, ``-`` or ``@`` and is not a number gets a
-    leading ``'`` (the spreadsheet convention for "text").
+    leading ``'`` (the spreadsheet convention for "text"); so does one that already
+    starts with ``'`` before such a character, so that :func:`csv_cell_text` gives
+    every text back.
 
     Parameters
     ----------
@@ -131,13 +142,25 @@ def csv_cell(text: object) -> str:
     -------
     str
     """
-    from .numbers import is_number
-
     s = one_line(text)
-    head = s.lstrip()
-    if head.startswith(_FORMULA_START) and len(head) > 1 and not is_number(s):
-        return "'" + s
-    return s
+    return "'" + s if _formula_like(s.lstrip("'")) else s
+
+
+def csv_cell_text(cell: str) -> str:
+    """The text a cell written by :func:`csv_cell` holds: one ``'`` before a formula removed.
+
+    The inverse the readers apply to text cells, so that a table written by frictionlaws
+    reads back as it was (spreadsheets hide that ``'`` the same way).
+
+    Parameters
+    ----------
+    cell : str
+
+    Returns
+    -------
+    str
+    """
+    return cell[1:] if cell[:1] == "'" and _formula_like(cell.lstrip("'")) else cell
 
 
 def csv_row(row: Mapping[str, Any]) -> dict[str, Any]:

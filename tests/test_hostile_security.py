@@ -67,6 +67,7 @@ def test_every_sanitiser_keeps_text_on_one_line_and_inert(text: str) -> None:
         ascii_line,
         comment_lines,
         csv_cell,
+        csv_cell_text,
         html_text,
         markdown_text,
         one_line,
@@ -79,6 +80,7 @@ def test_every_sanitiser_keeps_text_on_one_line_and_inert(text: str) -> None:
     assert ascii_line(text).isascii() and tir_string(text).isascii()
     assert "'" not in tir_string(text)
     cell = csv_cell(text)
+    assert csv_cell_text(cell) == one_line(text)
     assert not (cell.lstrip()[:1] in ("=", "+", "-", "@") and len(cell.strip()) > 1
                 and not is_number(cell)), repr(cell)
     md = markdown_text(text)
