@@ -509,17 +509,10 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
 
 
 def _dask_client(address: str) -> Any:
-    """A Dask client connected to ``address``; InputError when that cannot be done."""
-    try:
-        from dask.distributed import Client
-    except ImportError:
-        raise InputError("a Dask scheduler was given but dask.distributed is not installed "
-                         "(install the 'dask' extra: pip install 'frictionlaws[dask]')"
-                         ) from None
-    try:
-        return Client(address, timeout="10s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise InputError(f"cannot reach the Dask scheduler at {address!r} ({exc})") from None
+    """A Dask client connected to ``address`` within one deadline; InputError naming why not."""
+    from ._network import connect_scheduler
+
+    return connect_scheduler(address)
 
 
 def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str,
@@ -626,8 +619,9 @@ class Campaign:
         if target.suffix.lower() != ".csv":
             raise InputError("campaign results are written as .csv or .json",
                              file=str(target))
-        return write_text_atomic(target, self.to_frame().to_csv(index=False,
-                                                                float_format="%.10g"))
+        from .sanitize import frame_csv
+
+        return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
 
     def summary(self) -> str:
         """One line per record: dataset, group, law, R^2, RMSE or the error."""
@@ -713,6 +707,7 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
 
     from . import jsonio
     from .outputs import atomic_write
+    from .sanitize import csv_row
 
     count, failed = 0, []
     as_csv = output.suffix.lower() == ".csv"
@@ -728,7 +723,7 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
                 if "error" in rec:
                     failed.append(rec)
                 if writer is not None:
-                    writer.writerows(jsonio.to_jsonable(row) for row in _tidy(rec, by))
+                    writer.writerows(csv_row(jsonio.to_jsonable(row)) for row in _tidy(rec, by))
                 else:
                     fh.write(jsonio.dumps(rec, indent=None) + "\n")
     return Campaign([], by, laws, path=output, count=count, failed=failed)

@@ -11,7 +11,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 __all__ = ["FrictionLawsError", "InputError", "UnknownLawError", "GroupingError",
-           "DomainError", "FitError", "ExtrapolationWarning", "Argument", "Label"]
+           "DomainError", "FitError", "ExtrapolationWarning", "Argument", "Label",
+           "MAX_MESSAGE_CHARS", "bounded_message"]
 
 #: How a front end names an argument of the API (the CLI: the flag that sets it).
 Label = Callable[[str], str]
@@ -44,6 +45,31 @@ class Argument:
         name, _, key = self.option.partition(".")
         target = f"{name}[{key!r}]" if key else name
         return f"{target}={self.value!r}" if self.value else target
+
+
+#: Longest message [characters]; the rest is elided, saying how much (a file with a
+#: million columns must not make a megabyte-long error line).
+MAX_MESSAGE_CHARS = 2000
+
+
+def bounded_message(text: str, limit: int = MAX_MESSAGE_CHARS) -> str:
+    """``text`` cut to ``limit`` characters, saying how many were left out.
+
+    Parameters
+    ----------
+    text : str
+        The message.
+    limit : int
+        The longest text returned.
+
+    Returns
+    -------
+    str
+    """
+    if len(text) <= limit:
+        return text
+    keep = limit - 60
+    return f"{text[:keep]} ... ({len(text) - keep} more characters not shown)"
 
 
 #: A message: plain text, or text and :class:`Argument` pieces.
@@ -157,7 +183,7 @@ class InputError(FrictionLawsError, ValueError):
             where.append(f"row {self.row}")
         prefix = ", ".join(where)
         text = self.render(label)
-        return f"{prefix}: {text}" if prefix else text
+        return bounded_message(f"{prefix}: {text}" if prefix else text)
 
 
 class UnknownLawError(InputError, KeyError):

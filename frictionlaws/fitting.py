@@ -1925,11 +1925,13 @@ def load_result(path: str | Path) -> FitResult:
         Naming the file and the offending key.
     """
     from . import jsonio
+    from .limits import read_input
     from .outputs import check_input_file
 
     path = check_input_file(path, "params file")
+    raw = read_input(path, "params file")  # bounded in size
     try:
-        doc = jsonio.loads(path.read_text(encoding="utf-8"))
+        doc = jsonio.loads(raw.decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise InputError(f"not a JSON file ({exc})", file=str(path)) from None
     except ValueError as exc:

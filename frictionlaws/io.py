@@ -49,6 +49,7 @@ import numpy as np
 from . import units as _units
 from .errors import Argument, InputError
 from .law import VARIABLES
+from .sanitize import comment_lines, csv_cell, csv_cell_text, split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
@@ -97,7 +98,6 @@ ALIASES: dict[str, tuple[str, ...]] = {
 #: Cell contents read as a missing value (the row is then dropped and reported).
 MISSING_TOKENS = frozenset({"", "nan", "na", "n/a", "#n/a", "null", "none", "-", "—", "–"})
 
-_HEADER_UNIT = re.compile(r"^(?P<name>.*?)\s*\[(?P<unit>[^\[\]]*)\]\s*$")
 _DELIMITERS = (";", "\t", ",")
 _DELIMITER_NAMES = {";": "';'", "\t": "tab", ",": "','"}
 _PACKAGED_PREFIX = "packaged:"
@@ -613,7 +613,7 @@ class Dataset:
         columns: list[list[str]] = []
         for c in cols:
             if c == "surface":
-                columns.append([str(s) for s in self.column(c)])
+                columns.append([csv_cell(s) for s in self.column(c)])
                 continue
             unit = _units.display_unit(c)
             vals = _units.from_si(self.column(c, float), unit, c)
@@ -622,8 +622,8 @@ class Dataset:
 
         with atomic_write(path, newline="") as fh:
             if self.provenance:
-                for line in self.provenance.splitlines():
-                    fh.write(f"# {line}".rstrip() + "\n")
+                for line in comment_lines(split_lines(self.provenance)):
+                    fh.write(line + "\n")
             writer = csv.writer(fh, lineterminator="\n")
             writer.writerow(headers)
             for row in zip(*columns, strict=True):
@@ -736,7 +736,7 @@ def read_table(path: str | os.PathLike[str], *, source: str | None = None,
     if raw is None:
         raw = _read_bytes(Path(path), source, what)
     text, enc_note = decode_text(raw, source)
-    table = _scan_lines(text.splitlines(), source, header_hint)
+    table = _scan_lines(split_lines(text), source, header_hint)
     if enc_note:
         table.notes.append(enc_note)
     return table
@@ -750,13 +750,11 @@ def _read_bytes(p: Path, source: str, what: str) -> bytes:
             else f"{what} not found", file=source)
     if p.is_dir():
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
+    from .limits import read_input
     from .outputs import check_input_file
 
     check_input_file(p, what)  # a FIFO or device would block or never end
-    try:
-        return p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"cannot read the file ({exc.strerror})", file=source) from None
+    return read_input(p, what, source)  # bounded in size
 
 
 def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
@@ -851,11 +849,37 @@ def _table_from_frame(df: pd.DataFrame, source: str) -> _Table:
 
 
 # --------------------------------------------------------------------------- building
-def _split_header(h: str) -> tuple[str, str | None]:
-    m = _HEADER_UNIT.match(h)
-    if m:
-        return m.group("name").strip(), m.group("unit").strip()
-    return h.strip(), None
+def split_header(h: str, *, brackets_in_name: bool = True) -> tuple[str, str | None]:
+    """``"p [MPa]"`` -> ``("p", "MPa")``; ``"p"`` -> ``("p", None)``: the one header rule.
+
+    The unit is the text between the last ``[`` and a final ``]``; it may hold no
+    bracket.  Done with string searches, in time linear in the header's length (a
+    regular expression with a lazy name and optional spaces is quadratic on a cell
+    padded with spaces).
+
+    Parameters
+    ----------
+    h : str
+        The header cell.
+    brackets_in_name : bool
+        Whether the name before the unit may hold ``[`` or ``]`` (a record's may not).
+
+    Returns
+    -------
+    tuple of (str, str or None)
+        The name and the unit (stripped), or the stripped header and None.
+    """
+    s = h.rstrip()
+    opening = s.rfind("[", 0, len(s) - 1)
+    if not s.endswith("]") or opening < 0 or "]" in s[opening + 1:-1]:
+        return h.strip(), None
+    name = s[:opening]
+    if not brackets_in_name and ("[" in name or "]" in name):
+        return h.strip(), None
+    return name.strip(), s[opening + 1:-1].strip()
+
+
+_split_header = split_header
 
 
 def _match_column(wanted: str, headers: list[str], names: list[str]) -> int | None:
@@ -935,12 +959,19 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     si = _to_si_checked(table, assigned, values, unit_of, notes)
     keep = _rows_to_keep(table, assigned, si, notes)
     columns = _kept_columns(table, assigned, si, keep)
-    units_given = {c: unit_of.get(c, "") for c in columns if c != "surface"}
+    units_given = {c: _written_unit(unit_of.get(c, ""), c) for c in columns if c != "surface"}
     if area is not None:
         columns = _pressure_from_area(columns, area, table.source, units_given, notes)
     notes.extend(_column_notes(columns))
     rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
     return Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+
+
+def _written_unit(unit: str, column: str) -> str:
+    """A unit as a dataset keeps it for its outputs: canonical (``N/mm^2``), never as typed."""
+    if _units.is_no_unit(unit):
+        return unit
+    return _units.canonical_unit(unit, column)
 
 
 def _check_headers(table: _Table) -> None:
@@ -1263,7 +1294,8 @@ def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, n
     """The kept rows in SI, canonical column order, the surface column as text."""
     columns = {c: si[c][keep] for c in CANONICAL if c in si}
     if "surface" in assigned:
-        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
+        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else
+                csv_cell_text(str(c).strip()) if table.from_file else str(c).strip()
                 for c in table.columns[assigned["surface"]]]
         text = np.empty(int(np.count_nonzero(keep)), dtype=object)
         text[:] = [s for s, k in zip(surf, keep, strict=True) if k]
@@ -1352,7 +1384,7 @@ def _header_info(text: str) -> tuple[str, str, int]:
     """Title (first comment line), provenance (all comment lines), data rows."""
     comments: list[str] = []
     count = -1
-    for line in text.splitlines():
+    for line in split_lines(text):
         s = line.strip()
         if s.startswith("#"):
             comments.append(s[2:] if s[1:2] == " " else s[1:])

@@ -89,11 +89,30 @@ def _no_constant(name: str) -> Any:
                      "write null)")
 
 
+#: Most digits of a JSON integer read (a count, a seed, a format version).
+_MAX_INT_DIGITS = 40
+
+
+def _finite_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(f"the number {text[:30]} overflows (beyond 1.8e308)")
+    return value
+
+
+def _bounded_int(text: str) -> int:
+    if len(text.lstrip("-")) > _MAX_INT_DIGITS:
+        raise ValueError(f"an integer of {len(text.lstrip('-'))} digits is beyond the limit "
+                         f"of {_MAX_INT_DIGITS}")
+    return int(text)
+
+
 def loads(text: str) -> Any:
     """Parse strict JSON: the one JSON reader of input files.
 
-    A key given twice in one object, and ``NaN``/``Infinity``, are refused (Python's
-    parser keeps the last duplicate silently and accepts the constants).
+    A key given twice in one object, ``NaN``/``Infinity``, a number that overflows
+    (``1e999``) and an integer of more than 40 digits are refused (Python's parser keeps
+    the last duplicate silently, accepts the constants and reads ``1e999`` as infinity).
 
     Parameters
     ----------
@@ -111,7 +130,12 @@ def loads(text: str) -> Any:
         ``json.JSONDecodeError`` (with line and column), a duplicate key or constant, or
         nesting too deep for the parser.
     """
+    from .limits import check_nesting, nesting_error
+
     try:
-        return json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
+        doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant,
+                         parse_float=_finite_float, parse_int=_bounded_int)
     except RecursionError:  # e.g. 100000 nested arrays: not a parameter file
-        raise ValueError("the JSON is nested too deeply to be a parameter file") from None
+        raise nesting_error("JSON document") from None
+    check_nesting(doc, "JSON document")
+    return doc

@@ -58,6 +58,7 @@ __all__ = [
     "write_text_atomic",
     "write_bytes_atomic",
     "atomic_dir",
+    "check_dir_move",
     "STDOUT",
 ]
 
@@ -122,6 +123,19 @@ def _check_file_target(out: Path, what: str) -> None:
         raise InputError(f"the directory of the {what} is not writable", file=str(out))
 
 
+def _refuse_file_over_dir(out: Path, files: Iterable[Path]) -> None:
+    """Refuse an output directory that is, or lies inside, an output file of the same call.
+
+    One of the two would fail only after the other was written.
+    """
+    key = _key(out)
+    for f in files:
+        fk = _key(f)
+        if key == fk or key.startswith(fk.rstrip(os.sep) + os.sep):
+            raise InputError(f"the output directory would be inside the output file '{f}' "
+                             "(or be it); give them different names", file=str(out))
+
+
 def _check_dir_target(out: Path, what: str) -> None:
     if out.exists():
         if not out.is_dir():
@@ -181,6 +195,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         for src in ins:
             if _same_file(out, src):
                 raise InputError("the output directory is also an input", file=str(out))
+        _refuse_file_over_dir(out, seen.values())
         _check_dir_target(out, "output directory")
     for src in ins:
         protect_input(src)
@@ -272,16 +287,23 @@ def atomic_write(path: PathLike, mode: str = "w", *, encoding: str | None = "utf
         with os.fdopen(fd, mode, encoding=None if binary else encoding,
                        newline=None if binary else newline) as fh:
             yield fh
-        try:
-            os.chmod(tmp, 0o666 & ~_umask())
-        except OSError:
-            pass
+        with contextlib.suppress(OSError):
+            os.chmod(tmp, _mode_for(target))
         os.replace(tmp, target)
         _WRITTEN.add(_key(target))
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+def _mode_for(target: Path) -> int:
+    """The permissions of a file written over ``target``: those of the file it replaces
+    (a private 0600 file stays private), else the default of a new file (0666 - umask)."""
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except OSError:
+        return 0o666 & ~_umask()
 
 
 def _umask() -> int:
@@ -304,6 +326,39 @@ def write_bytes_atomic(path: PathLike, data: bytes) -> Path:
     return Path(path)
 
 
+def check_dir_move(tmp: PathLike, target: PathLike) -> None:
+    """Raise now what moving the files built in ``tmp`` into ``target`` would raise.
+
+    A command that writes other files besides a directory of outputs calls this before
+    writing them, so that a directory that cannot be moved in fails before anything is
+    written (no partial output).
+
+    Parameters
+    ----------
+    tmp : path-like
+        The temporary directory :func:`atomic_dir` yielded.
+    target : path-like
+        The output directory.
+
+    Raises
+    ------
+    InputError
+        When a file would replace an input of this session, or a file or directory
+        stands where the other is needed.
+    """
+    tmp, target = Path(tmp), Path(target)
+    if target.exists() and not target.is_dir():
+        raise InputError("the output directory exists and is not a directory", file=str(target))
+    for item in sorted(tmp.rglob("*")):
+        dest = target / item.relative_to(tmp)
+        if item.is_file():
+            _refuse_protected(dest)
+            if dest.is_dir():
+                raise InputError("an output file would replace a directory", file=str(dest))
+        elif dest.exists() and not dest.is_dir():
+            raise InputError("an output directory would replace a file", file=str(dest))
+
+
 @contextlib.contextmanager
 def atomic_dir(path: PathLike) -> Iterator[Path]:
     """Build a directory of outputs in a temporary directory, then move it into place.
@@ -320,15 +375,15 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
     tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".part", dir=str(base)))
     try:
         yield tmp
-        for item in sorted(tmp.rglob("*")):
-            if item.is_file():
-                _refuse_protected(target / item.relative_to(tmp))
+        check_dir_move(tmp, target)
         target.mkdir(parents=True, exist_ok=True)
         for item in sorted(tmp.rglob("*")):
             dest = target / item.relative_to(tmp)
             if item.is_dir():
                 dest.mkdir(parents=True, exist_ok=True)
             else:
+                with contextlib.suppress(OSError):
+                    os.chmod(item, _mode_for(dest))
                 os.replace(item, dest)
                 _WRITTEN.add(_key(dest))
     finally:

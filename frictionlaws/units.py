@@ -53,6 +53,12 @@ __all__ = [
     "to_display",
     "header",
     "is_no_unit",
+    "UnitText",
+    "parse_unit_text",
+    "canonical_unit",
+    "MAX_UNIT_CHARS",
+    "MAX_UNIT_EXPONENT",
+    "MAX_UNIT_DEPTH",
 ]
 
 #: Gravity used to turn a dead weight in kg into a load, as the thesis did [m/s^2].
@@ -120,6 +126,9 @@ QUANTITIES: dict[str, Quantity] = {
     "angular_velocity": Quantity("rad/s", "an angular velocity", ("rad/s", "rpm"), "rad/s",
                                  "331 rpm"),
     "angle": Quantity("rad", "an angle", ("deg", "rad"), "deg", "1", (math.pi / 180, 0.0)),
+    "acceleration": Quantity("m/s**2", "an acceleration", ("m/s^2",), "m/s^2", "9.8 m/s^2"),
+    "stiffness_per_length": Quantity("N/m**2", "a force per length per length",
+                                     ("N/m^2", "N/mm^2"), "N/m^2", "8.49e6 N/m^2"),
 }
 
 # Names of common dimensions, for "unit 'm' is a length, expected a pressure":
@@ -140,6 +149,212 @@ _DIMENSION_NAMES = (
     ("1/s", "a frequency or an angular velocity"),
     ("C", "an electric charge"),
 )
+
+
+# --------------------------------------------------------------------------- unit grammar
+#: Longest unit text read [characters]: real units are a few characters long.
+MAX_UNIT_CHARS = 64
+#: Largest power of one unit name (``mm^3``, ``s^-2``); pint would raise any power.
+MAX_UNIT_EXPONENT = 9
+#: Deepest parentheses in a unit (``N/(mm^2)``).
+MAX_UNIT_DEPTH = 3
+
+_SUPERSCRIPTS = {"\u00b9": 1, "\u00b2": 2, "\u00b3": 3}
+
+
+class UnitSyntaxError(ValueError):
+    """A unit text the grammar of :func:`parse_unit_text` refuses (the reason is the message)."""
+
+
+@dataclass(frozen=True)
+class UnitText:
+    """A unit as the grammar read it: unit names with integer powers, in written order.
+
+    Parameters
+    ----------
+    factors : tuple of (str, int)
+        Each unit name (letters, digits after the first, ``_``, ``°``; or ``%``) with
+        its power; a name appears once, powers are never 0.
+    """
+
+    factors: tuple[tuple[str, int], ...]
+
+    def canonical(self) -> str:
+        """The unit written back in one form: ``N/mm^2``, ``kg*m/s^2``, ``1/s``, ``""``."""
+        def power(name: str, e: int) -> str:
+            return name if e == 1 else f"{name}^{e}"
+
+        num = "*".join(power(n, e) for n, e in self.factors if e > 0)
+        den = "/".join(power(n, -e) for n, e in self.factors if e < 0)
+        if not den:
+            return num
+        return f"{num or '1'}/{den}"
+
+    def to_pint(self) -> Any:
+        """The pint unit: each name looked up alone (never a pint expression), then raised.
+
+        Raises
+        ------
+        UnitSyntaxError
+            For a name pint does not know.
+        """
+        ureg = unit_registry()
+        unit = ureg.dimensionless
+        for name, e in self.factors:
+            try:  # one name, never an expression; pint fails in several ways on odd ones
+                found = ureg.Unit(name) if name in ureg else None
+            except Exception:  # noqa: BLE001
+                found = None
+            if found is None:
+                raise UnitSyntaxError(f"unknown unit '{name}'")
+            unit = unit * found ** e
+        return unit
+
+
+def _unit_tokens(text: str) -> list[str]:
+    """The tokens of a unit text: names, ``1``, ``*``, ``/``, ``(``, ``)`` and ``^N``."""
+    tokens: list[str] = []
+    i, n = 0, len(text)
+    while i < n:
+        ch = text[i]
+        if ch in " \t":  # no other white space: a line break is never part of a unit
+            i += 1
+            continue
+        if ch.isalpha() or ch == "\u00b0":
+            j = i + 1
+            while j < n and (text[j].isalnum() and text[j].isascii() or text[j].isalpha()
+                             or text[j] in "_\u00b0"):
+                j += 1
+            tokens.append(text[i:j])
+            i = j
+            continue
+        if ch in "%()/":
+            tokens.append(ch)
+            i += 1
+            continue
+        if ch in "*\u00b7\u22c5" or ch == "^":
+            if text.startswith("**", i) or ch == "^":
+                i += 2 if ch == "*" else 1
+                i, exponent = _exponent(text, i)
+                tokens.append(f"^{exponent}")
+                continue
+            tokens.append("*")
+            i += 1
+            continue
+        if ch in _SUPERSCRIPTS:
+            tokens.append(f"^{_SUPERSCRIPTS[ch]}")
+            i += 1
+            continue
+        if ch == "1" and (i + 1 == n or not text[i + 1].isdigit()):
+            tokens.append("1")
+            i += 1
+            continue
+        raise UnitSyntaxError(f"unexpected {ascii(ch)} at character {i + 1}")
+    return tokens
+
+
+def _exponent(text: str, i: int) -> tuple[int, int]:
+    """The integer power written at ``text[i:]`` (a sign and one or two digits)."""
+    while i < len(text) and text[i] in " \t":
+        i += 1
+    j = i + 1 if i < len(text) and text[i] in "+-" else i
+    k = j
+    while k < len(text) and text[k].isascii() and text[k].isdigit():
+        k += 1
+    if k == j:
+        raise UnitSyntaxError(f"a power needs a whole number after it (character {i + 1})")
+    digits = text[j:k]
+    if len(digits) > 2 or int(digits) > MAX_UNIT_EXPONENT:
+        raise UnitSyntaxError(f"power {text[i:k][:12]} is beyond the limit of "
+                              f"{MAX_UNIT_EXPONENT}")
+    return k, -int(digits) if text[i] == "-" else int(digits)
+
+
+def _unit_product(tokens: list[str], i: int, depth: int
+                  ) -> tuple[list[tuple[str, int]], int]:
+    """Read ``factor (op factor)*`` from ``tokens[i:]`` up to ``)`` or the end."""
+    factors: list[tuple[str, int]] = []
+    sign = 1
+    first = True
+    while i < len(tokens) and tokens[i] != ")":
+        tok = tokens[i]
+        if tok in ("*", "/") or tok.startswith("^"):
+            raise UnitSyntaxError(f"'{tok}' without a unit before it")
+        if tok == "(":
+            if depth >= MAX_UNIT_DEPTH:
+                raise UnitSyntaxError(f"parentheses nested deeper than {MAX_UNIT_DEPTH}")
+            group, i = _unit_product(tokens, i + 1, depth + 1)
+            if i >= len(tokens):
+                raise UnitSyntaxError("a '(' is not closed")
+            i += 1
+        elif tok == "1":
+            if not first or i + 1 >= len(tokens) or tokens[i + 1] != "/":
+                raise UnitSyntaxError("a number inside a unit (only '1/...' is read)")
+            group, i = [], i + 1
+        else:
+            group, i = [(tok, 1)], i + 1
+        power = 1
+        if i < len(tokens) and tokens[i].startswith("^"):
+            power, i = int(tokens[i][1:]), i + 1
+        factors.extend((name, e * power * sign) for name, e in group)
+        first = False
+        sign = 1
+        if i < len(tokens) and tokens[i] in ("*", "/"):
+            sign = -1 if tokens[i] == "/" else 1
+            i += 1
+            if i >= len(tokens) or tokens[i] == ")":
+                raise UnitSyntaxError(f"'{tokens[i - 1]}' without a unit after it")
+    if not factors and first:
+        raise UnitSyntaxError("empty parentheses" if depth else "no unit")
+    return factors, i
+
+
+def parse_unit_text(text: str) -> UnitText:
+    """Read a unit text with the one unit grammar (no arithmetic, bounded powers).
+
+    The grammar: unit names (``MPa``, ``degC``, ``°C``, ``%``), joined by ``*``, ``·``,
+    a space or ``/``, each with an optional integer power ``^N``, ``**N`` or ``²``/``³``
+    (``|N| <=`` :data:`MAX_UNIT_EXPONENT`), parentheses up to :data:`MAX_UNIT_DEPTH`
+    deep, and ``1/...``.  No other number is read and nothing is evaluated, so no text
+    can make reading a unit slow; pint only looks up each name (:meth:`UnitText.to_pint`).
+
+    Parameters
+    ----------
+    text : str
+        The unit as written (at most :data:`MAX_UNIT_CHARS` characters).
+
+    Returns
+    -------
+    UnitText
+
+    Raises
+    ------
+    UnitSyntaxError
+        Naming what the grammar could not read.
+    """
+    if len(text) > MAX_UNIT_CHARS:
+        raise UnitSyntaxError(f"longer than {MAX_UNIT_CHARS} characters")
+    tokens = _unit_tokens(text)
+    factors, i = _unit_product(tokens, 0, 0)
+    if i < len(tokens):
+        raise UnitSyntaxError("a ')' without its '('")
+    merged: dict[str, int] = {}
+    for name, e in factors:
+        merged[name] = merged.get(name, 0) + e
+    if any(abs(e) > MAX_UNIT_EXPONENT for e in merged.values()):
+        raise UnitSyntaxError(f"a power beyond the limit of {MAX_UNIT_EXPONENT}")
+    return UnitText(tuple((n, e) for n, e in merged.items() if e))
+
+
+def _shown_unit(text: str) -> str:
+    """``text`` as quoted in a message: on one line (controls escaped), at most 40 characters."""
+    shown = text if text.isprintable() else ascii(text)[1:-1]
+    return shown if len(shown) <= 40 else shown[:37] + "..."
+
+
+def _pint_unit(text: str) -> Any:
+    """The pint unit of a user's unit text, read by the grammar (:func:`parse_unit_text`)."""
+    return parse_unit_text(text).to_pint()
 
 
 @functools.lru_cache(maxsize=1)
@@ -244,10 +459,13 @@ def parse_unit(
         parsed = ureg.dimensionless
     else:
         try:
-            parsed = ureg.parse_units(text)
-        except Exception:  # noqa: BLE001 - pint raises several types for bad text
+            parsed = _pint_unit(text)
+        except UnitSyntaxError as exc:
+            reason = str(exc)
+            head = f"unknown unit '{_shown_unit(text)}'" + (
+                "" if reason == f"unknown unit '{text}'" else f" ({reason})")
             raise InputError(
-                f"unknown unit '{text}'; expected {kind.what} unit such as "
+                f"{head}; expected {kind.what} unit such as "
                 f"{_examples(kind)}{_suggest(text, kind)}",
                 file=file, column=column,
             ) from None
@@ -295,6 +513,38 @@ def check_unit(
     """Raise :class:`InputError` unless ``unit`` is a valid unit for ``quantity``."""
     if _declared(unit, _kind(quantity)) is None:
         parse_unit(unit, quantity, column=column, file=file)
+
+
+def canonical_unit(unit: str | None, quantity: str, *, column: str | None = None,
+                   file: str | None = None) -> str:
+    """``unit`` checked for ``quantity`` and written in the one form outputs use.
+
+    Outputs never write a unit as typed: ``"N / mm**2"`` is written ``"N/mm^2"``, a
+    dimensionless unit ``""`` (see :meth:`UnitText.canonical`).
+
+    Parameters
+    ----------
+    unit : str or None
+        The unit as given.
+    quantity : str
+        A key of :data:`QUANTITIES`.
+    column, file : str, optional
+        Where the unit came from, for the error message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        As :func:`parse_unit`.
+    """
+    text = "" if unit is None else str(unit).strip()
+    check_unit(text, quantity, column=column, file=file)
+    if is_no_unit(text):
+        return ""
+    return parse_unit_text(text).canonical()
 
 
 def _is_mass(parsed: Any) -> bool:
@@ -387,7 +637,8 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
         return None
     where = f"column '{column}'" if column else "F_N"
     return (
-        f"{where}: normal load given as a mass in '{unit}' (dead weight), converted to "
+        f"{where}: normal load given as a mass in '{parse_unit_text(unit).canonical()}' "
+        "(dead weight), converted to "
         f"newtons with g = {G_THESIS} m/s^2 as the thesis did; write the unit as 'kgf' to "
         f"use standard gravity {G_STANDARD} m/s^2 instead"
     )
@@ -447,18 +698,17 @@ def parse_quantity(
             f"'{_example_quantity(expected)}'",
             file=file, column=column,
         )
-    parsed = _canonical_number(raw, label, file, column)  # messages quote raw as written
+    number, unit_text = _split_quantity(raw, label, file, column)
     ureg = unit_registry()
     try:
-        q = ureg.parse_expression(parsed)
-    except Exception:  # noqa: BLE001 - pint raises several types for bad text
+        unit = _pint_unit(unit_text) if unit_text.strip() else ureg.dimensionless
+    except UnitSyntaxError as exc:
         raise InputError(
-            f"{label} '{raw}' could not be read (unknown unit?); expected {kind.what} "
+            f"{label} '{_shown_unit(raw)}' could not be read ({exc}); expected {kind.what} "
             f"such as '{_example_quantity(expected)}'",
             file=file, column=column,
         ) from None
-    if not hasattr(q, "units"):
-        q = ureg.Quantity(float(q), ureg.dimensionless)
+    q = ureg.Quantity(number, unit)
     target = ureg.parse_units(kind.si) if kind.si else ureg.dimensionless
     if q.dimensionality != target.dimensionality:
         if kind.si and q.dimensionless:
@@ -478,12 +728,13 @@ def parse_quantity(
     return value
 
 
-def _canonical_number(raw: str, label: str, file: str | None, column: str | None) -> str:
-    """``raw`` with its number rewritten as parsed by the one number parser.
+def _split_quantity(raw: str, label: str, file: str | None, column: str | None
+                    ) -> tuple[float, str]:
+    """The number of ``raw`` (read by the one number parser) and the unit text after it.
 
-    pint would read ``4_0 mm`` and ``4,0 mm`` as 40 mm and ``008011 mm`` as 0 mm; the
-    number is parsed here (refusing what :func:`~frictionlaws.numbers.parse_number`
-    refuses) and only the unit is left to pint.
+    pint would read ``4_0 mm`` and ``4,0 mm`` as 40 mm and ``008011 mm`` as 0 mm, and
+    evaluate ``2**9**9 m``; the number is parsed here (refusing what
+    :func:`~frictionlaws.numbers.parse_number` refuses) and the rest by the unit grammar.
     """
     from .numbers import parse_number
 
@@ -492,8 +743,9 @@ def _canonical_number(raw: str, label: str, file: str | None, column: str | None
     try:
         value = parse_number(token)
     except ValueError as exc:
-        raise InputError(f"{label} '{raw}': {exc}", file=file, column=column) from None
-    return repr(value) + raw[m.end():] if m else raw
+        raise InputError(f"{label} '{_shown_unit(raw)}': {exc}", file=file,
+                         column=column) from None
+    return value, raw[m.end():] if m else ""
 
 
 def _example_quantity(expected: str) -> str:

@@ -183,7 +183,7 @@ def test_a_deeply_nested_params_file_is_bad_input(tmp_path: Path) -> None:
     res = run_cli(["export", "--params", str(params), "--format", "csv", "--p",
                    "0.01:0.5:5", "--units", "mm-N-s", "-o", str(tmp_path / "o.csv")])
     check_outcome(res, codes=[2])
-    assert "nested too deeply" in res.err
+    assert "nested deeper than the limit" in res.err
 
 
 @HOSTILE

@@ -116,7 +116,7 @@ def test_rig_other_units_and_roundtrip(tmp_path):
      "not both"),
     ('track_radius = "40 mm"\npin_diameter = "20 mm"\ntrack_raduis = "1 m"\n',
      "unknown key 'track_raduis'"),
-    ('track_radius = "40 mm"\npin_diameter = "20 mm"\ng = "9.8 m/s"\n', "not an acceleration"),
+    ('track_radius = "40 mm"\npin_diameter = "20 mm"\ng = "9.8 m/s"\n', "expected an acceleration"),
     ('track_radius = "-40 mm"\npin_diameter = "20 mm"\n', "must be > 0"),
     ('track_radius = "40 mm"\npin_diameter = "20 mm"\n[internal_torque]\n'
      'disc_speed_rpm = [0, 100]\ntorque_Nm = [0.1]\n', "same length"),

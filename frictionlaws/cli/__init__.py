@@ -170,15 +170,30 @@ def _mark_nested(p: argparse.ArgumentParser) -> None:
 
 
 def _one_line(text: str) -> str:
-    return " ".join(str(text).split())
+    """A message on one line, at most :data:`~frictionlaws.limits.MAX_MESSAGE_CHARS` long."""
+    from frictionlaws.errors import bounded_message
+
+    return bounded_message(" ".join(str(text).split()))
 
 
-_PATH = re.compile(r"(?:[A-Za-z]:)?[\\/][^\s'\"]*?(?:site|dist)-packages[\\/]\S*")
+#: A word of a message (no white space, no quote): matched in linear time.
+_WORD = re.compile(r"[^\s'\"]+")
+#: Where a library source path starts inside a word: an optional drive, then a separator.
+_PATH_START = re.compile(r"(?:[A-Za-z]:)?[\\/]")
+
+
+def _library_path(word: re.Match[str]) -> str:
+    """``word`` with a path into an installed package (``site-packages/``) cut to <library>."""
+    text = word.group(0)
+    if not any(f"{d}-packages{sep}" in text for d in ("site", "dist") for sep in "/\\"):
+        return text
+    start = _PATH_START.search(text)
+    return text if start is None else text[:start.start()] + "<library>"
 
 
 def _clean(text: str) -> str:
     """One line, without library source paths (``.../site-packages/x/y.py:12``)."""
-    return _one_line(_PATH.sub("<library>", str(text)))
+    return _one_line(_WORD.sub(_library_path, str(text)))
 
 
 def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:

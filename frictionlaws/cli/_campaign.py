@@ -252,9 +252,10 @@ def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
     if args.out:
         from frictionlaws import jsonio
         from frictionlaws.outputs import check_outputs, write_text_atomic
+        from frictionlaws.sanitize import frame_csv
 
         check_outputs([args.out], inputs=data)
-        text = (res.to_frame().to_csv(index=False) if Path(args.out).suffix.lower() == ".csv"
+        text = (frame_csv(res.to_frame()) if Path(args.out).suffix.lower() == ".csv"
                 else jsonio.dumps(res.to_dict()) + "\n")
         write_text_atomic(args.out, text)
     if getattr(args, "json", False):

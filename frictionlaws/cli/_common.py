@@ -525,7 +525,9 @@ def refuse_unused(args: argparse.Namespace, names: Sequence[str], why: str) -> N
 # ------------------------------------------------------------------------ ranges
 
 
-_BARE_NUMBER = re.compile(r"[+-]?[0-9._]*[0-9][0-9._]*(?:[eE][+-]?[0-9]+)?")
+#: Linear time (a lookahead for the digit, then one run): ``[0-9._]*[0-9][0-9._]*`` would
+#: backtrack quadratically on a long run of digits followed by a letter.
+_BARE_NUMBER = re.compile(r"[+-]?(?=[0-9._]*[0-9])[0-9._]+(?:[eE][+-]?[0-9]+)?")
 
 
 @dataclass(frozen=True)
@@ -672,11 +674,10 @@ def data_source(data: str) -> Iterator[str]:
         raise UsageError("DATA '-' reads standard input, which is a terminal here; pipe a "
                          "table in (e.g. 'cat runs.csv | frictionlaws fit - ...') or give "
                          "a file name")
-    stream = getattr(sys.stdin, "buffer", sys.stdin)
-    raw = stream.read()
-    if isinstance(raw, str):
-        raw = raw.encode("utf-8")
     from frictionlaws.errors import InputError
+    from frictionlaws.limits import read_stream
+
+    raw = read_stream(sys.stdin)  # bounded in size
 
     with tempfile.TemporaryDirectory(prefix="frictionlaws-stdin-") as tmp:
         path = os.path.join(tmp, "stdin.csv")

@@ -175,7 +175,9 @@ def _run_many(args: argparse.Namespace) -> int:
                          load_options=load, **_options(args))
     shown = mark_undetermined(frame)  # undetermined scores as n/d in text and CSV
     if args.out:
-        text = (shown.to_csv(index=False, float_format="%.10g")
+        from frictionlaws.sanitize import frame_csv
+
+        text = (frame_csv(shown, float_format="%.10g")
                 if args.out.lower().endswith(".csv")
                 else jsonio.dumps(frame.to_dict("records")) + "\n")
         write_text_atomic(args.out, text)

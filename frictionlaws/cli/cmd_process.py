@@ -138,7 +138,7 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
 def run(args: argparse.Namespace) -> int:
     from contextlib import nullcontext
 
-    from frictionlaws.outputs import atomic_dir
+    from frictionlaws.outputs import atomic_dir, check_dir_move
     from frictionlaws.tribometer.process import manifest_names, process_many
     from frictionlaws.tribometer.rig import load_rig
 
@@ -158,6 +158,8 @@ def run(args: argparse.Namespace) -> int:
         if empty:
             _report(args, targets, camps, written=False)
             _refuse_empty(args, empty)
+        if plots_tmp is not None:  # the plots must be able to move in before any table
+            check_dir_move(plots_tmp, args.plots)
         _write(targets, camps, out_dir)
     _report(args, targets, camps, written=True)
     return 0

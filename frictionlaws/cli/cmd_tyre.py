@@ -238,23 +238,11 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
     from frictionlaws.errors import InputError
-    from frictionlaws.units import unit_registry
+    from frictionlaws.units import parse_quantity
 
     if text is None:
         return None
-    ureg = unit_registry()
-    try:
-        q = ureg.parse_expression(text.strip())
-    except Exception:  # noqa: BLE001 - pint raises several types
-        raise InputError(f"--c-py '{text}' could not be read; expected e.g. "
-                         "'8.49e6 N/m^2'") from None
-    if not hasattr(q, "units"):
-        raise InputError(f"--c-py '{text}' has no unit; expected e.g. '8.49e6 N/m^2'")
-    target = ureg.parse_units("N/m**2")
-    if q.dimensionality != target.dimensionality:
-        raise InputError(f"--c-py '{text}' is not a force per length per length "
-                         "(N/m^2); expected e.g. '8.49e6 N/m^2'")
-    value = float(q.to(target).magnitude)
+    value = parse_quantity(text, "stiffness_per_length", what="--c-py")
     if not value > 0:
         raise InputError(f"--c-py '{text}' must be positive")
     return value

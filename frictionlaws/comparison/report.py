@@ -28,7 +28,6 @@ links the PNG files next to it; ``comparison.json`` is :meth:`Comparison.to_json
 from __future__ import annotations
 
 import base64
-import html
 import io
 import math
 from collections.abc import Sequence
@@ -41,6 +40,7 @@ import numpy as np
 from .._workers import local_workers
 from ..errors import InputError
 from ..law import VARIABLES
+from ..sanitize import html_text, markdown_text
 from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
 from .residuals import ALPHA
@@ -996,20 +996,19 @@ def _md_residual_tests(cmp: Comparison) -> list[str]:
     head, rows = _residual_table(cmp)
     lines = ["## Residual tests (p-values)", "", RESIDUAL_TESTS_NOTE, "",
              "| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
-    return lines + ["| " + " | ".join(f"**{t}**" if bad else t.replace("|", "\\|")
+    return lines + ["| " + " | ".join(f"**{markdown_text(t)}**" if bad else markdown_text(t)
                                       for t, bad in row) + " |" for row in rows]
 
 
 def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
     """The report as Markdown, linking the PNG files."""
     d = cmp.data
+    esc = markdown_text  # every text from data, files or laws: one line, HTML escaped
 
-    def esc(t: str) -> str:
-        return t.replace("|", "\\|")
-
-    lines = [f"# Comparison of friction laws on {d.name}", "",
-             f"Data: {d.name} ({d.source}), {d.n} rows; {_ranges_text(cmp)}.", ""]
-    lines += [f"- {m}" for m in _method(cmp)] + [""]
+    lines = [f"# Comparison of friction laws on {esc(d.name)}", "",
+             f"Data: {esc(d.name)} ({esc(d.source)}), {d.n} rows; {esc(_ranges_text(cmp))}.",
+             ""]
+    lines += [f"- {esc(m)}" for m in _method(cmp)] + [""]
     head, rows = _metric_table(cmp)
     lines += ["## Ranking", "", "| " + " | ".join(esc(h) for h in head) + " |",
               "|" + "|".join("---" for _ in head) + "|"]
@@ -1028,7 +1027,8 @@ def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
         lines.append("")
     lines += _md_residual_tests(cmp) + ["", "## Figures", ""]
     for f in figures:
-        lines += [f"### {f.title}", "", f"![{f.title}]({f.name}.png)", "", f.caption, ""]
+        lines += [f"### {esc(f.title)}", "", f"![{esc(f.title)}]({esc(f.name)}.png)", "",
+                  esc(f.caption), ""]
     return "\n".join(lines)
 
 
@@ -1052,7 +1052,7 @@ li{margin:0.2em 0}
 
 def _html_ranking(cmp: Comparison) -> list[str]:
     """The ranking table in HTML; each law's title under its id."""
-    e = html.escape
+    e = html_text
     head, rows = _metric_table(cmp)
     # the title goes under the law id (a separate column makes the table too wide)
     skip = head.index("title")
@@ -1078,7 +1078,7 @@ def _html_ranking(cmp: Comparison) -> list[str]:
 
 def _html_sections(cmp: Comparison) -> list[str]:
     """The prose sections as HTML lists, IMPLAUSIBLE highlighted."""
-    e = html.escape
+    e = html_text
 
     def mark(text: str) -> str:
         return e(text).replace("IMPLAUSIBLE", "<span class='bad-word'>IMPLAUSIBLE</span>")
@@ -1098,7 +1098,7 @@ def _html_sections(cmp: Comparison) -> list[str]:
 
 def _html_residual_tests(cmp: Comparison) -> list[str]:
     """The table of residual-test p-values in HTML, the flagged ones marked."""
-    e = html.escape
+    e = html_text
     head, rows = _residual_table(cmp)
     parts = ["<h2>Residual tests (p-values)</h2>", f"<p>{e(RESIDUAL_TESTS_NOTE)}</p>",
              "<table><tr>" + "".join(f"<th class='{'l' if i == 0 else ''}'>{e(h)}</th>"
@@ -1127,7 +1127,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     str
         The HTML page.
     """
-    e = html.escape
+    e = html_text
     d = cmp.data
     parts = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
              f"<title>Comparison of friction laws on {e(d.name)}</title>",

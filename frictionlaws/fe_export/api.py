@@ -271,6 +271,7 @@ _RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
 
 def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
     """One bound of a range: a number in the unit system or a quantity with its unit."""
+    from ..numbers import parse_number
     from ..units import parse_quantity
 
     s = s.strip()
@@ -278,15 +279,17 @@ def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
         raise InputError(f"'{text}': empty bound; expected MIN:MAX[:N], e.g. "
                          f"{_RANGE_EXAMPLES[var]}", option=f"box.{var}")
     try:
-        x = float(s)
+        x = parse_number(s)  # the one number parser: no 1_000, no nan, no overflow
     except ValueError:
         try:
             return parse_quantity(s, var, what=var)
         except InputError as exc:
             raise InputError(f"'{text}': {exc.bare_message}", option=f"box.{var}") from None
-    if not math.isfinite(x):
-        raise InputError(f"'{text}': bounds must be finite", option=f"box.{var}")
-    return float(np.asarray(system.to_si(var, x), dtype=float))
+    with np.errstate(over="ignore", invalid="ignore"):
+        value = float(np.asarray(system.to_si(var, x), dtype=float))
+    if not (math.isfinite(x) and math.isfinite(value)):
+        raise InputError(f"'{text}': bounds must be finite (in SI too)", option=f"box.{var}")
+    return value
 
 
 def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
@@ -310,11 +313,11 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
     lo, hi = (_range_bound(var, x, text, system) for x in parts[:2])
     n = None
     if len(parts) == 3:
-        try:
-            n = int(parts[2].strip())
-        except ValueError:
+        count = parts[2].strip()
+        if not (count.isascii() and count.isdigit() and len(count) <= 9):  # no 1_0, no １０
             raise InputError(f"'{text}': N must be a whole number of points, got "
-                             f"'{parts[2].strip()}'", option=f"box.{var}") from None
+                             f"'{count[:20]}'", option=f"box.{var}")
+        n = int(count)
     _check_range(var, lo, hi)
     return AxisSpec(var, lo, hi, n, spacing)
 

@@ -146,11 +146,16 @@ def _printer() -> Any:
 
 
 def _comment(lines: Sequence[str], width: int = 72) -> list[str]:
-    """Fixed-form comment lines ('C' in column 1), wrapped at ``width``."""
+    """Fixed-form comment lines ('C' in column 1), wrapped at ``width``.
+
+    Every line goes through :func:`~frictionlaws.sanitize.ascii_line` first.
+    """
     import textwrap
 
+    from ..sanitize import ascii_line
+
     out = []
-    for line in lines:
+    for line in map(ascii_line, lines):
         if not line:
             out.append("C")
             continue

@@ -340,9 +340,15 @@ class Job:
 
 
 def commented(lines: Sequence[str], prefix: str, width: int = 78) -> list[str]:
-    """Header lines as comments, wrapped to ``width`` columns."""
+    """Header lines as comments, wrapped to ``width`` columns.
+
+    Every line goes through :func:`~frictionlaws.sanitize.ascii_line` first: a name or
+    source with a line break or a control character stays inside its comment.
+    """
+    from ..sanitize import ascii_line
+
     out = []
-    for line in lines:
+    for line in map(ascii_line, lines):
         if not line:
             out.append(prefix.rstrip())
             continue

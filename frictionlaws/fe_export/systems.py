@@ -118,7 +118,7 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
     InputError
         For an unknown system name, variable or unit (with the accepted ones).
     """
-    from ..units import check_unit
+    from ..units import canonical_unit
 
     if isinstance(spec, UnitSystem):
         return spec
@@ -148,7 +148,6 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
             raise InputError(f"unit system '{text}': the unit of {var} is given twice; "
                              "give it once")
         given.add(var)
-        check_unit(unit, var, column=var)
-        units[var] = unit
-    name = base if not parts else f"{base}," + ",".join(parts)
+        units[var] = canonical_unit(unit, var, column=var)  # written as read, never as typed
+    name = base + "".join(f",{v}={units[v]}" for v in VARIABLES if v in given)
     return UnitSystem(name, units)

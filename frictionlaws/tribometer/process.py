@@ -1211,13 +1211,15 @@ def _csv_text(frame: Any, comments: list[str]) -> str:
     import csv
     import io
 
+    from ..sanitize import comment_lines, csv_cell
+
     buf = io.StringIO()
-    for c in comments:
-        buf.write(f"# {c}\n")
+    for line in comment_lines(comments):
+        buf.write(line + "\n")
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(list(frame.columns))
+    w.writerow([csv_cell(c) for c in frame.columns])
     for row in frame.itertuples(index=False):
-        w.writerow([_fmt(v) for v in row])
+        w.writerow([csv_cell(v) if isinstance(v, str) else _fmt(v) for v in row])
     return buf.getvalue()
 
 

@@ -50,8 +50,10 @@ import numpy as np
 
 from ..errors import InputError
 from ..io import _detect_delimiter, decode_text
+from ..io import split_header as _split_header
 from ..outputs import atomic_write, check_input_file
-from ..units import QUANTITIES, parse_unit, unit_registry
+from ..sanitize import split_lines
+from ..units import QUANTITIES, canonical_unit, parse_unit, parse_unit_text, unit_registry
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
 
@@ -63,7 +65,6 @@ COLUMNS: dict[str, tuple[str, bool]] = {
     "pin_speed": ("angular_velocity", False),
 }
 
-_HEADER = re.compile(r"^\s*(?P<name>[^\[\]]*?)\s*\[(?P<unit>[^\[\]]*)\]\s*$")
 _MISSING = frozenset({"", "nan", "na", "n/a", "null", "none", "-"})
 #: Largest relative deviation of a time step from the median step.
 SAMPLING_TOLERANCE = 0.25
@@ -190,10 +191,7 @@ def _label(name: str, units: dict[str, str]) -> str:
 
 def split_header(text: str) -> tuple[str, str | None]:
     """``"torque [N m]"`` -> ``("torque", "N m")``; ``"torque"`` -> ``("torque", None)``."""
-    m = _HEADER.match(text)
-    if m:
-        return m.group("name").strip(), m.group("unit").strip()
-    return text.strip(), None
+    return _split_header(text, brackets_in_name=False)
 
 
 def _norm(name: str) -> str:
@@ -204,8 +202,8 @@ def _norm(name: str) -> str:
 def _angular_factor(unit: str) -> float | str:
     ureg = unit_registry()
     try:
-        parsed = ureg.parse_units(unit)
-    except Exception:  # noqa: BLE001 - pint raises several types
+        parsed = parse_unit_text(unit).to_pint()  # the one unit grammar: no expression
+    except ValueError:
         return "unknown"
     root = ureg.Quantity(1.0, parsed).to_root_units()
     units = dict(root._units)
@@ -258,7 +256,7 @@ def _factor(kind: str, unit: str | None, header: str, src: str) -> float:
 
 def _refuse_duplicate_headers(text: str, delimiter: str, src: str) -> None:
     """pandas renames a repeated header ('torque [N m].1'): refuse it instead."""
-    line = next((ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
+    line = next((ln for ln in split_lines(text) if ln.strip() and not ln.startswith("#")), "")
     seen: set[str] = set()
     for cell in next(csv.reader([line], delimiter=delimiter)) if line else []:
         name = cell.strip()
@@ -320,11 +318,10 @@ def _record_text(p: Path, src: str) -> str:
         raise InputError("record file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a record CSV file", file=src)
+    from ..limits import read_input
+
     check_input_file(p, "record file")
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"cannot read the file ({exc.strerror})", file=src) from None
+    raw = read_input(p, "record file", src)  # bounded in size
     text, _ = decode_text(raw, src, "record CSV file")
     if not text.strip():
         raise InputError("file is empty; expected a header such as "
@@ -342,7 +339,7 @@ class _Layout:
     @classmethod
     def of(cls, text: str) -> _Layout:
         """The delimiter of the header line (as for datasets) and whether commas are decimal."""
-        header = next((ln for ln in text.splitlines()
+        header = next((ln for ln in split_lines(text)
                        if ln.strip() and not ln.lstrip().startswith("#")), "")
         delimiter = _detect_delimiter(header) or ","
         body = text[text.find(header) + len(header):]
@@ -419,7 +416,7 @@ class _RowNumbers:
     def all(self, n: int) -> list[int]:
         """The lines of the first ``n`` data rows."""
         if self._lines is None:
-            lines = [k for k, ln in enumerate(self._text.splitlines(), start=1)
+            lines = [k for k, ln in enumerate(split_lines(self._text), start=1)
                      if ln.strip() and not ln.lstrip().startswith("#")]
             self._lines = lines[1:]  # the first is the header
         return [self._lines[i] if i < len(self._lines) else i + 2 for i in range(n)]
@@ -445,8 +442,10 @@ def write_record(path: str | os.PathLike[str], record: Record, *,
         Decimals of time [s], torque and speeds.
     """
     ureg = unit_registry()
-    tq_f = float(ureg.Quantity(1.0, "N*m").to(ureg.parse_units(torque_unit)).magnitude)
+    tq_f = float(ureg.Quantity(1.0, "N*m").to(parse_unit(torque_unit, "torque")).magnitude)
     sp_f = 1.0 / angular_unit_factor(speed_unit)
+    torque_unit = canonical_unit(torque_unit, "torque")  # written as read, never as typed
+    speed_unit = parse_unit_text(speed_unit).canonical()
     cols: list[Any] = [record.time, record.torque * tq_f, record.disc_speed * sp_f]
     heads = ["time [s]", f"torque [{torque_unit}]", f"disc_speed [{speed_unit}]"]
     fmts = [f"%.{decimals[0]}f", f"%.{decimals[1]}f", f"%.{decimals[2]}f"]

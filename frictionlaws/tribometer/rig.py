@@ -61,8 +61,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..limits import check_nesting, nesting_error, read_input
 from ..outputs import check_input_file
-from ..units import parse_quantity, unit_registry
+from ..units import parse_quantity
 
 __all__ = [
     "FilterSettings",
@@ -468,13 +469,17 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
     if p.is_dir():
         raise InputError("is a directory; expected a TOML rig description", file=src)
     check_input_file(p, "rig file")  # no FIFO; registered as read, never overwritten
+    raw = read_input(p, "rig file", src)  # bounded in size
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8-sig"))
+        data = tomllib.loads(raw.decode("utf-8-sig"))
     except UnicodeDecodeError:
         raise InputError("is not a UTF-8 text file; expected a TOML rig description",
                          file=src) from None
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"is not valid TOML: {exc}", file=src) from None
+    except RecursionError:  # arrays or inline tables nested thousands deep
+        raise nesting_error("rig file", src) from None
+    check_nesting(data, "rig file", src)
     return rig_from_dict(data, source=src)
 
 
@@ -508,17 +513,7 @@ def _acceleration(raw: Any, name: str, src: str) -> float:
     if isinstance(raw, bool) or not isinstance(raw, str):
         raise InputError(f"'{name}' must be a string with a unit, e.g. {name} = \"9.8 m/s^2\"",
                          file=src)
-    ureg = unit_registry()
-    try:
-        q = ureg.Quantity(raw)
-    except Exception:  # noqa: BLE001 - pint raises several types
-        raise InputError(f"'{name} = \"{raw}\"' could not be read; expected an acceleration "
-                         "such as \"9.8 m/s^2\"", file=src) from None
-    target = ureg.parse_units("m/s^2")
-    if not hasattr(q, "dimensionality") or q.dimensionality != target.dimensionality:
-        raise InputError(f"'{name} = \"{raw}\"' is not an acceleration; expected e.g. "
-                         "\"9.8 m/s^2\"", file=src)
-    value = float(q.to(target).magnitude)
+    value = parse_quantity(raw, "acceleration", what=f"'{name}'", file=src)
     if not value > 0 or not math.isfinite(value):
         raise InputError(f"'{name}' must be > 0, got {raw!r}", file=src)
     return RANGES[name].check(name, value, raw, src)

@@ -40,6 +40,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..sanitize import ascii_line, split_lines, tir_string
 
 __all__ = ["PropertyFile", "read_property_file", "read_tir", "read_json", "write_tir",
            "format_tir", "json_to_tir", "converted_header", "CHRONO_PROVENANCE"]
@@ -52,9 +53,12 @@ CHRONO_PROVENANCE = ("Project Chrono, data/vehicle/generic/tire/ (commit 7689fbc
 Value = float | str
 
 _SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eEdD][-+]?\d+)?$")
+#: Linear time: ``\d+\.?\d*`` (an optional point between two digit runs) backtracks
+#: quadratically on a long run of digits that is not a number.
+_NUMBER = re.compile(r"^[-+]?(\d+(?:\.\d*)?|\.\d+)([eEdD][-+]?\d+)?$")
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eEdD][-+]?\d+)?$")
 
 #: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`.
@@ -260,8 +264,12 @@ class PropertyFile:
         return value * self.si_factor(kind)
 
     def si_factor(self, kind: str) -> float:
-        """Factor from the file's unit of ``kind`` (e.g. ``"force/length"``) to SI."""
-        from ..units import unit_registry
+        """Factor from the file's unit of ``kind`` (e.g. ``"force/length"``) to SI.
+
+        The file's units are read by the one unit grammar
+        (:func:`~frictionlaws.units.parse_unit_text`), never evaluated by pint.
+        """
+        from ..units import parse_unit_text, unit_registry
 
         ureg = unit_registry()
         pieces = {"force": self.unit("FORCE"), "length": self.unit("LENGTH"),
@@ -276,21 +284,22 @@ class PropertyFile:
                             lambda m: {"force": "newton", "length": "meter",
                                        "time": "second"}[m.group(1)], formula)
         try:
-            return float(ureg.Quantity(1.0, ureg.parse_units(expr)).to(target)
-                         .magnitude)
+            unit = parse_unit_text(expr).to_pint()
+            return float(ureg.Quantity(1.0, unit).to(target).magnitude)
         except Exception as exc:  # noqa: BLE001 - pint raises several types
-            raise InputError(f"[UNITS] cannot convert '{expr}' to {target} ({exc})",
-                             file=self.path) from None
+            raise InputError(f"[UNITS] cannot convert '{ascii_line(expr)[:80]}' to {target} "
+                             f"({ascii_line(exc)[:120]})", file=self.path) from None
 
     def check_angle_unit(self) -> None:
         """Raise when the file's angles are not in radians (coefficients assume radians)."""
         unit = self.unit("ANGLE").lower()
         if unit not in ("radian", "radians", "rad"):
-            from ..units import unit_registry
+            from ..units import parse_unit_text, unit_registry
 
             ureg = unit_registry()
             try:
-                factor = float(ureg.Quantity(1.0, _pint_name(unit)).to("radian").magnitude)
+                angle = parse_unit_text(_pint_name(unit)).to_pint()
+                factor = float(ureg.Quantity(1.0, angle).to("radian").magnitude)
             except Exception:  # noqa: BLE001
                 factor = math.nan
             if factor != 1.0:
@@ -338,13 +347,11 @@ def read_property_file(path: str | Path) -> PropertyFile:
         raise InputError(f"expected the path of a property file, got {type(path).__name__}")
     path = Path(path)
     from ..io import decode_text
+    from ..limits import read_input
     from ..outputs import check_input_file
 
     check_input_file(path, "property file")
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise InputError(f"cannot read ({exc.strerror})", file=str(path)) from None
+    raw = read_input(path, "property file")  # bounded in size
     text, _ = decode_text(raw, str(path), "property file")  # the one encoding rule
     if text.lstrip().startswith("{") or path.suffix.lower() == ".json":
         return read_json(text, source=str(path))
@@ -360,7 +367,7 @@ def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> Pro
     metadata: dict[str, Any] = {}
     for name, body in doc.items():
         if isinstance(body, Mapping):
-            sec = str(name).upper()
+            sec = _tir_name(str(name), "section", source)
             if sec in sections:
                 raise InputError(f"section '{name}' appears twice (case-insensitive)",
                                  file=source)
@@ -385,11 +392,24 @@ def _json_document(text: str, source: str) -> Any:
         raise InputError(str(exc), file=source) from None
 
 
+def _tir_name(name: str, what: str, source: str) -> str:
+    """A JSON member's name as a ``.tir`` name (upper case), refused unless it is one.
+
+    A ``.tir`` file can only hold names made of letters, digits and ``_``: anything else
+    (``=``, ``$``, a bracket, a line break) would change the file written from it.
+    """
+    if not _NAME.fullmatch(name):
+        shown = ascii_line(name)[:40]
+        raise InputError(f"{what} '{shown}' is not a property-file name (letters, digits "
+                         "and '_', not starting with a digit)", file=source)
+    return name.upper()
+
+
 def _json_section(sec: str, body: Mapping[str, Any], source: str) -> dict[str, Value]:
     """One JSON section: keys upper-cased (unique), values finite numbers or strings."""
     entries: dict[str, Value] = {}
     for key, value in body.items():
-        k = str(key).upper()
+        k = _tir_name(str(key), f"[{sec}] key", source)
         if k in entries:
             raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
                              file=source)
@@ -444,7 +464,7 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
 def read_tir(text: str, *, source: str = "<memory>") -> PropertyFile:
     """Parse the text of an ADAMS ``.tir`` property file."""
     reader = _TirReader(source)
-    for lineno, raw in enumerate(text.splitlines(), start=1):
+    for lineno, raw in enumerate(split_lines(text), start=1):
         line = raw.strip().lstrip("\ufeff")
         if line and line[0] not in "$!":
             reader.line(line, lineno)
@@ -541,20 +561,21 @@ def format_tir(pf: PropertyFile, *, header: Iterable[str] = ()) -> str:
 
     ``header`` lines are written first as ``!`` comments (e.g. provenance).
     """
-    out = [f"! {h}" if h else "!" for h in header]
+    out = [f"! {ascii_line(h)}" if h else "!" for h in header]
     for sec, entries in pf.sections.items():
+        sec = ascii_line(sec)
         out.append("$" + "-" * (78 - len(sec)) + sec.lower())
         out.append(f"[{sec}]")
         for key, value in entries.items():
-            text = f"'{value}'" if isinstance(value, str) else _format_number(value)
+            text = f"'{tir_string(value)}'" if isinstance(value, str) else _format_number(value)
             comment = pf.comments.get((sec, key))
-            line = f"{key:<26} = {text}"
+            line = f"{ascii_line(key):<26} = {text}"
             if comment:
-                line = f"{line:<50} ${comment}"
+                line = f"{line:<50} ${ascii_line(comment)}"
             out.append(line)
         if sec in pf.tables:
             cols, rows = pf.tables[sec]
-            out.append("{" + " ".join(cols) + "}")
+            out.append("{" + " ".join(ascii_line(c) for c in cols) + "}")
             out.extend(" ".join(_format_number(x) for x in row) for row in rows)
     return "\n".join(out) + "\n"
 

@@ -129,7 +129,7 @@ def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str |
 
 def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
     from ..io import _to_float
-    from ..units import to_si, unit_registry
+    from ..units import parse_unit, to_si, unit_registry
 
     kind = COLUMNS[col][0]
     header = table.headers[j]
@@ -147,7 +147,7 @@ def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
                              row=table.rows[i])
         values[i] = v
     si = np.asarray(to_si(values, unit or "", kind, column=header, file=table.source))
-    if kind == "angle" and str(ureg.get_root_units(ureg.parse_units(unit))[1]) != "radian":
+    if kind == "angle" and str(ureg.get_root_units(parse_unit(unit or "", kind))[1]) != "radian":
         raise InputError(f"unit '{unit}' is not an angle (deg or rad)", file=table.source,
                          column=header)
     inf = np.isinf(si)
