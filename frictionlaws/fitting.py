@@ -382,6 +382,15 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
             bad |= b
             reasons.append(f"{var} = 0 ({law.meaning(var)}), where law '{law.id}' "
                            f"is singular (it uses log or a negative power of {var})")
+    for var, (lo, hi) in law.domain.items() if law.strict_domain else ():
+        if var == "s" or var not in fd.arrays:
+            continue
+        x = np.abs(fd.arrays[var]) if var == "v" else fd.arrays[var]
+        b = (x < lo * (1 - 1e-9) - 1e-300) | (x > hi * (1 + 1e-9))
+        if b.any():
+            bad |= b
+            reasons.append(f"values outside {_fmt_range(var, lo, hi)}, the range law "
+                           f"'{law.id}' is valid for (it must not be extrapolated)")
     if bad.any():
         idx = np.flatnonzero(bad)
         msg = "; ".join(reasons)

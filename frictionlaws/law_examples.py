@@ -260,7 +260,7 @@ def _germann(M, s, a0, a1, a2):
 # ---- numerical references ---------------------------------------------------
 # A law defined by an integral has no closed form to write twice: its reference is a
 # second, slower numerical method (adaptive quadrature with scipy), independent of the
-# library's quadrature; only the material (the packaged DMA master curve) is shared.
+# library's quadrature; only the material (the packaged tread compound's Prony series) is shared.
 
 
 def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
@@ -281,9 +281,9 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
     from scipy.integrate import quad, solve_ivp
 
     if material is None:
-        from frictionlaws.persson.material import default_material
+        from frictionlaws.persson.material import tread_compound
 
-        material = default_material()
+        material = tread_compound()
     p, v, T, q1, mu_a, q0, H, h_rms = (float(x) for x in (p, v, T, q1, mu_a, q0, H, h_rms))
     Ei, tau, Einf = _np.asarray(material.E_i), _np.asarray(material.tau), material.E_inf
     aT = 10.0 ** float(material.shift(T))
@@ -331,13 +331,10 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
 
 def _persson_baseline(x: Mapping[str, Any], q: Mapping[str, float]) -> Any:
     """The theory called directly on numpy arrays (the benchmark measures the law's wrapper)."""
-    import numpy as _np
-
-    from frictionlaws.persson import SelfAffine, default_material, friction
+    from frictionlaws.persson import SelfAffine, friction, tread_compound
 
     surf = SelfAffine.from_rms(q["q0"], q["H"], q["h_rms"], q["q1"])
-    v = _np.maximum(_np.abs(x["v"]), 1e-9)
-    return q["mu_a"] + friction(default_material(), surf, v, x["T"], _np.maximum(x["p"], 1.0))
+    return q["mu_a"] + friction(tread_compound(), surf, x["v"], x["T"], x["p"])
 
 
 _THESIS = ("source thesis, Eq. 5-1 / Table 5-1 and Eq. 5-2 / Table 5-2 (P in MPa, V in m/s "
@@ -571,7 +568,7 @@ EXAMPLES: dict[str, LawExample] = {
                  {"p": (2e4, 1e6), "v": (1e-5, 10.0), "T": (263.15, 333.15)}, log=_LOGPV),
         Reference(_persson, ("p", "v", "T"),
                   "Persson, J. Chem. Phys. 115 (2001) 3840 (P(q) as in J. Phys.: Condens. "
-                  "Matter 17 (2005) R1), packaged DMA rubber on the asphalt-like surface",
+                  "Matter 17 (2005) R1), packaged tread compound on the asphalt-like surface",
                   ({"q1": 1e6, "mu_a": 0.1, "q0": 2 * 3.141592653589793 / 0.01, "H": 0.8,
                     "h_rms": 0.3e-3},),
                   {"p": (2e5,), "v": (0.01,), "T": (283.15,)},

@@ -1,10 +1,10 @@
 """Persson's theory of rubber friction as a registry law (``persson``).
 
-The viscoelastic friction of the packaged rubber (the DMA master curve of
-``datasets/dma-pyvisco`` as a Prony series, with its own shifts) sliding on a
-self-affine surface (settings q0, H, h_rms; asphalt-like by default), computed
-by :func:`frictionlaws.persson.friction`, plus an additive contribution
-``mu_a`` (adhesion, other mechanisms).  The fitted parameters are the
+The viscoelastic friction of the packaged tread compound
+(``datasets/tread-compound``: a Havriliak-Negami master curve with the universal
+WLF shift, as a Prony series) sliding on a self-affine surface (settings q0, H,
+h_rms; asphalt-like by default), computed by :func:`frictionlaws.persson.friction`,
+plus an additive contribution ``mu_a`` (adhesion, other mechanisms).  The fitted parameters are the
 short-wavelength cut-off ``q1`` and ``mu_a``.  The symbolic form is
 ``mu_a + mu_P(p, v, T, q1, q0, H, h_rms)`` with ``mu_P`` an unevaluated function
 carrying its numerical implementation (sympy ``implemented_function``), so the
@@ -19,7 +19,7 @@ import functools
 import math
 from typing import TYPE_CHECKING, Any
 
-from ..law import P_MIN, V_MIN, Law, Param, Setting
+from ..law import Law, Param, Setting
 from ..registry import register
 
 if TYPE_CHECKING:
@@ -34,6 +34,10 @@ H_ASPHALT = 0.8
 #: rms height of the asphalt-like default surface over q >= q0 [m].
 H_RMS_ASPHALT = 0.3e-3
 
+#: Pressures the law takes [Pa]: above 0 (the theory divides by p; at p = 0 there is no
+#: contact), from 1 Pa to 100 MPa, beyond any pressure a rubber contact carries.
+_P_DOMAIN = (1.0, 1e8)
+
 _REFERENCES = (
     "B. N. J. Persson, Theory of rubber friction and contact mechanics, J. Chem. Phys. 115 "
     "(2001) 3840-3861.",
@@ -46,11 +50,11 @@ _REFERENCES = (
 def _numeric(material: Material | None, p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any,
              h_rms: Any) -> Any:
     # imported here: registering the law (every get_law) must not load the theory
-    from ..persson.material import default_material
+    from ..persson.material import tread_compound
     from ..persson.surface import SelfAffine
     from ..persson.theory import friction
 
-    mat = default_material() if material is None else material
+    mat = tread_compound() if material is None else material
     surface = SelfAffine.from_rms(float(q0), float(H), float(h_rms), float(q1))
     return friction(mat, surface, v, T, p, q1=float(q1))
 
@@ -70,12 +74,17 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
                 title: str = "Persson (viscoelastic friction on a rough surface)",
                 q0: float = Q0_ASPHALT, H: float = H_ASPHALT, h_rms: float = H_RMS_ASPHALT,
                 register_law: bool = False) -> Law:
-    """The Persson law for ``material`` (default: the packaged DMA rubber).
+    """The Persson law for ``material`` (default: the packaged tread compound).
+
+    Its temperature domain is the material's
+    (:meth:`~frictionlaws.persson.Material.temperature_range`), held strictly:
+    calls, fits and exported boxes outside it are refused, as are pressures
+    <= 0; v = 0 gives the static limit mu = mu_a.
 
     Parameters
     ----------
     material : Material, optional
-        The rubber; default :func:`frictionlaws.persson.default_material`.
+        The rubber; default :func:`frictionlaws.persson.tread_compound`.
     id, title : str
         Registry id and title of the law.
     q0, H, h_rms : float
@@ -90,6 +99,16 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
             return mu_a + _symbolic_function("mu_P", material)(p, v, T, q1, q0, H, h_rms)
         return mu_a + _numeric(material, p, v, T, q1, q0, H, h_rms)
 
+    if material is None:
+        from ..persson.material import tread_temperature_range
+
+        T_domain = tread_temperature_range()
+        what = ("the packaged tread compound (datasets/tread-compound: a Havriliak-Negami "
+                "master curve at T_g = -30 degC with the universal WLF shift, constructed from "
+                "published forms and representative values, not measured)")
+    else:
+        T_domain = material.temperature_range()
+        what = f"the material {material.source or '(user-built)'}"
     law = Law(
         id=id, title=title, family="sliding", variables=("p", "v", "T"),
         params=(
@@ -106,25 +125,28 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
             Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0",
                     (1e-9, 0.1)),
         ),
-        floors={"v": V_MIN, "p": P_MIN},
         formula=formula,
-        presets={"dma-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
-        domain={"T": (223.15, 373.15)},
-        typical={"v": (1e-6, 10.0), "p": (1e4, 1e6), "T": (253.15, 353.15)},
+        presets={"tread-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
+        domain={"T": T_domain, "p": _P_DOMAIN},
+        strict_domain=True,
+        typical={"v": (1e-6, 10.0), "p": (1e4, 1e6),
+                 "T": (max(T_domain[0], 253.15), min(T_domain[1], 333.15))},
         references=_REFERENCES,
         evidence="C (theory, as published), I (numerical implementation checked against "
         "adaptive quadrature)",
         description="mu = mu_a + mu_P(p, v, T; q1): the viscoelastic friction of Persson's "
         "theory, 1/2 int q^3 C(q) P(q) int cos(phi) Im E(q v cos(phi), T) dphi dq / "
-        "((1 - nu^2) p), with the contact ratio P(q) = erf(1/(2 sqrt(G(q)))), for the "
-        "packaged DMA rubber (Prony series, its own temperature shifts) on a self-affine "
-        "surface C(q) = C0 (q/q0)^(-2(1+H)) with the rms height h_rms (asphalt-like: q0 = "
-        "2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive contribution mu_a.",
+        "((1 - nu^2) p), with the contact ratio P(q) = erf(1/(2 sqrt(G(q)))), for "
+        f"{what}, on a self-affine surface C(q) = C0 (q/q0)^(-2(1+H)) with the rms height "
+        "h_rms (asphalt-like: q0 = 2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive "
+        "contribution mu_a.",
         notes="No closed form: the Fortran user-subroutine formats are refused, tables are "
-        "exported. Isothermal (no flash-temperature correction). The packaged material is a "
-        "stiff polymer (E' 0.14 to 8 GPa), so the viscoelastic part is small; build your own "
-        "with frictionlaws.persson (material_from_csv, persson_law). v is floored at 1e-9 "
-        "m/s, p at 1 Pa; T outside the DMA sweeps (-50..100 degC) extrapolates the shifts.",
+        "exported. Isothermal (no flash-temperature correction). T is held to the "
+        f"material's range {T_domain[0]:.2f}..{T_domain[1]:.2f} K and p to 1 Pa..100 MPa "
+        "(refused outside them, in calls, fits and exported boxes); v = 0 gives the static "
+        "limit "
+        "mu = mu_a (the viscoelastic part vanishes linearly in v). Build another material "
+        "with frictionlaws.persson (material_from_csv, persson_law).",
     )
     if register_law:
         register(law)

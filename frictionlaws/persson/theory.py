@@ -38,10 +38,11 @@ from typing import Any
 import numpy as np
 from scipy.special import erf
 
+from ..errors import DomainError, InputError
 from .material import Material
 
-__all__ = ["friction", "contact_ratio", "loss_angular", "loss_tabulated", "modulus_sq_angular",
-           "q_nodes"]
+__all__ = ["friction", "contact_ratio", "check_conditions", "loss_angular", "loss_tabulated",
+           "modulus_sq_angular", "q_nodes"]
 
 
 def loss_angular(material: Material, omega0: Any) -> np.ndarray:
@@ -163,23 +164,74 @@ def q_nodes(q0: float, q1: float, *, order: int = 10, panels_per_decade: float =
     return np.exp(nodes), weights, cum
 
 
-def _prepare(v: Any, T: Any, p: Any) -> tuple[tuple[int, ...], np.ndarray, np.ndarray,
-                                             np.ndarray]:
+def check_conditions(material: Material, v: Any, T: Any, p: Any) -> None:
+    """Refuse sliding conditions the theory cannot take for this material.
+
+    Every value finite; the pressure positive (the theory divides by it: at
+    p = 0 there is no contact and no friction coefficient); the temperature
+    inside the range the material's data cover
+    (:meth:`~frictionlaws.persson.material.Material.temperature_range`), since
+    the modulus elsewhere would be an extrapolation of its shift.
+
+    Raises
+    ------
+    InputError
+        A non-finite value.
+    DomainError
+        A pressure <= 0 or a temperature outside the material's data.
+    """
+    for name, unit, x in (("v", "m/s", v), ("T", "K", T), ("p", "Pa", p)):
+        a = np.asarray(x, dtype=float)
+        bad = ~np.isfinite(a)
+        if bad.any():
+            raise InputError(f"Persson: {name} has a non-finite value ({a[bad].flat[0]}) at "
+                             f"index {_index(bad)} [{unit}]")
+    pa = np.asarray(p, dtype=float)
+    if pa.size and float(pa.min()) <= 0.0:
+        bad = pa <= 0.0
+        raise DomainError(f"Persson: p = {pa[bad].flat[0]:g} Pa at index {_index(bad)}: the "
+                          "nominal pressure must be > 0 (the theory divides by it; without "
+                          "contact there is no friction coefficient)")
+    Ta = np.asarray(T, dtype=float)
+    lo, hi = material.temperature_range()
+    if Ta.size and (float(Ta.min()) < lo * (1 - 1e-12) or float(Ta.max()) > hi * (1 + 1e-12)):
+        bad = (Ta < lo * (1 - 1e-12)) | (Ta > hi * (1 + 1e-12))
+        raise DomainError(f"Persson: T = {Ta[bad].flat[0]:.6g} K at index {_index(bad)} is "
+                          f"outside the temperatures the material's data cover, {lo:.6g} .. "
+                          f"{hi:.6g} K ({lo - 273.15:.4g} .. {hi - 273.15:.4g} degC)")
+
+
+def _index(mask: np.ndarray) -> int | tuple[int, ...]:
+    idx = tuple(int(i) for i in np.argwhere(np.atleast_1d(mask))[0])
+    return idx[0] if len(idx) == 1 else idx
+
+
+def _prepare(material: Material, v: Any, T: Any, p: Any
+             ) -> tuple[tuple[int, ...], np.ndarray, np.ndarray, np.ndarray]:
+    check_conditions(material, v, T, p)
     b = np.broadcast_arrays(np.asarray(v, float), np.asarray(T, float), np.asarray(p, float))
     shape = b[0].shape
     return shape, np.abs(b[0]).ravel(), b[1].ravel(), b[2].ravel()
 
 
 def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: Any) -> Any:
-    """P(q) = A(q)/A0 at wavenumbers ``q`` (last axis) for each v, T, p (fast path)."""
-    shape, vv, TT, pp = _prepare(v, T, p)
-    q = np.asarray(q, dtype=float)
+    """P(q) = A(q)/A0 at wavenumbers ``q`` [1/m] (last axis) for each v, T, p.
+
+    G is integrated from q0 to each ``q`` itself (a Gauss-Legendre rule on
+    [q0, q]), so P is the contact ratio at q, not at a quadrature node near it;
+    ``P = 1`` for ``q <= q0``.
+    """
+    shape, vv, TT, pp = _prepare(material, v, T, p)
+    q = np.asarray(q, dtype=float).ravel()
+    if q.size and not np.all(np.isfinite(q)):
+        raise InputError("Persson: contact_ratio needs finite wavenumbers q [1/m]")
     out = []
     for qi in q:
-        nodes, _, cum = q_nodes(surface.q0, float(qi) if qi > surface.q0 else
-                                surface.q0 * (1 + 1e-12))
-        G = _G(material, surface, vv, TT, pp, nodes, cum)
-        out.append(_P(G[:, -1]) if qi > surface.q0 else np.ones(vv.size))
+        if qi <= surface.q0:
+            out.append(np.ones(vv.size))
+            continue
+        nodes, weights, _ = q_nodes(surface.q0, float(qi))
+        out.append(_P(_G_total(material, surface, vv, TT, pp, nodes, weights)))
     return np.stack(out, axis=-1).reshape(shape + (q.size,))
 
 
@@ -195,6 +247,14 @@ def _G(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.nda
     g = nodes**4 * surface.C(nodes) / 8.0 * F / (e * e)[:, None]
     # the last node of the cumulative matrix reaches only the last node, not q1:
     return g @ cum.T
+
+
+def _G_total(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+             nodes: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """G at the upper end of the nodes' interval (the full quadrature, not the last node)."""
+    e = (1.0 - material.nu**2) * p
+    F = modulus_sq_angular(material, _omega0(material, v, T, nodes))
+    return (nodes**4 * surface.C(nodes) / 8.0 * F / (e * e)[:, None]) @ weights
 
 
 def _P(G: np.ndarray) -> np.ndarray:
@@ -214,8 +274,9 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
     surface : SelfAffine or TabulatedPSD
         The counter-surface spectrum C(q) [m^4] with its ``q0``.
     v, T, p : array-like
-        Sliding velocity [m/s], temperature [K], nominal pressure [Pa];
-        broadcast together.
+        Sliding velocity [m/s] (its magnitude; v = 0 gives the static limit
+        mu = 0), temperature [K] inside the material's data, nominal pressure
+        [Pa] > 0; broadcast together (:func:`check_conditions`).
     q1 : float, optional
         Short-wavelength cut-off [1/m] (default: the surface's ``q1``).
     order, panels_per_decade
@@ -227,7 +288,7 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
         mu, of the broadcast shape (a float for scalar input).
     """
     q1 = float(surface.q1 if q1 is None else q1)
-    shape, vv, TT, pp = _prepare(v, T, p)
+    shape, vv, TT, pp = _prepare(material, v, T, p)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
                                   panels_per_decade=panels_per_decade)
     qC = nodes**4 * surface.C(nodes)
@@ -238,6 +299,8 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
         e = (1.0 - material.nu**2) * pp[b]
         A = loss_tabulated(material, _omega0(material, vv[b], TT[b], nodes))
         mu[b] = (0.5 * qC * _P(G) * A / e[:, None]) @ weights
+    # v = 0: no excitation, Im E(0) = 0, the exact limit (mu falls linearly in v towards it)
+    mu[vv == 0.0] = 0.0
     return float(mu[0]) if shape == () else mu.reshape(shape)
 
 
