@@ -23,6 +23,7 @@ from ..law import Law, Param, Setting
 from ..registry import register
 
 if TYPE_CHECKING:
+    from ..persson.flash import Flash
     from ..persson.material import Material
 
 __all__ = ["persson_law", "Q0_ASPHALT", "H_ASPHALT", "H_RMS_ASPHALT"]
@@ -44,28 +45,37 @@ _REFERENCES = (
     "B. N. J. Persson, O. Albohr, U. Tartaglino, A. I. Volokitin, E. Tosatti, On the nature "
     "of surface roughness with application to contact mechanics, sealing, rubber friction "
     "and adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.",
+    "B. N. J. Persson, Rubber friction: role of the flash temperature, J. Phys.: Condens. "
+    "Matter 18 (2006) 7789-7823.",
 )
 
 
-def _numeric(material: Material | None, p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any,
-             h_rms: Any) -> Any:
+def _numeric(material: Material | None, thermal: Flash | None, p: Any, v: Any, T: Any,
+             q1: Any, q0: Any, H: Any, h_rms: Any, gamma: Any, heat_fraction: Any) -> Any:
     # imported here: registering the law (every get_law) must not load the theory
+    from dataclasses import replace
+
+    from ..persson.flash import TREAD_THERMAL
     from ..persson.material import tread_compound
     from ..persson.surface import SelfAffine
     from ..persson.theory import friction
 
     mat = tread_compound() if material is None else material
     surface = SelfAffine.from_rms(float(q0), float(H), float(h_rms), float(q1))
-    return friction(mat, surface, v, T, p, q1=float(q1))
+    hf = float(heat_fraction)
+    flash = (replace(TREAD_THERMAL if thermal is None else thermal, heat_fraction=hf)
+             if hf > 0 else None)
+    return friction(mat, surface, v, T, p, q1=float(q1), gamma=float(gamma), flash=flash)
 
 
 @functools.lru_cache(maxsize=8)
-def _symbolic_function(name: str, material: Material | None) -> Any:
+def _symbolic_function(name: str, material: Material | None, thermal: Flash | None) -> Any:
     from sympy.utilities.lambdify import implemented_function
 
-    def impl(p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any, h_rms: Any) -> float:
-        return float(_numeric(material, float(p), float(v), float(T), float(q1), float(q0),
-                              float(H), float(h_rms)))
+    def impl(p: Any, v: Any, T: Any, q1: Any, q0: Any, H: Any, h_rms: Any, gamma: Any,
+             heat_fraction: Any) -> float:
+        return float(_numeric(material, thermal, *(float(x) for x in (
+            p, v, T, q1, q0, H, h_rms, gamma, heat_fraction))))
 
     return implemented_function(name, impl)
 
@@ -73,7 +83,7 @@ def _symbolic_function(name: str, material: Material | None) -> Any:
 def persson_law(material: Material | None = None, *, id: str = "persson",
                 title: str = "Persson (viscoelastic friction on a rough surface)",
                 q0: float = Q0_ASPHALT, H: float = H_ASPHALT, h_rms: float = H_RMS_ASPHALT,
-                register_law: bool = False) -> Law:
+                thermal: Flash | None = None, register_law: bool = False) -> Law:
     """The Persson law for ``material`` (default: the packaged tread compound).
 
     Its temperature domain is the material's
@@ -89,15 +99,21 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         Registry id and title of the law.
     q0, H, h_rms : float
         Default values of the surface settings [1/m], [-], [m].
+    thermal : Flash, optional
+        Thermal properties of the rubber for the flash temperature (setting
+        ``heat_fraction`` > 0); default
+        :data:`frictionlaws.persson.flash.TREAD_THERMAL`.
     register_law : bool
         Register the law (ids must be unique).
     """
 
     def formula(m: Any, p: Any, v: Any, T: Any, q1: Any, mu_a: Any, q0: Any, H: Any,
-                h_rms: Any) -> Any:
+                h_rms: Any, gamma: Any, heat_fraction: Any) -> Any:
         if m.is_symbolic:
-            return mu_a + _symbolic_function("mu_P", material)(p, v, T, q1, q0, H, h_rms)
-        return mu_a + _numeric(material, p, v, T, q1, q0, H, h_rms)
+            return mu_a + _symbolic_function("mu_P", material, thermal)(
+                p, v, T, q1, q0, H, h_rms, gamma, heat_fraction)
+        return mu_a + _numeric(material, thermal, p, v, T, q1, q0, H, h_rms, gamma,
+                               heat_fraction)
 
     if material is None:
         from ..persson.material import tread_temperature_range
@@ -124,6 +140,11 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
                     (0.05, 0.99)),
             Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0",
                     (1e-9, 0.1)),
+            Setting("gamma", 1.0, "", "gamma of the correction S(q) = gamma + (1 - gamma) "
+                    "P(q)^2 (Persson 2006 suggests about 0.5; 1 = uncorrected, as in 2001)",
+                    (0.0, 1.0)),
+            Setting("heat_fraction", 0.0, "", "fraction of the friction heat flowing into "
+                    "the rubber, for the flash temperature (0 = isothermal)", (0.0, 1.0)),
         ),
         formula=formula,
         presets={"tread-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
@@ -141,7 +162,10 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         "h_rms (asphalt-like: q0 = 2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive "
         "contribution mu_a.",
         notes="No closed form: the Fortran user-subroutine formats are refused, tables are "
-        "exported. Isothermal (no flash-temperature correction). T is held to the "
+        "exported. By default isothermal and uncorrected (gamma = 1, heat_fraction = 0, the "
+        "2001 theory); the settings gamma (S(q) correction) and heat_fraction (flash "
+        "temperature, Persson 2006, in the simplified closure of frictionlaws.persson.flash) "
+        "turn the 2006 refinements on. T is held to the "
         f"material's range {T_domain[0]:.2f}..{T_domain[1]:.2f} K and p to 1 Pa..100 MPa "
         "(refused outside them, in calls, fits and exported boxes); v = 0 gives the static "
         "limit "

@@ -33,16 +33,18 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from scipy.special import erf
 
 from ..errors import DomainError, InputError
+from .flash import Flash
 from .material import Material
 
-__all__ = ["friction", "contact_ratio", "check_conditions", "loss_angular", "loss_tabulated",
-           "modulus_sq_angular", "q_nodes"]
+__all__ = ["friction", "flash_temperature", "contact_ratio", "check_conditions", "loss_angular",
+           "loss_tabulated", "modulus_sq_angular", "q_nodes"]
 
 
 def loss_angular(material: Material, omega0: Any) -> np.ndarray:
@@ -236,7 +238,10 @@ def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: A
 
 
 def _omega0(material: Material, v: np.ndarray, T: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """omega0 = q v a_T for each point (rows) and node (columns); ``T`` per point or per node."""
     aT = 10.0 ** material.shift(T)
+    if np.ndim(aT) == 2:
+        return v[:, None] * aT * q[None, :]
     return (v * aT)[:, None] * q[None, :]
 
 
@@ -263,8 +268,8 @@ def _P(G: np.ndarray) -> np.ndarray:
 
 
 def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
-             q1: float | None = None, order: int = 10, panels_per_decade: float = 2.0
-             ) -> Any:
+             q1: float | None = None, order: int = 10, panels_per_decade: float = 2.0,
+             gamma: float = 1.0, flash: Flash | None = None) -> Any:
     """The viscoelastic friction coefficient mu(v, T, p) of Persson's theory.
 
     Parameters
@@ -281,27 +286,122 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
         Short-wavelength cut-off [1/m] (default: the surface's ``q1``).
     order, panels_per_decade
         Gauss-Legendre nodes per panel and panels per decade of q.
+    gamma : float
+        The correction ``S(q) = gamma + (1 - gamma) P(q)^2`` of the integrand
+        (Persson, J. Phys.: Condens. Matter 18 (2006) 7789, who suggests
+        gamma of about 1/2): the elastic energy stored near the edges of the
+        contact regions.  1 (the default) is the uncorrected theory of 2001.
+    flash : Flash, optional
+        Thermal properties for the flash temperature (:mod:`.flash`); None
+        (the default) is the isothermal theory.
 
     Returns
     -------
     float or numpy.ndarray
         mu, of the broadcast shape (a float for scalar input).
+
+    Raises
+    ------
+    DomainError
+        Conditions outside the material's data, or a flash temperature that
+        does not converge.
     """
+    return _friction(material, surface, v, T, p, q1=q1, order=order,
+                     panels_per_decade=panels_per_decade, gamma=gamma, flash=flash)[0]
+
+
+def flash_temperature(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
+                      flash: Flash, q1: float | None = None, gamma: float = 1.0
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The temperatures T_q [K] the rubber has at each length scale while sliding.
+
+    Returns
+    -------
+    q, T_q : numpy.ndarray
+        The quadrature wavenumbers [1/m] and the temperatures, one row per
+        point of the broadcast v, T, p (flattened).
+    """
+    _, nodes, Tq = _friction(material, surface, v, T, p, q1=q1, order=10,
+                             panels_per_decade=2.0, gamma=gamma, flash=flash)
+    return nodes, Tq
+
+
+def _check_gamma(gamma: float) -> None:
+    if not (isinstance(gamma, (int, float)) and 0.0 <= gamma <= 1.0):
+        raise InputError(f"Persson: gamma = {gamma!r} of S(q) = gamma + (1 - gamma) P^2 must "
+                         "be in 0..1")
+
+
+def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: float | None,
+              order: int, panels_per_decade: float, gamma: float, flash: Flash | None
+              ) -> tuple[Any, np.ndarray, np.ndarray]:
+    """mu (as :func:`friction` returns it), the q nodes and T_q (points x nodes)."""
+    _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
     shape, vv, TT, pp = _prepare(material, v, T, p)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
                                   panels_per_decade=panels_per_decade)
-    qC = nodes**4 * surface.C(nodes)
+    grid = _Grid(nodes, weights, cum, nodes**4 * surface.C(nodes))
     mu = np.empty(vv.size)
+    Tq = np.empty((vv.size, nodes.size))
+    heated = flash is not None and flash.heat_fraction > 0
     for k in range(0, vv.size, _BLOCK):
         b = slice(k, k + _BLOCK)
-        G = _G(material, surface, vv[b], TT[b], pp[b], nodes, cum)
-        e = (1.0 - material.nu**2) * pp[b]
-        A = loss_tabulated(material, _omega0(material, vv[b], TT[b], nodes))
-        mu[b] = (0.5 * qC * _P(G) * A / e[:, None]) @ weights
+        if heated:
+            assert flash is not None
+            dmu, Tq[b] = _flash_solve(material, surface, vv[b], TT[b], pp[b], grid, gamma,
+                                      flash)
+        else:
+            dmu, _ = _integrand(material, surface, vv[b], TT[b], pp[b], grid, gamma)
+            Tq[b] = TT[b][:, None]
+        mu[b] = dmu.sum(axis=1)
     # v = 0: no excitation, Im E(0) = 0, the exact limit (mu falls linearly in v towards it)
     mu[vv == 0.0] = 0.0
-    return float(mu[0]) if shape == () else mu.reshape(shape)
+    return (float(mu[0]) if shape == () else mu.reshape(shape)), nodes, Tq
+
+
+@dataclass(frozen=True)
+class _Grid:
+    nodes: np.ndarray
+    weights: np.ndarray
+    cum: np.ndarray
+    qC: np.ndarray
+
+
+def _integrand(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+               grid: _Grid, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    """The friction integrand times the weights (points x nodes) and P(q) at the nodes.
+
+    ``T`` is one temperature per point or one per point and node (T_q).
+    """
+    G = _G(material, surface, v, T, p, grid.nodes, grid.cum)
+    P = _P(G)
+    e = (1.0 - material.nu**2) * p
+    A = loss_tabulated(material, _omega0(material, v, T, grid.nodes))
+    S = P if gamma == 1.0 else P * (gamma + (1.0 - gamma) * P * P)
+    return 0.5 * grid.qC * S * A / e[:, None] * grid.weights, P
+
+
+def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+                 grid: _Grid, gamma: float, flash: Flash) -> tuple[np.ndarray, np.ndarray]:
+    """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`)."""
+    a = np.pi / (2.0 * grid.nodes)
+    phi = 2.0 / np.sqrt(np.pi * (1.273 + v[:, None] * a[None, :] / (2.0 * flash.diffusivity)))
+    c = flash.heat_fraction * p * v / flash.conductivity
+    Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
+    for _ in range(flash.max_iter):
+        dmu, P = _integrand(material, surface, v, Tq, p, grid, gamma)
+        K = a[None, :] * phi / np.maximum(P, 1e-300)
+        finer = np.cumsum(dmu[:, ::-1], axis=1)[:, ::-1]        # sum over q' >= q
+        coarser = np.cumsum(dmu * K, axis=1) - dmu * K           # sum over q' < q of dmu K
+        new = T[:, None] + c[:, None] * (K * finer + coarser)
+        step = new - Tq
+        Tq = Tq + 0.5 * step
+        if float(np.max(np.abs(step))) < flash.tol:
+            return _integrand(material, surface, v, Tq, p, grid, gamma)[0], Tq
+    raise DomainError(f"Persson: the flash temperature did not converge in {flash.max_iter} "
+                      f"iterations (last change {float(np.max(np.abs(step))):.3g} K); no "
+                      "friction coefficient is given for these conditions")
 
 
 #: Points evaluated together (bounds the memory of the (points x nodes) arrays).
