@@ -150,3 +150,31 @@ def test_export_from_zero_velocity_writes_the_static_limit(tmp_path):
     rows = [ln.split(",") for ln in out.read_text().splitlines()
             if ln and not ln.startswith("#") and not ln.startswith("p")]
     assert float(rows[0][1]) == 0.0 and float(rows[0][3]) == pytest.approx(0.2)
+
+
+def test_a_temperature_in_degC_is_named_as_such():
+    with pytest.raises(DomainError, match="if it is in degC, 20 degC is 293.15 K"):
+        friction(tread_compound(), SURF, 0.01, 20.0, 2e5)
+
+
+@pytest.mark.parametrize("T_range", [(300.0, 290.0), (0.0, 300.0), (math.nan, 300.0),
+                                     (300.0,), "warm"])
+def test_a_bad_declared_range_is_refused(T_range):
+    from dataclasses import replace
+
+    mat = replace(tread_compound(), T_range=T_range)
+    with pytest.raises(InputError, match="T_range"):
+        friction(mat, SURF, 0.01, 293.15, 2e5)
+
+
+def test_a_one_temperature_material_is_held_to_that_temperature():
+    from dataclasses import replace
+
+    from frictionlaws.laws.persson import persson_law
+
+    mat = replace(tread_compound(), T_range=(373.15, 373.15))
+    law = persson_law(mat, id="persson-hot")
+    assert law.domain["T"] == (373.15, 373.15) and law.typical["T"] == (373.15, 373.15)
+    assert np.isfinite(law(p=2e5, v=0.01, T=373.15, q1=1e6, mu_a=0.0))
+    with pytest.raises(DomainError):
+        law(p=2e5, v=0.01, T=372.0, q1=1e6, mu_a=0.0)

@@ -80,6 +80,12 @@ def _symbolic_function(name: str, material: Material | None, thermal: Flash | No
     return implemented_function(name, impl)
 
 
+def _typical_T(domain: tuple[float, float]) -> tuple[float, float]:
+    """-20..60 degC where the material's range allows, else its whole range."""
+    lo, hi = max(domain[0], 253.15), min(domain[1], 333.15)
+    return (lo, hi) if lo < hi else domain
+
+
 def persson_law(material: Material | None = None, *, id: str = "persson",
                 title: str = "Persson (viscoelastic friction on a rough surface)",
                 q0: float = Q0_ASPHALT, H: float = H_ASPHALT, h_rms: float = H_RMS_ASPHALT,
@@ -150,8 +156,7 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         presets={"tread-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
         domain={"T": T_domain, "p": _P_DOMAIN},
         strict_domain=True,
-        typical={"v": (1e-6, 10.0), "p": (1e4, 1e6),
-                 "T": (max(T_domain[0], 253.15), min(T_domain[1], 333.15))},
+        typical={"v": (1e-6, 10.0), "p": (1e4, 1e6), "T": _typical_T(T_domain)},
         references=_REFERENCES,
         evidence="C (theory, as published), I (numerical implementation checked against "
         "adaptive quadrature)",

@@ -137,7 +137,15 @@ class Material:
     def temperature_range(self) -> tuple[float, float]:
         """The temperatures [K] the material's data cover (see :attr:`T_range`)."""
         if self.T_range is not None:
-            return (float(self.T_range[0]), float(self.T_range[1]))
+            try:
+                lo, hi = (float(x) for x in self.T_range)
+            except (TypeError, ValueError):
+                raise InputError(f"T_range {self.T_range!r} must be two temperatures [K]"
+                                 ) from None
+            if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+                raise InputError(f"T_range ({lo:g}, {hi:g}) K must be finite, above 0 K and "
+                                 "increasing")
+            return lo, hi
         sh = self.shift
         if sh.T is not None:
             return (float(np.min(sh.T)), float(np.max(sh.T)))

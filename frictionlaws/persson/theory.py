@@ -198,9 +198,12 @@ def check_conditions(material: Material, v: Any, T: Any, p: Any) -> None:
     lo, hi = material.temperature_range()
     if Ta.size and (float(Ta.min()) < lo * (1 - 1e-12) or float(Ta.max()) > hi * (1 + 1e-12)):
         bad = (Ta < lo * (1 - 1e-12)) | (Ta > hi * (1 + 1e-12))
-        raise DomainError(f"Persson: T = {Ta[bad].flat[0]:.6g} K at index {_index(bad)} is "
+        first = float(Ta[bad].flat[0])
+        hint = (f"; if it is in degC, {first:g} degC is {first + 273.15:g} K"
+                if lo <= first + 273.15 <= hi else "")
+        raise DomainError(f"Persson: T = {first:.6g} K at index {_index(bad)} is "
                           f"outside the temperatures the material's data cover, {lo:.6g} .. "
-                          f"{hi:.6g} K ({lo - 273.15:.4g} .. {hi - 273.15:.4g} degC)")
+                          f"{hi:.6g} K ({lo - 273.15:.4g} .. {hi - 273.15:.4g} degC){hint}")
 
 
 def _index(mask: np.ndarray) -> int | tuple[int, ...]:
