@@ -80,6 +80,44 @@ def _symbolic_function(name: str, material: Material | None, thermal: Flash | No
     return implemented_function(name, impl)
 
 
+def _material_domain(material: Material | None) -> tuple[tuple[float, float], str]:
+    """The material's temperature range [K] and how the description names it."""
+    if material is None:
+        from ..persson.material import tread_temperature_range
+
+        return tread_temperature_range(), (
+            "the packaged tread compound (datasets/tread-compound: a Havriliak-Negami master "
+            "curve at T_g = -30 degC with the universal WLF shift, constructed from published "
+            "forms and representative values, not measured)")
+    return material.temperature_range(), f"the material {material.source or '(user-built)'}"
+
+
+def _settings(q0: float, H: float, h_rms: float) -> tuple[Setting, ...]:
+    return (
+        Setting("q0", q0, "1/m", "roll-off wavenumber of the self-affine surface", (1.0, 1e6)),
+        Setting("H", H, "", "Hurst exponent of the surface (fractal dimension 3 - H)",
+                (0.05, 0.99)),
+        Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0", (1e-9, 0.1)),
+        Setting("gamma", 1.0, "", "gamma of the correction S(q) = gamma + (1 - gamma) "
+                "P(q)^2 (Persson 2006 suggests about 0.5; 1 = uncorrected, as in 2001)",
+                (0.0, 1.0)),
+        Setting("heat_fraction", 0.0, "", "fraction of the friction heat flowing into the "
+                "rubber, for the flash temperature (0 = isothermal)", (0.0, 1.0)),
+    )
+
+
+def _notes(T_domain: tuple[float, float]) -> str:
+    return ("No closed form: the Fortran user-subroutine formats are refused, tables are "
+            "exported. By default isothermal and uncorrected (gamma = 1, heat_fraction = 0, "
+            "the 2001 theory); the settings gamma (S(q) correction) and heat_fraction (flash "
+            "temperature, Persson 2006, in the simplified closure of "
+            "frictionlaws.persson.flash) turn the 2006 refinements on. T is held to the "
+            f"material's range {T_domain[0]:.2f}..{T_domain[1]:.2f} K and p to 1 Pa..100 MPa "
+            "(refused outside them, in calls, fits and exported boxes); v = 0 gives the static "
+            "limit mu = mu_a (the viscoelastic part vanishes linearly in v). Build another "
+            "material with frictionlaws.persson (material_from_csv, persson_law).")
+
+
 def _typical_T(domain: tuple[float, float]) -> tuple[float, float]:
     """-20..60 degC where the material's range allows, else its whole range."""
     lo, hi = max(domain[0], 253.15), min(domain[1], 333.15)
@@ -121,16 +159,7 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         return mu_a + _numeric(material, thermal, p, v, T, q1, q0, H, h_rms, gamma,
                                heat_fraction)
 
-    if material is None:
-        from ..persson.material import tread_temperature_range
-
-        T_domain = tread_temperature_range()
-        what = ("the packaged tread compound (datasets/tread-compound: a Havriliak-Negami "
-                "master curve at T_g = -30 degC with the universal WLF shift, constructed from "
-                "published forms and representative values, not measured)")
-    else:
-        T_domain = material.temperature_range()
-        what = f"the material {material.source or '(user-built)'}"
+    T_domain, what = _material_domain(material)
     law = Law(
         id=id, title=title, family="sliding", variables=("p", "v", "T"),
         params=(
@@ -139,19 +168,7 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
             Param("mu_a", "", 0.0, (0.0, math.inf),
                   "additive contribution (adhesion and other mechanisms)"),
         ),
-        settings=(
-            Setting("q0", q0, "1/m", "roll-off wavenumber of the self-affine surface",
-                    (1.0, 1e6)),
-            Setting("H", H, "", "Hurst exponent of the surface (fractal dimension 3 - H)",
-                    (0.05, 0.99)),
-            Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0",
-                    (1e-9, 0.1)),
-            Setting("gamma", 1.0, "", "gamma of the correction S(q) = gamma + (1 - gamma) "
-                    "P(q)^2 (Persson 2006 suggests about 0.5; 1 = uncorrected, as in 2001)",
-                    (0.0, 1.0)),
-            Setting("heat_fraction", 0.0, "", "fraction of the friction heat flowing into "
-                    "the rubber, for the flash temperature (0 = isothermal)", (0.0, 1.0)),
-        ),
+        settings=_settings(q0, H, h_rms),
         formula=formula,
         presets={"tread-on-asphalt": {"q1": 1e6, "mu_a": 0.0}},
         domain={"T": T_domain, "p": _P_DOMAIN},
@@ -166,16 +183,7 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         f"{what}, on a self-affine surface C(q) = C0 (q/q0)^(-2(1+H)) with the rms height "
         "h_rms (asphalt-like: q0 = 2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive "
         "contribution mu_a.",
-        notes="No closed form: the Fortran user-subroutine formats are refused, tables are "
-        "exported. By default isothermal and uncorrected (gamma = 1, heat_fraction = 0, the "
-        "2001 theory); the settings gamma (S(q) correction) and heat_fraction (flash "
-        "temperature, Persson 2006, in the simplified closure of frictionlaws.persson.flash) "
-        "turn the 2006 refinements on. T is held to the "
-        f"material's range {T_domain[0]:.2f}..{T_domain[1]:.2f} K and p to 1 Pa..100 MPa "
-        "(refused outside them, in calls, fits and exported boxes); v = 0 gives the static "
-        "limit "
-        "mu = mu_a (the viscoelastic part vanishes linearly in v). Build another material "
-        "with frictionlaws.persson (material_from_csv, persson_law).",
+        notes=_notes(T_domain),
     )
     if register_law:
         register(law)
