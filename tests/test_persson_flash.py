@@ -125,3 +125,10 @@ def test_law_setting_heat_fraction():
     assert mu == pytest.approx(friction(MAT, SURF, 1.0, 293.15, 2e5, flash=TREAD_THERMAL),
                                rel=1e-12)
     assert mu < law(p=2e5, v=1.0, T=293.15, preset="tread-on-asphalt")
+
+
+def test_the_2006_preset_turns_both_refinements_on():
+    law = fl.get_law("persson")
+    mu = law(p=2e5, v=0.1, T=293.15, preset="tread-on-asphalt-2006")
+    assert mu == pytest.approx(friction(MAT, SURF, 0.1, 293.15, 2e5, gamma=0.5,
+                                        flash=TREAD_THERMAL), rel=1e-12)
