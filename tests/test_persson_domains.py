@@ -178,3 +178,9 @@ def test_a_one_temperature_material_is_held_to_that_temperature():
     assert np.isfinite(law(p=2e5, v=0.01, T=373.15, q1=1e6, mu_a=0.0))
     with pytest.raises(DomainError):
         law(p=2e5, v=0.01, T=372.0, q1=1e6, mu_a=0.0)
+
+
+@pytest.mark.parametrize("q", [math.nan, math.inf])
+def test_contact_ratio_refuses_a_non_finite_wavenumber(q):
+    with pytest.raises(InputError, match="finite wavenumbers"):
+        contact_ratio(tread_compound(), SURF, 0.01, 293.15, 2e5, [1e4, q])

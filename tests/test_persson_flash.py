@@ -13,6 +13,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import frictionlaws as fl
 from frictionlaws.errors import DomainError, InputError
@@ -132,3 +134,13 @@ def test_the_2006_preset_turns_both_refinements_on():
     mu = law(p=2e5, v=0.1, T=293.15, preset="tread-on-asphalt-2006")
     assert mu == pytest.approx(friction(MAT, SURF, 0.1, 293.15, 2e5, gamma=0.5,
                                         flash=TREAD_THERMAL), rel=1e-12)
+
+
+@settings(max_examples=30, deadline=None)
+@given(name=st.sampled_from(["gamma", "heat_fraction"]),
+       value=st.one_of(st.floats(-1e6, -1e-9), st.floats(1.0 + 1e-9, 1e6),
+                       st.just(math.nan), st.just(math.inf)))
+def test_law_settings_outside_zero_to_one_are_refused(name, value):
+    with pytest.raises(InputError, match=name):
+        fl.get_law("persson")(p=2e5, v=0.1, T=293.15, preset="tread-on-asphalt",
+                              **{name: value})
