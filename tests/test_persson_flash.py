@@ -144,3 +144,13 @@ def test_law_settings_outside_zero_to_one_are_refused(name, value):
     with pytest.raises(InputError, match=name):
         fl.get_law("persson")(p=2e5, v=0.1, T=293.15, preset="tread-on-asphalt",
                               **{name: value})
+
+
+def test_flash_temperature_converges_across_the_domain():
+    # cold rubber sliding fast heats itself further (the plain iteration oscillates there)
+    p, T, v = np.meshgrid([1e4, 1e5, 1e6], [243.15, 253.15, 293.15, 343.15],
+                          [1e-3, 0.1, 10.0, 1e3], indexing="ij")
+    mu = friction(MAT, SURF, v, T, p, gamma=0.5, flash=TREAD_THERMAL)
+    assert np.all(np.isfinite(mu)) and np.all(mu > 0)
+    _, Tq = flash_temperature(MAT, SURF, 10.0, 253.15, 1e5, flash=TREAD_THERMAL)
+    assert Tq.max() > 300.0

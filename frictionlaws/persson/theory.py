@@ -387,24 +387,34 @@ def _integrand(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p
 
 def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
                  grid: _Grid, gamma: float, flash: Flash) -> tuple[np.ndarray, np.ndarray]:
-    """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`)."""
+    """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`).
+
+    Damped fixed-point iteration, the damping of each point halved whenever its
+    change grows (a hot rubber on the glassy side heats itself further, and the
+    plain iteration oscillates there) and relaxed again while it shrinks.
+    """
     a = np.pi / (2.0 * grid.nodes)
     phi = 2.0 / np.sqrt(np.pi * (1.273 + v[:, None] * a[None, :] / (2.0 * flash.diffusivity)))
     c = flash.heat_fraction * p * v / flash.conductivity
     Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
+    omega = np.full(v.size, 0.5)
+    last = np.full(v.size, np.inf)
     for _ in range(flash.max_iter):
         dmu, P = _integrand(material, surface, v, Tq, p, grid, gamma)
         K = a[None, :] * phi / np.maximum(P, 1e-300)
         finer = np.cumsum(dmu[:, ::-1], axis=1)[:, ::-1]        # sum over q' >= q
         coarser = np.cumsum(dmu * K, axis=1) - dmu * K           # sum over q' < q of dmu K
-        new = T[:, None] + c[:, None] * (K * finer + coarser)
-        step = new - Tq
-        Tq = Tq + 0.5 * step
-        if float(np.max(np.abs(step))) < flash.tol:
+        step = T[:, None] + c[:, None] * (K * finer + coarser) - Tq
+        change = np.max(np.abs(step), axis=1)
+        if float(change.max()) < flash.tol:
             return _integrand(material, surface, v, Tq, p, grid, gamma)[0], Tq
+        omega = np.where(change > last, omega / 2, np.minimum(omega * 1.25, 0.5))
+        omega = np.maximum(omega, 1.0 / 1024)
+        last = change
+        Tq = Tq + omega[:, None] * step
     raise DomainError(f"Persson: the flash temperature did not converge in {flash.max_iter} "
-                      f"iterations (last change {float(np.max(np.abs(step))):.3g} K); no "
-                      "friction coefficient is given for these conditions")
+                      f"iterations (last change {float(change.max()):.3g} K); no friction "
+                      "coefficient is given for these conditions")
 
 
 #: Points evaluated together (bounds the memory of the (points x nodes) arrays).
