@@ -399,19 +399,23 @@ def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray,
     Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
     omega = np.full(v.size, 0.5)
     last = np.full(v.size, np.inf)
+    live = np.arange(v.size)          # the points still iterating
+    change = np.zeros(0)
     for _ in range(flash.max_iter):
-        dmu, P = _integrand(material, surface, v, Tq, p, grid, gamma)
-        K = a[None, :] * phi / np.maximum(P, 1e-300)
+        dmu, P = _integrand(material, surface, v[live], Tq[live], p[live], grid, gamma)
+        K = a[None, :] * phi[live] / np.maximum(P, 1e-300)
         finer = np.cumsum(dmu[:, ::-1], axis=1)[:, ::-1]        # sum over q' >= q
         coarser = np.cumsum(dmu * K, axis=1) - dmu * K           # sum over q' < q of dmu K
-        step = T[:, None] + c[:, None] * (K * finer + coarser) - Tq
+        step = T[live, None] + c[live, None] * (K * finer + coarser) - Tq[live]
         change = np.max(np.abs(step), axis=1)
-        if float(change.max()) < flash.tol:
+        going = change >= flash.tol
+        w = np.where(change > last[live], omega[live] / 2, np.minimum(omega[live] * 1.25, 0.5))
+        omega[live] = np.maximum(w, 1.0 / 1024)
+        last[live] = change
+        Tq[live[going]] += omega[live[going], None] * step[going]
+        live = live[going]
+        if live.size == 0:
             return _integrand(material, surface, v, Tq, p, grid, gamma)[0], Tq
-        omega = np.where(change > last, omega / 2, np.minimum(omega * 1.25, 0.5))
-        omega = np.maximum(omega, 1.0 / 1024)
-        last = change
-        Tq = Tq + omega[:, None] * step
     raise DomainError(f"Persson: the flash temperature did not converge in {flash.max_iter} "
                       f"iterations (last change {float(change.max()):.3g} K); no friction "
                       "coefficient is given for these conditions")
