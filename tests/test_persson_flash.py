@@ -152,5 +152,9 @@ def test_flash_temperature_converges_across_the_domain():
                           [1e-3, 0.1, 10.0, 1e3], indexing="ij")
     mu = friction(MAT, SURF, v, T, p, gamma=0.5, flash=TREAD_THERMAL)
     assert np.all(np.isfinite(mu)) and np.all(mu > 0)
+    # points where a step of half the full one overshot for ever
+    mu = friction(MAT, SURF, np.array([6.784, 8.724]), np.array([265.145, 268.195]),
+                  np.array([2.5498e5, 5.892e4]), gamma=0.5, flash=TREAD_THERMAL)
+    assert np.all(np.isfinite(mu)) and np.all(mu > 0)
     _, Tq = flash_temperature(MAT, SURF, 10.0, 253.15, 1e5, flash=TREAD_THERMAL)
     assert Tq.max() > 300.0

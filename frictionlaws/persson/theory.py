@@ -389,15 +389,16 @@ def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray,
                  grid: _Grid, gamma: float, flash: Flash) -> tuple[np.ndarray, np.ndarray]:
     """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`).
 
-    Damped fixed-point iteration, the damping of each point halved whenever its
-    change grows (a hot rubber on the glassy side heats itself further, and the
-    plain iteration oscillates there) and relaxed again while it shrinks.
+    Damped fixed-point iteration, each point's step at most :data:`_DAMP_MAX` of
+    the full one, halved whenever its change grows (a hot rubber on the glassy
+    side heats itself further, and a fuller step overshoots there) and let grow
+    slowly again while it shrinks.
     """
     a = np.pi / (2.0 * grid.nodes)
     phi = 2.0 / np.sqrt(np.pi * (1.273 + v[:, None] * a[None, :] / (2.0 * flash.diffusivity)))
     c = flash.heat_fraction * p * v / flash.conductivity
     Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
-    omega = np.full(v.size, 0.5)
+    omega = np.full(v.size, _DAMP_MAX)
     last = np.full(v.size, np.inf)
     live = np.arange(v.size)          # the points still iterating
     change = np.zeros(0)
@@ -409,8 +410,9 @@ def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray,
         step = T[live, None] + c[live, None] * (K * finer + coarser) - Tq[live]
         change = np.max(np.abs(step), axis=1)
         going = change >= flash.tol
-        w = np.where(change > last[live], omega[live] / 2, np.minimum(omega[live] * 1.25, 0.5))
-        omega[live] = np.maximum(w, 1.0 / 1024)
+        w = np.where(change > last[live], omega[live] / 2,
+                     np.minimum(omega[live] * 1.05, _DAMP_MAX))
+        omega[live] = np.maximum(w, _DAMP_MIN)
         last[live] = change
         Tq[live[going]] += omega[live[going], None] * step[going]
         live = live[going]
@@ -420,6 +422,9 @@ def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray,
                       f"iterations (last change {float(change.max()):.3g} K); no friction "
                       "coefficient is given for these conditions")
 
+
+#: Largest and smallest fraction of the fixed-point step taken (flash temperature).
+_DAMP_MAX, _DAMP_MIN = 0.3, 1.0 / 128
 
 #: Points evaluated together (bounds the memory of the (points x nodes) arrays).
 _BLOCK = 1024
