@@ -184,3 +184,22 @@ def test_a_one_temperature_material_is_held_to_that_temperature():
 def test_contact_ratio_refuses_a_non_finite_wavenumber(q):
     with pytest.raises(InputError, match="finite wavenumbers"):
         contact_ratio(tread_compound(), SURF, 0.01, 293.15, 2e5, [1e4, q])
+
+
+def test_sliding_that_excites_only_unmeasured_frequencies_is_warned():
+    import warnings
+
+    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.persson import default_material
+
+    mat = default_material()  # measured sweeps: a finite band of reduced frequencies
+    lo, hi = mat.omega_range
+    with pytest.warns(ExtrapolationWarning, match=r"1 of 2 conditions.*v = 1e\+04 m/s"):
+        friction(mat, SURF, np.array([0.01, 1e4]), 293.15, 2e5)
+    assert SURF.q0 * 1e4 * 10 ** float(mat.shift(293.15)) > hi
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        friction(mat, SURF, np.array([0.0, 1e-6, 0.01]), 293.15, 2e5)
+        # the packaged compound is a function of frequency: nothing is extrapolated
+        assert tread_compound().omega_range is None
+        friction(tread_compound(), SURF, np.array([1e-8, 1e4]), 293.15, 2e5)

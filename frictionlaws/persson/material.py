@@ -122,6 +122,11 @@ class Material:
         temperatures.  Default: the shift table's range; for a WLF shift
         without a stated range, the WLF equation's own range from the pole
         ``T_ref - C2`` (excluded) to ``T_ref + 100 K``.
+    omega_range : tuple of float, optional
+        Reduced angular frequencies [rad/s] at ``T_ref`` the measured modulus
+        covers (None: a modulus given as a function, valid at every
+        frequency).  The theory warns where a sliding condition excites only
+        frequencies outside it.
     """
 
     E_inf: float
@@ -132,6 +137,7 @@ class Material:
     rms_rel: float = math.nan
     source: str = ""
     T_range: tuple[float, float] | None = None
+    omega_range: tuple[float, float] | None = None
     _cache: dict[str, Any] = field(default_factory=dict, repr=False)
 
     def temperature_range(self) -> tuple[float, float]:
@@ -246,8 +252,10 @@ def material_from_master_curve(mc: Any, *, nu: float = 0.5, per_decade: float = 
     else:
         shift = Shift(mc.T_ref, T=mc.temperatures, log_aT=np.asarray(mc.log_aT, dtype=float))
     temps = np.asarray(mc.temperatures, dtype=float)
+    w = 2 * np.pi * np.asarray(pts["x_reduced"], dtype=float)
     return Material(E_inf, E_i, tau, shift, nu, rms, source,
-                    T_range=(float(temps.min()), float(temps.max())))
+                    T_range=(float(temps.min()), float(temps.max())),
+                    omega_range=(float(w.min()), float(w.max())))
 
 
 def _check_nu(nu: float) -> None:
@@ -299,8 +307,9 @@ def material_from_csv(path: str | os.PathLike[str], *, columns: Mapping[str, str
                              file=str(path)) from None
         E_inf, E_i, tau, rms = fit_prony(2 * np.pi * d["f"], d["E_stor"], d["E_loss"],
                                          per_decade=per_decade)
+        w = 2 * np.pi * d["f"]
         return Material(E_inf, E_i, tau, Shift(T_ref, C1=17.44, C2=51.6), nu, rms, str(path),
-                        T_range=(T_ref, T_ref))
+                        T_range=(T_ref, T_ref), omega_range=(float(w.min()), float(w.max())))
     mc = build_master_curve(d["f"], np.column_stack([d["E_stor"], d["E_loss"]]), d["T"],
                             T_ref=T_ref, y_names=["E_stor", "E_loss"], x_name="f")
     return material_from_master_curve(mc, nu=nu, per_decade=per_decade, wlf=wlf,

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 from scipy.special import erf
 
-from ..errors import DomainError, InputError
+from ..errors import DomainError, ExtrapolationWarning, InputError
 from .flash import Flash
 from .material import Material
 
@@ -206,6 +206,31 @@ def check_conditions(material: Material, v: Any, T: Any, p: Any) -> None:
                           f"{hi:.6g} K ({lo - 273.15:.4g} .. {hi - 273.15:.4g} degC){hint}")
 
 
+def _warn_outside_data(material: Material, q0: float, q1: float, v: np.ndarray, T: np.ndarray
+                       ) -> None:
+    """Warn where a condition excites only frequencies the material's data do not cover.
+
+    The excitation runs from ``q0 v a_T`` to ``q1 v a_T`` (reduced to T_ref); when
+    that band misses the measured ``omega_range`` altogether, mu comes from the
+    Prony series' continuation alone (its rubbery or glassy limit).
+    """
+    if material.omega_range is None or v.size == 0:
+        return
+    lo, hi = material.omega_range
+    w = v * 10.0 ** material.shift(T)
+    out = (v > 0) & ((q1 * w < lo) | (q0 * w > hi))
+    if out.any():
+        import warnings
+
+        k = int(np.flatnonzero(out)[0])
+        warnings.warn(
+            f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = {v[k]:.4g} "
+            f"m/s, T = {T[k]:.5g} K) the sliding excites only frequencies outside the "
+            f"material's measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there "
+            "is the Prony series' continuation, an extrapolation", ExtrapolationWarning,
+            stacklevel=4)
+
+
 def _index(mask: np.ndarray) -> int | tuple[int, ...]:
     idx = tuple(int(i) for i in np.argwhere(np.atleast_1d(mask))[0])
     return idx[0] if len(idx) == 1 else idx
@@ -342,6 +367,7 @@ def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: f
     _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
     shape, vv, TT, pp = _prepare(material, v, T, p)
+    _warn_outside_data(material, surface.q0, q1, vv, TT)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
                                   panels_per_decade=panels_per_decade)
     grid = _Grid(nodes, weights, cum, nodes**4 * surface.C(nodes))
