@@ -70,16 +70,17 @@ ax.legend()
 # %%
 # The registry law and an empirical law fitted to it
 # --------------------------------------------------
-# The same prediction is the registry law ``persson`` (its free parameters are q1 and an
-# additive mu_a). A Savkoor bell, fitted to the Persson curve at 20 °C over the
+# The registry law ``persson`` is the same theory for the packaged tread compound
+# (``datasets/tread-compound``, see :doc:`/user-guide/persson`); its free parameters are q1
+# and an additive mu_a. A Savkoor bell, fitted to the Persson curve at 20 °C over the
 # velocities of a tyre, shows how far an empirical law can stand in for the theory.
 law = fl.get_law("persson")
 vv = np.logspace(-6, 1, 60)
 p = np.full(vv.size, 2e5)
-mu_p = law(p=p, v=vv, T=np.full(vv.size, 293.15), preset="dma-on-asphalt")
+mu_p = law(p=p, v=vv, T=np.full(vv.size, 293.15), preset="tread-on-asphalt")
 sav = fl.fit("savkoor", {"p": p, "v": vv, "mu": mu_p}, fix={"n": 0.0})
 fig, ax = plt.subplots(figsize=(7.5, 4), layout="constrained")
-ax.semilogx(vv, mu_p, "o", ms=3, label="Persson (law 'persson')")
+ax.semilogx(vv, mu_p, "o", ms=3, label="Persson (law 'persson', tread compound)")
 ax.semilogx(vv, sav.law.evaluate({"p": p, "v": vv}, sav.values), label=(
     f"Savkoor fitted: RMSE {sav.metrics['rmse']:.4f}"))
 ax.set_xlabel("sliding velocity v [m/s]")
@@ -99,7 +100,7 @@ from pathlib import Path  # noqa: E402
 from frictionlaws.cli import main  # noqa: E402
 
 out = Path(tempfile.mkdtemp()) / "persson.inp"
-main(["export", "--law", "persson", "--preset", "dma-on-asphalt", "--format", "abaqus",
+main(["export", "--law", "persson", "--preset", "tread-on-asphalt", "--format", "abaqus",
       "--p", "0.2MPa:0.2MPa:1", "--v", "1e-4:1:13", "--T", "0degC:40degC:5", "-o", str(out)])
 print("\n".join(out.read_text().splitlines()[:8]))
 

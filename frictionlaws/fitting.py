@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from .bound import BoundLaw
 
 __all__ = ["fit", "FitResult", "ParamEstimate", "load_result", "FitData", "as_fit_data",
-           "check_fit_options", "RESULT_FORMAT", "RESULT_VERSION"]
+           "check_fit_options", "invalid_rows", "RESULT_FORMAT", "RESULT_VERSION"]
 
 RESULT_FORMAT = "frictionlaws-fit-result"
 RESULT_VERSION = 1
@@ -368,20 +368,58 @@ def _row_names(fd: FitData, idx: np.ndarray) -> str:
     return shown + (f" and {idx.size - 8} more" if idx.size > 8 else "")
 
 
-def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData, list[str]]:
-    """Family/variable checks and rows where a singular law is undefined."""
-    law.require_variables(fd.variables, f"data '{fd.name}'")
-    notes: list[str] = []
-    bad = np.zeros(fd.n, dtype=bool)
+def invalid_rows(law: Law, arrays: Mapping[str, np.ndarray], n: int
+                 ) -> tuple[np.ndarray, list[str]]:
+    """Rows where ``law`` is not defined, and why: the one rule of fits and comparisons.
+
+    A row is invalid when a variable the law floors (it takes its log or a negative
+    power) is at or below its floor (``|v|`` for the velocity), or when a variable
+    lies outside a strict domain (a law that must not be extrapolated).
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+    arrays : mapping
+        Variable name -> values (SI), one per row.
+    n : int
+        The number of rows.
+
+    Returns
+    -------
+    mask : numpy.ndarray
+        True for the invalid rows.
+    reasons : list of str
+        One sentence per rule that some row breaks.
+    """
+    bad = np.zeros(n, dtype=bool)
     reasons = []
     for var, floor in law.floors.items():
-        x = fd.arrays[var]
-        x = np.abs(x) if var == "v" else x
-        b = x <= floor
+        if var not in arrays:
+            continue
+        x = arrays[var]
+        b = (np.abs(x) if var == "v" else x) <= floor
         if b.any():
             bad |= b
             reasons.append(f"{var} = 0 ({law.meaning(var)}), where law '{law.id}' "
                            f"is singular (it uses log or a negative power of {var})")
+    for var, (lo, hi) in law.domain.items() if law.strict_domain else ():
+        if var == "s" or var not in arrays:
+            continue
+        x = np.abs(arrays[var]) if var == "v" else arrays[var]
+        b = (x < lo * (1 - 1e-9) - 1e-300) | (x > hi * (1 + 1e-9))
+        if b.any():
+            bad |= b
+            reasons.append(f"values outside {_fmt_range(var, lo, hi)}, the range law "
+                           f"'{law.id}' is valid for (it must not be extrapolated)")
+    return bad, reasons
+
+
+def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData, list[str]]:
+    """Family/variable checks and rows where the law is undefined (:func:`invalid_rows`)."""
+    law.require_variables(fd.variables, f"data '{fd.name}'")
+    notes: list[str] = []
+    bad, reasons = invalid_rows(law, fd.arrays, fd.n)
     if bad.any():
         idx = np.flatnonzero(bad)
         msg = "; ".join(reasons)

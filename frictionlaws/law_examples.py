@@ -260,10 +260,10 @@ def _germann(M, s, a0, a1, a2):
 # ---- numerical references ---------------------------------------------------
 # A law defined by an integral has no closed form to write twice: its reference is a
 # second, slower numerical method (adaptive quadrature with scipy), independent of the
-# library's quadrature; only the material (the packaged DMA master curve) is shared.
+# library's quadrature; only the material (the packaged tread compound's Prony series) is shared.
 
 
-def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
+def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, material=None):
     """Persson's friction integral by adaptive quadrature, independently of the library.
 
     Persson, J. Chem. Phys. 115 (2001) 3840 and J. Phys.: Condens. Matter 17
@@ -273,7 +273,9 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
     sum itself (no analytic angular formula, no table); with ``M = math`` (the
     quick mode of the recovery study) by 16-point Gauss-Legendre on 12 panels
     of pi/2 - phi, one per decade, and rtol 1e-6.  Double precision whatever ``M`` is; slow
-    (seconds a point with adaptive angles, a fraction of a second without).
+    (seconds a point with adaptive angles, a fraction of a second without).  The
+    correction S(q) = gamma + (1 - gamma) P^2 (Persson 2006) multiplies P in the mu
+    integrand; isothermal only (a heat fraction other than 0 is refused).
     """
     import math as _m
 
@@ -281,10 +283,13 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
     from scipy.integrate import quad, solve_ivp
 
     if material is None:
-        from frictionlaws.persson.material import default_material
+        from frictionlaws.persson.material import tread_compound
 
-        material = default_material()
-    p, v, T, q1, mu_a, q0, H, h_rms = (float(x) for x in (p, v, T, q1, mu_a, q0, H, h_rms))
+        material = tread_compound()
+    if heat_fraction != 0:
+        raise ValueError("the reference is isothermal (heat_fraction = 0)")
+    p, v, T, q1, mu_a, q0, H, h_rms, gamma = (float(x) for x in (p, v, T, q1, mu_a, q0, H,
+                                                                 h_rms, gamma))
     Ei, tau, Einf = _np.asarray(material.E_i), _np.asarray(material.tau), material.E_inf
     aT = 10.0 ** float(material.shift(T))
     C0 = H * h_rms**2 / (_m.pi * q0**2)
@@ -321,7 +326,8 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
         c = C0 * (q / q0) ** (-2 * (1 + H)) * q**4
         G = y[0]
         P = 1.0 if G <= 0 else _m.erf(1 / (2 * _m.sqrt(G)))
-        return [c * sq / (8 * e * e), 0.5 * c * P * lo / e]
+        S = gamma + (1 - gamma) * P * P
+        return [c * sq / (8 * e * e), 0.5 * c * P * S * lo / e]
 
     sol = solve_ivp(rhs, (_m.log(q0), _m.log(q1)), [0.0, 0.0], method="DOP853",
                     rtol=1e-6 if M is _m else 1e-7,
@@ -331,13 +337,11 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, material=None):
 
 def _persson_baseline(x: Mapping[str, Any], q: Mapping[str, float]) -> Any:
     """The theory called directly on numpy arrays (the benchmark measures the law's wrapper)."""
-    import numpy as _np
-
-    from frictionlaws.persson import SelfAffine, default_material, friction
+    from frictionlaws.persson import SelfAffine, friction, tread_compound
 
     surf = SelfAffine.from_rms(q["q0"], q["H"], q["h_rms"], q["q1"])
-    v = _np.maximum(_np.abs(x["v"]), 1e-9)
-    return q["mu_a"] + friction(default_material(), surf, v, x["T"], _np.maximum(x["p"], 1.0))
+    return q["mu_a"] + friction(tread_compound(), surf, x["v"], x["T"], x["p"],
+                                gamma=q.get("gamma", 1.0))
 
 
 _THESIS = ("source thesis, Eq. 5-1 / Table 5-1 and Eq. 5-2 / Table 5-2 (P in MPa, V in m/s "
@@ -571,7 +575,7 @@ EXAMPLES: dict[str, LawExample] = {
                  {"p": (2e4, 1e6), "v": (1e-5, 10.0), "T": (263.15, 333.15)}, log=_LOGPV),
         Reference(_persson, ("p", "v", "T"),
                   "Persson, J. Chem. Phys. 115 (2001) 3840 (P(q) as in J. Phys.: Condens. "
-                  "Matter 17 (2005) R1), packaged DMA rubber on the asphalt-like surface",
+                  "Matter 17 (2005) R1), packaged tread compound on the asphalt-like surface",
                   ({"q1": 1e6, "mu_a": 0.1, "q0": 2 * 3.141592653589793 / 0.01, "H": 0.8,
                     "h_rms": 0.3e-3},),
                   {"p": (2e5,), "v": (0.01,), "T": (283.15,)},

@@ -519,3 +519,19 @@ def test_undetermined_rows_of_a_quadratic_in_v(tenths: list[int], new_tenths: in
         assert got == [False, False]
     else:
         assert got == [False, far]
+
+
+def test_strict_domain_rows_are_left_out_as_a_fit_leaves_them_out():
+    """A law that must not be extrapolated is compared on the rows inside its box only."""
+    import frictionlaws as fl
+
+    ds = fl.load_dataset("thesis-steel").frame
+    extra = ds.iloc[:3].copy()
+    extra["p"] = 0.4e6  # beyond the thesis polynomials' box (p up to 0.25 MPa)
+    data = {k: np.concatenate([ds[k].to_numpy(float), extra[k].to_numpy(float)])
+            for k in ("mu", "p", "v")}
+    cmp = fl.compare(["thesis-poly2", "coulomb"], data, folds=3, holdout=None)
+    fitted = {row.law.id: row for row in cmp.results}
+    assert fitted["thesis-poly2"].fit.metrics["n"] == len(ds)
+    assert fitted["coulomb"].fit.metrics["n"] == len(ds) + 3
+    assert any("outside p" in note for note in fitted["thesis-poly2"].fit.notes)

@@ -65,7 +65,7 @@ import numpy as np
 
 from .._workers import local_workers
 from ..errors import DomainError, FitError, InputError
-from ..fitting import FitData, as_fit_data, fit
+from ..fitting import FitData, as_fit_data, fit, invalid_rows
 from ..law import VARIABLES, Law
 from ..registry import get_law, list_laws
 from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
@@ -104,17 +104,11 @@ RANKING = ("cross-validated RMSE (ascending), over the rows common to all fitted
 
 
 def usable_rows(law: Law, data: FitData) -> np.ndarray:
-    """Rows where ``law`` is defined: the rule of ``fit(on_invalid="drop")``.
-
-    A row is unusable when a variable the law floors (it takes its log or a
-    negative power) is at or below its floor (``|v|`` for the velocity).
+    """Rows where ``law`` is defined: the rule of ``fit(on_invalid="drop")``
+    (:func:`frictionlaws.fitting.invalid_rows`: a floored variable at its floor, a
+    variable outside a strict domain).
     """
-    ok = np.ones(data.n, dtype=bool)
-    for var, floor in law.floors.items():
-        if var in data.arrays:
-            x = data.arrays[var]
-            ok &= (np.abs(x) if var == "v" else x) > floor
-    return ok
+    return ~invalid_rows(law, data.arrays, data.n)[0]
 
 
 # ----------------------------------------------------------------- compare

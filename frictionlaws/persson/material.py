@@ -35,7 +35,7 @@ from ..law import NUMPY
 from ..temperature import wlf_formula
 
 __all__ = ["Shift", "Material", "fit_prony", "material_from_master_curve", "material_from_csv",
-           "default_material"]
+           "default_material", "havriliak_negami", "tread_compound"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -116,6 +116,17 @@ class Material:
         the terms were given.
     source : str
         Where the material comes from.
+    T_range : tuple of float, optional
+        Temperatures [K] the material's data cover (its DMA sweeps, or the
+        range its WLF constants were stated for): the theory refuses other
+        temperatures.  Default: the shift table's range; for a WLF shift
+        without a stated range, the WLF equation's own range from the pole
+        ``T_ref - C2`` (excluded) to ``T_ref + 100 K``.
+    omega_range : tuple of float, optional
+        Reduced angular frequencies [rad/s] at ``T_ref`` the measured modulus
+        covers (None: a modulus given as a function, valid at every
+        frequency).  The theory warns where a sliding condition excites only
+        frequencies outside it.
     """
 
     E_inf: float
@@ -125,7 +136,27 @@ class Material:
     nu: float = 0.5
     rms_rel: float = math.nan
     source: str = ""
+    T_range: tuple[float, float] | None = None
+    omega_range: tuple[float, float] | None = None
     _cache: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    def temperature_range(self) -> tuple[float, float]:
+        """The temperatures [K] the material's data cover (see :attr:`T_range`)."""
+        if self.T_range is not None:
+            try:
+                lo, hi = (float(x) for x in self.T_range)
+            except (TypeError, ValueError):
+                raise InputError(f"T_range {self.T_range!r} must be two temperatures [K]"
+                                 ) from None
+            if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+                raise InputError(f"T_range ({lo:g}, {hi:g}) K must be finite, above 0 K and "
+                                 "increasing")
+            return lo, hi
+        sh = self.shift
+        if sh.T is not None:
+            return (float(np.min(sh.T)), float(np.max(sh.T)))
+        assert sh.C2 is not None
+        return (float(np.nextafter(sh.T_ref - sh.C2, math.inf)), float(sh.T_ref + 100.0))
 
     def modulus(self, omega: Any, T: Any = None) -> np.ndarray:
         """Complex modulus E(omega, T) [Pa] at angular frequency ``omega`` [rad/s]."""
@@ -145,7 +176,8 @@ class Material:
         return {"E_inf": self.E_inf, "E_inf_unit": "Pa", "E_i": self.E_i.tolist(),
                 "E_i_unit": "Pa", "tau": self.tau.tolist(), "tau_unit": "s",
                 "terms": int(self.E_i.size), "nu": self.nu, "rms_rel": self.rms_rel,
-                "shift": self.shift.describe(), "source": self.source}
+                "shift": self.shift.describe(), "source": self.source,
+                "T_range": list(self.temperature_range()), "T_range_unit": "K"}
 
 
 def fit_prony(omega: Any, E_stor: Any, E_loss: Any, *, per_decade: float = 1.0,
@@ -219,7 +251,11 @@ def material_from_master_curve(mc: Any, *, nu: float = 0.5, per_decade: float = 
         shift = Shift(mc.T_ref, C1=mc.wlf.C1, C2=mc.wlf.C2)
     else:
         shift = Shift(mc.T_ref, T=mc.temperatures, log_aT=np.asarray(mc.log_aT, dtype=float))
-    return Material(E_inf, E_i, tau, shift, nu, rms, source)
+    temps = np.asarray(mc.temperatures, dtype=float)
+    w = 2 * np.pi * np.asarray(pts["x_reduced"], dtype=float)
+    return Material(E_inf, E_i, tau, shift, nu, rms, source,
+                    T_range=(float(temps.min()), float(temps.max())),
+                    omega_range=(float(w.min()), float(w.max())))
 
 
 def _check_nu(nu: float) -> None:
@@ -241,7 +277,8 @@ def material_from_csv(path: str | os.PathLike[str], *, columns: Mapping[str, str
         master curve by :func:`frictionlaws.mastercurve.build_master_curve`, one
         temperature is taken as the master curve itself (then ``T`` may be
         absent and the shift is a WLF with ``T_ref`` and the universal
-        constants, C1 = 17.44, C2 = 51.6 K).
+        constants, C1 = 17.44, C2 = 51.6 K, and the material's data cover
+        ``T_ref`` alone: give ``Material.T_range`` to evaluate elsewhere).
     columns : mapping, optional
         ``f``, ``E_stor``, ``E_loss``, ``T`` -> column names in the file.
     units : mapping, optional
@@ -270,7 +307,9 @@ def material_from_csv(path: str | os.PathLike[str], *, columns: Mapping[str, str
                              file=str(path)) from None
         E_inf, E_i, tau, rms = fit_prony(2 * np.pi * d["f"], d["E_stor"], d["E_loss"],
                                          per_decade=per_decade)
-        return Material(E_inf, E_i, tau, Shift(T_ref, C1=17.44, C2=51.6), nu, rms, str(path))
+        w = 2 * np.pi * d["f"]
+        return Material(E_inf, E_i, tau, Shift(T_ref, C1=17.44, C2=51.6), nu, rms, str(path),
+                        T_range=(T_ref, T_ref), omega_range=(float(w.min()), float(w.max())))
     mc = build_master_curve(d["f"], np.column_stack([d["E_stor"], d["E_loss"]]), d["T"],
                             T_ref=T_ref, y_names=["E_stor", "E_loss"], x_name="f")
     return material_from_master_curve(mc, nu=nu, per_decade=per_decade, wlf=wlf,
@@ -296,3 +335,75 @@ def default_material() -> Material:
                             x_name="f", fit=False)
     return material_from_master_curve(mc, source="datasets/dma-pyvisco (NREL pyvisco DMA "
                                       "sweeps), master curve by frictionlaws.mastercurve")
+
+
+def havriliak_negami(omega: Any, E_r: float, E_g: float, tau0: float, alpha: float,
+                     beta: float) -> np.ndarray:
+    """Complex modulus of the Havriliak-Negami form [Pa].
+
+    ``E(omega) = E_g + (E_r - E_g) / (1 + (i omega tau0)^alpha)^beta``: the rubbery
+    modulus ``E_r`` at low and the glassy ``E_g`` at high angular frequency
+    ``omega`` [rad/s] (S. Havriliak, S. Negami, Polymer 8 (1967) 161).
+    """
+    w = np.asarray(omega, dtype=float)
+    return E_g + (E_r - E_g) / (1.0 + (1j * w * tau0) ** alpha) ** beta
+
+
+#: The packaged tread compound (``datasets/tread-compound/``).
+TREAD_FILE = "tread-compound/tread-hn.json"
+
+
+def _value(spec: Mapping[str, Any], key: str, file: str) -> float:
+    try:
+        x = float(spec[key]["value"])
+    except (KeyError, TypeError, ValueError):
+        raise InputError(f"expected a number under '{key}' -> 'value'", file=file) from None
+    if not math.isfinite(x):
+        raise InputError(f"'{key}' is not finite", file=file)
+    return x
+
+
+@functools.lru_cache(maxsize=1)
+def _tread_spec() -> dict[str, Any]:
+    import json
+
+    from ..io import datasets_dir
+
+    text = (datasets_dir() / TREAD_FILE).read_text(encoding="utf-8")
+    spec: dict[str, Any] = json.loads(text)
+    return spec
+
+
+def tread_temperature_range() -> tuple[float, float]:
+    """The temperatures [K] the packaged tread compound is declared for (no Prony fit)."""
+    lo, hi = (float(x) for x in _tread_spec()["shift"]["T_range"]["value"])
+    return lo, hi
+
+
+@functools.lru_cache(maxsize=1)
+def tread_compound() -> Material:
+    """The packaged tread compound (``datasets/tread-compound/tread-hn.json``).
+
+    An illustrative passenger-car tread rubber constructed, not measured: a
+    Havriliak-Negami master curve (:func:`havriliak_negami`) at its glass
+    transition T_g, shifted by the universal WLF constants, with the
+    temperature range T_g .. T_g + 100 K; every number and where it comes from
+    is in the file and in ``datasets/README.md``.  The Prony series is fitted
+    to the form on first use (:func:`fit_prony`) and cached.
+    """
+    from ..temperature import WLF_PRESETS
+
+    d = _tread_spec()
+    m, sh, pr = d["modulus"], d["shift"], d["prony"]
+    E_r, E_g, tau0, alpha, beta = (_value(m, k, TREAD_FILE) for k in
+                                   ("E_r", "E_g", "tau0", "alpha", "beta"))
+    wlf = WLF_PRESETS[sh["wlf_preset"]]
+    T_g = _value(sh, "T_g", TREAD_FILE)
+    lo, hi = tread_temperature_range()
+    w = np.logspace(math.log10(pr["omega_min"]), math.log10(pr["omega_max"]), int(pr["points"]))
+    E = havriliak_negami(w, E_r, E_g, tau0, alpha, beta)
+    E_inf, E_i, tau, rms = fit_prony(w, E.real, E.imag, per_decade=float(pr["per_decade"]),
+                                     extend=0.0)
+    return Material(E_inf, E_i, tau, Shift(wlf.T_ref(T_g), C1=wlf.C1, C2=wlf.C2),
+                    _value(d, "nu", TREAD_FILE), rms, f"datasets/{TREAD_FILE}: {d['title']}",
+                    T_range=(lo, hi))

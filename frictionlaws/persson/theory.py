@@ -33,15 +33,18 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from scipy.special import erf
 
+from ..errors import DomainError, ExtrapolationWarning, InputError
+from .flash import Flash
 from .material import Material
 
-__all__ = ["friction", "contact_ratio", "loss_angular", "loss_tabulated", "modulus_sq_angular",
-           "q_nodes"]
+__all__ = ["friction", "flash_temperature", "contact_ratio", "check_conditions", "loss_angular",
+           "loss_tabulated", "modulus_sq_angular", "q_nodes"]
 
 
 def loss_angular(material: Material, omega0: Any) -> np.ndarray:
@@ -163,28 +166,110 @@ def q_nodes(q0: float, q1: float, *, order: int = 10, panels_per_decade: float =
     return np.exp(nodes), weights, cum
 
 
-def _prepare(v: Any, T: Any, p: Any) -> tuple[tuple[int, ...], np.ndarray, np.ndarray,
-                                             np.ndarray]:
+def check_conditions(material: Material, v: Any, T: Any, p: Any) -> None:
+    """Refuse sliding conditions the theory cannot take for this material.
+
+    Every value finite; the pressure positive (the theory divides by it: at
+    p = 0 there is no contact and no friction coefficient); the temperature
+    inside the range the material's data cover
+    (:meth:`~frictionlaws.persson.material.Material.temperature_range`), since
+    the modulus elsewhere would be an extrapolation of its shift.
+
+    Raises
+    ------
+    InputError
+        A non-finite value.
+    DomainError
+        A pressure <= 0 or a temperature outside the material's data.
+    """
+    for name, unit, x in (("v", "m/s", v), ("T", "K", T), ("p", "Pa", p)):
+        a = np.asarray(x, dtype=float)
+        bad = ~np.isfinite(a)
+        if bad.any():
+            raise InputError(f"Persson: {name} has a non-finite value ({a[bad].flat[0]}) at "
+                             f"index {_index(bad)} [{unit}]")
+    pa = np.asarray(p, dtype=float)
+    if pa.size and float(pa.min()) <= 0.0:
+        bad = pa <= 0.0
+        raise DomainError(f"Persson: p = {pa[bad].flat[0]:g} Pa at index {_index(bad)}: the "
+                          "nominal pressure must be > 0 (the theory divides by it; without "
+                          "contact there is no friction coefficient)")
+    Ta = np.asarray(T, dtype=float)
+    lo, hi = material.temperature_range()
+    if Ta.size and (float(Ta.min()) < lo * (1 - 1e-12) or float(Ta.max()) > hi * (1 + 1e-12)):
+        bad = (Ta < lo * (1 - 1e-12)) | (Ta > hi * (1 + 1e-12))
+        first = float(Ta[bad].flat[0])
+        hint = (f"; if it is in degC, {first:g} degC is {first + 273.15:g} K"
+                if lo <= first + 273.15 <= hi else "")
+        raise DomainError(f"Persson: T = {first:.6g} K at index {_index(bad)} is "
+                          f"outside the temperatures the material's data cover, {lo:.6g} .. "
+                          f"{hi:.6g} K ({lo - 273.15:.4g} .. {hi - 273.15:.4g} degC){hint}")
+
+
+def _warn_outside_data(material: Material, q0: float, q1: float, v: np.ndarray, T: np.ndarray
+                       ) -> None:
+    """Warn where a condition excites only frequencies the material's data do not cover.
+
+    The excitation runs from ``q0 v a_T`` to ``q1 v a_T`` (reduced to T_ref); when
+    that band misses the measured ``omega_range`` altogether, mu comes from the
+    Prony series' continuation alone (its rubbery or glassy limit).
+    """
+    if material.omega_range is None or v.size == 0:
+        return
+    lo, hi = material.omega_range
+    w = v * 10.0 ** material.shift(T)
+    out = (v > 0) & ((q1 * w < lo) | (q0 * w > hi))
+    if out.any():
+        import warnings
+
+        k = int(np.flatnonzero(out)[0])
+        warnings.warn(
+            f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = {v[k]:.4g} "
+            f"m/s, T = {T[k]:.5g} K) the sliding excites only frequencies outside the "
+            f"material's measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there "
+            "is the Prony series' continuation, an extrapolation", ExtrapolationWarning,
+            stacklevel=4)
+
+
+def _index(mask: np.ndarray) -> int | tuple[int, ...]:
+    idx = tuple(int(i) for i in np.argwhere(np.atleast_1d(mask))[0])
+    return idx[0] if len(idx) == 1 else idx
+
+
+def _prepare(material: Material, v: Any, T: Any, p: Any
+             ) -> tuple[tuple[int, ...], np.ndarray, np.ndarray, np.ndarray]:
+    check_conditions(material, v, T, p)
     b = np.broadcast_arrays(np.asarray(v, float), np.asarray(T, float), np.asarray(p, float))
     shape = b[0].shape
     return shape, np.abs(b[0]).ravel(), b[1].ravel(), b[2].ravel()
 
 
 def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: Any) -> Any:
-    """P(q) = A(q)/A0 at wavenumbers ``q`` (last axis) for each v, T, p (fast path)."""
-    shape, vv, TT, pp = _prepare(v, T, p)
-    q = np.asarray(q, dtype=float)
+    """P(q) = A(q)/A0 at wavenumbers ``q`` [1/m] (last axis) for each v, T, p.
+
+    G is integrated from q0 to each ``q`` itself (a Gauss-Legendre rule on
+    [q0, q]), so P is the contact ratio at q, not at a quadrature node near it;
+    ``P = 1`` for ``q <= q0``.
+    """
+    shape, vv, TT, pp = _prepare(material, v, T, p)
+    q = np.asarray(q, dtype=float).ravel()
+    if q.size and not np.all(np.isfinite(q)):
+        raise InputError("Persson: contact_ratio needs finite wavenumbers q [1/m]")
     out = []
     for qi in q:
-        nodes, _, cum = q_nodes(surface.q0, float(qi) if qi > surface.q0 else
-                                surface.q0 * (1 + 1e-12))
-        G = _G(material, surface, vv, TT, pp, nodes, cum)
-        out.append(_P(G[:, -1]) if qi > surface.q0 else np.ones(vv.size))
+        if qi <= surface.q0:
+            out.append(np.ones(vv.size))
+            continue
+        nodes, weights, _ = q_nodes(surface.q0, float(qi))
+        out.append(_P(_G_total(material, surface, vv, TT, pp, nodes, weights)))
     return np.stack(out, axis=-1).reshape(shape + (q.size,))
 
 
 def _omega0(material: Material, v: np.ndarray, T: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """omega0 = q v a_T for each point (rows) and node (columns); ``T`` per point or per node."""
     aT = 10.0 ** material.shift(T)
+    if np.ndim(aT) == 2:
+        return v[:, None] * aT * q[None, :]
     return (v * aT)[:, None] * q[None, :]
 
 
@@ -197,14 +282,22 @@ def _G(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.nda
     return g @ cum.T
 
 
+def _G_total(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+             nodes: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """G at the upper end of the nodes' interval (the full quadrature, not the last node)."""
+    e = (1.0 - material.nu**2) * p
+    F = modulus_sq_angular(material, _omega0(material, v, T, nodes))
+    return (nodes**4 * surface.C(nodes) / 8.0 * F / (e * e)[:, None]) @ weights
+
+
 def _P(G: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore"):
         return erf(1.0 / (2.0 * np.sqrt(np.maximum(G, 0.0))))
 
 
 def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
-             q1: float | None = None, order: int = 10, panels_per_decade: float = 2.0
-             ) -> Any:
+             q1: float | None = None, order: int = 10, panels_per_decade: float = 2.0,
+             gamma: float = 1.0, flash: Flash | None = None) -> Any:
     """The viscoelastic friction coefficient mu(v, T, p) of Persson's theory.
 
     Parameters
@@ -214,32 +307,150 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
     surface : SelfAffine or TabulatedPSD
         The counter-surface spectrum C(q) [m^4] with its ``q0``.
     v, T, p : array-like
-        Sliding velocity [m/s], temperature [K], nominal pressure [Pa];
-        broadcast together.
+        Sliding velocity [m/s] (its magnitude; v = 0 gives the static limit
+        mu = 0), temperature [K] inside the material's data, nominal pressure
+        [Pa] > 0; broadcast together (:func:`check_conditions`).
     q1 : float, optional
         Short-wavelength cut-off [1/m] (default: the surface's ``q1``).
     order, panels_per_decade
         Gauss-Legendre nodes per panel and panels per decade of q.
+    gamma : float
+        The correction ``S(q) = gamma + (1 - gamma) P(q)^2`` of the integrand
+        (Persson, J. Phys.: Condens. Matter 18 (2006) 7789, who suggests
+        gamma of about 1/2): the elastic energy stored near the edges of the
+        contact regions.  1 (the default) is the uncorrected theory of 2001.
+    flash : Flash, optional
+        Thermal properties for the flash temperature (:mod:`.flash`); None
+        (the default) is the isothermal theory.
 
     Returns
     -------
     float or numpy.ndarray
         mu, of the broadcast shape (a float for scalar input).
+
+    Raises
+    ------
+    DomainError
+        Conditions outside the material's data, or a flash temperature that
+        does not converge.
     """
+    return _friction(material, surface, v, T, p, q1=q1, order=order,
+                     panels_per_decade=panels_per_decade, gamma=gamma, flash=flash)[0]
+
+
+def flash_temperature(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
+                      flash: Flash, q1: float | None = None, gamma: float = 1.0
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The temperatures T_q [K] the rubber has at each length scale while sliding.
+
+    Returns
+    -------
+    q, T_q : numpy.ndarray
+        The quadrature wavenumbers [1/m] and the temperatures, one row per
+        point of the broadcast v, T, p (flattened).
+    """
+    _, nodes, Tq = _friction(material, surface, v, T, p, q1=q1, order=10,
+                             panels_per_decade=2.0, gamma=gamma, flash=flash)
+    return nodes, Tq
+
+
+def _check_gamma(gamma: float) -> None:
+    if not (isinstance(gamma, (int, float)) and 0.0 <= gamma <= 1.0):
+        raise InputError(f"Persson: gamma = {gamma!r} of S(q) = gamma + (1 - gamma) P^2 must "
+                         "be in 0..1")
+
+
+def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: float | None,
+              order: int, panels_per_decade: float, gamma: float, flash: Flash | None
+              ) -> tuple[Any, np.ndarray, np.ndarray]:
+    """mu (as :func:`friction` returns it), the q nodes and T_q (points x nodes)."""
+    _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
-    shape, vv, TT, pp = _prepare(v, T, p)
+    shape, vv, TT, pp = _prepare(material, v, T, p)
+    _warn_outside_data(material, surface.q0, q1, vv, TT)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
                                   panels_per_decade=panels_per_decade)
-    qC = nodes**4 * surface.C(nodes)
+    grid = _Grid(nodes, weights, cum, nodes**4 * surface.C(nodes))
     mu = np.empty(vv.size)
+    Tq = np.empty((vv.size, nodes.size))
+    heated = flash is not None and flash.heat_fraction > 0
     for k in range(0, vv.size, _BLOCK):
         b = slice(k, k + _BLOCK)
-        G = _G(material, surface, vv[b], TT[b], pp[b], nodes, cum)
-        e = (1.0 - material.nu**2) * pp[b]
-        A = loss_tabulated(material, _omega0(material, vv[b], TT[b], nodes))
-        mu[b] = (0.5 * qC * _P(G) * A / e[:, None]) @ weights
-    return float(mu[0]) if shape == () else mu.reshape(shape)
+        if heated:
+            assert flash is not None
+            dmu, Tq[b] = _flash_solve(material, surface, vv[b], TT[b], pp[b], grid, gamma,
+                                      flash)
+        else:
+            dmu, _ = _integrand(material, surface, vv[b], TT[b], pp[b], grid, gamma)
+            Tq[b] = TT[b][:, None]
+        mu[b] = dmu.sum(axis=1)
+    # v = 0: no excitation, Im E(0) = 0, the exact limit (mu falls linearly in v towards it)
+    mu[vv == 0.0] = 0.0
+    return (float(mu[0]) if shape == () else mu.reshape(shape)), nodes, Tq
 
+
+@dataclass(frozen=True)
+class _Grid:
+    nodes: np.ndarray
+    weights: np.ndarray
+    cum: np.ndarray
+    qC: np.ndarray
+
+
+def _integrand(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+               grid: _Grid, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    """The friction integrand times the weights (points x nodes) and P(q) at the nodes.
+
+    ``T`` is one temperature per point or one per point and node (T_q).
+    """
+    G = _G(material, surface, v, T, p, grid.nodes, grid.cum)
+    P = _P(G)
+    e = (1.0 - material.nu**2) * p
+    A = loss_tabulated(material, _omega0(material, v, T, grid.nodes))
+    S = P if gamma == 1.0 else P * (gamma + (1.0 - gamma) * P * P)
+    return 0.5 * grid.qC * S * A / e[:, None] * grid.weights, P
+
+
+def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
+                 grid: _Grid, gamma: float, flash: Flash) -> tuple[np.ndarray, np.ndarray]:
+    """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`).
+
+    Damped fixed-point iteration, each point's step at most :data:`_DAMP_MAX` of
+    the full one, halved whenever its change grows (a hot rubber on the glassy
+    side heats itself further, and a fuller step overshoots there) and let grow
+    slowly again while it shrinks.
+    """
+    a = np.pi / (2.0 * grid.nodes)
+    phi = 2.0 / np.sqrt(np.pi * (1.273 + v[:, None] * a[None, :] / (2.0 * flash.diffusivity)))
+    c = flash.heat_fraction * p * v / flash.conductivity
+    Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
+    omega = np.full(v.size, _DAMP_MAX)
+    last = np.full(v.size, np.inf)
+    live = np.arange(v.size)          # the points still iterating
+    change = np.zeros(0)
+    for _ in range(flash.max_iter):
+        dmu, P = _integrand(material, surface, v[live], Tq[live], p[live], grid, gamma)
+        K = a[None, :] * phi[live] / np.maximum(P, 1e-300)
+        finer = np.cumsum(dmu[:, ::-1], axis=1)[:, ::-1]        # sum over q' >= q
+        coarser = np.cumsum(dmu * K, axis=1) - dmu * K           # sum over q' < q of dmu K
+        step = T[live, None] + c[live, None] * (K * finer + coarser) - Tq[live]
+        change = np.max(np.abs(step), axis=1)
+        going = change >= flash.tol
+        w = np.where(change > last[live], omega[live] / 2,
+                     np.minimum(omega[live] * 1.05, _DAMP_MAX))
+        omega[live] = np.maximum(w, _DAMP_MIN)
+        last[live] = change
+        Tq[live[going]] += omega[live[going], None] * step[going]
+        live = live[going]
+        if live.size == 0:
+            return _integrand(material, surface, v, Tq, p, grid, gamma)[0], Tq
+    raise DomainError(f"Persson: the flash temperature did not converge in {flash.max_iter} "
+                      f"iterations (last change {float(change.max()):.3g} K); no friction "
+                      "coefficient is given for these conditions")
+
+
+#: Largest and smallest fraction of the fixed-point step taken (flash temperature).
+_DAMP_MAX, _DAMP_MIN = 0.3, 1.0 / 128
 
 #: Points evaluated together (bounds the memory of the (points x nodes) arrays).
 _BLOCK = 1024
