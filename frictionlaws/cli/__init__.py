@@ -54,6 +54,7 @@ COMMANDS = (
     "process",
     "validate",
     "export",
+    "examples",
 )
 
 #: Library argument (``InputError.option``) -> the flag that sets it.  A command
