@@ -591,8 +591,34 @@ class FitResult:
             "provenance": self.provenance,
         }
 
-    def to_frame(self) -> Any:
+    @property
+    def var_names(self) -> list[str]:
+        """The fitted (not fixed) parameters, in the order of :attr:`covar`'s rows."""
+        return [k for k, e in self.params.items() if not e.fixed]
+
+    @property
+    def covar(self) -> np.ndarray:
+        """The covariance matrix of the fitted parameters (SI), rows in :attr:`var_names` order.
+
+        Built from the standard errors and correlations of the method used
+        (``uncertainty``); a parameter without a standard error (not identifiable)
+        has NaN in its row and column.
+        """
+        names = self.var_names
+        se = np.array([math.nan if self.params[k].stderr is None else self.params[k].stderr
+                       for k in names], dtype=float)
+        corr = np.array([[1.0 if a == b else self.correlation.get(a, {}).get(b, math.nan)
+                          for b in names] for a in names], dtype=float).reshape(len(names), -1)
+        return np.asarray(corr * np.outer(se, se), dtype=float)
+
+    def to_frame(self, units: str = "display") -> Any:
         """Return the parameters as a :class:`pandas.DataFrame`.
+
+        Parameters
+        ----------
+        units : {"display", "si"}
+            ``"display"`` (default): pressures in MPa, so Thirion's ``b`` is in 1/MPa;
+            ``"si"``: the values as fitted (1/Pa).  See :mod:`frictionlaws.display`.
 
         Returns
         -------
@@ -601,9 +627,9 @@ class FitResult:
         """
         from .interop import params_frame
 
-        return params_frame(self)
+        return params_frame(self, units)
 
-    def plot(self, data: Any = None, **kw: Any) -> Any:
+    def plot(self, data: Any = None, *, units: str = "display", **kw: Any) -> Any:
         """Plot data, fit, 95 % band and residuals.
 
         See :func:`frictionlaws.interop.plot_result`.
@@ -612,6 +638,8 @@ class FitResult:
         ----------
         data : optional
             The data to show (default: the data fitted).
+        units : {"display", "si"}
+            The horizontal axis in display units (p in MPa; default) or SI.
         **kw
             Passed to :func:`frictionlaws.interop.plot_result`.
 
@@ -622,7 +650,7 @@ class FitResult:
         """
         from .interop import plot_result
 
-        return plot_result(self, data, **kw)
+        return plot_result(self, data, units=units, **kw)
 
     def _repr_html_(self) -> str:
         from .interop import result_html
