@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import ExtrapolationWarning, FitError, InputError
+from .errors import Argument, ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
 
@@ -390,8 +390,9 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
             fd = fd.subset(~bad)
         else:
             raise InputError(
-                f"data '{fd.name}': {idx.size} rows (rows {_row_names(fd, idx)}) have {msg}; "
-                "remove them or drop them explicitly (--drop-invalid)")
+                [f"data '{fd.name}': {idx.size} rows (rows {_row_names(fd, idx)}) have {msg}; "
+                 "remove them or drop them explicitly (",
+                 Argument("on_invalid", "drop", switch=True), ")"])
     k = len(law.params)
     if fd.n == 0:
         raise InputError(f"data '{fd.name}' has no rows left to fit law '{law.id}'")
@@ -1468,7 +1469,8 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
         warn_msgs.append(
             f"the data cannot determine {', '.join(non_id)}: they cannot be told apart "
             f"(Jacobian rank deficient, singular-value ratio {ratio:.1e}); their standard "
-            "errors are withheld. Fix some of them (--fix) or use an identifiable form.")
+            "errors are withheld. Hold some of them fixed (argument fix) or use an "
+            "identifiable form.")
     if weak:
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")

@@ -64,6 +64,7 @@ OPTION_FLAGS = {
     "units": "--units",
     "area": "--area",
     "fix": "--fix",
+    "on_invalid=drop": "--drop-invalid",
     "free": "--free",
     "starts": "--starts",
     "seed": "--seed",
