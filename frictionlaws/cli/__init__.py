@@ -541,7 +541,7 @@ def _completion(parser: argparse.ArgumentParser, shell: str) -> int:
         import shtab
     except ImportError:
         print("error: shell completion needs the 'shtab' package: "
-              "pip install 'frictionlaws[cli]'", file=sys.stderr)
+              "pip install shtab (a dependency of frictionlaws; reinstall it)", file=sys.stderr)
         return 2
     print(shtab.complete(parser, shell=shell))
     return 0
