@@ -8,9 +8,10 @@ ten at 1.38 m/s and one at 2.77 m/s. Here every registered sliding-velocity law 
 to it with the same call, and the fits are drawn side by side.
 
 Two things to watch: laws with a logarithm or a negative power of the velocity cannot
-use the eight rows at v = 0, so they are fitted to the remaining 11 (the fitter drops
-the rows and says so); and a law with more parameters than the data can support is
-flagged with the parameters it cannot determine.
+use the eight rows at v = 0. By default the fitter stops and names such rows; here
+``on_invalid="drop"`` asks it to fit the remaining 11 and say which rows it dropped. And a
+law with more parameters than the data can support is flagged with the parameters it
+cannot determine.
 """
 
 # %%
