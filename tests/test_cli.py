@@ -202,3 +202,15 @@ def test_long_warnings_are_cut_unless_verbose():
     assert len(short) <= WARNING_WIDTH + 20 and short.endswith("(-v: in full)")
     assert text.startswith(short.rsplit(" ...", 1)[0])
     assert _short("short") == "short"
+
+
+def test_export_prints_each_warning_once(tmp_path, capsys):
+    from frictionlaws.cli import main
+
+    out = tmp_path / "f.inp"
+    assert main(["export", "--law", "thirion", "--fit", "thesis-steel", "--format", "abaqus",
+                 "--p", "0.01MPa:0.5MPa", "-o", str(out)]) == 0
+    text = capsys.readouterr()
+    both = text.out + text.err
+    assert both.count("residuals ordered by v") == 1
+    assert "WARNING" not in both and "warning: fit: residuals" in text.out
