@@ -732,6 +732,9 @@ class FitResult:
             lines.append(f"{k:<10} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
         if self.uncertainty.get("method"):
             lines.append(f"standard errors: {_describe_uncertainty(self.uncertainty)}")
+        shown = _display_line(self.params, self.derived)
+        if shown:
+            lines.append(shown)
         if self.derived:
             lines.append("")
             lines.append("derived quantities:")
@@ -760,6 +763,24 @@ class FitResult:
 
     def _si_note(self) -> str:
         return ", ".join(f"{v} in {VARIABLES[v].unit or '-'}" for v in self.law.variables) or "-"
+
+
+def _display_line(params: Mapping[str, ParamEstimate],
+                  derived: Mapping[str, Mapping[str, Any]]) -> str:
+    """The values with pressures in MPa (``b = 4.72 +/- 0.381 1/MPa``), or ``""`` if none."""
+    from .display import display_param_unit
+
+    items: list[tuple[str, Any, Any, Any]] = [
+        (k, e.value, e.stderr, e.unit) for k, e in params.items() if not e.fixed]
+    items += [(k, d.get("value"), d.get("stderr"), d.get("unit")) for k, d in derived.items()]
+    parts = []
+    for name, value, se, unit in items:
+        shown, factor = display_param_unit(unit)
+        if factor == 1.0 or value is None:
+            continue
+        err = f" +/- {_g(se * factor)}" if se is not None else ""
+        parts.append(f"{name} = {_g(value * factor)}{err} {shown}")
+    return "with p in MPa: " + ", ".join(parts) if parts else ""
 
 
 def _describe_uncertainty(info: Mapping[str, Any]) -> str:

@@ -147,3 +147,12 @@ def test_by_and_shared_write_one_table_layout(temps, tmp_path, capsys) -> None:
     assert list(b.columns) == [*a.columns, "shared"]
     assert set(b.loc[b["shared"], "param"]) == {"b"}
     assert b["dataset"].eq("temps").all() and b["T [K]"].round(2).tolist()[0] == 293.15
+
+
+def test_the_report_adds_the_values_with_pressure_in_mpa(thirion) -> None:
+    text = thirion.report()
+    (line,) = [x for x in text.splitlines() if x.startswith("with p in MPa: ")]
+    b = thirion.params["b"]
+    assert f"b = {b.value * 1e6:.6g} +/- {b.stderr * 1e6:.6g} 1/MPa" in line
+    assert "tau_sat = " in line and line.endswith(" MPa")
+    assert "with p in MPa" not in fl.fit("coulomb", "thesis-steel").report()
