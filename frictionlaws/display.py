@@ -51,6 +51,64 @@ def unit_text(unit: str | None) -> str:
     return unit if unit else DIMENSIONLESS
 
 
+_TOKEN = re.compile(r"\s*(\*\*|[A-Za-z_]+|\d+(?:\.\d+)?|[-+*/^()])")
+
+
+def _pascal_power(unit: str) -> float:
+    """The power of ``Pa`` in a law's unit string (``"1/Pa^2"`` -> -2), without pint.
+
+    A small parser of ``*``, ``/``, ``^`` or ``**`` with a number, and parentheses,
+    which is all a declared parameter unit uses; anything else is an ``InputError``.
+    """
+    tokens = [t for t in _TOKEN.findall(unit)]
+    if "".join(tokens) != unit.replace(" ", ""):
+        raise InputError(f"cannot read the unit '{unit}'")
+    pos = 0
+
+    def peek() -> str:
+        return tokens[pos] if pos < len(tokens) else ""
+
+    def take() -> str:
+        nonlocal pos
+        if pos >= len(tokens):
+            raise InputError(f"cannot read the unit '{unit}'")
+        pos += 1
+        return tokens[pos - 1]
+
+    def factor() -> float:
+        tok = take()
+        if tok == "(":
+            inner = product()
+            if take() != ")":
+                raise InputError(f"cannot read the unit '{unit}'")
+            value = inner
+        elif tok.replace(".", "").isdigit() or re.fullmatch(r"[A-Za-z_]+", tok):
+            value = 1.0 if tok == "Pa" else 0.0
+        else:
+            raise InputError(f"cannot read the unit '{unit}'")
+        if peek() in ("^", "**"):
+            take()
+            sign = -1.0 if peek() == "-" else 1.0
+            if peek() in ("-", "+"):
+                take()
+            number = take()
+            if not number.replace(".", "").isdigit():
+                raise InputError(f"cannot read the unit '{unit}'")
+            value *= sign * float(number)
+        return value
+
+    def product() -> float:
+        value = factor()
+        while peek() in ("*", "/"):
+            value += factor() if take() == "*" else -factor()
+        return value
+
+    power = product()
+    if pos != len(tokens):
+        raise InputError(f"cannot read the unit '{unit}'")
+    return power
+
+
 @functools.lru_cache(maxsize=256)
 def display_param_unit(unit: str | None) -> tuple[str, float]:
     """The display unit of a parameter declared in ``unit`` (SI) and the factor to it.
@@ -66,15 +124,12 @@ def display_param_unit(unit: str | None) -> tuple[str, float]:
         The unit shown and ``factor`` with ``value_shown = factor * value_si``
         (``("1/MPa", 1e6)`` for ``"1/Pa"``; ``(unit, 1.0)`` when nothing changes).
     """
-    from .units import display_unit, unit_registry
+    from .units import QUANTITIES, display_unit
 
     if not unit or not _PASCAL.search(unit):
         return unit_text(unit), 1.0
-    shown = _PASCAL.sub(display_unit("p"), unit)
-    ureg = unit_registry()
-    factor = float(ureg.Quantity(1.0, unit.replace("^", "**"))
-                   .to(shown.replace("^", "**")).magnitude)
-    return shown, factor
+    scale = QUANTITIES["p"].display_si[0]  # 1 MPa = 1e6 Pa
+    return _PASCAL.sub(display_unit("p"), unit), float(scale ** -_pascal_power(unit))
 
 
 def group_label(key: Mapping[str, Any]) -> str:

@@ -156,3 +156,38 @@ def test_the_report_adds_the_values_with_pressure_in_mpa(thirion) -> None:
     assert f"b = {b.value * 1e6:.6g} +/- {b.stderr * 1e6:.6g} 1/MPa" in line
     assert "tau_sat = " in line and line.endswith(" MPa")
     assert "with p in MPa" not in fl.fit("coulomb", "thesis-steel").report()
+
+
+_BASE = st.sampled_from(["Pa", "m", "s", "N"])
+_POWERED = st.builds(lambda u, p: f"{u}^{p}" if p != 1 else u, _BASE,
+                     st.sampled_from([-3, -2, -1, 1, 2, 3]))
+
+
+@st.composite
+def _units(draw) -> str:
+    parts = draw(st.lists(_POWERED, min_size=1, max_size=4))
+    ops = draw(st.lists(st.sampled_from(["*", "/"]), min_size=len(parts) - 1,
+                        max_size=len(parts) - 1))
+    text = parts[0]
+    for op, part in zip(ops, parts[1:]):
+        text += op + (f"({part})" if draw(st.booleans()) else part)
+    return text
+
+
+@given(_units())
+def test_the_display_factor_agrees_with_pint(unit: str) -> None:
+    from frictionlaws.units import unit_registry
+
+    shown, factor = display_param_unit(unit)
+    if "Pa" not in unit:
+        assert factor == 1.0 and shown == unit
+        return
+    ureg = unit_registry()
+    expected = ureg.Quantity(1.0, unit.replace("^", "**")).to(shown.replace("^", "**")).magnitude
+    assert factor == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("unit", ["Pa^", "(Pa", "Pa)", "Pa$", "1/Pa/", "Pa^m", "Pa**"])
+def test_a_unit_the_parser_cannot_read_is_refused(unit: str) -> None:
+    with pytest.raises(InputError, match="cannot read the unit"):
+        display_param_unit(unit)
