@@ -190,8 +190,13 @@ def write_example_files(directory: str | os.PathLike[str], *, seed: int = 0) -> 
     Raises
     ------
     InputError
-        When one of the files or directories already exists (nothing is written).
+        When one of the files or directories already exists (nothing is written), or
+        the seed is not a whole number from 0 to 2**32 - 1.
     """
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) \
+            or not 0 <= int(seed) < 2**32:
+        raise InputError(f"seed must be a whole number from 0 to {2**32 - 1}, got {seed!r}",
+                         option="seed")
     root = Path(directory)
     taken = [name for name in EXAMPLE_FILES if os.path.lexists(root / name)]
     if taken:

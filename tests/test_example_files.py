@@ -75,3 +75,10 @@ def test_the_command_writes_and_then_refuses(tmp_path: Path, capsys) -> None:
     assert main(["examples", str(tmp_path / "ex")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "already exist" in err
+
+
+@pytest.mark.parametrize("seed", [-1, 2**32, 1.5, "1", True, None])
+def test_a_seed_that_is_not_a_whole_number_in_range_is_refused(tmp_path: Path, seed) -> None:
+    with pytest.raises(InputError, match="seed must be a whole number"):
+        write_example_files(tmp_path, seed=seed)
+    assert list(tmp_path.iterdir()) == []
