@@ -197,7 +197,7 @@ def test_a_misspelt_name_gets_a_suggestion(argv, hint, capsys):
 def test_long_warnings_are_cut_unless_verbose():
     from frictionlaws.cli import WARNING_WIDTH, _short
 
-    text = "law 'x' is extrapolated: " + "; ".join(f"clause {i} of the details" for i in range(30))
+    text = "law x is extrapolated: " + "; ".join(f"clause {i} of the details" for i in range(30))
     short = _short(text)
     assert len(short) <= WARNING_WIDTH + 20 and short.endswith("(-v: in full)")
     assert text.startswith(short.rsplit(" ...", 1)[0])
@@ -214,3 +214,16 @@ def test_export_prints_each_warning_once(tmp_path, capsys):
     both = text.out + text.err
     assert both.count("residuals ordered by v") == 1
     assert "WARNING" not in both and "warning: fit: residuals" in text.out
+
+
+def test_the_fit_reports_warnings_short_and_in_full_with_verbose(capsys):
+    from frictionlaws.cli import WARNING_WIDTH, main
+
+    assert main(["fit", "--law", "thirion", "thesis-steel"]) == 0
+    short = [x for x in capsys.readouterr().out.splitlines() if x.startswith("warning: ")]
+    assert main(["fit", "--law", "thirion", "thesis-steel", "-v"]) == 0
+    full = [x for x in capsys.readouterr().out.splitlines() if x.startswith("warning: ")]
+    assert len(short) == len(full) >= 1
+    assert any(len(x) > WARNING_WIDTH + 20 for x in full)
+    assert all(len(x) <= WARNING_WIDTH + 30 for x in short)
+    assert "too narrow ... (-v: in full)" in short[-1] and "bootstrap" in full[-1]

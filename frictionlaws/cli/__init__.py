@@ -40,10 +40,11 @@ from collections.abc import Callable, Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
-from ._common import UsageError
+from ._common import WARNING_WIDTH, UsageError
+from ._common import short_warning as _short
 
 __all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS",
-           "command_names"]
+           "command_names", "WARNING_WIDTH"]
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS = (
@@ -257,17 +258,6 @@ class _Warnings:
             print(f"warning: {text if verbose else _short(text)}{times}", file=sys.stderr)
 
 
-#: Length of a warning line without ``--verbose`` (the whole text with it).
-WARNING_WIDTH = 200
-
-
-def _short(text: str) -> str:
-    """A long warning cut at a clause boundary, pointing to ``-v`` for the rest."""
-    if len(text) <= WARNING_WIDTH:
-        return text
-    head = text[:WARNING_WIDTH]
-    cut = max(head.rfind("; "), head.rfind(": "), head.rfind(", "))
-    return (head[:cut] if cut > WARNING_WIDTH // 2 else head).rstrip() + " ... (-v: in full)"
 
 
 class _DropWarnings(io.TextIOBase):
