@@ -191,3 +191,26 @@ def test_the_display_factor_agrees_with_pint(unit: str) -> None:
 def test_a_unit_the_parser_cannot_read_is_refused(unit: str) -> None:
     with pytest.raises(InputError, match="cannot read the unit"):
         display_param_unit(unit)
+
+
+def test_a_dataset_renders_as_html_in_display_units() -> None:
+    text = fl.load_dataset("thesis-steel")._repr_html_()
+    assert text.startswith("<h4>dataset <code>thesis-steel</code>: 19 rows</h4>")
+    assert "<th>p [MPa]</th>" in text and "0.03119 .. 0.2496" in text
+    assert text.count("<tr>") >= 5 + 5  # a row per column, the first five data rows
+
+
+@given(st.text(min_size=1, max_size=30).filter(lambda s: s.strip() and "," not in s
+                                               and "\n" not in s and "\r" not in s
+                                               and '"' not in s))
+def test_dataset_html_escapes_what_the_file_holds(surface: str) -> None:
+    import html
+
+    import pandas as pd
+
+    frame = pd.DataFrame({"mu": [0.5, 0.6, 0.7], "p [MPa]": [0.1, 0.2, 0.3],
+                          "surface": [surface, "<b>x</b>", surface]})
+    ds = fl.Dataset.from_frame(frame, name="<i>n</i>")
+    text = ds._repr_html_()
+    assert "<b>x</b>" not in text and "<i>n</i>" not in text
+    assert html.escape(str(ds.column("surface")[0])) in text or "..." in text
