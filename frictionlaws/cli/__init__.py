@@ -167,9 +167,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"frictionlaws {__version__}")
     talk = parser.add_mutually_exclusive_group()
     talk.add_argument("-q", "--quiet", action="store_true",
-                      help="no warnings and no automatic progress bar on stderr")
+                      help="no warnings and no automatic progress bar on stderr (this flag, "
+                           "-v and --debug may also follow the command)")
     talk.add_argument("-v", "--verbose", action="store_true",
-                      help="warnings with their category and origin")
+                      help="warnings in full, with their category and origin")
     parser.add_argument("--debug", action="store_true",
                         help="print the traceback behind an internal error (exit 3)")
     parser.add_argument("--print-completion", choices=_SHELLS, metavar="SHELL",
