@@ -23,6 +23,9 @@ matplotlib.use("Agg")
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE / "_ext"))
 
+from fl_docgen import GALLERY_SECTIONS  # noqa: E402
+from sphinx_gallery.sorting import ExplicitOrder  # noqa: E402
+
 import frictionlaws  # noqa: E402  (the installed package is what gets documented)
 
 project = "frictionlaws"
@@ -72,7 +75,9 @@ sphinx_gallery_conf = {
     "gallery_dirs": ["auto_examples"],
     "filename_pattern": r"/plot_",
     "ignore_pattern": r"__init__\.py|/_",
-    "within_subsection_order": "FileNameSortKey",
+    # sections (sub-folders of examples/) in reading order, the start-here one first
+    "subsection_order": ExplicitOrder([f"../examples/{name}" for name in GALLERY_SECTIONS]),
+    "within_subsection_order": "fl_docgen.GalleryOrder",
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "plot_gallery": "True",
@@ -108,8 +113,10 @@ html_theme_options = {
     "collapse_navigation": True,
     "show_nav_level": 1,
     # wide tables (catalogue index, CLI reference) get the full width
-    "secondary_sidebar_items": {"**": ["page-toc"], "generated/catalogue/index": [],
-                                "generated/api/index": [], "index": []},
+    # pages not named here get the theme's default (the page's table of contents)
+    "secondary_sidebar_items": {"generated/catalogue/index": [],
+                                "generated/api/index": [], "index": [], "api": [],
+                                "auto_examples/**": [], "changelog": []},
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
     "navbar_end": ["theme-switcher"],
@@ -119,4 +126,7 @@ html_theme_options = {
     "pygments_dark_style": "monokai",
 }
 html_context = {"default_mode": "light"}
-html_sidebars = {"index": [], "getting-started": [], "generated/cli": []}
+# the gallery, its examples and the API overview use the full width (multi-panel figures,
+# long code lines)
+html_sidebars = {"index": [], "getting-started": [], "generated/cli": [], "api": [],
+                 "auto_examples/**": []}

@@ -33,13 +33,23 @@ class Argument:
         The API argument (``"mapping"``, ``"units"``, ``"area"``, ``"box.p"``...).
     value : str
         The value to show with it (may be empty: the argument alone).
+    switch : bool
+        The argument and value are one choice a front end may name by itself (a
+        command-line switch such as ``--drop-invalid`` for ``on_invalid='drop'``).
     """
 
     option: str
     value: str = ""
+    switch: bool = False
 
     def render(self, label: Label | None = None) -> str:
-        """The setting as the front end writes it (the API's keyword form by default)."""
+        """The setting as the front end writes it (the API's keyword form by default).
+
+        With ``switch`` the front end names the argument and value together
+        (``label("on_invalid=drop")``: the CLI's ``--drop-invalid``).
+        """
+        if label is not None and self.switch:
+            return label(f"{self.option}={self.value}")
         if label is not None:
             return f"{label(self.option)} {self.value}".rstrip()
         name, _, key = self.option.partition(".")

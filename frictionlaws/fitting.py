@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import ExtrapolationWarning, FitError, InputError
+from .errors import Argument, ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
 
@@ -428,8 +428,9 @@ def _check_data_for_law(law: Law, fd: FitData, on_invalid: str) -> tuple[FitData
             fd = fd.subset(~bad)
         else:
             raise InputError(
-                f"data '{fd.name}': {idx.size} rows (rows {_row_names(fd, idx)}) have {msg}; "
-                "remove them or drop them explicitly (--drop-invalid)")
+                [f"data '{fd.name}': {idx.size} rows (rows {_row_names(fd, idx)}) have {msg}; "
+                 "remove them or drop them explicitly (",
+                 Argument("on_invalid", "drop", switch=True), ")"])
     k = len(law.params)
     if fd.n == 0:
         raise InputError(f"data '{fd.name}' has no rows left to fit law '{law.id}'")
@@ -629,8 +630,34 @@ class FitResult:
             "provenance": self.provenance,
         }
 
-    def to_frame(self) -> Any:
+    @property
+    def var_names(self) -> list[str]:
+        """The fitted (not fixed) parameters, in the order of :attr:`covar`'s rows."""
+        return [k for k, e in self.params.items() if not e.fixed]
+
+    @property
+    def covar(self) -> np.ndarray:
+        """The covariance matrix of the fitted parameters (SI), rows in :attr:`var_names` order.
+
+        Built from the standard errors and correlations of the method used
+        (``uncertainty``); a parameter without a standard error (not identifiable)
+        has NaN in its row and column.
+        """
+        names = self.var_names
+        se = np.array([math.nan if self.params[k].stderr is None else self.params[k].stderr
+                       for k in names], dtype=float)
+        corr = np.array([[1.0 if a == b else self.correlation.get(a, {}).get(b, math.nan)
+                          for b in names] for a in names], dtype=float).reshape(len(names), -1)
+        return np.asarray(corr * np.outer(se, se), dtype=float)
+
+    def to_frame(self, units: str = "display") -> Any:
         """Return the parameters as a :class:`pandas.DataFrame`.
+
+        Parameters
+        ----------
+        units : {"display", "si"}
+            ``"display"`` (default): pressures in MPa, so Thirion's ``b`` is in 1/MPa;
+            ``"si"``: the values as fitted (1/Pa).  See :mod:`frictionlaws.display`.
 
         Returns
         -------
@@ -639,9 +666,9 @@ class FitResult:
         """
         from .interop import params_frame
 
-        return params_frame(self)
+        return params_frame(self, units)
 
-    def plot(self, data: Any = None, **kw: Any) -> Any:
+    def plot(self, data: Any = None, *, units: str = "display", **kw: Any) -> Any:
         """Plot data, fit, 95 % band and residuals.
 
         See :func:`frictionlaws.interop.plot_result`.
@@ -650,6 +677,8 @@ class FitResult:
         ----------
         data : optional
             The data to show (default: the data fitted).
+        units : {"display", "si"}
+            The horizontal axis in display units (p in MPa; default) or SI.
         **kw
             Passed to :func:`frictionlaws.interop.plot_result`.
 
@@ -660,7 +689,7 @@ class FitResult:
         """
         from .interop import plot_result
 
-        return plot_result(self, data, **kw)
+        return plot_result(self, data, units=units, **kw)
 
     def _repr_html_(self) -> str:
         from .interop import result_html
@@ -741,6 +770,9 @@ class FitResult:
             lines.append(f"{k:<10} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
         if self.uncertainty.get("method"):
             lines.append(f"standard errors: {_describe_uncertainty(self.uncertainty)}")
+        shown = _display_line(self.params, self.derived)
+        if shown:
+            lines.append(shown)
         if self.derived:
             lines.append("")
             lines.append("derived quantities:")
@@ -769,6 +801,24 @@ class FitResult:
 
     def _si_note(self) -> str:
         return ", ".join(f"{v} in {VARIABLES[v].unit or '-'}" for v in self.law.variables) or "-"
+
+
+def _display_line(params: Mapping[str, ParamEstimate],
+                  derived: Mapping[str, Mapping[str, Any]]) -> str:
+    """The values with pressures in MPa (``b = 4.72 +/- 0.381 1/MPa``), or ``""`` if none."""
+    from .display import display_param_unit
+
+    items: list[tuple[str, Any, Any, Any]] = [
+        (k, e.value, e.stderr, e.unit) for k, e in params.items() if not e.fixed]
+    items += [(k, d.get("value"), d.get("stderr"), d.get("unit")) for k, d in derived.items()]
+    parts = []
+    for name, value, se, unit in items:
+        shown, factor = display_param_unit(unit)
+        if factor == 1.0 or value is None:
+            continue
+        err = f" +/- {_g(se * factor)}" if se is not None else ""
+        parts.append(f"{name} = {_g(value * factor)}{err} {shown}")
+    return "with p in MPa: " + ", ".join(parts) if parts else ""
 
 
 def _describe_uncertainty(info: Mapping[str, Any]) -> str:
@@ -1507,7 +1557,8 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
         warn_msgs.append(
             f"the data cannot determine {', '.join(non_id)}: they cannot be told apart "
             f"(Jacobian rank deficient, singular-value ratio {ratio:.1e}); their standard "
-            "errors are withheld. Fix some of them (--fix) or use an identifiable form.")
+            "errors are withheld. Hold some of them fixed (argument fix) or use an "
+            "identifiable form.")
     if weak:
         warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
                          "correlated; wide intervals)")

@@ -34,6 +34,7 @@ __all__ = [
     "evaluate_labelled",
     "law_html",
     "result_html",
+    "dataset_html",
     "table_html",
     "plot_result",
     "confidence_band",
@@ -127,23 +128,31 @@ def model_result(result: Any) -> Any:
 
 
 # ----------------------------------------------------------------------- pandas
-def params_frame(result: Any) -> Any:
+def params_frame(result: Any, units: str = "display") -> Any:
     """The fitted parameters as a DataFrame: one row per parameter.
 
     Columns: ``value``, ``stderr``, ``ci95_low``, ``ci95_high``, ``unit``, ``fixed``;
-    the index is the parameter name.
+    the index is the parameter name.  ``units="display"`` shows pressures in MPa
+    (``b`` of Thirion in 1/MPa), ``"si"`` the values as fitted (see
+    :mod:`frictionlaws.display`); dimensionless is ``-``.
     """
     import pandas as pd
 
+    from .display import check_units, display_param_unit, unit_text
+
+    check_units(units)
     rows = []
     for name, est in result.params.items():
+        unit, factor = (display_param_unit(est.unit) if units == "display"
+                        else (unit_text(est.unit), 1.0))
         ci = est.ci95 if est.ci95 is not None else (math.nan, math.nan)
-        rows.append({"param": name, "value": est.value,
-                     "stderr": math.nan if est.stderr is None else est.stderr,
-                     "ci95_low": ci[0], "ci95_high": ci[1], "unit": est.unit,
+        rows.append({"param": name, "value": est.value * factor,
+                     "stderr": math.nan if est.stderr is None else est.stderr * factor,
+                     "ci95_low": ci[0] * factor, "ci95_high": ci[1] * factor, "unit": unit,
                      "fixed": bool(est.fixed)})
     frame = pd.DataFrame(rows).set_index("param")
     frame.attrs["law"] = result.law.id
+    frame.attrs["units"] = units
     return frame
 
 
@@ -215,23 +224,56 @@ def law_html(law: Law) -> str:
     return "\n".join(parts)
 
 
-def result_html(result: Any) -> str:
+def result_html(result: Any, units: str = "display") -> str:
     """HTML for a fit result: parameters with errors and CI, metrics and warnings."""
-    rows = [{"param": k, "value": e.value, "stderr": e.stderr, "ci95": e.ci95,
-             "unit": e.unit or "-", "fixed": e.fixed} for k, e in result.params.items()]
+    frame = params_frame(result, units)
+    rows = [{"param": k, "value": r["value"], "stderr": r["stderr"],
+             "ci95": (r["ci95_low"], r["ci95_high"]), "unit": r["unit"], "fixed": r["fixed"]}
+            for k, r in frame.iterrows()]
     metrics = {k: v for k, v in result.metrics.items()
                if k in ("r2", "adj_r2", "rmse", "aic", "bic", "n", "k")}
     warn = "".join(f"<li>{html.escape(w)}</li>" for w in result.warnings)
+    shown = "pressures in MPa" if units == "display" else "SI"
     return "\n".join([
         f"<h4>fit of <code>{html.escape(result.law.id)}</code>"
         f" ({'converged' if result.success else 'NOT converged'})</h4>",
-        table_html(rows, caption="parameters (SI)"),
+        table_html(rows, caption=f"parameters ({shown})"),
         table_html([metrics], caption="metrics"),
         f"<ul>{warn}</ul>" if warn else ""])
 
 
+def dataset_html(dataset: Any, head: int = 5) -> str:
+    """HTML for a dataset: name, source, each column's range in display units, first rows."""
+    from . import units as _units
+    from .display import unit_text
+
+    rows = []
+    for col in dataset.column_names:
+        if col not in _units.QUANTITIES:
+            values = sorted({str(x) for x in dataset.column(col)})
+            rows.append({"column": col, "unit": "", "range": ", ".join(values[:8])
+                         + (", ..." if len(values) > 8 else ""), "distinct": len(values),
+                         "given in": ""})
+            continue
+        shown = _units.to_display(dataset.column(col, float), col)
+        rows.append({"column": col, "unit": unit_text(_units.display_unit(col)),
+                     "range": f"{shown.min():.4g} .. {shown.max():.4g}",
+                     "distinct": len(np.unique(shown)),
+                     "given in": dataset.units.get(col, "")})
+    first = dataset.to_frame("display").head(head)
+    notes = "".join(f"<li>{html.escape(n)}</li>" for n in dataset.notes)
+    return "\n".join([
+        f"<h4>dataset <code>{html.escape(str(dataset.name))}</code>: {len(dataset)} rows</h4>",
+        f"<p>source: {html.escape(str(dataset.source))}</p>",
+        table_html(rows, caption="columns (display units)"),
+        f"<p>first {len(first)} rows</p>",
+        first.to_html(index=False, float_format=lambda x: f"{x:.6g}"),
+        f"<ul>{notes}</ul>" if notes else ""])
+
+
 # ----------------------------------------------------------------------- figure
-def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any = None) -> Any:
+def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any = None,
+                units: str = "display") -> Any:
     """Data, fitted law, 95 % confidence band and residuals of a fit.
 
     Parameters
@@ -245,13 +287,18 @@ def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any 
         The variable on the horizontal axis (default: the law's first varying one).
     ax : sequence of two matplotlib Axes, optional
         Where to draw (curve, residuals); a new figure otherwise.
+    units : {"display", "si"}
+        The horizontal axis in the variable's display unit (p in MPa, T in degC;
+        default) or in SI.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
+    from .display import check_units
     from .errors import InputError
 
+    check_units(units)
     arrays = _arrays_of(data if data is not None else getattr(result, "fit_data", None))
     if arrays is None or "mu" not in arrays:
         raise InputError("no data to plot: pass the data (results loaded from JSON keep "
@@ -261,7 +308,7 @@ def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any 
     if name is None or name not in arrays:
         raise InputError(f"law '{result.law.id}' has no varying variable '{x or ''}' to plot "
                          "against")
-    return _draw(result, arrays, name, ax)
+    return _draw(result, arrays, name, ax, units)
 
 
 def _arrays_of(data: Any) -> Mapping[str, Any] | None:
@@ -281,10 +328,9 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
              if not e.fixed and e.stderr is not None and math.isfinite(e.stderr)]
     if not names:
         return np.zeros(np.broadcast_shapes(*(np.shape(v) for v in variables.values())))
-    se = np.array([result.params[k].stderr for k in names])
-    corr = np.array([[1.0 if a == b else result.correlation.get(a, {}).get(b, 0.0)
-                      for b in names] for a in names])
-    cov = corr * np.outer(se, se)
+    order = list(result.var_names)
+    pick = [order.index(k) for k in names]
+    cov = np.asarray(result.covar)[np.ix_(pick, pick)]
     base = result.values
     cols = []
     for k in names:
@@ -297,8 +343,10 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
     return 1.96 * np.sqrt(np.maximum(var, 0.0))
 
 
-def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any) -> Any:
+def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str) -> Any:
     import matplotlib.pyplot as plt
+
+    from .units import QUANTITIES, to_display
 
     if ax is None:
         _, ax = plt.subplots(2, 1, figsize=(6, 5), sharex=True,
@@ -311,21 +359,27 @@ def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any) -> Any:
                            mu.shape)
     half = np.broadcast_to(confidence_band(result, variables), mu.shape)
     order = np.argsort(xs, kind="stable")
+    unit = _unit(name)
+    if units == "display" and name in QUANTITIES:
+        xs, unit = to_display(xs, name), _unit(name, display=True)
     ax[0].plot(xs, mu, "o", ms=4, label="data")
     ax[0].plot(xs[order], pred[order], "-", label=f"{result.law.id} fit")
     ax[0].fill_between(xs[order], (pred - half)[order], (pred + half)[order], alpha=0.25,
                        label="95 % confidence band")
     ax[1].axhline(0.0, color="0.5", lw=0.8)
     ax[1].plot(xs, mu - pred, "o", ms=3)
-    ax[1].set_xlabel(f"{name} [{_unit(name)}]")
+    ax[1].set_xlabel(f"{name} [{unit}]")
     ax[0].set_ylabel("mu [-]")
     ax[1].set_ylabel("residual [-]")
     ax[0].legend()
     return fig
 
 
-def _unit(name: str) -> str:
+def _unit(name: str, display: bool = False) -> str:
+    from .display import unit_text
     from .law import VARIABLES
 
     var = VARIABLES.get(name)
-    return (var.unit or "-") if var is not None else "-"
+    if var is None:
+        return unit_text(None)
+    return unit_text(var.display_unit if display else var.unit)

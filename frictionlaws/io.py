@@ -326,6 +326,11 @@ class Dataset:
         cols = ", ".join(self.column_names)
         return f"Dataset({self.name!r}, {len(self)} rows, columns: {cols})"
 
+    def _repr_html_(self) -> str:
+        from .interop import dataset_html
+
+        return dataset_html(self)
+
     @property
     def variables(self) -> set[str]:
         """Variable columns present (among ``p``, ``v``, ``T``, ``F_N``, ``s``)."""

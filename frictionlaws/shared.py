@@ -46,6 +46,8 @@ class SharedFit:
         ``rss_shared``, ``rss_separate``, ``k_shared``, ``k_separate``, ``n``,
         ``F``, ``p_value``, ``aic_shared``, ``aic_separate``, ``delta_aic``
         (shared minus separate; negative favours sharing) and a ``verdict``.
+    dataset : str
+        The name of the dataset fitted.
     """
 
     law: str
@@ -56,6 +58,7 @@ class SharedFit:
     success: bool
     message: str
     warnings: list[str] = field(default_factory=list)
+    dataset: str = ""
 
     def shared_values(self) -> dict[str, dict[str, Any]]:
         """The shared parameters: name -> value, stderr, unit."""
@@ -64,46 +67,50 @@ class SharedFit:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able form."""
-        return {"law": self.law, "by": list(self.by), "shared": list(self.shared),
+        return {"law": self.law, "dataset": self.dataset, "by": list(self.by),
+                "shared": list(self.shared),
                 "groups": self.groups, "comparison": self.comparison,
                 "success": self.success, "message": self.message,
                 "warnings": list(self.warnings)}
 
     def to_frame(self) -> Any:
-        """Tidy DataFrame: one row per (group, parameter)."""
+        """Tidy DataFrame: one row per (group, parameter), in SI.
+
+        The columns are those of a campaign's tidy table
+        (:func:`frictionlaws.campaign.tidy_columns`: ``dataset``, the grouping columns,
+        ``law``, ``rows``, ``param``, ``value``, ``stderr``, ...) followed by
+        ``shared``, so ``fit --by`` and ``fit --by --shared`` write one layout.
+        Intervals and per-group metrics the shared fit does not give are empty.
+        """
         import pandas as pd
 
-        from .campaign import group_column
+        from .campaign import group_column, tidy_columns
 
         rows = []
         for g in self.groups:
             key = {group_column(c): v for c, v in g["key"].items()}
             for name, est in g["params"].items():
-                rows.append({**key, "param": name, **est, "unit": est["unit"] or "-"})
-        return pd.DataFrame(rows)
+                rows.append({"dataset": self.dataset, **key, "law": self.law,
+                             "rows": g["rows"], "param": name, "value": est["value"],
+                             "stderr": est["stderr"], "unit": est["unit"] or "-",
+                             "fixed": False, "converged": self.success, "n": g["rows"],
+                             "warnings": len(self.warnings), "shared": est["shared"]})
+        return pd.DataFrame(rows, columns=[*tidy_columns(self.by), "shared"])
 
     def report(self) -> str:
-        """Plain-text report: shared values, per-group values, the comparison."""
-        lines = [f"{self.law}: shared {', '.join(self.shared)} across "
-                 f"{len(self.groups)} groups of {', '.join(self.by)}"]
-        for k, est in self.shared_values().items():
-            lines.append(f"  {k} = {est['value']:.6g} +/- {_g(est['stderr'])} {est['unit']}")
-        from .campaign import key_text
+        """Plain-text report: the per-group parameter table (display units), the comparison."""
+        from .display import group_label, parameter_table
 
-        for g in self.groups:
-            key = key_text(g["key"])
-            own = ", ".join(f"{k} = {e['value']:.6g} +/- {_g(e['stderr'])}"
-                            for k, e in g["params"].items() if not e["shared"])
-            lines.append(f"  [{key}] n = {g['rows']}: {own}")
+        lines = [f"{self.law}: shared {', '.join(self.shared)} across "
+                 f"{len(self.groups)} groups of {', '.join(self.by)} (one global fit)"]
+        lines.append(parameter_table(
+            [{"label": group_label(g["key"]), "n": g["rows"], "params": g["params"]}
+             for g in self.groups], shared=self.shared))
         c = self.comparison
         lines.append(f"shared vs separate: F = {c['F']:.4g}, p = {c['p_value']:.3g}, "
                      f"delta AIC = {c['delta_aic']:.3g} ({c['verdict']})")
         lines.extend(f"warning: {w}" for w in self.warnings)
         return "\n".join(lines)
-
-
-def _g(x: float | None) -> str:
-    return "-" if x is None or not math.isfinite(x) else f"{x:.3g}"
 
 
 @dataclass
@@ -191,7 +198,9 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     _check_shared(law, shared, fixed)
     separate = [fit(law, ds.subset(mask), fix=fixed, weights=weights) for _, mask in groups]
     problem = _build_problem(law, ds, groups, shared, fixed)
-    return _solve(problem, columns, groups, separate)
+    out = _solve(problem, columns, groups, separate)
+    out.dataset = str(ds.name)
+    return out
 
 
 def _check_shared(law: Any, shared: list[str], fixed: Mapping[str, float]) -> None:

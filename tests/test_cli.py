@@ -144,3 +144,86 @@ def test_fit_temperature_aware_law_with_wlf_constants_freed(capsys, tmp_path):
         est = params[name]
         assert abs(est["value"] - true[name]) <= 3 * est["stderr"], (name, est)
     assert params["C2"]["unit"] == "K"
+
+
+# ----------------------------------------------------- global flags, suggestions, warnings
+
+
+@pytest.mark.parametrize("flag", ["-q", "--quiet", "-v", "--verbose", "--debug"])
+def test_global_flags_are_accepted_after_the_command(flag, capsys):
+    from frictionlaws.cli import main
+
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--json", flag]) == 0
+    assert '"law"' in capsys.readouterr().out
+
+
+def test_quiet_after_a_nested_command_drops_its_warnings(tmp_path, capsys):
+    from frictionlaws.cli import main
+
+    params = tmp_path / "t.json"
+    assert main(["fit", "--law", "thirion", "thesis-steel", "--save", str(params)]) == 0
+    capsys.readouterr()
+    argv = ["tyre", "cornering", "--law", "thirion", "--params", str(params), "--loads",
+            "2:6.5:3"]
+    assert main(argv) == 0 and "warning:" in capsys.readouterr().err
+    assert main([*argv, "-q"]) == 0 and "warning:" not in capsys.readouterr().err
+
+
+def test_a_global_flag_as_an_options_value_stays_its_value():
+    from frictionlaws.cli import _hoist_global_flags, build_parser
+
+    parser = build_parser()
+    argv = ["fit", "--law", "thirion", "x.csv", "--map", "-v", "-q"]
+    assert _hoist_global_flags(parser, argv) == ["-q", *argv[:-1]]
+    assert _hoist_global_flags(parser, ["fit", "--", "-q"]) == ["fit", "--", "-q"]
+
+
+@pytest.mark.parametrize("argv,hint", [
+    (["fitt"], "did you mean 'fit'?"),
+    (["fit", "--law", "thirion", "thesis-steel", "--fixx", "a=1"], "did you mean '--fix'?"),
+    (["fit", "--law", "thirion", "thesis-steel", "--uncertainty", "bootstrp"],
+     "did you mean 'bootstrap'?"),
+    (["fit", "--law", "thirio", "thesis-steel"], "did you mean thirion?"),
+    (["export", "--law", "thirion", "--formta", "abaqus"], "did you mean '--format'"),
+])
+def test_a_misspelt_name_gets_a_suggestion(argv, hint, capsys):
+    from frictionlaws.cli import main
+
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and hint in err
+
+
+def test_long_warnings_are_cut_unless_verbose():
+    from frictionlaws.cli import WARNING_WIDTH, _short
+
+    text = "law x is extrapolated: " + "; ".join(f"clause {i} of the details" for i in range(30))
+    short = _short(text)
+    assert len(short) <= WARNING_WIDTH + 20 and short.endswith("(-v: in full)")
+    assert text.startswith(short.rsplit(" ...", 1)[0])
+    assert _short("short") == "short"
+
+
+def test_export_prints_each_warning_once(tmp_path, capsys):
+    from frictionlaws.cli import main
+
+    out = tmp_path / "f.inp"
+    assert main(["export", "--law", "thirion", "--fit", "thesis-steel", "--format", "abaqus",
+                 "--p", "0.01MPa:0.5MPa", "-o", str(out)]) == 0
+    text = capsys.readouterr()
+    both = text.out + text.err
+    assert both.count("residuals ordered by v") == 1
+    assert "WARNING" not in both and "warning: fit: residuals" in text.out
+
+
+def test_the_fit_reports_warnings_short_and_in_full_with_verbose(capsys):
+    from frictionlaws.cli import WARNING_WIDTH, main
+
+    assert main(["fit", "--law", "thirion", "thesis-steel"]) == 0
+    short = [x for x in capsys.readouterr().out.splitlines() if x.startswith("warning: ")]
+    assert main(["fit", "--law", "thirion", "thesis-steel", "-v"]) == 0
+    full = [x for x in capsys.readouterr().out.splitlines() if x.startswith("warning: ")]
+    assert len(short) == len(full) >= 1
+    assert any(len(x) > WARNING_WIDTH + 20 for x in full)
+    assert all(len(x) <= WARNING_WIDTH + 30 for x in short)
+    assert "too narrow ... (-v: in full)" in short[-1] and "bootstrap" in full[-1]

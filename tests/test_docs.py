@@ -27,7 +27,7 @@ import frictionlaws as fl  # noqa: E402
 from frictionlaws.law import Law, Param  # noqa: E402
 from frictionlaws.registry import REGISTRY  # noqa: E402
 
-GALLERY = sorted(EXAMPLES.glob("plot_*.py"))
+GALLERY = sorted(EXAMPLES.rglob("plot_*.py"))
 
 
 # ------------------------------------------------------------------ catalogue
@@ -288,11 +288,55 @@ def test_conf_uses_the_agreed_extensions():
 
 
 @pytest.mark.parametrize("example", sorted(
-    (Path(__file__).resolve().parents[1] / "examples").glob("plot_*.py")), ids=lambda p: p.stem)
+    (Path(__file__).resolve().parents[1] / "examples").rglob("plot_*.py")), ids=lambda p: p.stem)
 def test_every_gallery_example_chooses_its_thumbnail(example):
     """Each example names the figure that stands for it, and that figure exists."""
     text = example.read_text(encoding="utf-8")
     found = re.findall(r"^# sphinx_gallery_thumbnail_number = (\d+)$", text, re.MULTILINE)
     assert len(found) == 1, f"{example.name}: no (or several) thumbnail choices"
-    figures = len(re.findall(r"plt\.subplots\(|plt\.figure\(|\.plot\(\)", text))
+    figures = len(re.findall(r"plt\.subplots\(|plt\.figure\(|\.plot\(\)|plot_fit_grid\(", text))
     assert 1 <= int(found[0]) <= figures, f"{example.name}: {figures} figures"
+
+
+def test_the_gallery_is_in_sections_in_reading_order():
+    folders = {p.parent.name for p in GALLERY}
+    assert set(fl_docgen.GALLERY_SECTIONS) == folders, folders
+    assert all(p.parent.parent == EXAMPLES for p in GALLERY), "an example outside a section"
+    for name in fl_docgen.GALLERY_SECTIONS:
+        assert (EXAMPLES / name / "GALLERY_HEADER.rst").exists(), name
+    assert fl_docgen.GALLERY_SECTIONS[0] == "fitting"
+    assert "Start here" in (EXAMPLES / "fitting" / "GALLERY_HEADER.rst").read_text()
+    order = fl_docgen.GalleryOrder("")
+    fitting = sorted((p.name for p in (EXAMPLES / "fitting").glob("plot_*.py")), key=order)
+    assert fitting[0] == "plot_sliding_laws_thesis_steel.py"
+    assert fl_docgen.GALLERY_FIRST[0] == fitting[0]
+
+
+def test_cli_reference_has_an_anchor_per_option(tmp_path):
+    fl_docgen.write_cli_reference(tmp_path / "cli.rst")
+    text = (tmp_path / "cli.rst").read_text(encoding="utf-8")
+    fit = text.split(".. program:: frictionlaws fit\n", 1)[1].split(".. program::", 1)[0]
+    for option in (".. option:: --law LAW", ".. option:: --drop-invalid", ".. option:: DATA",
+                   ".. option:: --uncertainty UNCERTAINTY"):
+        assert option in fit, option
+    assert ".. program:: frictionlaws tyre cornering" in text
+    assert "%(default)" not in text
+
+
+def test_the_public_api_page_names_objects_that_exist():
+    import importlib
+
+    text = (DOCS / "api.rst").read_text(encoding="utf-8")
+    names = re.findall(r"^   ~(frictionlaws\.[\w.]+)$", text, re.M)
+    assert len(names) >= 40
+    for dotted in names:
+        module, _, attr = dotted.rpartition(".")
+        assert hasattr(importlib.import_module(module), attr), dotted
+    for core in ("frictionlaws.fitting.fit", "frictionlaws.io.load_dataset",
+                 "frictionlaws.comparison.core.compare", "frictionlaws.fe_export.api.export"):
+        assert core in names
+
+
+def test_the_changelog_is_in_the_toctree():
+    assert "   changelog" in (DOCS / "index.rst").read_text(encoding="utf-8")
+    assert (DOCS / "changelog.rst").read_text(encoding="utf-8").count("\n---") >= 2

@@ -48,9 +48,9 @@ def test_lmfit_model_refuses_start_values_outside_bounds():
 
 def test_params_frame_has_units_and_intervals():
     res = fl.fit("thirion", "thesis-steel")
-    frame = interop.params_frame(res)
+    frame = interop.params_frame(res, units="si")
     assert list(frame.index) == ["a", "b"]
-    assert frame.loc["b", "unit"] == "1/Pa"
+    assert frame.loc["b", "unit"] == "1/Pa" and frame.loc["a", "unit"] == "-"
     assert frame.loc["a", "ci95_low"] < frame.loc["a", "value"] < frame.loc["a", "ci95_high"]
     assert frame.attrs["law"] == "thirion"
 
@@ -86,7 +86,7 @@ def test_plot_result_draws_data_fit_band_and_residuals(tmp_path):
     fig = interop.plot_result(res, ds)
     curve, resid = fig.axes
     assert len(curve.lines) == 2 and len(curve.collections) == 1  # band
-    assert resid.get_xlabel() == "p [Pa]"
+    assert resid.get_xlabel() == "p [MPa]"
     half = interop.confidence_band(res, {"p": ds.arrays()["p"]})
     assert np.all(half > 0) and np.all(np.isfinite(half))
     loaded = fl.load_result(res.save(Path(tmp_path) / "r.json"))

@@ -686,8 +686,7 @@ def cli_reference() -> str:
     rows = [[f":ref:`{name} <cli-{name}>`", escape(help_of.get(name) or "")]
             for name in subs]
     lines += [_list_table(["command", "what it does"], rows, [20, 80])]
-    lines += [_heading("frictionlaws", "-"), ".. code-block:: text", "",
-              _indent(_help_text(parser)), ""]
+    lines += [_heading("frictionlaws", "-"), *_options_block("frictionlaws", parser)]
     for name, sub in subs.items():
         lines += _command_section(name, sub, help_of.get(name), "-")
     return "\n".join(lines)
@@ -700,7 +699,7 @@ def _command_section(name: str, parser: argparse.ArgumentParser, help_text: str 
     lines = [f".. _cli-{anchor}:", "", _heading(f"frictionlaws {name}", level)]
     if help_text:
         lines += [escape(help_text[:1].upper() + help_text[1:]) + ".", ""]
-    lines += [".. code-block:: text", "", _indent(_help_text(parser)), ""]
+    lines += _options_block(f"frictionlaws {name}", parser)
     nested = _subparsers(parser)
     if nested:
         helps = {}
@@ -709,6 +708,50 @@ def _command_section(name: str, parser: argparse.ArgumentParser, help_text: str 
                 helps = {a.dest: a.help for a in action._choices_actions}
         for sub_name, sub in nested.items():
             lines += _command_section(f"{name} {sub_name}", sub, helps.get(sub_name), "~")
+    return lines
+
+
+def _usage(parser: argparse.ArgumentParser) -> str:
+    old = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = str(CLI_COLUMNS)
+    try:
+        return parser.format_usage()
+    finally:
+        if old is None:
+            os.environ.pop("COLUMNS", None)
+        else:
+            os.environ["COLUMNS"] = old
+
+
+def _option_help(parser: argparse.ArgumentParser, action: argparse.Action) -> str:
+    """An action's help with argparse's ``%(default)s`` expanded, and its choices."""
+    text = parser._get_formatter()._expand_help(action) if action.help else ""
+    if action.choices and not isinstance(action, argparse._SubParsersAction):
+        text += f" (choices: {', '.join(map(str, action.choices))})"
+    return escape(" ".join(text.split())) or "(no description)"
+
+
+def _option_name(action: argparse.Action) -> str:
+    """The ``.. option::`` signature: every flag with its metavar, or the positional."""
+    if not action.option_strings:
+        return str(action.metavar or action.dest)
+    if action.nargs == 0:
+        return ", ".join(action.option_strings)
+    metavar = action.metavar or action.dest.upper()
+    return ", ".join(f"{flag} {metavar}" for flag in action.option_strings)
+
+
+def _options_block(program: str, parser: argparse.ArgumentParser) -> list[str]:
+    """Usage, description and one ``.. option::`` (an anchor each) per argument."""
+    lines = [".. code-block:: text", "", _indent(_usage(parser)), ""]
+    if parser.description:
+        lines += [escape(" ".join(parser.description.split())), ""]
+    lines += [f".. program:: {program}", ""]
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) or action.help == argparse.SUPPRESS:
+            continue
+        lines += [f".. option:: {_option_name(action)}", "",
+                  _indent(_option_help(parser, action)), ""]
     return lines
 
 
@@ -830,9 +873,10 @@ def write_api_reference(outdir: str | Path) -> list[str]:
     api_rows = []
     for public, module in sorted(frictionlaws._API.items()):
         api_rows.append([f"``fl.{public}``", f":py:obj:`frictionlaws.{module}.{public}`"])
-    index = [".. _api-reference:", "", _heading("API reference", "="),
-             "The Python interface, generated with autodoc from the numpydoc docstrings of "
-             "the installed package. Everything is SI inside: p in Pa, v in m/s, T in K, "
+    index = [".. _api-reference:", "", _heading("Module reference", "="),
+             "Every module of the package, generated with autodoc from the numpydoc "
+             "docstrings of the installed package; the :doc:`public API </api>` page groups "
+             "what a user calls by task. Everything is SI inside: p in Pa, v in m/s, T in K, "
              "F_N in N, s dimensionless.", "",
              _heading("Top-level names", "-"),
              "``import frictionlaws as fl`` gives these names; they are imported lazily so "
@@ -981,3 +1025,35 @@ def setup(app: Any) -> dict[str, Any]:
     app.connect("builder-inited", _generate)
     app.connect("autodoc-process-docstring", _process_docstring, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
+
+
+# ------------------------------------------------------------ gallery order
+
+#: The gallery's sections (sub-folders of ``examples/``), in reading order.
+GALLERY_SECTIONS = ("fitting", "export", "tribometer", "physics", "tyres")
+
+#: Within a section, the examples to read first, in order; others follow by file name.
+GALLERY_FIRST = (
+    "plot_sliding_laws_thesis_steel.py",
+    "plot_compare_laws.py",
+    "plot_identifiability_nackenhorst.py",
+    "plot_campaign_shared_parameters.py",
+    "plot_thesis_polynomials_outside_box.py",
+    "plot_wlf_shift.py",
+    "plot_brush_cornering_stiffness.py",
+)
+
+
+class GalleryOrder:
+    """sphinx-gallery's ``within_subsection_order``: :data:`GALLERY_FIRST`, then by name."""
+
+    def __init__(self, src_dir: str) -> None:
+        self.src_dir = src_dir
+
+    def __call__(self, filename: str) -> tuple[int, str]:
+        name = Path(filename).name
+        rank = GALLERY_FIRST.index(name) if name in GALLERY_FIRST else len(GALLERY_FIRST)
+        return rank, name
+
+    def __repr__(self) -> str:  # sphinx-gallery compares configurations by their repr
+        return f"GalleryOrder({GALLERY_FIRST!r})"

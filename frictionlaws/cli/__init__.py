@@ -14,10 +14,12 @@ the output clean:
 * an unexpected internal error -> exit 3 and one line asking for a report;
   ``--debug`` adds the traceback.
 
-Global flags (before the command): ``--quiet`` (no warning lines, whether
+Global flags (before or after the command): ``--quiet`` (no warning lines, whether
 collected or printed by the command, and no automatic progress bar),
-``--verbose`` (warnings with their category and origin), ``--debug``
-(tracebacks of internal errors), ``--print-completion SHELL``.
+``--verbose`` (warnings in full, with their category and origin; without it a
+warning longer than :data:`WARNING_WIDTH` characters is cut at a clause), ``--debug``
+(tracebacks of internal errors); ``--print-completion SHELL`` before the command.
+A mistyped command, choice or option gets the closest names suggested (difflib).
 
 Exit codes: 0 success; 1 a check failed (``validate``) or a fit did not
 converge; 2 bad input or usage; 3 an unexpected internal error (a bug: the
@@ -38,10 +40,11 @@ from collections.abc import Callable, Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
-from ._common import UsageError
+from ._common import WARNING_WIDTH, UsageError
+from ._common import short_warning as _short
 
 __all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS",
-           "command_names"]
+           "command_names", "WARNING_WIDTH"]
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMANDS = (
@@ -54,6 +57,7 @@ COMMANDS = (
     "process",
     "validate",
     "export",
+    "examples",
 )
 
 #: Library argument (``InputError.option``) -> the flag that sets it.  A command
@@ -63,6 +67,7 @@ OPTION_FLAGS = {
     "units": "--units",
     "area": "--area",
     "fix": "--fix",
+    "on_invalid=drop": "--drop-invalid",
     "free": "--free",
     "starts": "--starts",
     "seed": "--seed",
@@ -118,7 +123,28 @@ class _Parser(argparse.ArgumentParser):
         self.register("action", "store", _StoreOnce)
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise _ParseError(f"{self.prog}: {message}", usage=self.format_usage())
+        raise _ParseError(f"{self.prog}: {_suggest_choice(message)}",
+                          usage=self.format_usage())
+
+
+_INVALID_CHOICE = re.compile(r"invalid choice: '(.*?)' \(choose from (.*)\)$", re.S)
+
+
+def _did_you_mean(word: str, candidates: Sequence[str]) -> str:
+    """``"; did you mean 'fit'?"`` for the closest candidates (difflib), or ``""``."""
+    import difflib
+
+    close = difflib.get_close_matches(word, list(candidates), n=2, cutoff=0.6)
+    return f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+
+
+def _suggest_choice(message: str) -> str:
+    """argparse's 'invalid choice' message with the closest choices suggested."""
+    m = _INVALID_CHOICE.search(message)
+    if not m:
+        return message
+    choices = re.findall(r"'([^']*)'", m.group(2))
+    return message + _did_you_mean(m.group(1), choices)
 
 
 class _ParseError(UsageError):
@@ -141,9 +167,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"frictionlaws {__version__}")
     talk = parser.add_mutually_exclusive_group()
     talk.add_argument("-q", "--quiet", action="store_true",
-                      help="no warnings and no automatic progress bar on stderr")
+                      help="no warnings and no automatic progress bar on stderr (this flag, "
+                           "-v and --debug may also follow the command)")
     talk.add_argument("-v", "--verbose", action="store_true",
-                      help="warnings with their category and origin")
+                      help="warnings in full, with their category and origin")
     parser.add_argument("--debug", action="store_true",
                         help="print the traceback behind an internal error (exit 3)")
     parser.add_argument("--print-completion", choices=_SHELLS, metavar="SHELL",
@@ -241,10 +268,12 @@ class _Warnings:
         else:
             self.seen[text] = [1]
 
-    def print(self) -> None:
+    def print(self, verbose: bool = False) -> None:
         for text, (count,) in self.seen.items():
             times = f" ({count} times)" if count > 1 else ""
-            print(f"warning: {text}{times}", file=sys.stderr)
+            print(f"warning: {text if verbose else _short(text)}{times}", file=sys.stderr)
+
+
 
 
 class _DropWarnings(io.TextIOBase):
@@ -444,7 +473,59 @@ def _empty_value(parser: argparse.ArgumentParser, argv: Sequence[str]) -> str | 
     return None
 
 
+#: The global flags, accepted before or after the command.
+GLOBAL_FLAGS = ("-q", "--quiet", "-v", "--verbose", "--debug")
+
+
+def _hoist_global_flags(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """Move global flags given after the command to the front (``fit ... -q``).
+
+    A token that is the value of the option before it, or follows ``--``, stays.
+    """
+    takes = _value_options(parser)
+    front: list[str] = []
+    rest: list[str] = []
+    for i, token in enumerate(argv):
+        if token == "--":
+            rest += argv[i:]
+            break
+        is_value = bool(rest) and rest[-1] in takes
+        (front if token in GLOBAL_FLAGS and not is_value else rest).append(token)
+    return front + rest
+
+
+def _option_strings(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[str]:
+    """The options of the (sub-)command ``argv`` names, and the global ones."""
+    out = [s for a in parser._actions for s in a.option_strings]
+    current = parser
+    for token in argv:
+        action = next((a for a in current._actions
+                       if isinstance(a, argparse._SubParsersAction)), None)
+        if action is None:
+            break
+        if token in action.choices:
+            current = action.choices[token]
+            out += [s for a in current._actions for s in a.option_strings]
+    return out
+
+
+def _suggest_options(message: str, parser: argparse.ArgumentParser, argv: Sequence[str]
+                     ) -> str:
+    """A parse error with the closest options suggested for every unknown ``--option``.
+
+    argparse may report a missing required option before the mistyped one, so the
+    command line itself is searched, not only an 'unrecognized arguments' message.
+    """
+    known = _option_strings(parser, argv)
+    unknown = dict.fromkeys(t.split("=", 1)[0] for t in argv
+                            if t.startswith("--") and t.split("=", 1)[0] not in known)
+    hints = [f"{t}: did you mean {_did_you_mean(t, known)[len('; did you mean '):]}"
+             for t in unknown if _did_you_mean(t, known)]
+    return message + (" (" + "; ".join(hints) + ")" if hints else "")
+
+
 def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
+    argv = _hoist_global_flags(parser, argv)
     empty = _empty_value(parser, argv)
     if empty is not None:
         print(f"error: {empty}: empty value; give one (an empty value means neither "
@@ -453,7 +534,7 @@ def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespa
     try:
         return parser.parse_args(_join_negative_values(parser, argv))
     except _ParseError as exc:
-        return _usage_error(str(exc), exc.usage, argv)
+        return _usage_error(_suggest_options(str(exc), parser, argv), exc.usage, argv)
     except UsageError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
@@ -466,7 +547,7 @@ def _completion(parser: argparse.ArgumentParser, shell: str) -> int:
         import shtab
     except ImportError:
         print("error: shell completion needs the 'shtab' package: "
-              "pip install 'frictionlaws[cli]'", file=sys.stderr)
+              "pip install shtab (a dependency of frictionlaws; reinstall it)", file=sys.stderr)
         return 2
     print(shtab.complete(parser, shell=shell))
     return 0
@@ -495,7 +576,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not args.quiet:
         for record in records:
             collected.add(record, args.verbose)
-        collected.print()
+        collected.print(args.verbose)
     return code
 
 

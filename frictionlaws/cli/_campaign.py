@@ -197,13 +197,36 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
                            {"output": str(camp.path), "fits": len(camp),
                             "errors": camp.errors}))
     elif camp.records:
-        print(camp.summary())
+        print(_by_table(camp))
     else:
         print(f"{len(camp)} fits written to {camp.path}; {len(camp.errors)} failed")
         for rec in camp.errors:
             print(f"error: {rec['dataset']} {rec['law']}: {rec['error']}", file=sys.stderr)
     _refuse_if_only_input_errors(camp)
     return 1 if camp.errors else 0
+
+
+def _by_table(camp: Any) -> str:
+    """Each law's fits as one table: a row per dataset and group, parameters in display units."""
+    from frictionlaws.display import group_label, parameter_table
+
+    several = len({rec["dataset"] for rec in camp.records}) > 1
+    blocks = []
+    for law in dict.fromkeys(rec["law"] for rec in camp.records):
+        rows = []
+        for rec in (r for r in camp.records if r["law"] == law):
+            label = group_label(rec["group"]) if rec["group"] else ""
+            label = f"{rec['dataset']} {label}".strip() if several or not label else label
+            if "error" in rec:
+                rows.append({"label": label, "n": rec.get("rows"), "error": rec["error"]})
+                continue
+            res = rec["result"]
+            rows.append({"label": label, "n": res["metrics"].get("n"),
+                         "r2": res["metrics"].get("r2"), "rmse": res["metrics"].get("rmse"),
+                         "params": res["params"]})
+        by = f" by {', '.join(camp.by)}" if camp.by else ""
+        blocks.append(f"{law}: {len(rows)} fits{by}\n" + parameter_table(rows))
+    return "\n\n".join(blocks)
 
 
 def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,

@@ -68,6 +68,9 @@ __all__ = [
     "data_source",
     "STDIN",
     "print_json",
+    "WARNING_WIDTH",
+    "short_warning",
+    "report_text",
 ]
 
 #: Largest seed numpy's legacy generators accept.
@@ -79,6 +82,30 @@ STDIN = "-"
 #: What a range looks like, for help texts and messages.
 RANGE_HELP = ("MIN:MAX[:N]: bounds as numbers in the default unit or with their own unit "
               "(e.g. 0.01MPa:0.5MPa:20), N points with both ends included")
+
+
+#: Length of a warning line without ``--verbose`` (the whole text with it).
+WARNING_WIDTH = 220
+
+
+def short_warning(text: str) -> str:
+    """A long warning cut at a clause boundary, pointing to ``-v`` for the rest."""
+    if len(text) <= WARNING_WIDTH:
+        return text
+    head = text[:WARNING_WIDTH]
+    cut = head.rfind("; ")  # the end of a sentence-like clause first, then a shorter one
+    if cut <= WARNING_WIDTH // 2:
+        cut = max(head.rfind(": "), head.rfind(", "))
+    return (head[:cut] if cut > WARNING_WIDTH // 2 else head).rstrip() + " ... (-v: in full)"
+
+
+def report_text(report: str, args: argparse.Namespace) -> str:
+    """A result's report for the terminal: its ``warning:`` lines short unless ``--verbose``."""
+    if getattr(args, "verbose", False):
+        return report
+    prefix = "warning: "
+    return "\n".join(prefix + short_warning(line[len(prefix):]) if line.startswith(prefix)
+                     else line for line in report.split("\n"))
 
 
 class UsageError(Exception):

@@ -232,8 +232,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"error: the fit of '{bound.law.id}' to {args.fit} did not converge; "
               "nothing exported", file=sys.stderr)
         return 1
-    for w in bound.notes:
-        print(f"warning: fit: {w}", file=sys.stderr)
+    # the fit's notes come back among the export's warnings ("fit: ..."), printed once
     res = export(bound, None, args.format, box, units=system, tol=args.tol, spacing=spacing,
                  path=None if args.output == "-" else args.output, max_rows=args.max_rows,
                  options=_options(args))

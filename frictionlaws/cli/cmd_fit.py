@@ -10,7 +10,7 @@ from ._campaign import (
     run_fit_campaign,
     wants_campaign,
 )
-from ._common import add_data_options, add_fit_options, fit_kwargs, run_fit
+from ._common import add_data_options, add_fit_options, fit_kwargs, report_text, run_fit
 
 __all__ = ["add_parser", "run"]
 
@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(result.to_json())
     else:
-        print(result.report())
+        print(report_text(result.report(), args))
         if args.save:
             print(f"saved: {args.save}")
     return 0 if result.success else 1

@@ -286,6 +286,19 @@ class Comparison:
     def __str__(self) -> str:
         return self.table()
 
+    def plot(self, **kw: Any) -> Any:
+        """Bar chart of each law's fit, CV and extrapolation RMSE, in rank order.
+
+        See :func:`frictionlaws.plotting.plot_comparison` (``ax``, ``log``).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from ..plotting import plot_comparison
+
+        return plot_comparison(self, **kw)
+
     def write_report(self, directory: str | Path, *, jobs: int = 1) -> dict[str, Path]:
         """Write ``report.html``, ``report.md``, ``comparison.json`` and the PNG figures.
 

@@ -247,7 +247,7 @@ class ExportResult:
         where = f"{self.path}" if self.path else "(not written)"
         lines = [f"wrote {where}: {self.format}, law {self.law}, units {self.units}"]
         lines += [f"  {s}" for s in self.summary]
-        lines += [f"  WARNING: {w}" for w in self.warnings]
+        lines += [f"  warning: {w}" for w in self.warnings]
         return "\n".join(lines)
 
 

@@ -116,7 +116,7 @@ register(Law(
     evidence="M",
     description="mu = mu_ref (F_N/F_ref)^(-n): a single Hertzian asperity gives n = 1/3, "
     "hierarchical asperities (Archard) 1/9 or 1/27.",
-    notes="Singular at F_N -> 0 (floored at 1e-6 N). n may be held fixed (--fix n=0.3333).",
+    notes="Singular at F_N -> 0 (floored at 1e-6 N). n may be held fixed (fix n = 0.3333).",
 ))
 
 # ----------------------------------------------------------------------- denny

@@ -8,9 +8,10 @@ ten at 1.38 m/s and one at 2.77 m/s. Here every registered sliding-velocity law 
 to it with the same call, and the fits are drawn side by side.
 
 Two things to watch: laws with a logarithm or a negative power of the velocity cannot
-use the eight rows at v = 0, so they are fitted to the remaining 11 (the fitter drops
-the rows and says so); and a law with more parameters than the data can support is
-flagged with the parameters it cannot determine.
+use the eight rows at v = 0. By default the fitter stops and names such rows; here
+``on_invalid="drop"`` asks it to fit the remaining 11 and say which rows it dropped. And a
+law with more parameters than the data can support is flagged with the parameters it
+cannot determine.
 """
 
 # %%
@@ -22,10 +23,10 @@ flagged with the parameters it cannot determine.
 import warnings
 
 import matplotlib.pyplot as plt
-import numpy as np
 
 import frictionlaws as fl
 from frictionlaws.errors import DomainError
+from frictionlaws.plotting import plot_fit_grid
 
 data = fl.load_dataset("thesis-steel")
 print(data)
@@ -48,48 +49,9 @@ print(f"fitted {len(results)} laws")
 # Each panel shows the measured points (coloured by disc velocity) and the fitted law at
 # the velocities it was fitted on; open circles are rows a law could not use (v = 0 for the
 # log-velocity laws), and no curve is drawn there. A red title marks a fit with parameters
-# the data cannot determine.
-frame = data.frame
-speeds = np.unique(frame["v"])
-colors = dict(zip(speeds, plt.get_cmap("viridis")(np.linspace(0, 0.8, len(speeds)))))
-p_grid = np.linspace(0.02e6, 0.27e6, 120)
-
-ncol = 4
-nrow = int(np.ceil(len(results) / ncol))
-fig, axes = plt.subplots(nrow, ncol, figsize=(13, 2.9 * nrow), sharex=True, sharey=True,
-                         layout="constrained")
-for ax, (law_id, res) in zip(axes.flat, results.items()):
-    for v in speeds:
-        rows = frame["v"] == v
-        used = not res.extrapolation({"v": np.array([v])})
-        ax.plot(frame["p"][rows] / 1e6, frame["mu"][rows], "o", ms=4, color=colors[v],
-                mfc=colors[v] if used else "none")
-        if not used:
-            continue
-        variables = {"p": p_grid, "v": np.full_like(p_grid, v),
-                     "F_N": p_grid * 314.16e-6}  # F_N from p on the 20 mm pin (Schallamach)
-        mu = res.law.evaluate({k: variables[k] for k in res.law.variables} or {"p": p_grid},
-                              res.values)
-        ax.plot(p_grid / 1e6, np.broadcast_to(mu, p_grid.shape), color=colors[v], lw=1.5)
-    flag = " (!)" if res.non_identifiable else ""
-    ax.set_title(f"{law_id}{flag}\nR² = {res.metrics['r2']:.3f}, n = {res.metrics['n']}",
-                 fontsize=9, color="C3" if res.non_identifiable else "k")
-    ax.grid(alpha=0.3)
-for ax in axes.flat[len(results):]:
-    ax.set_visible(False)
-for col in range(ncol):
-    visible = [ax for ax in axes[:, col] if ax.get_visible()]
-    if visible:
-        visible[-1].xaxis.set_tick_params(labelbottom=True)
-        visible[-1].set_xlabel("p [MPa]")
-for ax in axes[:, 0]:
-    ax.set_ylabel("μ [–]")
-axes.flat[0].set_ylim(0, 4.5)
-handles = [plt.Line2D([], [], color=colors[v], marker="o", label=f"v = {v:g} m/s")
-           for v in speeds]
-handles.append(plt.Line2D([], [], color="0.3", marker="o", mfc="none", ls="none",
-                          label="row not used by the law"))
-fig.legend(handles=handles, loc="outside lower center", ncol=len(handles))
+# the data cannot determine. :func:`frictionlaws.plotting.plot_fit_grid` draws the grid.
+fig = plot_fit_grid(results, data, x="p", by="v")
+fig.axes[0].set_ylim(0, 4.5)
 plt.show()
 
 # %%

@@ -15,7 +15,6 @@ an extended box for values no rubber has and for trends the data contradict.
 # From one parameter (Coulomb) to seven (the thesis' cubic polynomial). Every law here can
 # use all 19 rows, so the information criteria are comparable too.
 import matplotlib.pyplot as plt
-import numpy as np
 
 from frictionlaws.comparison import compare
 
@@ -46,39 +45,17 @@ print("\n".join(comparison.table().splitlines()[1:4]))
 # In-sample RMSE always falls with the number of parameters; cross-validated RMSE and the
 # error on the held-out upper ranges do not. Hatched bars mark laws the plausibility scan
 # flags (μ outside 0..5 or a trend against the data in the extended box); a missing bar is
-# a score the refits' rows cannot determine (n/d).
-results = {r.law.id: r for r in comparison.results}
-order = [law for law in laws if law in results]
-metrics = {
-    "RMSE (fit)": [results[k].metrics["rmse"] for k in order],
-    "CV RMSE": [results[k].cv.rmse for k in order],
-    "extrapolation RMSE": [results[k].extrapolation_rmse for k in order],
-}
-x = np.arange(len(order))
-width = 0.27
-fig, ax = plt.subplots(figsize=(10, 4.2), layout="constrained")
-for i, (name, values) in enumerate(metrics.items()):
-    bars = ax.bar(x + (i - 1) * width, values, width, label=name, color=f"C{i}")
-    for bar, law in zip(bars, order):
-        if not results[law].plausible:
-            bar.set_hatch("//")
-            bar.set_edgecolor("k")
-ax.set_xticks(x, [f"{k}\n(k = {results[k].metrics['k']})" for k in order])
-ax.set_yscale("log")
-ax.set_ylabel("RMSE in μ [–]")
-ax.grid(alpha=0.3, axis="y")
-handles, labels = ax.get_legend_handles_labels()
-handles.append(plt.Rectangle((0, 0), 1, 1, facecolor="w", edgecolor="k", hatch="//"))
-labels.append("flagged implausible outside the data")
-ax.legend(handles, labels, fontsize="small")
+# a score the refits' rows cannot determine (n/d). The bars are in rank order;
+# :meth:`~frictionlaws.comparison.results.Comparison.plot` draws them.
+comparison.plot()
 plt.show()
 
 # %%
 # Why the flexible laws are flagged
 # ---------------------------------
 # The scan names the worst point of each flagged law:
-for law in order:
-    r = results[law]
+for r in comparison.results:
+    law = r.law.id
     status = "plausible" if r.plausible else "IMPLAUSIBLE"
     print(f"{law:<14} {status}")
     for reason in r.plausibility.reasons[:2]:
