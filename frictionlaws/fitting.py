@@ -1119,10 +1119,8 @@ def fit(
         Bounded differential evolution before a local polish; ``"auto"``: only when the
         local starts end worse than the mean of mu or at different minima.
     lean : bool
-        Values, metrics, convergence and the names the data cannot determine only
-        (refits in cross-validation): no intervals, derived quantities or provenance; the
-        best fit is polished to tight tolerances (:func:`_polish`), so that the refit's
-        optimum does not depend on the solver's path or the scipy version.
+        Values, metrics and undetermined names only (refits), polished to tight
+        tolerances (:func:`_polish`): the optimum, not the solver's path or version.
 
     Returns
     -------

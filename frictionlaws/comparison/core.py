@@ -586,10 +586,9 @@ def compare(
     Returns
     -------
     Comparison
-        The fitted laws in rank order (best first, by cross-validated RMSE), each with its
-        fit, cross-validation, hold-out errors, plausibility scan, residual tests and
-        Akaike weight; the laws skipped (with the reason) and those whose fit failed
-        (with the error); the settings and notes.
+        The fitted laws in rank order, each with its fit, cross-validation, hold-out
+        errors, plausibility scan, residual tests and Akaike weight; the laws skipped or
+        failed (with the reason); the settings and notes.
 
     Raises
     ------
