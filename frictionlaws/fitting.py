@@ -44,6 +44,7 @@ import numpy as np
 from .errors import ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
+from .units import si_magnitude
 
 if TYPE_CHECKING:
     from .bound import BoundLaw
@@ -205,7 +206,8 @@ def _arrays_fit_data(data: Mapping[str, Any]) -> FitData:
     arrays = {}
     for k, v in data.items():
         if k == "mu" or k in VARIABLES:
-            arrays[k] = _float_array(k, v)
+            unit = VARIABLES[k].unit if k in VARIABLES else ""
+            arrays[k] = _float_array(k, si_magnitude(v, unit, f"array '{k}'"))
     n = arrays["mu"].size
     if n == 0:
         raise InputError("array 'mu' is empty")
@@ -332,7 +334,7 @@ def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> di
                              f"{', '.join(setting_names) or 'none'}", option="fix")
         if isinstance(v, (bool, str)) or v is None:
             raise InputError(f"cannot fix '{k}' to {v!r}: a number is needed", option="fix")
-        out[k] = float(v)
+        out[k] = float(si_magnitude(v, law.value_unit(k), f"fix '{k}'"))
     try:
         law.check_values(out, admissible=False)
     except InputError as exc:
@@ -538,6 +540,7 @@ class FitResult:
         float or numpy.ndarray
             The friction coefficient mu.
         """
+        variables = self.law.si_variables(variables)
         if warn:
             msgs = self.extrapolation(variables)
             if msgs:

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import DomainError, InputError
-from .units import QUANTITIES
+from .units import QUANTITIES, si_magnitude
 
 if TYPE_CHECKING:
     from .bound import BoundLaw
@@ -577,7 +577,8 @@ class Law:
                 f"(parameters: {', '.join(self.param_names)}; settings: "
                 f"{', '.join(s.name for s in self.settings) or 'none'})"
             )
-        out.update({k: _as_float(k, v, self.id) for k, v in values.items()})
+        out.update({k: _as_float(k, si_magnitude(v, self.value_unit(k), f"law '{self.id}': {k}"),
+                                  self.id) for k, v in values.items()})
         missing = []
         for p in self.params:
             if p.name not in out:
@@ -657,6 +658,33 @@ class Law:
                 return s
         return None
 
+    def value_unit(self, name: str) -> str:
+        """The SI unit of a parameter or setting (``""`` when dimensionless or unknown)."""
+        decl = self._declared(name)
+        return decl.unit if decl is not None else ""
+
+    def si_variables(self, variables: Mapping[str, Any]) -> dict[str, Any]:
+        """The variables with any pint ``Quantity`` converted to its SI magnitude.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI numbers, or pint Quantities in any unit of
+            the variable's kind).
+
+        Returns
+        -------
+        dict
+            The same mapping with plain numbers in SI.
+
+        Raises
+        ------
+        InputError
+            A Quantity whose unit is not one of the variable's kind.
+        """
+        return {k: si_magnitude(x, VARIABLES[k].unit, f"law '{self.id}': {k}")
+                if k in VARIABLES else x for k, x in variables.items()}
+
     def _unit_of(self, name: str) -> str:
         decl = self._declared(name)
         return f" {decl.unit}" if decl is not None and decl.unit else ""
@@ -705,6 +733,7 @@ class Law:
         float or numpy.ndarray or pandas.Series
             A float when every input is a scalar, a Series when a Series came in.
         """
+        variables = self.si_variables(variables)
         missing = [v for v in self.variables if v not in variables]
         if missing:
             self._refuse_missing(missing, params)
@@ -820,6 +849,7 @@ class Law:
         InputError, DomainError
             A variable the law cannot take, or a mu that means nothing.
         """
+        variables = self.si_variables(variables)
         fast = self._evaluate_blocks(variables, params)
         if fast is not None:
             return fast

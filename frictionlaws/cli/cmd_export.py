@@ -308,7 +308,10 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
+    from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
     from frictionlaws.outputs import check_outputs
 
+    if args.format in FORTRAN_FORMATS:
+        check_source_name(args.output)
     inputs = [x for x in (args.params, args.fit) if x and Path(x).exists()]
     check_outputs([args.output], inputs=inputs)
