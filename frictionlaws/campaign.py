@@ -203,6 +203,7 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
                              f"(fewer than {MIN_ROWS_PER_GROUP} rows a group on average): it "
                              "must name a grouping column such as surface, not a measured "
                              "quantity", file=str(dataset.source), option="by")
+    _refuse_empty_keys(dataset, by)
     keys = frame[list(by)].astype(str).agg("\x1f".join, axis=1).to_numpy()
     groups = []
     for key in dict.fromkeys(keys.tolist()):
@@ -210,6 +211,27 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
         first = int(np.flatnonzero(mask)[0])
         groups.append(({c: _plain(frame[c].iloc[first]) for c in by}, mask))
     return groups
+
+
+def _refuse_empty_keys(dataset: Any, by: Sequence[str]) -> None:
+    """Refuse rows whose grouping cell is empty, naming the file, column and rows.
+
+    An empty cell is no group: fitting its rows as a group of their own (or with
+    another) would give a result that belongs to no condition.
+    """
+    frame = dataset.frame
+    for col in by:
+        cells = frame[col]
+        empty = cells.isna().to_numpy() | (cells.astype(str).str.strip() == "").to_numpy()
+        if empty.any():
+            idx = np.flatnonzero(empty)
+            rows = getattr(dataset, "rows", None)
+            labels = [str(rows[i]) if rows is not None else str(i + 1) for i in idx[:8]]
+            more = f" and {idx.size - 8} more" if idx.size > 8 else ""
+            raise InputError(f"{idx.size} row(s) have no value of the grouping column "
+                             f"'{col}' (rows {', '.join(labels)}{more}): fill them in or "
+                             "remove them", file=str(dataset.source), column=col,
+                             option="by")
 
 
 def fit_groups(law: str, data: Any, by: Sequence[str], *,
@@ -290,6 +312,52 @@ class _Job:
     by: tuple[str, ...]
     fit_options: Mapping[str, Any]
     load_options: Mapping[str, Any]
+    #: The dataset's name in the tables (unique in the campaign); None: its own name.
+    label: str | None = None
+
+
+def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
+    """A unique name per dataset of a campaign, or None where its own name is unique.
+
+    Files are named by their stem (``runs.csv`` -> ``runs``) as :func:`load_dataset`
+    names them; where two stems are the same (``a/data.csv``, ``b/data.csv``) those
+    files are named by their path as given, so the tables can tell them apart.  The
+    same file given twice is refused.
+
+    Parameters
+    ----------
+    sources : sequence
+        The items of :func:`iter_datasets`.
+
+    Returns
+    -------
+    list of str or None
+        One entry per source.
+
+    Raises
+    ------
+    InputError
+        When one file is given twice.
+    """
+    seen: dict[str, int] = {}
+    for i, src in enumerate(sources):
+        if isinstance(src, (str, os.PathLike)) and Path(src).is_file():
+            key = str(Path(src).resolve())
+            if key in seen:
+                raise InputError(f"the same file is given twice (datasets {seen[key] + 1} and "
+                                 f"{i + 1}); give each dataset once", file=str(src))
+            seen[key] = i
+    stems = [Path(src).stem if isinstance(src, (str, os.PathLike)) and Path(src).is_file()
+             else getattr(src, "name", None) for src in sources]
+    labels: list[str | None] = []
+    for src, stem in zip(sources, stems):
+        clash = stem is not None and stems.count(stem) > 1
+        labels.append(os.fspath(src) if clash and isinstance(src, (str, os.PathLike))
+                      else None)
+    named = [lab for lab in labels if lab is not None]
+    if len(set(named)) < len(named):  # the same text names different files: no such case
+        raise InputError("two datasets have the same name; give them distinct paths")
+    return labels
 
 
 def _read_problem(job: _Job) -> InputError | None:
@@ -336,7 +404,7 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
                  "input_error": True} for law in job.laws]
     records = []
     for (key, mask), law in itertools.product(groups, job.laws):
-        record: dict[str, Any] = {"dataset": ds.name, "source": str(ds.source),
+        record: dict[str, Any] = {"dataset": job.label or ds.name, "source": str(ds.source),
                                   "group": key, "law": law, "rows": int(mask.sum())}
         try:
             res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
@@ -640,8 +708,24 @@ class Campaign:
                 continue
             m = rec["result"]["metrics"]
             lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
-                         f"n = {m.get('n')}")
+                         f"n = {m.get('n')}{_doubts(rec['result'])}")
         return "\n".join(lines)
+
+
+def _doubts(result: Mapping[str, Any]) -> str:
+    """What a summary line adds about a fit's doubts: undetermined parameters, warnings."""
+    parts = []
+    undetermined = result.get("non_identifiable") or []
+    if undetermined:
+        parts.append(f"cannot determine {', '.join(undetermined)}")
+    withheld = [k for k, e in (result.get("params") or {}).items()
+                if not e.get("fixed") and e.get("stderr") is None and k not in undetermined]
+    if withheld:
+        parts.append(f"no standard error for {', '.join(withheld)}")
+    n = len(result.get("warnings") or [])
+    if n:
+        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed with --json or --out .json)")
+    return f"; {'; '.join(parts)}" if parts else ""
 
 
 def _fmt(x: Any) -> str:
@@ -786,8 +870,8 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     columns = check_grouping(by, law_ids)
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
-    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
-             for src in sources]
+    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}), label)
+             for src, label in zip(sources, dataset_labels(sources))]
     _refuse_unreadable(jobs_, jobs=jobs, scheduler=scheduler)
     parts = iter_parallel(_fit_dataset, jobs_, jobs=jobs, scheduler=scheduler,
                           progress=progress, total=len(sources))
@@ -817,6 +901,7 @@ class _CompareJob:
     by: tuple[str, ...]
     options: Mapping[str, Any]
     load_options: Mapping[str, Any]
+    label: str | None = None
 
 
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
@@ -832,7 +917,8 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
                  "input_error": True}]
     out = []
     for key, mask in groups:
-        record: dict[str, Any] = {"dataset": ds.name, "group": key, "rows": int(mask.sum())}
+        record: dict[str, Any] = {"dataset": job.label or ds.name, "group": key,
+                                  "rows": int(mask.sum())}
         try:
             cmp = compare(list(job.laws) if job.laws else None,
                           ds.subset(mask) if not mask.all() else ds, **job.options)
@@ -881,7 +967,8 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
     columns = check_grouping(by, tuple(laws) if laws else ())
     sources = iter_datasets(datasets)
     work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
-                        dict(load_options or {})) for src in sources)
+                        dict(load_options or {}), label)
+            for src, label in zip(sources, dataset_labels(sources)))
     rows = []
     unreadable: list[str] = []
     for part in iter_parallel(_compare_dataset, work, jobs=jobs, scheduler=scheduler,

@@ -506,8 +506,8 @@ class Dataset:
 
         Column names follow the CSV schema: canonical names or aliases, with the
         unit in square brackets (``p [MPa]``, ``T [degC]``); a column without a
-        unit in its name is taken as SI (``p`` in Pa) unless ``units`` says
-        otherwise.  :meth:`to_frame` writes this form, so
+        unit in its name needs one in ``units``, or is refused as in a CSV file
+        (dimensionless columns such as ``mu`` need none).  :meth:`to_frame` writes this form, so
         ``Dataset.from_frame(ds.to_frame())`` gives ``ds`` back.
 
         Parameters
@@ -645,6 +645,9 @@ class _Table:
     decimal_comma: bool = False
     from_file: bool = True
     delimiter: str | None = None
+    #: A dict of arrays (the API's SI arrays): a column without a unit is in SI.  A file
+    #: and a DataFrame must state every unit (one rule for both).
+    si_by_default: bool = False
 
 
 def refuse_nul(raw: bytes, source: str) -> None:
@@ -1081,7 +1084,7 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
         if unit is None:
             if canon in _DIMENSIONLESS:
                 unit = ""
-            elif not table.from_file:
+            elif table.si_by_default:
                 unit = _units.si_unit(canon)
             else:
                 ex = _units.display_unit(canon)
@@ -1396,9 +1399,10 @@ def load_dataset(
     ----------
     name_or_path : str, path, DataFrame, dict or Dataset
         A CSV path; the name of a packaged dataset (see :func:`list_datasets`,
-        e.g. ``"thesis-steel"``); a DataFrame or dict of columns (canonical or
-        aliased names; columns without a unit in the name are taken as SI); or a
-        :class:`Dataset`, returned unchanged.
+        e.g. ``"thesis-steel"``); a DataFrame (its columns named as in a CSV file,
+        each with its unit in the name or in ``units``: a column without a unit is
+        refused, as in a file); a dict of columns (canonical or aliased names,
+        SI where the name gives no unit); or a :class:`Dataset`, returned unchanged.
     mapping : dict or str, optional
         Canonical column -> the user's column, e.g. ``{"mu": "FC", "p": "CP"}``
         or ``"mu=FC,p=CP"``.
@@ -1459,7 +1463,9 @@ def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, st
         frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in data.items()})
     except ValueError as exc:
         raise InputError(f"cannot build a table from the dict: {exc}") from None
-    return _table_from_frame(frame, "<dict>"), "data"
+    table = _table_from_frame(frame, "<dict>")
+    table.si_by_default = True
+    return table, "data"
 
 
 def _table_on_disk(text: str) -> tuple[_Table, str]:

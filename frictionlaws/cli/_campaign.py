@@ -164,6 +164,8 @@ def _refuse_without_by(args: argparse.Namespace) -> None:
 def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
     """Run ``fit`` over several datasets and/or groups; print a summary, write ``--out``.
 
+    A DATA of ``-`` (standard input) is read once into a private file first.
+
     Parameters
     ----------
     args : argparse.Namespace
@@ -176,6 +178,18 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     int
         The exit status: 0, or 1 when a fit failed.
     """
+    from ._common import data_sources
+
+    given = args.data
+    with data_sources(given if isinstance(given, list) else [given]) as paths:
+        args.data = paths if isinstance(given, list) else paths[0]
+        try:
+            return _run_fit_campaign(args, fit_kwargs)
+        finally:
+            args.data = given
+
+
+def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
     from frictionlaws.campaign import check_grouping
 
     _refuse_without_by(args)
@@ -214,11 +228,16 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
     from frictionlaws.errors import InputError
 
     from . import flag_label
+    from ._common import shown_source
 
     try:
-        return fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
+        camp = fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
                         progress=campaign_progress(args), output=stream, load_options=load,
                         **fit_kwargs)
+        for rec in camp.records:
+            if "source" in rec:
+                rec["source"] = shown_source(rec["source"])
+        return camp
     except UnreadableDatasets as exc:
         label = flag_label(args)
         lines = [" ".join(p.compose(label=label).split()) for p in exc.problems]

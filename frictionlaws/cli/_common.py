@@ -689,6 +689,25 @@ def data_source(data: str) -> Iterator[str]:
             raise
 
 
+@contextlib.contextmanager
+def data_sources(data: Sequence[str]) -> Iterator[list[str]]:
+    """A campaign's DATA arguments with ``-`` spooled as :func:`data_source` does.
+
+    The others (files, directories, packaged names) are passed on as given.
+    """
+    with contextlib.ExitStack() as stack:
+        yield [stack.enter_context(data_source(d)) if d == STDIN else d for d in data]
+
+
+def shown_source(path: str) -> str:
+    """A source path as the user gave it: the private copy of standard input is ``<stdin>``."""
+    p = os.path.normpath(str(path))
+    parent = os.path.basename(os.path.dirname(p))
+    if os.path.basename(p) == "stdin.csv" and parent.startswith("frictionlaws-stdin-"):
+        return "<stdin>"
+    return str(path)
+
+
 def print_json(obj: Any) -> None:
     """Print ``obj`` as strict JSON on stdout (null for non-finite numbers)."""
     from frictionlaws.jsonio import dumps

@@ -376,12 +376,13 @@ def _run_thesis(args: argparse.Namespace) -> int:
         print(json.dumps(comp.to_dict(), indent=2))
         return 0
     for label, f in comp.fits.items():
-        print(f"fit {label}: " + ", ".join(f"{k} = {p.value:.6g} {p.unit}".rstrip()
-                                            for k, p in f.params.items())
-              + f" (R^2 {f.metrics['r2']:.4f})")
+        print(f"fit {label}: " + ", ".join(
+            f"{k} = {p.value:.6g} {p.unit}".rstrip()
+            + (" (undetermined)" if k in f.non_identifiable else "")
+            for k, p in f.params.items()) + f" (R^2 {f.metrics['r2']:.4f})")
     lines = comp.table().splitlines()
     print("\n".join(line for line in lines if not line.startswith("warning")))
-    _warn([line.split(": ", 1)[1] for line in lines if line.startswith("warning")])
+    _warn([line.removeprefix("warning ") for line in lines if line.startswith("warning")])
     return 0
 
 
