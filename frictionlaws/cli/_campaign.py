@@ -266,6 +266,10 @@ def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
     if fit_kwargs.get("uncertainty", "asymptotic") != "asymptotic":
         raise InputError("--uncertainty is not used with --shared (the shared fit reports "
                          "asymptotic errors); remove it")
+    from ._common import refuse_unused
+
+    refuse_unused(args, ("jobs", "scheduler"),
+                  "with --shared (a shared fit is one least-squares problem, not spread)")
     res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
                      weights=fit_kwargs.get("weights", "auto"), load_options=load)
     if args.out:

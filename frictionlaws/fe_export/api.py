@@ -527,6 +527,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
     writer, _, needs_box = FORMATS[format]
+    job.check_corners(needs_box)
     if needs_box:
         job.domain_warnings()
     if not needs_box or format in _FORMULA_CARDS:

@@ -192,6 +192,38 @@ class Job:
                      "(check the parameters; a fit that cannot determine them needs ",
                      Argument("fix"), ")"])
 
+    def check_corners(self, needs_box: bool) -> None:
+        """Refuse a box reaching where the law itself is undefined (before any output).
+
+        The law is evaluated, with every check its evaluation makes (a WLF pole, no
+        limit at v = 0 or p = 0), at each corner of the box (a variable without a range
+        at the ends of its typical range): the exporters evaluate the law through
+        :meth:`Law.bind`, which skips the checks that are not about single points.
+        A table (``needs_box``) missing a range is left to the writer, which names it.
+
+        Raises
+        ------
+        DomainError
+            Naming the box and what the law says there.
+        """
+        import itertools
+
+        from ..errors import DomainError
+
+        names = list(self.variables)
+        if not names or (needs_box and any(v not in self.specs for v in names)):
+            return
+        ends = [(self.specs[v].lo, self.specs[v].hi) if v in self.specs
+                else self.law.typical_range(v) for v in names]
+        corners = np.array(list(itertools.product(*ends)), float)
+        try:
+            self.law.evaluate({v: corners[:, j] for j, v in enumerate(names)}, self.values)
+        except DomainError as exc:
+            box = ", ".join(f"{v} {self.model(v, lo)} .. {self.model(v, hi)}"
+                            for v, (lo, hi) in zip(names, ends))
+            raise DomainError(f"the export box ({box}) reaches where law '{self.law.id}' is "
+                              f"undefined: {exc.bare_message}") from None
+
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
 
