@@ -347,17 +347,30 @@ def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
                 raise InputError(f"the same file is given twice (datasets {seen[key] + 1} and "
                                  f"{i + 1}); give each dataset once", file=str(src))
             seen[key] = i
-    stems = [Path(src).stem if isinstance(src, (str, os.PathLike)) and Path(src).is_file()
-             else getattr(src, "name", None) for src in sources]
+    names = [_own_name(src) for src in sources]
     labels: list[str | None] = []
-    for src, stem in zip(sources, stems):
-        clash = stem is not None and stems.count(stem) > 1
-        labels.append(os.fspath(src) if clash and isinstance(src, (str, os.PathLike))
-                      else None)
+    for i, (src, name) in enumerate(zip(sources, names)):
+        if names.count(name) == 1:
+            labels.append(None)
+        elif isinstance(src, (str, os.PathLike)):
+            labels.append(os.fspath(src))
+        else:  # data in memory: named by their place in the campaign
+            labels.append(f"{name} #{i + 1}")
     named = [lab for lab in labels if lab is not None]
-    if len(set(named)) < len(named):  # the same text names different files: no such case
+    if len(set(named)) < len(named):
         raise InputError("two datasets have the same name; give them distinct paths")
     return labels
+
+
+def _own_name(source: Any) -> str:
+    """The name :func:`~frictionlaws.io.load_dataset` gives a source, without loading it."""
+    from .io import Dataset
+
+    if isinstance(source, (str, os.PathLike)):
+        return Path(source).stem if Path(source).is_file() else os.fspath(source)
+    if isinstance(source, Dataset):
+        return str(source.name)
+    return "data" if isinstance(source, Mapping) else "dataframe"
 
 
 def _read_problem(job: _Job) -> InputError | None:

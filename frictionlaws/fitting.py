@@ -1158,6 +1158,9 @@ def _freed_settings(law: Law, free: Iterable[str], setting_names: list[str]
 def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tuple[str, ...],
                  initial: Mapping[str, float] | None) -> dict[str, float]:
     """The law's data-driven guess, the freed settings' values, then ``initial``."""
+    if initial:  # pint Quantities in SI (or refused), as everywhere in the API
+        initial = {k: si_magnitude(v, law.value_unit(k), f"initial '{k}'")
+                   for k, v in initial.items()}
     y = fd.arrays["mu"]
     guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
     guess = law.initial_guess(guess_data)

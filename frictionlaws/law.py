@@ -805,7 +805,7 @@ class Law:
         return out
 
     def below_floors(self, raw: Mapping[str, Any], prepared: Mapping[str, Any],
-                     params: Mapping[str, float], out: Any) -> Any:
+                     params: Mapping[str, float], out: Any, *, strict: bool = False) -> Any:
         """The law's own values where a variable lies below its floor.
 
         A floor keeps the formula smooth where it is used; it is no value of the law.
@@ -813,7 +813,7 @@ class Law:
         the law's limit is taken, found by evaluating it at :data:`ZERO_PROBES` times
         the floor: where the last two probes agree within :data:`LIMIT_RTOL` that is the
         limit, else (the law grows without bound or keeps changing as ``x -> 0``) there
-        is none and the point is refused.
+        is none: such a point is NaN (refused with ``strict``).
 
         Parameters
         ----------
@@ -825,6 +825,8 @@ class Law:
             Every parameter and setting.
         out : float or ndarray
             The formula at ``prepared``.
+        strict : bool
+            Raise where the law has no value instead of giving NaN there.
 
         Returns
         -------
@@ -834,7 +836,8 @@ class Law:
         Raises
         ------
         DomainError
-            Where the law has no finite value or limit, naming the variable and point.
+            With ``strict``, where the law has no finite value or limit, naming the
+            variable and point.
         """
         low = {}
         for name, floor in self.floors.items():
@@ -866,10 +869,10 @@ class Law:
         last, prev = probes[-1], probes[-2]
         ok = np.isfinite(last) & (~at_zero | (np.abs(last - prev) <= LIMIT_RTOL * np.maximum(
             np.abs(last), 1.0)))
-        if not ok.all():
+        if strict and not ok.all():
             self._refuse_below_floor(zero, at_zero, ok, shape, rows)
         full = np.array(np.broadcast_to(np.asarray(out, float), shape))
-        full[rows] = last
+        full[rows] = np.where(ok, last, np.nan)
         return float(full) if full.ndim == 0 else full
 
     def _refuse_below_floor(self, zero: Mapping[str, np.ndarray], at_zero: np.ndarray,
@@ -953,6 +956,9 @@ class Law:
         out = self.evaluate(variables, params)
         mu = np.asarray(out, dtype=float)
         if not self._mu_ok(mu):
+            if self.floors:  # a point without a value below a floor: say which
+                raw = self._fill_optional(variables, params)
+                self.below_floors(raw, self.prepare_variables(raw), params, mu, strict=True)
             self._refuse_mu(mu, params)
         return out
 

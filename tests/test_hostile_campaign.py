@@ -234,3 +234,36 @@ def test_fortran_export_under_a_free_form_name_is_refused(tmp_path):
                    "--format", "abaqus-fric-coef", "--v", "0:10", "-o", str(out)])
     check_outcome(res)
     assert res.code == 2 and "fixed-form" in res.err and not Path(out).exists()
+
+
+@hostile(6)
+@given(command=st.sampled_from(["tyre-mf", "tyre-mf-json", "tyre-reduce", "export-params",
+                                "cornering-params", "process"]))
+def test_standard_input_in_property_parameter_and_manifest_commands(command,
+                                                                    tmp_path_factory):
+    from hostile import MF52_JSON, MF52_TIR
+
+    tmp = tmp_path_factory.mktemp("stdin2")
+    params = tmp / "th.json"
+    fitted = run_cli(["fit", "--law", "thirion", "thesis-steel", "--save", str(params)])
+    assert fitted.code == 0, fitted.describe()
+    argv, data = {
+        "tyre-mf": (["tyre", "mf", "-"], MF52_TIR.read_bytes()),
+        "tyre-mf-json": (["tyre", "mf", "-", "--json"], MF52_JSON.read_bytes()),
+        "tyre-reduce": (["tyre", "reduce", "--load", "4", "-"], MF52_TIR.read_bytes()),
+        "export-params": (["export", "--params", "-", "--format", "csv", "--p",
+                           "0.1MPa:0.5MPa", "-o", str(tmp / "t.csv")], params.read_bytes()),
+        "cornering-params": (["tyre", "cornering", "--law", "thirion", "--params", "-",
+                              "--loads", "2:6:3"], params.read_bytes()),
+        "process": (["process", "-", "--rig", str(tmp / "rig.toml"), "-o", str(tmp / "d.csv")],
+                    b"file,load [kg],surface\nr.csv,3,steel\n"),
+    }[command]
+    res = run_cli(argv, stdin=data, timeout=60)
+    check_outcome(res, json_out="--json" in argv)
+    if command == "process":  # relative record paths need the manifest's folder
+        assert res.code == 2 and "folder" in res.err
+        return
+    assert res.code == 0, res.describe()
+    assert "file '-'" not in res.err and "frictionlaws-stdin-" not in res.out + res.err
+    if command == "export-params":
+        assert "file <stdin>" in (tmp / "t.csv").read_text()

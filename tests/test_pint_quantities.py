@@ -80,6 +80,10 @@ def test_fit_predict_and_bound_take_quantities():
     assert q.bound(p=0.3 * U.MPa) == pytest.approx(si.bound(p=3e5), rel=1e-9)
     fixed = fl.fit("thirion", {"mu": mu, "p": p * U.MPa}, fix={"b": 2.0 * U("1/MPa")})
     assert fixed.params["b"].value == pytest.approx(2e-6, rel=1e-12)
+    started = fl.fit("thirion", {"mu": mu, "p": p * U.MPa}, initial={"b": 2.0 * U("1/MPa")})
+    assert started.params["b"].value == pytest.approx(si.params["b"].value, rel=1e-6)
+    with pytest.raises(InputError, match="initial 'b'"):
+        fl.fit("thirion", {"mu": mu, "p": p * U.MPa}, initial={"b": 2.0 * U.m})
     with pytest.raises(InputError, match="array 'p'"):
         fl.fit("thirion", {"mu": mu, "p": p * U.m})
 

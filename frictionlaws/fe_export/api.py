@@ -533,6 +533,8 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     if not needs_box or format in _FORMULA_CARDS:
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
+    if format in FORTRAN_FORMATS:
+        job.floor_warnings()
     written = writer(job)
     return _result(job, written, _write(path, written.text, _inputs_of(bound)))
 
