@@ -740,8 +740,8 @@ def _describe_uncertainty(info: Mapping[str, Any]) -> str:
     """One line saying how the standard errors and intervals were obtained."""
     method = info.get("method")
     if method == "bootstrap" and info.get("interval") is None:
-        return (f"bootstrap refused: {info.get('conditions')} conditions are too few "
-                "(standard errors withheld)")
+        return (f"bootstrap refused: too few test conditions ({info.get('conditions')}); "
+                "standard errors withheld")
     if method == "bootstrap":
         return (f"bootstrap ({info.get('n_boot')} resamples of {info.get('conditions')} "
                 f"conditions, seed {info.get('seed')}; 95 % {info.get('interval')} intervals)")
@@ -1954,7 +1954,8 @@ def _bootstrap_refused(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     for k in derived:
         derived[k] = {**derived[k], "stderr": None, "ci95": None}
     warn_msgs.append(f"the bootstrap needs more test conditions than the parameters they "
-                     f"determine ({n_cond} conditions, {len(inp.vary)} parameters): its standard "
+                     f"determine ({n_cond} condition{'s' if n_cond != 1 else ''}, "
+                     f"{len(inp.vary)} parameters): its standard "
                      "errors are undetermined and withheld (the asymptotic ones are kept "
                      "in uncertainty.asymptotic_stderr)")
     return {"n_boot": opts["n_boot"], "seed": opts["seed"], "interval": None,

@@ -71,8 +71,12 @@ __all__ = [
 #: (:data:`frictionlaws.law.VARIABLES`; their units: :data:`frictionlaws.units.QUANTITIES`).
 VARIABLE_COLUMNS: tuple[str, ...] = tuple(VARIABLES)
 #: Canonical columns, in the order a dataset stores and writes them.
-CANONICAL: tuple[str, ...] = ("mu", *VARIABLE_COLUMNS, "mu_std", "n", "surface")
-_NUMERIC = tuple(c for c in CANONICAL if c != "surface")
+CANONICAL: tuple[str, ...] = ("mu", *VARIABLE_COLUMNS, "mu_std", "n", "surface",
+                              "condition_id")
+#: Canonical columns that hold text: the counter-surface, and the test condition each
+#: row belongs to (repeats share it: the unit the bootstrap resamples).
+TEXT_COLUMNS: tuple[str, ...] = ("surface", "condition_id")
+_NUMERIC = tuple(c for c in CANONICAL if c not in TEXT_COLUMNS)
 _DIMENSIONLESS = tuple(c for c in _NUMERIC if not _units.si_unit(c))
 
 #: Accepted column names for each canonical column, in :data:`CANONICAL` order (the
@@ -92,6 +96,7 @@ ALIASES: dict[str, tuple[str, ...]] = {
                "standard deviation", "mu sd", "sd mu"),
     "n": ("count", "replicates", "repeats", "n tests", "n repeats", "n replicates"),
     "surface": ("surface", "counter surface", "countersurface", "counterface", "material"),
+    "condition_id": ("condition_id", "condition id", "test condition"),
 }
 
 #: Cell contents read as a missing value (the row is then dropped and reported).
@@ -487,7 +492,7 @@ class Dataset:
         """
         cols: dict[str, dict[str, Any]] = {}
         for col in self.column_names:
-            if col == "surface":
+            if col in TEXT_COLUMNS:
                 cols[col] = {"values": sorted({str(s) for s in self.column(col)})}
                 continue
             vals = self.column(col, float)
@@ -577,7 +582,7 @@ class Dataset:
         out = pd.DataFrame(index=range(len(self)))
         given: dict[str, str] = {}
         for c in (c for c in CANONICAL if c in self.column_names):
-            if c == "surface" or c not in _units.QUANTITIES:
+            if c in TEXT_COLUMNS or c not in _units.QUANTITIES:
                 out[c] = np.array(self.column(c), copy=True)
                 continue
             unit = _units.si_unit(c) if units == "si" else _units.display_unit(c)
@@ -612,7 +617,7 @@ class Dataset:
         headers = [_units.header(c) if c in _units.QUANTITIES else c for c in cols]
         columns: list[list[str]] = []
         for c in cols:
-            if c == "surface":
+            if c in TEXT_COLUMNS:
                 columns.append([str(s) for s in self.column(c)])
                 continue
             unit = _units.display_unit(c)
@@ -938,7 +943,7 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     si = _to_si_checked(table, assigned, values, unit_of, notes)
     keep = _rows_to_keep(table, assigned, si, notes)
     columns = _kept_columns(table, assigned, si, keep)
-    units_given = {c: unit_of.get(c, "") for c in columns if c != "surface"}
+    units_given = {c: unit_of.get(c, "") for c in columns if c not in TEXT_COLUMNS}
     if area is not None:
         columns = _pressure_from_area(columns, area, table.source, units_given, notes)
     notes.extend(_column_notes(columns))
@@ -1079,7 +1084,7 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
                 file=src, column=headers[j],
             )
         unit = header_unit if header_unit is not None else given
-        if canon == "surface":
+        if canon in TEXT_COLUMNS:
             continue
         if unit is None:
             if canon in _DIMENSIONLESS:
@@ -1172,7 +1177,7 @@ def _numbers(table: _Table, assigned: Mapping[str, int], explicit: set[str],
     """Numeric columns as written; an empty optional column is ignored with a note."""
     values: dict[str, np.ndarray] = {}
     commas = _uses_decimal_commas(table)
-    for canon in [c for c in CANONICAL if c in assigned and c != "surface"]:
+    for canon in [c for c in CANONICAL if c in assigned and c not in TEXT_COLUMNS]:
         col = table.headers[assigned[canon]]
         out = _column_numbers(table, assigned[canon], commas)
         if np.isnan(out).all():
@@ -1263,14 +1268,14 @@ def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
 
 def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
                   keep: np.ndarray) -> dict[str, np.ndarray]:
-    """The kept rows in SI, canonical column order, the surface column as text."""
+    """The kept rows in SI, canonical column order, the text columns as text."""
     columns = {c: si[c][keep] for c in CANONICAL if c in si}
-    if "surface" in assigned:
-        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
-                for c in table.columns[assigned["surface"]]]
+    for name in (c for c in TEXT_COLUMNS if c in assigned):
+        cells = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else str(c).strip()
+                 for c in table.columns[assigned[name]]]
         text = np.empty(int(np.count_nonzero(keep)), dtype=object)
-        text[:] = [s for s, k in zip(surf, keep, strict=True) if k]
-        columns["surface"] = text
+        text[:] = [s for s, k in zip(cells, keep, strict=True) if k]
+        columns[name] = text
     return {c: columns[c] for c in CANONICAL if c in columns}
 
 

@@ -665,7 +665,18 @@ class Law:
         return None
 
     def value_unit(self, name: str) -> str:
-        """The SI unit of a parameter or setting (``""`` when dimensionless or unknown)."""
+        """The SI unit of a parameter or setting.
+
+        Parameters
+        ----------
+        name : str
+            A parameter or setting of the law.
+
+        Returns
+        -------
+        str
+            Its unit (``""`` when dimensionless or not a name of the law).
+        """
         decl = self._declared(name)
         return decl.unit if decl is not None else ""
 

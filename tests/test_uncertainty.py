@@ -448,3 +448,23 @@ def test_shared_fit_withholds_undetermined_and_zero_errors(tmp_path) -> None:
             assert est["stderr"] is None, (name, est)
     assert any("0 to rounding" in w for w in result.warnings)
     assert "+/- -" in result.report()
+
+
+def test_a_condition_id_column_is_the_bootstraps_unit(tmp_path) -> None:
+    rows = ["condition_id,p [MPa],mu"]
+    for j, cond in enumerate("AABBCCDDEE"):  # two pressures per condition
+        p = 0.05 + 0.05 * j
+        rows.append(f"{cond},{p:.3f},{1 / (1 + 2 * p) * (1 + 0.01 * (-1) ** j):.6f}")
+    path = tmp_path / "runs.csv"
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    ds = load_dataset(path)
+    assert list(ds.column("condition_id")) == list("AABBCCDDEE")
+    back = load_dataset(ds.to_csv(tmp_path / "back.csv"))
+    assert list(back.column("condition_id")) == list("AABBCCDDEE")
+    res = fl.fit("thirion", path, uncertainty="bootstrap", n_boot=40)
+    assert res.uncertainty["conditions"] == 5  # not the 10 pressures
+    one = tmp_path / "one.csv"
+    one.write_text("\n".join([rows[0]] + [f"A,{r.split(',', 1)[1]}" for r in rows[1:]]) + "\n")
+    res = fl.fit("thirion", one, uncertainty="bootstrap", n_boot=40)
+    assert all(e.stderr is None for e in res.params.values())
+    assert any("(1 condition," in w for w in res.warnings)

@@ -526,7 +526,13 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
-    writer, _, needs_box = FORMATS[format]
+    written = FORMATS[format][0](_checked(job, format))
+    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
+
+
+def _checked(job: Job, format: str) -> Job:
+    """The job after the checks of its box that come before any writing, with warnings."""
+    needs_box = FORMATS[format][2]
     job.check_corners(needs_box)
     if needs_box:
         job.domain_warnings()
@@ -535,8 +541,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         job.check_formula_box(code=format in FORTRAN_FORMATS)
     if format in FORTRAN_FORMATS:
         job.floor_warnings()
-    written = writer(job)
-    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
+    return job
 
 
 def _check_determined(bound: BoundLaw) -> None:
