@@ -267,3 +267,25 @@ def test_standard_input_in_property_parameter_and_manifest_commands(command,
     assert "file '-'" not in res.err and "frictionlaws-stdin-" not in res.out + res.err
     if command == "export-params":
         assert "file <stdin>" in (tmp / "t.csv").read_text()
+
+
+@hostile(6)
+@given(n_conditions=st.integers(1, 5), seed=st.integers(0, 2**16))
+def test_a_condition_id_column_sets_what_the_bootstrap_resamples(n_conditions, seed,
+                                                                  tmp_path_factory):
+    rng = np.random.default_rng(seed)
+    rows = ["condition_id,p [MPa],mu"]
+    for j in range(10):  # ten pressures spread over n_conditions labelled conditions
+        p = 0.05 + 0.05 * j
+        rows.append(f"c{j % n_conditions},{p:.3f},{1 / (1 + 2 * p) + 0.01 * rng.normal():.6f}")
+    path = tmp_path_factory.mktemp("cid") / "runs.csv"
+    path.write_text("\n".join(rows) + "\n")
+    res = run_cli(["fit", "--law", "thirion", str(path), "--uncertainty", "bootstrap",
+                   "--boot", "40", "--json"], timeout=60)
+    check_outcome(res, json_out=True)
+    doc = json.loads(res.out)
+    assert doc["uncertainty"]["conditions"] == n_conditions
+    errors = [e["stderr"] for e in doc["params"].values()]
+    if n_conditions <= 2:  # no more conditions than parameters: nothing to resample
+        assert errors == [None, None]
+    assert all(se is None or se > 0 for se in errors)
