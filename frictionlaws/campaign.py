@@ -216,13 +216,26 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
 def _refuse_empty_keys(dataset: Any, by: Sequence[str]) -> None:
     """Refuse rows whose grouping cell is empty, naming the file, column and rows.
 
+    Empty means any of :data:`frictionlaws.io.MISSING_TOKENS` (``""``, ``nan``, ``-``...),
+    or a row the loader dropped for an empty value in that column.
+
     An empty cell is no group: fitting its rows as a group of their own (or with
     another) would give a result that belongs to no condition.
     """
+    from .io import MISSING_TOKENS
+
     frame = dataset.frame
     for col in by:
+        lost = (getattr(dataset, "dropped", None) or {}).get(col)
+        if lost:  # the loader dropped them (a variable column): refused all the same
+            raise InputError(f"{len(lost)} row(s) have no value of the grouping column "
+                             f"'{col}' (rows {', '.join(lost[:8])}"
+                             f"{f' and {len(lost) - 8} more' if len(lost) > 8 else ''}): "
+                             "fill them in or remove them", file=str(dataset.source),
+                             column=col, option="by")
         cells = frame[col]
-        empty = cells.isna().to_numpy() | (cells.astype(str).str.strip() == "").to_numpy()
+        text = cells.astype(str).str.strip().str.lower()
+        empty = cells.isna().to_numpy() | text.isin(MISSING_TOKENS).to_numpy()
         if empty.any():
             idx = np.flatnonzero(empty)
             rows = getattr(dataset, "rows", None)

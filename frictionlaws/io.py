@@ -272,6 +272,9 @@ class Dataset:
         self.notes: list[str] = [] if notes is None else notes
         self.provenance = provenance
         self.rows = rows
+        #: Per canonical column, the rows dropped for an empty or NaN value in it (row
+        #: labels as in the notes): a grouping column's empty cells are refused from it.
+        self.dropped: dict[str, list[str]] = {}
 
     @property
     def frame(self) -> pd.DataFrame:
@@ -941,14 +944,17 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     unit_of = _column_units(table, names, assigned, units)
     values = _numbers(table, assigned, explicit, unit_of, notes)
     si = _to_si_checked(table, assigned, values, unit_of, notes)
-    keep = _rows_to_keep(table, assigned, si, notes)
+    dropped: dict[str, list[str]] = {}
+    keep = _rows_to_keep(table, assigned, si, notes, dropped)
     columns = _kept_columns(table, assigned, si, keep)
     units_given = {c: unit_of.get(c, "") for c in columns if c not in TEXT_COLUMNS}
     if area is not None:
         columns = _pressure_from_area(columns, area, table.source, units_given, notes)
     notes.extend(_column_notes(columns))
     rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
-    return Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+    ds = Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+    ds.dropped = dropped
+    return ds
 
 
 def _check_headers(table: _Table) -> None:
@@ -1241,14 +1247,20 @@ def _to_si_checked(table: _Table, assigned: Mapping[str, int],
 
 
 def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
-                  si: Mapping[str, np.ndarray], notes: list[str]) -> np.ndarray:
-    """Rows without a missing value; every dropped row is named in a note."""
+                  si: Mapping[str, np.ndarray], notes: list[str],
+                  dropped: dict[str, list[str]]) -> np.ndarray:
+    """Rows without a missing value; every dropped row is named in a note.
+
+    ``dropped`` receives, per canonical column, the labels of the rows dropped for it.
+    """
     keep = np.ones(len(table.rows), dtype=bool)
     for canon in [c for c in CANONICAL if c in si]:
         nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
         if not nan_rows.size:
             continue
         keep[nan_rows] = False
+        dropped[canon] = [str(table.rows[i]) if table.from_file else f"position {i}"
+                          for i in nan_rows]
         if table.from_file:
             labels = [str(table.rows[i]) for i in nan_rows]
             shown = ", ".join(labels[:12]) + (", ..." if len(labels) > 12 else "")

@@ -82,23 +82,28 @@ def test_standard_input_works_under_by_in_every_command(command, n_groups, seed,
         assert all((out.parent / f"deck_{s}.csv").exists() for s in surfaces)
 
 
-@hostile(8)
-@given(empty_at=st.integers(0, 7), seed=st.integers(0, 2**16),
-       via_stdin=st.booleans())
+@hostile(10)
+@given(empty_at=st.integers(0, 7), seed=st.integers(0, 2**16), via_stdin=st.booleans(),
+       token=st.sampled_from(["", "nan", "NA", "-", " "]), column=st.sampled_from(["surface",
+                                                                                     "T"]))
 def test_an_empty_group_cell_is_refused_naming_file_column_and_row(empty_at, seed, via_stdin,
+                                                                   token, column,
                                                                    tmp_path_factory):
     lines = _campaign_csv(["steel", "glass"], 4, 1, 0.004, seed).splitlines()
+    if column == "T":  # the groups as temperatures: a numeric grouping column
+        lines = [lines[0].replace("surface", "T [degC]")] + [
+            ln.replace("steel,", "20,").replace("glass,", "40,") for ln in lines[1:]]
     cells = lines[1 + empty_at].split(",")
-    lines[1 + empty_at] = ",".join(["", *cells[1:]])
+    lines[1 + empty_at] = ",".join([token, *cells[1:]])
     text = "\n".join(lines) + "\n"
     path = tmp_path_factory.mktemp("empty") / "runs.csv"
     path.write_text(text)
     source = "-" if via_stdin else str(path)
-    res = run_cli(["fit", "--law", "thirion", source, "--by", "surface"],
+    res = run_cli(["fit", "--law", "thirion", source, "--by", column],
                   stdin=text.encode() if via_stdin else b"")
     check_outcome(res)
     assert res.code == 2, res.describe()
-    assert "column 'surface'" in res.err and f"rows {empty_at + 2}" in res.err
+    assert f"column '{column}" in res.err and f"rows {empty_at + 2}" in res.err
     assert ("<stdin>" if via_stdin else "runs.csv") in res.err
 
 
