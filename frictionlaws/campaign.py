@@ -327,6 +327,8 @@ class _Job:
     load_options: Mapping[str, Any]
     #: The dataset's name in the tables (unique in the campaign); None: its own name.
     label: str | None = None
+    #: How to show the source in records and messages (None: its path).
+    shown: str | None = None
 
 
 def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
@@ -426,20 +428,28 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
     except InputError as exc:  # the input itself: marked, so a front end can say so
-        return [{"dataset": str(job.source), "group": {}, "law": law, "error": str(exc),
-                 "input_error": True} for law in job.laws]
+        return [{"dataset": job.shown or str(job.source), "group": {}, "law": law,
+                 "error": _shown_error(exc, job), "input_error": True} for law in job.laws]
     records = []
     for (key, mask), law in itertools.product(groups, job.laws):
-        record: dict[str, Any] = {"dataset": job.label or ds.name, "source": str(ds.source),
+        record: dict[str, Any] = {"dataset": job.label or ds.name,
+                                  "source": job.shown or str(ds.source),
                                   "group": key, "law": law, "rows": int(mask.sum())}
         try:
             res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
         except (InputError, FitError) as exc:
-            record["error"] = str(exc)
+            record["error"] = _shown_error(exc, job)
         else:
             record["result"] = _compact(res.to_dict())
         records.append(record)
     return records
+
+
+def _shown_error(exc: Exception, job: Any) -> str:
+    """An error's message with the source shown as the job names it."""
+    if job.shown and isinstance(exc, InputError):
+        exc.replace_text(os.fspath(job.source), job.shown)
+    return str(exc)
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
@@ -847,7 +857,8 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
 def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str] = (),
              jobs: int = 1, scheduler: str | None = None, progress: bool = False,
              output: str | os.PathLike[str] | None = None,
-             load_options: Mapping[str, Any] | None = None, **fit_options: Any) -> Campaign:
+             load_options: Mapping[str, Any] | None = None,
+             source_names: Mapping[str, str] | None = None, **fit_options: Any) -> Campaign:
     """Fit each law to each group of each dataset.
 
     Parameters
@@ -871,6 +882,9 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         (it may not be an input) and appears only when complete.
     load_options : mapping, optional
         ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    source_names : mapping, optional
+        Path -> the name to show for it (a front end's private copy of standard input:
+        ``{"/tmp/.../stdin.csv": "<stdin>"}``), in the records' ``source`` and messages.
     **fit_options
         Passed to :func:`frictionlaws.fit` (``fix``, ``weights``, ``seed``...).
 
@@ -896,7 +910,9 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     columns = check_grouping(by, law_ids)
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
-    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}), label)
+    names = dict(source_names or {})
+    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}), label,
+                  names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike)) else None)
              for src, label in zip(sources, dataset_labels(sources))]
     _refuse_unreadable(jobs_, jobs=jobs, scheduler=scheduler)
     parts = iter_parallel(_fit_dataset, jobs_, jobs=jobs, scheduler=scheduler,
@@ -928,6 +944,7 @@ class _CompareJob:
     options: Mapping[str, Any]
     load_options: Mapping[str, Any]
     label: str | None = None
+    shown: str | None = None
 
 
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
@@ -939,8 +956,8 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
     except InputError as exc:
-        return [{"dataset": str(job.source), "group": {}, "error": str(exc),
-                 "input_error": True}]
+        return [{"dataset": job.shown or str(job.source), "group": {},
+                 "error": _shown_error(exc, job), "input_error": True}]
     out = []
     for key, mask in groups:
         record: dict[str, Any] = {"dataset": job.label or ds.name, "group": key,
@@ -949,7 +966,7 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
             cmp = compare(list(job.laws) if job.laws else None,
                           ds.subset(mask) if not mask.all() else ds, **job.options)
         except (InputError, FitError) as exc:
-            record["error"] = str(exc)
+            record["error"] = _shown_error(exc, job)
         else:
             record["ranking"] = cmp.to_frame().to_dict("records")
         out.append(record)
@@ -959,6 +976,7 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
 def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
                  by: str | Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  progress: bool = False, load_options: Mapping[str, Any] | None = None,
+                 source_names: Mapping[str, str] | None = None,
                  **compare_options: Any) -> Any:
     """Compare laws on each group of each dataset.
 
@@ -978,6 +996,8 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
         Show a progress bar on stderr.
     load_options : mapping, optional
         ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    source_names : mapping, optional
+        Path -> the name to show for it in messages (see :func:`fit_many`).
     **compare_options
         Passed to :func:`frictionlaws.compare` (``folds``, ``seed``...).
 
@@ -992,8 +1012,11 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
 
     columns = check_grouping(by, tuple(laws) if laws else ())
     sources = iter_datasets(datasets)
+    names = dict(source_names or {})
     work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
-                        dict(load_options or {}), label)
+                        dict(load_options or {}), label,
+                        names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike))
+                        else None)
             for src, label in zip(sources, dataset_labels(sources)))
     rows = []
     unreadable: list[str] = []

@@ -62,7 +62,8 @@ def test_standard_input_works_under_by_in_every_command(command, n_groups, seed,
     argv = {
         "fit": ["fit", "--law", "thirion", "-", "--by", "surface", "--json"],
         "fit-shared": ["fit", "--law", "thirion", "-", "--by", "surface", "--shared", "b"],
-        "fit-jobs": ["fit", "--law", "thirion", "-", "--by", "surface", "--jobs", "2"],
+        "fit-jobs": ["fit", "--law", "thirion", "-", "--by", "surface", "--jobs", "2",
+                     "--out", str(out.with_suffix(".jsonl"))],
         "compare": ["compare", "-", "--laws", "thirion,coulomb", "--by", "surface"],
         "export": ["export", "--law", "thirion", "--fit", "-", "--by", "surface", "--format",
                    "csv", "--p", "0.1MPa:0.5MPa", "-o", str(out)],
@@ -80,6 +81,9 @@ def test_standard_input_works_under_by_in_every_command(command, n_groups, seed,
         assert {r["source"] for r in doc["records"]} == {"<stdin>"}
     if command == "export":
         assert all((out.parent / f"deck_{s}.csv").exists() for s in surfaces)
+    if command == "fit-jobs":  # streamed records name the source as the user gave it
+        streamed = out.with_suffix(".jsonl").read_text()
+        assert '"source": "<stdin>"' in streamed and "frictionlaws-stdin-" not in streamed
 
 
 @hostile(10)

@@ -230,14 +230,11 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
     from . import flag_label
     from ._common import shown_source
 
+    data = args.data if isinstance(args.data, list) else [args.data]
     try:
-        camp = fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
+        return fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
                         progress=campaign_progress(args), output=stream, load_options=load,
-                        **fit_kwargs)
-        for rec in camp.records:
-            if "source" in rec:
-                rec["source"] = shown_source(rec["source"])
-        return camp
+                        source_names={d: shown_source(d) for d in data}, **fit_kwargs)
     except UnreadableDatasets as exc:
         label = flag_label(args)
         lines = [" ".join(p.compose(label=label).split()) for p in exc.problems]

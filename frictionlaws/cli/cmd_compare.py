@@ -167,14 +167,16 @@ def _run_many(args: argparse.Namespace) -> int:
     from frictionlaws.campaign import compare_many
     from frictionlaws.outputs import write_text_atomic
 
-    from ._common import data_sources
+    from ._common import data_sources, shown_source
 
     laws = split_names([args.laws]) if args.laws else None
     load = {k: v for k, v in data_kwargs(args).items() if v is not None}
     with data_sources(args.data) as paths:
         frame = compare_many(paths, laws, by=split_names(args.by), jobs=args.jobs,
                              scheduler=args.scheduler, progress=campaign_progress(args),
-                             load_options=load, **_options(args))
+                             load_options=load,
+                             source_names={p: shown_source(p) for p in paths},
+                             **_options(args))
     if args.out:
         text = (frame.to_csv(index=False, float_format="%.10g")
                 if args.out.lower().endswith(".csv")
