@@ -298,3 +298,15 @@ def test_a_condition_id_column_sets_what_the_bootstrap_resamples(n_conditions, s
     if n_conditions <= 2:  # no more conditions than parameters: nothing to resample
         assert errors == [None, None]
     assert all(se is None or se > 0 for se in errors)
+
+
+def test_unreadable_standard_input_in_a_campaign_is_named_stdin(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("p [MPa],mu\n0.1,0.83\n0.2,x\n")
+    res = run_cli(["fit", "--law", "thirion", "-", str(bad)],
+                  stdin=b"p [MPa],mu\n0.1,0.83\n0.2,y\n")
+    # one 'error:' line per unreadable dataset (the campaign's rule), the last summing up
+    assert res.code == 2 and not res.hung and "Traceback" not in res.err
+    assert all(ln.startswith("error: ") for ln in res.err.strip().splitlines())
+    assert "file '<stdin>'" in res.err
+    assert "frictionlaws-stdin-" not in res.err

@@ -237,6 +237,9 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
                         source_names={d: shown_source(d) for d in data}, **fit_kwargs)
     except UnreadableDatasets as exc:
         label = flag_label(args)
+        for problem in exc.problems:  # standard input by its name, not its private copy
+            for d in data:
+                problem.replace_text(d, shown_source(d))
         lines = [" ".join(p.compose(label=label).split()) for p in exc.problems]
         for line in lines[:-1]:
             print("error: " + line, file=sys.stderr)
