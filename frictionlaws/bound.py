@@ -181,6 +181,7 @@ class BoundLaw:
         float or numpy.ndarray or pandas.Series
             As :meth:`Law.evaluate <frictionlaws.law.Law.evaluate>`.
         """
+        variables = self.law.si_variables(variables)
         if warn:
             msgs = self.extrapolation(variables)
             if msgs:

@@ -203,6 +203,7 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
                              f"(fewer than {MIN_ROWS_PER_GROUP} rows a group on average): it "
                              "must name a grouping column such as surface, not a measured "
                              "quantity", file=str(dataset.source), option="by")
+    _refuse_empty_keys(dataset, by)
     keys = frame[list(by)].astype(str).agg("\x1f".join, axis=1).to_numpy()
     groups = []
     for key in dict.fromkeys(keys.tolist()):
@@ -210,6 +211,40 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
         first = int(np.flatnonzero(mask)[0])
         groups.append(({c: _plain(frame[c].iloc[first]) for c in by}, mask))
     return groups
+
+
+def _refuse_empty_keys(dataset: Any, by: Sequence[str]) -> None:
+    """Refuse rows whose grouping cell is empty, naming the file, column and rows.
+
+    Empty means any of :data:`frictionlaws.io.MISSING_TOKENS` (``""``, ``nan``, ``-``...),
+    or a row the loader dropped for an empty value in that column.
+
+    An empty cell is no group: fitting its rows as a group of their own (or with
+    another) would give a result that belongs to no condition.
+    """
+    from .io import MISSING_TOKENS
+
+    frame = dataset.frame
+    for col in by:
+        lost = (getattr(dataset, "dropped", None) or {}).get(col)
+        if lost:  # the loader dropped them (a variable column): refused all the same
+            raise InputError(f"{len(lost)} row(s) have no value of the grouping column "
+                             f"'{col}' (rows {', '.join(lost[:8])}"
+                             f"{f' and {len(lost) - 8} more' if len(lost) > 8 else ''}): "
+                             "fill them in or remove them", file=str(dataset.source),
+                             column=col, option="by")
+        cells = frame[col]
+        text = cells.astype(str).str.strip().str.lower()
+        empty = cells.isna().to_numpy() | text.isin(MISSING_TOKENS).to_numpy()
+        if empty.any():
+            idx = np.flatnonzero(empty)
+            rows = getattr(dataset, "rows", None)
+            labels = [str(rows[i]) if rows is not None else str(i + 1) for i in idx[:8]]
+            more = f" and {idx.size - 8} more" if idx.size > 8 else ""
+            raise InputError(f"{idx.size} row(s) have no value of the grouping column "
+                             f"'{col}' (rows {', '.join(labels)}{more}): fill them in or "
+                             "remove them", file=str(dataset.source), column=col,
+                             option="by")
 
 
 def fit_groups(law: str, data: Any, by: Sequence[str], *,
@@ -290,6 +325,67 @@ class _Job:
     by: tuple[str, ...]
     fit_options: Mapping[str, Any]
     load_options: Mapping[str, Any]
+    #: The dataset's name in the tables (unique in the campaign); None: its own name.
+    label: str | None = None
+    #: How to show the source in records and messages (None: its path).
+    shown: str | None = None
+
+
+def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
+    """A unique name per dataset of a campaign, or None where its own name is unique.
+
+    Files are named by their stem (``runs.csv`` -> ``runs``) as :func:`load_dataset`
+    names them; where two stems are the same (``a/data.csv``, ``b/data.csv``) those
+    files are named by their path as given, so the tables can tell them apart.  The
+    same file given twice is refused.
+
+    Parameters
+    ----------
+    sources : sequence
+        The items of :func:`iter_datasets`.
+
+    Returns
+    -------
+    list of str or None
+        One entry per source.
+
+    Raises
+    ------
+    InputError
+        When one file is given twice.
+    """
+    seen: dict[str, int] = {}
+    for i, src in enumerate(sources):
+        if isinstance(src, (str, os.PathLike)) and Path(src).is_file():
+            key = str(Path(src).resolve())
+            if key in seen:
+                raise InputError(f"the same file is given twice (datasets {seen[key] + 1} and "
+                                 f"{i + 1}); give each dataset once", file=str(src))
+            seen[key] = i
+    names = [_own_name(src) for src in sources]
+    labels: list[str | None] = []
+    for i, (src, name) in enumerate(zip(sources, names)):
+        if names.count(name) == 1:
+            labels.append(None)
+        elif isinstance(src, (str, os.PathLike)):
+            labels.append(os.fspath(src))
+        else:  # data in memory: named by their place in the campaign
+            labels.append(f"{name} #{i + 1}")
+    named = [lab for lab in labels if lab is not None]
+    if len(set(named)) < len(named):
+        raise InputError("two datasets have the same name; give them distinct paths")
+    return labels
+
+
+def _own_name(source: Any) -> str:
+    """The name :func:`~frictionlaws.io.load_dataset` gives a source, without loading it."""
+    from .io import Dataset
+
+    if isinstance(source, (str, os.PathLike)):
+        return Path(source).stem if Path(source).is_file() else os.fspath(source)
+    if isinstance(source, Dataset):
+        return str(source.name)
+    return "data" if isinstance(source, Mapping) else "dataframe"
 
 
 def _read_problem(job: _Job) -> InputError | None:
@@ -332,20 +428,28 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
     except InputError as exc:  # the input itself: marked, so a front end can say so
-        return [{"dataset": str(job.source), "group": {}, "law": law, "error": str(exc),
-                 "input_error": True} for law in job.laws]
+        return [{"dataset": job.shown or str(job.source), "group": {}, "law": law,
+                 "error": _shown_error(exc, job), "input_error": True} for law in job.laws]
     records = []
     for (key, mask), law in itertools.product(groups, job.laws):
-        record: dict[str, Any] = {"dataset": ds.name, "source": str(ds.source),
+        record: dict[str, Any] = {"dataset": job.label or ds.name,
+                                  "source": job.shown or str(ds.source),
                                   "group": key, "law": law, "rows": int(mask.sum())}
         try:
             res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
         except (InputError, FitError) as exc:
-            record["error"] = str(exc)
+            record["error"] = _shown_error(exc, job)
         else:
             record["result"] = _compact(res.to_dict())
         records.append(record)
     return records
+
+
+def _shown_error(exc: Exception, job: Any) -> str:
+    """An error's message with the source shown as the job names it."""
+    if job.shown and isinstance(exc, InputError):
+        exc.replace_text(os.fspath(job.source), job.shown)
+    return str(exc)
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
@@ -634,8 +738,24 @@ class Campaign:
                 continue
             m = rec["result"]["metrics"]
             lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
-                         f"n = {m.get('n')}")
+                         f"n = {m.get('n')}{_doubts(rec['result'])}")
         return "\n".join(lines)
+
+
+def _doubts(result: Mapping[str, Any]) -> str:
+    """What a summary line adds about a fit's doubts: undetermined parameters, warnings."""
+    parts = []
+    undetermined = result.get("non_identifiable") or []
+    if undetermined:
+        parts.append(f"cannot determine {', '.join(undetermined)}")
+    withheld = [k for k, e in (result.get("params") or {}).items()
+                if not e.get("fixed") and e.get("stderr") is None and k not in undetermined]
+    if withheld:
+        parts.append(f"no standard error for {', '.join(withheld)}")
+    n = len(result.get("warnings") or [])
+    if n:
+        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed with --json or --out .json)")
+    return f"; {'; '.join(parts)}" if parts else ""
 
 
 def _fmt(x: Any) -> str:
@@ -732,7 +852,8 @@ def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, 
 def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str] = (),
              jobs: int = 1, scheduler: str | None = None, progress: bool = False,
              output: str | os.PathLike[str] | None = None,
-             load_options: Mapping[str, Any] | None = None, **fit_options: Any) -> Campaign:
+             load_options: Mapping[str, Any] | None = None,
+             source_names: Mapping[str, str] | None = None, **fit_options: Any) -> Campaign:
     """Fit each law to each group of each dataset.
 
     Parameters
@@ -756,6 +877,9 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         (it may not be an input) and appears only when complete.
     load_options : mapping, optional
         ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    source_names : mapping, optional
+        Path -> the name to show for it (a front end's private copy of standard input:
+        ``{"/tmp/.../stdin.csv": "<stdin>"}``), in the records' ``source`` and messages.
     **fit_options
         Passed to :func:`frictionlaws.fit` (``fix``, ``weights``, ``seed``...).
 
@@ -781,8 +905,10 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     columns = check_grouping(by, law_ids)
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
-    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}))
-             for src in sources]
+    names = dict(source_names or {})
+    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}), label,
+                  names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike)) else None)
+             for src, label in zip(sources, dataset_labels(sources))]
     _refuse_unreadable(jobs_, jobs=jobs, scheduler=scheduler)
     parts = iter_parallel(_fit_dataset, jobs_, jobs=jobs, scheduler=scheduler,
                           progress=progress, total=len(sources))
@@ -812,6 +938,8 @@ class _CompareJob:
     by: tuple[str, ...]
     options: Mapping[str, Any]
     load_options: Mapping[str, Any]
+    label: str | None = None
+    shown: str | None = None
 
 
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
@@ -823,16 +951,17 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
     except InputError as exc:
-        return [{"dataset": str(job.source), "group": {}, "error": str(exc),
-                 "input_error": True}]
+        return [{"dataset": job.shown or str(job.source), "group": {},
+                 "error": _shown_error(exc, job), "input_error": True}]
     out = []
     for key, mask in groups:
-        record: dict[str, Any] = {"dataset": ds.name, "group": key, "rows": int(mask.sum())}
+        record: dict[str, Any] = {"dataset": job.label or ds.name, "group": key,
+                                  "rows": int(mask.sum())}
         try:
             cmp = compare(list(job.laws) if job.laws else None,
                           ds.subset(mask) if not mask.all() else ds, **job.options)
         except (InputError, FitError) as exc:
-            record["error"] = str(exc)
+            record["error"] = _shown_error(exc, job)
         else:
             record["ranking"] = cmp.to_frame().to_dict("records")
         out.append(record)
@@ -842,6 +971,7 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
 def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
                  by: str | Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  progress: bool = False, load_options: Mapping[str, Any] | None = None,
+                 source_names: Mapping[str, str] | None = None,
                  **compare_options: Any) -> Any:
     """Compare laws on each group of each dataset.
 
@@ -861,6 +991,8 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
         Show a progress bar on stderr.
     load_options : mapping, optional
         ``mapping``, ``units``, ``area`` for :func:`frictionlaws.io.load_dataset`.
+    source_names : mapping, optional
+        Path -> the name to show for it in messages (see :func:`fit_many`).
     **compare_options
         Passed to :func:`frictionlaws.compare` (``folds``, ``seed``...).
 
@@ -875,8 +1007,12 @@ def compare_many(datasets: Any, laws: Sequence[str] | None = None, *,
 
     columns = check_grouping(by, tuple(laws) if laws else ())
     sources = iter_datasets(datasets)
+    names = dict(source_names or {})
     work = (_CompareJob(src, tuple(laws) if laws else None, columns, dict(compare_options),
-                        dict(load_options or {})) for src in sources)
+                        dict(load_options or {}), label,
+                        names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike))
+                        else None)
+            for src, label in zip(sources, dataset_labels(sources)))
     rows = []
     unreadable: list[str] = []
     for part in iter_parallel(_compare_dataset, work, jobs=jobs, scheduler=scheduler,

@@ -33,7 +33,7 @@ import inspect
 import json
 import math
 import warnings
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
 from pathlib import Path
@@ -44,6 +44,7 @@ import numpy as np
 from .errors import Argument, ExtrapolationWarning, FitError, InputError
 from .law import VARIABLES, Law
 from .registry import get_law
+from .units import si_magnitude
 
 if TYPE_CHECKING:
     from .bound import BoundLaw
@@ -205,7 +206,8 @@ def _arrays_fit_data(data: Mapping[str, Any]) -> FitData:
     arrays = {}
     for k, v in data.items():
         if k == "mu" or k in VARIABLES:
-            arrays[k] = _float_array(k, v)
+            unit = VARIABLES[k].unit if k in VARIABLES else ""
+            arrays[k] = _float_array(k, si_magnitude(v, unit, f"array '{k}'"))
     n = arrays["mu"].size
     if n == 0:
         raise InputError("array 'mu' is empty")
@@ -332,7 +334,7 @@ def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> di
                              f"{', '.join(setting_names) or 'none'}", option="fix")
         if isinstance(v, (bool, str)) or v is None:
             raise InputError(f"cannot fix '{k}' to {v!r}: a number is needed", option="fix")
-        out[k] = float(v)
+        out[k] = float(si_magnitude(v, law.value_unit(k), f"fix '{k}'"))
     try:
         law.check_values(out, admissible=False)
     except InputError as exc:
@@ -577,6 +579,7 @@ class FitResult:
         float or numpy.ndarray
             The friction coefficient mu.
         """
+        variables = self.law.si_variables(variables)
         if warn:
             msgs = self.extrapolation(variables)
             if msgs:
@@ -824,6 +827,9 @@ def _display_line(params: Mapping[str, ParamEstimate],
 def _describe_uncertainty(info: Mapping[str, Any]) -> str:
     """One line saying how the standard errors and intervals were obtained."""
     method = info.get("method")
+    if method == "bootstrap" and info.get("interval") is None:
+        return (f"bootstrap refused: too few test conditions ({info.get('conditions')}); "
+                "standard errors withheld")
     if method == "bootstrap":
         return (f"bootstrap ({info.get('n_boot')} resamples of {info.get('conditions')} "
                 f"conditions, seed {info.get('seed')}; 95 % {info.get('interval')} intervals)")
@@ -1242,6 +1248,9 @@ def _freed_settings(law: Law, free: Iterable[str], setting_names: list[str]
 def _start_guess(law: Law, fd: FitData, x: Mapping[str, np.ndarray], freed: tuple[str, ...],
                  initial: Mapping[str, float] | None) -> dict[str, float]:
     """The law's data-driven guess, the freed settings' values, then ``initial``."""
+    if initial:  # pint Quantities in SI (or refused), as everywhere in the API
+        initial = {k: si_magnitude(v, law.value_unit(k), f"initial '{k}'")
+                   for k, v in initial.items()}
     y = fd.arrays["mu"]
     guess_data = {**x, "mu": y, **{k: v for k, v in fd.arrays.items() if k in VARIABLES}}
     guess = law.initial_guess(guess_data)
@@ -1687,8 +1696,9 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
     n, k = y.size, len(setup.vary_names)
     dof = n - k
     tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.inf
-    # the bootstrap's intervals replace the symmetric ones: a cut one needs no warning
-    cut_msgs: list[str] = [] if opts["method"] == "bootstrap" else warn_msgs
+    # a robust method's intervals replace the asymptotic ones: a cut asymptotic interval
+    # is worth a warning only when the asymptotic errors are the ones reported
+    cut_msgs: list[str] = warn_msgs if opts["method"] == "asymptotic" else []
     estimates = _estimates(setup, search, diag, tval, dof, warn_msgs, cut_msgs)
     corr = _correlation(best)
     metrics = _metrics(y, best, k, setup.w is not None, warn_msgs)
@@ -1702,6 +1712,9 @@ def _result(setup: _Setup, search: _Search, opts: dict[str, Any]) -> FitResult:
         _ErrorInputs(law, fd, setup.x, y, setup.w, diag.vary, diag.full_values, setup.bounds,
                      diag.jac, y - fitted, diag.non_id, tval),
         estimates, derived, corr, warn_msgs, opts)
+    if unc_info["method"] == "asymptotic" and cut_msgs is not warn_msgs:
+        warn_msgs.extend(cut_msgs)
+    _withhold_doubtful(law, diag, estimates, derived, warn_msgs)
     return FitResult(
         law=law, params=estimates, settings=setup.settings, metrics=metrics,
         correlation=corr, success=success, message=message, warnings=warn_msgs,
@@ -1779,6 +1792,53 @@ def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarr
     return out
 
 
+def _withhold_doubtful(law: Law, diag: _Diagnosis, estimates: dict[str, ParamEstimate],
+                       derived: dict[str, dict[str, Any]], warn_msgs: list[str]) -> None:
+    """The rules every error method ends on (asymptotic, sandwich, bootstrap alike).
+
+    A standard error of exactly zero says nothing is known about the error (exact
+    data, identical resamples), so it is withheld with a warning; a derived quantity
+    has no error when a parameter it depends on has none.
+    """
+    from .uncertainty import ZERO_SPREAD
+
+    def nil(se: float | None, value: float) -> bool:
+        return se is not None and se <= ZERO_SPREAD * abs(value)
+
+    zero = [k for k in diag.vary if nil(estimates[k].stderr, estimates[k].value)]
+    for k in zero:
+        estimates[k] = replace(estimates[k], stderr=None, ci95=None)
+    if zero:
+        warn_msgs.append(f"the standard error of {', '.join(zero)} comes out as 0 to "
+                         "rounding (the residuals or resamples do not spread): it is "
+                         "undetermined and withheld, not zero")
+    orphans = [k for k in diag.vary if estimates[k].stderr is None]
+    doubtful = [name for name, d in derived.items()
+                if d.get("stderr") is not None and (
+                    nil(d["stderr"], d["value"])
+                    or _depends_on(law, diag.full_values, name, orphans))]
+    for name in doubtful:
+        derived[name] = {**derived[name], "stderr": None, "ci95": None}
+    if doubtful:
+        warn_msgs.append(f"no standard error for the derived {', '.join(doubtful)}: a "
+                         f"parameter it depends on ({', '.join(orphans) or 'none'}) has none, "
+                         "or it comes out as 0 to rounding")
+
+
+def _depends_on(law: Law, values: Mapping[str, float], derived: str,
+                params: Sequence[str]) -> bool:
+    """True when the derived quantity changes with any of ``params`` (a relative nudge)."""
+    d = next(x for x in law.derived if x.name == derived)
+    with np.errstate(all="ignore"):
+        base = d.value(dict(values), _numpy_ns())
+        for k in params:
+            nudged = dict(values)
+            nudged[k] = values[k] * (1 + 1e-6) + 1e-12 * (values[k] == 0)
+            if d.value(nudged, _numpy_ns()) != base:
+                return True
+    return False
+
+
 @dataclass
 class _ErrorInputs:
     """What the robust error methods need from a finished fit."""
@@ -1820,7 +1880,12 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                                       "statistic": structure.statistic,
                                       "p_value": structure.p_value,
                                       "n_tests": structure.n_tests}
-    if method == "asymptotic" or not inp.vary or (inp.non_id and method == "sandwich"):
+    if not math.isfinite(inp.tval):  # as many parameters as rows: no method has errors
+        if method != "asymptotic":
+            warn_msgs.append(f"{method} standard errors need more rows than fitted "
+                             "parameters: none are given")
+            info["method"] = "asymptotic"
+    elif method == "asymptotic" or not inp.vary or (inp.non_id and method == "sandwich"):
         if method != "asymptotic":
             warn_msgs.append(f"{method} standard errors need every fitted parameter to be "
                              "identifiable; the asymptotic ones (where available) are shown"
@@ -1828,7 +1893,8 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                                 if method == "sandwich" else ""))
             info["method"] = "asymptotic"
     elif method == "sandwich":
-        _apply_sandwich(inp, estimates, derived, corr, warn_msgs)
+        if not _apply_sandwich(inp, estimates, derived, corr, warn_msgs):
+            info["method"] = "asymptotic"
     else:
         info.update(_apply_bootstrap(inp, estimates, derived, corr, warn_msgs, opts))
     if info["method"] != "bootstrap" and structure is not None and structure.significant:
@@ -1876,14 +1942,23 @@ def _clip_interval(name: str, ci: tuple[float, float], bounds: tuple[float, floa
 
 
 def _set_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate], se: np.ndarray,
-                ci: np.ndarray) -> None:
-    """Store new standard errors and intervals of the fitted parameters."""
+                ci: np.ndarray) -> list[str]:
+    """Store the method's standard errors and intervals of the fitted parameters.
+
+    A parameter the method cannot give an error for (not finite, or zero) has its
+    error withheld rather than left at another method's; its name is returned.
+    """
+    withheld = []
     for j, k in enumerate(inp.vary):
         if k in inp.non_id:  # withheld whatever the method
             continue
-        if math.isfinite(se[j]) and np.all(np.isfinite(ci[j])):
+        if math.isfinite(se[j]) and se[j] > 0 and np.all(np.isfinite(ci[j])):
             estimates[k] = replace(estimates[k], stderr=float(se[j]),
                                    ci95=(float(ci[j, 0]), float(ci[j, 1])))
+        else:
+            estimates[k] = replace(estimates[k], stderr=None, ci95=None)
+            withheld.append(k)
+    return withheld
 
 
 def _set_corr(names: list[str], cov: np.ndarray, corr: dict[str, dict[str, float]]) -> None:
@@ -1897,38 +1972,66 @@ def _set_corr(names: list[str], cov: np.ndarray, corr: dict[str, dict[str, float
 
 def _apply_sandwich(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                     derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
-                    warn_msgs: list[str]) -> None:
-    """HC3 sandwich errors for the parameters and (delta method) the derived quantities."""
+                    warn_msgs: list[str]) -> bool:
+    """HC3 sandwich errors for the parameters and (delta method) the derived quantities.
+
+    False (the asymptotic errors stay) when the sandwich cannot be computed.
+    """
     from .uncertainty import sandwich_cov
 
     cov = sandwich_cov(inp.jac, inp.weighted_resid)
     if cov is None:
         warn_msgs.append("the sandwich covariance could not be computed (singular Jacobian); "
                          "the asymptotic standard errors are shown")
-        return
+        return False
     se = np.sqrt(np.clip(np.diag(cov), 0, None))
     theta = np.array([inp.values[k] for k in inp.vary])
-    ci = np.column_stack([theta - inp.tval * se, theta + inp.tval * se])
-    _set_errors(inp, estimates, se, ci)
+    ci = np.array([_clip_interval(k, (t - inp.tval * e, t + inp.tval * e), inp.bounds[k],
+                                  warn_msgs) if math.isfinite(e) and e > 0 else (math.nan,) * 2
+                   for k, t, e in zip(inp.vary, theta, se)]).reshape(-1, 2)
+    withheld = _set_errors(inp, estimates, se, ci)
+    if withheld:
+        warn_msgs.append(f"the sandwich covariance gives no standard error for "
+                         f"{', '.join(withheld)} (zero or not finite: the residuals do not "
+                         "tell it); it is withheld")
     _set_corr(inp.vary, cov, corr)
     derived.update(_derived(inp.law, inp.values, inp.vary, cov, inp.non_id))
+    return True
 
 
 def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                      derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
                      warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
     """Condition-resampling bootstrap errors and intervals, parameters and derived alike."""
-    from .uncertainty import Refit, bootstrap, condition_ids, derived_samples, intervals
+    from .uncertainty import (
+        MIN_DETERMINED,
+        Refit,
+        bootstrap,
+        condition_ids,
+        derived_samples,
+        intervals,
+        rank,
+    )
 
     lower = np.array([inp.bounds[k][0] for k in inp.vary], float)
     upper = np.array([inp.bounds[k][1] for k in inp.vary], float)
-    refit = Refit(inp.law, dict(inp.values), list(inp.vary), lower, upper, inp.x, inp.y, inp.w)
+    full_rank = rank(inp.jac, RANK_TOL)
+    refit = Refit(inp.law, dict(inp.values), list(inp.vary), lower, upper, inp.x, inp.y, inp.w,
+                  RANK_TOL, full_rank)
     groups = condition_ids(inp.fd.arrays, _condition_vars(inp.fd), inp.fd.conditions)
+    n_cond = int(np.unique(groups).size)
+    if n_cond <= full_rank:
+        return _bootstrap_refused(inp, estimates, derived, warn_msgs, opts, n_cond)
     theta = np.array([inp.values[k] for k in inp.vary])
     boot = bootstrap(refit, theta, groups, n_boot=opts["n_boot"], seed=opts["seed"],
                      n_jobs=opts["n_jobs"], jackknife=opts["interval"] == "bca")
     se, ci, used = intervals(boot.samples, theta, boot.jackknife, kind=opts["interval"])
-    _set_errors(inp, estimates, se, ci)
+    withheld = _set_errors(inp, estimates, se, ci)
+    if withheld:
+        warn_msgs.append(f"the bootstrap cannot determine the standard error of "
+                         f"{', '.join(withheld)}: fewer than {MIN_DETERMINED} resamples "
+                         "determine it, or they do not spread at all; it is withheld "
+                         "(not zero)")
     ok = np.all(np.isfinite(boot.samples), axis=1)
     if ok.sum() > len(inp.vary) and not inp.non_id:
         _set_corr(inp.vary, np.cov(boot.samples[ok].T).reshape(len(inp.vary), -1), corr)
@@ -1944,13 +2047,35 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
             derived[k] = {**derived[k], "stderr": float(dse[j]) if finite else None,
                           "ci95": [float(dci[j, 0]), float(dci[j, 1])] if finite else None}
     if boot.failed > 0.1 * opts["n_boot"]:
-        warn_msgs.append(f"{boot.failed} of {opts['n_boot']} bootstrap refits failed; the "
-                         "bootstrap errors rest on the others")
+        warn_msgs.append(f"{boot.failed} of {opts['n_boot']} bootstrap refits failed or "
+                         "could not determine every parameter (resamples of too few "
+                         "distinct conditions); the bootstrap errors rest on the others")
     if boot.n_groups < 8:
         warn_msgs.append(f"the bootstrap resamples only {boot.n_groups} conditions: its "
                          "errors and intervals are coarse")
     return {"n_boot": opts["n_boot"], "seed": opts["seed"], "interval": used,
             "conditions": boot.n_groups, "failed": boot.failed}
+
+
+def _bootstrap_refused(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
+                       derived: dict[str, dict[str, Any]], warn_msgs: list[str],
+                       opts: dict[str, Any], n_cond: int) -> dict[str, Any]:
+    """No bootstrap with no more conditions than parameters: every error withheld.
+
+    Each resample of so few conditions either cannot determine the parameters or
+    repeats the full fit, so its spread would read as an error of zero.
+    """
+    for k in inp.vary:
+        estimates[k] = replace(estimates[k], stderr=None, ci95=None)
+    for k in derived:
+        derived[k] = {**derived[k], "stderr": None, "ci95": None}
+    warn_msgs.append(f"the bootstrap needs more test conditions than the parameters they "
+                     f"determine ({n_cond} condition{'s' if n_cond != 1 else ''}, "
+                     f"{len(inp.vary)} parameters): its standard "
+                     "errors are undetermined and withheld (the asymptotic ones are kept "
+                     "in uncertainty.asymptotic_stderr)")
+    return {"n_boot": opts["n_boot"], "seed": opts["seed"], "interval": None,
+            "conditions": n_cond, "failed": None}
 
 
 def _numpy_ns() -> Any:

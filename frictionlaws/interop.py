@@ -322,25 +322,37 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
     """Half-width of the 95 % confidence band of the fitted curve at ``variables``.
 
     First-order propagation of the parameter covariance (standard errors and
-    correlations of the fit) through a central-difference Jacobian of the law.
+    correlations of the fit) through a central-difference Jacobian of the law.  Where
+    the curve depends on a fitted parameter without a standard error (one the data
+    cannot determine, or whose error was withheld) the band is NaN: undetermined, not
+    zero nor the narrower band of the other parameters.
     """
-    names = [k for k, e in result.params.items()
-             if not e.fixed and e.stderr is not None and math.isfinite(e.stderr)]
-    if not names:
-        return np.zeros(np.broadcast_shapes(*(np.shape(v) for v in variables.values())))
-    order = list(result.var_names)
-    pick = [order.index(k) for k in names]
-    cov = np.asarray(result.covar)[np.ix_(pick, pick)]
+    shape = np.broadcast_shapes(*(np.shape(v) for v in variables.values()))
+    free = [k for k, e in result.params.items() if not e.fixed]
+    known = [k for k in free if result.params[k].stderr is not None
+             and math.isfinite(result.params[k].stderr)]
+    jac = {k: _slope(result, variables, k) for k in free}
+    var = np.zeros(shape)
+    if known:
+        se = np.array([result.params[k].stderr for k in known])
+        corr = np.array([[1.0 if a == b else result.correlation.get(a, {}).get(b, 0.0)
+                          for b in known] for a in known])
+        cols = np.stack([np.broadcast_to(jac[k], shape) for k in known], axis=-1)
+        var = np.einsum("...i,ij,...j->...", cols, corr * np.outer(se, se), cols)
+    half = 1.96 * np.sqrt(np.maximum(var, 0.0))
+    for k in free:
+        if k not in known:
+            half = np.where(np.broadcast_to(jac[k], shape) != 0, np.nan, half)
+    return half
+
+
+def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.ndarray:
+    """d mu / d ``name`` at ``variables`` (central difference)."""
     base = result.values
-    cols = []
-    for k in names:
-        h = 1e-6 * max(abs(base[k]), 1e-12)
-        up = result.law.evaluate(variables, {**base, k: base[k] + h})
-        dn = result.law.evaluate(variables, {**base, k: base[k] - h})
-        cols.append((np.asarray(up, float) - np.asarray(dn, float)) / (2 * h))
-    jac = np.stack(cols, axis=-1)
-    var = np.einsum("...i,ij,...j->...", jac, cov, jac)
-    return 1.96 * np.sqrt(np.maximum(var, 0.0))
+    h = 1e-6 * max(abs(base[name]), 1e-12)
+    up = result.law.evaluate(variables, {**base, name: base[name] + h})
+    dn = result.law.evaluate(variables, {**base, name: base[name] - h})
+    return (np.asarray(up, float) - np.asarray(dn, float)) / (2 * h)
 
 
 def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str) -> Any:

@@ -72,8 +72,12 @@ __all__ = [
 #: (:data:`frictionlaws.law.VARIABLES`; their units: :data:`frictionlaws.units.QUANTITIES`).
 VARIABLE_COLUMNS: tuple[str, ...] = tuple(VARIABLES)
 #: Canonical columns, in the order a dataset stores and writes them.
-CANONICAL: tuple[str, ...] = ("mu", *VARIABLE_COLUMNS, "mu_std", "n", "surface")
-_NUMERIC = tuple(c for c in CANONICAL if c != "surface")
+CANONICAL: tuple[str, ...] = ("mu", *VARIABLE_COLUMNS, "mu_std", "n", "surface",
+                              "condition_id")
+#: Canonical columns that hold text: the counter-surface, and the test condition each
+#: row belongs to (repeats share it: the unit the bootstrap resamples).
+TEXT_COLUMNS: tuple[str, ...] = ("surface", "condition_id")
+_NUMERIC = tuple(c for c in CANONICAL if c not in TEXT_COLUMNS)
 _DIMENSIONLESS = tuple(c for c in _NUMERIC if not _units.si_unit(c))
 
 #: Accepted column names for each canonical column, in :data:`CANONICAL` order (the
@@ -93,6 +97,7 @@ ALIASES: dict[str, tuple[str, ...]] = {
                "standard deviation", "mu sd", "sd mu"),
     "n": ("count", "replicates", "repeats", "n tests", "n repeats", "n replicates"),
     "surface": ("surface", "counter surface", "countersurface", "counterface", "material"),
+    "condition_id": ("condition_id", "condition id", "test condition"),
 }
 
 #: Cell contents read as a missing value (the row is then dropped and reported).
@@ -267,6 +272,9 @@ class Dataset:
         self.notes: list[str] = [] if notes is None else notes
         self.provenance = provenance
         self.rows = rows
+        #: Per canonical column, the rows dropped for an empty or NaN value in it (row
+        #: labels as in the notes): a grouping column's empty cells are refused from it.
+        self.dropped: dict[str, list[str]] = {}
 
     @property
     def frame(self) -> pd.DataFrame:
@@ -492,7 +500,7 @@ class Dataset:
         """
         cols: dict[str, dict[str, Any]] = {}
         for col in self.column_names:
-            if col == "surface":
+            if col in TEXT_COLUMNS:
                 cols[col] = {"values": sorted({str(s) for s in self.column(col)})}
                 continue
             vals = self.column(col, float)
@@ -511,8 +519,8 @@ class Dataset:
 
         Column names follow the CSV schema: canonical names or aliases, with the
         unit in square brackets (``p [MPa]``, ``T [degC]``); a column without a
-        unit in its name is taken as SI (``p`` in Pa) unless ``units`` says
-        otherwise.  :meth:`to_frame` writes this form, so
+        unit in its name needs one in ``units``, or is refused as in a CSV file
+        (dimensionless columns such as ``mu`` need none).  :meth:`to_frame` writes this form, so
         ``Dataset.from_frame(ds.to_frame())`` gives ``ds`` back.
 
         Parameters
@@ -582,7 +590,7 @@ class Dataset:
         out = pd.DataFrame(index=range(len(self)))
         given: dict[str, str] = {}
         for c in (c for c in CANONICAL if c in self.column_names):
-            if c == "surface" or c not in _units.QUANTITIES:
+            if c in TEXT_COLUMNS or c not in _units.QUANTITIES:
                 out[c] = np.array(self.column(c), copy=True)
                 continue
             unit = _units.si_unit(c) if units == "si" else _units.display_unit(c)
@@ -617,7 +625,7 @@ class Dataset:
         headers = [_units.header(c) if c in _units.QUANTITIES else c for c in cols]
         columns: list[list[str]] = []
         for c in cols:
-            if c == "surface":
+            if c in TEXT_COLUMNS:
                 columns.append([csv_cell(s) for s in self.column(c)])
                 continue
             unit = _units.display_unit(c)
@@ -650,6 +658,9 @@ class _Table:
     decimal_comma: bool = False
     from_file: bool = True
     delimiter: str | None = None
+    #: A dict of arrays (the API's SI arrays): a column without a unit is in SI.  A file
+    #: and a DataFrame must state every unit (one rule for both).
+    si_by_default: bool = False
 
 
 def refuse_nul(raw: bytes, source: str) -> None:
@@ -962,14 +973,18 @@ def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
     unit_of = _column_units(table, names, assigned, units)
     values = _numbers(table, assigned, explicit, unit_of, notes)
     si = _to_si_checked(table, assigned, values, unit_of, notes)
-    keep = _rows_to_keep(table, assigned, si, notes)
+    dropped: dict[str, list[str]] = {}
+    keep = _rows_to_keep(table, assigned, si, notes, dropped)
     columns = _kept_columns(table, assigned, si, keep)
-    units_given = {c: _written_unit(unit_of.get(c, ""), c) for c in columns if c != "surface"}
+    units_given = {c: _written_unit(unit_of.get(c, ""), c) for c in columns
+                   if c not in TEXT_COLUMNS}
     if area is not None:
         columns = _pressure_from_area(columns, area, table.source, units_given, notes)
     notes.extend(_column_notes(columns))
     rows = np.asarray(table.rows, dtype=int)[keep] if table.from_file else None
-    return Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+    ds = Dataset(columns, name, table.source, units_given, notes, provenance, rows)
+    ds.dropped = dropped
+    return ds
 
 
 def _written_unit(unit: str, column: str) -> str:
@@ -1112,12 +1127,12 @@ def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
                 file=src, column=headers[j],
             )
         unit = header_unit if header_unit is not None else given
-        if canon == "surface":
+        if canon in TEXT_COLUMNS:
             continue
         if unit is None:
             if canon in _DIMENSIONLESS:
                 unit = ""
-            elif not table.from_file:
+            elif table.si_by_default:
                 unit = _units.si_unit(canon)
             else:
                 ex = _units.display_unit(canon)
@@ -1205,7 +1220,7 @@ def _numbers(table: _Table, assigned: Mapping[str, int], explicit: set[str],
     """Numeric columns as written; an empty optional column is ignored with a note."""
     values: dict[str, np.ndarray] = {}
     commas = _uses_decimal_commas(table)
-    for canon in [c for c in CANONICAL if c in assigned and c != "surface"]:
+    for canon in [c for c in CANONICAL if c in assigned and c not in TEXT_COLUMNS]:
         col = table.headers[assigned[canon]]
         out = _column_numbers(table, assigned[canon], commas)
         if np.isnan(out).all():
@@ -1269,14 +1284,20 @@ def _to_si_checked(table: _Table, assigned: Mapping[str, int],
 
 
 def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
-                  si: Mapping[str, np.ndarray], notes: list[str]) -> np.ndarray:
-    """Rows without a missing value; every dropped row is named in a note."""
+                  si: Mapping[str, np.ndarray], notes: list[str],
+                  dropped: dict[str, list[str]]) -> np.ndarray:
+    """Rows without a missing value; every dropped row is named in a note.
+
+    ``dropped`` receives, per canonical column, the labels of the rows dropped for it.
+    """
     keep = np.ones(len(table.rows), dtype=bool)
     for canon in [c for c in CANONICAL if c in si]:
         nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
         if not nan_rows.size:
             continue
         keep[nan_rows] = False
+        dropped[canon] = [str(table.rows[i]) if table.from_file else f"position {i}"
+                          for i in nan_rows]
         if table.from_file:
             labels = [str(table.rows[i]) for i in nan_rows]
             shown = ", ".join(labels[:12]) + (", ..." if len(labels) > 12 else "")
@@ -1296,15 +1317,15 @@ def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
 
 def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
                   keep: np.ndarray) -> dict[str, np.ndarray]:
-    """The kept rows in SI, canonical column order, the surface column as text."""
+    """The kept rows in SI, canonical column order, the text columns as text."""
     columns = {c: si[c][keep] for c in CANONICAL if c in si}
-    if "surface" in assigned:
-        surf = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else
-                csv_cell_text(str(c).strip()) if table.from_file else str(c).strip()
-                for c in table.columns[assigned["surface"]]]
+    for name in (c for c in TEXT_COLUMNS if c in assigned):
+        cells = ["" if c is None or (isinstance(c, float) and math.isnan(c)) else
+                 csv_cell_text(str(c).strip()) if table.from_file else str(c).strip()
+                 for c in table.columns[assigned[name]]]
         text = np.empty(int(np.count_nonzero(keep)), dtype=object)
-        text[:] = [s for s, k in zip(surf, keep, strict=True) if k]
-        columns["surface"] = text
+        text[:] = [s for s, k in zip(cells, keep, strict=True) if k]
+        columns[name] = text
     return {c: columns[c] for c in CANONICAL if c in columns}
 
 
@@ -1433,9 +1454,10 @@ def load_dataset(
     ----------
     name_or_path : str, path, DataFrame, dict or Dataset
         A CSV path; the name of a packaged dataset (see :func:`list_datasets`,
-        e.g. ``"thesis-steel"``); a DataFrame or dict of columns (canonical or
-        aliased names; columns without a unit in the name are taken as SI); or a
-        :class:`Dataset`, returned unchanged.
+        e.g. ``"thesis-steel"``); a DataFrame (its columns named as in a CSV file,
+        each with its unit in the name or in ``units``: a column without a unit is
+        refused, as in a file); a dict of columns (canonical or aliased names,
+        SI where the name gives no unit); or a :class:`Dataset`, returned unchanged.
     mapping : dict or str, optional
         Canonical column -> the user's column, e.g. ``{"mu": "FC", "p": "CP"}``
         or ``"mu=FC,p=CP"``.
@@ -1496,7 +1518,9 @@ def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, st
         frame = pd.DataFrame({str(k): np.atleast_1d(v) for k, v in data.items()})
     except ValueError as exc:
         raise InputError(f"cannot build a table from the dict: {exc}") from None
-    return _table_from_frame(frame, "<dict>"), "data"
+    table = _table_from_frame(frame, "<dict>")
+    table.si_by_default = True
+    return table, "data"
 
 
 def _table_on_disk(text: str) -> tuple[_Table, str]:

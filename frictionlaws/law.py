@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import DomainError, InputError
-from .units import QUANTITIES
+from .units import QUANTITIES, si_magnitude
 
 if TYPE_CHECKING:
     from .bound import BoundLaw
@@ -49,6 +49,12 @@ __all__ = [
 
 #: Floor applied to the sliding velocity in laws with log v or v**(-k) [m/s].
 V_MIN = 1e-9
+#: Multiples of a floor at which a law is probed for its limit at 0 (v = 0, p = 0):
+#: ``log`` and powers are finite there (down to 1e-300), so a law with a limit reaches it.
+ZERO_PROBES = (1e-20, 1e-90, 1e-290)
+#: Agreement of the last two probes for a limit at 0 to count as reached (relative; for
+#: |mu| below 1, absolute).
+LIMIT_RTOL = 1e-9
 #: Floor applied to the contact pressure in laws singular at p = 0 [Pa].
 P_MIN = 1.0
 #: Floor applied to the normal load in laws singular at F_N = 0 [N].
@@ -577,7 +583,8 @@ class Law:
                 f"(parameters: {', '.join(self.param_names)}; settings: "
                 f"{', '.join(s.name for s in self.settings) or 'none'})"
             )
-        out.update({k: _as_float(k, v, self.id) for k, v in values.items()})
+        out.update({k: _as_float(k, si_magnitude(v, self.value_unit(k), f"law '{self.id}': {k}"),
+                                  self.id) for k, v in values.items()})
         missing = []
         for p in self.params:
             if p.name not in out:
@@ -657,6 +664,44 @@ class Law:
                 return s
         return None
 
+    def value_unit(self, name: str) -> str:
+        """The SI unit of a parameter or setting.
+
+        Parameters
+        ----------
+        name : str
+            A parameter or setting of the law.
+
+        Returns
+        -------
+        str
+            Its unit (``""`` when dimensionless or not a name of the law).
+        """
+        decl = self._declared(name)
+        return decl.unit if decl is not None else ""
+
+    def si_variables(self, variables: Mapping[str, Any]) -> dict[str, Any]:
+        """The variables with any pint ``Quantity`` converted to its SI magnitude.
+
+        Parameters
+        ----------
+        variables : mapping
+            Variable name -> values (SI numbers, or pint Quantities in any unit of
+            the variable's kind).
+
+        Returns
+        -------
+        dict
+            The same mapping with plain numbers in SI.
+
+        Raises
+        ------
+        InputError
+            A Quantity whose unit is not one of the variable's kind.
+        """
+        return {k: si_magnitude(x, VARIABLES[k].unit, f"law '{self.id}': {k}")
+                if k in VARIABLES else x for k, x in variables.items()}
+
     def _unit_of(self, name: str) -> str:
         decl = self._declared(name)
         return f" {decl.unit}" if decl is not None and decl.unit else ""
@@ -705,6 +750,7 @@ class Law:
         float or numpy.ndarray or pandas.Series
             A float when every input is a scalar, a Series when a Series came in.
         """
+        variables = self.si_variables(variables)
         missing = [v for v in self.variables if v not in variables]
         if missing:
             self._refuse_missing(missing, params)
@@ -718,15 +764,16 @@ class Law:
                      for k, v in variables.items()}
             self.evaluate(plain, params)  # the same checks, on the bare arrays
             return evaluate_labelled(self, variables, params)
-        kw = self.prepare_variables(self._fill_optional(variables, params))
-        kw.update(params)
+        raw = self._fill_optional(variables, params)
+        prepared = self.prepare_variables(raw)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            out = self.formula(NUMPY, **kw)
+            out = self.formula(NUMPY, **prepared, **params)
         shapes = [np.shape(x) for x in variables.values()]
         shape = np.broadcast_shapes(*shapes) if shapes else ()
         if np.shape(out) != shape:
             out = (np.full(shape, float(out)) if np.ndim(out) == 0
                    else np.broadcast_to(out, shape).copy())
+        out = self.below_floors(raw, prepared, params, out)
         if shape == ():
             return float(out)
         for x in variables.values():
@@ -767,6 +814,98 @@ class Law:
                         for k, v in prepared.items()}
                 out[start:start + _BLOCK] = self.formula(NUMPY, **part, **params)
         return out
+
+    def below_floors(self, raw: Mapping[str, Any], prepared: Mapping[str, Any],
+                     params: Mapping[str, float], out: Any, *, strict: bool = False) -> Any:
+        """The law's own values where a variable lies below its floor.
+
+        A floor keeps the formula smooth where it is used; it is no value of the law.
+        Where ``0 < x < floor`` the formula is evaluated at ``x`` itself; at ``x = 0``
+        the law's limit is taken, found by evaluating it at :data:`ZERO_PROBES` times
+        the floor: where the last two probes agree within :data:`LIMIT_RTOL` that is the
+        limit, else (the law grows without bound or keeps changing as ``x -> 0``) there
+        is none: such a point is NaN (refused with ``strict``).
+
+        Parameters
+        ----------
+        raw : mapping
+            The variables as given (before ``|v|`` and the floors).
+        prepared : mapping
+            The same after :meth:`prepare_variables`.
+        params : mapping
+            Every parameter and setting.
+        out : float or ndarray
+            The formula at ``prepared``.
+        strict : bool
+            Raise where the law has no value instead of giving NaN there.
+
+        Returns
+        -------
+        float or ndarray
+            ``out`` with the points below a floor replaced (``out`` itself when none is).
+
+        Raises
+        ------
+        DomainError
+            With ``strict``, where the law has no finite value or limit, naming the
+            variable and point.
+        """
+        low = {}
+        for name, floor in self.floors.items():
+            if name in raw:
+                x = np.abs(np.asarray(raw[name], float))
+                if x.size and not float(np.min(x)) >= floor:
+                    low[name] = x
+        if not low:
+            return out
+        shape = np.broadcast_shapes(np.shape(out), *(np.shape(x) for x in low.values()))
+        rows = np.zeros(shape, dtype=bool)
+        for name, x in low.items():
+            rows |= np.broadcast_to(x < self.floors[name], shape)
+        pts = {k: np.broadcast_to(np.asarray(v, float), shape)[rows].copy()
+               for k, v in prepared.items() if k in self.variables}
+        zero = {k: np.broadcast_to(x, shape)[rows] for k, x in low.items()}
+        for name, x in zero.items():
+            pts[name] = np.where(x < self.floors[name], x, pts[name])
+        probes = []
+        with np.errstate(all="ignore"):
+            for f in ZERO_PROBES:
+                trial = {k: (np.where(zero[k] == 0, self.floors[k] * f, v) if k in zero else v)
+                         for k, v in pts.items()}
+                probes.append(np.broadcast_to(np.asarray(
+                    self.formula(NUMPY, **trial, **params), float), (int(rows.sum()),)))
+        at_zero = np.zeros(int(rows.sum()), dtype=bool)
+        for x in zero.values():
+            at_zero |= x == 0
+        last, prev = probes[-1], probes[-2]
+        ok = np.isfinite(last) & (~at_zero | (np.abs(last - prev) <= LIMIT_RTOL * np.maximum(
+            np.abs(last), 1.0)))
+        if strict and not ok.all():
+            self._refuse_below_floor(zero, at_zero, ok, shape, rows)
+        full = np.array(np.broadcast_to(np.asarray(out, float), shape))
+        full[rows] = np.where(ok, last, np.nan)
+        return float(full) if full.ndim == 0 else full
+
+    def _refuse_below_floor(self, zero: Mapping[str, np.ndarray], at_zero: np.ndarray,
+                            ok: np.ndarray, shape: tuple[int, ...], rows: np.ndarray) -> None:
+        """Raise for the first point :meth:`below_floors` cannot give a value at."""
+        i = int(np.flatnonzero(~ok)[0])
+        where = [int(j) for j in np.argwhere(rows)[i]] if rows.ndim else []
+        at = (f" at index {where[0]}" if len(where) == 1 else
+              f" at index {tuple(where)}" if where else "")
+        name = next((k for k, x in zero.items() if x[i] < self.floors[k]), next(iter(zero)))
+        unit = VARIABLES[name].unit
+        if at_zero[i]:
+            names = [k for k, x in zero.items() if x[i] == 0]
+            what = " and ".join(f"{k} ({self.meaning(k)})" for k in names)
+            raise DomainError(
+                f"law '{self.id}' has no finite limit as {', '.join(names)} -> 0{at} (it grows "
+                f"without bound or keeps changing as {what} go{'es' if len(names) == 1 else ''}"
+                f" to 0): it cannot be evaluated at "
+                f"{', '.join(f'{k} = 0 {VARIABLES[k].unit}'.rstrip() for k in names)}")
+        raise DomainError(f"law '{self.id}' gives a non-finite mu at {name} = "
+                          f"{zero[name][i]:g} {unit}{at}, below its floor "
+                          f"{self.floors[name]:g} {unit}")
 
     def _refuse_missing(self, missing: list[str], params: Mapping[str, float]) -> None:
         """Raise for absent variables, unless each is optional with a neutral parameter."""
@@ -820,6 +959,7 @@ class Law:
         InputError, DomainError
             A variable the law cannot take, or a mu that means nothing.
         """
+        variables = self.si_variables(variables)
         fast = self._evaluate_blocks(variables, params)
         if fast is not None:
             return fast
@@ -827,6 +967,9 @@ class Law:
         out = self.evaluate(variables, params)
         mu = np.asarray(out, dtype=float)
         if not self._mu_ok(mu):
+            if self.floors:  # a point without a value below a floor: say which
+                raw = self._fill_optional(variables, params)
+                self.below_floors(raw, self.prepare_variables(raw), params, mu, strict=True)
             self._refuse_mu(mu, params)
         return out
 
@@ -921,9 +1064,15 @@ class Law:
                 self._refuse_variable(name, x)
 
     def _variable_ok(self, name: str, x: np.ndarray) -> bool:
-        """Cheap test (reductions only) that ``x`` passes :meth:`check_variables`."""
+        """Cheap test (reductions only) that ``x`` passes :meth:`check_variables`.
+
+        Values below a floor also fail it: :meth:`below_floors` handles them.
+        """
         if x.size == 0:
             return True
+        floor = self.floors.get(name)
+        if floor is not None and not float(np.min(np.abs(x))) >= floor:
+            return False
         if name == "s" or (self.strict_domain and name in self.domain):
             lo, hi = float(x.min()), float(x.max())  # NaN and infinities show in these
             if not (math.isfinite(lo) and math.isfinite(hi)):
@@ -997,16 +1146,19 @@ class Law:
 
         fill = self._fill_optional
 
+        below = self.below_floors
+
         def bound(*args: Any, **kwargs: Any) -> Any:
             kw = dict(zip(names, args))
             kw.update(kwargs)
             kw = fill(kw, params)
+            raw = {k: kw[k] for k in floors if k in kw}
             if "v" in kw:
                 kw["v"] = np.abs(kw["v"])
             for k, f in floors.items():
                 kw[k] = np.maximum(kw[k], f)
-            kw.update(params)
-            return formula(NUMPY, **kw)
+            out = formula(NUMPY, **kw, **params)
+            return below(raw, kw, params, out) if raw else out
 
         bound.__name__ = f"{self.id.replace('-', '_')}_bound"
         bound.__doc__ = f"{self.title} with fixed parameters {params}; arguments {names} (SI)."

@@ -247,23 +247,59 @@ def _solve(problem: _Problem, by: tuple[str, ...],
         raise FitError(f"the shared fit of '{problem.law.id}' did not converge: {sol.message}")
     n = sum(d["mu"].size for d in problem.data)
     rss = float(np.sum(sol.fun**2))
-    stderr, warns = _stderr(sol.jac, rss, n)
+    stderr, warns = _stderr(sol.jac, rss, n, _labels(problem, groups), sol.x)
     out_groups = _group_records(problem, groups, sol.x, stderr)
     comparison = _compare(rss, sol.x.size, separate, n)
     return SharedFit(problem.law.id, by, tuple(problem.shared), out_groups, comparison,
                      bool(sol.success), str(sol.message), warns)
 
 
-def _stderr(jac: np.ndarray, rss: float, n: int) -> tuple[np.ndarray, list[str]]:
+def _labels(problem: _Problem, groups: list[tuple[dict[str, Any], np.ndarray]]) -> list[str]:
+    """A name per entry of the stacked parameter vector: ``b`` shared, ``a[steel]`` own."""
+    from .campaign import key_text
+
+    return problem.shared + [f"{k}[{key_text(key)}]" for key, _ in groups for k in problem.own]
+
+
+def _stderr(jac: np.ndarray, rss: float, n: int, labels: list[str], theta: np.ndarray
+            ) -> tuple[np.ndarray, list[str]]:
+    """Asymptotic standard errors of the stacked parameters (NaN where withheld).
+
+    The rules of :func:`frictionlaws.fit` hold: no errors without more rows than
+    parameters, none for parameters the data cannot determine (rank-deficient
+    Jacobian; a pseudo-inverse would give them a number), none that come out as zero
+    to rounding.
+    """
+    from .fitting import _identifiability
+    from .uncertainty import ZERO_SPREAD
+
     k = jac.shape[1]
     dof = n - k
     if dof <= 0:
         return np.full(k, np.nan), [f"{n} points for {k} parameters: no standard errors"]
-    try:
-        cov = np.linalg.pinv(jac.T @ jac) * (rss / dof)
-    except np.linalg.LinAlgError:
-        return np.full(k, np.nan), ["singular Jacobian: no standard errors"]
-    return np.sqrt(np.maximum(np.diag(cov), 0.0)), []
+    non_id = set(_identifiability(np.asarray(jac, float), labels)[0])
+    keep = [j for j, lab in enumerate(labels) if lab not in non_id]
+    se = np.full(k, np.nan)
+    warns = ([f"the data cannot determine {', '.join(x for x in labels if x in non_id)} "
+              "(Jacobian rank deficient): their standard errors are withheld"]
+             if non_id else [])
+    if keep:
+        sub = jac[:, keep]
+        try:
+            cov = np.linalg.inv(sub.T @ sub) * (rss / dof)
+        except np.linalg.LinAlgError:
+            return se, [*warns, "singular Jacobian: no standard errors"]
+        se[keep] = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    zero = [lab for j, lab in enumerate(labels) if se[j] <= ZERO_SPREAD * abs(theta[j])]
+    if zero:
+        se[[labels.index(z) for z in zero]] = np.nan
+        warns.append(f"the standard error of {', '.join(zero)} comes out as 0 to rounding "
+                     "(the residuals do not spread): undetermined and withheld, not zero")
+    return se, warns
+
+
+def _se(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
 
 
 def _group_records(problem: _Problem, groups: list[tuple[dict[str, Any], np.ndarray]],
@@ -275,10 +311,10 @@ def _group_records(problem: _Problem, groups: list[tuple[dict[str, Any], np.ndar
         values = problem.unpack(theta, g)
         params = {}
         for i, k in enumerate(problem.shared):
-            params[k] = {"value": float(values[k]), "stderr": float(stderr[i]),
+            params[k] = {"value": float(values[k]), "stderr": _se(stderr[i]),
                          "unit": problem.law.param(k).unit, "shared": True}
         for j, k in enumerate(problem.own):
-            params[k] = {"value": float(values[k]), "stderr": float(stderr[s + g * m + j]),
+            params[k] = {"value": float(values[k]), "stderr": _se(stderr[s + g * m + j]),
                          "unit": problem.law.param(k).unit, "shared": False}
         records.append({"key": key, "rows": int(mask.sum()), "params": params,
                         "rss": float(np.sum(parts[g] ** 2))})

@@ -36,7 +36,8 @@ from .errors import InputError
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
            "check_uncertainty_options", "condition_ids", "sandwich_cov",
-           "residual_structure", "Refit", "BootstrapResult", "bootstrap", "intervals"]
+           "residual_structure", "Refit", "BootstrapResult", "bootstrap", "intervals",
+           "rank", "MIN_DETERMINED", "ZERO_SPREAD"]
 
 #: Uncertainty methods of a fit.
 UNCERTAINTY_METHODS = ("asymptotic", "sandwich", "bootstrap")
@@ -48,6 +49,11 @@ NARROW_RATIO = 1.5
 STRUCTURE_ALPHA = 0.05
 #: Largest number of bootstrap replicates.
 MAX_BOOT = 100_000
+#: Fewest determined replicates from which a bootstrap error is given.
+MIN_DETERMINED = 10
+#: Relative spread of the replicates at or below which they do not spread at all
+#: (rounding of identical refits): no error can be read from them.
+ZERO_SPREAD = 1e-9
 
 
 def check_uncertainty_options(uncertainty: Any, n_boot: Any, n_jobs: Any,
@@ -251,6 +257,12 @@ class Refit:
     x: dict[str, np.ndarray]
     y: np.ndarray
     w: np.ndarray | None
+    #: Relative singular value of the scaled Jacobian below which a direction of the
+    #: parameters is not determined (the fit's own identifiability threshold).
+    rank_tol: float = 1e-5
+    #: The rank the full data give the Jacobian (None: every parameter): a replicate
+    #: whose rows give less cannot determine what the full data determine.
+    rank: int | None = None
 
     def model(self, theta: np.ndarray, x: Mapping[str, np.ndarray], n: int) -> np.ndarray:
         """Model values at variables ``x`` (``n`` rows) for parameters ``theta``."""
@@ -261,7 +273,12 @@ class Refit:
         return np.broadcast_to(np.asarray(out, float), (n,))
 
     def solve(self, theta0: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """Least-squares parameters on ``rows`` started from ``theta0`` (NaN on failure)."""
+        """Least-squares parameters on ``rows`` started from ``theta0``.
+
+        NaN when the refit fails, and when the rows cannot determine every parameter
+        (a resample of too few distinct conditions: its refit would stay where it
+        started and show a spread of zero).
+        """
         from scipy.optimize import least_squares
 
         w = 1.0 if self.w is None else self.w[rows]
@@ -284,8 +301,37 @@ class Refit:
                                     x_scale=scale, max_nfev=200 * (start.size + 1))
         except (ValueError, FloatingPointError, np.linalg.LinAlgError):
             return np.full(theta0.size, np.nan)
-        return sol.x if np.all(np.isfinite(sol.fun)) and np.max(np.abs(sol.fun)) < 1e99 \
-            else np.full(theta0.size, np.nan)
+        if not (np.all(np.isfinite(sol.fun)) and np.max(np.abs(sol.fun)) < 1e99) or \
+                rank(sol.jac, self.rank_tol) < (self.rank or theta0.size):
+            return np.full(theta0.size, np.nan)
+        return np.asarray(sol.x, float)
+
+
+def rank(jac: Any, rank_tol: float) -> int:
+    """The numerical rank of the Jacobian with unit columns (how many directions are determined).
+
+    Parameters
+    ----------
+    jac : array-like, shape (n, k)
+        Jacobian of the residuals with respect to the parameters.
+    rank_tol : float
+        Singular values below ``rank_tol`` times the largest do not count; a zero or
+        non-finite column counts for nothing.
+
+    Returns
+    -------
+    int
+        0..k (0 for a Jacobian that is not finite).
+    """
+    jac = np.asarray(jac, float)
+    if jac.ndim != 2 or not np.all(np.isfinite(jac)):
+        return 0
+    norms = np.linalg.norm(jac, axis=0)
+    live = norms > 0
+    if not live.any():
+        return 0
+    s = np.linalg.svd(jac[:, live] / norms[live], compute_uv=False)
+    return int(np.sum(s >= rank_tol * s[0]))
 
 
 def _solve_many(refit: Refit, theta0: np.ndarray, rows_list: list[np.ndarray]
@@ -411,7 +457,10 @@ def intervals(samples: np.ndarray, hat: np.ndarray, jack: np.ndarray, *,
     -------
     (stderr, ci, kind_used)
         ``ci`` has shape (m, 2); ``kind_used`` is ``"bca"``, ``"percentile"`` or
-        ``"bca/percentile"`` when some columns fell back.
+        ``"bca/percentile"`` when some columns fell back.  A column with fewer than
+        :data:`MIN_DETERMINED` finite replicates, or whose replicates do not spread
+        (all within :data:`ZERO_SPREAD` of each other, relative), gets NaN: the
+        resamples cannot tell its error, which is not zero.
     """
     from scipy import stats
 
@@ -423,7 +472,8 @@ def intervals(samples: np.ndarray, hat: np.ndarray, jack: np.ndarray, *,
     for j in range(m):
         s = samples[:, j]
         s = s[np.isfinite(s)]
-        if s.size < 10:
+        if s.size < MIN_DETERMINED or np.ptp(s) <= ZERO_SPREAD * max(
+                float(np.max(np.abs(s))), np.finfo(float).tiny):
             continue
         se[j] = float(np.std(s, ddof=1))
         qs = np.array([alpha, 1.0 - alpha])

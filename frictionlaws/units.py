@@ -59,6 +59,8 @@ __all__ = [
     "MAX_UNIT_CHARS",
     "MAX_UNIT_EXPONENT",
     "MAX_UNIT_DEPTH",
+    "is_pint_quantity",
+    "si_magnitude",
 ]
 
 #: Gravity used to turn a dead weight in kg into a load, as the thesis did [m/s^2].
@@ -793,3 +795,44 @@ def si_unit(quantity: str) -> str:
 def examples(quantity: str) -> Sequence[str]:
     """Example units accepted for ``quantity`` (used in messages and docs)."""
     return _kind(quantity).examples
+
+
+def is_pint_quantity(value: Any) -> bool:
+    """True for a pint ``Quantity`` (of any registry), without importing pint."""
+    return any(c.__name__ == "Quantity" and c.__module__.split(".")[0] == "pint"
+               for c in type(value).__mro__)
+
+
+def si_magnitude(value: Any, si: str, what: str) -> Any:
+    """A pint ``Quantity`` as its magnitude in the SI unit ``si``; anything else unchanged.
+
+    The one conversion of quantities handed to the API (a law call, ``fit``,
+    ``predict``, an export's values): numpy would strip the unit and read
+    ``0.1 MPa`` as 0.1 Pa.
+
+    Parameters
+    ----------
+    value : Any
+        A pint Quantity (scalar or array), or a plain value (returned as it is).
+    si : str
+        The SI unit the value is wanted in (``""`` for a dimensionless one).
+    what : str
+        How to name the value in messages (``"law 'thirion': p"``).
+
+    Returns
+    -------
+    Any
+        The magnitude in ``si``, or ``value`` when it is not a Quantity.
+
+    Raises
+    ------
+    InputError
+        When the Quantity's unit is not one of a quantity of unit ``si``.
+    """
+    if not is_pint_quantity(value):
+        return value
+    try:
+        return value.to(si or "dimensionless").magnitude
+    except Exception:  # noqa: BLE001 - pint raises several types for incompatible units
+        raise InputError(f"{what} is given in '{value.units}', which cannot be converted "
+                         f"to {si or 'a dimensionless number'}") from None

@@ -253,3 +253,20 @@ def test_campaign_of_only_bad_input_exits_2(capsys):
     assert len(err) == 1 and "no column nosuchcol" in err[0]
     assert main(["fit", "--law", "thirion", "-", "-"]) == 2
     assert "more than once" in capsys.readouterr().err
+
+
+def test_campaign_datasets_of_one_name_are_told_apart(tmp_path):
+    from frictionlaws.campaign import compare_many, dataset_labels
+
+    frame = pd.DataFrame({"mu": [0.8, 0.7, 0.6, 0.55], "p [MPa]": [0.1, 0.2, 0.4, 0.6]})
+    camp = fit_many("thirion", [frame, frame.copy()])
+    assert list(dict.fromkeys(camp.to_frame()["dataset"])) == ["dataframe #1", "dataframe #2"]
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+        frame.to_csv(tmp_path / folder / "data.csv", index=False)
+    a, b = tmp_path / "a" / "data.csv", tmp_path / "b" / "data.csv"
+    assert dataset_labels([a, b, "thesis-steel"]) == [str(a), str(b), None]
+    ranked = compare_many([a, b], ["thirion", "coulomb"])
+    assert set(ranked["dataset"]) == {str(a), str(b)}
+    with pytest.raises(InputError, match="given twice"):
+        fit_many("thirion", [a, tmp_path / "a" / ".." / "a" / "data.csv"])

@@ -43,7 +43,9 @@ def test_abaqus_table_in_mm_n_s(tmp_path, capsys):
     (["--law", "thirion", "--set", "a=1,b=1e-6", "--format", "csv", "--p", "0:1",
       "--spacing", "p=log"], "log spacing of p needs MIN > 0"),
     (["--law", "park", "--set", "n=0.1,mu_s=.5,mu_m=1.2,h10=.3,v_m=.01", "--format",
-      "lsdyna", "--p", "0:1", "--v", "0:1"], "depends on T"),
+      "lsdyna", "--p", "1e4:1e5", "--v", "0.01:1"], "depends on T"),
+    (["--law", "park", "--set", "n=0.1,mu_s=.5,mu_m=1.2,h10=.3,v_m=.01", "--format",
+      "lsdyna", "--p", "0:1", "--v", "0:1"], "gives mu = nan at p = 0 Pa, v = 0 m/s"),
     (["--law", "nosuchlaw", "--set", "a=1", "--format", "csv"], "unknown law 'nosuchlaw'"),
 ])
 def test_bad_input_exits_2_with_one_line(argv, message, tmp_path, capsys):

@@ -134,3 +134,21 @@ def test_a_result_read_from_a_file_cannot_give_lmfits_result(tmp_path):
     loaded = fl.load_result(tmp_path / "r.json")
     with pytest.raises(fl.InputError, match="refit"):
         interop.model_result(loaded)
+
+
+def test_confidence_band_is_undetermined_where_a_parameter_has_no_error():
+    # savkoor on thesis-steel: n has an error, the bell's parameters cannot be told apart
+    res = fl.fit("savkoor", "thesis-steel", on_invalid="drop")
+    free = [k for k, e in res.params.items() if not e.fixed]
+    missing = [k for k in free if res.params[k].stderr is None]
+    assert missing and len(missing) < len(free)
+    half = interop.confidence_band(res, {"p": np.array([2e5, 4e5]), "v": np.array([0.01, 1.0])})
+    assert np.all(np.isnan(half))
+
+
+@pytest.mark.parametrize("method", ["asymptotic", "sandwich", "bootstrap"])
+def test_confidence_band_without_any_error_is_not_zero(method):
+    # two rows, two parameters: no error anywhere, so no band (not a band of zero width)
+    two = fl.fit("thirion", {"mu": np.array([0.8, 0.6]), "p": np.array([1e5, 4e5])},
+                 uncertainty=method, n_boot=20)
+    assert np.all(np.isnan(interop.confidence_band(two, {"p": np.array([2e5, 3e5])})))

@@ -439,15 +439,16 @@ def test_area_derives_pressure(tmp_path: Path) -> None:
 
 # --------------------------------------------------------------------------- in memory
 def test_dataframe_and_dict_inputs_are_si() -> None:
-    df = pd.DataFrame({"mu": [0.5, 0.6, np.nan], "p": [1e5, 2e5, 3e5], "speed": [1, 2, 3]})
+    df = pd.DataFrame({"mu": [0.5, 0.6, np.nan], "p [Pa]": [1e5, 2e5, 3e5],
+                       "speed [m/s]": [1, 2, 3]})
     ds = io.load_dataset(df)
     assert len(ds) == 2 and ds.source == "<DataFrame>"
     np.testing.assert_allclose(ds.frame["p"], [1e5, 2e5])
     np.testing.assert_allclose(ds.frame["v"], [1, 2])
     assert any("positions 2" in n for n in ds.notes)
     assert ds.rows is None
-    ds = io.load_dataset(pd.DataFrame({"mu": [0.5], "p [MPa]": [0.1], "T": pd.array([None],
-                                                                                   "Float64")}))
+    ds = io.load_dataset(pd.DataFrame({"mu": [0.5], "p [MPa]": [0.1],
+                                       "T [K]": pd.array([None], "Float64")}))
     assert ds.frame["p"].iloc[0] == 1e5 and "T" not in ds.frame.columns
     ds = io.load_dataset({"mu": [0.5, 0.4], "p": [1e5, 2e5]})
     assert ds.source == "<dict>" and len(ds) == 2
@@ -545,7 +546,7 @@ def frames(draw: st.DrawFn) -> pd.DataFrame:
 @given(frames(), st.one_of(st.none(), st.text(alphabet="abc :;,#", max_size=30)))
 def test_round_trip_to_csv_and_load(tmp_path: Path, frame: pd.DataFrame,
                                     provenance: str | None) -> None:
-    ds = io.load_dataset(frame)
+    ds = io.load_dataset(frame.to_dict("list"))  # SI columns: the dict's contract
     ds.provenance = provenance.strip() or None if provenance else None
     back = io.load_dataset(ds.to_csv(tmp_path / "rt.csv"))
     assert list(back.frame.columns) == list(ds.frame.columns)
@@ -722,3 +723,21 @@ def test_library_messages_name_arguments_not_flags(tmp_path: Path) -> None:
         io.load_dataset(write(tmp_path, "mu,F_N [N]\n0.5,3\n"), area="3 mm")
     assert "area '3 mm' is a length" in str(exc.value)
     assert "--area '3 mm' is a length" in exc.value.compose(label=flags)
+
+
+def test_dataframe_column_without_a_unit_is_refused_as_in_a_csv(tmp_path) -> None:
+    from frictionlaws import fit as io_fit
+
+    frame = pd.DataFrame({"mu": [0.5, 0.4], "p": [0.1, 0.2]})
+    path = tmp_path / "nounit.csv"
+    frame.to_csv(path, index=False)
+    for data in (frame, str(path)):
+        with pytest.raises(InputError, match="column has no unit") as err:
+            io.load_dataset(data)
+        assert err.value.column == "p"
+    with pytest.raises(InputError, match="column has no unit"):
+        io_fit("thirion", frame)
+    ds = io.load_dataset(frame, units={"p": "MPa"})
+    np.testing.assert_allclose(ds.frame["p"], [1e5, 2e5])
+    # the API's dict of arrays keeps its contract: SI
+    assert io.load_dataset({"mu": [0.5, 0.4], "p": [1e5, 2e5]}).frame["p"].iloc[0] == 1e5

@@ -379,3 +379,20 @@ def test_zero_friction_gives_no_stiffness_and_an_undefined_ratio(capsys):
         res = BrushModel("coulomb", {"mu0": 0.0}).cornering([2000.0, 6500.0])
     assert np.all(res.cs_kN_per_deg == 0) and math.isnan(res.ratio())
     assert "n/a" in res.table()
+
+
+@pytest.mark.parametrize("n,usable", [(-0.2, True), (-0.9, True), (-1.0, False)])
+def test_edges_of_the_patch_take_the_limit_of_mu_p(n, usable):
+    # savkoor's mu grows as p^n when p -> 0: no mu at the patch's edges, but the
+    # friction limit mu p goes to 0 for n > -1 (and not for n = -1)
+
+    values = {"mu_s": 0.4, "mu_m": 1.2, "h10": 0.35, "v_m": 1e-3, "n": n}
+    model = BrushModel("savkoor", values)
+    if not usable:
+        with pytest.raises(DomainError, match="p = 0 MPa"):
+            model.cornering(np.array([3000.0]), [1.0])
+        return
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        res = model.cornering(np.array([2000.0, 6000.0]), [1.0, 2.0])
+    assert np.all(np.isfinite(res.cs_kN_per_deg)) and np.all(res.cs_kN_per_deg > 0)

@@ -160,3 +160,21 @@ def test_reduce_load_errors_name_the_flag_typed(capsys, argv, message):
            / "MagicFormula61_Parameters.converted.tir")
     assert main(["tyre", "reduce", str(tir), *argv]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_fit_mf_reads_its_data_from_standard_input(capsys, tmp_path, monkeypatch):
+    import io
+
+    from test_tyre_fit_mf import synthetic, write_csv
+
+    _, data, _ = synthetic("MagicFormula61", n_slip=15)
+    csv = write_csv(tmp_path / "data.csv", data)
+    from_file, from_stdin = tmp_path / "file.tir", tmp_path / "stdin.tir"
+    assert main(["tyre", "fit-mf", str(csv), "--fittyp", "61", "-o", str(from_file)]) == 0
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO(csv.read_bytes())))
+    assert main(["tyre", "fit-mf", "-", "--fittyp", "61", "-o", str(from_stdin)]) == 0
+    capsys.readouterr()
+    coefficients = [ln for ln in from_file.read_text().splitlines() if "=" in ln
+                    and not ln.startswith(("!", "$"))]
+    assert coefficients == [ln for ln in from_stdin.read_text().splitlines() if "=" in ln
+                            and not ln.startswith(("!", "$"))]

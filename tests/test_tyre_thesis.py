@@ -84,3 +84,21 @@ def test_report_and_json(comparison):
                                "denny (thesis-steel)"}
     print()
     print(comparison.table())
+
+
+def test_undetermined_fit_is_named_in_table_json_and_cli(capsys):
+    from frictionlaws.cli import main
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        comp = thesis_comparison(laws=["exponential-decay"], loads_kN=[2.0, 6.5])
+    fit = next(iter(comp.fits.values()))
+    assert fit.non_identifiable
+    table = comp.table()
+    assert "cannot determine" in table and fit.non_identifiable[0] in table
+    entry = next(iter(comp.to_dict()["fits"].values()))
+    assert entry["undetermined"] == list(fit.non_identifiable) and entry["warnings"]
+    assert main(["tyre", "thesis", "--laws", "exponential-decay"]) == 0
+    out, err = capsys.readouterr()
+    assert f"{fit.non_identifiable[0]} = " in out and "(undetermined)" in out
+    assert "cannot determine" in err and "[exponential-decay (thesis-steel)]" in err

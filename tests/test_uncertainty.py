@@ -326,3 +326,145 @@ def test_bootstrap_does_not_advise_itself_about_a_cut_symmetric_interval():
     boot = fl.fit("thirion", data, uncertainty="bootstrap", n_boot=50)
     assert not [w for w in boot.warnings if "reaches past its bounds" in w]
     assert boot.params["b"].ci95[0] >= 0.0
+
+
+# ------------------------------------------------ one rule for every method
+
+METHODS = ("asymptotic", "sandwich", "bootstrap")
+
+
+def _check_honest(result) -> None:
+    """No zero error, no interval past a bound unremarked, no derived error without parents."""
+    law = fl.get_law(result.law.id)
+    for name, est in result.params.items():
+        assert est.stderr is None or est.stderr > 0, (name, est)
+        if est.ci95 is None:
+            continue
+        lo, hi = law.param(name).bounds
+        assert lo <= est.ci95[0] <= est.ci95[1] <= hi, (name, est.ci95)
+        if result.uncertainty["method"] != "bootstrap" and (lo in est.ci95 or hi in est.ci95):
+            assert any(f"interval of {name}" in w for w in result.warnings), result.warnings
+    none = [k for k, e in result.params.items() if not e.fixed and e.stderr is None]
+    for name, d in result.derived.items():
+        assert d.get("stderr") is None or d["stderr"] > 0, (name, d)
+        if len(none) == len([e for e in result.params.values() if not e.fixed]):
+            assert d.get("stderr") is None, (name, d)
+
+
+@settings(max_examples=12, deadline=None)
+@given(levels=st.integers(1, 5), repeats=st.integers(1, 3),
+       noise=st.sampled_from([0.0, 0.002, 0.03]), method=st.sampled_from(METHODS),
+       seed=st.integers(0, 2**16))
+def test_every_method_withholds_what_the_data_cannot_tell(levels, repeats, noise, method,
+                                                          seed) -> None:
+    rng = np.random.default_rng(seed)
+    p = np.repeat(np.linspace(1e5, 6e5, levels), repeats)
+    if p.size < 2:
+        p = np.array([1e5, 1e5])
+    mu = 1.0 / (1.0 + 2e-6 * p) + noise * rng.standard_normal(p.size)
+    result = fl.fit("thirion", {"mu": mu, "p": p}, uncertainty=method, n_boot=40)
+    _check_honest(result)
+    if np.unique(p).size <= 2 and method == "bootstrap":
+        assert all(e.stderr is None for e in result.params.values())
+        assert any(("conditions" in w and "withheld" in w) or "more rows" in w
+                   or "cannot determine" in w for w in result.warnings), result.warnings
+
+
+def test_bootstrap_on_two_conditions_reports_undetermined_errors() -> None:
+    p = np.repeat([1e5, 4e5], 3)
+    mu = np.array([.83, .84, .82, .56, .55, .57])
+    result = fl.fit("thirion", {"mu": mu, "p": p}, uncertainty="bootstrap", n_boot=50)
+    assert all(e.stderr is None and e.ci95 is None for e in result.params.values())
+    assert all(d["stderr"] is None for d in result.derived.values())
+    assert any("2 conditions" in w and "withheld" in w for w in result.warnings)
+    assert "refused" in result.report()
+
+
+def test_bootstrap_withholds_a_parameter_whose_resamples_do_not_spread() -> None:
+    from frictionlaws.uncertainty import intervals
+
+    flat = np.full((50, 1), 0.4) + np.r_[np.zeros(49), 1e-13][:, None]
+    se, ci, _ = intervals(flat, np.array([0.4]), np.full((5, 1), 0.4))
+    assert np.isnan(se[0]) and np.all(np.isnan(ci[0]))
+
+
+def test_bootstrap_resample_of_too_few_conditions_is_not_a_replicate() -> None:
+    from frictionlaws.uncertainty import Refit
+
+    law = fl.get_law("thirion")
+    p = np.repeat([1e5, 2e5, 4e5], 2)
+    mu = 1.0 / (1.0 + 2e-6 * p)
+    refit = Refit(law, dict(law.setting_values), ["a", "b"], np.array([1e-9, 0.0]),
+                  np.array([np.inf, np.inf]), {"p": p}, mu, None, 1e-5, 2)
+    theta = np.array([1.0, 2e-6])
+    assert np.all(np.isnan(refit.solve(theta, np.array([0, 1, 0, 1]))))  # one condition
+    assert np.all(np.isfinite(refit.solve(theta, np.arange(6))))
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_rows_equal_to_parameters_give_no_error_to_derived_quantities(method) -> None:
+    result = fl.fit("thirion", {"mu": np.array([0.8, 0.6]), "p": np.array([1e5, 4e5])},
+                    uncertainty=method, n_boot=20)
+    assert all(e.stderr is None for e in result.params.values())
+    assert result.derived and all(d["stderr"] is None for d in result.derived.values())
+
+
+@pytest.mark.parametrize("method", ["asymptotic", "sandwich"])
+def test_exact_data_give_no_zero_error(method) -> None:
+    p = np.array([1e5, 2e5, 4e5, 6e5])
+    result = fl.fit("thirion", {"mu": 1.0 / (1.0 + 2e-6 * p), "p": p}, uncertainty=method)
+    assert all(e.stderr is None for e in result.params.values())
+    assert all(d["stderr"] is None for d in result.derived.values())
+    assert any("0 to rounding" in w for w in result.warnings)
+
+
+def test_sandwich_interval_past_a_bound_is_cut_and_remarked() -> None:
+    rng = np.random.default_rng(3)
+    v = np.repeat([0.001, 0.01, 0.05, 0.1, 0.3, 1, 3], 2)
+    mu = 0.5 + 0.4 * np.exp(-v / 0.05) + rng.normal(0, 0.05, v.size) * np.where(
+        v > 0.2, 3, 0.3)
+    result = fl.fit("exponential-decay", {"mu": mu, "v": v}, uncertainty="sandwich")
+    assert result.uncertainty["method"] == "sandwich"
+    _check_honest(result)
+    cut = [w for w in result.warnings if "reaches past its bounds" in w]
+    assert cut
+    # the remarks are the sandwich's own intervals, not the replaced asymptotic ones
+    asym = fl.fit("exponential-decay", {"mu": mu, "v": v})
+    assert not set(cut) & {w for w in asym.warnings if "reaches past" in w}
+
+
+def test_shared_fit_withholds_undetermined_and_zero_errors(tmp_path) -> None:
+    from frictionlaws.shared import fit_shared
+
+    p = np.array([1e5, 2e5, 4e5, 6e5])
+    rows = ["surface,p [Pa],mu"]
+    for surface, b in (("steel", 2e-6), ("glass", 3e-6)):
+        rows += [f"{surface},{x:g},{float(1.0 / (1.0 + b * x))!r}" for x in p]
+    path = tmp_path / "exact.csv"
+    path.write_text("\n".join(rows) + "\n")
+    result = fit_shared("thirion", str(path), by="surface", shared=["a"])
+    for group in result.groups:
+        for name, est in group["params"].items():
+            assert est["stderr"] is None, (name, est)
+    assert any("0 to rounding" in w for w in result.warnings)
+    assert "+/- -" in result.report()
+
+
+def test_a_condition_id_column_is_the_bootstraps_unit(tmp_path) -> None:
+    rows = ["condition_id,p [MPa],mu"]
+    for j, cond in enumerate("AABBCCDDEE"):  # two pressures per condition
+        p = 0.05 + 0.05 * j
+        rows.append(f"{cond},{p:.3f},{1 / (1 + 2 * p) * (1 + 0.01 * (-1) ** j):.6f}")
+    path = tmp_path / "runs.csv"
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    ds = load_dataset(path)
+    assert list(ds.column("condition_id")) == list("AABBCCDDEE")
+    back = load_dataset(ds.to_csv(tmp_path / "back.csv"))
+    assert list(back.column("condition_id")) == list("AABBCCDDEE")
+    res = fl.fit("thirion", path, uncertainty="bootstrap", n_boot=40)
+    assert res.uncertainty["conditions"] == 5  # not the 10 pressures
+    one = tmp_path / "one.csv"
+    one.write_text("\n".join([rows[0]] + [f"A,{r.split(',', 1)[1]}" for r in rows[1:]]) + "\n")
+    res = fl.fit("thirion", one, uncertainty="bootstrap", n_boot=40)
+    assert all(e.stderr is None for e in res.params.values())
+    assert any("(1 condition," in w for w in res.warnings)

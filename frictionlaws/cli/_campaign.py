@@ -164,6 +164,8 @@ def _refuse_without_by(args: argparse.Namespace) -> None:
 def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
     """Run ``fit`` over several datasets and/or groups; print a summary, write ``--out``.
 
+    A DATA of ``-`` (standard input) is read once into a private file first.
+
     Parameters
     ----------
     args : argparse.Namespace
@@ -176,6 +178,18 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     int
         The exit status: 0, or 1 when a fit failed.
     """
+    from ._common import data_sources
+
+    given = args.data
+    with data_sources(given if isinstance(given, list) else [given]) as paths:
+        args.data = paths if isinstance(given, list) else paths[0]
+        try:
+            return _run_fit_campaign(args, fit_kwargs)
+        finally:
+            args.data = given
+
+
+def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
     from frictionlaws.campaign import check_grouping
 
     _refuse_without_by(args)
@@ -237,13 +251,18 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
     from frictionlaws.errors import InputError
 
     from . import flag_label
+    from ._common import shown_source
 
+    data = args.data if isinstance(args.data, list) else [args.data]
     try:
         return fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
                         progress=campaign_progress(args), output=stream, load_options=load,
-                        **fit_kwargs)
+                        source_names={d: shown_source(d) for d in data}, **fit_kwargs)
     except UnreadableDatasets as exc:
         label = flag_label(args)
+        for problem in exc.problems:  # standard input by its name, not its private copy
+            for d in data:
+                problem.replace_text(d, shown_source(d))
         lines = [" ".join(p.compose(label=label).split()) for p in exc.problems]
         for line in lines[:-1]:
             print("error: " + line, file=sys.stderr)
@@ -270,6 +289,10 @@ def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
     if fit_kwargs.get("uncertainty", "asymptotic") != "asymptotic":
         raise InputError("--uncertainty is not used with --shared (the shared fit reports "
                          "asymptotic errors); remove it")
+    from ._common import refuse_unused
+
+    refuse_unused(args, ("jobs", "scheduler"),
+                  "with --shared (a shared fit is one least-squares problem, not spread)")
     res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
                      weights=fit_kwargs.get("weights", "auto"), load_options=load)
     if args.out:

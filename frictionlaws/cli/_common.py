@@ -496,11 +496,13 @@ def _bound_from_file(path: str, law: str | None) -> Any:
     from frictionlaws.fitting import load_result
     from frictionlaws.registry import get_law
 
-    result = load_result(path)
+    with data_source(path, "stdin.json") as real:  # '-': the file from standard input
+        result = load_result(real)
+    shown = "<stdin>" if path == STDIN else path
     if law and get_law(law).id != result.law.id:
         raise InputError(f"--law {law} does not match the law in the file "
-                         f"('{result.law.id}')", file=path)
-    return bound_from_result(result, Source("file", file=path))
+                         f"('{result.law.id}')", file=shown)
+    return bound_from_result(result, Source("file", file=shown))
 
 
 # -------------------------------------------------------------- inapplicable options
@@ -680,8 +682,12 @@ def range_values(spec: RangeSpec, spacing: str = "lin") -> list[float]:
 
 
 @contextlib.contextmanager
-def data_source(data: str) -> Iterator[str]:
+def data_source(data: str, name: str | Callable[[bytes], str] = "stdin.csv"
+                ) -> Iterator[str]:
     """Yield a path for the DATA argument; ``-`` spools standard input to a private file.
+
+    ``name`` is the private file's name, or a function choosing it from the bytes read
+    (a reader that goes by the suffix: ``stdin.tir`` or ``stdin.json``).
 
     A DATA that names an existing path must be a regular, readable file (a FIFO
     would block forever, a directory is a mistake).
@@ -707,7 +713,7 @@ def data_source(data: str) -> Iterator[str]:
     raw = read_stream(sys.stdin)  # bounded in size
 
     with tempfile.TemporaryDirectory(prefix="frictionlaws-stdin-") as tmp:
-        path = os.path.join(tmp, "stdin.csv")
+        path = os.path.join(tmp, name(raw) if callable(name) else name)
         with open(path, "wb") as fh:
             fh.write(raw)
         try:
@@ -715,6 +721,25 @@ def data_source(data: str) -> Iterator[str]:
         except InputError as exc:  # name standard input, not the private copy
             exc.replace_text(path, "<stdin>")
             raise
+
+
+@contextlib.contextmanager
+def data_sources(data: Sequence[str]) -> Iterator[list[str]]:
+    """A campaign's DATA arguments with ``-`` spooled as :func:`data_source` does.
+
+    The others (files, directories, packaged names) are passed on as given.
+    """
+    with contextlib.ExitStack() as stack:
+        yield [stack.enter_context(data_source(d)) if d == STDIN else d for d in data]
+
+
+def shown_source(path: str) -> str:
+    """A source path as the user gave it: the private copy of standard input is ``<stdin>``."""
+    p = os.path.normpath(str(path))
+    parent = os.path.basename(os.path.dirname(p))
+    if os.path.basename(p).startswith("stdin.") and parent.startswith("frictionlaws-stdin-"):
+        return "<stdin>"
+    return str(path)
 
 
 def print_json(obj: Any) -> None:

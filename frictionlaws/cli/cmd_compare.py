@@ -168,11 +168,16 @@ def _run_many(args: argparse.Namespace) -> int:
     from frictionlaws.comparison.results import mark_undetermined
     from frictionlaws.outputs import write_text_atomic
 
+    from ._common import data_sources, shown_source
+
     laws = split_names([args.laws]) if args.laws else None
     load = {k: v for k, v in data_kwargs(args).items() if v is not None}
-    frame = compare_many(args.data, laws, by=split_names(args.by), jobs=args.jobs,
-                         scheduler=args.scheduler, progress=campaign_progress(args),
-                         load_options=load, **_options(args))
+    with data_sources(args.data) as paths:
+        frame = compare_many(paths, laws, by=split_names(args.by), jobs=args.jobs,
+                             scheduler=args.scheduler, progress=campaign_progress(args),
+                             load_options=load,
+                             source_names={p: shown_source(p) for p in paths},
+                             **_options(args))
     shown = mark_undetermined(frame)  # undetermined scores as n/d in text and CSV
     if args.out:
         from frictionlaws.sanitize import frame_csv

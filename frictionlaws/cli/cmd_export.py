@@ -259,12 +259,14 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     from frictionlaws.outputs import check_outputs, write_text_atomic
 
     from ._campaign import split_names
+    from ._common import data_source
 
     if args.output == "-":
         raise UsageError("--by writes one file per group: give -o FILE, not -o -")
     options = fit_kwargs(args)
     load = {k: options.pop(k) for k in ("mapping", "units", "area")}
-    groups = fit_groups(law, args.fit, split_names(args.by), load_options=load, **options)
+    with data_source(args.fit) as source:
+        groups = fit_groups(law, source, split_names(args.by), load_options=load, **options)
     failed = [key_text(k) for k, r in groups if not r.success]
     if failed:
         raise InputError(f"the fit did not converge for {', '.join(failed)}; nothing exported",
@@ -307,7 +309,10 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
+    from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
     from frictionlaws.outputs import check_outputs
 
+    if args.format in FORTRAN_FORMATS:
+        check_source_name(args.output)
     inputs = [x for x in (args.params, args.fit) if x and Path(x).exists()]
     check_outputs([args.output], inputs=inputs)

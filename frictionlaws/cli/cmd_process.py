@@ -142,6 +142,12 @@ def run(args: argparse.Namespace) -> int:
     from frictionlaws.tribometer.process import manifest_names, process_many
     from frictionlaws.tribometer.rig import load_rig
 
+    if "-" in args.manifest:
+        from frictionlaws.errors import InputError
+
+        raise InputError("MANIFEST '-': a manifest names its record files relative to its "
+                         "own folder, which standard input does not have; give the "
+                         "manifest's path")
     names = manifest_names(args.manifest)  # refuses a manifest given twice
     targets, out_dir = _plan(args, names)
     rig = load_rig(args.rig)

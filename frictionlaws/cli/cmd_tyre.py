@@ -144,12 +144,30 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
 
 
 def _mf_file(args: argparse.Namespace) -> Any:
-    """The property file read with the Magic Formula conventions chosen."""
+    """The property file read with the Magic Formula conventions chosen (``-``: stdin)."""
     from frictionlaws.tyre.magic_formula import MagicFormula
 
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
                                   loads_above_fzmax=args.loads_above_fzmax)
+
+
+def _on_property_file(run: Any, args: argparse.Namespace) -> int:
+    """Run a command on its property FILE; ``-`` reads it from standard input."""
+    from ._common import data_source
+
+    given = args.file
+    with data_source(given, _property_name) as path:
+        args.file = path
+        try:
+            return int(run(args))
+        finally:
+            args.file = given
+
+
+def _property_name(raw: bytes) -> str:
+    """A property file from standard input: JSON when it opens with '{', else .tir."""
+    return "stdin.json" if raw.lstrip().startswith(b"{") else "stdin.tir"
 
 
 def _load_options(p: argparse.ArgumentParser, default: str | None) -> None:
@@ -283,9 +301,9 @@ def run(args: argparse.Namespace) -> int:
     if cmd == "thesis":
         return _run_thesis(args)
     if cmd == "mf":
-        return _run_mf(args)
+        return _on_property_file(_run_mf, args)
     if cmd == "reduce":
-        return _run_reduce(args)
+        return _on_property_file(_run_reduce, args)
     if cmd == "fit-mf":
         return _run_fit_mf(args)
     raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce, "
@@ -364,12 +382,13 @@ def _run_thesis(args: argparse.Namespace) -> int:
         print(json.dumps(comp.to_dict(), indent=2))
         return 0
     for label, f in comp.fits.items():
-        print(f"fit {label}: " + ", ".join(f"{k} = {p.value:.6g} {p.unit}".rstrip()
-                                            for k, p in f.params.items())
-              + f" (R^2 {f.metrics['r2']:.4f})")
+        print(f"fit {label}: " + ", ".join(
+            f"{k} = {p.value:.6g} {p.unit}".rstrip()
+            + (" (undetermined)" if k in f.non_identifiable else "")
+            for k, p in f.params.items()) + f" (R^2 {f.metrics['r2']:.4f})")
     lines = comp.table().splitlines()
     print("\n".join(line for line in lines if not line.startswith("warning")))
-    _warn([line.split(": ", 1)[1] for line in lines if line.startswith("warning")])
+    _warn([line.removeprefix("warning ") for line in lines if line.startswith("warning")])
     return 0
 
 
@@ -380,6 +399,10 @@ def _run_mf(args: argparse.Namespace) -> int:
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
+    if "source" in summary:
+        from ._common import shown_source
+
+        summary["source"] = shown_source(summary["source"])
     if args.json:
         print(json.dumps(summary, indent=2))
         return 0
@@ -444,8 +467,11 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         from frictionlaws.tyre._fit_mf_plot import check_figure_path
 
         check_figure_path(args.plot)
-    res = fit_mf(args.data, fittyp=args.fittyp, template=args.template,
-                 sign_convention=args.sign_convention)
+    from ._common import data_source
+
+    with data_source(args.data) as data:
+        res = fit_mf(data, fittyp=args.fittyp, template=args.template,
+                     sign_convention=args.sign_convention)
     res.write(args.output)
     if args.plot:
         res.plot(args.plot)

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import Argument, InputError
 from ..law import VARIABLES, Law
-from .fortran import FORTRAN_FORMATS
+from .fortran import FORTRAN_FORMATS, check_source_name
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
@@ -333,7 +333,7 @@ def _check_spacing(spacing: Mapping[str, str]) -> None:
 
 def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
     """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
-    from ..units import parse_quantity
+    from ..units import parse_quantity, si_magnitude
 
     if isinstance(spec, AxisSpec):
         return spec
@@ -343,7 +343,8 @@ def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
     if len(seq) not in (2, 3):
         raise InputError(f"expected (min, max) or (min, max, n), got {spec!r}",
                          option=f"box.{var}")
-    lo, hi = (parse_quantity(x, var, what=f"box['{var}']") for x in seq[:2])
+    lo, hi = (parse_quantity(si_magnitude(x, VARIABLES[var].unit, f"box['{var}']"), var,
+                             what=f"box['{var}']") for x in seq[:2])
     n = None
     if len(seq) == 3 and seq[2] is not None:
         if int(seq[2]) != seq[2]:
@@ -425,10 +426,16 @@ def _inputs_of(bound: BoundLaw) -> list[str]:
     return [f for f in (src.data_file, src.file) if f]
 
 
-def _check_path(path: str | Path | None, bound: BoundLaw) -> None:
-    """Check the export's path before any work (the same check as :func:`_write`)."""
+def _check_path(path: str | Path | None, bound: BoundLaw, fmt: str) -> None:
+    """Check the export's path before any work (the same check as :func:`_write`).
+
+    A Fortran format's file must also have a name compilers read as fixed form.
+    """
     if path is not None and str(path) != "-":
         from ..outputs import check_outputs
+
+        if fmt in FORTRAN_FORMATS:
+            check_source_name(str(path))
 
         check_outputs([path], inputs=_inputs_of(bound), what="export file")
 
@@ -518,18 +525,26 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     _check_format(format, tol)
     bound = _bound(law, params, preset)
     _check_determined(bound)
-    _check_path(path, bound)
+    _check_path(path, bound, format)
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
-    writer, _, needs_box = FORMATS[format]
+    written = FORMATS[format][0](_checked(job, format))
+    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
+
+
+def _checked(job: Job, format: str) -> Job:
+    """The job after the checks of its box that come before any writing, with warnings."""
+    needs_box = FORMATS[format][2]
+    job.check_corners(needs_box)
     if needs_box:
         job.domain_warnings()
     if not needs_box or format in _FORMULA_CARDS:
         # tables check their own box while the grid is built
         job.check_formula_box(code=format in FORTRAN_FORMATS)
-    written = writer(job)
-    return _result(job, written, _write(path, written.text, _inputs_of(bound)))
+    if format in FORTRAN_FORMATS:
+        job.floor_warnings()
+    return job
 
 
 def _check_determined(bound: BoundLaw) -> None:

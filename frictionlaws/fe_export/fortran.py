@@ -47,7 +47,7 @@ from ..errors import InputError
 from ..law import VARIABLES, Law
 
 __all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES",
-           "input_deck", "interaction_name"]
+           "input_deck", "interaction_name", "FIXED_FORM_SUFFIXES", "check_source_name"]
 
 #: Export format -> Abaqus routine name.
 FORTRAN_FORMATS = {
@@ -55,6 +55,12 @@ FORTRAN_FORMATS = {
     "abaqus-vfric-coef": "vfric_coef",
     "abaqus-vfric": "vfric",
 }
+#: File name endings compilers read as fixed-form source (the form written here, and
+#: the one Abaqus' ``abaqus make``/``user=`` compile); any other Fortran ending
+#: (``.f90``, ``.f95``, ``.f03``, ``.f08``...) makes gfortran and ifort read free form.
+FIXED_FORM_SUFFIXES = (".f", ".for", ".ftn", ".f77", ".fpp")
+#: Endings of free-form Fortran source: a fixed-form file under one of them does not compile.
+_FREE_FORM = re.compile(r"\.f(90|95|03|08|18)$", re.IGNORECASE)
 #: Law variables not passed by Abaqus' friction interfaces: read from field variables.
 FIELD_VARIABLES = ("F_N", "s")
 #: Order of the arguments of the law routine (and of its derivative array): the order
@@ -215,6 +221,31 @@ def _declare(kind: str, names: Sequence[str], indent: int = 6) -> list[str]:
     if not names:
         return []
     return _stmt(f"{kind} " + ", ".join(names), indent)
+
+
+def check_source_name(path: str) -> None:
+    """Refuse a file name a compiler would read as free-form source.
+
+    The routines are fixed-form Fortran; under a free-form ending (``.f90``...)
+    gfortran and ifort reject them, so the name must end in one of
+    :data:`FIXED_FORM_SUFFIXES` (any other ending is left to the user).
+
+    Parameters
+    ----------
+    path : str
+        The output file name.
+
+    Raises
+    ------
+    InputError
+        For a free-form ending, naming the file and the endings to use.
+    """
+    if _FREE_FORM.search(str(path)):
+        raise InputError(
+            "the Abaqus user subroutine is fixed-form Fortran, which compilers refuse "
+            f"under a free-form name ending '{str(path).rsplit('.', 1)[-1]}'; name the file "
+            f"with one of {', '.join(FIXED_FORM_SUFFIXES)} (Abaqus compiles .f and .for)",
+            file=str(path))
 
 
 # ---------------------------------------------------------------- naming

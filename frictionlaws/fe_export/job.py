@@ -192,6 +192,79 @@ class Job:
                      "(check the parameters; a fit that cannot determine them needs ",
                      Argument("fix"), ")"])
 
+    def check_corners(self, needs_box: bool) -> None:
+        """Refuse a box reaching where the law itself is undefined (before any output).
+
+        The law is evaluated, with the checks of its evaluation (a WLF pole) and of its
+        floors (no limit at v = 0 or p = 0), at each corner of the box (a variable
+        without a range at the ends of its typical range): the exporters evaluate the
+        law through :meth:`Law.bind`, which gives NaN there and names no cause.
+        A table (``needs_box``) missing a range is left to the writer, which names it.
+
+        Raises
+        ------
+        DomainError
+            Naming the box and what the law says there.
+        """
+        import itertools
+
+        from ..errors import DomainError
+
+        names = list(self.variables)
+        if not names or (needs_box and any(v not in self.specs for v in names)):
+            return
+        ends = [(self.specs[v].lo, self.specs[v].hi) if v in self.specs
+                else self.law.typical_range(v) for v in names]
+        corners = np.array(list(itertools.product(*ends)), float)
+        try:
+            point = {v: corners[:, j] for j, v in enumerate(names)}
+            mu = np.asarray(self.law.evaluate(point, self.values), float)
+            if self.law.floors and not np.all(np.isfinite(mu)):  # no limit at 0: say so
+                self.law.below_floors(point, self.law.prepare_variables(point), self.values,
+                                      mu, strict=True)
+        except DomainError as exc:
+            box = ", ".join(f"{v} {self.model(v, lo)} .. {self.model(v, hi)}"
+                            for v, (lo, hi) in zip(names, ends))
+            raise DomainError(f"the export box ({box}) reaches where law '{self.law.id}' is "
+                              f"undefined: {exc.bare_message}") from None
+
+    def floor_warnings(self) -> None:
+        """Warn where generated code, which floors its variables, departs from the law at 0.
+
+        A user subroutine is called wherever the simulation goes, v = 0 (sticking)
+        included, and applies the floors of :attr:`Law.floors` as the formula needs
+        them; the law's value at 0 is its limit (:meth:`Law.below_floors`).  Where the
+        two differ by more than the export's tolerance (or the law has no limit there),
+        the export says so, with both numbers, at the corners of the box.
+        """
+        import itertools
+
+        tol = self.tol if self.tol is not None else 1e-3
+        names = list(self.variables)
+        ends = [(self.specs[v].lo, self.specs[v].hi) if v in self.specs
+                else self.law.typical_range(v) for v in names]
+        corners = np.array(list(itertools.product(*ends)), float)
+        for var, floor in self.law.floors.items():
+            if var not in names:
+                continue
+            j = names.index(var)
+            point = {v: corners[:, i] for i, v in enumerate(names)}
+            at_zero = np.asarray(self.law.evaluate({**point, var: 0.0 * corners[:, j]},
+                                                   self.values), float)
+            at_floor = np.asarray(self.func(**{**point, var: floor + 0.0 * corners[:, j]}),
+                                  float)
+            gap = np.abs(at_floor - at_zero)
+            if np.all(np.isfinite(at_zero)) and float(np.max(gap)) <= tol:
+                continue
+            k = int(np.nanargmax(np.where(np.isfinite(gap), gap, np.inf)))
+            law_says = (f"the law's limit is {at_zero[k]:.6g}" if np.isfinite(at_zero[k])
+                        else "the law has no limit there")
+            self.warnings.append(
+                f"the routine floors {var} at {self.model(var, floor)}: at {var} = 0 it "
+                f"gives mu = {at_floor[k]:.6g} where {law_says} (at "
+                + ", ".join(f"{v} = {self.model(v, corners[k, i])}" for i, v in
+                            enumerate(names) if v != var) + ")")
+
     def check_formula_box(self, *, code: bool = False) -> None:
         """Check a formula export (no table) where the solver will evaluate it.
 

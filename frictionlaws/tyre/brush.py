@@ -601,10 +601,31 @@ class BrushModel:
     def _limit(self, p: Any, v: Any, c: float, check: bool = True) -> np.ndarray:
         """Deflection limit mu p w / c [m]; raises on NaN or negative mu when ``check``."""
         with np.errstate(all="ignore"):
-            mu = np.asarray(self.mu(p, v), dtype=float)
+            mu = self._at_edges(np.asarray(self.mu(p, v), dtype=float), p, v)
         if check:
             self._check_mu(mu, p, v)
         return mu * self._limit_scale(p, c)
+
+    def _at_edges(self, mu: np.ndarray, p: Any, v: Any) -> np.ndarray:
+        """mu where the pressure is 0 (the patch's edges), for the limit mu p w / c.
+
+        A law without a limit at p = 0 (mu growing as p -> 0) has no mu there, but
+        the limit needs only mu p: where that goes to 0 (mu growing slower than 1/p,
+        checked at p = 1e-100 and 1e-290 Pa) the limit is 0, and mu = 0 gives it;
+        elsewhere mu stays NaN and is refused.
+        """
+        pb = np.broadcast_to(np.asarray(p, float), mu.shape)
+        edge = (pb == 0) & ~np.isfinite(mu)
+        if not edge.any():
+            return mu
+        vb = np.broadcast_to(np.asarray(v, float), mu.shape)[edge]
+        with np.errstate(all="ignore"):
+            q = [np.asarray(self.mu(e + 0.0 * vb, vb), float) * e for e in (1e-100, 1e-290)]
+        vanishes = (np.isfinite(q[1]) & (np.abs(q[1]) <= 1e-12)
+                    & (np.abs(q[1]) <= np.abs(q[0])))
+        out = mu.copy()
+        out[edge] = np.where(vanishes, 0.0, np.nan)
+        return out
 
     def _limit_scale(self, p: Any, c: float) -> Any:
         """The deflection limit per unit mu, p w / c [m]."""

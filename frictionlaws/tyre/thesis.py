@@ -111,7 +111,23 @@ class ThesisComparison:
                      "load ratio 3.25)")
         for k, res in self.results.items():
             lines.extend(f"warning [{k}]: {w}" for w in res.warnings)
+        lines.extend(f"warning [{k}]: {w}" for k, w in self.fit_warnings())
         return "\n".join(lines)
+
+    def fit_warnings(self) -> list[tuple[str, str]]:
+        """(label, text) of every warning of the fits, first the parameters they cannot tell.
+
+        A column computed from a fit whose data cannot determine some parameter shows
+        the friction at an arbitrary point of a flat valley: that is said, not hidden.
+        """
+        out = []
+        for label, f in self.fits.items():
+            if f.non_identifiable:
+                out.append((label, f"fit: the data cannot determine {', '.join(f.non_identifiable)}"
+                                   f" of law '{f.law.id}': this column rests on arbitrary "
+                                   "values of them"))
+            out.extend((label, f"fit: {w}") for w in f.warnings)
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able comparison."""
@@ -127,7 +143,9 @@ class ThesisComparison:
                                              TABLE_6_2["columns"].items()},
                                  "ratios": thesis_ratios()},
             "fits": {k: {"law": f.law.id, "params": f.param_values,
-                         "r2": f.metrics.get("r2"), "rmse": f.metrics.get("rmse")}
+                         "r2": f.metrics.get("r2"), "rmse": f.metrics.get("rmse"),
+                         "undetermined": list(f.non_identifiable),
+                         "warnings": list(f.warnings)}
                      for k, f in self.fits.items()},
             "tyre": self.tyre,
         }
