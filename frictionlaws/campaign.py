@@ -35,7 +35,8 @@ import numpy as np
 from ._workers import batches, local_workers
 from .errors import FitError, InputError
 
-__all__ = ["Campaign", "fit_many", "compare_many", "group_keys", "iter_datasets", "run_parallel",
+__all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
+           "run_parallel",
            "iter_parallel", "batch_size", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
            "tidy_columns", "key_text", "fit_groups", "group_column", "check_grouping",
            "UnreadableDatasets", "NEVER_GROUPING", "MIN_ROWS_PER_GROUP"]
@@ -737,13 +738,26 @@ class Campaign:
                 lines.append(f"{head}: error: {rec['error']}")
                 continue
             m = rec["result"]["metrics"]
+            doubt = doubts(rec["result"])
             lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
-                         f"n = {m.get('n')}{_doubts(rec['result'])}")
+                         f"n = {m.get('n')}{'; ' + doubt if doubt else ''}")
         return "\n".join(lines)
 
 
-def _doubts(result: Mapping[str, Any]) -> str:
-    """What a summary line adds about a fit's doubts: undetermined parameters, warnings."""
+def doubts(result: Mapping[str, Any]) -> str:
+    """A fit's doubts in words: undetermined parameters, withheld errors, warnings.
+
+    Parameters
+    ----------
+    result : mapping
+        A record's ``result`` (:meth:`FitResult.to_dict`).
+
+    Returns
+    -------
+    str
+        E.g. ``cannot determine a, b; 1 warning (listed in the JSON output)``; empty when
+        the fit has no doubts.
+    """
     parts = []
     undetermined = result.get("non_identifiable") or []
     if undetermined:
@@ -754,8 +768,8 @@ def _doubts(result: Mapping[str, Any]) -> str:
         parts.append(f"no standard error for {', '.join(withheld)}")
     n = len(result.get("warnings") or [])
     if n:
-        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed with --json or --out .json)")
-    return f"; {'; '.join(parts)}" if parts else ""
+        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed in the JSON output)")
+    return "; ".join(parts)
 
 
 def _fmt(x: Any) -> str:

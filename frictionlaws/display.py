@@ -186,7 +186,8 @@ def parameter_table(rows: Sequence[Mapping[str, Any]], shared: Sequence[str] = (
     -------
     str
         A fixed-width table: group, n, R^2 and RMSE (where any row has them), then
-        each parameter as ``value +/- stderr`` with its unit in the header.
+        each parameter as ``value +/- stderr`` with its unit in the header, then a row's
+        ``note`` (its doubts: undetermined parameters, warnings), if it has one.
     """
     names: list[str] = []
     units: dict[str, tuple[str, float]] = {}
@@ -214,7 +215,9 @@ def parameter_table(rows: Sequence[Mapping[str, Any]], shared: Sequence[str] = (
     for r in [head, *body]:
         lines.append("  ".join(c.ljust(widths[i]) if i == 0 else c.rjust(widths[i])
                                for i, c in enumerate(r)).rstrip())
-    return "\n".join(lines)
+    notes = ["", *(str(row.get("note") or "") for row in rows)]
+    return "\n".join(f"{line}  ({note})" if note else line
+                     for line, note in zip(lines, notes, strict=True))
 
 
 def _number(x: Any, spec: str) -> str:

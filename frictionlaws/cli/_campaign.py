@@ -222,6 +222,7 @@ def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> i
 
 def _by_table(camp: Any) -> str:
     """Each law's fits as one table: a row per dataset and group, parameters in display units."""
+    from frictionlaws.campaign import doubts
     from frictionlaws.display import group_label, parameter_table
 
     several = len({rec["dataset"] for rec in camp.records}) > 1
@@ -237,7 +238,7 @@ def _by_table(camp: Any) -> str:
             res = rec["result"]
             rows.append({"label": label, "n": res["metrics"].get("n"),
                          "r2": res["metrics"].get("r2"), "rmse": res["metrics"].get("rmse"),
-                         "params": res["params"]})
+                         "params": res["params"], "note": doubts(res)})
         by = f" by {', '.join(camp.by)}" if camp.by else ""
         blocks.append(f"{law}: {len(rows)} fits{by}\n" + parameter_table(rows))
     return "\n\n".join(blocks)
