@@ -270,7 +270,7 @@ def _stderr(jac: np.ndarray, rss: float, n: int, labels: list[str], theta: np.nd
     Jacobian; a pseudo-inverse would give them a number), none that come out as zero
     to rounding.
     """
-    from .fitting import _identifiability
+    from .fitting.diagnosis import _identifiability
     from .uncertainty import ZERO_SPREAD
 
     k = jac.shape[1]

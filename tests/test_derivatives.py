@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 import frictionlaws as fl
-from frictionlaws import derivatives, fitting
+from frictionlaws import derivatives
+from frictionlaws.fitting import diagnosis as fit_diagnosis
+from frictionlaws.fitting import search as fit_search
 from frictionlaws.law_examples import EXAMPLES
 
 #: Laws without a symbolic form (numerical integral): finite differences are used.
@@ -77,7 +79,7 @@ def test_analytic_jacobian_matches_finite_differences(law_id):
                                           float), (n,))
 
     theta = np.array([values[k] for k in names])
-    approx = fitting._jacobian(model, theta, np.where(theta == 0, 1.0, theta))
+    approx = fit_diagnosis._jacobian(model, theta, np.where(theta == 0, 1.0, theta))
     scale = np.maximum(np.max(np.abs(approx), axis=0), 1e-12)
     np.testing.assert_allclose(exact / scale, approx / scale, rtol=1e-5, atol=2e-5,
                                err_msg=law_id)
@@ -128,7 +130,7 @@ def test_large_fits_with_analytic_jacobians_reach_the_finite_difference_optimum(
         law_id, monkeypatch):
     data, fix = _synthetic(law_id, 3000)
     fast = fl.fit(law_id, data, fix=fix, weights=None)
-    monkeypatch.setattr(fitting, "ANALYTIC_FROM", 10**9)
+    monkeypatch.setattr(fit_search, "ANALYTIC_FROM", 10**9)
     slow = fl.fit(law_id, data, fix=fix, weights=None)
     assert fast.metrics["chisqr"] <= slow.metrics["chisqr"] * (1 + 1e-7)
     for k, est in slow.params.items():
@@ -143,27 +145,27 @@ def test_large_fits_with_analytic_jacobians_reach_the_finite_difference_optimum(
 def test_starts_stop_once_one_reproduces_the_best(monkeypatch):
     """burckhardt has eight deterministic starts; two in the same basin are enough."""
     runs = []
-    original = fitting._Search.run
+    original = fit_search._Search.run
 
     def counted(self, start, pinned=()):
         runs.append(dict(start))
         original(self, start, pinned)
 
-    monkeypatch.setattr(fitting._Search, "run", counted)
+    monkeypatch.setattr(fit_search._Search, "run", counted)
     data, fix = _synthetic("burckhardt", 400)
     res = fl.fit("burckhardt", data, fix=fix, weights=None)
     assert res.success
     law = fl.get_law("burckhardt")
-    assert len(fitting._starts(law, law.initial_guess(data), list(law.param_names))) > 3
+    assert len(fit_search._starts(law, law.initial_guess(data), list(law.param_names))) > 3
     assert len(runs) == 2
 
 
 def test_reproduced_needs_two_fits_at_the_same_chi2():
-    assert not fitting._reproduced([1.0])
-    assert fitting._reproduced([1.0, 1.0 + 1e-9])
-    assert not fitting._reproduced([1.0, 1.1])
-    assert fitting._reproduced([1.1, 1.0, 1.0])
-    assert not fitting._reproduced([1.0, 1.1, 1.2])
+    assert not fit_search._reproduced([1.0])
+    assert fit_search._reproduced([1.0, 1.0 + 1e-9])
+    assert not fit_search._reproduced([1.0, 1.1])
+    assert fit_search._reproduced([1.1, 1.0, 1.0])
+    assert not fit_search._reproduced([1.0, 1.1, 1.2])
 
 
 def test_a_fit_does_not_import_lmfit_or_scipy_stats():
@@ -219,38 +221,38 @@ def test_cross_validation_refits_are_lean():
 def _pacejka_search(n):
     data, fix = _synthetic("pacejka", n, seed=4)
     law = fl.get_law("pacejka")
-    setup = fitting._setup(law, data, fix, (), None, None, "error", {})
-    return setup, fitting._Search(setup, "least_squares")
+    setup = fit_search._setup(law, data, fix, (), None, None, "error", {})
+    return setup, fit_search._Search(setup, "least_squares")
 
 
 def test_large_fits_refine_later_starts_on_a_subsample(monkeypatch):
     runs = []
-    original = fitting._Search.run
+    original = fit_search._Search.run
 
     def counted(self, start, pinned=()):
         runs.append(self.setup.y.size)
         original(self, start, pinned)
 
-    monkeypatch.setattr(fitting._Search, "run", counted)
+    monkeypatch.setattr(fit_search._Search, "run", counted)
     data, fix = _synthetic("pacejka", 5000, seed=4)
     res = fl.fit("pacejka", data, fix=fix, weights=None)
     assert res.success and runs.count(5000) == 1  # one full solve, after the scout's
-    assert runs[-1] == 5000 and set(runs[:-1]) == {fitting.SCOUT_ROWS}
-    monkeypatch.setattr(fitting, "SCOUT_ROWS", 10**6)
+    assert runs[-1] == 5000 and set(runs[:-1]) == {fit_search.SCOUT_ROWS}
+    monkeypatch.setattr(fit_search, "SCOUT_ROWS", 10**6)
     slow = fl.fit("pacejka", data, fix=fix, weights=None)
     assert res.metrics["chisqr"] <= slow.metrics["chisqr"] * (1 + 1e-9)
 
 
 def test_the_best_basin_found_on_the_subsample_is_refined_on_every_row():
     setup, search = _pacejka_search(5000)
-    starts = fitting._starts(setup.law, setup.guess, setup.vary_names)
+    starts = fit_search._starts(setup.law, setup.guess, setup.vary_names)
     ends = [search.solve_from(s) for s in starts]
     chis = [e.chisqr if e is not None else np.inf for e in ends]
     worst = int(np.argmax(np.where(np.isfinite(chis), chis, -np.inf)))
     best = int(np.argmin(chis))
     assert chis[worst] > chis[best] * 1.01  # two basins among the deterministic starts
     setup, search = _pacejka_search(5000)
-    assert not fitting._scout(search, [starts[worst], starts[best]])  # two basins
+    assert not fit_search._scout(search, [starts[worst], starts[best]])  # two basins
     assert search.finals == [search.best.chisqr]  # one solve on every row, from the best
     assert search.best.chisqr == pytest.approx(chis[best], rel=1e-6)
 
@@ -262,7 +264,7 @@ def test_a_start_equal_to_an_earlier_one_is_not_tried_twice(law_id):
     law = fl.get_law(law_id)
     names = [k for k in law.param_names if k not in ("S_h", "S_v")]
     guess = law.initial_guess(_synthetic(law_id, 60)[0])
-    starts = fitting._starts(law, guess, names)
+    starts = fit_search._starts(law, guess, names)
     keys = [tuple(s[k] for k in names) for s in starts]
     assert len(keys) == len(set(keys))
     assert len(starts) == 1 + len(law.presets)  # the guess, and defaults = one preset

@@ -10,7 +10,8 @@ import pytest
 from scipy.optimize import least_squares
 
 import frictionlaws as fl
-from frictionlaws import _lsq, fitting
+from frictionlaws import _lsq
+from frictionlaws.fitting import diagnosis as fit_diagnosis
 from frictionlaws.law import _BLOCKED_FROM
 from frictionlaws.law_examples import EXAMPLES
 
@@ -29,15 +30,15 @@ def test_blockwise_r_keeps_the_singular_values_and_the_verdict(coupling):
     a = rng.standard_normal(n)
     jac = np.column_stack([a, rng.standard_normal(n), a + coupling * rng.standard_normal(n)])
     jac *= np.array([1e-3, 1.0, 1e4])  # columns of very different size
-    r = fitting._unit_columns_r(jac, [0, 1, 2], np.linalg.norm(jac, axis=0))
+    r = fit_diagnosis._unit_columns_r(jac, [0, 1, 2], np.linalg.norm(jac, axis=0))
     assert r.shape == (3, 3)
     rel, vt = _direct(jac, "abc")
     s = np.linalg.svd(r, compute_uv=False)
     assert s / s[0] == pytest.approx(rel, rel=1e-6, abs=1e-12)
-    non_id, weak, ratio = fitting._identifiability(jac, ["a", "b", "c"])
-    expect_non_id = rel[-1] < fitting.RANK_TOL
+    non_id, weak, ratio = fit_diagnosis._identifiability(jac, ["a", "b", "c"])
+    expect_non_id = rel[-1] < fit_diagnosis.RANK_TOL
     assert (non_id == ["a", "c"]) == expect_non_id
-    assert (weak == ["a", "c"]) == (not expect_non_id and rel[-1] < fitting.WEAK_TOL)
+    assert (weak == ["a", "c"]) == (not expect_non_id and rel[-1] < fit_diagnosis.WEAK_TOL)
     assert ratio == pytest.approx(rel[-1], rel=1e-6, abs=1e-12)
 
 

@@ -197,7 +197,7 @@ def test_a_processed_table_keeps_hostile_comments_and_groups_inert(
     import pandas as pd
 
     from frictionlaws.io import read_table
-    from frictionlaws.tribometer.process import _csv_text
+    from frictionlaws.tribometer.process.results import _csv_text
 
     frame = pd.DataFrame({"surface": groups, "mu": [0.5] * len(groups)})
     text = _csv_text(frame, comments)

@@ -81,7 +81,7 @@ def failures() -> dict[str, list[str]]:
 def test_the_public_api_is_validated():
     objects = list(public_objects())
     assert len(objects) == len(set(objects))
-    assert "frictionlaws.io.load_dataset" in objects
+    assert "frictionlaws.io.packaged.load_dataset" in objects
     assert "frictionlaws.tyre.brush.BrushModel.cornering" in objects
 
 

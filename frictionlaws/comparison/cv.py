@@ -41,7 +41,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import FitError, InputError
-from ..fitting import RANK_TOL, FitData, FitResult, _jacobian, fit
+from ..fitting import RANK_TOL, FitData, FitResult, fit
+from ..fitting.diagnosis import _jacobian
 from ..law import Law
 
 __all__ = ["kfold_assignment", "CVResult", "cross_validate", "error_text", "refit",

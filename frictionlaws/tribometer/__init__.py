@@ -30,9 +30,9 @@ from .calibration import (
 )
 from .outliers import outlier_power, pooled_outliers
 from .process import (
-    Campaign,
     ConditionResult,
     ManifestEntry,
+    ProcessedCampaign,
     RecordResult,
     grubbs,
     process_campaign,
@@ -46,7 +46,7 @@ from .records import Record, read_record, write_record
 from .rig import Rig, load_rig, rig_from_dict
 
 __all__ = [
-    "Campaign",
+    "ProcessedCampaign",
     "ConditionResult",
     "InternalTorqueCurve",
     "ManifestEntry",
