@@ -21,17 +21,14 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from .errors import ExtrapolationWarning, InputError
 from .law import VARIABLES, Law
-
-if TYPE_CHECKING:
-    from .fitting import FitResult
 
 __all__ = ["BoundLaw", "Source", "as_bound", "bound_from_result", "freeze", "outside_ranges"]
 
@@ -328,7 +325,30 @@ def freeze(law: Law | str, values: Mapping[str, float] | None = None, *,
     return BoundLaw(law_obj, resolved, source)
 
 
-def bound_from_result(result: FitResult, source: Source | None = None, *,
+class FitLike(Protocol):
+    """What :func:`bound_from_result` reads of a fit result (a
+    :class:`~frictionlaws.fitting.FitResult`), named here so that this module does not
+    import the fitting package, which imports it."""
+
+    @property
+    def law(self) -> Law: ...  # read-only members: a dataclass field satisfies them
+    @property
+    def values(self) -> Mapping[str, float]: ...
+    @property
+    def params(self) -> Mapping[str, Any]: ...
+    @property
+    def metrics(self) -> Mapping[str, Any]: ...
+    @property
+    def data(self) -> Any: ...
+    @property
+    def warnings(self) -> Sequence[str]: ...
+    @property
+    def success(self) -> bool: ...
+    @property
+    def non_identifiable(self) -> Sequence[str]: ...
+
+
+def bound_from_result(result: FitLike, source: Source | None = None, *,
                       dataset: str | None = None) -> BoundLaw:
     """The values of a fit result bound to its law, with the fitted data's ranges.
 
@@ -355,7 +375,7 @@ def bound_from_result(result: FitResult, source: Source | None = None, *,
         source = Source("fit", dataset=dataset or data.get("name") or data.get("source"),
                         detail=detail, data_file=data.get("source") or None)
     return BoundLaw(
-        result.law, result.values, source, fitted_ranges=data.get("ranges") or {},
+        result.law, dict(result.values), source, fitted_ranges=data.get("ranges") or {},
         stderr={k: p.stderr for k, p in result.params.items() if p.stderr is not None},
         fixed=tuple(k for k, p in result.params.items() if p.fixed),
         notes=tuple(result.warnings), converged=bool(result.success),
