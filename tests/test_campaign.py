@@ -123,6 +123,7 @@ def test_bad_jobs_are_refused(jobs):
         run_parallel(abs, [1], jobs=jobs)
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_equals_serial(tmp_path):
     distributed = pytest.importorskip("dask.distributed")
     df, _ = _temperatures()

@@ -76,6 +76,7 @@ def test_joblib_batches_keep_order_and_every_item(with_len):
     assert run_parallel(abs, source, jobs=2) == [abs(x) for x in items]
 
 
+@pytest.mark.slow
 def test_fit_many_in_batches_equals_serial_with_joblib_and_dask(tmp_path, cluster):
     folder = _folder(tmp_path, 40)  # batches of 2 datasets on 2 workers
     assert batch_size(41, 2) == 2
@@ -93,6 +94,7 @@ def test_fit_many_in_batches_equals_serial_with_joblib_and_dask(tmp_path, cluste
     pd.testing.assert_frame_equal(frame, streamed.to_frame(), check_dtype=False)
 
 
+@pytest.mark.slow
 def test_compare_many_on_dask_equals_serial(tmp_path, cluster):
     folder = _folder(tmp_path, 6)
     serial = compare_many(folder, ["thirion", "coulomb"], folds=3)

@@ -143,6 +143,7 @@ def test_non_identifiable_laws_are_marked_and_ranked_last(default_run) -> None:
     assert "<th class=''>rank basis</th>" in html and "<td class=''>n/d</td>" in html
 
 
+@pytest.mark.slow
 def test_jobs_spread_one_comparison_and_its_report(tmp_path: Path,
                                                    capsys: pytest.CaptureFixture) -> None:
     """--jobs on one dataset: the laws' fits and folds, then the figures, in 2 processes;

@@ -77,6 +77,7 @@ def test_figures_leave_pyplot_alone(serial: Comparison) -> None:
     assert height == round((0.6 * len(LAWS) + 1.7) * DPI)
 
 
+@pytest.mark.slow
 def test_figures_drawn_in_two_processes_are_the_same(serial: Comparison, tmp_path) -> None:
     one = make_figures(serial)
     two = make_figures(serial, jobs=2)

@@ -61,6 +61,7 @@ def test_catalogue_check_fails_when_a_law_is_missing(tmp_path):
     assert fl_docgen.check_catalogue(tmp_path) == [victim.id]
 
 
+@pytest.mark.slow
 def test_catalogue_picks_up_a_newly_registered_law(tmp_path):
     fl.list_laws()  # load the built-ins first
     law = Law(id="docs-test-linear", title="Docs test (linear in p)", family="sliding",

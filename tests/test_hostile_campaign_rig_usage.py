@@ -213,6 +213,7 @@ def _below_the_peak_csv(path: Path) -> Path:
     return path
 
 
+@pytest.mark.slow
 def test_data_that_stop_before_the_peak_give_a_plausible_tyre_and_a_warning(
         tmp_path: Path) -> None:
     """Was refused: 'the peak friction mu_y = 149.7 ... check the inflation pressure'."""

@@ -182,6 +182,7 @@ def test_datasets_hostile_csv(data: bytes, opts: list[str], json_out: bool) -> N
 # ------------------------------------------------------------------------- compare
 
 
+@pytest.mark.slow
 @hostile(15)
 @given(data=csv_bytes(), folds=st.sampled_from(["2", "2", "2", "0", "-1", "2.7", "1000"]),
        holdout=st.sampled_from(["0.3", "0.3", "0", "1.5", "p=0.3,p=0.2", "nan", "x=0.1"]),

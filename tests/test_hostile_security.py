@@ -207,6 +207,7 @@ def test_a_processed_table_keeps_hostile_comments_and_groups_inert(
     assert not any(str(c).startswith(("=", "+", "@")) for c in table.columns[0])
 
 
+@pytest.mark.slow
 def test_a_hostile_dataset_name_adds_no_markup_or_heading_to_the_markdown_report(
         tmp_path: Path) -> None:
     data = tmp_path / "a<b>\u2028## heading\n<img src=x>|x.csv"

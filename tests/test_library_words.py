@@ -29,6 +29,7 @@ def _message_strings(path: Path) -> list[tuple[int, str]]:
             and id(node) not in docs]
 
 
+@pytest.mark.slow
 def test_no_library_message_names_a_command_line_flag() -> None:
     found = []
     for path in sorted(PACKAGE.rglob("*.py")):

@@ -273,6 +273,7 @@ def _data_csv(tmp_path):
     return path
 
 
+@pytest.mark.slow
 def test_cli_show_fit_export(tmp_path, capsys):
     from frictionlaws.cli import main
 

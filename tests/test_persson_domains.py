@@ -140,6 +140,7 @@ def test_cli_refuses_out_of_domain_exports_and_fits(tmp_path, capsys):
     assert "T -30..70 degC" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_export_from_zero_velocity_writes_the_static_limit(tmp_path):
     from frictionlaws.cli import main
 

@@ -214,6 +214,7 @@ def serial() -> dict[str, Any]:
     return summary(compare(data="thesis-steel", laws=list(PINNED["laws"]), progress=False))
 
 
+@pytest.mark.slow
 def test_compare_thesis_steel_is_pinned(serial: dict[str, Any]) -> None:
     """Not marked slow: both CI stages (lowest and newest dependencies) run it."""
     _check(serial)

@@ -502,6 +502,7 @@ def test_processed_dataset_is_ready_for_fit():
 
 
 # --------------------------------------------------------------------------- CLI
+@pytest.mark.slow
 def test_cli_process_writes_dataset_records_and_plots(tmp_path, capsys):
     rig = synthetic_rig()
     conds = [ConditionSpec("steel 2 kg", "steel", 2.0, 1.9, 3, 331.0, -120.0),
@@ -555,6 +556,7 @@ def test_cli_process_bad_input_exit_2(tmp_path, capsys):
                  str(tmp_path / "o.csv")]) == 2
 
 
+@pytest.mark.slow
 def test_parallel_and_serial_give_the_same_results(tmp_path):
     rig = synthetic_rig()
     conds = [ConditionSpec(f"c{i}", "steel", 1.0 + i, 2.0 - 0.2 * i, 3, 331.0, 0.0)

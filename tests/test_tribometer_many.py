@@ -194,6 +194,7 @@ def test_manifest_names():
         manifest_names(["a/x.csv", "a/../a/x.csv"])
 
 
+@pytest.mark.slow
 def test_plots_go_to_one_folder_per_manifest(two, tmp_path):
     pytest.importorskip("matplotlib")
     m1, m2, rig = two
@@ -211,6 +212,7 @@ def test_bad_jobs_are_refused_by_the_campaign_runner(two):
         process_campaign(m1, rig, jobs=-3, progress=False)
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_equals_serial(two):
     distributed = pytest.importorskip("dask.distributed")
     m1, m2, rig = two

@@ -71,6 +71,7 @@ def worst_error(truth: MagicFormula, fitted: MagicFormula, grid: dict) -> tuple[
     return ex, ey
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name,fittyp", CASES)
 def test_round_trip_reproduces_forces_and_coefficients(name: str, fittyp: int,
                                                        tmp_path: Path) -> None:

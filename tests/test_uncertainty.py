@@ -47,6 +47,7 @@ def test_thesis_steel_rows_are_distinct_conditions() -> None:
     assert len(set(zip(p, v))) == p.size  # so condition resampling = case resampling
 
 
+@pytest.mark.slow
 def test_bootstrap_se_matches_an_independent_case_resampling(boot_result) -> None:
     ref = _case_resampling_se_a()
     se = boot_result.params["a"].stderr

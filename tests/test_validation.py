@@ -110,6 +110,7 @@ def test_case_patterns_and_list(capsys):
 # ------------------------------------------------------------------ tampering
 
 
+@pytest.mark.slow
 def test_tampered_thirion_fails_reference_case(monkeypatch, capsys):
     _tamper(monkeypatch, "thirion")
     code, report = _cli_json(capsys, "--case", "reference-implementations")
