@@ -216,7 +216,8 @@ def serial() -> dict[str, Any]:
 
 @pytest.mark.slow
 def test_compare_thesis_steel_is_pinned(serial: dict[str, Any]) -> None:
-    """Not marked slow: both CI stages (lowest and newest dependencies) run it."""
+    """Both CI stages (lowest and newest dependencies) run it: the lowest-dependencies
+    stage runs this file whole besides its not-slow tests (.ci/run)."""
     _check(serial)
 
 
