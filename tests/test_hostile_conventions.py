@@ -29,10 +29,10 @@ from frictionlaws.cli._common import (
     parse_assignments,
     parse_floats,
     parse_names,
-    parse_range,
     parse_values,
     positive_int,
     progress_value,
+    range_option,
     range_values,
     refuse_unused,
 )
@@ -109,14 +109,14 @@ def test_progress_value() -> None:
 
 
 def test_range_grammar_with_units_and_points() -> None:
-    r = parse_range("0.01:0.5:20", "p", option="--p", unit="MPa")
+    r = range_option("0.01:0.5:20", "p", option="--p", unit="MPa")
     assert (r.lo, r.hi, r.n) == (pytest.approx(1e4), pytest.approx(5e5), 20)
-    r = parse_range("10kPa:0.5MPa", "p", option="--p")
+    r = range_option("10kPa:0.5MPa", "p", option="--p")
     assert (r.lo, r.hi, r.n) == (pytest.approx(1e4), pytest.approx(5e5), None)
-    r = parse_range("20degC:80degC:7", "T", option="--T")
+    r = range_option("20degC:80degC:7", "T", option="--T")
     assert r.lo == pytest.approx(293.15) and r.hi == pytest.approx(353.15)
-    assert parse_range("1:2:3", "v", option="--v", unit=lambda x: x / 1000).hi == 0.002
-    values = range_values(parse_range("2:6:5", "F_N", option="--loads", unit="kN"))
+    assert range_option("1:2:3", "v", option="--v", unit=lambda x: x / 1000).hi == 0.002
+    values = range_values(range_option("2:6:5", "F_N", option="--loads", unit="kN"))
     assert values == pytest.approx([2000, 3000, 4000, 5000, 6000])
     assert range_values(RangeSpec(1.0, 100.0, 3), "log") == pytest.approx([1, 10, 100])
 
@@ -129,7 +129,7 @@ def test_range_grammar_with_units_and_points() -> None:
 ])
 def test_range_grammar_errors_name_the_option(text: str, msg: str) -> None:
     with pytest.raises(UsageError, match=msg) as info:
-        parse_range(text, "p", option="--p", unit="MPa")
+        range_option(text, "p", option="--p", unit="MPa")
     assert str(info.value).startswith("--p")
 
 
@@ -161,7 +161,7 @@ def test_the_conventions_page_examples_parse() -> None:
     found = re.findall(r"--(p|v|T) ([^`\s]+)", text)
     assert len(found) >= 2
     for var, rng in found:
-        spec = parse_range(rng, var, option=f"--{var}", unit=None)
+        spec = range_option(rng, var, option=f"--{var}", unit=None)
         assert math.isfinite(spec.lo) and spec.lo <= spec.hi
 
 

@@ -9,7 +9,7 @@ Rules (documented in ``docs/cli.md``):
   command's default unit) or a number with its unit (``0.01MPa:0.5MPa:20``,
   ``20degC:80degC``), and ``N`` is the number of points, ends included.  A list
   ``A,B,C`` is accepted where a command takes explicit values.  See
-  :func:`parse_range`.
+  :func:`range_option`.
 * **Integers are checked** by the argparse ``type=`` functions
   :func:`non_negative_int`, :func:`positive_int` and :func:`bounded_int`, so a
   negative ``--seed`` or an unbounded ``--points`` is a usage error (exit 2) that
@@ -60,7 +60,7 @@ __all__ = [
     "refuse_unused",
     "flag_of",
     "RangeSpec",
-    "parse_range",
+    "range_option",
     "parse_values",
     "range_values",
     "RANGE_HELP",
@@ -597,10 +597,14 @@ def _bound(text: str, quantity: str, option: str, whole: str,
     return value
 
 
-def parse_range(text: str, quantity: str, *, option: str,
-                unit: str | Callable[[float], float] | None = None,
-                max_points: int = MAX_POINTS, min_points: int = 2) -> RangeSpec:
-    """Parse the one range grammar ``MIN:MAX[:N]`` into SI bounds.
+def range_option(text: str, quantity: str, *, option: str,
+                 unit: str | Callable[[float], float] | None = None,
+                 max_points: int = MAX_POINTS, min_points: int = 2) -> RangeSpec:
+    """A range option (``--p``, ``--loads``) in the one range grammar ``MIN:MAX[:N]``.
+
+    The grammar is the library's (:func:`frictionlaws.fe_export.parse_range`, the one
+    ``parse_range``); here bare numbers may be in a command's default unit or given by a
+    function, and errors name the option as the user typed it.
 
     Parameters
     ----------
@@ -653,8 +657,8 @@ def parse_values(text: str, quantity: str, *, option: str,
     if not s:
         raise UsageError(f"{option} is empty; expected A,B,C or {RANGE_HELP}")
     if ":" in s:
-        spec = parse_range(s, quantity, option=option, unit=unit, max_points=max_points,
-                           min_points=1)
+        spec = range_option(s, quantity, option=option, unit=unit, max_points=max_points,
+                            min_points=1)
         if spec.n is None:
             raise UsageError(f"{option} '{text}': give the number of points, MIN:MAX:N")
         return range_values(spec)

@@ -20,8 +20,8 @@ from ._common import (
     data_options,
     fit_kwargs,
     parse_assignments,
-    parse_range,
     print_json,
+    range_option,
     refuse_unused,
 )
 
@@ -187,8 +187,8 @@ def _box(args: argparse.Namespace, system: Any) -> tuple[dict, dict[str, str]]:
     for var in _BOX:
         text = getattr(args, f"range_{var}")
         if text is not None:
-            spec = parse_range(text, var, option=f"--{var}", min_points=1,
-                               unit=_model_to_si(system, var))
+            spec = range_option(text, var, option=f"--{var}", min_points=1,
+                                unit=_model_to_si(system, var))
             box[var] = (spec.lo, spec.hi, spec.n)
     for var in spacing:
         if var not in box:

@@ -200,7 +200,7 @@ def _tyre_options(p: argparse.ArgumentParser) -> None:
 def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     """``"2:6.5:10"`` (MIN:MAX:N) or ``"2,3,4"`` in ``unit`` -> loads in N (numpy array).
 
-    The one range grammar (:func:`~frictionlaws.cli._common.parse_range`); the old
+    The one range grammar (:func:`~frictionlaws.cli._common.range_option`); the old
     ``START:STOP:STEP`` form is recognised by a third number that is not a count
     and refused with its translation.
     """
