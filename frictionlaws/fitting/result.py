@@ -180,17 +180,20 @@ class FitResult:
         return self.law.evaluate(variables, self.values)
 
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
-        """Say which variables lie outside the range the law was fitted on.
+        """Return a message for each variable outside the ranges of the data fitted.
+
+        The one rule (:func:`frictionlaws.bound.outside_ranges`) that
+        :meth:`BoundLaw.extrapolation <frictionlaws.bound.BoundLaw.extrapolation>` applies.
 
         Parameters
         ----------
         variables : mapping
-            Variable name -> values (SI).
+            Variables (SI), by name; those the law does not use are ignored.
 
         Returns
         -------
         list of str
-            One message per variable outside its fitted range.
+            One message per variable with values outside its fitted range.
         """
         from ..bound import outside_ranges
 
