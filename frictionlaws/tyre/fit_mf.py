@@ -43,7 +43,7 @@ from scipy.optimize import least_squares
 
 from ..errors import ExtrapolationWarning, FitError, InputError
 from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unreached_peaks
-from .magic_formula import EXAMPLES, MagicFormula, _packaged_example, mf_curve
+from .magic_formula import EXAMPLES, MagicFormula, mf_curve, packaged_example
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
@@ -504,13 +504,13 @@ def _template(template: str | Path | PropertyFile | None, version: str) -> Prope
         return template
     if template is None:
         name = {"5.2": "magicformula52", "6.1": "magicformula61", "6.2": "magicformula62"}
-        p = _packaged_example(EXAMPLES[name[version]])
+        p = packaged_example(EXAMPLES[name[version]])
         if p is None:
             raise InputError("the packaged template property files are missing")
         return _packaged(p)
     p = Path(template)
     if not p.exists():
-        packaged = _packaged_example(str(template))
+        packaged = packaged_example(str(template))
         if packaged is not None:
             return _packaged(packaged)
     return read_property_file(p)

@@ -95,23 +95,23 @@ INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
 
 from __future__ import annotations
 
-import functools
-import inspect
 import math
 import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 
 from ..errors import ExtrapolationWarning, InputError
 from ..law import MU_MAX
+from ._mf_file import EXAMPLES, file_limits, file_pressures, packaged_example, version_of
+from ._mf_labelled import labelled
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
-           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX"]
+           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EXAMPLES", "packaged_example"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Small number added to C*D and K_y in the denominators (the textbook's epsilon) [N].
@@ -176,30 +176,6 @@ def _cos_weight(x: Any, B: Any, C: Any, E: Any) -> Any:
     return np.cos(C * np.arctan(bx - E * (bx - np.arctan(bx))))
 
 
-def _version_of(pf: PropertyFile) -> tuple[str, str]:
-    """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
-    fittyp = pf.get("MODEL", "FITTYP")
-    fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
-    if fittyp is not None:
-        known = {61: "6.1", 62: "6.2", 5: "5.2", 6: "5.2", 21: "5.2"}
-        if not isinstance(fittyp, float) or fittyp not in known:
-            raise InputError(
-                f"[MODEL] FITTYP = {pf.text('MODEL', 'FITTYP')}: not a Magic Formula "
-                "version evaluated here (5, 6 or 21: MF 5.2 / PAC2002; 61: MF 6.1; "
-                "62: MF 6.2)", file=pf.path,
-                row=pf.lines.get(("MODEL", "FITTYP")))
-        return known[int(fittyp)], f"FITTYP = {int(fittyp)}"
-    if "PAC2002" in fmt or "MF_05" in fmt:
-        return "5.2", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if "MF_61" in fmt or "MF61" in fmt:
-        return "6.1", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if "MF_62" in fmt or "MF62" in fmt:
-        return "6.2", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if pf.has("LATERAL_COEFFICIENTS", "PKY4"):
-        return "6.1", "no FITTYP; PKY4 present, so the MF 6.1 equations were assumed"
-    return "5.2", "no FITTYP; the MF 5.2 / PAC2002 equations were assumed"
-
-
 def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
                        loads_above_fzmax: str, source: str) -> None:
     """Refuse an unknown version or convention, naming the allowed values."""
@@ -246,129 +222,6 @@ def _pure_slip_coefficients(pf: PropertyFile) -> dict[str, float]:
             raise InputError(f"[{sec}_COEFFICIENTS] {need} is missing: not a Magic "
                              "Formula property file?", file=pf.path)
     return coeffs
-
-
-def _file_pressures(pf: PropertyFile, notes: list[str]) -> tuple[float | None, float | None]:
-    """Inflation and nominal pressure [Pa] of the file (MF 6.x or PAC2002 keys).
-
-    When only one of them is given it stands for both (dpi = 0), with a note.
-    """
-    p_i = p_nom = None
-    for sec, key, nom in (("OPERATING_CONDITIONS", "INFLPRES", "NOMPRES"),
-                          ("TIRE_CONDITIONS", "IP", "IP_NOM")):
-        if pf.has(sec, key) or pf.has(sec, nom):
-            p_i = pf.si(sec, key) if pf.has(sec, key) else None
-            p_nom = pf.si(sec, nom) if pf.has(sec, nom) else None
-            break
-    if p_nom is None and p_i is not None:
-        p_nom = p_i
-        notes.append("no nominal pressure in the file: the inflation pressure is taken "
-                     "as nominal (dpi = 0)")
-    if p_i is None and p_nom is not None:
-        p_i = p_nom
-        notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
-                     "pressure is used (dpi = 0); pass pressure= to evaluate at another")
-    return p_i, p_nom
-
-
-#: Validity ranges of a property file: name, section, MIN key, MAX key, and whether the
-#: values carry a unit (load, pressure) or are plain numbers (slips and angles, rad).
-_RANGES = (("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
-           ("kappa", "LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", False),
-           ("alpha", "SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", False),
-           ("gamma", "INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", False),
-           ("pressure", "INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", True))
-
-
-def _file_limits(pf: PropertyFile) -> dict[str, tuple[float, float]]:
-    """The file's validity ranges in SI; a range with MIN above MAX is refused."""
-    limits = {}
-    for name, sec, lo, hi, kind in _RANGES:
-        if not (pf.has(sec, lo) and pf.has(sec, hi)):
-            continue
-        low, high = ((pf.si(sec, lo), pf.si(sec, hi)) if kind
-                     else (pf.number(sec, lo), pf.number(sec, hi)))
-        if not low <= high or (kind and low < 0):
-            raise InputError(
-                f"[{sec}] {lo} .. {hi} = {pf.text(sec, lo)} .. {pf.text(sec, hi)} is "
-                "not a range" + (" of positive values" if kind else "")
-                + " (MIN must not be above MAX)", file=pf.path, row=pf.lines.get((sec, hi)))
-        limits[name] = (low, high)
-    return limits
-
-
-_F = TypeVar("_F", bound=Callable[..., Any])
-
-
-def _labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callable[[_F], _F]:
-    """Let a method take :class:`xarray.DataArray` inputs and keep their dimensions.
-
-    ``arrays`` are the method's array arguments; ``outputs`` give each result's
-    (name, unit, long name).  When any of those arguments is a DataArray, the
-    method runs through :func:`xarray.apply_ufunc` on the bare arrays: the
-    result is a DataArray (a tuple of them for several outputs) with the
-    broadcast dimensions and the coordinates of the inputs.  Otherwise the method
-    runs as it is.
-    """
-    def wrap(method: _F) -> _F:
-        signature = inspect.signature(method)
-
-        @functools.wraps(method)
-        def inner(self: MagicFormula, *args: Any, **kwargs: Any) -> Any:
-            if not any(map(_is_labelled, (*args, *kwargs.values()))):
-                return method(self, *args, **kwargs)  # the fast path: no DataArray
-            bound = signature.bind(self, *args, **kwargs)
-            bound.apply_defaults()
-            values = bound.arguments
-            labelled = [n for n in arrays if _is_labelled(values[n])]
-            if not labelled:
-                return method(self, *args, **kwargs)
-            return _apply_labelled(method, self, values, arrays, labelled, outputs)
-
-        return inner  # type: ignore[return-value]
-
-    return wrap
-
-
-def _is_labelled(x: Any) -> bool:
-    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.interop`)."""
-    return _interop().is_labelled(x)
-
-
-@functools.lru_cache(maxsize=1)
-def _interop() -> Any:
-    from .. import interop
-
-    return interop
-
-
-def _apply_labelled(method: Callable[..., Any], mf: MagicFormula, values: dict[str, Any],
-                    arrays: tuple[str, ...], labelled: list[str],
-                    outputs: tuple[tuple[str, str, str], ...]) -> Any:
-    """``method`` evaluated by :func:`xarray.apply_ufunc` over its DataArray arguments."""
-    import xarray as xr
-
-    plain = [n for n in arrays if n not in labelled and np.ndim(values[n]) > 0]
-    if plain:
-        raise InputError(f"{', '.join(plain)} must be DataArrays too when "
-                         f"{', '.join(labelled)} are (or scalars): plain arrays have no "
-                         "dimension names to broadcast by")
-
-    def bare(*data: Any) -> Any:
-        kw = {k: v for k, v in values.items() if k != "self"}
-        kw.update(zip(labelled, data, strict=True))
-        shape = np.broadcast_shapes(*(np.shape(x) for x in data))
-        out = method(mf, **kw)
-        if len(outputs) == 1:
-            return np.broadcast_to(np.asarray(out, dtype=float), shape).copy()
-        return tuple(np.broadcast_to(np.asarray(o, dtype=float), shape).copy() for o in out)
-
-    result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
-                            output_core_dims=[[] for _ in outputs])
-    named = [r.rename(name).assign_attrs(units=unit, long_name=long)
-             for r, (name, unit, long) in zip(
-                 result if len(outputs) > 1 else (result,), outputs, strict=True)]
-    return named[0] if len(outputs) == 1 else tuple(named)
 
 
 class MagicFormula:
@@ -475,7 +328,7 @@ class MagicFormula:
         p = Path(path)
         pf = None
         if not p.exists():
-            packaged = _packaged_example(str(path))
+            packaged = packaged_example(str(path))
             if packaged is not None:  # named as packaged, not where pip installed it
                 pf = read_property_file(packaged)
                 pf.path = f"packaged:{packaged.name}"
@@ -513,7 +366,7 @@ class MagicFormula:
         pf.check_angle_unit()
         notes = pf.check_coefficients()
         if version is None:
-            version, how = _version_of(pf)
+            version, how = version_of(pf)
             notes.append(f"Magic Formula {version} equations ({how})")
         elif version not in MF_VERSIONS:
             raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
@@ -521,11 +374,11 @@ class MagicFormula:
         if not pf.has("VERTICAL", "FNOMIN"):
             raise InputError("[VERTICAL] FNOMIN (nominal load) is missing", file=pf.path)
         coeffs = _pure_slip_coefficients(pf)
-        p_i, p_nom = _file_pressures(pf, notes)
+        p_i, p_nom = file_pressures(pf, notes)
         name = str(pf.metadata.get("Name") or Path(pf.path).stem)
         return cls(coeffs, fnomin=pf.si("VERTICAL", "FNOMIN"), version=version,
                    pressure=pressure if pressure is not None else p_i,
-                   nominal_pressure=p_nom, limits=_file_limits(pf), name=name,
+                   nominal_pressure=p_nom, limits=file_limits(pf), name=name,
                    source=pf.path, notes=notes, **options)
 
     # ------------------------------------------------------------- helpers
@@ -694,7 +547,7 @@ class MagicFormula:
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return self._lat(fz, gamma, dpi)
 
-    @_labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
+    @labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
     def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Pure longitudinal force F_x0 [N].
 
@@ -722,7 +575,7 @@ class MagicFormula:
         out = mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
+    @labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
     def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Pure lateral force F_y0 [N].
 
@@ -765,7 +618,7 @@ class MagicFormula:
         """Camber as the combined-slip terms use it: sin(gamma) (6.x) or gamma LGAY (5.2)."""
         return np.sin(gamma) if self._six else gamma * self._c("LGAY")
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
     def weight_x(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0) -> Any:
         """Combined-slip weighting G_xa of F_x (= 1 at alpha = 0), eqs. (4.E50)-(4.E57).
 
@@ -801,7 +654,7 @@ class MagicFormula:
         out = _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
                ("S_Vyk", "N", "slip-induced lateral force shift"))
     def weight_y(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
                  pressure: float | None = None) -> tuple[Any, Any]:
@@ -849,7 +702,7 @@ class MagicFormula:
         S_V = D_V * np.sin(c("RVY5") * np.arctan(c("RVY6") * kappa)) * c("LVYKA")
         return G, S_V
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
     def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
            pressure: float | None = None) -> Any:
         """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
@@ -875,7 +728,7 @@ class MagicFormula:
                * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
     def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
            pressure: float | None = None) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
@@ -902,7 +755,7 @@ class MagicFormula:
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
+    @labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
     def mu_x_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Peak longitudinal friction coefficient mu_x = D_x / F_z [-].
 
@@ -923,7 +776,7 @@ class MagicFormula:
         mu = self.longitudinal(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
-    @_labelled(("fz", "gamma"), ("mu_y_peak", "1", "peak lateral friction coefficient"))
+    @labelled(("fz", "gamma"), ("mu_y_peak", "1", "peak lateral friction coefficient"))
     def mu_y_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Peak lateral friction coefficient mu_y = D_y / F_z [-].
 
@@ -944,7 +797,7 @@ class MagicFormula:
         mu = self.lateral(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
-    @_labelled(("fz", "gamma"), ("K_x", "N", "longitudinal slip stiffness"))
+    @labelled(("fz", "gamma"), ("K_x", "N", "longitudinal slip stiffness"))
     def slip_stiffness(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
         """Longitudinal slip stiffness K_x = dF_x0/dkappa at the shifted origin [N].
 
@@ -965,7 +818,7 @@ class MagicFormula:
         K = self.longitudinal(fz, gamma, pressure).K
         return float(K) if np.ndim(K) == 0 else K
 
-    @_labelled(("fz", "gamma"), ("K_y", "N/rad", "cornering stiffness"))
+    @labelled(("fz", "gamma"), ("K_y", "N/rad", "cornering stiffness"))
     def cornering_stiffness(self, fz: Any, gamma: Any = 0.0,
                             pressure: float | None = None) -> Any:
         """Cornering stiffness K_y = dF_y0/d(tan alpha) at the shifted origin [N/rad].
@@ -1030,35 +883,3 @@ class MagicFormula:
 
     def __repr__(self) -> str:
         return (f"<MagicFormula {self.name!r} MF {self.version}, FNOMIN {self.fnomin:g} N>")
-
-
-#: Packaged example property files (``datasets/mf-examples``), by short name.
-EXAMPLES = {
-    "magicformula52": "MagicFormula52_Parameters.json",
-    "magicformula61": "MagicFormula61_Parameters.json",
-    "magicformula62": "MagicFormula62_Parameters.json",
-}
-
-
-def _packaged_example(name: str) -> Path | None:
-    """Path of a packaged example property file named ``name`` (with or without suffix)."""
-    key = Path(name).name.lower()
-    for suffix in (".json", ".tir"):
-        key = key.removesuffix(suffix)
-    key = key.removesuffix("_parameters")
-    fname = EXAMPLES.get(key)
-    candidates = [fname] if fname else []
-    if Path(name).name != name:
-        return None
-    candidates.append(Path(name).name)
-    try:
-        from ..io import datasets_dir
-
-        root = datasets_dir() / "mf-examples"
-        for cand in candidates:
-            p = root / cand
-            if p.is_file():
-                return Path(str(p))
-    except (ModuleNotFoundError, FileNotFoundError):
-        return None
-    return None
