@@ -133,10 +133,10 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--slip-angle", choices=("tan_alpha", "alpha"), default="tan_alpha",
                    help="slip variable of the lateral curve: tan(alpha) (default, the "
                         "book's alpha*) or alpha itself")
-    g.add_argument("--friction-scaling", choices=("degressive", "linear"),
-                   default="degressive",
-                   help="MF 6.x friction scaling LMU': degressive, A_mu = 10 (default) or "
-                        "linear, A_mu = 1")
+    g.add_argument("--friction-scaling", choices=("linear", "degressive"),
+                   default="linear",
+                   help="MF 6.x friction scaling LMU': linear, A_mu = 1 (default; MFeval "
+                        "4.0) or degressive, A_mu = 10 (Pacejka 2012, eq. 4.E8)")
     g.add_argument("--loads-above-fzmax", choices=("extrapolate", "clamp"),
                    default="extrapolate",
                    help="loads above the file's FZMAX: extrapolate with a warning "

@@ -117,3 +117,19 @@ def packaged_example(name: str) -> Path | None:
     except (ModuleNotFoundError, FileNotFoundError):
         return None
     return None
+
+
+#: Sections whose numeric entries describe the tyre's structure and test conditions
+#: (radii, stiffnesses, contact patch, reference speed), used by the moments, radii,
+#: relaxation lengths and contact patch.
+STRUCTURE_SECTIONS = ("MODEL", "DIMENSION", "VERTICAL", "STRUCTURAL", "CONTACT_PATCH")
+
+
+def structure(pf: PropertyFile) -> dict[str, float]:
+    """The numeric entries of :data:`STRUCTURE_SECTIONS` by upper-case name, in SI."""
+    out: dict[str, float] = {}
+    for sec in STRUCTURE_SECTIONS:
+        for key, value in pf.sections.get(sec, {}).items():
+            if not isinstance(value, str):
+                out[key] = pf.si(sec, key)
+    return out
