@@ -399,12 +399,20 @@ def _run_mf(args: argparse.Namespace) -> int:
           + (f", inflation {mf.pressure / 1e6:.3g} MPa" if mf.pressure else ""))
     for n in mf.notes:
         print(f"note: {n}")
+    moments = "trail_m" in summary
     print(f"{'Fz [kN]':>8}  {'mu_x peak':>9}  {'mu_y peak':>9}  {'Kx [kN]':>9}  "
-          f"{'Ky [kN/rad]':>11}")
+          f"{'Ky [kN/rad]':>11}" + (f"  {'trail [mm]':>10}  {'Mz0 peak [N m]':>14}  "
+                                     f"{'at [deg]':>8}" if moments else ""))
     for i, fz in enumerate(summary["loads_N"]):
         print(f"{fz / 1000:>8.4g}  {summary['mu_x_peak'][i]:>9.4f}  "
               f"{summary['mu_y_peak'][i]:>9.4f}  {summary['K_x_N'][i] / 1000:>9.2f}  "
-              f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}")
+              f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}"
+              + (f"  {summary['trail_m'][i] * 1000:>10.2f}  "
+                 f"{summary['Mz0_peak_N_m'][i]:>14.1f}  "
+                 f"{summary['Mz0_peak_alpha_deg'][i]:>8.2f}" if moments else ""))
+    if moments:
+        print("trail: pneumatic trail at zero slip; Mz0 peak: the pure-slip aligning moment "
+              "of largest magnitude within +-20 deg, at the file's LONGVL")
     lim = mf.limits.get("fz")
     if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
         how = ("extrapolation" if mf.loads_above_fzmax == "extrapolate"

@@ -950,7 +950,9 @@ class MagicFormula:
         dict
             Name, source, version, FNOMIN [N], pressures [Pa], the conventions, the
             file's limits (SI), and at each load the peak coefficients mu_x, mu_y
-            [-] and the stiffnesses K_x [N], K_y [N/rad]; the keys name the units.
+            [-], the stiffnesses K_x [N], K_y [N/rad] and (when the file gives the
+            radius and LONGVL) the pneumatic trail at zero slip and the peak pure-slip
+            aligning moment with its slip angle; the keys name the units.
         """
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
@@ -959,8 +961,11 @@ class MagicFormula:
             self._warn_range("pressure", np.asarray(self.pressure))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ExtrapolationWarning)
+            from .mf_outputs import aligning_summary
+
             lon = self.longitudinal(loads)
             lat = self.lateral(loads)
+            moments = aligning_summary(self, loads)
         return {
             "name": self.name, "source": self.source, "version": self.version,
             "fnomin_N": self.fnomin, "pressure_Pa": self.pressure,
@@ -974,6 +979,7 @@ class MagicFormula:
             "mu_y_peak": np.broadcast_to(lat.mu, loads.shape).tolist(),
             "K_x_N": np.broadcast_to(lon.K, loads.shape).tolist(),
             "K_y_N_per_rad": np.broadcast_to(lat.K, loads.shape).tolist(),
+            **moments,
             "notes": list(self.notes),
         }
 

@@ -70,7 +70,7 @@ from .magic_formula import EPS, mf_curve
 if TYPE_CHECKING:
     from .magic_formula import MagicFormula
 
-__all__ = ["steady_state", "aligning_moment", "OUTPUTS"]
+__all__ = ["steady_state", "aligning_moment", "aligning_summary", "OUTPUTS"]
 
 #: The outputs of :func:`steady_state`: name -> (unit, meaning).
 OUTPUTS: dict[str, tuple[str, str]] = {
@@ -240,6 +240,36 @@ def aligning_moment(mf: MagicFormula, kappa: Any, alpha: Any, fz: Any, gamma: An
     out.update(_aligning(mf, r, out))
     return {k: np.broadcast_to(np.asarray(out[k], dtype=float), r.shape).copy()
             for k in ("Fx", "Fy", "Mz", "Mz0", "t", "Mzr")}
+
+
+def aligning_summary(mf: MagicFormula, loads: Any) -> dict[str, Any]:
+    """Pneumatic trail at zero slip and the peak pure-slip aligning moment per load.
+
+    Parameters
+    ----------
+    mf : MagicFormula
+        The tyre.
+    loads : array-like
+        Vertical loads [N].
+
+    Returns
+    -------
+    dict
+        ``trail_m`` (t at alpha = kappa = 0 [m]), ``Mz0_peak_N_m`` (the M_z0 of largest
+        magnitude for slip angles within +-20 degrees, signed [N m]) and
+        ``Mz0_peak_alpha_deg`` (where it is [deg]), each a list per load; empty when the
+        file lacks UNLOADED_RADIUS or LONGVL.
+    """
+    if "UNLOADED_RADIUS" not in mf.structure or "LONGVL" not in mf.structure:
+        return {}
+    alpha = np.radians(np.linspace(-20.0, 20.0, 801))
+    fz = np.asarray(loads, dtype=float)[:, None]
+    out = aligning_moment(mf, 0.0, np.concatenate([[0.0], alpha]), fz)
+    mz0 = out["Mz0"][:, 1:]
+    at = np.argmax(np.abs(mz0), axis=1)
+    rows = np.arange(len(at))
+    return {"trail_m": out["t"][:, 0].tolist(), "Mz0_peak_N_m": mz0[rows, at].tolist(),
+            "Mz0_peak_alpha_deg": np.degrees(alpha[at]).tolist()}
 
 
 def _forces(mf: MagicFormula, r: _Rows) -> dict[str, Any]:
