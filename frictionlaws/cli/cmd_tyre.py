@@ -107,10 +107,12 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f = tsub.add_parser(
         "fit-mf", help="fit a Magic Formula property file to tyre test data",
-        description="Fit the pure-slip Magic Formula (Fx0 and Fy0 coefficient groups) to "
-        "tyre test data (a tidy CSV: 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', "
-        "'pressure [kPa]', 'Fx [N]', 'Fy [N]') in stages, and write a .tir property file. "
-        "Coefficients the data cannot determine keep the template's value (listed).")
+        description="Fit the Magic Formula to tyre test data (a tidy CSV: 'Fz [N]', "
+        "'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', 'Fx [N]', 'Fy [N]', "
+        "'Mz [N m]') in stages: pure-slip Fx0 and Fy0, the combined-slip weighting "
+        "functions, the aligning moment Mz0 and combined Mz; write a .tir property file. "
+        "Coefficients the data cannot determine keep the template's value (listed); data "
+        "whose slips, angles or loads look like another unit than declared are refused.")
     f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
     f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
                    help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "

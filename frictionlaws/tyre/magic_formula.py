@@ -458,7 +458,7 @@ class MagicFormula:
             file=self.source)
 
     # ------------------------------------------------------ factors (x, y)
-    def _long(self, fz: Any, gamma: Any, dpi: float) -> MFCoefficients:
+    def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         dfz = (fz - self.fz0) / self.fz0
         g = self.gamma_star(gamma) if self._six else gamma * c("LGAX")
@@ -475,7 +475,7 @@ class MagicFormula:
         S_V = fz * (c("PVX1") + c("PVX2") * dfz) * c("LVX") * self.lmux_prime
         return MFCoefficients(B, C, D, E0, E0 * c("PEX4"), K, S_H, S_V, mu)
 
-    def _lat(self, fz: Any, gamma: Any, dpi: float) -> MFCoefficients:
+    def _lat(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         fz0 = self.fz0
         dfz = (fz - fz0) / fz0
