@@ -15,6 +15,7 @@ from frictionlaws.cli import main
 from frictionlaws.errors import ExtrapolationWarning, FitError, InputError
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, read_tyre_data
 from frictionlaws.tyre._fit_mf_checks import check_plausible
+from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
 
 LOADS = np.array([0.4, 0.7, 1.0, 1.3, 1.6])
 CAMBERS = np.radians([-3.0, 0.0, 3.0])
@@ -25,66 +26,6 @@ def _quiet_extrapolation():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
         yield
-
-
-def other_tyre() -> MagicFormula:
-    """A tyre unlike the packaged MF 6.1 template: peak, stiffness, shape, combined-slip
-    and aligning coefficients moved by 5-50 %, and a moment arm s the template lacks."""
-    base = MagicFormula.from_file("MagicFormula61")
-    c = dict(base.coefficients)
-    moved = {"PDX1": 0.92, "PKX1": 1.15, "PCX1": 1.05, "PEX1": 0.9, "PDY1": 1.06,
-             "PKY1": 0.88, "PCY1": 0.95, "PEY1": 1.1, "PDY2": 1.1, "PKY2": 1.1, "PVY1": 1.5,
-             "PHY1": 0.7, "RBX1": 1.2, "RBY1": 0.85, "RCX1": 1.05, "RCY1": 0.95, "RVY1": 0.8,
-             "QBZ1": 1.1, "QDZ1": 0.9, "QCZ1": 1.05, "QDZ6": 1.3, "QEZ1": 0.9, "QHZ1": 1.2}
-    for k, f in moved.items():
-        c[k] *= f
-    c["SSZ1"], c["SSZ2"] = 0.01, 0.02
-    return MagicFormula(c, fnomin=base.fnomin, version="6.1", pressure=base.pressure,
-                        nominal_pressure=base.nominal_pressure, limits=base.limits,
-                        structure=base.structure, name="other")
-
-
-def rig_data(truth: MagicFormula, n: int = 31, seed: int = 3,
-             combined: bool = True) -> TyreData:
-    """Flat-track-like measurements: 5 loads x 2 pressures x 3 cambers; slip-ratio and
-    slip-angle sweeps up and down, a combined grid (alpha -8, -4, 4, 8 deg against kappa
-    -0.2..0.2); recorded slips jitter (0.002 in kappa, 0.1-0.3 deg in alpha), the load
-    drifts by 1 %, and F_x, F_y, M_z carry 1 % noise (of each load's peak)."""
-    rng = np.random.default_rng(seed)
-    blocks = []
-    for fz in truth.fnomin * LOADS:
-        for p in truth.nominal_pressure * np.array([0.85, 1.1]):
-            for g in CAMBERS:
-                k = np.linspace(-0.25, 0.25, n)
-                a = np.radians(np.linspace(-12, 12, n))
-                for ks in (k, k[::-1]):
-                    side = np.radians(rng.uniform(0.1, 0.3, n)) * rng.choice([-1, 1], n)
-                    blocks.append((fz, ks + rng.normal(0, 0.002, n), side, g, p))
-                for as_ in (a, a[::-1]):
-                    blocks.append((fz, rng.normal(0, 0.002, n),
-                                   as_ + np.radians(rng.uniform(-0.3, 0.3, n)), g, p))
-                if combined:
-                    for deg in (-8, -4, 4, 8):
-                        kk = np.linspace(-0.2, 0.2, 15)
-                        blocks.append((fz, kk + rng.normal(0, 0.002, kk.size),
-                                       np.radians(deg + rng.uniform(-0.3, 0.3, kk.size)),
-                                       g, p))
-    cols = [np.concatenate([np.broadcast_to(b[i], b[1].shape) for b in blocks])
-            for i in range(5)]
-    level, kappa, alpha, gamma, pressure = cols
-    fz = level * (1 + rng.normal(0, 0.01, level.size))
-    out = truth.steady_state(kappa, alpha, fz, gamma, pressure=pressure)
-
-    def noisy(v: np.ndarray) -> np.ndarray:
-        v = v.copy()
-        for lv in np.unique(level):
-            m = level == lv
-            v[m] += 0.01 * np.abs(v[m]).max() * rng.standard_normal(m.sum())
-        return v
-
-    return TyreData.from_arrays(fz=fz, kappa=kappa, alpha=alpha, gamma=gamma,
-                                pressure=pressure, fx=noisy(out["Fx"]), fy=noisy(out["Fy"]),
-                                mz=noisy(out["Mz"]))
 
 
 def worst_errors(truth: MagicFormula, fitted: MagicFormula) -> dict[str, float]:
@@ -117,7 +58,7 @@ def worst_errors(truth: MagicFormula, fitted: MagicFormula) -> dict[str, float]:
 @pytest.mark.slow
 def test_rig_data_of_another_tyre_are_recovered_within_the_stated_shares(
         tmp_path: Path) -> None:
-    truth = other_tyre()
+    truth = moved_tyre()
     data = rig_data(truth)
     res = fit_mf(data, fittyp=61, template="MagicFormula61")
     fitted = MagicFormula.from_file(res.write(tmp_path / "fitted.tir"))
@@ -146,7 +87,7 @@ def test_rig_data_of_another_tyre_are_recovered_within_the_stated_shares(
 
 
 def test_an_mz_column_is_fitted_and_without_a_lateral_fit_is_named_as_unused() -> None:
-    truth = other_tyre()
+    truth = moved_tyre()
     data = rig_data(truth, n=15, combined=False)
     no_fy = TyreData.from_arrays(fz=data.fz, kappa=data.kappa, alpha=data.alpha,
                                  gamma=data.gamma, pressure=data.pressure, fx=data.fx,
@@ -228,6 +169,20 @@ def test_loads_in_the_wrong_unit_are_refused(factor: float, likely: str,
     target = tmp_path / "out.tir"
     assert main(["tyre", "fit-mf", str(csv), "-o", str(target)]) == 2
     assert not target.exists()
+
+
+@pytest.mark.parametrize("column,factor,match", [
+    ("gamma", 57.3, "degrees under a \\[rad\\]"), ("pressure", 1e3, "another unit"),
+    ("pressure", 1e-3, "another unit"), ("mz", 1e3, "N mm under")])
+def test_cambers_pressures_and_moments_in_the_wrong_unit_are_refused(
+        column: str, factor: float, match: str) -> None:
+    truth = MagicFormula.from_file("MagicFormula61")
+    data = rig_data(truth, n=7, combined=False)
+    check_plausible(data, truth.fnomin, truth.nominal_pressure, 0.3943)
+    setattr(data, column, getattr(data, column) * factor)
+    with pytest.raises(InputError, match=match) as err:
+        check_plausible(data, truth.fnomin, truth.nominal_pressure, 0.3943)
+    assert "row" in str(err.value)
 
 
 def test_columns_the_fit_does_not_use_are_named(tmp_path: Path) -> None:

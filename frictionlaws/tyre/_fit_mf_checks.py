@@ -16,7 +16,13 @@ The tests are physical bounds, not statistics of the data set:
   :data:`MAX_CORNERING_COEFFICIENT` (60 per rad; tyres have about 5-40) means radians
   under a degree header;
 * **load**: a force above :data:`MAX_FORCE_RATIO` (5) times the load on its row, or a
-  median load below FNOMIN / 100 or above 100 FNOMIN, means kN given as N (or N as kN).
+  median load below FNOMIN / 100 or above 100 FNOMIN, means kN given as N (or N as kN);
+* **camber**: beyond :data:`MAX_CAMBER` (30 deg) the values are degrees under a ``[rad]``
+  header;
+* **pressure**: a median pressure below a fifth or above five times the template's
+  nominal pressure means kPa as Pa, bar as kPa or the like;
+* **aligning moment**: |M_z| above F_z times the unloaded radius (a trail longer than the
+  tyre's radius) means N mm under an ``[N m]`` header.
 """
 
 from __future__ import annotations
@@ -40,10 +46,13 @@ MAX_SLIP_COEFFICIENT = 150.0
 MAX_CORNERING_COEFFICIENT = 60.0
 #: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
 MAX_FORCE_RATIO = 5.0
+#: Largest plausible camber [rad] (30 degrees).
+MAX_CAMBER = math.radians(30.0)
 
 
-def check_plausible(data: TyreData, fnomin: float) -> None:
-    """Refuse data whose slips, angles or loads are in another unit than declared.
+def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
+                    radius: float | None = None) -> None:
+    """Refuse data whose slips, angles, loads, pressures or moments are in another unit.
 
     Parameters
     ----------
@@ -51,6 +60,10 @@ def check_plausible(data: TyreData, fnomin: float) -> None:
         The measurements (SI, ISO axes).
     fnomin : float
         The template's nominal load [N].
+    nominal_pressure : float, optional
+        The template's nominal pressure [Pa] (pressures unchecked without it).
+    radius : float, optional
+        The template's unloaded radius [m] (M_z unchecked without it).
 
     Raises
     ------
@@ -60,6 +73,32 @@ def check_plausible(data: TyreData, fnomin: float) -> None:
     _check_loads(data, fnomin)
     _check_kappa(data)
     _check_alpha(data)
+    _check_others(data, nominal_pressure, radius)
+
+
+def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
+    """Camber, pressure and aligning moment against their physical ranges."""
+    if (np.abs(data.gamma) > MAX_CAMBER).any():
+        raise InputError(
+            f"camber {math.degrees(float(np.abs(data.gamma).max())):.3g} deg: beyond 30 deg "
+            "the values look like degrees under a [rad] header", file=data.source,
+            column="gamma", row=_row(data, np.abs(data.gamma) > MAX_CAMBER, data.gamma))
+    p = data.pressure[np.isfinite(data.pressure)]
+    if p_nom is not None and p.size:
+        median = float(np.median(p))
+        if not p_nom / 5 <= median <= 5 * p_nom:
+            raise InputError(
+                f"the median pressure {median:g} Pa is far from the template's nominal "
+                f"{p_nom:g} Pa: the values look like another unit (kPa as Pa, bar as kPa?)",
+                file=data.source, column="pressure",
+                row=_row(data, np.isfinite(data.pressure), data.pressure - median))
+    if radius is not None:
+        arm = np.where(np.isfinite(data.mz), np.abs(data.mz) / data.fz, 0.0)
+        if (arm > radius).any():
+            raise InputError(
+                f"|Mz| is {arm.max():.3g} m times the load on this row, more than the tyre's "
+                f"radius {radius:g} m: the moments look like N mm under an [N m] header",
+                file=data.source, column="Mz", row=_row(data, arm > radius, arm))
 
 
 def _row(data: TyreData, mask: np.ndarray, values: np.ndarray) -> int:

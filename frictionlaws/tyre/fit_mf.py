@@ -637,8 +637,11 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
                                   "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
     fnomin = tpl.si("VERTICAL", "FNOMIN")
-    check_plausible(data, fnomin)
     p_nom = _nominal_pressure(tpl, data, notes)
+    radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
+              else None)
+    check_plausible(data, fnomin, p_nom if tpl.has("OPERATING_CONDITIONS", "NOMPRES")
+                    else None, radius)
     p_fit = p_nom if version != "5.2" else None
     mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
                       pressure=p_fit, nominal_pressure=p_fit, structure=structure(tpl))
