@@ -47,6 +47,16 @@ coefficients (QBZ4, QBZ5, QDZ3) are defined in the 2010 paper and as MFeval eval
 them (the book's eqs. 4.E40 and 4.E43 write |gamma*| there).  The two differ by
 gamma^3/6: 4.6e-4 relative at 3 degrees.
 
+**Where MFeval 4.0 departs from the book and this module follows the book**: MFeval
+multiplies the combined-slip trail t by LFZO (the results differ when LFZO is not 1;
+every packaged example has LFZO = 1), and writes gamma instead of sin(gamma) in the
+camber term of the longitudinal peak (PDX3: 4.9e-7 of F_x at 2 degrees).  Checked
+against MFeval 4.0 for the packaged MF 6.1 example with alpha* = tan(alpha) (useMode
+121, camber 0 and 2 degrees): the moments agree within 1e-10 N m; the MF 5.2 and 6.2
+branches (M_y, contact patch, relaxation lengths from PTX/PTY; the MF 6.2 loaded
+radius) and ``slip_angle = "alpha"`` follow the same sources but have no MFeval
+reference here.
+
 Limits and speed
 ----------------
 ``saturate=False`` (the default) evaluates the inputs as given, with an
