@@ -102,12 +102,12 @@ def main() -> None:
     names = list(res.values)
     plain, plain_s, nfev = plain_least_squares(data, names)
     print(f"{len(names)} coefficients fitted")
-    print(f"{'':24}{'seconds':>9}" + "".join(f"{k:>8}" for k in ("Fx0", "Fy0", "Fx", "Fy",
+    print(f"{'':42}{'seconds':>9}" + "".join(f"{k:>8}" for k in ("Fx0", "Fy0", "Fx", "Fy",
                                                                   "Mz")))
     for label, model, s in (("fit_mf (staged)", res.model, staged_s),
                             (f"plain least_squares ({nfev} evaluations)", plain, plain_s)):
         e = worst_errors(truth, model)
-        print(f"{label:24}{s:>9.1f}" + "".join(f"{100 * e[k]:>7.2f}%"
+        print(f"{label:42}{s:>9.1f}" + "".join(f"{100 * e[k]:>7.2f}%"
                                                for k in ("Fx0", "Fy0", "Fx", "Fy", "Mz")))
     print("errors: largest against the noise-free truth, share of the curve's peak "
           "(Mz: of the peak |Mz|)")
