@@ -46,6 +46,13 @@ KAPPA_PURE = 0.01
 #: A direction of the column-normalised Jacobian with a relative singular value below
 #: this is not informed by the data: its main coefficient is undetermined.
 WEAK = 1e-5
+#: Iterations (Jacobians) a stage's solver may take; a stage that stops at this limit is
+#: named in the notes (its coefficients then rest where the solver stopped).
+MAX_ITERATIONS = 60
+#: Relative change of the cost below which a stage has converged: a change of the sum
+#: of squares by 1e-7 of itself is far below one standard deviation of the noise for any
+#: data set under a million rows, so further steps only wander along a flat valley.
+FTOL = 1e-7
 #: Cost factor within which the template's value of an uninformed coefficient is kept.
 _DROP_COST = 1.01
 
@@ -173,6 +180,9 @@ class StageResult:
     held: list[str] = field(default_factory=list)
     rmse: float = math.nan
     n: int = 0
+    #: Model evaluations of the last solve, and whether it met its tolerances.
+    nfev: int = 0
+    converged: bool = True
 
 
 def fit_stage(mf: FittingModel, names: list[str], d: CombinedData,
@@ -213,6 +223,7 @@ def fit_stage(mf: FittingModel, names: list[str], d: CombinedData,
             out.held.append(worst)
             out.stderr[worst] = math.inf
             r = _solve(mf, free, d, predict, bounds)
+    out.nfev, out.converged = int(r.nfev), bool(r.status > 0)
     out.values = {k: float(mf.coefficients[k]) for k in free + out.held}
     out.stderr.update({k: float(s) for k, s in zip(free, se)})
     res = predict(mf, d) - d.target
@@ -243,10 +254,11 @@ def _solve(mf: FittingModel, names: list[str], d: CombinedData,
                      np.where(np.isfinite(hi), hi - 1e-6 * (1 + np.abs(hi)), hi))
     # Levenberg-Marquardt (MINPACK, QR-based: fast on tall Jacobians); the bounded
     # trust-region solver only when it ends outside the bounds of a shape coefficient
-    r = least_squares(resid, p0, x_scale="jac", method="lm", max_nfev=200 * (len(names) + 1))
+    r = least_squares(resid, p0, x_scale="jac", method="lm", ftol=FTOL,
+                      max_nfev=MAX_ITERATIONS * (len(names) + 1))
     if np.any(r.x < lo) or np.any(r.x > hi) or not np.isfinite(r.cost):
         r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
-                          max_nfev=100 * (len(names) + 1))
+                          ftol=FTOL, max_nfev=MAX_ITERATIONS)
     resid(r.x)  # leave the model at the solution
     return r
 
@@ -289,6 +301,11 @@ class LaterStages:
                 self.undetermined.append(k)
         self.values.update(r.values)
         self.stderr.update(r.stderr)
+        if not r.converged:
+            self.notes.append(f"a stage fitting {', '.join(r.values)} stopped at its limit of "
+                              f"{MAX_ITERATIONS} iterations before meeting its tolerances: "
+                              "these coefficients rest where the solver stopped (a flat "
+                              "valley of the cost: more or wider data would settle them)")
 
 
 def _errors(predict: Callable[[FittingModel, CombinedData], np.ndarray], mf: FittingModel,
