@@ -124,6 +124,27 @@ def test_mf_command(capsys):
     assert len(d["mu_x_peak"]) == 3
 
 
+def test_mf_command_shows_the_aligning_moment_and_trail(capsys):
+    from frictionlaws.tyre import MagicFormula
+
+    code, out, _ = run(capsys, "mf", "MagicFormula61", "--loads", "3,6.752")
+    assert code == 0
+    assert "trail [mm]" in out and "Mz0 peak [N m]" in out and "at [deg]" in out
+    code, out, _ = run(capsys, "mf", "MagicFormula61", "--loads", "3,6.752", "--json")
+    d = json.loads(out)
+    mf = MagicFormula.from_file("MagicFormula61")
+    ref = mf.steady_state(0.0, 0.0, np.array([3000.0, 6752.0]))
+    np.testing.assert_allclose(d["trail_m"], ref["t"], rtol=1e-12)
+    at = np.radians(d["Mz0_peak_alpha_deg"])
+    np.testing.assert_allclose(d["Mz0_peak_N_m"], mf.mz0(at, np.array([3000.0, 6752.0])),
+                               rtol=1e-12)
+    # the peak: no slip angle on a finer grid gives a larger moment (within the grid step)
+    fine = mf.mz0(np.radians(np.linspace(-20, 20, 4001))[:, None], np.array([3000.0, 6752.0]))
+    assert np.all(np.abs(fine).max(axis=0) <= np.abs(d["Mz0_peak_N_m"]) * 1.001)
+    assert f"{d['trail_m'][1] * 1000:.2f}" in run(capsys, "mf", "MagicFormula61", "--loads",
+                                                  "3,6.752")[1]
+
+
 def test_reduce_command(capsys, tmp_path):
     saved = tmp_path / "reduced.json"
     code, out, _ = run(capsys, "reduce", "MagicFormula62", "--law", "pacejka", "--load", "4",

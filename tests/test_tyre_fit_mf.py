@@ -156,7 +156,7 @@ def test_csv_units_and_sign_conventions(tmp_path: Path) -> None:
     ("Fz [N],kappa [-],Fx [N]", "4000,abc,100", "'abc' is not a number"),
     ("Fz [m],kappa [-],Fx [N]", "4000,0.1,100", "force"),
     ("kappa [-],Fx [N]", "0.1,100", "no Fz column"),
-    ("Fz [N],kappa [-]", "4000,0.1", "no Fx or Fy"),
+    ("Fz [N],kappa [-]", "4000,0.1", "no Fx, Fy or Mz"),
     ("Fz [N],alpha [deg],Fy [N]", "4000,95,-100", "beyond 90"),
 ])
 def test_csv_errors_name_file_column_row(tmp_path: Path, header: str, row: str,

@@ -230,7 +230,7 @@ def test_scaling_factors_apply():
     c = _coeffs("62")
     base = MagicFormula.from_file(EXAMPLES / "MagicFormula62_Parameters.json")
     scaled = MagicFormula({**base.coefficients, "LMUX": 0.8, "LKY": 1.2}, fnomin=base.fnomin,
-                          version="6.2")
+                          version="6.2", friction_scaling="degressive")
     assert scaled.mu_x_peak(4000.0) == pytest.approx(0.8 * base.mu_x_peak(4000.0))
     assert scaled.cornering_stiffness(4000.0) == pytest.approx(
         1.2 * base.cornering_stiffness(4000.0))

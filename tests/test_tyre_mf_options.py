@@ -82,6 +82,16 @@ def test_friction_scaling_option_follows_its_convention(scaling: str, a_mu: floa
     assert mf.fx0(-c["PHX1"], fnom) == pytest.approx(fnom * c["PVX1"] * lmux_p, rel=1e-10)
 
 
+def test_friction_scaling_defaults_to_mfevals_linear_scaling() -> None:
+    pf = read_property_file(EXAMPLES / "MagicFormula61_Parameters.json")
+    pf.sections["SCALING_COEFFICIENTS"]["LMUX"] = 0.6
+    default = MagicFormula.from_property_file(pf)
+    assert default.friction_scaling == "linear"
+    assert default.lmux_prime == 0.6  # MFeval 4.0: A_mu = 1
+    assert MagicFormula.from_property_file(
+        pf, friction_scaling="degressive").lmux_prime == pytest.approx(6 / 6.4)
+
+
 def test_friction_scaling_options_agree_at_unit_scaling_and_for_mf52() -> None:
     k = np.linspace(-0.4, 0.4, 9)
     for name in NAMES:

@@ -107,10 +107,12 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f = tsub.add_parser(
         "fit-mf", help="fit a Magic Formula property file to tyre test data",
-        description="Fit the pure-slip Magic Formula (Fx0 and Fy0 coefficient groups) to "
-        "tyre test data (a tidy CSV: 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', "
-        "'pressure [kPa]', 'Fx [N]', 'Fy [N]') in stages, and write a .tir property file. "
-        "Coefficients the data cannot determine keep the template's value (listed).")
+        description="Fit the Magic Formula to tyre test data (a tidy CSV: 'Fz [N]', "
+        "'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', 'Fx [N]', 'Fy [N]', "
+        "'Mz [N m]') in stages: pure-slip Fx0 and Fy0, the combined-slip weighting "
+        "functions, the aligning moment Mz0 and combined Mz; write a .tir property file. "
+        "Coefficients the data cannot determine keep the template's value (listed); data "
+        "whose slips, angles or loads look like another unit than declared are refused.")
     f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
     f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
                    help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
@@ -133,10 +135,10 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--slip-angle", choices=("tan_alpha", "alpha"), default="tan_alpha",
                    help="slip variable of the lateral curve: tan(alpha) (default, the "
                         "book's alpha*) or alpha itself")
-    g.add_argument("--friction-scaling", choices=("degressive", "linear"),
-                   default="degressive",
-                   help="MF 6.x friction scaling LMU': degressive, A_mu = 10 (default) or "
-                        "linear, A_mu = 1")
+    g.add_argument("--friction-scaling", choices=("linear", "degressive"),
+                   default="linear",
+                   help="MF 6.x friction scaling LMU': linear, A_mu = 1 (default; MFeval "
+                        "4.0) or degressive, A_mu = 10 (Pacejka 2012, eq. 4.E8)")
     g.add_argument("--loads-above-fzmax", choices=("extrapolate", "clamp"),
                    default="extrapolate",
                    help="loads above the file's FZMAX: extrapolate with a warning "
@@ -410,12 +412,20 @@ def _run_mf(args: argparse.Namespace) -> int:
           + (f", inflation {mf.pressure / 1e6:.3g} MPa" if mf.pressure else ""))
     for n in mf.notes:
         print(f"note: {n}")
+    moments = "trail_m" in summary
     print(f"{'Fz [kN]':>8}  {'mu_x peak':>9}  {'mu_y peak':>9}  {'Kx [kN]':>9}  "
-          f"{'Ky [kN/rad]':>11}")
+          f"{'Ky [kN/rad]':>11}" + (f"  {'trail [mm]':>10}  {'Mz0 peak [N m]':>14}  "
+                                     f"{'at [deg]':>8}" if moments else ""))
     for i, fz in enumerate(summary["loads_N"]):
         print(f"{fz / 1000:>8.4g}  {summary['mu_x_peak'][i]:>9.4f}  "
               f"{summary['mu_y_peak'][i]:>9.4f}  {summary['K_x_N'][i] / 1000:>9.2f}  "
-              f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}")
+              f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}"
+              + (f"  {summary['trail_m'][i] * 1000:>10.2f}  "
+                 f"{summary['Mz0_peak_N_m'][i]:>14.1f}  "
+                 f"{summary['Mz0_peak_alpha_deg'][i]:>8.2f}" if moments else ""))
+    if moments:
+        print("trail: pneumatic trail at zero slip; Mz0 peak: the pure-slip aligning moment "
+              "of largest magnitude within +-20 deg, at the file's LONGVL")
     lim = mf.limits.get("fz")
     if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
         how = ("extrapolation" if mf.loads_above_fzmax == "extrapolate"

@@ -1,8 +1,11 @@
-"""Fit the pure-slip Magic Formula (F_x0, F_y0) to tyre test data and write a property file.
+"""Fit the Magic Formula (forces and aligning moment) to tyre test data; write a property file.
 
-:func:`fit_mf` fits the pure longitudinal and lateral coefficient groups of MF 5.2,
-6.1 or 6.2 to measured forces (:class:`~frictionlaws.tyre.tyre_data.TyreData`) in
-three stages:
+:func:`fit_mf` fits the coefficient groups of MF 5.2, 6.1 or 6.2 to measured forces
+and aligning moments (:class:`~frictionlaws.tyre.tyre_data.TyreData`) in stages: the
+pure-slip forces F_x0, F_y0 as below, then the combined-slip weighting functions, the
+forces refined together on every row, the aligning moment M_z0 and combined M_z
+(:mod:`frictionlaws.tyre._fit_mf_stages`).  The pure-slip forces are fitted in three
+steps:
 
 1. **per-load curves**: at each load (at the nominal pressure and the smallest
    camber measured) a Magic Formula curve ``D sin(C arctan(B x - E (B x -
@@ -19,9 +22,14 @@ camber term with one camber, a curvature in load with fewer than three loads,
 an asymmetry with one sign of slip, or a direction of the Jacobian with no
 information) are left at the template's value and named in the notes; a coefficient along a
 direction the data do not inform whose template value would spoil the fit is held
-at its fitted value instead (standard error infinite, named in the notes).  Rows
-with both slips non-zero (combined slip) are not used.  The slip angle enters as
-tan(alpha), the library's default convention.
+at its fitted value instead (standard error infinite, named in the notes).  The
+pure-slip steps start from the rows near pure slip (cross slip within
+:data:`~frictionlaws.tyre._fit_mf_stages.ALPHA_PURE` = 1 deg or
+:data:`~frictionlaws.tyre._fit_mf_stages.KAPPA_PURE` = 0.01, robust to rig jitter); the
+later stages use every row with the combined-slip model at the slips recorded.  The
+slip angle enters as tan(alpha), the library's default convention, and the file
+written says so.  Data whose slips, angles or loads look like another unit than
+declared are refused first (:mod:`frictionlaws.tyre._fit_mf_checks`).
 
 The peak friction coefficient stays within a physical range during the fit, and
 data that stop before the peak give a warning (the peak is extrapolated), not a
@@ -42,8 +50,11 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import ExtrapolationWarning, FitError, InputError
+from . import _fit_mf_stages as stages_
+from ._fit_mf_checks import check_plausible
 from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unreached_peaks
-from .magic_formula import EXAMPLES, MagicFormula, _packaged_example, mf_curve
+from ._mf_file import structure
+from .magic_formula import EXAMPLES, MagicFormula, mf_curve, packaged_example
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
@@ -72,9 +83,9 @@ _NEEDS: dict[str, tuple[str, ...]] = {
     **{k: ("loads3",) for k in "PEX3 PKX3 PKY4".split()},
     "PEX4": ("both_signs",), "PEY3": ("both_signs",),
 }
-#: Pure-slip selection: |alpha| (rad) and |kappa| below these count as zero.
-ALPHA_ZERO = math.radians(0.05)
-KAPPA_ZERO = 1e-4
+#: Pure-slip selection: |alpha| (rad) and |kappa| within these count as near pure slip.
+ALPHA_ZERO = stages_.ALPHA_PURE
+KAPPA_ZERO = stages_.KAPPA_PURE
 
 
 @dataclass
@@ -92,8 +103,10 @@ class MFFit:
     undetermined : list of str
         Coefficients the data cannot determine (left at the template value).
     errors : dict
-        Per direction (``"x"``, ``"y"``): ``rmse``, ``max_abs`` [N], ``peak`` [N]
-        (largest measured |F|) and ``n`` points.
+        Per quantity: ``"x"``, ``"y"`` (pure-slip rows, F_x0 and F_y0 stages),
+        ``"x_all"``, ``"y_all"`` (every row, combined model) and ``"mz"`` (every M_z
+        row): ``rmse``, ``max_abs``, ``peak`` (largest measured magnitude) [N or N m]
+        and ``n`` points.
     stages : dict
         Per direction, the per-load curves of stage 1 (load, mu, K, C, E, S_H, S_V).
     warnings : list of str
@@ -116,9 +129,13 @@ class MFFit:
 
     def tir_text(self) -> str:
         """The ``.tir`` text of the fitted property file."""
+        fitted = ", ".join(_LABELS[k] for k in self.errors) or "nothing"
         header = [f"FITTED by frictionlaws fit_mf from {self.data.source} "
-                  f"({len(self.data)} rows), Magic Formula {self.version}, pure slip "
-                  "Fx0/Fy0 only; other sections from the template."]
+                  f"({len(self.data)} rows), Magic Formula {self.version}: {fitted}; "
+                  "other coefficients and sections from the template.",
+                  "Slip angle convention: alpha* = tan(alpha) in the lateral slip "
+                  "(MFeval useMode 2x); camber as sin(gamma) in the force terms.",
+                  "Friction scaling: LMU' = LMU (A_mu = 1, as MFeval 4.0)."]
         header += [f"warning: {w}" for w in self.warnings]
         header += [f"note: {n}" for n in self.notes]
         return format_tir(self.property_file, header=header)
@@ -134,14 +151,15 @@ class MFFit:
 
     def report(self) -> str:
         """Plain-text report: coefficients with standard errors, errors, notes."""
-        lines = [f"Magic Formula {self.version} pure-slip fit to {self.data.source} "
+        lines = [f"Magic Formula {self.version} fit to {self.data.source} "
                  f"({len(self.data)} rows, {self.seconds:.1f} s)"]
         for name, v in self.values.items():
             se = self.stderr.get(name, math.nan)
             lines.append(f"  {name:<5} = {v:< 12.6g} +/- {se:.3g}")
         for d, e in self.errors.items():
-            lines.append(f"F{d}0: {int(e['n'])} points, RMSE {e['rmse']:.4g} N, max |error| "
-                         f"{e['max_abs']:.4g} N, peak |F| {e['peak']:.4g} N")
+            u = "N m" if d == "mz" else "N"
+            lines.append(f"{_LABELS[d]}: {int(e['n'])} points, RMSE {e['rmse']:.4g} {u}, max "
+                         f"|error| {e['max_abs']:.4g} {u}, peak {e['peak']:.4g} {u}")
         lines.extend(f"warning: {w}" for w in self.warnings)
         lines.extend(f"note: {n}" for n in self.notes)
         return "\n".join(lines)
@@ -161,6 +179,11 @@ class MFFit:
 
         return plot_fit(self, path)
 
+
+#: What each entry of :attr:`MFFit.errors` describes.
+_LABELS = {"x": "Fx0 (rows near pure slip)", "y": "Fy0 (rows near pure slip)",
+           "x_all": "Fx (every row, combined slip)", "y_all": "Fy (every row, combined slip)",
+           "mz": "Mz (every row, combined slip)"}
 
 # ------------------------------------------------------------------ helpers
 
@@ -361,11 +384,10 @@ def _predict(mf: MagicFormula, d: _Direction, names: Sequence[str], p: np.ndarra
     """The model force at the points of ``d`` with ``names`` set to ``p``."""
     for name, v in zip(names, p):
         mf.coefficients[name] = float(v)
-    # MagicFormula._long/_lat annotate dpi as float but broadcast it like fz and gamma
     if d.name == "x":
-        k = mf._long(d.fz, d.gamma, d.dpi)  # type: ignore[arg-type]
+        k = mf._long(d.fz, d.gamma, d.dpi)
         return mf_curve(d.slip + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
-    k = mf._lat(d.fz, d.gamma, d.dpi)  # type: ignore[arg-type]
+    k = mf._lat(d.fz, d.gamma, d.dpi)
     return mf_curve(np.tan(d.slip) + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
 
 
@@ -504,13 +526,13 @@ def _template(template: str | Path | PropertyFile | None, version: str) -> Prope
         return template
     if template is None:
         name = {"5.2": "magicformula52", "6.1": "magicformula61", "6.2": "magicformula62"}
-        p = _packaged_example(EXAMPLES[name[version]])
+        p = packaged_example(EXAMPLES[name[version]])
         if p is None:
             raise InputError("the packaged template property files are missing")
         return _packaged(p)
     p = Path(template)
     if not p.exists():
-        packaged = _packaged_example(str(template))
+        packaged = packaged_example(str(template))
         if packaged is not None:
             return _packaged(packaged)
     return read_property_file(p)
@@ -551,8 +573,7 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
                       comments=dict(t.comments))
     pf.sections.setdefault("MODEL", {})["FITTYP"] = float(fittyp)
     for k, v in values.items():
-        sec = "LONGITUDINAL_COEFFICIENTS" if "X" in k[2:] else "LATERAL_COEFFICIENTS"
-        pf.sections.setdefault(sec, {})[k] = v
+        pf.sections.setdefault(stages_.section_of(k), {})[k] = v
     f_force, f_p = pf.si_factor("force"), pf.si_factor("pressure")
     if p_nom is not None and FITTYPS[fittyp] != "5.2":
         oc = pf.sections.setdefault("OPERATING_CONDITIONS", {})
@@ -614,19 +635,31 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     notes.append(f"template {tpl.path}: FNOMIN, the other sections and the undetermined "
                  "coefficients come from it")
     tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
-                                  "LATERAL_COEFFICIENTS")
-    mf = FittingModel(dict(tpl_coeffs), fnomin=tpl.si("VERTICAL", "FNOMIN"), version=version,
-                      source=tpl.path)
+                                  "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
+    fnomin = tpl.si("VERTICAL", "FNOMIN")
     p_nom = _nominal_pressure(tpl, data, notes)
+    radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
+              else None)
+    check_plausible(data, fnomin, p_nom if tpl.has("OPERATING_CONDITIONS", "NOMPRES")
+                    else None, radius)
     p_fit = p_nom if version != "5.2" else None
+    mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
+                      pressure=p_fit, nominal_pressure=p_fit, structure=structure(tpl))
     if version == "5.2" and np.isfinite(data.pressure).any():
         notes.append("MF 5.2 has no pressure coefficients here: the pressure column is "
                      "not used")
     values, stderr, undetermined, stages, errors, warns = _fit_directions(
         mf, data, version, tpl_coeffs, p_fit, notes)
-    n_comb = int(np.sum((np.abs(data.alpha) > ALPHA_ZERO) & (np.abs(data.kappa) > KAPPA_ZERO)))
-    if n_comb:
-        notes.append(f"{n_comb} combined-slip rows (kappa and alpha both non-zero) not used")
+    later = stages_.later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr,
+                                 _BOUNDS)
+    values, stderr = later.values, later.stderr
+    undetermined = [k for k in undetermined if k not in values] + [
+        k for k in later.undetermined if k not in undetermined]
+    errors.update(later.errors)
+    notes.extend(later.notes)
+    if not values:
+        raise FitError(f"{data.source}: nothing could be fitted (no coefficient is "
+                       "determined by these rows); no file written")
     if undetermined:
         notes.append("not determined by the data, left at the template's value: "
                      + ", ".join(undetermined))

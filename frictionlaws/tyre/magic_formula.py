@@ -61,8 +61,7 @@ terms are:
   ``S_Vyg = F_z (PVY3 + PVY4 dfz) g LKYC LMUY'``;
   ``S_Vy = F_z (PVY1 + PVY2 dfz) LVY LMUY' + S_Vyg``;
   ``S_Hy = (PHY1 + PHY2 dfz) LHY + (K_yg0 g - S_Vyg) / (K_y + eps)``;
-  the degressive friction scaling ``LMU' = A LMU / (1 + (A - 1) LMU)`` with
-  A = 10 (equal to LMU when LMU = 1).
+  the friction scaling of the vertical shifts LMU' (``friction_scaling`` below).
 
 Combined slip (``fx(kappa, alpha, fz)``, ``fy(...)``) multiplies the pure-slip
 forces by the cosine weighting functions of eqs. (4.E50)-(4.E67):
@@ -76,8 +75,9 @@ Conventions, each an option named after what it means (defaults first):
   useMode +20) or ``"alpha"`` (the angle itself; MFeval useMode +10 and
   several PAC2002 codes; the two differ by < 0.3 % below 5 degrees, by up to
   ~5 % of F_y0 at 25-30 degrees);
-* ``friction_scaling``: ``"degressive"`` (MF 6.x ``LMU' = A LMU / (1 + (A-1) LMU)``
-  with A = 10, Pacejka 2012 and MFeval) or ``"linear"`` (LMU' = LMU, A = 1);
+* ``friction_scaling``: ``"linear"`` (LMU' = LMU, i.e. A = 1 in eq. 4.E8: MFeval 4.0,
+  whose authors set A = 1 to match TNO's evaluator) or ``"degressive"`` (MF 6.x
+  ``LMU' = A LMU / (1 + (A-1) LMU)`` with A = 10, the value Pacejka 2012 suggests);
   identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
 * ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
   with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
@@ -95,23 +95,23 @@ INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
 
 from __future__ import annotations
 
-import functools
-import inspect
 import math
 import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 
 from ..errors import ExtrapolationWarning, InputError
 from ..law import MU_MAX
+from ._mf_file import EXAMPLES, file_limits, file_pressures, packaged_example, structure, version_of
+from ._mf_labelled import labelled
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
-           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX"]
+           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EXAMPLES", "packaged_example"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Small number added to C*D and K_y in the denominators (the textbook's epsilon) [N].
@@ -125,9 +125,9 @@ _SCALING_DEFAULT = 1.0
 #: MFeval useMode +20 "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
 #: several PAC2002 codes).
 SLIP_ANGLE_INPUTS = ("tan_alpha", "alpha")
-#: Friction scaling of MF 6.x: ``degressive`` (LMU' = A LMU / (1 + (A - 1) LMU), A = 10,
-#: Pacejka 2012 and MFeval) or ``linear`` (LMU' = LMU, i.e. A = 1).
-FRICTION_SCALINGS = ("degressive", "linear")
+#: Friction scaling of MF 6.x: ``linear`` (LMU' = LMU, i.e. A = 1: MFeval 4.0) or
+#: ``degressive`` (LMU' = A LMU / (1 + (A - 1) LMU), A = 10: Pacejka 2012, eq. 4.E8).
+FRICTION_SCALINGS = ("linear", "degressive")
 #: Loads above ``FZMAX``: ``extrapolate`` (the equations at the given load, with a
 #: warning) or ``clamp`` (evaluated at FZMAX, as MFeval's limit checks do).
 LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
@@ -176,30 +176,6 @@ def _cos_weight(x: Any, B: Any, C: Any, E: Any) -> Any:
     return np.cos(C * np.arctan(bx - E * (bx - np.arctan(bx))))
 
 
-def _version_of(pf: PropertyFile) -> tuple[str, str]:
-    """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
-    fittyp = pf.get("MODEL", "FITTYP")
-    fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
-    if fittyp is not None:
-        known = {61: "6.1", 62: "6.2", 5: "5.2", 6: "5.2", 21: "5.2"}
-        if not isinstance(fittyp, float) or fittyp not in known:
-            raise InputError(
-                f"[MODEL] FITTYP = {pf.text('MODEL', 'FITTYP')}: not a Magic Formula "
-                "version evaluated here (5, 6 or 21: MF 5.2 / PAC2002; 61: MF 6.1; "
-                "62: MF 6.2)", file=pf.path,
-                row=pf.lines.get(("MODEL", "FITTYP")))
-        return known[int(fittyp)], f"FITTYP = {int(fittyp)}"
-    if "PAC2002" in fmt or "MF_05" in fmt:
-        return "5.2", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if "MF_61" in fmt or "MF61" in fmt:
-        return "6.1", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if "MF_62" in fmt or "MF62" in fmt:
-        return "6.2", f"PROPERTY_FILE_FORMAT = '{fmt}'"
-    if pf.has("LATERAL_COEFFICIENTS", "PKY4"):
-        return "6.1", "no FITTYP; PKY4 present, so the MF 6.1 equations were assumed"
-    return "5.2", "no FITTYP; the MF 5.2 / PAC2002 equations were assumed"
-
-
 def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
                        loads_above_fzmax: str, source: str) -> None:
     """Refuse an unknown version or convention, naming the allowed values."""
@@ -239,136 +215,14 @@ def _positive_or_none(value: float | None, what: str, source: str) -> float | No
 def _pure_slip_coefficients(pf: PropertyFile) -> dict[str, float]:
     """Scaling, longitudinal and lateral coefficients; the pure-slip ones must be there."""
     coeffs = pf.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
-                             "LATERAL_COEFFICIENTS")
+                             "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS",
+                             "OVERTURNING_COEFFICIENTS", "ROLLING_COEFFICIENTS")
     for need in ("PCX1", "PDX1", "PKX1", "PCY1", "PDY1", "PKY1"):
         if need not in coeffs:
             sec = "LONGITUDINAL" if "X" in need[2:] else "LATERAL"
             raise InputError(f"[{sec}_COEFFICIENTS] {need} is missing: not a Magic "
                              "Formula property file?", file=pf.path)
     return coeffs
-
-
-def _file_pressures(pf: PropertyFile, notes: list[str]) -> tuple[float | None, float | None]:
-    """Inflation and nominal pressure [Pa] of the file (MF 6.x or PAC2002 keys).
-
-    When only one of them is given it stands for both (dpi = 0), with a note.
-    """
-    p_i = p_nom = None
-    for sec, key, nom in (("OPERATING_CONDITIONS", "INFLPRES", "NOMPRES"),
-                          ("TIRE_CONDITIONS", "IP", "IP_NOM")):
-        if pf.has(sec, key) or pf.has(sec, nom):
-            p_i = pf.si(sec, key) if pf.has(sec, key) else None
-            p_nom = pf.si(sec, nom) if pf.has(sec, nom) else None
-            break
-    if p_nom is None and p_i is not None:
-        p_nom = p_i
-        notes.append("no nominal pressure in the file: the inflation pressure is taken "
-                     "as nominal (dpi = 0)")
-    if p_i is None and p_nom is not None:
-        p_i = p_nom
-        notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
-                     "pressure is used (dpi = 0); pass pressure= to evaluate at another")
-    return p_i, p_nom
-
-
-#: Validity ranges of a property file: name, section, MIN key, MAX key, and whether the
-#: values carry a unit (load, pressure) or are plain numbers (slips and angles, rad).
-_RANGES = (("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
-           ("kappa", "LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", False),
-           ("alpha", "SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", False),
-           ("gamma", "INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", False),
-           ("pressure", "INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", True))
-
-
-def _file_limits(pf: PropertyFile) -> dict[str, tuple[float, float]]:
-    """The file's validity ranges in SI; a range with MIN above MAX is refused."""
-    limits = {}
-    for name, sec, lo, hi, kind in _RANGES:
-        if not (pf.has(sec, lo) and pf.has(sec, hi)):
-            continue
-        low, high = ((pf.si(sec, lo), pf.si(sec, hi)) if kind
-                     else (pf.number(sec, lo), pf.number(sec, hi)))
-        if not low <= high or (kind and low < 0):
-            raise InputError(
-                f"[{sec}] {lo} .. {hi} = {pf.text(sec, lo)} .. {pf.text(sec, hi)} is "
-                "not a range" + (" of positive values" if kind else "")
-                + " (MIN must not be above MAX)", file=pf.path, row=pf.lines.get((sec, hi)))
-        limits[name] = (low, high)
-    return limits
-
-
-_F = TypeVar("_F", bound=Callable[..., Any])
-
-
-def _labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callable[[_F], _F]:
-    """Let a method take :class:`xarray.DataArray` inputs and keep their dimensions.
-
-    ``arrays`` are the method's array arguments; ``outputs`` give each result's
-    (name, unit, long name).  When any of those arguments is a DataArray, the
-    method runs through :func:`xarray.apply_ufunc` on the bare arrays: the
-    result is a DataArray (a tuple of them for several outputs) with the
-    broadcast dimensions and the coordinates of the inputs.  Otherwise the method
-    runs as it is.
-    """
-    def wrap(method: _F) -> _F:
-        signature = inspect.signature(method)
-
-        @functools.wraps(method)
-        def inner(self: MagicFormula, *args: Any, **kwargs: Any) -> Any:
-            if not any(map(_is_labelled, (*args, *kwargs.values()))):
-                return method(self, *args, **kwargs)  # the fast path: no DataArray
-            bound = signature.bind(self, *args, **kwargs)
-            bound.apply_defaults()
-            values = bound.arguments
-            labelled = [n for n in arrays if _is_labelled(values[n])]
-            if not labelled:
-                return method(self, *args, **kwargs)
-            return _apply_labelled(method, self, values, arrays, labelled, outputs)
-
-        return inner  # type: ignore[return-value]
-
-    return wrap
-
-
-def _is_labelled(x: Any) -> bool:
-    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.interop`)."""
-    return _interop().is_labelled(x)
-
-
-@functools.lru_cache(maxsize=1)
-def _interop() -> Any:
-    from .. import interop
-
-    return interop
-
-
-def _apply_labelled(method: Callable[..., Any], mf: MagicFormula, values: dict[str, Any],
-                    arrays: tuple[str, ...], labelled: list[str],
-                    outputs: tuple[tuple[str, str, str], ...]) -> Any:
-    """``method`` evaluated by :func:`xarray.apply_ufunc` over its DataArray arguments."""
-    import xarray as xr
-
-    plain = [n for n in arrays if n not in labelled and np.ndim(values[n]) > 0]
-    if plain:
-        raise InputError(f"{', '.join(plain)} must be DataArrays too when "
-                         f"{', '.join(labelled)} are (or scalars): plain arrays have no "
-                         "dimension names to broadcast by")
-
-    def bare(*data: Any) -> Any:
-        kw = {k: v for k, v in values.items() if k != "self"}
-        kw.update(zip(labelled, data, strict=True))
-        shape = np.broadcast_shapes(*(np.shape(x) for x in data))
-        out = method(mf, **kw)
-        if len(outputs) == 1:
-            return np.broadcast_to(np.asarray(out, dtype=float), shape).copy()
-        return tuple(np.broadcast_to(np.asarray(o, dtype=float), shape).copy() for o in out)
-
-    result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
-                            output_core_dims=[[] for _ in outputs])
-    named = [r.rename(name).assign_attrs(units=unit, long_name=long)
-             for r, (name, unit, long) in zip(
-                 result if len(outputs) > 1 else (result,), outputs, strict=True)]
-    return named[0] if len(outputs) == 1 else tuple(named)
 
 
 class MagicFormula:
@@ -398,14 +252,19 @@ class MagicFormula:
     slip_angle : {"tan_alpha", "alpha"}
         How the slip angle enters the lateral curve (default ``tan_alpha``, the
         book's alpha* = tan(alpha); ``alpha`` uses the angle itself).
-    friction_scaling : {"degressive", "linear"}
-        MF 6.x friction scaling of the vertical shifts: ``degressive`` (default,
-        LMU' = A LMU / (1 + (A - 1) LMU) with A = 10) or ``linear`` (LMU' = LMU,
-        A = 1).  MF 5.2 always uses LMU' = LMU.
+    friction_scaling : {"linear", "degressive"}
+        MF 6.x friction scaling of the vertical shifts: ``linear`` (default,
+        LMU' = LMU, A = 1, as MFeval 4.0) or ``degressive`` (LMU' = A LMU /
+        (1 + (A - 1) LMU) with A = 10, as Pacejka 2012 suggests).  MF 5.2 always
+        uses LMU' = LMU.
     loads_above_fzmax : {"extrapolate", "clamp"}
         Loads above the file's ``FZMAX``: evaluated as given with an
         :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
         to FZMAX (as MFeval's limit checks do).
+    structure : mapping, optional
+        The file's dimensions, vertical and structural stiffnesses, contact-patch
+        coefficients and reference speeds (``UNLOADED_RADIUS``, ``VERTICAL_STIFFNESS``,
+        ``LONGVL``...), SI, used by :meth:`steady_state`.
     """
 
     def __init__(self, coefficients: Mapping[str, float], *, fnomin: float,
@@ -414,8 +273,9 @@ class MagicFormula:
                  limits: Mapping[str, tuple[float, float]] | None = None,
                  name: str = "", source: str = "<memory>",
                  notes: list[str] | None = None, slip_angle: str = "tan_alpha",
-                 friction_scaling: str = "degressive",
-                 loads_above_fzmax: str = "extrapolate") -> None:
+                 friction_scaling: str = "linear",
+                 loads_above_fzmax: str = "extrapolate",
+                 structure: Mapping[str, float] | None = None) -> None:
         _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, source)
         self.slip_angle = slip_angle
         self.friction_scaling = friction_scaling
@@ -427,6 +287,7 @@ class MagicFormula:
         self.nominal_pressure = _positive_or_none(nominal_pressure,
                                                   "the nominal inflation pressure", source)
         self.limits = dict(limits or {})
+        self.structure = {k.upper(): float(v) for k, v in (structure or {}).items()}
         self.name = name
         self.source = source
         self.notes = list(notes or [])
@@ -475,7 +336,7 @@ class MagicFormula:
         p = Path(path)
         pf = None
         if not p.exists():
-            packaged = _packaged_example(str(path))
+            packaged = packaged_example(str(path))
             if packaged is not None:  # named as packaged, not where pip installed it
                 pf = read_property_file(packaged)
                 pf.path = f"packaged:{packaged.name}"
@@ -513,7 +374,7 @@ class MagicFormula:
         pf.check_angle_unit()
         notes = pf.check_coefficients()
         if version is None:
-            version, how = _version_of(pf)
+            version, how = version_of(pf)
             notes.append(f"Magic Formula {version} equations ({how})")
         elif version not in MF_VERSIONS:
             raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
@@ -521,21 +382,25 @@ class MagicFormula:
         if not pf.has("VERTICAL", "FNOMIN"):
             raise InputError("[VERTICAL] FNOMIN (nominal load) is missing", file=pf.path)
         coeffs = _pure_slip_coefficients(pf)
-        p_i, p_nom = _file_pressures(pf, notes)
+        p_i, p_nom = file_pressures(pf, notes)
         name = str(pf.metadata.get("Name") or Path(pf.path).stem)
         return cls(coeffs, fnomin=pf.si("VERTICAL", "FNOMIN"), version=version,
                    pressure=pressure if pressure is not None else p_i,
-                   nominal_pressure=p_nom, limits=_file_limits(pf), name=name,
-                   source=pf.path, notes=notes, **options)
+                   nominal_pressure=p_nom, limits=file_limits(pf), name=name,
+                   source=pf.path, notes=notes, structure=structure(pf), **options)
 
     # ------------------------------------------------------------- helpers
-    def _dpi(self, pressure: float | None) -> float:
-        p = self.pressure if pressure is None else float(pressure)
+    def _dpi(self, pressure: Any) -> Any:
+        """Relative pressure increment dpi (a float, or an array for a pressure per row)."""
+        p = self.pressure if pressure is None else np.asarray(pressure, dtype=float)
         if p is None or self.nominal_pressure is None:
             return 0.0
-        if not (math.isfinite(p) and p > 0):
-            raise InputError(f"inflation pressure must be positive [Pa], got {p}")
-        return (p - self.nominal_pressure) / self.nominal_pressure
+        if not (np.isfinite(p) & (np.asarray(p) > 0)).all():
+            bad = np.flatnonzero(~(np.isfinite(p) & (np.asarray(p) > 0)).ravel())[:5].tolist()
+            raise InputError("inflation pressure must be positive and finite [Pa]; bad values "
+                             f"at flat indices {bad}")
+        dpi = (p - self.nominal_pressure) / self.nominal_pressure
+        return float(dpi) if np.ndim(dpi) == 0 else dpi
 
     def _check(self, what: str, x: Any, positive: bool = False) -> Any:
         x = np.asarray(x, dtype=float)
@@ -561,7 +426,7 @@ class MagicFormula:
                 f"outside the property file's range {lo:g}..{hi:g} (SI): extrapolation",
                 ExtrapolationWarning, stacklevel=3)
 
-    def _inputs(self, fz: Any, gamma: Any, pressure: float | None) -> tuple[Any, Any, float]:
+    def _inputs(self, fz: Any, gamma: Any, pressure: Any) -> tuple[Any, Any, Any]:
         fz = self._check("fz", fz, positive=True)
         self._warn_range("fz", fz)
         if self.loads_above_fzmax == "clamp" and "fz" in self.limits:
@@ -572,10 +437,10 @@ class MagicFormula:
             self._warn_range("gamma", gamma)
         used = self.pressure if pressure is None else pressure  # the file's INFLPRES too
         if used is not None:
-            self._warn_range("pressure", np.asarray(float(used)))
+            self._warn_range("pressure", np.asarray(used, dtype=float))
         return fz, gamma, self._dpi(pressure)
 
-    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: float) -> None:
+    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any) -> None:
         """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX)."""
         bad = ~((np.asarray(mu) > 0) & (np.asarray(mu) <= MU_MAX))
         if not np.any(bad):
@@ -583,7 +448,8 @@ class MagicFormula:
         i = int(np.flatnonzero(np.broadcast_to(bad, np.shape(bad) or (1,)).ravel())[0])
         mu_i = float(np.ravel(mu)[i] if np.ndim(mu) else mu)
         fz_i = float(np.ravel(np.broadcast_to(fz, np.shape(mu) or (1,)))[i])
-        p = self.nominal_pressure * (1 + dpi) if self.nominal_pressure else None
+        dpi_i = float(np.ravel(np.broadcast_to(dpi, np.shape(mu) or (1,)))[i])
+        p = self.nominal_pressure * (1 + dpi_i) if self.nominal_pressure else None
         at = f"F_z = {fz_i:g} N" + (f", inflation {p / 1e6:.4g} MPa" if p else "")
         raise InputError(
             f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
@@ -592,10 +458,10 @@ class MagicFormula:
             file=self.source)
 
     # ------------------------------------------------------ factors (x, y)
-    def _long(self, fz: Any, gamma: Any, dpi: float) -> MFCoefficients:
+    def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         dfz = (fz - self.fz0) / self.fz0
-        g = np.sin(gamma) if self._six else gamma * c("LGAX")
+        g = self.gamma_star(gamma) if self._six else gamma * c("LGAX")
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
         self._check_peak("mu_x", mu, fz, dpi)
@@ -609,13 +475,13 @@ class MagicFormula:
         S_V = fz * (c("PVX1") + c("PVX2") * dfz) * c("LVX") * self.lmux_prime
         return MFCoefficients(B, C, D, E0, E0 * c("PEX4"), K, S_H, S_V, mu)
 
-    def _lat(self, fz: Any, gamma: Any, dpi: float) -> MFCoefficients:
+    def _lat(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         fz0 = self.fz0
         dfz = (fz - fz0) / fz0
         C = c("PCY1") * c("LCY")
         if self._six:
-            g = np.sin(gamma)
+            g = self.gamma_star(gamma)
             mu = ((c("PDY1") + c("PDY2") * dfz) * (1 + c("PPY3") * dpi + c("PPY4") * dpi**2)
                   * (1 - c("PDY3") * g**2) * self.lmuy)
             K = (c("PKY1") * fz0 * (1 + c("PPY1") * dpi) * (1 - c("PKY3") * np.abs(g))
@@ -649,7 +515,7 @@ class MagicFormula:
 
     # -------------------------------------------------------------- public
     def longitudinal(self, fz: Any, gamma: Any = 0.0,
-                     pressure: float | None = None) -> MFCoefficients:
+                     pressure: Any = None) -> MFCoefficients:
         """Return the longitudinal factors B_x, C_x, D_x, E_x, K_x, S_Hx, S_Vx at a load.
 
         Parameters
@@ -658,8 +524,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -671,7 +537,7 @@ class MagicFormula:
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return self._long(fz, gamma, dpi)
 
-    def lateral(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None
+    def lateral(self, fz: Any, gamma: Any = 0.0, pressure: Any = None
                 ) -> MFCoefficients:
         """Return the lateral factors B_y, C_y, D_y, E_y, K_y, S_Hy, S_Vy at a load.
 
@@ -681,8 +547,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -694,8 +560,8 @@ class MagicFormula:
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return self._lat(fz, gamma, dpi)
 
-    @_labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
-    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
+    @labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
+    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
         """Pure longitudinal force F_x0 [N].
 
         Parameters
@@ -706,8 +572,8 @@ class MagicFormula:
             Vertical load [N] (> 0); broadcast against ``kappa``.
         gamma : array-like
             Inclination (camber) angle [rad].
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -722,8 +588,8 @@ class MagicFormula:
         out = mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
-    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
+    @labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
+    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
         """Pure lateral force F_y0 [N].
 
         The slip enters as tan(alpha) or alpha (the ``slip_angle`` convention, see
@@ -737,8 +603,8 @@ class MagicFormula:
             Vertical load [N] (> 0); broadcast against ``alpha``.
         gamma : array-like
             Inclination (camber) angle [rad].
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -762,10 +628,16 @@ class MagicFormula:
 
     # ------------------------------------------------------- combined slip
     def _camber_c(self, gamma: Any) -> Any:
-        """Camber as the combined-slip terms use it: sin(gamma) (6.x) or gamma LGAY (5.2)."""
-        return np.sin(gamma) if self._six else gamma * self._c("LGAY")
+        """Camber as the combined-slip terms use it: gamma* (6.x) or gamma LGAY (5.2)."""
+        return self.gamma_star(gamma) if self._six else gamma * self._c("LGAY")
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
+    def gamma_star(self, gamma: Any) -> Any:
+        """The camber variable gamma* of the equations: sin(gamma) with ``slip_angle =
+        "tan_alpha"`` (the book's starred quantities, eq. 4.E4), gamma itself with
+        ``"alpha"`` (both unstarred, as MFeval's "revoke alpha_star" modes)."""
+        return np.sin(gamma) if self.slip_angle == "tan_alpha" else np.asarray(gamma)
+
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
     def weight_x(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0) -> Any:
         """Combined-slip weighting G_xa of F_x (= 1 at alpha = 0), eqs. (4.E50)-(4.E57).
 
@@ -788,23 +660,27 @@ class MagicFormula:
         float or numpy.ndarray
             G_xa [-], 1 where ``alpha = 0``.
         """
-        c = self._c
         kappa = self._check("kappa", kappa)
         alpha_s = self._alpha_star(alpha)
         fz, gamma, _ = self._inputs(fz, gamma, None)
+        out = self._gxa(kappa, alpha_s, fz, gamma)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def _gxa(self, kappa: Any, alpha_s: Any, fz: Any, gamma: Any) -> Any:
+        """G_xa from checked inputs (``alpha_s`` the slip variable alpha*)."""
+        c = self._c
         dfz = (fz - self.fz0) / self.fz0
         g = self._camber_c(gamma)
         B = (c("RBX1") + c("RBX3") * g**2) * np.cos(np.arctan(c("RBX2") * kappa)) * c("LXAL")
         C = c("RCX1")
         E = np.minimum(c("REX1") + c("REX2") * dfz, 1.0)
         S_H = c("RHX1")
-        out = _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
-        return float(out) if np.ndim(out) == 0 else out
+        return _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
                ("S_Vyk", "N", "slip-induced lateral force shift"))
     def weight_y(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-                 pressure: float | None = None) -> tuple[Any, Any]:
+                 pressure: Any = None) -> tuple[Any, Any]:
         """Combined-slip weighting G_yk of F_y and the shift S_Vyk [N], eqs. (4.E58)-(4.E67).
 
         ``B_yk = (RBY1 + RBY4 g^2) cos(arctan(RBY2 (alpha* - RBY3))) LYKA``,
@@ -821,8 +697,8 @@ class MagicFormula:
             Vertical load [N].
         gamma : array-like
             Inclination angle [rad].
-        pressure : float, optional
-            Inflation pressure [Pa].
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row.
 
         Returns
         -------
@@ -831,10 +707,15 @@ class MagicFormula:
         S_Vyk : float or numpy.ndarray
             The slip-induced lateral force shift [N].
         """
-        c = self._c
         kappa = self._check("kappa", kappa)
         alpha_s = self._alpha_star(alpha)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
+        return self._gyk(kappa, alpha_s, fz, gamma, self._lat(fz, gamma, dpi).mu)
+
+    def _gyk(self, kappa: Any, alpha_s: Any, fz: Any, gamma: Any, mu_y: Any
+             ) -> tuple[Any, Any]:
+        """(G_yk, S_Vyk) from checked inputs and the peak coefficient mu_y."""
+        c = self._c
         dfz = (fz - self.fz0) / self.fz0
         g = self._camber_c(gamma)
         B = ((c("RBY1") + c("RBY4") * g**2) * np.cos(np.arctan(c("RBY2") * (alpha_s - c("RBY3"))))
@@ -843,15 +724,14 @@ class MagicFormula:
         E = np.minimum(c("REY1") + c("REY2") * dfz, 1.0)
         S_H = c("RHY1") + c("RHY2") * dfz
         G = _cos_weight(kappa + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
-        mu_y = self._lat(fz, gamma, dpi).mu
         D_V = (mu_y * fz * (c("RVY1") + c("RVY2") * dfz + c("RVY3") * g)
                * np.cos(np.arctan(c("RVY4") * alpha_s)))
         S_V = D_V * np.sin(c("RVY5") * np.arctan(c("RVY6") * kappa)) * c("LVYKA")
         return G, S_V
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
     def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: float | None = None) -> Any:
+           pressure: Any = None) -> Any:
         """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
 
         Parameters
@@ -862,8 +742,8 @@ class MagicFormula:
             Vertical load [N].
         gamma : array-like
             Inclination angle [rad].
-        pressure : float, optional
-            Inflation pressure [Pa].
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row.
 
         Returns
         -------
@@ -875,9 +755,9 @@ class MagicFormula:
                * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
+    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
     def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: float | None = None) -> Any:
+           pressure: Any = None) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
 
         Equal to :meth:`fy0` where ``kappa = 0``.
@@ -890,8 +770,8 @@ class MagicFormula:
             Vertical load [N].
         gamma : array-like
             Inclination angle [rad].
-        pressure : float, optional
-            Inflation pressure [Pa].
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row.
 
         Returns
         -------
@@ -902,8 +782,8 @@ class MagicFormula:
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
 
-    @_labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
-    def mu_x_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
+    @labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
+    def mu_x_peak(self, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
         """Peak longitudinal friction coefficient mu_x = D_x / F_z [-].
 
         Parameters
@@ -912,8 +792,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -923,8 +803,8 @@ class MagicFormula:
         mu = self.longitudinal(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
-    @_labelled(("fz", "gamma"), ("mu_y_peak", "1", "peak lateral friction coefficient"))
-    def mu_y_peak(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
+    @labelled(("fz", "gamma"), ("mu_y_peak", "1", "peak lateral friction coefficient"))
+    def mu_y_peak(self, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
         """Peak lateral friction coefficient mu_y = D_y / F_z [-].
 
         Parameters
@@ -933,8 +813,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -944,8 +824,8 @@ class MagicFormula:
         mu = self.lateral(fz, gamma, pressure).mu
         return float(mu) if np.ndim(mu) == 0 else mu
 
-    @_labelled(("fz", "gamma"), ("K_x", "N", "longitudinal slip stiffness"))
-    def slip_stiffness(self, fz: Any, gamma: Any = 0.0, pressure: float | None = None) -> Any:
+    @labelled(("fz", "gamma"), ("K_x", "N", "longitudinal slip stiffness"))
+    def slip_stiffness(self, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
         """Longitudinal slip stiffness K_x = dF_x0/dkappa at the shifted origin [N].
 
         Parameters
@@ -954,8 +834,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -965,9 +845,9 @@ class MagicFormula:
         K = self.longitudinal(fz, gamma, pressure).K
         return float(K) if np.ndim(K) == 0 else K
 
-    @_labelled(("fz", "gamma"), ("K_y", "N/rad", "cornering stiffness"))
+    @labelled(("fz", "gamma"), ("K_y", "N/rad", "cornering stiffness"))
     def cornering_stiffness(self, fz: Any, gamma: Any = 0.0,
-                            pressure: float | None = None) -> Any:
+                            pressure: Any = None) -> Any:
         """Cornering stiffness K_y = dF_y0/d(tan alpha) at the shifted origin [N/rad].
 
         Parameters
@@ -976,8 +856,8 @@ class MagicFormula:
             Vertical load [N] (> 0).
         gamma : array-like
             Inclination (camber) angle [rad], broadcast with ``fz``.
-        pressure : float, optional
-            Inflation pressure [Pa] (default: the file's).
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
 
         Returns
         -------
@@ -986,6 +866,75 @@ class MagicFormula:
         """
         K = self.lateral(fz, gamma, pressure).K
         return float(K) if np.ndim(K) == 0 else K
+
+    def steady_state(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
+                     pressure: Any = None, vx: Any = None, saturate: bool = False
+                     ) -> dict[str, Any]:
+        """Every steady-state output per row: forces, moments, radii, stiffnesses.
+
+        See :func:`frictionlaws.tyre.mf_outputs.steady_state` (the outputs, their units
+        and equations, the camber convention of the moments).
+
+        Parameters
+        ----------
+        kappa, alpha, fz, gamma : array-like
+            Slip ratio [-], slip angle [rad], vertical load [N], camber [rad]; broadcast.
+        pressure : float or array-like, optional
+            Inflation pressure [Pa], one or one per row (default: the file's).
+        vx : float or array-like, optional
+            Forward speed [m/s] (default: the file's LONGVL).
+        saturate : bool
+            Clamp the inputs at the file's limits as MFeval does (default False).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``Fx``, ``Fy``, ``Mx``, ``My``, ``Mz``, ``Mz0``, ``t``, ``Mzr``, ``Re``, ``Rl``...
+        """
+        from .mf_outputs import steady_state
+
+        return steady_state(self, kappa, alpha, fz, gamma, pressure, vx, saturate)
+
+    def mz(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
+           pressure: Any = None) -> Any:
+        """Aligning moment M_z [N m] under combined slip at the file's speed LONGVL.
+
+        Parameters
+        ----------
+        kappa, alpha, fz, gamma : array-like
+            Slip ratio [-], slip angle [rad], vertical load [N], camber [rad]; broadcast.
+        pressure : float or array-like, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            M_z [N m]; equal to :meth:`mz0` plus ``s F_x`` where ``kappa = 0``.
+        """
+        from .mf_outputs import aligning_moment
+
+        out = aligning_moment(self, kappa, alpha, fz, gamma, pressure)["Mz"]
+        return float(out) if np.ndim(out) == 0 else out
+
+    def mz0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+        """Pure-slip aligning moment M_z0 [N m] (eq. 4.E31) at the file's speed LONGVL.
+
+        Parameters
+        ----------
+        alpha, fz, gamma : array-like
+            Slip angle [rad], vertical load [N], camber [rad]; broadcast.
+        pressure : float or array-like, optional
+            Inflation pressure [Pa] (default: the file's).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            M_z0 [N m].
+        """
+        from .mf_outputs import aligning_moment
+
+        out = aligning_moment(self, 0.0, alpha, fz, gamma, pressure)["Mz0"]
+        return float(out) if np.ndim(out) == 0 else out
 
     def summary(self, loads: Any = None) -> dict[str, Any]:
         """Summarise the tyre as JSON-able data.
@@ -1001,7 +950,9 @@ class MagicFormula:
         dict
             Name, source, version, FNOMIN [N], pressures [Pa], the conventions, the
             file's limits (SI), and at each load the peak coefficients mu_x, mu_y
-            [-] and the stiffnesses K_x [N], K_y [N/rad]; the keys name the units.
+            [-], the stiffnesses K_x [N], K_y [N/rad] and (when the file gives the
+            radius and LONGVL) the pneumatic trail at zero slip and the peak pure-slip
+            aligning moment with its slip angle; the keys name the units.
         """
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
@@ -1010,8 +961,11 @@ class MagicFormula:
             self._warn_range("pressure", np.asarray(self.pressure))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ExtrapolationWarning)
+            from .mf_outputs import aligning_summary
+
             lon = self.longitudinal(loads)
             lat = self.lateral(loads)
+            moments = aligning_summary(self, loads)
         return {
             "name": self.name, "source": self.source, "version": self.version,
             "fnomin_N": self.fnomin, "pressure_Pa": self.pressure,
@@ -1025,40 +979,9 @@ class MagicFormula:
             "mu_y_peak": np.broadcast_to(lat.mu, loads.shape).tolist(),
             "K_x_N": np.broadcast_to(lon.K, loads.shape).tolist(),
             "K_y_N_per_rad": np.broadcast_to(lat.K, loads.shape).tolist(),
+            **moments,
             "notes": list(self.notes),
         }
 
     def __repr__(self) -> str:
         return (f"<MagicFormula {self.name!r} MF {self.version}, FNOMIN {self.fnomin:g} N>")
-
-
-#: Packaged example property files (``datasets/mf-examples``), by short name.
-EXAMPLES = {
-    "magicformula52": "MagicFormula52_Parameters.json",
-    "magicformula61": "MagicFormula61_Parameters.json",
-    "magicformula62": "MagicFormula62_Parameters.json",
-}
-
-
-def _packaged_example(name: str) -> Path | None:
-    """Path of a packaged example property file named ``name`` (with or without suffix)."""
-    key = Path(name).name.lower()
-    for suffix in (".json", ".tir"):
-        key = key.removesuffix(suffix)
-    key = key.removesuffix("_parameters")
-    fname = EXAMPLES.get(key)
-    candidates = [fname] if fname else []
-    if Path(name).name != name:
-        return None
-    candidates.append(Path(name).name)
-    try:
-        from ..io import datasets_dir
-
-        root = datasets_dir() / "mf-examples"
-        for cand in candidates:
-            p = root / cand
-            if p.is_file():
-                return Path(str(p))
-    except (ModuleNotFoundError, FileNotFoundError):
-        return None
-    return None

@@ -80,6 +80,11 @@ DIMENSIONAL = {
     ("INFLATION_PRESSURE_RANGE", "PRESMIN"): "pressure",
     ("INFLATION_PRESSURE_RANGE", "PRESMAX"): "pressure",
     ("MODEL", "LONGVL"): "length/time",
+    ("MODEL", "VXLOW"): "length/time",
+    ("VERTICAL", "BOTTOM_OFFST"): "length",
+    ("VERTICAL", "BOTTOM_STIFF"): "force/length",
+    ("STRUCTURAL", "LONGITUDINAL_STIFFNESS"): "force/length",
+    ("STRUCTURAL", "LATERAL_STIFFNESS"): "force/length",
 }
 
 

@@ -2,14 +2,16 @@
 
 One row per measured point, units in the headers as elsewhere in frictionlaws::
 
-    Fz [kN], kappa [-], alpha [deg], gamma [deg], pressure [kPa], Fx [N], Fy [N]
+    Fz [kN], kappa [-], alpha [deg], gamma [deg], pressure [kPa], Fx [N], Fy [N], Mz [N m]
 
-``Fz`` is required, and at least one of ``Fx`` / ``Fy``; ``kappa``, ``alpha``,
+``Fz`` is required, and at least one of ``Fx`` / ``Fy`` / ``Mz`` (the aligning
+moment); ``kappa``, ``alpha``,
 ``gamma`` default to 0 and ``pressure`` to "not measured".  Angles need an
 explicit unit (``deg`` or ``rad``).  Aliases: ``FZ``/``load``, ``SL``/``slip_ratio``,
 ``SA``/``slip_angle``, ``IA``/``camber``/``inclination``, ``P``/``p``.  The file is read
 by the one table reader (:func:`frictionlaws.io.read_table`) and converted with
-:func:`frictionlaws.units.to_si`.
+:func:`frictionlaws.units.to_si`.  Columns of other names are not used, and the notes
+say which.
 
 Sign conventions
 ----------------
@@ -17,7 +19,8 @@ Sign conventions
 (TYDEX W) axes of a Magic Formula property file: x forward, y left, z up, F_z > 0
 for a loaded tyre, and a positive slip angle gives a negative F_y.
 ``"sae"`` converts SAE J670 axes (y right, z down: a 180 degree rotation about x) to
-ISO: ``F_z -> -F_z``, ``F_y -> -F_y``, ``alpha -> -alpha``; ``F_x``, ``kappa`` and
+ISO: ``F_z -> -F_z``, ``F_y -> -F_y``, ``M_z -> -M_z``, ``alpha -> -alpha``; ``F_x``,
+``kappa`` and
 the inclination angle ``gamma`` are unchanged.  The conversion made is recorded
 in the notes.
 """
@@ -45,6 +48,7 @@ COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
     "pressure": ("p", ("pressure", "p", "inflation_pressure")),
     "fx": ("F_N", ("fx",)),
     "fy": ("F_N", ("fy",)),
+    "mz": ("torque", ("mz",)),
 }
 
 
@@ -52,8 +56,8 @@ COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
 class TyreData:
     """Measured tyre forces in SI and ISO-W axes (arrays of one length).
 
-    ``pressure`` is NaN where not measured; ``fx`` / ``fy`` are NaN where the
-    row has no such force.  ``rows`` are the source rows (for messages).
+    ``pressure`` is NaN where not measured; ``fx`` / ``fy`` / ``mz`` are NaN where
+    the row has no such force or moment.  ``rows`` are the source rows (for messages).
     """
 
     fz: np.ndarray
@@ -66,6 +70,17 @@ class TyreData:
     rows: np.ndarray
     source: str = "<memory>"
     notes: list[str] = field(default_factory=list)
+    mz: np.ndarray = field(default_factory=lambda: np.array([]))
+
+    def __post_init__(self) -> None:
+        if self.mz.size == 0:
+            self.mz = np.full(self.fz.size, np.nan)
+
+    def subset(self, keep: np.ndarray) -> TyreData:
+        """The rows where ``keep`` is true (source rows and notes kept)."""
+        return TyreData(self.fz[keep], self.kappa[keep], self.alpha[keep], self.gamma[keep],
+                        self.pressure[keep], self.fx[keep], self.fy[keep], self.rows[keep],
+                        self.source, list(self.notes), self.mz[keep])
 
     def __len__(self) -> int:
         return int(self.fz.size)
@@ -73,12 +88,12 @@ class TyreData:
     @classmethod
     def from_arrays(cls, *, fz: Any, kappa: Any = 0.0, alpha: Any = 0.0, gamma: Any = 0.0,
                     pressure: Any = np.nan, fx: Any = np.nan, fy: Any = np.nan,
-                    source: str = "<memory>") -> TyreData:
+                    mz: Any = np.nan, source: str = "<memory>") -> TyreData:
         """Build from arrays already in SI and ISO-W axes (broadcast to one length)."""
         arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
-                                       (fz, kappa, alpha, gamma, pressure, fx, fy)))
-        fz_, k, a, g, p, x, y = (np.array(v, dtype=float).ravel() for v in arrays)
-        data = cls(fz_, k, a, g, p, x, y, np.arange(1, fz_.size + 1), source)
+                                       (fz, kappa, alpha, gamma, pressure, fx, fy, mz)))
+        fz_, k, a, g, p, x, y, m = (np.array(v, dtype=float).ravel() for v in arrays)
+        data = cls(fz_, k, a, g, p, x, y, np.arange(1, fz_.size + 1), source, mz=m)
         data.validate()
         return data
 
@@ -102,8 +117,9 @@ class TyreData:
         if bad_p.any():
             raise InputError("the inflation pressure must be positive", file=self.source,
                              column="pressure", row=int(self.rows[np.argmax(bad_p)]))
-        if not (np.isfinite(self.fx).any() or np.isfinite(self.fy).any()):
-            raise InputError("no Fx or Fy value: nothing to fit", file=self.source)
+        if not (np.isfinite(self.fx).any() or np.isfinite(self.fy).any()
+                or np.isfinite(self.mz).any()):
+            raise InputError("no Fx, Fy or Mz value: nothing to fit", file=self.source)
 
 
 def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
@@ -122,8 +138,9 @@ def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str |
     if "fz" not in found:
         raise InputError("no Fz column (the vertical load, e.g. 'Fz [N]'); columns: "
                          + ", ".join(headers), file=source)
-    if "fx" not in found and "fy" not in found:
-        raise InputError("no Fx or Fy column (e.g. 'Fx [N]', 'Fy [N]')", file=source)
+    if "fx" not in found and "fy" not in found and "mz" not in found:
+        raise InputError("no Fx, Fy or Mz column (e.g. 'Fx [N]', 'Fy [N]', 'Mz [N m]')",
+                         file=source)
     return found
 
 
@@ -187,14 +204,18 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     found = _column_index(table.headers, source)
     n = len(table.rows)
     arrays = {col: (_convert(table, *found[col], col) if col in found
-                    else np.full(n, np.nan if col in ("pressure", "fx", "fy") else 0.0))
+                    else np.full(n, np.nan if col in ("pressure", "fx", "fy", "mz") else 0.0))
               for col in COLUMNS}
     notes = list(table.notes)
+    used = {j for j, _ in found.values()}
+    unused = [h for j, h in enumerate(table.headers) if j not in used]
+    if unused:
+        notes.append(f"columns not used (not a tyre-data column): {', '.join(unused)}")
     if sign_convention == "sae":
-        arrays["fz"], arrays["fy"], arrays["alpha"] = (-arrays["fz"], -arrays["fy"],
-                                                       -arrays["alpha"])
-        notes.append("SAE axes converted to ISO-W: Fz, Fy and alpha negated; Fx, kappa and "
-                     "gamma unchanged")
+        for col in ("fz", "fy", "mz", "alpha"):
+            arrays[col] = -arrays[col]
+        notes.append("SAE axes converted to ISO-W: Fz, Fy, Mz and alpha negated; Fx, kappa "
+                     "and gamma unchanged")
     else:
         notes.append("data taken in ISO-W axes (Fz > 0; a positive slip angle gives a "
                      "negative Fy for a usual tyre)")
@@ -205,6 +226,6 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
                                  for c in missing))
     data = TyreData(arrays["fz"], arrays["kappa"], arrays["alpha"], arrays["gamma"],
                     arrays["pressure"], arrays["fx"], arrays["fy"], np.asarray(table.rows),
-                    source, notes)
+                    source, notes, arrays["mz"])
     data.validate()
     return data

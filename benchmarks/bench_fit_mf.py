@@ -1,0 +1,117 @@
+"""Benchmark of ``fit_mf`` with combined slip and M_z on about 10,000 rows.
+
+Data: :func:`frictionlaws.tyre.synthetic_rig.rig_data` of a tyre unlike the template
+(:func:`~frictionlaws.tyre.synthetic_rig.moved_tyre`: the MF 6.1 example with 23
+coefficients moved): 5 loads x 2 pressures x 3 cambers, slip sweeps up and down, a
+combined grid, slip jitter, load drift, 1 % noise.
+
+Baseline, in the same run: one plain :func:`scipy.optimize.least_squares` (trust-region
+reflective, ``x_scale="jac"``, its defaults otherwise) of the same residuals (F_x, F_y and
+M_z on every row, each divided by its largest measured magnitude) over the same
+coefficients that ``fit_mf`` fitted, started from the template's values, with no stages.
+
+Printed: wall time of each, and each result's largest error against the noise-free truth
+(pure F_x0, F_y0 and combined F_x, F_y as a share of the curve's peak, M_z of the peak
+|M_z|) at every load, camber and pressure.
+
+Run: ``python benchmarks/bench_fit_mf.py [--n 68] [--seed 3]`` (n = 68 gives 9,960 rows).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.tyre import MagicFormula, fit_mf
+from frictionlaws.tyre._fit_mf_peak import FittingModel
+from frictionlaws.tyre._fit_mf_stages import CombinedData, predict_fx, predict_fy, predict_mz
+from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
+
+LOADS = np.array([0.4, 0.7, 1.0, 1.3, 1.6])
+CAMBERS = np.radians([-3.0, 0.0, 3.0])
+
+
+def worst_errors(truth: MagicFormula, fitted: MagicFormula) -> dict[str, float]:
+    """Largest errors against the truth as shares of each curve's peak."""
+    k = np.linspace(-0.25, 0.25, 101)
+    a = np.radians(np.linspace(-12, 12, 97))
+    K, A = np.meshgrid(np.linspace(-0.2, 0.2, 21), np.radians([-8.0, -4.0, 4.0, 8.0]))
+    out: dict[str, float] = {}
+    for fz in truth.fnomin * LOADS:
+        for p in truth.nominal_pressure * np.array([0.85, 1.1]):
+            for g in CAMBERS:
+                tx, ty = truth.fx0(k, fz, g, p), truth.fy0(a, fz, g, p)
+                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=p) for m in (truth, fitted))
+                t, f = (m.steady_state(K, A, fz, g, pressure=p) for m in (truth, fitted))
+                pk = np.abs(t0["Mz"]).max()
+                errs = {"Fx0": np.abs(fitted.fx0(k, fz, g, p) - tx).max() / np.abs(tx).max(),
+                        "Fy0": np.abs(fitted.fy0(a, fz, g, p) - ty).max() / np.abs(ty).max(),
+                        "Fx": np.abs(f["Fx"] - t["Fx"]).max() / np.abs(tx).max(),
+                        "Fy": np.abs(f["Fy"] - t["Fy"]).max() / np.abs(ty).max(),
+                        "Mz": max(np.abs(f0["Mz"] - t0["Mz"]).max(),
+                                  np.abs(f["Mz"] - t["Mz"]).max()) / pk}
+                for name, e in errs.items():
+                    out[name] = max(out.get(name, 0.0), float(e))
+    return out
+
+
+def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, float, int]:
+    """One least-squares of every residual over ``names`` from the template's values."""
+    tpl = MagicFormula.from_file("MagicFormula61")
+    mf = FittingModel(dict(tpl.coefficients), fnomin=tpl.fnomin, version="6.1",
+                      pressure=tpl.pressure, nominal_pressure=tpl.nominal_pressure,
+                      structure=tpl.structure)
+    sets = [(CombinedData.select(data, getattr(data, q), np.ones(len(data), bool),  # type: ignore[arg-type]
+                                 tpl.nominal_pressure), f)
+            for q, f in (("fx", predict_fx), ("fy", predict_fy), ("mz", predict_mz))]
+    scales = [float(np.abs(d.target).max()) for d, _ in sets]
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        mf.coefficients.update(zip(names, map(float, p)))
+        with np.errstate(all="ignore"):
+            r = np.concatenate([(f(mf, d) - d.target) / s for (d, f), s in zip(sets, scales)])
+        return np.where(np.isfinite(r), r, 1e3)
+
+    t0 = time.perf_counter()
+    r = least_squares(resid, np.array([mf.coefficients.get(k, 0.0) for k in names]),
+                      x_scale="jac")
+    seconds = time.perf_counter() - t0
+    resid(r.x)
+    return MagicFormula(dict(mf.coefficients), fnomin=tpl.fnomin, version="6.1",
+                        pressure=tpl.pressure, nominal_pressure=tpl.nominal_pressure,
+                        structure=tpl.structure), seconds, int(r.nfev)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=68, help="points per pure-slip sweep")
+    parser.add_argument("--seed", type=int, default=3)
+    args = parser.parse_args()
+    warnings.simplefilter("ignore", ExtrapolationWarning)
+    truth = moved_tyre()
+    data = rig_data(truth, n=args.n, seed=args.seed)
+    print(f"rows: {len(data)} (Fx, Fy and Mz on every row)")
+    t0 = time.perf_counter()
+    res = fit_mf(data, fittyp=61, template="MagicFormula61")
+    staged_s = time.perf_counter() - t0
+    names = list(res.values)
+    plain, plain_s, nfev = plain_least_squares(data, names)
+    print(f"{len(names)} coefficients fitted")
+    print(f"{'':42}{'seconds':>9}" + "".join(f"{k:>8}" for k in ("Fx0", "Fy0", "Fx", "Fy",
+                                                                  "Mz")))
+    for label, model, s in (("fit_mf (staged)", res.model, staged_s),
+                            (f"plain least_squares ({nfev} evaluations)", plain, plain_s)):
+        e = worst_errors(truth, model)
+        print(f"{label:42}{s:>9.1f}" + "".join(f"{100 * e[k]:>7.2f}%"
+                                               for k in ("Fx0", "Fy0", "Fx", "Fy", "Mz")))
+    print("errors: largest against the noise-free truth, share of the curve's peak "
+          "(Mz: of the peak |Mz|)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,166 @@
+"""Plausibility of tyre test data before a Magic Formula is fitted to them.
+
+A unit slip in a header (a slip ratio in percent written as a fraction, slip angles in
+radians under a ``[deg]`` header, loads in kN under ``[N]``) gives numbers that a fit
+accepts and turns into a confident, wrong property file.  :func:`check_plausible`
+refuses such data, naming the file, column, row and the unit the values look like.
+
+The tests are physical bounds, not statistics of the data set:
+
+* **slip ratio**: below -1 the wheel would turn backwards; above 1 with the
+  longitudinal force staying below half the load (a slip coefficient
+  ``max|F_x| / (F_z max|kappa|)`` under 0.5) the values are percent; a slip
+  coefficient above :data:`MAX_SLIP_COEFFICIENT` (150; tyres have 10-40) means
+  fractions under a percent header;
+* **slip angle**: a cornering coefficient ``max|F_y| / (F_z max|tan alpha|)`` above
+  :data:`MAX_CORNERING_COEFFICIENT` (60 per rad; tyres have about 5-40) means radians
+  under a degree header;
+* **load**: a force above :data:`MAX_FORCE_RATIO` (5) times the load on its row, or a
+  median load below FNOMIN / 100 or above 100 FNOMIN, means kN given as N (or N as kN);
+* **camber**: beyond :data:`MAX_CAMBER` (30 deg) the values are degrees under a ``[rad]``
+  header;
+* **pressure**: a median pressure below a fifth or above five times the template's
+  nominal pressure means kPa as Pa, bar as kPa or the like;
+* **aligning moment**: |M_z| above F_z times the unloaded radius (a trail longer than the
+  tyre's radius) means N mm under an ``[N m]`` header.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..errors import InputError
+
+if TYPE_CHECKING:
+    from .tyre_data import TyreData
+
+__all__ = ["check_plausible", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
+           "MAX_FORCE_RATIO"]
+
+#: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
+MAX_SLIP_COEFFICIENT = 150.0
+#: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40).
+MAX_CORNERING_COEFFICIENT = 60.0
+#: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
+MAX_FORCE_RATIO = 5.0
+#: Largest plausible camber [rad] (30 degrees).
+MAX_CAMBER = math.radians(30.0)
+
+
+def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
+                    radius: float | None = None) -> None:
+    """Refuse data whose slips, angles, loads, pressures or moments are in another unit.
+
+    Parameters
+    ----------
+    data : TyreData
+        The measurements (SI, ISO axes).
+    fnomin : float
+        The template's nominal load [N].
+    nominal_pressure : float, optional
+        The template's nominal pressure [Pa] (pressures unchecked without it).
+    radius : float, optional
+        The template's unloaded radius [m] (M_z unchecked without it).
+
+    Raises
+    ------
+    InputError
+        Naming the file, column and row, and the unit the values look like.
+    """
+    _check_loads(data, fnomin)
+    _check_kappa(data)
+    _check_alpha(data)
+    _check_others(data, nominal_pressure, radius)
+
+
+def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
+    """Camber, pressure and aligning moment against their physical ranges."""
+    if (np.abs(data.gamma) > MAX_CAMBER).any():
+        raise InputError(
+            f"camber {math.degrees(float(np.abs(data.gamma).max())):.3g} deg: beyond 30 deg "
+            "the values look like degrees under a [rad] header", file=data.source,
+            column="gamma", row=_row(data, np.abs(data.gamma) > MAX_CAMBER, data.gamma))
+    p = data.pressure[np.isfinite(data.pressure)]
+    if p_nom is not None and p.size:
+        median = float(np.median(p))
+        if not p_nom / 5 <= median <= 5 * p_nom:
+            raise InputError(
+                f"the median pressure {median:g} Pa is far from the template's nominal "
+                f"{p_nom:g} Pa: the values look like another unit (kPa as Pa, bar as kPa?)",
+                file=data.source, column="pressure",
+                row=_row(data, np.isfinite(data.pressure), data.pressure - median))
+    if radius is not None:
+        arm = np.where(np.isfinite(data.mz), np.abs(data.mz) / data.fz, 0.0)
+        if (arm > radius).any():
+            raise InputError(
+                f"|Mz| is {arm.max():.3g} m times the load on this row, more than the tyre's "
+                f"radius {radius:g} m: the moments look like N mm under an [N m] header",
+                file=data.source, column="Mz", row=_row(data, arm > radius, arm))
+
+
+def _row(data: TyreData, mask: np.ndarray, values: np.ndarray) -> int:
+    """Source row of the largest |value| among ``mask``."""
+    idx = np.flatnonzero(mask)
+    return int(data.rows[idx[int(np.argmax(np.abs(values[idx])))]])
+
+
+def _check_loads(data: TyreData, fnomin: float) -> None:
+    for name, force in (("Fx", data.fx), ("Fy", data.fy)):
+        ratio = np.where(np.isfinite(force), np.abs(force) / data.fz, 0.0)
+        if ratio.max() > MAX_FORCE_RATIO:
+            row = _row(data, ratio > MAX_FORCE_RATIO, ratio)
+            raise InputError(
+                f"|{name}| is {ratio.max():.3g} times the load Fz on this row (a tyre's "
+                f"friction stays below 4): the loads look like kN given as N (or {name} in "
+                "another unit than its header says)", file=data.source, column="Fz", row=row)
+    median = float(np.median(data.fz))
+    if not fnomin / 100 <= median <= 100 * fnomin:
+        likely = "kN given as N" if median < fnomin else "N given as kN (or N*1000)"
+        raise InputError(
+            f"the median load {median:g} N is far from the template's FNOMIN {fnomin:g} N: "
+            f"the loads look like {likely}", file=data.source, column="Fz",
+            row=_row(data, np.ones(len(data), bool), data.fz - median))
+
+
+def _check_kappa(data: TyreData) -> None:
+    k = data.kappa
+    if (k < -1 - 1e-9).any():
+        raise InputError(
+            f"slip ratio {k.min():g}: below -1 the wheel turns backwards; the values look "
+            "like percent given as a fraction (write 'kappa [%]')", file=data.source,
+            column="kappa", row=_row(data, k < -1 - 1e-9, k))
+    use = np.isfinite(data.fx) & (np.abs(k) > 0)
+    if not use.any():
+        return
+    coef = float(np.max(np.abs(data.fx[use]) / data.fz[use]) / np.max(np.abs(k[use])))
+    if np.max(np.abs(k[use])) > 1 and coef < 0.5:
+        raise InputError(
+            f"slip ratios up to {np.max(np.abs(k[use])):g} while |Fx| stays below "
+            f"{coef * np.max(np.abs(k[use])):.2g} Fz: the values look like percent given as "
+            "a fraction (write 'kappa [%]')", file=data.source, column="kappa",
+            row=_row(data, use, k))
+    if coef > MAX_SLIP_COEFFICIENT:
+        raise InputError(
+            f"|Fx| reaches {coef * np.max(np.abs(k[use])):.2g} Fz at slip ratios of at most "
+            f"{np.max(np.abs(k[use])):.3g}: a slip coefficient of at least {coef:.0f} (tyres "
+            "have 10-40); the slip ratios look like fractions under a percent header",
+            file=data.source, column="kappa", row=_row(data, use, k))
+
+
+def _check_alpha(data: TyreData) -> None:
+    a = np.tan(data.alpha)
+    use = np.isfinite(data.fy) & (np.abs(a) > 0)
+    if not use.any():
+        return
+    top = float(np.max(np.abs(a[use])))
+    coef = float(np.max(np.abs(data.fy[use]) / data.fz[use])) / top
+    if coef > MAX_CORNERING_COEFFICIENT:
+        raise InputError(
+            f"|Fy| reaches {coef * top:.2g} Fz at slip angles of at most "
+            f"{math.degrees(math.atan(top)):.3g} deg: a cornering coefficient of at least "
+            f"{coef:.0f} per rad (tyres have about 5-40); the slip angles look like radians "
+            "under a [deg] header", file=data.source, column="alpha",
+            row=_row(data, use, a))

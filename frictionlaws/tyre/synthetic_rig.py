@@ -1,0 +1,130 @@
+"""Rig-like tyre test data generated from a Magic Formula, for checking fits.
+
+:func:`rig_data` measures a known tyre the way a flat-track rig does: at several loads,
+pressures and cambers it sweeps the slip ratio and the slip angle up and down and runs a
+combined-slip grid; the recorded slips jitter, the load drifts and every force and moment
+carries noise.  :func:`moved_tyre` makes a tyre unlike a template by moving its
+coefficients.  ``tests/test_tyre_fit_mf_stages.py`` and ``benchmarks/bench_fit_mf.py``
+fit :func:`~frictionlaws.tyre.fit_mf.fit_mf` to such data and compare the result with the
+noise-free truth.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from .magic_formula import MagicFormula
+from .tyre_data import TyreData
+
+__all__ = ["rig_data", "moved_tyre", "MOVED"]
+
+#: Coefficients of the packaged MF 6.1 example moved (multiplied) to make another tyre:
+#: peak, stiffness, shape, shifts, combined-slip and aligning coefficients, 5-50 %.
+MOVED = {"PDX1": 0.92, "PKX1": 1.15, "PCX1": 1.05, "PEX1": 0.9, "PDY1": 1.06, "PKY1": 0.88,
+         "PCY1": 0.95, "PEY1": 1.1, "PDY2": 1.1, "PKY2": 1.1, "PVY1": 1.5, "PHY1": 0.7,
+         "RBX1": 1.2, "RBY1": 0.85, "RCX1": 1.05, "RCY1": 0.95, "RVY1": 0.8, "QBZ1": 1.1,
+         "QDZ1": 0.9, "QCZ1": 1.05, "QDZ6": 1.3, "QEZ1": 0.9, "QHZ1": 1.2}
+
+
+def moved_tyre(template: str = "MagicFormula61", factors: Mapping[str, float] = MOVED,
+               set_to: Mapping[str, float] | None = None) -> MagicFormula:
+    """A tyre unlike ``template``: coefficients multiplied by ``factors``, others set.
+
+    Parameters
+    ----------
+    template : str
+        A property file or packaged example.
+    factors : mapping
+        Coefficient -> factor (default :data:`MOVED`).
+    set_to : mapping, optional
+        Coefficient -> value (default: a moment arm the example lacks, SSZ1 = 0.01,
+        SSZ2 = 0.02).
+
+    Returns
+    -------
+    MagicFormula
+        The moved tyre, with the template's FNOMIN, pressures, limits and structure.
+    """
+    base = MagicFormula.from_file(template)
+    c = dict(base.coefficients)
+    for k, f in factors.items():
+        c[k] = c.get(k, 0.0) * f
+    c.update({"SSZ1": 0.01, "SSZ2": 0.02} if set_to is None else dict(set_to))
+    return MagicFormula(c, fnomin=base.fnomin, version=base.version, pressure=base.pressure,
+                        nominal_pressure=base.nominal_pressure, limits=base.limits,
+                        structure=base.structure, name=f"moved {base.name}")
+
+
+def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4, 0.7, 1.0,
+             1.3, 1.6), pressures: Sequence[float] = (0.85, 1.1),
+             cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0), combined: bool = True,
+             noise: float = 0.01, seed: int = 3) -> TyreData:
+    """Flat-track-like measurements of ``truth`` (SI, ISO axes).
+
+    At every load (times FNOMIN), pressure (times the nominal pressure) and camber: a
+    slip-ratio sweep -0.25..0.25 and a slip-angle sweep -12..12 deg, each up and down
+    with ``n`` points, and (``combined``) slip-ratio sweeps -0.2..0.2 (15 points) at slip
+    angles -8, -4, 4 and 8 deg.  The recorded slips jitter (normal, 0.002 in slip ratio;
+    uniform 0.1-0.3 deg in slip angle on the slip-ratio sweeps, +-0.3 deg elsewhere), the
+    load drifts (normal, 1 %; the recorded load is the one applied), and F_x, F_y, M_z
+    carry normal noise of ``noise`` times each load's largest magnitude.
+
+    Parameters
+    ----------
+    truth : MagicFormula
+        The tyre measured (with its structure, for M_z).
+    n : int
+        Points per pure-slip sweep.
+    loads, pressures : sequence of float
+        Multiples of FNOMIN and of the nominal pressure.
+    cambers_deg : sequence of float
+        Cambers [deg].
+    combined : bool
+        Add the combined-slip grid.
+    noise : float
+        Noise share of each load's peak.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    TyreData
+        With ``fx``, ``fy`` and ``mz`` on every row.
+    """
+    rng = np.random.default_rng(seed)
+    blocks = []
+    p_nom = truth.nominal_pressure or 2.6e5
+    for fz in truth.fnomin * np.asarray(loads):
+        for p in p_nom * np.asarray(pressures):
+            for g in np.radians(cambers_deg):
+                k = np.linspace(-0.25, 0.25, n)
+                a = np.radians(np.linspace(-12, 12, n))
+                for ks in (k, k[::-1]):
+                    side = np.radians(rng.uniform(0.1, 0.3, n)) * rng.choice([-1, 1], n)
+                    blocks.append((fz, ks + rng.normal(0, 0.002, n), side, g, p))
+                for as_ in (a, a[::-1]):
+                    blocks.append((fz, rng.normal(0, 0.002, n),
+                                   as_ + np.radians(rng.uniform(-0.3, 0.3, n)), g, p))
+                if combined:
+                    kk = np.linspace(-0.2, 0.2, 15)
+                    for deg in (-8, -4, 4, 8):
+                        blocks.append((fz, kk + rng.normal(0, 0.002, kk.size),
+                                       np.radians(deg + rng.uniform(-0.3, 0.3, kk.size)),
+                                       g, p))
+    level, kappa, alpha, gamma, pressure = (
+        np.concatenate([np.broadcast_to(b[i], b[1].shape) for b in blocks]) for i in range(5))
+    fz = level * (1 + rng.normal(0, 0.01, level.size))
+    out = truth.steady_state(kappa, alpha, fz, gamma, pressure=pressure)
+
+    def noisy(v: np.ndarray) -> np.ndarray:
+        v = v.copy()
+        for lv in np.unique(level):
+            m = level == lv
+            v[m] += noise * np.abs(v[m]).max() * rng.standard_normal(int(m.sum()))
+        return v
+
+    return TyreData.from_arrays(fz=fz, kappa=kappa, alpha=alpha, gamma=gamma,
+                                pressure=pressure, fx=noisy(out["Fx"]), fy=noisy(out["Fy"]),
+                                mz=noisy(out["Mz"]), source="<synthetic rig data>")

@@ -1,0 +1,193 @@
+"""The staged Magic Formula fit on rig-like data: combined slip, aligning moment, checks."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from frictionlaws.cli import main
+from frictionlaws.errors import ExtrapolationWarning, FitError, InputError
+from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, read_tyre_data
+from frictionlaws.tyre._fit_mf_checks import check_plausible
+from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
+
+LOADS = np.array([0.4, 0.7, 1.0, 1.3, 1.6])
+CAMBERS = np.radians([-3.0, 0.0, 3.0])
+
+
+@pytest.fixture(autouse=True)
+def _quiet_extrapolation():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        yield
+
+
+def worst_errors(truth: MagicFormula, fitted: MagicFormula) -> dict[str, float]:
+    """Largest error against the noise-free truth at every load, camber and pressure, as a
+    share of the peak of each curve (|F_x0|, |F_y0|, |M_z| of the side-slip sweep)."""
+    k = np.linspace(-0.25, 0.25, 101)
+    a = np.radians(np.linspace(-12, 12, 97))
+    K, A = np.meshgrid(np.linspace(-0.2, 0.2, 21), np.radians([-8.0, -4.0, 4.0, 8.0]))
+    worst: dict[str, float] = {}
+
+    def keep(name: str, err: float) -> None:
+        worst[name] = max(worst.get(name, 0.0), err)
+
+    for fz in truth.fnomin * LOADS:
+        for p in truth.nominal_pressure * np.array([0.85, 1.1]):
+            for g in CAMBERS:
+                tx, ty = truth.fx0(k, fz, g, p), truth.fy0(a, fz, g, p)
+                keep("Fx0", np.abs(fitted.fx0(k, fz, g, p) - tx).max() / np.abs(tx).max())
+                keep("Fy0", np.abs(fitted.fy0(a, fz, g, p) - ty).max() / np.abs(ty).max())
+                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=p) for m in (truth, fitted))
+                t, f = (m.steady_state(K, A, fz, g, pressure=p) for m in (truth, fitted))
+                peak = np.abs(t0["Mz"]).max()
+                keep("Fx", np.abs(f["Fx"] - t["Fx"]).max() / np.abs(tx).max())
+                keep("Fy", np.abs(f["Fy"] - t["Fy"]).max() / np.abs(ty).max())
+                keep("Mz", max(np.abs(f0["Mz"] - t0["Mz"]).max(),
+                               np.abs(f["Mz"] - t["Mz"]).max()) / peak)
+    return worst
+
+
+@pytest.mark.slow
+def test_rig_data_of_another_tyre_are_recovered_within_the_stated_shares(
+        tmp_path: Path) -> None:
+    truth = moved_tyre()
+    data = rig_data(truth)
+    res = fit_mf(data, fittyp=61, template="MagicFormula61")
+    fitted = MagicFormula.from_file(res.write(tmp_path / "fitted.tir"))
+    worst = worst_errors(truth, fitted)
+    assert worst["Fx0"] < 0.01 and worst["Fy0"] < 0.01, worst
+    assert worst["Fx"] < 0.02 and worst["Fy"] < 0.02, worst
+    assert worst["Mz"] < 0.03, worst
+    # quadratic pressure terms need three pressures: named, at the template's value
+    assert {"PPX2", "PPY4"} <= set(res.undetermined)
+    for name in ("RBX1", "RBY1", "RVY1", "QBZ1", "QDZ1", "QDZ6", "SSZ1", "SSZ2", "PPZ1"):
+        assert name in res.values and 0 < res.stderr[name] < math.inf, name
+    assert set(res.errors) == {"x", "y", "x_all", "y_all", "mz"}
+    # the rows near pure slip are used despite the jitter (none dropped)
+    near_x = np.isfinite(data.fx) & (np.abs(data.alpha) <= math.radians(1.0))
+    assert res.errors["x"]["n"] == near_x.sum()
+    assert res.errors["mz"]["n"] == len(data)
+    text = (tmp_path / "fitted.tir").read_text()
+    assert "alpha* = tan(alpha)" in text and "FITTED by frictionlaws" in text
+    assert "Mz (every row, combined slip)" in text
+    lim = fitted.limits
+    assert lim["gamma"] == pytest.approx((data.gamma.min(), data.gamma.max()))
+    assert lim["pressure"] == pytest.approx((data.pressure.min(), data.pressure.max()))
+    assert lim["fz"] == pytest.approx((data.fz.min(), data.fz.max()))
+    assert lim["alpha"] == pytest.approx((data.alpha.min(), data.alpha.max()))
+    assert lim["kappa"] == pytest.approx((data.kappa.min(), data.kappa.max()))
+
+
+def test_an_mz_column_is_fitted_and_without_a_lateral_fit_is_named_as_unused() -> None:
+    truth = moved_tyre()
+    data = rig_data(truth, n=15, combined=False)
+    no_fy = TyreData.from_arrays(fz=data.fz, kappa=data.kappa, alpha=data.alpha,
+                                 gamma=data.gamma, pressure=data.pressure, fx=data.fx,
+                                 mz=data.mz)
+    res = fit_mf(no_fy, fittyp=61, template="MagicFormula61")
+    assert "mz" not in res.errors
+    assert any("M_z rows not used" in n for n in res.notes)
+    assert "QBZ1" in res.undetermined
+
+
+def test_only_combined_rows_fit_nothing_and_write_nothing(tmp_path: Path) -> None:
+    truth = MagicFormula.from_file("MagicFormula61")
+    K, A = np.meshgrid(np.linspace(0.05, 0.2, 8), np.radians([4.0, 8.0]))
+    fz = np.full(K.size, truth.fnomin)
+    out = truth.steady_state(K.ravel(), A.ravel(), fz)
+    data = TyreData.from_arrays(fz=fz, kappa=K.ravel(), alpha=A.ravel(), fx=out["Fx"],
+                                fy=out["Fy"])
+    with pytest.raises(FitError, match="nothing could be fitted"):
+        fit_mf(data, fittyp=61)
+    csv = tmp_path / "combined.csv"
+    lines = ["Fz [N],kappa [-],alpha [rad],Fx [N],Fy [N]"]
+    lines += [f"{a},{b},{c},{d},{e}" for a, b, c, d, e in
+              zip(fz, K.ravel(), A.ravel(), out["Fx"], out["Fy"])]
+    csv.write_text("\n".join(lines) + "\n")
+    target = tmp_path / "out.tir"
+    assert main(["tyre", "fit-mf", str(csv), "-o", str(target)]) != 0
+    assert not target.exists()
+
+
+def _sweep(amplitude: float, n: int = 21) -> TyreData:
+    mf = MagicFormula.from_file("MagicFormula61")
+    k = np.linspace(-amplitude, amplitude, n)
+    a = np.radians(np.linspace(-10, 10, n))
+    fz = np.full(n, mf.fnomin)
+    return TyreData.from_arrays(fz=np.r_[fz, fz], kappa=np.r_[k, np.zeros(n)],
+                                alpha=np.r_[np.zeros(n), a],
+                                fx=np.r_[mf.fx0(k, fz), np.full(n, np.nan)],
+                                fy=np.r_[np.full(n, np.nan), mf.fy0(a, fz)])
+
+
+@settings(max_examples=25, deadline=None)
+@given(amplitude=st.floats(0.05, 0.6), scale=st.sampled_from([100.0, 0.01]))
+def test_slip_ratios_in_the_wrong_unit_are_refused_naming_percent(amplitude: float,
+                                                                  scale: float) -> None:
+    data = _sweep(amplitude)
+    check_plausible(data, 6752.0)  # the honest data pass
+    data.kappa = data.kappa * scale
+    with pytest.raises(InputError, match="percent") as err:
+        check_plausible(data, 6752.0)
+    assert "kappa" in str(err.value)
+
+
+@settings(max_examples=25, deadline=None)
+@given(degrees=st.floats(2.0, 20.0))
+def test_radians_under_a_degree_header_are_refused(tmp_path_factory: pytest.TempPathFactory,
+                                                   degrees: float) -> None:
+    mf = MagicFormula.from_file("MagicFormula61")
+    a = np.radians(np.linspace(-degrees, degrees, 15))
+    fy = mf.fy0(a, mf.fnomin)
+    csv = tmp_path_factory.mktemp("alpha") / "sweep.csv"
+    csv.write_text("Fz [N],alpha [deg],Fy [N]\n" + "".join(
+        f"{mf.fnomin},{float(x)!r},{float(y)!r}\n" for x, y in zip(a, fy)))  # rad as deg
+    with pytest.raises(InputError, match="radians under a \\[deg\\] header") as err:
+        check_plausible(read_tyre_data(csv), mf.fnomin)
+    assert "alpha" in str(err.value) and "row" in str(err.value)
+
+
+@pytest.mark.parametrize("factor,likely", [(1e-3, "kN given as N"), (1e3, "N given as kN")])
+def test_loads_in_the_wrong_unit_are_refused(factor: float, likely: str,
+                                             tmp_path: Path) -> None:
+    data = _sweep(0.2)
+    data.fz = data.fz * factor
+    with pytest.raises(InputError, match=likely):
+        check_plausible(data, 6752.0)
+    csv = tmp_path / "kn.csv"
+    csv.write_text("Fz [N],kappa [-],Fx [N]\n" + "".join(
+        f"{z},{k},{x}\n" for z, k, x in zip(data.fz, data.kappa, data.fx)
+        if np.isfinite(x)))
+    target = tmp_path / "out.tir"
+    assert main(["tyre", "fit-mf", str(csv), "-o", str(target)]) == 2
+    assert not target.exists()
+
+
+@pytest.mark.parametrize("column,factor,match", [
+    ("gamma", 57.3, "degrees under a \\[rad\\]"), ("pressure", 1e3, "another unit"),
+    ("pressure", 1e-3, "another unit"), ("mz", 1e3, "N mm under")])
+def test_cambers_pressures_and_moments_in_the_wrong_unit_are_refused(
+        column: str, factor: float, match: str) -> None:
+    truth = MagicFormula.from_file("MagicFormula61")
+    data = rig_data(truth, n=7, combined=False)
+    check_plausible(data, truth.fnomin, truth.nominal_pressure, 0.3943)
+    setattr(data, column, getattr(data, column) * factor)
+    with pytest.raises(InputError, match=match) as err:
+        check_plausible(data, truth.fnomin, truth.nominal_pressure, 0.3943)
+    assert "row" in str(err.value)
+
+
+def test_columns_the_fit_does_not_use_are_named(tmp_path: Path) -> None:
+    csv = tmp_path / "extra.csv"
+    csv.write_text("Fz [N],kappa [-],Fx [N],Vx [m/s],Mx [N m]\n6000,0.1,5000,16,3\n")
+    data = read_tyre_data(csv)
+    assert any("columns not used" in n and "Vx [m/s]" in n and "Mx [N m]" in n
+               for n in data.notes)
