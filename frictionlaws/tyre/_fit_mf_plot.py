@@ -57,7 +57,7 @@ def plot_fit(result: Any, path: str | Path) -> Path:
     import matplotlib.pyplot as plt
 
     from ..outputs import atomic_write, check_outputs
-    from .fit_mf import _select
+    from ._fit_mf_rows import _select
 
     fmt = check_figure_path(path)
     check_outputs([path], inputs=[result.data.source], what="figure")
