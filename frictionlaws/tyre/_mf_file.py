@@ -12,6 +12,9 @@ from pathlib import Path
 from ..errors import InputError
 from .tir import PropertyFile
 
+__all__ = ["version_of", "file_pressures", "file_limits", "EXAMPLES", "packaged_example",
+           "STRUCTURE_SECTIONS", "structure"]
+
 
 def version_of(pf: PropertyFile) -> tuple[str, str]:
     """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""

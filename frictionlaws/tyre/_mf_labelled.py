@@ -15,6 +15,8 @@ import numpy as np
 
 from ..errors import InputError
 
+__all__ = ["labelled"]
+
 _F = TypeVar("_F", bound=Callable[..., Any])
 
 

@@ -536,10 +536,34 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     return pf
 
 
+def _model_from_template(tpl: PropertyFile, data: TyreData, version: str, notes: list[str]
+                         ) -> tuple[dict[str, float], float | None, float | None, FittingModel]:
+    """The template's coefficients, the nominal pressure (of the file; of the fit: None for
+    MF 5.2) and the model the stages fit,
+    after the data's plausibility against the template (FNOMIN, pressure, radius)."""
+    notes.append(f"template {tpl.path}: FNOMIN, the other sections and the undetermined "
+                 "coefficients come from it")
+    tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
+                                  "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
+    fnomin = tpl.si("VERTICAL", "FNOMIN")
+    p_nom = _nominal_pressure(tpl, data, notes)
+    radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
+              else None)
+    check_plausible(data, fnomin, p_nom if tpl.has("OPERATING_CONDITIONS", "NOMPRES")
+                    else None, radius)
+    p_fit = p_nom if version != "5.2" else None
+    mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
+                      pressure=p_fit, nominal_pressure=p_fit, structure=structure(tpl))
+    if version == "5.2" and np.isfinite(data.pressure).any():
+        notes.append("MF 5.2 has no pressure coefficients here: the pressure column is "
+                     "not used")
+    return dict(tpl_coeffs), p_nom, p_fit, mf
+
+
 def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
            template: str | Path | PropertyFile | None = None,
            sign_convention: str = "iso") -> MFFit:
-    """Fit the pure-slip Magic Formula (F_x0 and F_y0 groups) to tyre test data.
+    """Fit the Magic Formula to tyre test data, stage by stage (module docstring).
 
     Parameters
     ----------
@@ -577,22 +601,7 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         data = read_tyre_data(data, sign_convention=sign_convention)
     tpl = _template(template, version)
     notes = list(data.notes)
-    notes.append(f"template {tpl.path}: FNOMIN, the other sections and the undetermined "
-                 "coefficients come from it")
-    tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
-                                  "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
-    fnomin = tpl.si("VERTICAL", "FNOMIN")
-    p_nom = _nominal_pressure(tpl, data, notes)
-    radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
-              else None)
-    check_plausible(data, fnomin, p_nom if tpl.has("OPERATING_CONDITIONS", "NOMPRES")
-                    else None, radius)
-    p_fit = p_nom if version != "5.2" else None
-    mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
-                      pressure=p_fit, nominal_pressure=p_fit, structure=structure(tpl))
-    if version == "5.2" and np.isfinite(data.pressure).any():
-        notes.append("MF 5.2 has no pressure coefficients here: the pressure column is "
-                     "not used")
+    tpl_coeffs, p_nom, p_fit, mf = _model_from_template(tpl, data, version, notes)
     values, stderr, undetermined, stages, errors, warns = _fit_directions(
         mf, data, version, tpl_coeffs, p_fit, notes)
     later = stages_.later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr,

@@ -632,9 +632,22 @@ class MagicFormula:
         return self.gamma_star(gamma) if self._six else gamma * self._c("LGAY")
 
     def gamma_star(self, gamma: Any) -> Any:
-        """The camber variable gamma* of the equations: sin(gamma) with ``slip_angle =
-        "tan_alpha"`` (the book's starred quantities, eq. 4.E4), gamma itself with
-        ``"alpha"`` (both unstarred, as MFeval's "revoke alpha_star" modes)."""
+        """Return the camber variable gamma* of the equations.
+
+        It is sin(gamma) with ``slip_angle = "tan_alpha"`` (the book's starred
+        quantities, eq. 4.E4) and gamma itself with ``"alpha"`` (both unstarred, as
+        MFeval's "revoke alpha_star" modes).
+
+        Parameters
+        ----------
+        gamma : float or array
+            Camber angle [rad].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The value of gamma* (sin(gamma) or gamma).
+        """
         return np.sin(gamma) if self.slip_angle == "tan_alpha" else np.asarray(gamma)
 
     @labelled(("kappa", "alpha", "fz", "gamma"), ("G_xa", "1", "combined-slip weight of F_x"))
