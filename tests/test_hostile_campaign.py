@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hostile import check_api, check_outcome, hostile, run_cli
+from hostile import Snapshot, check_api, check_outcome, hostile, run_cli
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -310,3 +310,19 @@ def test_unreadable_standard_input_in_a_campaign_is_named_stdin(tmp_path):
     assert all(ln.startswith("error: ") for ln in res.err.strip().splitlines())
     assert "file '<stdin>'" in res.err
     assert "frictionlaws-stdin-" not in res.err
+
+
+@hostile(6)
+@given(pair=st.sampled_from([("steel", "Steel"), ("GLASS", "glass"), ("Ice", "iCE")]),
+       seed=st.integers(0, 2**16))
+def test_export_by_refuses_group_file_names_that_differ_only_in_case(pair, seed,
+                                                                    tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("case")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(list(pair), 4, 1, 0.004, seed))
+    snap = Snapshot.take([tmp], [data])
+    res = run_cli(["export", "--law", "thirion", "--fit", str(data), "--by", "surface",
+                   "--format", "abaqus", "--p", "0.1MPa:0.6MPa:4", "-o", str(tmp / "deck.inp")])
+    check_outcome(res, snapshot=snap)
+    assert res.code == 2 and "differing only in case" in res.err
+    assert sorted(p.name for p in tmp.iterdir()) == ["g.csv"]
