@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from ._workers import batches, local_workers
-from .errors import FitError, InputError
+from .errors import Argument, FitError, InputError
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
            "run_parallel",
@@ -194,9 +194,7 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
     check_grouping(by)
     missing = [c for c in by if c not in frame.columns]
     if missing:
-        raise InputError(f"no column {', '.join(missing)} to group by (columns: "
-                         f"{', '.join(map(str, frame.columns))})", file=str(dataset.source),
-                         option="by")
+        _refuse_missing_group_column(dataset, missing[0])
     for col in by:
         count = int(frame[col].astype(str).nunique())
         if count > 1 and len(frame) < MIN_ROWS_PER_GROUP * count:
@@ -779,6 +777,23 @@ def _fmt(x: Any) -> str:
 _METRICS = ("r2", "rmse", "aic", "bic", "n")
 #: Datasets between two garbage collections while streaming (keeps memory flat).
 _GC_EVERY = 50
+
+
+def _refuse_missing_group_column(dataset: Any, col: str) -> None:
+    """Name why a ``by`` column is not there: read under its dataset name, or not read."""
+    from .io.columns import _ALIAS_LOOKUP, _norm
+
+    columns = ", ".join(map(str, dataset.frame.columns))
+    canon = _ALIAS_LOOKUP.get(_norm(col))
+    if canon is not None and canon != col and canon in dataset.frame.columns:
+        raise InputError(f"no column {col} to group by: a column '{col}' is read as the "
+                         f"dataset column '{canon}'; group by {canon} (columns read: "
+                         f"{columns})", file=str(dataset.source), option="by")
+    raise InputError([f"no column {col} to group by (columns read: {columns}); a column "
+                      f"of the file outside the dataset columns is not read: to group by it, "
+                      "map it to surface or condition_id, e.g. ",
+                      Argument("mapping", f"surface={col}")],
+                     file=str(dataset.source), option="by")
 
 
 def group_column(name: str) -> str:

@@ -326,3 +326,29 @@ def test_export_by_refuses_group_file_names_that_differ_only_in_case(pair, seed,
     check_outcome(res, snapshot=snap)
     assert res.code == 2 and "differing only in case" in res.err
     assert sorted(p.name for p in tmp.iterdir()) == ["g.csv"]
+
+
+@hostile(8)
+@given(header=st.sampled_from(["run", "compound", "rig", "day", "material", "counter_surface",
+                               "Counter Surface"]),
+       command=st.sampled_from(["fit", "compare", "export"]), seed=st.integers(0, 2**16))
+def test_by_a_column_the_loader_renamed_or_left_unread_says_so(header, command, seed,
+                                                              tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("bycol")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(["steel", "glass"], 4, 1, 0.004, seed)
+                    .replace("surface,", f"{header},", 1))
+    argv = {"fit": ["fit", "--law", "thirion", str(data)],
+            "compare": ["compare", str(data), "--laws", "thirion,coulomb"],
+            "export": ["export", "--law", "thirion", "--fit", str(data), "--format", "abaqus",
+                       "--p", "0.1MPa:0.6MPa:4", "-o", str(tmp / "deck.inp")]}[command]
+    res = run_cli([*argv, "--by", header])
+    check_outcome(res)
+    assert res.code == 2 and f"no column {header} to group by" in res.err
+    if header.lower().replace(" ", "_") in ("material", "counter_surface"):
+        assert "read as the dataset column 'surface'; group by surface" in res.err
+    else:
+        assert f"--map surface={header}" in res.err and "mapping=" not in res.err
+        mapped = run_cli([*argv, "--map", f"surface={header}", "--by", "surface"])
+        check_outcome(mapped)
+        assert mapped.code == 0
