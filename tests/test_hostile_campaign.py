@@ -352,3 +352,24 @@ def test_by_a_column_the_loader_renamed_or_left_unread_says_so(header, command, 
         mapped = run_cli([*argv, "--map", f"surface={header}", "--by", "surface"])
         check_outcome(mapped)
         assert mapped.code == 0
+
+
+@hostile(6)
+@given(short=st.integers(0, 2), seed=st.integers(0, 2**16), api=st.booleans())
+def test_a_shared_fit_names_the_group_too_short_to_fit(short, seed, api, tmp_path_factory):
+    surfaces = ["steel", "glass", "ice"]
+    lines = _campaign_csv(surfaces, 4, 1, 0.004, seed).splitlines()
+    body = [ln for ln in lines[1:] if not ln.startswith(surfaces[short] + ",")]
+    body += [next(ln for ln in lines[1:] if ln.startswith(surfaces[short] + ","))]
+    data = tmp_path_factory.mktemp("short") / "g.csv"
+    data.write_text("\n".join([lines[0], *body]) + "\n")
+    if api:
+        from frictionlaws.errors import InputError
+        from frictionlaws.shared import fit_shared
+
+        with pytest.raises(InputError, match=rf"\[surface={surfaces[short]}\]' has 1 rows"):
+            fit_shared("thirion", str(data), by="surface", shared=["b"])
+        return
+    res = run_cli(["fit", "--law", "thirion", str(data), "--by", "surface", "--shared", "b"])
+    check_outcome(res)
+    assert res.code == 2 and f"[surface={surfaces[short]}]' has 1 rows" in res.err
