@@ -36,7 +36,7 @@ from ._workers import batches, local_workers
 from .errors import Argument, FitError, InputError
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
-           "run_parallel",
+           "run_parallel", "group_subset",
            "iter_parallel", "batch_size", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
            "tidy_columns", "key_text", "fit_groups", "group_column", "check_grouping",
            "UnreadableDatasets", "NEVER_GROUPING", "MIN_ROWS_PER_GROUP"]
@@ -277,10 +277,33 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
     out = []
     for key, mask in group_keys(dataset, list(by)):
-        subset = dataset.subset(mask)
-        subset.name = f"{dataset.name} [{key_text(key)}]"
-        out.append((key, fit(law, subset, **fit_options)))
+        out.append((key, fit(law, group_subset(dataset, key, mask), **fit_options)))
     return out
+
+
+def group_subset(dataset: Any, key: Mapping[str, Any], mask: np.ndarray) -> Any:
+    """The rows of one group, named by it, so every message names the group.
+
+    Parameters
+    ----------
+    dataset : Dataset
+        The whole dataset.
+    key : mapping
+        The group's key (column -> value); empty for all rows.
+    mask : numpy.ndarray
+        The group's rows.
+
+    Returns
+    -------
+    Dataset
+        ``dataset`` itself when the group is every row and has no key, else its
+        subset named ``NAME [KEY]`` (e.g. ``campaign [surface=steel]``).
+    """
+    if not key and mask.all():
+        return dataset
+    subset = dataset.subset(mask)
+    subset.name = f"{dataset.name} [{key_text(key)}]"
+    return subset
 
 
 def key_text(key: Mapping[str, Any]) -> str:
@@ -435,7 +458,7 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
                                   "source": job.shown or str(ds.source),
                                   "group": key, "law": law, "rows": int(mask.sum())}
         try:
-            res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
+            res = fit(law, group_subset(ds, key, mask), **job.fit_options)
         except (InputError, FitError) as exc:
             record["error"] = _shown_error(exc, job)
         else:
@@ -988,7 +1011,7 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
                                   "rows": int(mask.sum())}
         try:
             cmp = compare(list(job.laws) if job.laws else None,
-                          ds.subset(mask) if not mask.all() else ds, **job.options)
+                          group_subset(ds, key, mask), **job.options)
         except (InputError, FitError) as exc:
             record["error"] = _shown_error(exc, job)
         else:

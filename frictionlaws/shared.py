@@ -181,7 +181,7 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     -------
     SharedFit
     """
-    from .campaign import group_keys
+    from .campaign import group_keys, group_subset
     from .fitting import fit
     from .io import load_dataset
     from .registry import get_law
@@ -196,7 +196,7 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     fixed = dict(fix or {})
     shared = list(dict.fromkeys(shared))
     _check_shared(law, shared, fixed)
-    separate = [fit(law, _group_subset(ds, key, mask), fix=fixed, weights=weights)
+    separate = [fit(law, group_subset(ds, key, mask), fix=fixed, weights=weights)
                 for key, mask in groups]
     problem = _build_problem(law, ds, groups, shared, fixed)
     out = _solve(problem, columns, groups, separate)
@@ -215,15 +215,6 @@ def _check_shared(law: Any, shared: list[str], fixed: Mapping[str, float]) -> No
     if set(shared) >= set(law.param_names) - set(fixed):
         raise InputError("every free parameter is shared: that is one pooled fit, not a "
                          "shared one")
-
-
-def _group_subset(ds: Any, key: dict[str, Any], mask: np.ndarray) -> Any:
-    """The rows of one group, named by it (as a campaign names its groups' fits)."""
-    from .campaign import key_text
-
-    subset = ds.subset(mask)
-    subset.name = f"{ds.name} [{key_text(key)}]"
-    return subset
 
 
 def _build_problem(law: Any, ds: Any, groups: list[tuple[dict[str, Any], np.ndarray]],

@@ -373,3 +373,23 @@ def test_a_shared_fit_names_the_group_too_short_to_fit(short, seed, api, tmp_pat
     res = run_cli(["fit", "--law", "thirion", str(data), "--by", "surface", "--shared", "b"])
     check_outcome(res)
     assert res.code == 2 and f"[surface={surfaces[short]}]' has 1 rows" in res.err
+
+
+@hostile(6)
+@given(short=st.integers(0, 2), out=st.sampled_from(["", ".csv", ".jsonl", ".json"]),
+       command=st.sampled_from(["fit", "compare"]), seed=st.integers(0, 2**16))
+def test_a_failed_group_of_a_campaign_is_named_in_its_error(short, out, command, seed,
+                                                           tmp_path_factory):
+    surfaces = ["steel", "glass", "ice"]
+    lines = _campaign_csv(surfaces, 4, 1, 0.004, seed).splitlines()
+    body = [ln for ln in lines[1:] if not ln.startswith(surfaces[short] + ",")]
+    body += [next(ln for ln in lines[1:] if ln.startswith(surfaces[short] + ","))]
+    tmp = tmp_path_factory.mktemp("failed")
+    data = tmp / "g.csv"
+    data.write_text("\n".join([lines[0], *body]) + "\n")
+    argv = (["fit", "--law", "thirion"] if command == "fit"
+            else ["compare", "--laws", "thirion,coulomb"])
+    extra = ["--out", str(tmp / f"t{out}")] if out else []
+    res = run_cli([*argv, str(data), "--by", "surface", *extra])
+    check_outcome(res, allowed=[tmp / f"t{out}"] if out else [])
+    assert res.code == 1 and f"g [surface={surfaces[short]}]" in res.out + res.err
