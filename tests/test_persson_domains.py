@@ -236,3 +236,25 @@ def test_a_quadrature_rule_that_is_none_or_unbounded_is_refused(order, panels):
     with pytest.raises(InputError, match="order|panels_per_decade"):
         friction(tread_compound(), SURF, 0.01, 293.15, 2e5, order=order,
                  panels_per_decade=panels)
+
+
+@settings(max_examples=3, deadline=None, derandomize=True)
+@given(edge=st.sampled_from(["low", "high", "both"]))
+def test_compare_scans_a_strict_domain_law_only_inside_its_domain(edge, tmp_path_factory):
+    from frictionlaws.comparison import compare
+
+    temps = {"low": (T_LO, T_LO + 20.0), "high": (T_HI - 20.0, T_HI), "both": (T_LO, T_HI)}[edge]
+    v = np.logspace(-4, 1, 5)
+    rows = {"p": [], "v": [], "T": [], "mu": []}
+    for T in temps:
+        for p in (1e5, 3e5):
+            mu = LAW(p=p, v=v, T=T, q1=3e5, mu_a=0.1)
+            rows["p"] += [p] * v.size
+            rows["v"] += list(v)
+            rows["T"] += [T] * v.size
+            rows["mu"] += list(mu + 0.005 * np.sin(np.arange(v.size) + p / 1e5))
+    data = {k: np.asarray(x, float) for k, x in rows.items()}
+    cmp = compare(["persson", "coulomb"], data, folds=3)
+    assert cmp.box["T"][0] < T_LO or cmp.box["T"][1] > T_HI  # the data's box leaves it
+    scan = cmp["persson"].plausibility
+    assert math.isfinite(scan.mu_min) and math.isfinite(scan.mu_max)
