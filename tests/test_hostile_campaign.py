@@ -393,3 +393,29 @@ def test_a_failed_group_of_a_campaign_is_named_in_its_error(short, out, command,
     res = run_cli([*argv, str(data), "--by", "surface", *extra])
     check_outcome(res, allowed=[tmp / f"t{out}"] if out else [])
     assert res.code == 1 and f"g [surface={surfaces[short]}]" in res.out + res.err
+
+
+@hostile(4)
+@given(method=st.sampled_from(METHODS), seed=st.integers(0, 2**16),
+       order=st.randoms(use_true_random=False))
+def test_grouped_fits_do_not_depend_on_row_order(method, seed, order, tmp_path_factory):
+    lines = _campaign_csv(["steel", "glass"], 5, 2, 0.01, seed).splitlines()
+    body = lines[1:]
+    order.shuffle(body)
+    tmp = tmp_path_factory.mktemp("order")
+    docs = []
+    for name, rows in (("a.csv", lines[1:]), ("b.csv", body)):
+        (tmp / name).write_text("\n".join([lines[0], *rows]) + "\n")
+        res = run_cli(["fit", "--law", "thirion", str(tmp / name), "--by", "surface",
+                       "--uncertainty", method, *(["--boot", "40"] if method == "bootstrap"
+                                                  else []), "--json"])
+        check_outcome(res, json_out=True)
+        assert res.code == 0
+        docs.append({json.dumps(r["group"]): r["result"]["params"]
+                     for r in json.loads(res.out)["records"]})
+    assert docs[0].keys() == docs[1].keys()
+    for group, params in docs[0].items():
+        for name, est in params.items():
+            other = docs[1][group][name]
+            assert other["value"] == pytest.approx(est["value"], rel=1e-6)
+            assert other["stderr"] == pytest.approx(est["stderr"], rel=1e-5)
