@@ -475,7 +475,8 @@ def _shown_error(exc: Exception, job: Any) -> str:
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
-_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived")
+_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived",
+         "uncertainty")
 
 
 def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
@@ -852,7 +853,8 @@ def tidy_columns(by: Sequence[str]) -> list[str]:
         The header, grouping columns with their units.
     """
     return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
-            "stderr", "ci95_low", "ci95_high", "unit", "fixed", "converged", *_METRICS,
+            "stderr", "ci95_low", "ci95_high", "uncertainty", "unit", "fixed", "converged",
+            *_METRICS,
             "warnings", "error"]
 
 
@@ -867,7 +869,9 @@ def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]
     for name, est in res["params"].items():
         ci = est.get("ci95") or (None, None)
         yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
-               "ci95_low": ci[0], "ci95_high": ci[1], "unit": est["unit"] or "-",
+               "ci95_low": ci[0], "ci95_high": ci[1],
+               "uncertainty": (res.get("uncertainty") or {}).get("method"),
+               "unit": est["unit"] or "-",
                "fixed": est["fixed"], "converged": res["success"], **metrics,
                "warnings": len(res["warnings"]), "error": None}
 

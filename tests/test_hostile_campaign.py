@@ -419,3 +419,28 @@ def test_grouped_fits_do_not_depend_on_row_order(method, seed, order, tmp_path_f
             other = docs[1][group][name]
             assert other["value"] == pytest.approx(est["value"], rel=1e-6)
             assert other["stderr"] == pytest.approx(est["stderr"], rel=1e-5)
+
+
+@hostile(6)
+@given(method=st.sampled_from(METHODS), out=st.sampled_from([".csv", ".jsonl", ".json"]),
+       seed=st.integers(0, 2**16))
+def test_a_campaign_table_says_which_method_made_its_errors(method, out, seed,
+                                                           tmp_path_factory):
+    import pandas as pd
+
+    tmp = tmp_path_factory.mktemp("method")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(["steel", "glass"], 5, 2, 0.01, seed))
+    target = tmp / f"t{out}"
+    res = run_cli(["fit", "--law", "thirion", str(data), "--by", "surface", "--uncertainty",
+                   method, *(["--boot", "30"] if method == "bootstrap" else []),
+                   "--out", str(target)])
+    check_outcome(res, allowed=[target])
+    assert res.code == 0
+    if out == ".csv":
+        assert set(pd.read_csv(target)["uncertainty"]) == {method}
+    else:
+        text = target.read_text()
+        records = ([json.loads(ln) for ln in text.splitlines()] if out == ".jsonl"
+                   else json.loads(text)["records"])
+        assert {r["result"]["uncertainty"]["method"] for r in records} == {method}
