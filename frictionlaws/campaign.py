@@ -33,10 +33,10 @@ from typing import Any
 import numpy as np
 
 from ._workers import batches, local_workers
-from .errors import FitError, InputError
+from .errors import Argument, FitError, InputError
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
-           "run_parallel",
+           "run_parallel", "group_subset",
            "iter_parallel", "batch_size", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
            "tidy_columns", "key_text", "fit_groups", "group_column", "check_grouping",
            "UnreadableDatasets", "NEVER_GROUPING", "MIN_ROWS_PER_GROUP"]
@@ -194,9 +194,7 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
     check_grouping(by)
     missing = [c for c in by if c not in frame.columns]
     if missing:
-        raise InputError(f"no column {', '.join(missing)} to group by (columns: "
-                         f"{', '.join(map(str, frame.columns))})", file=str(dataset.source),
-                         option="by")
+        _refuse_missing_group_column(dataset, missing[0])
     for col in by:
         count = int(frame[col].astype(str).nunique())
         if count > 1 and len(frame) < MIN_ROWS_PER_GROUP * count:
@@ -279,10 +277,33 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
     out = []
     for key, mask in group_keys(dataset, list(by)):
-        subset = dataset.subset(mask)
-        subset.name = f"{dataset.name} [{key_text(key)}]"
-        out.append((key, fit(law, subset, **fit_options)))
+        out.append((key, fit(law, group_subset(dataset, key, mask), **fit_options)))
     return out
+
+
+def group_subset(dataset: Any, key: Mapping[str, Any], mask: np.ndarray) -> Any:
+    """The rows of one group, named by it, so every message names the group.
+
+    Parameters
+    ----------
+    dataset : Dataset
+        The whole dataset.
+    key : mapping
+        The group's key (column -> value); empty for all rows.
+    mask : numpy.ndarray
+        The group's rows.
+
+    Returns
+    -------
+    Dataset
+        ``dataset`` itself when the group is every row and has no key, else its
+        subset named ``NAME [KEY]`` (e.g. ``campaign [surface=steel]``).
+    """
+    if not key and mask.all():
+        return dataset
+    subset = dataset.subset(mask)
+    subset.name = f"{dataset.name} [{key_text(key)}]"
+    return subset
 
 
 def key_text(key: Mapping[str, Any]) -> str:
@@ -437,7 +458,7 @@ def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
                                   "source": job.shown or str(ds.source),
                                   "group": key, "law": law, "rows": int(mask.sum())}
         try:
-            res = fit(law, ds.subset(mask) if not mask.all() else ds, **job.fit_options)
+            res = fit(law, group_subset(ds, key, mask), **job.fit_options)
         except (InputError, FitError) as exc:
             record["error"] = _shown_error(exc, job)
         else:
@@ -454,7 +475,8 @@ def _shown_error(exc: Exception, job: Any) -> str:
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
-_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived")
+_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived",
+         "uncertainty")
 
 
 def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
@@ -781,6 +803,23 @@ _METRICS = ("r2", "rmse", "aic", "bic", "n")
 _GC_EVERY = 50
 
 
+def _refuse_missing_group_column(dataset: Any, col: str) -> None:
+    """Name why a ``by`` column is not there: read under its dataset name, or not read."""
+    from .io.columns import _ALIAS_LOOKUP, _norm
+
+    columns = ", ".join(map(str, dataset.frame.columns))
+    canon = _ALIAS_LOOKUP.get(_norm(col))
+    if canon is not None and canon != col and canon in dataset.frame.columns:
+        raise InputError(f"no column {col} to group by: a column '{col}' is read as the "
+                         f"dataset column '{canon}'; group by {canon} (columns read: "
+                         f"{columns})", file=str(dataset.source), option="by")
+    raise InputError([f"no column {col} to group by (columns read: {columns}); a column "
+                      f"of the file outside the dataset columns is not read: to group by it, "
+                      "map it to surface or condition_id, e.g. ",
+                      Argument("mapping", f"surface={col}")],
+                     file=str(dataset.source), option="by")
+
+
 def group_column(name: str) -> str:
     """Name the tidy table's column of grouping column ``name``.
 
@@ -814,7 +853,8 @@ def tidy_columns(by: Sequence[str]) -> list[str]:
         The header, grouping columns with their units.
     """
     return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
-            "stderr", "ci95_low", "ci95_high", "unit", "fixed", "converged", *_METRICS,
+            "stderr", "ci95_low", "ci95_high", "uncertainty", "unit", "fixed", "converged",
+            *_METRICS,
             "warnings", "error"]
 
 
@@ -829,7 +869,9 @@ def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]
     for name, est in res["params"].items():
         ci = est.get("ci95") or (None, None)
         yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
-               "ci95_low": ci[0], "ci95_high": ci[1], "unit": est["unit"] or "-",
+               "ci95_low": ci[0], "ci95_high": ci[1],
+               "uncertainty": (res.get("uncertainty") or {}).get("method"),
+               "unit": est["unit"] or "-",
                "fixed": est["fixed"], "converged": res["success"], **metrics,
                "warnings": len(res["warnings"]), "error": None}
 
@@ -973,7 +1015,7 @@ def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
                                   "rows": int(mask.sum())}
         try:
             cmp = compare(list(job.laws) if job.laws else None,
-                          ds.subset(mask) if not mask.all() else ds, **job.options)
+                          group_subset(ds, key, mask), **job.options)
         except (InputError, FitError) as exc:
             record["error"] = _shown_error(exc, job)
         else:

@@ -322,7 +322,9 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
     """Half-width of the 95 % confidence band of the fitted curve at ``variables``.
 
     First-order propagation of the parameter covariance (standard errors and
-    correlations of the fit) through a central-difference Jacobian of the law.  Where
+    correlations of the fit) through a central-difference Jacobian of the law, with
+    Student's t on the fit's residual degrees of freedom, as its parameter intervals
+    (the normal 1.96 would be narrower than them on few rows).  Where
     the curve depends on a fitted parameter without a standard error (one the data
     cannot determine, or whose error was withheld) the band is NaN: undetermined, not
     zero nor the narrower band of the other parameters.
@@ -339,7 +341,11 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
                           for b in known] for a in known])
         cols = np.stack([np.broadcast_to(jac[k], shape) for k in known], axis=-1)
         var = np.einsum("...i,ij,...j->...", cols, corr * np.outer(se, se), cols)
-    half = 1.96 * np.sqrt(np.maximum(var, 0.0))
+    from scipy.special import stdtrit  # Student's t quantile, as the fit's intervals
+
+    dof = int(result.metrics.get("n", 0) or 0) - int(result.metrics.get("k", 0) or 0)
+    tval = float(stdtrit(dof, 0.975)) if dof > 0 else math.nan
+    half = tval * np.sqrt(np.maximum(var, 0.0))
     for k in free:
         if k not in known:
             half = np.where(np.broadcast_to(jac[k], shape) != 0, np.nan, half)
@@ -347,12 +353,26 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
 
 
 def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.ndarray:
-    """d mu / d ``name`` at ``variables`` (central difference)."""
+    """d mu / d ``name`` at ``variables`` (central difference).
+
+    The step is the fit's own (:func:`frictionlaws.fitting.diagnosis._jacobian`): it
+    grows until it stands above round-off, so a parameter sitting at 0 (a bound) keeps
+    its true slope instead of a step of 1e-18 that leaves none.
+    """
+    from .fitting.diagnosis import _jacobian
+
     base = result.values
-    h = 1e-6 * max(abs(base[name]), 1e-12)
-    up = result.law.evaluate(variables, {**base, name: base[name] + h})
-    dn = result.law.evaluate(variables, {**base, name: base[name] - h})
-    return (np.asarray(up, float) - np.asarray(dn, float)) / (2 * h)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in variables.values()))
+    law = result.law
+    default = (law.param(name).default if name in law.param_names
+               else law.setting_values.get(name, 0.0))
+
+    def mu_of(theta: np.ndarray) -> np.ndarray:
+        mu = law.evaluate(variables, {**base, name: float(theta[0])})
+        return np.broadcast_to(np.asarray(mu, float), shape).ravel()
+
+    jac = _jacobian(mu_of, np.array([base[name]], float), np.array([default], float))
+    return jac[:, 0].reshape(shape)
 
 
 def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str) -> Any:

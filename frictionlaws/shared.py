@@ -181,7 +181,7 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     -------
     SharedFit
     """
-    from .campaign import group_keys
+    from .campaign import group_keys, group_subset
     from .fitting import fit
     from .io import load_dataset
     from .registry import get_law
@@ -196,7 +196,8 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     fixed = dict(fix or {})
     shared = list(dict.fromkeys(shared))
     _check_shared(law, shared, fixed)
-    separate = [fit(law, ds.subset(mask), fix=fixed, weights=weights) for _, mask in groups]
+    separate = [fit(law, group_subset(ds, key, mask), fix=fixed, weights=weights)
+                for key, mask in groups]
     problem = _build_problem(law, ds, groups, shared, fixed)
     out = _solve(problem, columns, groups, separate)
     out.dataset = str(ds.name)

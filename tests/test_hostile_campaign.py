@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hostile import check_api, check_outcome, hostile, run_cli
+from hostile import Snapshot, check_api, check_outcome, hostile, run_cli
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -310,3 +310,137 @@ def test_unreadable_standard_input_in_a_campaign_is_named_stdin(tmp_path):
     assert all(ln.startswith("error: ") for ln in res.err.strip().splitlines())
     assert "file '<stdin>'" in res.err
     assert "frictionlaws-stdin-" not in res.err
+
+
+@hostile(6)
+@given(pair=st.sampled_from([("steel", "Steel"), ("GLASS", "glass"), ("Ice", "iCE")]),
+       seed=st.integers(0, 2**16))
+def test_export_by_refuses_group_file_names_that_differ_only_in_case(pair, seed,
+                                                                    tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("case")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(list(pair), 4, 1, 0.004, seed))
+    snap = Snapshot.take([tmp], [data])
+    res = run_cli(["export", "--law", "thirion", "--fit", str(data), "--by", "surface",
+                   "--format", "abaqus", "--p", "0.1MPa:0.6MPa:4", "-o", str(tmp / "deck.inp")])
+    check_outcome(res, snapshot=snap)
+    assert res.code == 2 and "differing only in case" in res.err
+    assert sorted(p.name for p in tmp.iterdir()) == ["g.csv"]
+
+
+@hostile(8)
+@given(header=st.sampled_from(["run", "compound", "rig", "day", "material", "counter_surface",
+                               "Counter Surface"]),
+       command=st.sampled_from(["fit", "compare", "export"]), seed=st.integers(0, 2**16))
+def test_by_a_column_the_loader_renamed_or_left_unread_says_so(header, command, seed,
+                                                              tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("bycol")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(["steel", "glass"], 4, 1, 0.004, seed)
+                    .replace("surface,", f"{header},", 1))
+    argv = {"fit": ["fit", "--law", "thirion", str(data)],
+            "compare": ["compare", str(data), "--laws", "thirion,coulomb"],
+            "export": ["export", "--law", "thirion", "--fit", str(data), "--format", "abaqus",
+                       "--p", "0.1MPa:0.6MPa:4", "-o", str(tmp / "deck.inp")]}[command]
+    res = run_cli([*argv, "--by", header])
+    check_outcome(res)
+    assert res.code == 2 and f"no column {header} to group by" in res.err
+    if header.lower().replace(" ", "_") in ("material", "counter_surface"):
+        assert "read as the dataset column 'surface'; group by surface" in res.err
+    else:
+        assert f"--map surface={header}" in res.err and "mapping=" not in res.err
+        mapped = run_cli([*argv, "--map", f"surface={header}", "--by", "surface"])
+        check_outcome(mapped)
+        assert mapped.code == 0
+
+
+@hostile(6)
+@given(short=st.integers(0, 2), seed=st.integers(0, 2**16), api=st.booleans())
+def test_a_shared_fit_names_the_group_too_short_to_fit(short, seed, api, tmp_path_factory):
+    surfaces = ["steel", "glass", "ice"]
+    lines = _campaign_csv(surfaces, 4, 1, 0.004, seed).splitlines()
+    body = [ln for ln in lines[1:] if not ln.startswith(surfaces[short] + ",")]
+    body += [next(ln for ln in lines[1:] if ln.startswith(surfaces[short] + ","))]
+    data = tmp_path_factory.mktemp("short") / "g.csv"
+    data.write_text("\n".join([lines[0], *body]) + "\n")
+    if api:
+        from frictionlaws.errors import InputError
+        from frictionlaws.shared import fit_shared
+
+        with pytest.raises(InputError, match=rf"\[surface={surfaces[short]}\]' has 1 rows"):
+            fit_shared("thirion", str(data), by="surface", shared=["b"])
+        return
+    res = run_cli(["fit", "--law", "thirion", str(data), "--by", "surface", "--shared", "b"])
+    check_outcome(res)
+    assert res.code == 2 and f"[surface={surfaces[short]}]' has 1 rows" in res.err
+
+
+@hostile(6)
+@given(short=st.integers(0, 2), out=st.sampled_from(["", ".csv", ".jsonl", ".json"]),
+       command=st.sampled_from(["fit", "compare"]), seed=st.integers(0, 2**16))
+def test_a_failed_group_of_a_campaign_is_named_in_its_error(short, out, command, seed,
+                                                           tmp_path_factory):
+    surfaces = ["steel", "glass", "ice"]
+    lines = _campaign_csv(surfaces, 4, 1, 0.004, seed).splitlines()
+    body = [ln for ln in lines[1:] if not ln.startswith(surfaces[short] + ",")]
+    body += [next(ln for ln in lines[1:] if ln.startswith(surfaces[short] + ","))]
+    tmp = tmp_path_factory.mktemp("failed")
+    data = tmp / "g.csv"
+    data.write_text("\n".join([lines[0], *body]) + "\n")
+    argv = (["fit", "--law", "thirion"] if command == "fit"
+            else ["compare", "--laws", "thirion,coulomb"])
+    extra = ["--out", str(tmp / f"t{out}")] if out else []
+    res = run_cli([*argv, str(data), "--by", "surface", *extra])
+    check_outcome(res, allowed=[tmp / f"t{out}"] if out else [])
+    assert res.code == 1 and f"g [surface={surfaces[short]}]" in res.out + res.err
+
+
+@hostile(4)
+@given(method=st.sampled_from(METHODS), seed=st.integers(0, 2**16),
+       order=st.randoms(use_true_random=False))
+def test_grouped_fits_do_not_depend_on_row_order(method, seed, order, tmp_path_factory):
+    lines = _campaign_csv(["steel", "glass"], 5, 2, 0.01, seed).splitlines()
+    body = lines[1:]
+    order.shuffle(body)
+    tmp = tmp_path_factory.mktemp("order")
+    docs = []
+    for name, rows in (("a.csv", lines[1:]), ("b.csv", body)):
+        (tmp / name).write_text("\n".join([lines[0], *rows]) + "\n")
+        res = run_cli(["fit", "--law", "thirion", str(tmp / name), "--by", "surface",
+                       "--uncertainty", method, *(["--boot", "40"] if method == "bootstrap"
+                                                  else []), "--json"])
+        check_outcome(res, json_out=True)
+        assert res.code == 0
+        docs.append({json.dumps(r["group"]): r["result"]["params"]
+                     for r in json.loads(res.out)["records"]})
+    assert docs[0].keys() == docs[1].keys()
+    for group, params in docs[0].items():
+        for name, est in params.items():
+            other = docs[1][group][name]
+            assert other["value"] == pytest.approx(est["value"], rel=1e-6)
+            assert other["stderr"] == pytest.approx(est["stderr"], rel=1e-5)
+
+
+@hostile(6)
+@given(method=st.sampled_from(METHODS), out=st.sampled_from([".csv", ".jsonl", ".json"]),
+       seed=st.integers(0, 2**16))
+def test_a_campaign_table_says_which_method_made_its_errors(method, out, seed,
+                                                           tmp_path_factory):
+    import pandas as pd
+
+    tmp = tmp_path_factory.mktemp("method")
+    data = tmp / "g.csv"
+    data.write_text(_campaign_csv(["steel", "glass"], 5, 2, 0.01, seed))
+    target = tmp / f"t{out}"
+    res = run_cli(["fit", "--law", "thirion", str(data), "--by", "surface", "--uncertainty",
+                   method, *(["--boot", "30"] if method == "bootstrap" else []),
+                   "--out", str(target)])
+    check_outcome(res, allowed=[target])
+    assert res.code == 0
+    if out == ".csv":
+        assert set(pd.read_csv(target)["uncertainty"]) == {method}
+    else:
+        text = target.read_text()
+        records = ([json.loads(ln) for ln in text.splitlines()] if out == ".jsonl"
+                   else json.loads(text)["records"])
+        assert {r["result"]["uncertainty"]["method"] for r in records} == {method}

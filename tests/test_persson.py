@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import time
 
 import numpy as np
@@ -297,3 +298,16 @@ def test_cli_show_fit_export(tmp_path, capsys):
                  "abaqus-fric-coef", "--v", "0:10", "-o", str(sub)]) == 2
     err = capsys.readouterr().err
     assert "export a table" in err and not sub.exists()
+
+
+def test_the_report_keeps_its_columns_with_long_setting_names():
+    law = fl.get_law("persson")
+    v = np.logspace(-3, 0, 6)
+    mu = law(p=2e5, v=v, T=293.15, q1=3e5, mu_a=0.1) + 0.005 * np.cos(7 * v)
+    res = fl.fit("persson", {"p": np.full(6, 2e5), "v": v, "T": np.full(6, 293.15), "mu": mu})
+    lines = res.report().splitlines()
+    start = next(i for i, ln in enumerate(lines) if ln.startswith("parameter"))
+    table = lines[start:start + 1 + len(res.params) + len(res.settings)]
+    assert any(ln.startswith("heat_fraction ") for ln in table)
+    ends = {re.match(r"\S+\s+\S+", ln).end() for ln in table}  # name, then value
+    assert len(ends) == 1  # every value ends under the header's "value"

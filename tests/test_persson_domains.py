@@ -204,3 +204,58 @@ def test_sliding_that_excites_only_unmeasured_frequencies_is_warned():
         # the packaged compound is a function of frequency: nothing is extrapolated
         assert tread_compound().omega_range is None
         friction(tread_compound(), SURF, np.array([1e-8, 1e4]), 293.15, 2e5)
+
+
+@settings(max_examples=20, deadline=None, derandomize=True)
+@given(q1=st.one_of(st.floats(1.0, SURF.q0), st.just(math.inf), st.just(math.nan)))
+def test_a_cut_off_at_or_below_q0_or_unbounded_is_refused_not_zero(q1):
+    with pytest.raises(InputError, match="q1 = .* must be finite and exceed"):
+        friction(tread_compound(), SURF, 0.01, 293.15, 2e5, q1=q1)
+
+
+def test_a_surface_without_a_cut_off_needs_one_from_the_call():
+    from frictionlaws.persson import SelfAffine
+
+    open_ended = SelfAffine.from_rms(SURF.q0, SURF.H, 3e-4)  # q1 = inf
+    with pytest.raises(InputError, match="give q1"):
+        friction(tread_compound(), open_ended, 0.01, 293.15, 2e5)
+    assert friction(tread_compound(), open_ended, 0.01, 293.15, 2e5, q1=1e6) == pytest.approx(
+        friction(tread_compound(), SURF, 0.01, 293.15, 2e5), rel=1e-12)
+
+
+@pytest.mark.parametrize("q0", [0.0, -1.0, 1e-300, math.inf, math.nan])
+def test_a_surface_from_its_rms_height_refuses_a_bad_q0(q0):
+    from frictionlaws.persson import SelfAffine
+
+    with pytest.raises(InputError, match="q0 = .* positive wavenumber"):
+        SelfAffine.from_rms(q0, 0.8, 3e-4)
+
+
+@pytest.mark.parametrize(("order", "panels"), [(0, 2.0), (2.5, 2.0), (True, 2.0), (10, 0.0),
+                                               (10, -1.0), (10, 1e9), (10, math.nan)])
+def test_a_quadrature_rule_that_is_none_or_unbounded_is_refused(order, panels):
+    with pytest.raises(InputError, match="order|panels_per_decade"):
+        friction(tread_compound(), SURF, 0.01, 293.15, 2e5, order=order,
+                 panels_per_decade=panels)
+
+
+@settings(max_examples=3, deadline=None, derandomize=True)
+@given(edge=st.sampled_from(["low", "high", "both"]))
+def test_compare_scans_a_strict_domain_law_only_inside_its_domain(edge, tmp_path_factory):
+    from frictionlaws.comparison import compare
+
+    temps = {"low": (T_LO, T_LO + 20.0), "high": (T_HI - 20.0, T_HI), "both": (T_LO, T_HI)}[edge]
+    v = np.logspace(-4, 1, 5)
+    rows = {"p": [], "v": [], "T": [], "mu": []}
+    for T in temps:
+        for p in (1e5, 3e5):
+            mu = LAW(p=p, v=v, T=T, q1=3e5, mu_a=0.1)
+            rows["p"] += [p] * v.size
+            rows["v"] += list(v)
+            rows["T"] += [T] * v.size
+            rows["mu"] += list(mu + 0.005 * np.sin(np.arange(v.size) + p / 1e5))
+    data = {k: np.asarray(x, float) for k, x in rows.items()}
+    cmp = compare(["persson", "coulomb"], data, folds=3)
+    assert cmp.box["T"][0] < T_LO or cmp.box["T"][1] > T_HI  # the data's box leaves it
+    scan = cmp["persson"].plausibility
+    assert math.isfinite(scan.mu_min) and math.isfinite(scan.mu_max)

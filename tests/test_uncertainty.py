@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -470,3 +471,54 @@ def test_a_condition_id_column_is_the_bootstraps_unit(tmp_path) -> None:
     res = fl.fit("thirion", one, uncertainty="bootstrap", n_boot=40)
     assert all(e.stderr is None for e in res.params.values())
     assert any("(1 condition," in w for w in res.warnings)
+
+
+def _persson_rows_below_its_additive_floor(tmp_path) -> str:
+    """Persson data at two temperatures, shifted down so mu_a ends at its bound 0."""
+    law = fl.get_law("persson")
+    v = np.logspace(-4, 1, 10)
+    lines = ["T [degC],p [MPa],v [m/s],mu"]
+    for t_c in (0.0, 20.0):
+        mu = law(p=0.2e6, v=v, T=t_c + 273.15, q1=3e5, mu_a=0.0) - 0.03
+        lines += [f"{t_c},0.2,{vi:.6g},{m:.9g}" for vi, m in zip(v, mu, strict=True)]
+    path = tmp_path / "pers.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+def test_a_parameter_at_its_bound_of_zero_has_a_slope_and_an_error(tmp_path) -> None:
+    from frictionlaws.interop import confidence_band
+
+    res = fl.fit("persson", _persson_rows_below_its_additive_floor(tmp_path))
+    mu_a = res.params["mu_a"]
+    assert mu_a.value == pytest.approx(0.0, abs=1e-9)
+    assert "mu_a" not in res.non_identifiable and mu_a.stderr is not None
+    assert mu_a.stderr > 0 and mu_a.ci95 is not None and mu_a.ci95[0] >= 0.0
+    assert any("mu_a" in w and "past its bounds" in w for w in res.warnings)
+    where = {"p": np.full(3, 0.2e6), "v": np.array([1e-3, 1e-2, 1.0]), "T": np.full(3, 293.15)}
+    assert np.all(np.isfinite(confidence_band(res, where)))
+    res.params["mu_a"] = replace(mu_a, stderr=None, ci95=None)  # mu moves with mu_a at 0 too
+    assert np.all(np.isnan(confidence_band(res, where)))
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(exponent=st.integers(-300, -7), slope=st.floats(0.1, 10.0))
+def test_the_fit_jacobian_sees_a_slope_at_a_value_next_to_zero(exponent, slope) -> None:
+    from frictionlaws.fitting.diagnosis import _jacobian
+
+    x = np.array([10.0 ** exponent])
+    jac = _jacobian(lambda t: slope * t[0] + np.linspace(0.5, 1.5, 7), x, np.array([0.0]))
+    assert jac[:, 0] == pytest.approx(np.full(7, slope), rel=1e-6)
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(rows=st.integers(3, 12), seed=st.integers(0, 2**16))
+def test_the_confidence_band_is_as_wide_as_the_parameter_interval(rows, seed) -> None:
+    from frictionlaws.interop import confidence_band
+
+    rng = np.random.default_rng(seed)
+    data = {"p": np.linspace(1e5, 5e5, rows), "mu": 0.8 + 0.05 * rng.standard_normal(rows)}
+    res = fl.fit("coulomb", data)
+    low, high = res.params["mu0"].ci95
+    half = confidence_band(res, {"p": np.array([2e5])})
+    assert half[0] == pytest.approx((high - low) / 2, rel=1e-6)

@@ -273,9 +273,9 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
                          file=args.fit)
     out = Path(args.output)
     paths = [_group_path(out, key) for key, _ in groups]
-    if len(set(paths)) < len(paths):
-        raise InputError("two groups give the same file name; group by other columns",
-                         file=args.fit)
+    if len({str(p).casefold() for p in paths}) < len(paths):  # one file on macOS, Windows
+        raise InputError("two groups give the same file name (or names differing only in "
+                         "case); group by other columns", file=args.fit)
     check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
     results = []
     for (key, fitted), path in zip(groups, paths, strict=True):

@@ -59,7 +59,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import DomainError, InputError
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
 from ..units import display_unit, to_display
@@ -881,7 +881,10 @@ def scan_plausibility(law: Law, values: Mapping[str, float], data: FitData, desi
         Whether the law is plausible, the flags with the reasons, and the range of
         mu over the box.
     """
-    sc = _evaluate_box(law, values, data, design, box)
+    try:
+        sc = _evaluate_box(law, values, data, design, box)
+    except DomainError:  # a law that refuses to be evaluated outside its domain
+        sc = _evaluate_box(law, values, data, design, _within_domain(law, box))
     mu = sc.mu
     finite = np.isfinite(mu)
     flags = _nonfinite_flag(sc)
@@ -899,6 +902,24 @@ def scan_plausibility(law: Law, values: Mapping[str, float], data: FitData, desi
         mu_min = float(np.nanmin(np.where(finite, mu, np.nan))) if finite.any() else math.nan
         mu_max = float(np.nanmax(np.where(finite, mu, np.nan))) if finite.any() else math.nan
     return Plausibility(not flags, flags, mu_min, mu_max, int(mu.size))
+
+
+def _within_domain(law: Law, box: Mapping[str, tuple[float, float]]
+                   ) -> dict[str, tuple[float, float]]:
+    """The box cut to a strict domain, for a law that cannot be evaluated outside it.
+
+    Persson's law has no modulus beyond its material's temperatures.  The data lie
+    inside the domain (a fit refuses rows outside it), so the cut box still holds
+    them; beyond the domain there is nothing to scan.  (Laws that can be evaluated
+    there, such as the thesis polynomials, are scanned over the whole box.)
+    """
+    if not law.strict_domain:
+        return dict(box)
+    out = {}
+    for var, (lo, hi) in box.items():
+        d_lo, d_hi = law.domain.get(var, (-math.inf, math.inf))
+        out[var] = (max(lo, d_lo), min(hi, d_hi))
+    return out
 
 
 def evaluate_on(law: Law, values: Mapping[str, float], design: Design,

@@ -34,7 +34,9 @@ def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.
     scale (``scales``, e.g. the declared default), whichever is larger, or
     1e-6 in its unit when both are zero.  When that step moves the model by
     less than 1e-7 of its size (a parameter sitting near a bound of 0, say),
-    the step grows until it does, so every column stands well above round-off.
+    the step grows until it does, so every column stands well above round-off:
+    eight times tenfold, and on until the step reaches 1e-6 in the parameter's unit
+    (a value of 1e-20 at a bound of 0 has a slope like any other).
     """
     f0 = func(x)
     size = max(float(np.linalg.norm(f0)), 1e-300)
@@ -42,15 +44,16 @@ def _jacobian(func: Any, x: np.ndarray, scales: np.ndarray | None = None) -> np.
     for j in range(x.size):
         mag = max(abs(x[j]), abs(scales[j]) if scales is not None else 0.0)
         h = 1e-6 * mag if mag > 0 else 1e-6
-        for _ in range(8):
+        for tries in range(400):
             xp, xm = x.copy(), x.copy()
             xp[j] += h
             xm[j] -= h
             diff = func(xp) - func(xm)
-            if np.linalg.norm(diff) >= 1e-7 * size or not np.all(np.isfinite(diff)):
+            if (np.linalg.norm(diff) >= 1e-7 * size or not np.all(np.isfinite(diff))
+                    or (tries >= 7 and h >= 1e-6)):
                 break
             h *= 10.0
-        jac[:, j] = diff / (2 * h)
+        jac[:, j] = diff / (2 * h)  # the step that made diff
     return jac
 
 

@@ -353,7 +353,8 @@ class FitResult:
         lines.append(f"data: {d.get('name')} ({d.get('n')} rows{'; ' + rng if rng else ''})")
         lines.append(f"formula: {self.law.pretty()}   (SI: {self._si_note()})")
         lines.append("")
-        hdr = f"{'parameter':<10} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
+        width = max([10, *(len(k) for k in (*self.params, *self.settings))])  # heat_fraction
+        hdr = f"{'parameter':<{width}} {'value':>13} {'std. error':>11} {'95 % CI':>29}  unit"
         lines.append(hdr)
         for p in self.params.values():
             if p.fixed:
@@ -363,10 +364,10 @@ class FitResult:
             else:
                 se = _g(p.stderr)
                 ci = f"[{_g(p.ci95[0])}, {_g(p.ci95[1])}]" if p.ci95 else ""
-            lines.append(f"{p.name:<10} {_g(p.value):>13} {se:>11} {ci:>29}  {p.unit or '-'}")
+            lines.append(f"{p.name:<{width}} {_g(p.value):>13} {se:>11} {ci:>29}  {p.unit or '-'}")
         for k, v in self.settings.items():
             unit = self.law.setting(k).unit if any(s.name == k for s in self.law.settings) else ""
-            lines.append(f"{k:<10} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
+            lines.append(f"{k:<{width}} {_g(v):>13} {'setting':>11} {'':>29}  {unit or '-'}")
         if self.uncertainty.get("method"):
             lines.append(f"standard errors: {_describe_uncertainty(self.uncertainty)}")
         shown = _display_line(self.params, self.derived)

@@ -70,8 +70,10 @@ class SelfAffine:
 
         ``h_rms^2 = 2 pi int_q0^inf q C dq = pi C0 q0^2 / H``.
         """
-        if not h_rms > 0:
-            raise InputError(f"h_rms = {h_rms} must be positive [m]")
+        if not (h_rms > 0 and math.isfinite(h_rms)):
+            raise InputError(f"h_rms = {h_rms} must be a positive length [m]")
+        if not (q0 > 0 and math.isfinite(q0) and q0**2 > 0):
+            raise InputError(f"q0 = {q0} must be a positive wavenumber [1/m]")
         return cls(q0, H, H * h_rms**2 / (math.pi * q0**2), q1)
 
     def C(self, q: Any) -> np.ndarray:

@@ -360,12 +360,32 @@ def _check_gamma(gamma: float) -> None:
                          "be in 0..1")
 
 
+#: Most Gauss-Legendre nodes per panel and panels per decade of q a call may ask for.
+_ORDER_MAX, _PANELS_MAX = 64, 64.0
+
+
+def _check_quadrature(q0: float, q1: float, order: Any, panels_per_decade: Any) -> None:
+    """Refuse a wavenumber range with no roughness in it, or a rule that is none."""
+    if not (math.isfinite(q1) and q1 > q0):
+        raise InputError(f"Persson: the cut-off q1 = {q1:g} 1/m must be finite and exceed the "
+                         f"surface's q0 = {q0:g} 1/m (give q1, here or on the surface)")
+    if isinstance(order, bool) or not isinstance(order, (int, np.integer)) or not (
+            1 <= order <= _ORDER_MAX):
+        raise InputError(f"Persson: order = {order!r} must be a whole number of nodes per "
+                         f"panel, 1 to {_ORDER_MAX}")
+    if not (isinstance(panels_per_decade, (int, float)) and 0.0 < panels_per_decade
+            <= _PANELS_MAX):
+        raise InputError(f"Persson: panels_per_decade = {panels_per_decade!r} must be in "
+                         f"(0, {_PANELS_MAX:g}]")
+
+
 def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: float | None,
               order: int, panels_per_decade: float, gamma: float, flash: Flash | None
               ) -> tuple[Any, np.ndarray, np.ndarray]:
     """mu (as :func:`friction` returns it), the q nodes and T_q (points x nodes)."""
     _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
+    _check_quadrature(surface.q0, q1, order, panels_per_decade)
     shape, vv, TT, pp = _prepare(material, v, T, p)
     _warn_outside_data(material, surface.q0, q1, vv, TT)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
