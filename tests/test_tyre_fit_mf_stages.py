@@ -98,6 +98,26 @@ def test_an_mz_column_is_fitted_and_without_a_lateral_fit_is_named_as_unused() -
     assert "QBZ1" in res.undetermined
 
 
+@pytest.mark.parametrize("pressures", [(0.9, 1.1), (0.85, 1.0)])
+def test_two_pressures_leave_the_quadratic_pressure_terms_and_fit_the_peak(
+        pressures: tuple[float, float]) -> None:
+    truth = moved_tyre()
+    data = rig_data(truth, n=21, loads=(0.5, 1.0, 1.5), pressures=pressures,
+                    cambers_deg=(0.0,), combined=False)
+    res = fit_mf(data, fittyp=61)
+    for k in ("PPX2", "PPX4", "PPY4"):
+        assert k in res.undetermined and k not in res.values
+    for k in ("PDX1", "PDY1", "PPX3", "PPY3"):
+        assert k in res.values and k not in res.undetermined
+    k, a = np.linspace(-0.25, 0.25, 101), np.radians(np.linspace(-12, 12, 97))
+    for p in truth.nominal_pressure * np.linspace(min(pressures), max(pressures), 5):
+        tx, ty = truth.fx0(k, truth.fnomin, 0.0, p), truth.fy0(a, truth.fnomin, 0.0, p)
+        assert np.abs(res.model.fx0(k, truth.fnomin, 0.0, p) - tx).max() < 0.02 * np.abs(
+            tx).max()
+        assert np.abs(res.model.fy0(a, truth.fnomin, 0.0, p) - ty).max() < 0.02 * np.abs(
+            ty).max()
+
+
 def test_only_combined_rows_fit_nothing_and_write_nothing(tmp_path: Path) -> None:
     truth = MagicFormula.from_file("MagicFormula61")
     K, A = np.meshgrid(np.linspace(0.05, 0.2, 8), np.radians([4.0, 8.0]))

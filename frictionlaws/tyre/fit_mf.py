@@ -76,7 +76,9 @@ Y_COEFFICIENTS = {"5.2": _Y52, "6.1": _Y6, "6.2": _Y6}
 
 # What each coefficient needs in the data (beyond one load).
 _NEEDS: dict[str, tuple[str, ...]] = {
-    **{k: ("pressure",) for k in _PPX + "PPY1 PPY2 PPY3 PPY4".split()},
+    **{k: ("pressure",) for k in "PPX1 PPX3 PPY1 PPY2 PPY3".split()},
+    # quadratic in the pressure: with two pressures they trade off against PKX1, PDX1, PDY1
+    **{k: ("pressure3",) for k in "PPX2 PPX4 PPY4".split()},
     "PPY5": ("pressure", "camber"),
     **{k: ("camber",) for k in "PDX3 PDY3 PEY4 PEY5 PKY3 PKY5 PKY6 PHY3 PVY3".split()},
     **{k: ("camber", "loads2") for k in "PKY7 PVY4".split()},
@@ -313,6 +315,8 @@ def _spans(d: _Direction, data: TyreData) -> set[str]:
     n_p = _levels(d.dpi, 0.02)[0].size
     if n_p >= 2:
         have.add("pressure")
+    if n_p >= 3:
+        have.add("pressure3")
     if _levels(d.gamma, math.radians(0.2))[0].size >= 2:
         have.add("camber")
     if (d.slip > 0).sum() >= 3 and (d.slip < 0).sum() >= 3:
