@@ -175,6 +175,56 @@ def test_radians_under_a_degree_header_are_refused(tmp_path_factory: pytest.Temp
     assert "alpha" in str(err.value) and "row" in str(err.value)
 
 
+def _small_sweeps(percent: float, degrees: float, mu_scale: float = 1.0
+                  ) -> tuple[MagicFormula, TyreData]:
+    """Sweeps of +-``percent`` % slip and +-``degrees`` deg at three loads (SI), on a
+    tyre whose friction is scaled by ``mu_scale``."""
+    base = MagicFormula.from_file("MagicFormula61")
+    mf = MagicFormula({**base.coefficients, "LMUX": mu_scale, "LMUY": mu_scale},
+                      fnomin=base.fnomin, version=base.version, limits=base.limits,
+                      structure=base.structure)
+    k = np.linspace(-percent, percent, 21) / 100
+    a = np.radians(np.linspace(-degrees, degrees, 21))
+    fz = np.repeat(mf.fnomin * np.array([0.5, 1.0, 1.5]), 21)
+    kk, aa = np.tile(k, 3), np.tile(a, 3)
+    nan = np.full(fz.size, np.nan)
+    return mf, TyreData.from_arrays(
+        fz=np.r_[fz, fz], kappa=np.r_[kk, 0 * kk], alpha=np.r_[0 * aa, aa],
+        fx=np.r_[mf.fx0(kk, fz), nan], fy=np.r_[nan, mf.fy0(aa, fz)])
+
+
+@settings(max_examples=20, deadline=None)
+@given(percent=st.floats(0.3, 1.0), degrees=st.floats(0.5, 1.0),
+       mu_scale=st.sampled_from([1.0, 0.1]))
+def test_small_sweeps_in_percent_or_degrees_under_fraction_or_rad_are_refused(
+        percent: float, degrees: float, mu_scale: float) -> None:
+    mf, data = _small_sweeps(percent, degrees, mu_scale)
+    check_plausible(data, mf.fnomin)  # the honest data pass, on ice too
+    as_fraction = TyreData.from_arrays(fz=data.fz, kappa=data.kappa * 100, alpha=data.alpha,
+                                       fx=data.fx, fy=data.fy)
+    with pytest.raises(InputError, match="percent given as a fraction") as err:
+        check_plausible(as_fraction, mf.fnomin)
+    assert "kappa" in str(err.value) and "row" in str(err.value)
+    as_rad = TyreData.from_arrays(fz=data.fz, kappa=data.kappa, alpha=np.degrees(data.alpha),
+                                  fx=data.fx, fy=data.fy)
+    with pytest.raises(InputError, match="degrees under a \\[rad\\] header") as err:
+        check_plausible(as_rad, mf.fnomin)
+    assert "alpha" in str(err.value)
+
+
+def test_a_small_percent_sweep_under_a_fraction_header_writes_nothing(tmp_path: Path) -> None:
+    mf, data = _small_sweeps(1.0, 1.0)
+    csv = tmp_path / "small.csv"
+    csv.write_text("Fz [N],kappa [-],alpha [rad],Fx [N],Fy [N]\n" + "".join(
+        f"{z!r},{100 * k!r},{math.degrees(a)!r},{'' if np.isnan(x) else repr(x)},"
+        f"{'' if np.isnan(y) else repr(y)}\n"
+        for z, k, a, x, y in zip(*(v.tolist() for v in (data.fz, data.kappa, data.alpha,
+                                                          data.fx, data.fy)))))
+    target = tmp_path / "out.tir"
+    assert main(["tyre", "fit-mf", str(csv), "-o", str(target)]) == 2
+    assert not target.exists()
+
+
 @pytest.mark.parametrize("factor,likely", [(1e-3, "kN given as N"), (1e3, "N given as kN")])
 def test_loads_in_the_wrong_unit_are_refused(factor: float, likely: str,
                                              tmp_path: Path) -> None:
