@@ -199,3 +199,19 @@ def test_fit_mf_reads_its_data_from_standard_input(capsys, tmp_path, monkeypatch
                     and not ln.startswith(("!", "$"))]
     assert coefficients == [ln for ln in from_stdin.read_text().splitlines() if "=" in ln
                             and not ln.startswith(("!", "$"))]
+    first = from_stdin.read_text().splitlines()[0]
+    assert "from <stdin>" in first and "frictionlaws-stdin-" not in first
+
+
+def test_fit_mf_from_standard_input_that_fits_nothing_names_standard_input(
+        capsys, tmp_path, monkeypatch):
+    import io
+
+    lines = ["Fz [N],kappa [-],alpha [deg],Fx [N],Fy [N]"]
+    lines += [f"6752,{k},{a},{3000 * k / 0.1},{-400 * a}" for k in (0.05, 0.1)
+              for a in (4.0, 8.0)]
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO("\n".join(lines).encode())))
+    target = tmp_path / "out.tir"
+    code, _, err = run(capsys, "fit-mf", "-", "-o", str(target))
+    assert code == 1 and "<stdin>: nothing could be fitted" in err
+    assert "frictionlaws-stdin-" not in err and not target.exists()
