@@ -152,3 +152,15 @@ def test_a_file_without_a_radius_is_refused_by_name() -> None:
                       structure={"LONGVL": 16.0})
     with pytest.raises(InputError, match="UNLOADED_RADIUS"):
         mf.mz(0.0, 0.05, 4000.0)
+
+
+@pytest.mark.parametrize("name", ["MagicFormula52", "MagicFormula61", "MagicFormula62"])
+def test_empty_inputs_give_empty_outputs(name: str) -> None:
+    mf = MagicFormula.from_file(name)
+    empty = np.array([])
+    for method in (mf.fx, mf.fy, mf.mz):
+        assert method(empty, empty, empty).shape == (0,)
+    for method in (mf.fx0, mf.fy0, mf.mz0):
+        assert method(empty, empty).shape == (0,)
+    out = mf.steady_state(empty, empty, empty, pressure=empty, saturate=True)
+    assert all(np.shape(v) == (0,) for v in out.values())
