@@ -215,3 +215,28 @@ def test_fit_mf_from_standard_input_that_fits_nothing_names_standard_input(
     code, _, err = run(capsys, "fit-mf", "-", "-o", str(target))
     assert code == 1 and "<stdin>: nothing could be fitted" in err
     assert "frictionlaws-stdin-" not in err and not target.exists()
+
+
+@pytest.mark.parametrize("fittyp,template", [(62, "MagicFormula52"), (61, "MagicFormula52"),
+                                             (5, "MagicFormula61"), (6, "MagicFormula62")])
+def test_fit_mf_refuses_a_template_of_the_other_magic_formula_family(
+        capsys, tmp_path, fittyp, template):
+    target = tmp_path / "out.tir"
+    assert main(["examples", str(tmp_path / "ex")]) == 0
+    capsys.readouterr()
+    code, _, err = run(capsys, "fit-mf", str(tmp_path / "ex" / "tyre_data.csv"), "--fittyp",
+                       str(fittyp), "--template", template, "-o", str(target))
+    assert code == 2 and "the template is Magic Formula" in err and len(err.splitlines()) == 1
+    assert not target.exists()
+
+
+@pytest.mark.parametrize("name,match", [("out.json", "suffix .tir"), ("out", "suffix .tir"),
+                                        ("adir/", "ends with a slash")])
+def test_fit_mf_writes_only_a_tir_file_name(capsys, tmp_path, name, match):
+    assert main(["examples", str(tmp_path / "ex")]) == 0
+    capsys.readouterr()
+    before = sorted(p.name for p in tmp_path.iterdir())
+    target = str(tmp_path / name) + ("/" if name.endswith("/") else "")
+    code, _, err = run(capsys, "fit-mf", str(tmp_path / "ex" / "tyre_data.csv"), "-o", target)
+    assert code == 2 and match in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == before

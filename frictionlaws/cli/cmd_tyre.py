@@ -469,10 +469,11 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
     from frictionlaws.outputs import check_outputs
-    from frictionlaws.tyre.fit_mf import fit_mf
+    from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
 
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
+    check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
         from frictionlaws.tyre._fit_mf_plot import check_figure_path
 

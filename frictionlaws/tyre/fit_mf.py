@@ -59,7 +59,7 @@ from .magic_formula import EXAMPLES, MagicFormula, mf_curve, packaged_example
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
-__all__ = ["MFFit", "fit_mf", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
+__all__ = ["MFFit", "fit_mf", "check_tir_path", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
 
 #: FITTYP -> Magic Formula version.
 FITTYPS = {5: "5.2", 6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
@@ -147,6 +147,7 @@ class MFFit:
         """Write the ``.tir`` file atomically (checked as an output first)."""
         from ..outputs import atomic_write, check_outputs
 
+        check_tir_path(path)
         check_outputs([path], inputs=[self.data.source])
         with atomic_write(path) as fh:
             fh.write(self.tir_text())
@@ -181,6 +182,14 @@ class MFFit:
         from ._fit_mf_plot import plot_fit
 
         return plot_fit(self, path)
+
+
+def check_tir_path(path: str | Path) -> None:
+    """Refuse a property file name whose suffix is not ``.tir`` (the text written is
+    ADAMS ``.tir``; a ``.json`` name would hold it under the wrong format)."""
+    if Path(path).suffix.lower() != ".tir":
+        raise InputError("the property file written is ADAMS .tir text: give the file the "
+                         "suffix .tir", file=str(path))
 
 
 #: What each entry of :attr:`MFFit.errors` describes.
@@ -480,11 +489,25 @@ def _template(template: str | Path | PropertyFile | None, version: str) -> Prope
             raise InputError("the packaged template property files are missing")
         return _packaged(p)
     p = Path(template)
-    if not p.exists():
-        packaged = packaged_example(str(template))
-        if packaged is not None:
-            return _packaged(packaged)
-    return read_property_file(p)
+    packaged = None if p.exists() else packaged_example(str(template))
+    pf = _packaged(packaged) if packaged is not None else read_property_file(p)
+    _check_template_version(pf, version)
+    return pf
+
+
+def _check_template_version(pf: PropertyFile, version: str) -> None:
+    """Refuse a template of the other family (MF 5.2 against MF 6.x): it lacks the
+    coefficients and sections of the version written, which would be written without
+    them or as zeros claimed to be the template's values."""
+    from ._mf_file import version_of
+
+    have, how = version_of(pf)
+    if (have == "5.2") != (version == "5.2"):
+        raise InputError(
+            f"the template is Magic Formula {have} ({how}) and the file to write is MF "
+            f"{version}: the template lacks coefficients and sections of MF {version}, so "
+            f"they would have no template value; give an MF {version} template, or none "
+            "for the packaged example", file=pf.path)
 
 
 def _packaged(path: Path) -> PropertyFile:
