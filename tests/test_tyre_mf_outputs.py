@@ -164,3 +164,24 @@ def test_empty_inputs_give_empty_outputs(name: str) -> None:
         assert method(empty, empty).shape == (0,)
     out = mf.steady_state(empty, empty, empty, pressure=empty, saturate=True)
     assert all(np.shape(v) == (0,) for v in out.values())
+
+
+@pytest.mark.parametrize("key,value", [("UNLOADED_RADIUS", 0.0), ("UNLOADED_RADIUS", -0.3),
+                                       ("WIDTH", 0.0)])
+def test_a_radius_or_width_that_is_not_positive_is_refused(key: str, value: float,
+                                                           tmp_path: Path) -> None:
+    from frictionlaws.cli import main
+
+    src = Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+    text = (src / "MagicFormula61_Parameters.converted.tir").read_text()
+    lines = [f"{key} = {value}" if ln.split("=")[0].strip() == key else ln
+             for ln in text.splitlines()]
+    tir = tmp_path / "odd.tir"
+    tir.write_text("\n".join(lines) + "\n")
+    mf = MagicFormula.from_file(tir)
+    with pytest.raises(InputError, match=f"{key} = .* must be positive"):
+        mf.steady_state(0.05, 0.05, mf.fnomin)
+    if key == "UNLOADED_RADIUS":
+        with pytest.raises(InputError, match="must be positive"):
+            mf.mz0(0.05, mf.fnomin)
+        assert main(["tyre", "mf", str(tir)]) == 2

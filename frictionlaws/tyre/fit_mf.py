@@ -481,24 +481,26 @@ def _refine(mf: FittingModel, d: _Direction, free: list[str], template: dict[str
 
 def _template(template: str | Path | PropertyFile | None, version: str) -> PropertyFile:
     if isinstance(template, PropertyFile):
-        return template
-    if template is None:
+        pf = template
+    elif template is None:
         name = {"5.2": "magicformula52", "6.1": "magicformula61", "6.2": "magicformula62"}
         p = packaged_example(EXAMPLES[name[version]])
         if p is None:
             raise InputError("the packaged template property files are missing")
-        return _packaged(p)
-    p = Path(template)
-    packaged = None if p.exists() else packaged_example(str(template))
-    pf = _packaged(packaged) if packaged is not None else read_property_file(p)
-    _check_template_version(pf, version)
+        pf = _packaged(p)
+    else:
+        path = Path(template)
+        packaged = None if path.exists() else packaged_example(str(template))
+        pf = _packaged(packaged) if packaged is not None else read_property_file(path)
+    _check_template(pf, version)
     return pf
 
 
-def _check_template_version(pf: PropertyFile, version: str) -> None:
-    """Refuse a template of the other family (MF 5.2 against MF 6.x): it lacks the
+def _check_template(pf: PropertyFile, version: str) -> None:
+    """Refuse a template of the other family (MF 5.2 against MF 6.x: it lacks the
     coefficients and sections of the version written, which would be written without
-    them or as zeros claimed to be the template's values."""
+    them or as zeros claimed to be the template's values) or with an unloaded radius
+    that is not positive (the moments would be zero and M_z data look wrong)."""
     from ._mf_file import version_of
 
     have, how = version_of(pf)
@@ -508,6 +510,10 @@ def _check_template_version(pf: PropertyFile, version: str) -> None:
             f"{version}: the template lacks coefficients and sections of MF {version}, so "
             f"they would have no template value; give an MF {version} template, or none "
             "for the packaged example", file=pf.path)
+    if pf.has("DIMENSION", "UNLOADED_RADIUS") and not pf.si("DIMENSION",
+                                                            "UNLOADED_RADIUS") > 0:
+        raise InputError("the template's [DIMENSION] UNLOADED_RADIUS must be positive",
+                         file=pf.path, row=pf.lines.get(("DIMENSION", "UNLOADED_RADIUS")))
 
 
 def _packaged(path: Path) -> PropertyFile:
