@@ -261,3 +261,25 @@ def test_columns_the_fit_does_not_use_are_named(tmp_path: Path) -> None:
     data = read_tyre_data(csv)
     assert any("columns not used" in n and "Vx [m/s]" in n and "Mx [N m]" in n
                for n in data.notes)
+
+
+@pytest.mark.slow
+@settings(max_examples=2, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_cambers_of_one_sign_leave_the_terms_they_cannot_separate_and_row_order_is_moot(
+        seed: int) -> None:
+    truth = moved_tyre()
+    data = rig_data(truth, n=9, loads=(0.5, 1.0, 1.5), pressures=(1.0,),
+                    cambers_deg=(0.0, 3.0))
+    perm = np.random.default_rng(seed).permutation(len(data))
+    shuffled = TyreData.from_arrays(fz=data.fz[perm], kappa=data.kappa[perm],
+                                    alpha=data.alpha[perm], gamma=data.gamma[perm],
+                                    pressure=data.pressure[perm], fx=data.fx[perm],
+                                    fy=data.fy[perm], mz=data.mz[perm])
+    a, b = fit_mf(data, fittyp=61), fit_mf(shuffled, fittyp=61)
+    for k in ("QBZ5", "QDZ4", "QDZ10", "QDZ11"):  # |gamma| = gamma, gamma^2 = 3 deg |gamma|
+        assert k in a.undetermined and k not in a.values
+    assert abs(a.values["QBZ4"] - truth.coefficients["QBZ4"]) < 5 * a.stderr["QBZ4"] + 1.0
+    assert sorted(a.undetermined) == sorted(b.undetermined)
+    for k, v in a.values.items():
+        assert b.values[k] == pytest.approx(v, rel=1e-3, abs=1e-3 * max(a.stderr[k], 1e-6))
