@@ -240,3 +240,8 @@ def test_fit_mf_writes_only_a_tir_file_name(capsys, tmp_path, name, match):
     code, _, err = run(capsys, "fit-mf", str(tmp_path / "ex" / "tyre_data.csv"), "-o", target)
     assert code == 2 and match in err
     assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_thesis_refuses_a_law_given_twice(capsys):
+    code, out, err = run(capsys, "thesis", "--laws", "thirion,thirion")
+    assert code == 2 and "given twice" in err and "thirion" in err and not out
