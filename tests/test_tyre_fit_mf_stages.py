@@ -283,3 +283,19 @@ def test_cambers_of_one_sign_leave_the_terms_they_cannot_separate_and_row_order_
     assert sorted(a.undetermined) == sorted(b.undetermined)
     for k, v in a.values.items():
         assert b.values[k] == pytest.approx(v, rel=1e-3, abs=1e-3 * max(a.stderr[k], 1e-6))
+
+
+def test_one_pressure_off_nominal_is_where_the_written_file_is_evaluated(
+        tmp_path: Path) -> None:
+    truth = moved_tyre()
+    data = rig_data(truth, n=11, loads=(0.5, 1.0, 1.5), pressures=(1.2,), cambers_deg=(0.0,),
+                    combined=False)
+    res = fit_mf(data, fittyp=61)
+    fitted = MagicFormula.from_file(res.write(tmp_path / "fitted.tir"))
+    measured = float(np.median(data.pressure))
+    assert fitted.pressure == pytest.approx(measured)
+    assert fitted.nominal_pressure == pytest.approx(truth.nominal_pressure)
+    assert any("INFLPRES is set to" in n for n in res.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ExtrapolationWarning)
+        fitted.fx0(np.linspace(-0.2, 0.2, 11), truth.fnomin)

@@ -544,8 +544,11 @@ def _errors(mf: MagicFormula, d: _Direction) -> dict[str, float]:
 
 
 def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
-                p_nom: float | None, data: TyreData) -> PropertyFile:
-    """The template with FITTYP, the fitted coefficients, the pressure and the data ranges."""
+                p_nom: float | None, data: TyreData, notes: list[str]) -> PropertyFile:
+    """The template with FITTYP, the fitted coefficients, the pressure and the data ranges.
+
+    A nominal pressure outside the measured ones stays NOMPRES (the coefficients refer to
+    it); INFLPRES, where the file is evaluated by default, is the nearest measured one."""
     pf = PropertyFile({s: dict(e) for s, e in t.sections.items()}, dict(t.tables),
                       dict(t.metadata), path="<fitted>", format="tir",
                       comments=dict(t.comments))
@@ -566,6 +569,13 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     for sec, lo, hi, observed in ranges:
         entry = pf.sections.setdefault(sec, {})
         entry[lo], entry[hi] = float(np.min(observed)), float(np.max(observed))
+    if p_nom is not None and measured.size and FITTYPS[fittyp] != "5.2":
+        inside = float(np.clip(p_nom, measured.min(), measured.max()))
+        if inside != p_nom:
+            pf.sections["OPERATING_CONDITIONS"]["INFLPRES"] = inside / f_p
+            notes.append(f"the nominal pressure {p_nom:g} Pa lies outside the measured "
+                         f"{measured.min():g}..{measured.max():g} Pa: INFLPRES is set to "
+                         f"{inside:g} Pa, NOMPRES stays")
     return pf
 
 
@@ -646,7 +656,7 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         notes.append("not determined by the data, and the template's value does not suit "
                      "them: held at the fitted value (standard error infinite): "
                      + ", ".join(held))
-    pf = _build_file(tpl, fittyp, values, p_nom, data)
+    pf = _build_file(tpl, fittyp, values, p_nom, data, notes)
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
     fitted.warnings = warns
