@@ -178,6 +178,9 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
     for raw in files:
         if raw is None or str(raw) == STDOUT:
             continue
+        if str(raw).endswith(("/", os.sep)):  # Path() would drop the slash: a file 'dir'
+            raise InputError(f"the {what} names a directory (it ends with a slash); give a "
+                             "file name", file=str(raw))
         out = Path(raw)
         for src in ins:
             if _same_file(out, src):

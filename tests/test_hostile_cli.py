@@ -316,6 +316,8 @@ def test_tyre_fit_mf_hostile(spoil: str, cell: str, raw: bytes, template: bytes 
             inputs.append(tpl)
             argv += ["--template", str(tpl)]
         target = _target(tmp, out, inputs)
+        if out in ("fresh", "missing-dir"):  # a property file is written as .tir
+            target = target.with_suffix(".tir")
         argv += ["-o", str(target)] + (["--json"] if json_out else [])
         snap = Snapshot.take([tmp], inputs)
         check_outcome(run_cli(argv, timeout=60), snapshot=snap, json_out=json_out,

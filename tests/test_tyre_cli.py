@@ -199,3 +199,49 @@ def test_fit_mf_reads_its_data_from_standard_input(capsys, tmp_path, monkeypatch
                     and not ln.startswith(("!", "$"))]
     assert coefficients == [ln for ln in from_stdin.read_text().splitlines() if "=" in ln
                             and not ln.startswith(("!", "$"))]
+    first = from_stdin.read_text().splitlines()[0]
+    assert "from <stdin>" in first and "frictionlaws-stdin-" not in first
+
+
+def test_fit_mf_from_standard_input_that_fits_nothing_names_standard_input(
+        capsys, tmp_path, monkeypatch):
+    import io
+
+    lines = ["Fz [N],kappa [-],alpha [deg],Fx [N],Fy [N]"]
+    lines += [f"6752,{k},{a},{3000 * k / 0.1},{-400 * a}" for k in (0.05, 0.1)
+              for a in (4.0, 8.0)]
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO("\n".join(lines).encode())))
+    target = tmp_path / "out.tir"
+    code, _, err = run(capsys, "fit-mf", "-", "-o", str(target))
+    assert code == 1 and "<stdin>: nothing could be fitted" in err
+    assert "frictionlaws-stdin-" not in err and not target.exists()
+
+
+@pytest.mark.parametrize("fittyp,template", [(62, "MagicFormula52"), (61, "MagicFormula52"),
+                                             (5, "MagicFormula61"), (6, "MagicFormula62")])
+def test_fit_mf_refuses_a_template_of_the_other_magic_formula_family(
+        capsys, tmp_path, fittyp, template):
+    target = tmp_path / "out.tir"
+    assert main(["examples", str(tmp_path / "ex")]) == 0
+    capsys.readouterr()
+    code, _, err = run(capsys, "fit-mf", str(tmp_path / "ex" / "tyre_data.csv"), "--fittyp",
+                       str(fittyp), "--template", template, "-o", str(target))
+    assert code == 2 and "the template is Magic Formula" in err and len(err.splitlines()) == 1
+    assert not target.exists()
+
+
+@pytest.mark.parametrize("name,match", [("out.json", "suffix .tir"), ("out", "suffix .tir"),
+                                        ("adir/", "ends with a slash")])
+def test_fit_mf_writes_only_a_tir_file_name(capsys, tmp_path, name, match):
+    assert main(["examples", str(tmp_path / "ex")]) == 0
+    capsys.readouterr()
+    before = sorted(p.name for p in tmp_path.iterdir())
+    target = str(tmp_path / name) + ("/" if name.endswith("/") else "")
+    code, _, err = run(capsys, "fit-mf", str(tmp_path / "ex" / "tyre_data.csv"), "-o", target)
+    assert code == 2 and match in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_thesis_refuses_a_law_given_twice(capsys):
+    code, out, err = run(capsys, "thesis", "--laws", "thirion,thirion")
+    assert code == 2 and "given twice" in err and "thirion" in err and not out

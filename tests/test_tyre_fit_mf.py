@@ -193,3 +193,16 @@ def test_cli_fit_mf_writes_a_readable_tir_and_a_figure(tmp_path: Path,
     assert main(["tyre", "fit-mf", str(bad), "-o", str(tmp_path / "b.tir")]) == 2
     assert not (tmp_path / "b.tir").exists()
     assert "row 2" in capsys.readouterr().err
+
+
+def test_a_template_object_is_checked_as_a_template_file_is() -> None:
+    _, data, _ = synthetic("MagicFormula61", n_slip=11)
+    tpl = read_property_file(Path(__file__).resolve().parents[1] / "datasets" /
+                             "mf-examples" / "MagicFormula52_Parameters.json")
+    with pytest.raises(InputError, match="the template is Magic Formula 5.2"):
+        fit_mf(data, fittyp=61, template=tpl)
+    tpl = read_property_file(Path(__file__).resolve().parents[1] / "datasets" /
+                             "mf-examples" / "MagicFormula61_Parameters.json")
+    tpl.sections["DIMENSION"]["UNLOADED_RADIUS"] = 0.0
+    with pytest.raises(InputError, match="UNLOADED_RADIUS must be positive"):
+        fit_mf(data, fittyp=61, template=tpl)

@@ -8,6 +8,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre.magic_formula import MagicFormula
@@ -152,3 +154,62 @@ def test_a_file_without_a_radius_is_refused_by_name() -> None:
                       structure={"LONGVL": 16.0})
     with pytest.raises(InputError, match="UNLOADED_RADIUS"):
         mf.mz(0.0, 0.05, 4000.0)
+
+
+@pytest.mark.parametrize("name", ["MagicFormula52", "MagicFormula61", "MagicFormula62"])
+def test_empty_inputs_give_empty_outputs(name: str) -> None:
+    mf = MagicFormula.from_file(name)
+    empty = np.array([])
+    for method in (mf.fx, mf.fy, mf.mz):
+        assert method(empty, empty, empty).shape == (0,)
+    for method in (mf.fx0, mf.fy0, mf.mz0):
+        assert method(empty, empty).shape == (0,)
+    out = mf.steady_state(empty, empty, empty, pressure=empty, saturate=True)
+    assert all(np.shape(v) == (0,) for v in out.values())
+
+
+@pytest.mark.parametrize("key,value", [("UNLOADED_RADIUS", 0.0), ("UNLOADED_RADIUS", -0.3),
+                                       ("WIDTH", 0.0)])
+def test_a_radius_or_width_that_is_not_positive_is_refused(key: str, value: float,
+                                                           tmp_path: Path) -> None:
+    from frictionlaws.cli import main
+
+    src = Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+    text = (src / "MagicFormula61_Parameters.converted.tir").read_text()
+    lines = [f"{key} = {value}" if ln.split("=")[0].strip() == key else ln
+             for ln in text.splitlines()]
+    tir = tmp_path / "odd.tir"
+    tir.write_text("\n".join(lines) + "\n")
+    mf = MagicFormula.from_file(tir)
+    with pytest.raises(InputError, match=f"{key} = .* must be positive"):
+        mf.steady_state(0.05, 0.05, mf.fnomin)
+    if key == "UNLOADED_RADIUS":
+        with pytest.raises(InputError, match="must be positive"):
+            mf.mz0(0.05, mf.fnomin)
+        assert main(["tyre", "mf", str(tir)]) == 2
+
+
+@settings(max_examples=15, deadline=None)
+@given(name=st.sampled_from(["MagicFormula52", "MagicFormula61", "MagicFormula62"]),
+       seed=st.integers(0, 2**32 - 1))
+def test_rows_are_evaluated_alone_and_in_any_order(name: str, seed: int) -> None:
+    mf = MagicFormula.from_file(name)
+    rng = np.random.default_rng(seed)
+    n = 12
+    k, a, g = rng.uniform(-0.3, 0.3, n), rng.uniform(-0.3, 0.3, n), rng.uniform(-0.08, 0.08, n)
+    fz = rng.uniform(0.3, 1.8, n) * mf.fnomin
+    p = rng.uniform(0.8, 1.3, n) * (mf.nominal_pressure or 2.2e5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        out = mf.steady_state(k, a, fz, g, pressure=p)
+        perm = rng.permutation(n)
+        shuffled = mf.steady_state(k[perm], a[perm], fz[perm], g[perm], pressure=p[perm])
+        i = int(rng.integers(n))
+        alone = mf.steady_state(k[i], a[i], fz[i], g[i], pressure=p[i])
+    for key, v in out.items():
+        v = np.asarray(v)
+        if v.shape != (n,):
+            continue
+        np.testing.assert_allclose(np.asarray(shuffled[key]), v[perm], rtol=1e-12, atol=0)
+        np.testing.assert_allclose(np.asarray(alone[key]).ravel()[0], v[i], rtol=1e-8,
+                                   atol=1e-12 * (1 + np.abs(v).max()))

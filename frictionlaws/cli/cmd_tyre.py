@@ -469,19 +469,26 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
     from frictionlaws.outputs import check_outputs
-    from frictionlaws.tyre.fit_mf import fit_mf
+    from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
 
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
+    check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
         from frictionlaws.tyre._fit_mf_plot import check_figure_path
 
         check_figure_path(args.plot)
-    from ._common import data_source
+    from frictionlaws.errors import FitError
+
+    from ._common import data_source, shown_source
 
     with data_source(args.data) as data:
-        res = fit_mf(data, fittyp=args.fittyp, template=args.template,
-                     sign_convention=args.sign_convention)
+        try:
+            res = fit_mf(data, fittyp=args.fittyp, template=args.template,
+                         sign_convention=args.sign_convention)
+        except FitError as exc:  # name standard input, not its private copy
+            raise FitError(str(exc).replace(data, shown_source(data))) from None
+    res.data.source = shown_source(res.data.source)  # the provenance the file states
     res.write(args.output)
     if args.plot:
         res.plot(args.plot)

@@ -11,10 +11,14 @@ The tests are physical bounds, not statistics of the data set:
   longitudinal force staying below half the load (a slip coefficient
   ``max|F_x| / (F_z max|kappa|)`` under 0.5) the values are percent; a slip
   coefficient above :data:`MAX_SLIP_COEFFICIENT` (150; tyres have 10-40) means
-  fractions under a percent header;
+  fractions under a percent header; a slope of ``F_x / F_z`` on the slip ratio below
+  :data:`MIN_SLIP_SLOPE` (0.5) over the rows near pure slip within 0.1 of zero means
+  percent written as fractions (a sweep of a few percent that never exceeds 1);
 * **slip angle**: a cornering coefficient ``max|F_y| / (F_z max|tan alpha|)`` above
   :data:`MAX_CORNERING_COEFFICIENT` (60 per rad; tyres have about 5-40) means radians
-  under a degree header;
+  under a degree header; a slope of ``F_y / F_z`` on ``tan(alpha)`` below
+  :data:`MIN_CORNERING_SLOPE` (0.75 per rad) within 0.1 rad of zero means degrees under
+  a ``[rad]`` header (small angles, below 90 "radians");
 * **load**: a force above :data:`MAX_FORCE_RATIO` (5) times the load on its row, or a
   median load below FNOMIN / 100 or above 100 FNOMIN, means kN given as N (or N as kN);
 * **camber**: beyond :data:`MAX_CAMBER` (30 deg) the values are degrees under a ``[rad]``
@@ -38,12 +42,20 @@ if TYPE_CHECKING:
     from .tyre_data import TyreData
 
 __all__ = ["check_plausible", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
-           "MAX_FORCE_RATIO"]
+           "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE"]
 
 #: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
 MAX_SLIP_COEFFICIENT = 150.0
 #: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40).
 MAX_CORNERING_COEFFICIENT = 60.0
+#: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
+#: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
+MIN_SLIP_SLOPE = 0.5
+#: Smallest plausible slope of F_y / F_z on tan(alpha) within 0.1 rad of zero [1/rad]
+#: (tyres: 5-40; on ice, a peak of 0.1 at 0.1 rad still gives 1).
+MIN_CORNERING_SLOPE = 0.75
+#: Half-width of the slip window near zero where the slopes are taken [-, rad].
+_SMALL_SLIP = 0.1
 #: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
 MAX_FORCE_RATIO = 5.0
 #: Largest plausible camber [rad] (30 degrees).
@@ -73,6 +85,7 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
     _check_loads(data, fnomin)
     _check_kappa(data)
     _check_alpha(data)
+    _check_small_slip_slopes(data)
     _check_others(data, nominal_pressure, radius)
 
 
@@ -164,3 +177,33 @@ def _check_alpha(data: TyreData) -> None:
             f"{coef:.0f} per rad (tyres have about 5-40); the slip angles look like radians "
             "under a [deg] header", file=data.source, column="alpha",
             row=_row(data, use, a))
+
+
+def _slope_near_zero(slip: np.ndarray, force: np.ndarray, fz: np.ndarray,
+                     pure: np.ndarray) -> tuple[float, np.ndarray]:
+    """|slope| of force / F_z on ``slip`` over the pure-slip rows within the window (1 %
+    wider: tan(0.1 rad) and rounded decimal slips are inside), and
+    the rows used (NaN when fewer than three rows or one slip value)."""
+    use = pure & np.isfinite(force) & (np.abs(slip) <= 1.01 * _SMALL_SLIP)
+    if use.sum() < 3 or np.ptp(slip[use]) <= 0 or not (np.abs(slip[use]) > 0).any():
+        return math.nan, use
+    return abs(float(np.polyfit(slip[use], force[use] / fz[use], 1)[0])), use
+
+
+def _check_small_slip_slopes(data: TyreData) -> None:
+    """Slopes near zero slip far below any tyre's: percent as fractions, degrees as rad."""
+    from ._fit_mf_stages import ALPHA_PURE, KAPPA_PURE
+
+    kx, use = _slope_near_zero(data.kappa, data.fx, data.fz, np.abs(data.alpha) <= ALPHA_PURE)
+    if kx < MIN_SLIP_SLOPE:
+        raise InputError(
+            f"Fx / Fz rises by only {kx:.3g} per unit slip ratio near zero slip (tyres have "
+            "10-40): the slip ratios look like percent given as a fraction (write "
+            "'kappa [%]')", file=data.source, column="kappa", row=_row(data, use, data.kappa))
+    a = np.tan(data.alpha)
+    ky, use = _slope_near_zero(a, data.fy, data.fz, np.abs(data.kappa) <= KAPPA_PURE)
+    if ky < MIN_CORNERING_SLOPE:
+        raise InputError(
+            f"Fy / Fz changes by only {ky:.3g} per rad of slip angle near zero (tyres have "
+            "about 5-40): the slip angles look like degrees under a [rad] header",
+            file=data.source, column="alpha", row=_row(data, use, a))

@@ -70,8 +70,12 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "RVY3": ("combined_y", "camber"), "REX2": ("combined_x", "loads2"),
     "REY2": ("combined_y", "loads2"), "RHY2": ("combined_y", "loads2"),
     "RVY2": ("combined_y", "loads2"),
-    **{k: ("camber",) for k in "QBZ4 QBZ5 QDZ3 QDZ4 QDZ8 QDZ10 QHZ3 QEZ5".split()},
-    **{k: ("camber", "loads2") for k in "QDZ9 QDZ11 QHZ4".split()},
+    **{k: ("camber",) for k in "QBZ4 QDZ3 QDZ8 QHZ3 QEZ5".split()},
+    **{k: ("camber", "loads2") for k in "QDZ9 QHZ4".split()},
+    # |gamma| beside gamma (B_t) needs cambers of both signs; gamma^2 beside |gamma| (D_t)
+    # and gamma |gamma| beside gamma (D_r) need two cambers of different magnitude
+    "QBZ5": ("camber", "camber_signs"), "QDZ4": ("camber", "camber2"),
+    "QDZ10": ("camber", "camber2"), "QDZ11": ("camber", "loads2", "camber2"),
     **{k: ("loads2",) for k in "QBZ2 QDZ2 QDZ7 QEZ2 QHZ2".split()},
     **{k: ("loads3",) for k in "QBZ3 QEZ3".split()},
     "PPZ1": ("pressure",), "PPZ2": ("pressure", "camber"),
@@ -124,13 +128,19 @@ class CombinedData:
                    dpi, p, target[keep])
 
     def spans(self) -> set[str]:
-        """What these rows vary: loads2/3, camber, pressure, both signs, cross slip."""
+        """What these rows vary: loads2/3, camber (of both signs, of two magnitudes),
+        pressure, both signs of slip, cross slip."""
         have: set[str] = set()
         n_loads = _count_levels(self.fz, 0.03 * float(np.median(self.fz)))
         have.update({"loads2"} if n_loads >= 2 else set())
         have.update({"loads3"} if n_loads >= 3 else set())
-        if _count_levels(self.gamma, math.radians(0.2)) >= 2:
+        tol = math.radians(0.2)
+        if _count_levels(self.gamma, tol) >= 2:
             have.add("camber")
+        if (self.gamma < -tol).sum() >= 3 and (self.gamma > tol).sum() >= 3:
+            have.add("camber_signs")
+        if _count_levels(np.abs(self.gamma[np.abs(self.gamma) > tol]), tol) >= 2:
+            have.add("camber2")
         if _count_levels(self.dpi, 0.02) >= 2:
             have.add("pressure")
         if (self.alpha > 0).sum() >= 3 and (self.alpha < 0).sum() >= 3:

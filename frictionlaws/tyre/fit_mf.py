@@ -59,7 +59,7 @@ from .magic_formula import EXAMPLES, MagicFormula, mf_curve, packaged_example
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
-__all__ = ["MFFit", "fit_mf", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
+__all__ = ["MFFit", "fit_mf", "check_tir_path", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
 
 #: FITTYP -> Magic Formula version.
 FITTYPS = {5: "5.2", 6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
@@ -76,7 +76,9 @@ Y_COEFFICIENTS = {"5.2": _Y52, "6.1": _Y6, "6.2": _Y6}
 
 # What each coefficient needs in the data (beyond one load).
 _NEEDS: dict[str, tuple[str, ...]] = {
-    **{k: ("pressure",) for k in _PPX + "PPY1 PPY2 PPY3 PPY4".split()},
+    **{k: ("pressure",) for k in "PPX1 PPX3 PPY1 PPY2 PPY3".split()},
+    # quadratic in the pressure: with two pressures they trade off against PKX1, PDX1, PDY1
+    **{k: ("pressure3",) for k in "PPX2 PPX4 PPY4".split()},
     "PPY5": ("pressure", "camber"),
     **{k: ("camber",) for k in "PDX3 PDY3 PEY4 PEY5 PKY3 PKY5 PKY6 PHY3 PVY3".split()},
     **{k: ("camber", "loads2") for k in "PKY7 PVY4".split()},
@@ -145,6 +147,7 @@ class MFFit:
         """Write the ``.tir`` file atomically (checked as an output first)."""
         from ..outputs import atomic_write, check_outputs
 
+        check_tir_path(path)
         check_outputs([path], inputs=[self.data.source])
         with atomic_write(path) as fh:
             fh.write(self.tir_text())
@@ -179,6 +182,14 @@ class MFFit:
         from ._fit_mf_plot import plot_fit
 
         return plot_fit(self, path)
+
+
+def check_tir_path(path: str | Path) -> None:
+    """Refuse a property file name whose suffix is not ``.tir`` (the text written is
+    ADAMS ``.tir``; a ``.json`` name would hold it under the wrong format)."""
+    if Path(path).suffix.lower() != ".tir":
+        raise InputError("the property file written is ADAMS .tir text: give the file the "
+                         "suffix .tir", file=str(path))
 
 
 #: What each entry of :attr:`MFFit.errors` describes.
@@ -313,6 +324,8 @@ def _spans(d: _Direction, data: TyreData) -> set[str]:
     n_p = _levels(d.dpi, 0.02)[0].size
     if n_p >= 2:
         have.add("pressure")
+    if n_p >= 3:
+        have.add("pressure3")
     if _levels(d.gamma, math.radians(0.2))[0].size >= 2:
         have.add("camber")
     if (d.slip > 0).sum() >= 3 and (d.slip < 0).sum() >= 3:
@@ -468,19 +481,39 @@ def _refine(mf: FittingModel, d: _Direction, free: list[str], template: dict[str
 
 def _template(template: str | Path | PropertyFile | None, version: str) -> PropertyFile:
     if isinstance(template, PropertyFile):
-        return template
-    if template is None:
+        pf = template
+    elif template is None:
         name = {"5.2": "magicformula52", "6.1": "magicformula61", "6.2": "magicformula62"}
         p = packaged_example(EXAMPLES[name[version]])
         if p is None:
             raise InputError("the packaged template property files are missing")
-        return _packaged(p)
-    p = Path(template)
-    if not p.exists():
-        packaged = packaged_example(str(template))
-        if packaged is not None:
-            return _packaged(packaged)
-    return read_property_file(p)
+        pf = _packaged(p)
+    else:
+        path = Path(template)
+        packaged = None if path.exists() else packaged_example(str(template))
+        pf = _packaged(packaged) if packaged is not None else read_property_file(path)
+    _check_template(pf, version)
+    return pf
+
+
+def _check_template(pf: PropertyFile, version: str) -> None:
+    """Refuse a template of the other family (MF 5.2 against MF 6.x: it lacks the
+    coefficients and sections of the version written, which would be written without
+    them or as zeros claimed to be the template's values) or with an unloaded radius
+    that is not positive (the moments would be zero and M_z data look wrong)."""
+    from ._mf_file import version_of
+
+    have, how = version_of(pf)
+    if (have == "5.2") != (version == "5.2"):
+        raise InputError(
+            f"the template is Magic Formula {have} ({how}) and the file to write is MF "
+            f"{version}: the template lacks coefficients and sections of MF {version}, so "
+            f"they would have no template value; give an MF {version} template, or none "
+            "for the packaged example", file=pf.path)
+    if pf.has("DIMENSION", "UNLOADED_RADIUS") and not pf.si("DIMENSION",
+                                                            "UNLOADED_RADIUS") > 0:
+        raise InputError("the template's [DIMENSION] UNLOADED_RADIUS must be positive",
+                         file=pf.path, row=pf.lines.get(("DIMENSION", "UNLOADED_RADIUS")))
 
 
 def _packaged(path: Path) -> PropertyFile:
@@ -511,8 +544,11 @@ def _errors(mf: MagicFormula, d: _Direction) -> dict[str, float]:
 
 
 def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
-                p_nom: float | None, data: TyreData) -> PropertyFile:
-    """The template with FITTYP, the fitted coefficients, the pressure and the data ranges."""
+                p_nom: float | None, data: TyreData, notes: list[str]) -> PropertyFile:
+    """The template with FITTYP, the fitted coefficients, the pressure and the data ranges.
+
+    A nominal pressure outside the measured ones stays NOMPRES (the coefficients refer to
+    it); INFLPRES, where the file is evaluated by default, is the nearest measured one."""
     pf = PropertyFile({s: dict(e) for s, e in t.sections.items()}, dict(t.tables),
                       dict(t.metadata), path="<fitted>", format="tir",
                       comments=dict(t.comments))
@@ -533,6 +569,13 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     for sec, lo, hi, observed in ranges:
         entry = pf.sections.setdefault(sec, {})
         entry[lo], entry[hi] = float(np.min(observed)), float(np.max(observed))
+    if p_nom is not None and measured.size and FITTYPS[fittyp] != "5.2":
+        inside = float(np.clip(p_nom, measured.min(), measured.max()))
+        if inside != p_nom:
+            pf.sections["OPERATING_CONDITIONS"]["INFLPRES"] = inside / f_p
+            notes.append(f"the nominal pressure {p_nom:g} Pa lies outside the measured "
+                         f"{measured.min():g}..{measured.max():g} Pa: INFLPRES is set to "
+                         f"{inside:g} Pa, NOMPRES stays")
     return pf
 
 
@@ -622,7 +665,7 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         notes.append("not determined by the data, and the template's value does not suit "
                      "them: held at the fitted value (standard error infinite): "
                      + ", ".join(held))
-    pf = _build_file(tpl, fittyp, values, p_nom, data)
+    pf = _build_file(tpl, fittyp, values, p_nom, data, notes)
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
     fitted.warnings = warns

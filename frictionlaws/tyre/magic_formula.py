@@ -416,7 +416,7 @@ class MagicFormula:
 
     def _warn_range(self, name: str, x: Any) -> None:
         lim = self.limits.get(name)
-        if lim is None:
+        if lim is None or np.size(x) == 0:  # empty: no point to check, empty results
             return
         lo, hi = lim
         xmin, xmax = float(np.min(x)), float(np.max(x))

@@ -111,10 +111,19 @@ OUTPUTS: dict[str, tuple[str, str]] = {
 }
 
 
+#: Structure entries that are lengths or speeds of a real tyre: positive.
+_POSITIVE = frozenset({"UNLOADED_RADIUS", "LONGVL", "WIDTH"})
+
+
 def _need(mf: MagicFormula, key: str, default: float | None = None) -> float:
-    """A structure entry of the file, or its default; refused when absent without one."""
+    """A structure entry of the file, or its default; refused when absent without one,
+    and a radius or speed that is not positive (a zero radius gives zero moments)."""
     if key in mf.structure:
-        return mf.structure[key]
+        value = mf.structure[key]
+        if key in _POSITIVE and not value > 0:
+            raise InputError(f"{key} = {value:g} (SI) must be positive for the moments and "
+                             "radii", file=mf.source)
+        return value
     if default is None:
         raise InputError(f"the property file has no {key}, needed for the moments and "
                          "radii", file=mf.source)

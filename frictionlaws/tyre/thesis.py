@@ -194,6 +194,10 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
     for law in laws:
         result = fit(law, dataset)
         label = f"{result.law.id} ({name})"
+        if label in fits:  # one column per law: a second would replace the first unseen
+            from ..errors import InputError
+
+            raise InputError(f"laws: '{law}' is law '{result.law.id}', given twice")
         fits[label] = result
         results[label] = BrushModel(result, tyre=tyre).cornering(loads, angles_deg)
     return ThesisComparison(loads_kN=loads / 1000.0, angles_deg=np.asarray(angles_deg, float),
