@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import contextlib
+import functools
 import csv
 import io
 import math
@@ -265,10 +266,23 @@ def test_a_line_separator_inside_a_cell_does_not_split_the_row(sep: str, n: int)
     assert len(ds) == n == len(list(csv.reader(io.StringIO(text, newline="")))) - 1
 
 
+@functools.lru_cache(maxsize=1)
+def _tmp_dir() -> Path:
+    """One folder for the generated files of this module, removed when the run ends
+    (hypothesis' examples cannot use the function-scoped ``tmp_path``)."""
+    import atexit
+    import shutil
+    import tempfile
+
+    path = Path(tempfile.mkdtemp(prefix="frictionlaws-hostile-"))
+    atexit.register(shutil.rmtree, path, ignore_errors=True)
+    return path
+
+
 def _tmp_csv(text: str) -> Path:
     import tempfile
 
-    fd, name = tempfile.mkstemp(suffix=".csv")
+    fd, name = tempfile.mkstemp(suffix=".csv", dir=_tmp_dir())
     with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
         fh.write(text)
     return Path(name)
@@ -357,7 +371,8 @@ def _pint_inputs() -> Iterator[list[str]]:
 
     ureg = unit_registry()
     seen: list[str] = []
-    names = ("parse_units", "parse_expression", "parse_units_as_container", "parse_pattern")
+    names = [n for n in ("parse_units", "parse_expression", "parse_units_as_container",
+                         "parse_pattern") if hasattr(type(ureg), n)]  # pint 0.22 has fewer
     originals = {n: getattr(ureg, n) for n in names}
 
     def spy(name: str) -> object:
