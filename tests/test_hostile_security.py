@@ -14,8 +14,8 @@
 from __future__ import annotations
 
 import contextlib
-import functools
 import csv
+import functools
 import io
 import math
 import os
