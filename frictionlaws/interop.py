@@ -355,11 +355,11 @@ def confidence_band(result: Any, variables: Mapping[str, np.ndarray]) -> np.ndar
 def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.ndarray:
     """d mu / d ``name`` at ``variables`` (central difference).
 
-    The step is the fit's own (:func:`frictionlaws.fitting.diagnosis._jacobian`): it
+    The step is the fit's own (:func:`frictionlaws._lsq.central_jacobian`): it
     grows until it stands above round-off, so a parameter sitting at 0 (a bound) keeps
     its true slope instead of a step of 1e-18 that leaves none.
     """
-    from .fitting.diagnosis import _jacobian
+    from ._lsq import central_jacobian as _jacobian
 
     base = result.values
     shape = np.broadcast_shapes(*(np.shape(v) for v in variables.values()))
