@@ -30,7 +30,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["LocalFit", "Estimate", "solve", "central_jacobian"]
+__all__ = ["LocalFit", "Estimate", "solve", "central_jacobian", "least_squares_solve",
+           "lmfit_fit"]
 
 #: The message of a model that returned NaN or infinity (lmfit's wording, shortened).
 NAN_MESSAGE = ("The model function generated NaN values and the fit aborted! Please check "
@@ -168,8 +169,6 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
     ValueError
         When the model is not finite at a point the solver tried.
     """
-    from scipy.optimize import least_squares
-
     lo = np.array([bounds[k][0] for k in vary], float)
     hi = np.array([bounds[k][1] for k in vary], float)
     held = {k: float(v) for k, v in start.items() if k not in vary}
@@ -185,7 +184,7 @@ def solve(model: Callable[[dict[str, float]], Any], y: np.ndarray, w: np.ndarray
             lm = _minpack_inside(res, x0, kws["jac"], max_nfev, tol)
             if lm is not None:
                 return _finish(res, lm[0], lm[1], True, lm[2], res.nfev)
-        ret = least_squares(res, x0, bounds=(lo, hi), **kws)
+        ret = least_squares_solve(res, x0, bounds=(lo, hi), **kws)
     except _BudgetSpent:
         assert res.last is not None
         return _finish(res, res.last, None, False,
@@ -348,3 +347,56 @@ def central_jacobian(func: Callable[[np.ndarray], np.ndarray], x: np.ndarray,
             h *= 10.0
         jac[:, j] = diff / (2 * h)  # the step that made diff
     return jac
+
+
+def least_squares_solve(residual: Callable[[np.ndarray], np.ndarray], x0: Any,
+                        **options: Any) -> Any:
+    """Solve one least-squares problem with scipy's ``least_squares``.
+
+    The package's one call of it: the fit's bounded trust region (:func:`solve`), the
+    bootstrap's refits, the shared fit, the Magic Formula stages and the validation
+    cases all come here with their own residuals and options, so that the solver, its
+    version and its defaults are in one place.
+
+    Parameters
+    ----------
+    residual : callable
+        Parameter vector -> residual vector.
+    x0 : array_like
+        The start.
+    **options
+        ``bounds``, ``method``, ``x_scale``, tolerances, ``jac``, ... as scipy takes them.
+
+    Returns
+    -------
+    scipy.optimize.OptimizeResult
+        scipy's result (``x``, ``cost``, ``fun``, ``jac``, ``status``, ...).
+    """
+    from scipy.optimize import least_squares
+
+    return least_squares(residual, x0, **options)
+
+
+def lmfit_fit(model: Any, y: Any, params: Any, **kwargs: Any) -> Any:
+    """Minimise with lmfit: the package's one call of ``lmfit.Model.fit``.
+
+    Used for lmfit's other minimisers (``fit(..., method="nelder")``), the lmfit model
+    of a fit result and the master curve's WLF fit.
+
+    Parameters
+    ----------
+    model : lmfit.Model
+        The model.
+    y : array_like
+        The data.
+    params : lmfit.Parameters
+        The start and bounds.
+    **kwargs
+        Independent variables, ``weights``, ``method``, ... as lmfit takes them.
+
+    Returns
+    -------
+    lmfit.model.ModelResult
+        lmfit's result.
+    """
+    return model.fit(y, params, **kwargs)

@@ -121,10 +121,12 @@ def model_result(result: Any) -> Any:
     for name, value in result.settings.items():
         if name in params and name not in result.params:
             params[name].set(value=value, vary=False)
+    from ._lsq import lmfit_fit
+
     y = fd.arrays["mu"]
     xs = {k: fd.arrays[k] for k in law.variables} or {"x": y}
     with np.errstate(all="ignore"):
-        return model.fit(y, params, weights=fd.weights, **xs)
+        return lmfit_fit(model, y, params, weights=fd.weights, **xs)
 
 
 # ----------------------------------------------------------------------- pandas

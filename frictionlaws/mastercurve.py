@@ -257,6 +257,8 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
     """
     import lmfit
 
+    from ._lsq import lmfit_fit
+
     T = np.asarray(T, float)
     y = np.asarray(log_aT, float)
     keep = np.abs(T - T_ref) > 1e-9
@@ -278,7 +280,7 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
     params = lmfit.Parameters()
     params.add("C1", value=C1, min=1e-3, max=1e3)
     params.add("C2", value=C2, min=float(-dT.min()) + 1e-6, max=1e5)
-    res = lmfit.Model(model, independent_vars=["dT"]).fit(y, params, dT=dT, weights=w)
+    res = lmfit_fit(lmfit.Model(model, independent_vars=["dT"]), y, params, dT=dT, weights=w)
     c1, c2 = res.params["C1"], res.params["C2"]
     corr = None
     if res.covar is not None:

@@ -238,11 +238,11 @@ def _start(problem: _Problem, separate: list[Any]) -> np.ndarray:
 
 def _solve(problem: _Problem, by: tuple[str, ...],
            groups: list[tuple[dict[str, Any], np.ndarray]], separate: list[Any]) -> SharedFit:
-    from scipy.optimize import least_squares
+    from ._lsq import least_squares_solve
 
     lo, hi = problem.bounds()
     x0 = np.clip(_start(problem, separate), lo, hi)
-    sol = least_squares(problem.residual, x0, bounds=(lo, hi), x_scale="jac",
+    sol = least_squares_solve(problem.residual, x0, bounds=(lo, hi), x_scale="jac",
                         max_nfev=2000 * x0.size)
     if not np.all(np.isfinite(sol.x)):
         raise FitError(f"the shared fit of '{problem.law.id}' did not converge: {sol.message}")

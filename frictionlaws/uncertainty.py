@@ -279,7 +279,7 @@ class Refit:
         (a resample of too few distinct conditions: its refit would stay where it
         started and show a spread of zero).
         """
-        from scipy.optimize import least_squares
+        from ._lsq import least_squares_solve
 
         w = 1.0 if self.w is None else self.w[rows]
         y = self.y[rows]
@@ -297,7 +297,7 @@ class Refit:
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")
-                sol = least_squares(resid, start, bounds=(self.lower, self.upper),
+                sol = least_squares_solve(resid, start, bounds=(self.lower, self.upper),
                                     x_scale=scale, max_nfev=200 * (start.size + 1))
         except (ValueError, FloatingPointError, np.linalg.LinAlgError):
             return np.full(theta0.size, np.nan)

@@ -393,8 +393,10 @@ class _Search:
         """One local solve: the lean trust region, or lmfit's minimiser when asked."""
         s = self.setup
         if self.method != "least_squares":
-            return self.model.fit(s.y, self.params(start, pinned), weights=s.w,
-                                  method=self.method, max_nfev=self.max_nfev, **self.kwargs)
+            from .._lsq import lmfit_fit
+
+            return lmfit_fit(self.model, s.y, self.params(start, pinned), weights=s.w,
+                             method=self.method, max_nfev=self.max_nfev, **self.kwargs)
         from .._lsq import solve
 
         values = self.start_values(start, pinned)

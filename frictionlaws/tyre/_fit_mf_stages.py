@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
+from .._lsq import least_squares_solve
 from ._fit_mf_peak import FittingModel, peak_penalty
 from .magic_formula import mf_curve
 
@@ -264,10 +264,10 @@ def _solve(mf: FittingModel, names: list[str], d: CombinedData,
                      np.where(np.isfinite(hi), hi - 1e-6 * (1 + np.abs(hi)), hi))
     # Levenberg-Marquardt (MINPACK, QR-based: fast on tall Jacobians); the bounded
     # trust-region solver only when it ends outside the bounds of a shape coefficient
-    r = least_squares(resid, p0, x_scale="jac", method="lm", ftol=FTOL,
+    r = least_squares_solve(resid, p0, x_scale="jac", method="lm", ftol=FTOL,
                       max_nfev=MAX_ITERATIONS * (len(names) + 1))
     if np.any(r.x < lo) or np.any(r.x > hi) or not np.isfinite(r.cost):
-        r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
+        r = least_squares_solve(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
                           ftol=FTOL, max_nfev=MAX_ITERATIONS)
     resid(r.x)  # leave the model at the solution
     return r

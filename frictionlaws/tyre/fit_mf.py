@@ -47,8 +47,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
+from .._lsq import least_squares_solve
 from ..errors import ExtrapolationWarning, FitError, InputError
 from . import _fit_mf_stages as stages_
 from ._fit_mf_checks import check_plausible
@@ -247,7 +247,7 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
             out.append(mf_curve(x + sh, B, p[0], D, E, E_b if both[j] else 0.0, sv) - y)
         return np.concatenate(out)
 
-    r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac")
+    r = least_squares_solve(resid, p0, bounds=(lo, hi), x_scale="jac")
     C = float(r.x[0])
     out = []
     for j, (_, _, fz) in enumerate(sets):
@@ -273,7 +273,7 @@ def _ky_start(curves: list[dict[str, float]], fz0: float, six: bool) -> dict[str
     lo = [-np.inf, 0.05] + ([1.0] if free4 else [])
     hi = [np.inf, 50.0] + ([4.0] if free4 else [])
     if fz.size >= 2:
-        p = least_squares(lambda q: (model(q) - K) / np.abs(K).max(), p0,
+        p = least_squares_solve(lambda q: (model(q) - K) / np.abs(K).max(), p0,
                           bounds=(lo, hi)).x
     else:
         p = np.array(p0)
@@ -379,14 +379,14 @@ def _solve(mf: FittingModel, d: _Direction, names: list[str], method: str = "lm"
     p0 = inside(np.array([mf.coefficients.get(k, 0.0) for k in names]))
     with np.errstate(all="ignore"):
         if method == "lm":
-            r = least_squares(resid, p0, method="lm", x_scale="jac",
+            r = least_squares_solve(resid, p0, method="lm", x_scale="jac",
                               max_nfev=200 * (len(names) + 1))
         else:
-            r = least_squares(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
+            r = least_squares_solve(resid, p0, bounds=(lo, hi), x_scale="jac", method="trf",
                               max_nfev=100 * (len(names) + 1))
         if np.any(r.x < lo) or np.any(r.x > hi) or not np.isfinite(r.cost):
             starts = [p0] + ([inside(r.x)] if np.isfinite(r.cost) else [])
-            r = min((least_squares(resid, x0, bounds=(lo, hi), x_scale="jac", method="trf",
+            r = min((least_squares_solve(resid, x0, bounds=(lo, hi), x_scale="jac", method="trf",
                                    max_nfev=100 * (len(names) + 1)) for x0 in starts),
                     key=lambda res: res.cost)
     _predict(mf, d, names, r.x)  # leave the model at the solution

@@ -500,8 +500,7 @@ def _read_pyvisco_shifts() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _case_wlf_pyvisco(run: CaseRun) -> None:
-    from scipy.optimize import least_squares
-
+    from .._lsq import least_squares_solve
     from ..mastercurve import fit_wlf, load_dma_upstream_shifts
 
     T, la = _read_pyvisco_shifts()
@@ -523,7 +522,7 @@ def _case_wlf_pyvisco(run: CaseRun) -> None:
     def resid(c: np.ndarray) -> np.ndarray:
         return -c[0] * dT[use] / (c[1] + dT[use]) - la[use]
 
-    sol = least_squares(resid, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    sol = least_squares_solve(resid, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)
     C1_ref, C2_ref = (float(x) for x in sol.x)
     rms_ref = float(np.sqrt(np.mean(sol.fun ** 2)))
     w = fit_wlf(T, la, T_ref)
