@@ -31,8 +31,8 @@ from typing import Any
 
 import numpy as np
 
-from ._workers import batches, local_workers
 from .errors import InputError
+from .parallel import batches, local_workers, starmap_local
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
            "check_uncertainty_options", "condition_ids", "sandwich_cov",
@@ -427,11 +427,9 @@ def bootstrap(refit: Refit, theta0: np.ndarray, groups: np.ndarray, *, n_boot: i
     if workers == 1:
         out = np.array([refit.solve(theta0, rows) for rows in sets]).reshape(total, -1)
     else:
-        from joblib import Parallel, delayed
-
         per_task = max(1, min(-(-total // (4 * workers)), _TASK_INDICES // max(groups.size, 1)))
-        parts = Parallel(n_jobs=workers, return_as="generator")(
-            delayed(_solve_many)(refit, theta0, chunk) for chunk in batches(sets, per_task))
+        parts = starmap_local(_solve_many, ((refit, theta0, chunk)
+                                            for chunk in batches(sets, per_task)), workers)
         out = np.concatenate(list(parts)).reshape(total, -1)
     samples, jack = out[:n_boot], out[n_boot:]
     failed = int(np.sum(~np.all(np.isfinite(samples), axis=1)))

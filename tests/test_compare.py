@@ -456,7 +456,7 @@ def test_jobs_is_a_ceiling_not_a_demand(steel: FitData, monkeypatch: pytest.Monk
                                         ) -> None:
     import joblib
 
-    from frictionlaws._workers import local_workers
+    from frictionlaws.parallel import local_workers
 
     monkeypatch.setattr(joblib, "cpu_count", lambda *a, **k: 8)
     assert [local_workers(j) for j in (1, 2, 8, 9, 1024, -1)] == [1, 2, 8, 8, 8, 8]

@@ -63,10 +63,10 @@ from typing import Any
 
 import numpy as np
 
-from .._workers import local_workers
 from ..errors import DomainError, FitError, InputError
 from ..fitting import FitData, as_fit_data, fit, invalid_rows
 from ..law import VARIABLES, Law
+from ..parallel import local_workers, starmap_local
 from ..registry import get_law, list_laws
 from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
 from .extrapolation import (
@@ -349,13 +349,7 @@ def _run_tasks(laws: list[Law], setup: _Setup, jobs: int, bar: Any) -> list[list
     tasks += [(law, "fold", f) for law in laws for f in range(setup.folds)]
     tasks += [(law, "holdout", i) for law in laws for i in range(len(setup.active))]
     workers = local_workers(jobs, len(tasks))
-    if workers == 1:
-        outputs: Iterable[Any] = (_task(law, setup, kind, i) for law, kind, i in tasks)
-    else:
-        from joblib import Parallel, delayed
-
-        outputs = Parallel(n_jobs=workers, return_as="generator")(
-            delayed(_task)(law, setup, kind, i) for law, kind, i in tasks)
+    outputs = starmap_local(_task, ((law, setup, kind, i) for law, kind, i in tasks), workers)
     per_law: dict[str, list[Any]] = {law.id: [] for law in laws}
     for (law, _kind, _i), out in zip(tasks, outputs):
         bar.set_postfix_str(law.id)

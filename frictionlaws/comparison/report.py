@@ -37,9 +37,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._workers import local_workers
 from ..errors import InputError
 from ..law import VARIABLES
+from ..parallel import local_workers, starmap_local
 from ..sanitize import html_text, markdown_text
 from ..units import to_display
 from .extrapolation import Split, evaluate_on, fmt_value
@@ -859,10 +859,8 @@ def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
     drawers = local_workers(jobs, count)
     if drawers == 1:
         return [f for f in (_draw(cmp, i) for i in range(count)) if f is not None]
-    from joblib import Parallel, delayed
-
     shares = [list(range(w, count, drawers)) for w in range(drawers)]
-    drawn = Parallel(n_jobs=drawers)(delayed(_draw_share)(cmp, share) for share in shares)
+    drawn = list(starmap_local(_draw_share, ((cmp, share) for share in shares), drawers))
     figs: list[Figure | None] = [None] * count
     for share, figures in zip(shares, drawn):
         for i, f in zip(share, figures):

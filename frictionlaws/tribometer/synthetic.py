@@ -404,14 +404,9 @@ def make_campaign(
     specs = _record_specs(conditions, rig, seed, record_kwargs)
     tasks = [(str(root / "records" / name), spec, rseed, rig, name)
              for _, spec, rseed, name in specs]
-    if jobs > 1 and len(tasks) > 8:
-        from concurrent.futures import ProcessPoolExecutor
+    from ..parallel import run_parallel
 
-        with ProcessPoolExecutor(max_workers=jobs) as ex:
-            list(ex.map(_write_one, tasks, chunksize=8))
-    else:
-        for task in tasks:
-            _write_one(task)
+    run_parallel(_write_one, tasks, jobs=jobs if len(tasks) > 8 else 1)
     lines = ["file,load [kg],surface,condition,mode"]
     for c, _, _, name in specs:
         lines.append(f"records/{name},{c.load_kg:g},{c.surface},{c.name},{c.mode}")

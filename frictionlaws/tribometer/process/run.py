@@ -11,8 +11,8 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ..._workers import local_workers
 from ...errors import InputError
+from ...parallel import local_workers
 from ..records import Record, read_record
 from ..rig import Rig
 from .conditions import summarise
@@ -72,7 +72,7 @@ def _progress(total: int, progress: bool | None, desc: str) -> Any:
                 unit="record", desc=desc, file=sys.stderr, leave=False)
 
 
-def _workers(jobs: int | None) -> int:
+def _job_count(jobs: int | None) -> int:
     """``jobs`` as the campaign runner takes it: None or 0 (one per CPU) become -1."""
     return -1 if jobs is None or jobs == 0 else jobs
 
@@ -83,10 +83,10 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ...campaign import SCHEDULER_ENV, _check_jobs, iter_parallel
+    from ...parallel import SCHEDULER_ENV, check_jobs, iter_parallel
 
-    jobs = _workers(jobs)
-    _check_jobs(jobs)
+    jobs = _job_count(jobs)
+    check_jobs(jobs)
     remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
     workers = local_workers(jobs)
     if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
