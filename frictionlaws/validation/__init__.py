@@ -78,7 +78,7 @@ def run_validation(names: Iterable[str] | None = None, *,
         # the cases evaluate laws outside their domains on purpose (limits, poles)
         warnings.simplefilter("ignore", ExtrapolationWarning)
         report = run_cases(cases, progress=progress)
-    from .cases import _plugin_law_ids
+    from .cases.common import _plugin_law_ids
 
     plugins = _plugin_law_ids()
     if plugins:
