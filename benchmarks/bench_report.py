@@ -31,6 +31,7 @@ from types import ModuleType
 from typing import Any
 
 from frictionlaws.comparison import compare, report
+from frictionlaws.comparison.report import figures as report_figures
 from frictionlaws.fitting import as_fit_data
 from frictionlaws.registry import list_laws
 
@@ -68,9 +69,9 @@ def figure_seconds(cmp: Any, rounds: int) -> dict[str, float]:
     """Best CPU seconds of each figure of the current report over ``rounds`` drawings."""
     best: dict[str, float] = {}
     for _ in range(rounds):
-        for index in range(len(report._figure_plan(cmp))):
+        for index in range(len(report_figures._figure_plan(cmp))):
             c0 = time.process_time()
-            fig = report._draw(cmp, index)
+            fig = report_figures._draw(cmp, index)
             spent = time.process_time() - c0
             if fig is not None:
                 best[fig.name] = min(best.get(fig.name, spent), spent)

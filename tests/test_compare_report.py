@@ -15,6 +15,9 @@ import pytest
 
 from frictionlaws.comparison import Comparison, compare
 from frictionlaws.comparison import report as rep
+from frictionlaws.comparison.report import documents as rep_documents
+from frictionlaws.comparison.report import figures as rep_figures
+from frictionlaws.comparison.report import text as rep_text
 from frictionlaws.comparison.residuals import ALPHA
 
 LAWS = ["coulomb", "thirion", "savkoor"]  # coulomb leaves structure; savkoor drops v = 0
@@ -50,7 +53,7 @@ def test_every_residual_p_value_is_in_the_markdown_and_html_tables(cmp: Comparis
         ps = _p_values(r, columns)
         assert len(cells) == len(ps) == 2 * len(columns) + 1
         for cell, p in zip(cells, ps):
-            text = rep._num(p, ".2g")
+            text = rep_text._num(p, ".2g")
             flagged = p is not None and math.isfinite(p) and p < ALPHA
             some_flagged |= flagged
             assert cell == (f"**{text}**" if flagged else text)
@@ -60,21 +63,21 @@ def test_every_residual_p_value_is_in_the_markdown_and_html_tables(cmp: Comparis
 
 
 def test_the_red_bands_of_the_residuals_figure_agree_with_the_table(cmp: Comparison) -> None:
-    _, rows = rep._residual_table(cmp)
+    _, rows = rep_documents._residual_table(cmp)
     for r, row in zip(cmp.results, rows):
         flags = [bad for _, bad in row[1:]]
         for j, c in enumerate(cmp.design.varying + ["fitted"]):
-            assert rep._strip(cmp, r, c)[2] == (flags[2 * j] or flags[2 * j + 1])
-        assert rep._strip(cmp, r, "qq")[2] == flags[-1]
-    assert any(rep._strip(cmp, r, "p")[2] for r in cmp.results)
-    assert not all(rep._strip(cmp, r, "qq")[2] for r in cmp.results)
+            assert rep_figures._strip(cmp, r, c)[2] == (flags[2 * j] or flags[2 * j + 1])
+        assert rep_figures._strip(cmp, r, "qq")[2] == flags[-1]
+    assert any(rep_figures._strip(cmp, r, "p")[2] for r in cmp.results)
+    assert not all(rep_figures._strip(cmp, r, "qq")[2] for r in cmp.results)
 
 
 def test_the_metrics_axis_is_labelled_in_plain_numbers() -> None:
-    fig = rep._new_figure(4, 3)
+    fig = rep_figures._new_figure(4, 3)
     ax = fig.subplots()
     ax.barh([0, 1], [0.03, 2.0])
-    rep._log_axis(ax, 0.02, 4.0)
+    rep_figures._log_axis(ax, 0.02, 4.0)
     fig.canvas.draw()
     lo, hi = ax.get_xlim()
     labels = [t.get_text() for t, x in zip(ax.get_xticklabels(), ax.get_xticks())
