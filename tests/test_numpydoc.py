@@ -82,7 +82,7 @@ def test_the_public_api_is_validated():
     objects = list(public_objects())
     assert len(objects) == len(set(objects))
     assert "frictionlaws.io.packaged.load_dataset" in objects
-    assert "frictionlaws.tyre.brush.BrushModel.cornering" in objects
+    assert "frictionlaws.tyre.brush.model.BrushModel.cornering" in objects
 
 
 def test_known_failures_are_only_in_pending_modules():

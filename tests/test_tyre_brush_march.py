@@ -22,8 +22,8 @@ import numpy as np
 import pytest
 
 from frictionlaws.errors import DomainError
-from frictionlaws.tyre import brush
 from frictionlaws.tyre.brush import BrushModel, BrushTyre
+from frictionlaws.tyre.brush import tyre as brush_tyre
 
 BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_brush.py"
 
@@ -95,7 +95,7 @@ def scalar_march(model: BrushModel, p: np.ndarray, sigma: np.ndarray, vr: np.nda
     def limit(pk: float, v: float) -> float:
         return float(model.mu(pk, v)) * pk * w / c
 
-    grid = [float(x) for x in brush._SCAN]
+    grid = [float(x) for x in brush_tyre._SCAN]
     q = np.zeros((sigma.size, p.size))
     for j, (sig, rate) in enumerate(zip(sigma, vr / ds)):
         qn = 0.0

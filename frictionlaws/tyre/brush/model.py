@@ -1,108 +1,5 @@
-"""A steady-state brush tyre model whose local friction limit is any sliding law mu(p, v).
-
-The model
----------
-The tread is a row of elastic bristles (the classical brush model, Pacejka,
-*Tire and Vehicle Dynamics*, chapter 3) attached to a rigid carcass.  The
-contact patch has half-length ``a`` and width ``w``; ``s`` runs from the
-leading edge (s = 0) to the trailing edge (s = 2a).  A bristle enters the
-patch undeformed.  While it adheres to the road its tip deflection grows
-linearly with the distance travelled,
-
-    dq/ds = sigma,   sigma = tan(alpha) (side slip) or kappa / (1 + kappa) (longitudinal),
-
-and the elastic line load is ``c q`` [N/m] with ``c`` the tread stiffness per
-unit length of patch [N/m^2] (``c_py`` or ``c_px``).  The friction limit of
-the line load at ``s`` is ``mu(p(s), v_s) p(s) w``: the local contact
-pressure ``p(s)`` from the pressure distribution and the local sliding speed
-``v_s`` feed the friction law.  Where the elastic load would exceed the limit
-the bristle slides and carries exactly the limit.  Marching from the leading
-edge this is
-
-    q(s + ds) = min(q(s) + sigma ds,  mu(p, v_s) p w / c),
-
-which also lets a sliding bristle stick again when the limit rises faster than
-the adhesion deflection (possible with a pressure-dependent mu).  The force is
-``F = c * integral(q ds)`` (trapezoid rule on ``nodes`` intervals).
-
-Sliding speed.  A law that depends on the sliding speed ``v`` gets, by
-default (``sliding_speed="slip"``), the speed of a fully sliding element: the
-slip speed ``V tan(alpha)`` (side slip) or ``V |kappa|`` (longitudinal slip),
-``V`` the road speed; the friction limit then varies along the patch through
-the pressure only and the march keeps its closed form (one law evaluation per
-node and slip).  This is the usual brush-model simplification; it also uses
-mu at the slip speed at the adhesion/sliding transition.  With
-``sliding_speed="local"`` the tip speed of each sliding bristle,
-``v_s = V_r (sigma - dq/ds)`` (``V_r`` the rolling speed, ``V (1 + kappa)``
-for longitudinal slip), is used instead: each node solves
-``q = mu(p, V_r (q_a - q)/ds) p w / c`` (``q_a`` the adhesion trial), and a
-bristle sticks while its trial stays below the static limit
-``mu(p, 0) p w / c``.  All nodes of all slips are solved together (Newton
-sweeps over the patch, a few milliseconds per load); when these do not settle
-on the node-by-node solution (e.g. strong velocity weakening) the node-by-node
-march (a scan and regula falsi per node, about 0.1 s per load) decides.  The
-solution is unique when friction does not fall with sliding speed; when
-several sliding speeds satisfy the law the slowest one is taken (stick-slip is
-not modelled), and when none does (a law that falls with speed, where the
-bristle must shed its deflection fast) the model raises an error and
-``"slip"`` should be used.
-Laws that need the normal load F_N, the temperature T or a slip ratio s are
-rejected: a bristle only knows its pressure and sliding speed.
-
-Sign convention: forces have the sign of the slip (``Fy`` has the sign of
-``alpha``, ``Fx`` of ``kappa``), as in Pacejka's brush-model chapter, so the
-cornering stiffness is positive.  (ISO/TYDEX property files give the
-opposite sign for Fy; see :mod:`frictionlaws.tyre.magic_formula`.)
-
-Contact length and pressure
----------------------------
-* ``contact="sqrt"`` (default): ``a = a_ref sqrt(F_z / F_ref)``.  The defaults
-  ``a_ref = 55 mm`` at ``F_ref = 3 kN`` with ``w = 150 mm`` give the footprint
-  of the thesis' sizing (3000 N on 16 500 mm^2, a mean pressure of 0.18 MPa,
-  close to its 0.22 MPa inflation).  A deflected circle has ``a ~ sqrt(2 R delta)``
-  and a linear vertical stiffness gives ``delta ~ F_z``, hence the square root.
-* ``contact="deflection"``: ``delta = F_z / K_z`` and
-  ``a = q_ra1 sqrt(R delta) + q_ra2 delta`` (the MF-Swift contact-length form,
-  with R = 0.31 m, K_z = 200 kN/m, q_ra1 = 0.6, q_ra2 = 0.8 by default: 53 mm
-  at 3 kN, close to the default above).
-* a callable ``a(F_z)`` [N -> m].
-
-The pressure along the patch is ``"parabolic"`` (default, ``p = 3 F_z/(4 a w)
-(1 - xi^2)``), ``"uniform"`` (``F_z/(2 a w)``) or a callable shape
-``f(xi) >= 0`` of ``xi = x/a`` in [-1, 1] (+1 = leading edge), scaled so the
-patch carries ``F_z``.
-
-Cornering stiffness
--------------------
-The thesis' FE model (chapter 6) reports a cornering stiffness in kN/deg from
-the lateral forces at slip angles of 1, 2 and 3 degrees; it does not say how
-the three were combined.  Here it is the least-squares slope of F_y against
-alpha through the origin over those angles (``sum(F_i alpha_i) /
-sum(alpha_i^2)``), with the three secants F_i/alpha_i kept as well.  At those
-angles part of the patch slides, so the secant depends on friction.  The
-slope at the origin does not: it is ``2 c a^2`` whenever the law gives a
-positive friction limit at zero sliding speed all along the patch (the whole
-patch adheres as alpha -> 0); otherwise (a law with mu(v = 0) = 0) it is
-computed numerically (Richardson extrapolation at alpha = 1e-4 rad).
-
-Why constant mu gives a cornering stiffness proportional to load: with
-``a^2 ~ F_z`` both the elastic term (``2 c a^2 tan(alpha)``) and the friction
-term (``mu F_z``) scale with F_z, so F_y / F_z depends on alpha only
-(the parabolic brush gives ``F_y = mu F_z (3t - 3t^2 + t^3)``,
-``t = 2 c a^2 tan(alpha) / (3 mu F_z)``, for t <= 1) and every secant is
-proportional to F_z.  With a pressure-dependent law the mean pressure grows
-like sqrt(F_z) with load, mu falls, the sliding zone grows, and the secant
-rises less than in proportion.
-
-Default tread stiffness: ``c_py = c_px = 8.49e6 N/m^2`` is the one value
-calibrated, so that with constant mu = 0.9 the secant at 4 kN equals the
-thesis' FE value (0.890 kN/deg).  The origin slope is then 1.19 kN/deg
-(68 kN/rad) at 4 kN, a usual passenger-tyre value, and about a third of the
-patch slides at 3 degrees.  With these defaults and ``thirion`` fitted to
-``thesis-steel`` the ratio CS(6.5 kN)/CS(2 kN) is 2.60 against 3.25 for
-constant mu (thesis FE: 1.89 for sandpaper 120 against 2.65 for mu = 0.9);
-the patch pressures then exceed the 0.25 MPa the data reach, which the
-model reports as an extrapolation.
+"""The brush model (:class:`BrushModel`): a friction law on a brush tyre's contact patch, the
+local march of the bristles, and cornering sweeps.
 """
 
 from __future__ import annotations
@@ -110,365 +7,28 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, ExtrapolationWarning, InputError
-from ..law import VARIABLES, Law
+from ...errors import DomainError, ExtrapolationWarning, InputError
+from ...law import VARIABLES, Law
+from .result import CorneringResult
+from .tyre import (
+    _LOCAL_VARIABLES,
+    _SCAN,
+    BISECTION_STEPS,
+    DEFAULT_ANGLES_DEG,
+    NEWTON_SWEEPS,
+    ORIGIN_STEP,
+    SLIDING_SPEEDS,
+    SWEEP_TOL,
+    TIP_STEPS,
+    BrushTyre,
+    _positive_load,
+)
 
-__all__ = ["BrushTyre", "BrushModel", "CorneringResult", "DEFAULT_ANGLES_DEG",
-           "PRESSURE_SHAPES", "CONTACT_MODELS"]
-
-#: The slip angles of the thesis' FE cornering runs [deg].
-DEFAULT_ANGLES_DEG = (1.0, 2.0, 3.0)
-PRESSURE_SHAPES = ("parabolic", "uniform")
-CONTACT_MODELS = ("sqrt", "deflection")
-SLIDING_SPEEDS = ("slip", "local")
-#: Slip angle of the Richardson estimate of the slope at the origin [rad].
-ORIGIN_STEP = 1e-4
-#: Bisection steps per node for velocity-dependent laws (relative accuracy 2**-45).
-BISECTION_STEPS = 45
-#: Newton sweeps over the patch at most (sliding_speed="local"), Newton steps of the tip
-#: speeds per sweep, and the step below which (relative to the largest deflection) the
-#: sweeps have converged.
-NEWTON_SWEEPS = 30
-TIP_STEPS = 3
-SWEEP_TOL = 1e-13
-#: Scan grid of x = (q_a - q)/q_a for the slowest sliding solution (sliding_speed="local").
-_SCAN = np.geomspace(1e-9, 1.0, 60)
-#: Allowed variables of a law used as the local friction limit.
-_LOCAL_VARIABLES = ("p", "v")
-
-#: Lateral tread stiffness per unit length of patch of the default tyre [N/m^2].
-#: Chosen so that, with constant mu = 0.9 and the default patch, the secant
-#: cornering stiffness over 1-3 deg at 4 kN equals the thesis' FE value
-#: (Table 6-2: 0.890 kN/deg); see tests/test_tyre_brush.py.
-DEFAULT_C_PY = 8.49e6
-
-
-#: Ranges of real tyres (bicycle to mining tyre) outside which the brush tyre refuses
-#: its geometry and speed: a 150 km wide patch is a typing error, not a tyre.
-TYRE_LIMITS: dict[str, tuple[float, float]] = {
-    "width": (0.005, 2.0),
-    "half_length_ref": (0.001, 1.0),
-    "radius": (0.05, 2.5),
-    "speed": (1e-3, 150.0),
-}
-_LIMIT_UNITS = {"width": "m", "half_length_ref": "m", "radius": "m", "speed": "m/s"}
-
-
-@dataclass(frozen=True)
-class BrushTyre:
-    """Geometry, stiffness and operating speed of a brush tyre (SI units).
-
-    Parameters
-    ----------
-    width : float
-        Contact patch width w [m].
-    half_length_ref : float
-        Half contact length a_ref [m] at ``ref_load`` (``contact="sqrt"``).
-    ref_load : float
-        Reference load F_ref [N].
-    contact : {"sqrt", "deflection"} or callable
-        Contact half-length against load (see the module documentation).
-    radius, vertical_stiffness, q_ra1, q_ra2 : float
-        Unloaded radius R [m], vertical stiffness K_z [N/m] and the two
-        coefficients of ``a = q_ra1 sqrt(R delta) + q_ra2 delta`` (``"deflection"``).
-    c_py, c_px : float
-        Lateral and longitudinal tread stiffness per unit length of patch
-        [N/m^2] (the line load per unit bristle deflection).
-    pressure : {"parabolic", "uniform"} or callable
-        Pressure distribution along the patch, or a shape ``f(xi)``.
-    speed : float
-        Forward (road) speed [m/s]; default 10 km/h as in the thesis.
-    nodes : int
-        Integration intervals along the patch.
-    """
-
-    width: float = 0.15
-    half_length_ref: float = 0.055
-    ref_load: float = 3000.0
-    contact: str | Callable[[float], float] = "sqrt"
-    radius: float = 0.31
-    vertical_stiffness: float = 2.0e5
-    q_ra1: float = 0.6
-    q_ra2: float = 0.8
-    c_py: float = DEFAULT_C_PY
-    c_px: float = DEFAULT_C_PY
-    pressure: str | Callable[[np.ndarray], np.ndarray] = "parabolic"
-    speed: float = 10.0 / 3.6
-    nodes: int = 400
-
-    def __post_init__(self) -> None:
-        for name in ("width", "half_length_ref", "ref_load", "radius", "vertical_stiffness",
-                     "c_py", "c_px", "speed"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise InputError(f"brush tyre: {name} must be a positive number (SI), "
-                                 f"got {value!r}")
-        for name, (lo, hi) in TYRE_LIMITS.items():
-            value = getattr(self, name)
-            if not lo <= value <= hi:
-                raise InputError(f"brush tyre: {name} = {value:g} {_LIMIT_UNITS[name]} is "
-                                 f"outside {lo:g}..{hi:g} {_LIMIT_UNITS[name]}, the range of "
-                                 "real tyres this model is meant for")
-        for name in ("q_ra1", "q_ra2"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise InputError(f"brush tyre: {name} must be >= 0, got {value!r}")
-        if not callable(self.contact) and self.contact not in CONTACT_MODELS:
-            raise InputError(f"brush tyre: contact must be one of {', '.join(CONTACT_MODELS)} "
-                             f"or a function of the load, got {self.contact!r}")
-        if not callable(self.pressure) and self.pressure not in PRESSURE_SHAPES:
-            raise InputError(f"brush tyre: pressure must be one of "
-                             f"{', '.join(PRESSURE_SHAPES)} or a shape function f(xi), "
-                             f"got {self.pressure!r}")
-        if not (isinstance(self.nodes, int) and self.nodes >= 20):
-            raise InputError(f"brush tyre: nodes must be an integer >= 20, got {self.nodes!r}")
-
-    # ------------------------------------------------------------- geometry
-    def half_length(self, fz: float) -> float:
-        """Return the contact half-length a at a vertical load.
-
-        Parameters
-        ----------
-        fz : float
-            Vertical load F_z [N], positive.
-
-        Returns
-        -------
-        float
-            Contact half-length a [m] given by :attr:`contact`.
-
-        Raises
-        ------
-        InputError
-            When ``fz`` is not a positive number, when a contact-length function
-            gives a non-positive length, or when ``"sqrt"`` or ``"deflection"``
-            gives a longer than the tyre radius.
-        """
-        fz = _positive_load(fz)
-        if callable(self.contact):
-            a = float(self.contact(fz))
-            if not (math.isfinite(a) and a > 0):
-                raise InputError(f"brush tyre: the contact-length function gave a = {a!r} m "
-                                 f"at F_z = {fz:g} N; expected a positive length")
-            return a
-        if self.contact == "sqrt":
-            a = self.half_length_ref * math.sqrt(fz / self.ref_load)
-        else:
-            delta = fz / self.vertical_stiffness
-            a = self.q_ra1 * math.sqrt(self.radius * delta) + self.q_ra2 * delta
-        if a > self.radius:  # a patch longer than the wheel's diameter is not a tyre
-            raise InputError(f"brush tyre: at F_z = {fz:g} N the contact half-length would "
-                             f"be {a:.3g} m, more than the tyre radius {self.radius:g} m: "
-                             "the load is beyond what this tyre can carry")
-        return a
-
-    def patch(self, fz: float, nodes: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Return the patch nodes and the contact pressure along the patch at a load.
-
-        The discrete pressure integrates (trapezoid rule, times the width) to
-        exactly ``fz``.
-
-        Parameters
-        ----------
-        fz : float
-            Vertical load F_z [N], positive.
-        nodes : int, optional
-            Number of integration intervals (default :attr:`nodes`).
-
-        Returns
-        -------
-        s : numpy.ndarray
-            Positions of the ``nodes + 1`` nodes along the patch [m], from the
-            leading edge (0) to the trailing edge (2a).
-        p : numpy.ndarray
-            Contact pressure at each node [Pa].
-
-        Raises
-        ------
-        InputError
-            For a bad load or a pressure shape function that is not usable.
-        """
-        fz = _positive_load(fz)
-        n = nodes or self.nodes
-        a = self.half_length(fz)
-        s = np.linspace(0.0, 2 * a, n + 1)
-        xi = 1.0 - s / a
-        if callable(self.pressure):
-            shape = np.asarray(self.pressure(xi), dtype=float)
-            if shape.shape != xi.shape or not np.all(np.isfinite(shape)) or np.any(shape < 0):
-                raise InputError("brush tyre: the pressure shape function must return one "
-                                 "finite value >= 0 per point xi in [-1, 1]")
-        elif self.pressure == "parabolic":
-            shape = np.clip(1.0 - xi**2, 0.0, None)
-        else:
-            shape = np.ones_like(xi)
-        ds = s[1] - s[0]
-        integral = float(np.sum(shape) - 0.5 * (shape[0] + shape[-1])) * ds
-        if not integral > 0:
-            raise InputError("brush tyre: the pressure shape integrates to zero")
-        return s, fz * shape / (self.width * integral)
-
-    def mean_pressure(self, fz: float) -> float:
-        """Return the mean contact pressure F_z / (2 a w) at a load.
-
-        Parameters
-        ----------
-        fz : float
-            Vertical load F_z [N], positive.
-
-        Returns
-        -------
-        float
-            Mean contact pressure [Pa].
-        """
-        return _positive_load(fz) / (2 * self.half_length(fz) * self.width)
-
-    def describe(self) -> dict[str, Any]:
-        """Return the tyre's parameters as a JSON-able dict.
-
-        Returns
-        -------
-        dict
-            Field name -> value in SI (callables shown as ``"callable NAME"``),
-            plus ``"units"``: field name -> unit of the dimensional fields.
-        """
-        out = asdict(self)
-        for k in ("contact", "pressure"):
-            v = getattr(self, k)
-            if callable(v):
-                out[k] = f"callable {getattr(v, '__name__', type(v).__name__)}"
-        out["units"] = {"width": "m", "half_length_ref": "m", "ref_load": "N", "radius": "m",
-                        "vertical_stiffness": "N/m", "c_py": "N/m^2", "c_px": "N/m^2",
-                        "speed": "m/s"}
-        return out
-
-
-def _positive_load(fz: Any) -> float:
-    try:
-        value = float(fz)
-    except (TypeError, ValueError):
-        raise InputError(f"the vertical load must be a number in N, got {fz!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise InputError(f"the vertical load must be positive and finite [N], got {fz!r}")
-    return value
-
-
-# --------------------------------------------------------------------- results
-
-
-@dataclass
-class CorneringResult:
-    """Cornering stiffness of a brush tyre against load (SI inside).
-
-    Attributes
-    ----------
-    loads : numpy.ndarray
-        Vertical loads [N].
-    angles_deg : numpy.ndarray
-        Slip angles of the secant [deg].
-    fy : numpy.ndarray
-        Lateral force [N], shape (loads, angles).
-    cs : numpy.ndarray
-        Cornering stiffness over the angles (least-squares slope through the
-        origin) [N/rad].
-    cs_origin : numpy.ndarray
-        Slope at the origin [N/rad].
-    half_length, mean_pressure, peak_pressure : numpy.ndarray
-        Patch half-length [m], mean and peak contact pressure [Pa] per load.
-    """
-
-    law: str
-    params: dict[str, float]
-    tyre: dict[str, Any]
-    loads: np.ndarray
-    angles_deg: np.ndarray
-    fy: np.ndarray
-    cs: np.ndarray
-    cs_origin: np.ndarray
-    half_length: np.ndarray
-    mean_pressure: np.ndarray
-    peak_pressure: np.ndarray
-    warnings: list[str] = field(default_factory=list)
-
-    @property
-    def cs_kN_per_deg(self) -> np.ndarray:
-        """Cornering stiffness over the angles [kN/deg]."""
-        return self.cs * math.pi / 180.0 / 1000.0
-
-    @property
-    def cs_origin_kN_per_deg(self) -> np.ndarray:
-        """Slope at the origin [kN/deg]."""
-        return self.cs_origin * math.pi / 180.0 / 1000.0
-
-    @property
-    def secants_kN_per_deg(self) -> np.ndarray:
-        """F_y(alpha)/alpha at each angle [kN/deg], shape (loads, angles)."""
-        return self.fy / self.angles_deg[None, :] / 1000.0
-
-    def ratio(self, low: float | None = None, high: float | None = None) -> float:
-        """CS(high)/CS(low) for loads [N] in the result (default: last over first)."""
-        i = 0 if low is None else _index_of(self.loads, low)
-        j = -1 if high is None else _index_of(self.loads, high)
-        if not self.cs[i] > 0:  # no friction, no stiffness: the ratio is undefined
-            return math.nan
-        return float(self.cs[j] / self.cs[i])
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-able result with units in the keys."""
-        return {
-            "law": self.law, "params": dict(self.params), "tyre": self.tyre,
-            "angles_deg": self.angles_deg.tolist(),
-            "method": "least-squares slope of Fy against alpha through the origin over "
-                      "the angles; origin = numerical slope at alpha -> 0",
-            "loads_kN": (self.loads / 1000).tolist(),
-            "cornering_stiffness_kN_per_deg": self.cs_kN_per_deg.tolist(),
-            "cornering_stiffness_origin_kN_per_deg": self.cs_origin_kN_per_deg.tolist(),
-            "secants_kN_per_deg": self.secants_kN_per_deg.tolist(),
-            "fy_kN": (self.fy / 1000).tolist(),
-            "half_length_mm": (self.half_length * 1000).tolist(),
-            "mean_pressure_MPa": (self.mean_pressure / 1e6).tolist(),
-            "peak_pressure_MPa": (self.peak_pressure / 1e6).tolist(),
-            "ratio_last_over_first": self.ratio(),
-            "warnings": list(self.warnings),
-        }
-
-    def table(self) -> str:
-        """A plain-text table with units."""
-        angles = ", ".join(f"{a:g}" for a in self.angles_deg)
-        lines = [f"brush tyre, law {self.law}: cornering stiffness over alpha = {angles} deg "
-                 "(least-squares slope through the origin) and at the origin",
-                 f"{'load [kN]':>9}  {'CS [kN/deg]':>11}  {'CS0 [kN/deg]':>12}  "
-                 f"{'2a [mm]':>7}  {'p_mean [MPa]':>12}  {'p_max [MPa]':>11}  "
-                 + "  ".join(f"{'Fy(' + format(a, 'g') + ') [kN]':>11}"
-                             for a in self.angles_deg)]
-        for i, fz in enumerate(self.loads):
-            lines.append(
-                f"{fz / 1000:>9.3g}  {self.cs_kN_per_deg[i]:>11.4f}  "
-                f"{self.cs_origin_kN_per_deg[i]:>12.4f}  {2000 * self.half_length[i]:>7.1f}  "
-                f"{self.mean_pressure[i] / 1e6:>12.4f}  {self.peak_pressure[i] / 1e6:>11.4f}  "
-                + "  ".join(f"{f / 1000:>11.4f}" for f in self.fy[i]))
-        ratio = self.ratio()
-        lines.append(f"CS({self.loads[-1] / 1000:g} kN) / CS({self.loads[0] / 1000:g} kN) = "
-                     + (f"{ratio:.3f}" if math.isfinite(ratio)
-                        else "n/a (no cornering stiffness at the lowest load)"))
-        lines.extend(f"warning: {w}" for w in self.warnings)
-        return "\n".join(lines)
-
-
-def _index_of(values: np.ndarray, x: float) -> int:
-    idx = np.flatnonzero(np.isclose(values, x, rtol=1e-9, atol=1e-9))
-    if idx.size == 0:
-        raise InputError(f"load {x:g} N is not among the computed loads "
-                         f"{', '.join(f'{v:g}' for v in values)}")
-    return int(idx[0])
-
-
-# ----------------------------------------------------------------------- model
+__all__ = ["BrushModel"]
 
 
 def _law_mu(bound: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
@@ -542,7 +102,7 @@ class BrushModel:
             if params is not None or preset is not None:
                 raise InputError("give either a bound law (or fit result) or params/preset, "
                                  "not both")
-            from ..bound import as_bound
+            from ...bound import as_bound
 
             bound = as_bound(law)
             self.fitted_ranges = dict(bound.fitted_ranges)
@@ -565,7 +125,7 @@ class BrushModel:
     def _use_law(self, law: str | Law, params: Mapping[str, float] | None,
                  preset: str | None) -> None:
         """Take a registered law of p and/or v, with its parameter values, as the limit."""
-        from ..registry import get_law
+        from ...registry import get_law
 
         self.law = get_law(law)
         extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
@@ -1135,3 +695,4 @@ class BrushModel:
 
     def __repr__(self) -> str:
         return f"<BrushModel law={self.label!r} params={self.values}>"
+
