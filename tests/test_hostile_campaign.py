@@ -187,6 +187,7 @@ def test_campaign_summary_names_undetermined_parameters(tmp_path):
 
 
 # ------------------------------------------------------------ API inputs and domains
+@pytest.mark.slow
 @hostile(6)
 @given(unit=st.sampled_from(["MPa", "kPa", "bar"]), scale=st.floats(0.1, 0.9))
 def test_quantities_are_converted_and_frames_need_units(unit, scale):

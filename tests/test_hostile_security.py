@@ -654,6 +654,7 @@ def silent_peer() -> Iterator[str]:
     server.close()
 
 
+@pytest.mark.slow
 def test_a_peer_that_accepts_and_never_answers_fails_within_the_deadline(
         tmp_path: Path, silent_peer: str, monkeypatch: pytest.MonkeyPatch) -> None:
     pytest.importorskip("distributed")

@@ -239,6 +239,7 @@ def test_a_quadrature_rule_that_is_none_or_unbounded_is_refused(order, panels):
                  panels_per_decade=panels)
 
 
+@pytest.mark.slow
 @settings(max_examples=3, deadline=None, derandomize=True)
 @given(edge=st.sampled_from(["low", "high", "both"]))
 def test_compare_scans_a_strict_domain_law_only_inside_its_domain(edge, tmp_path_factory):

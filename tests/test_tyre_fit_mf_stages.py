@@ -285,6 +285,7 @@ def test_cambers_of_one_sign_leave_the_terms_they_cannot_separate_and_row_order_
         assert b.values[k] == pytest.approx(v, rel=1e-3, abs=1e-3 * max(a.stderr[k], 1e-6))
 
 
+@pytest.mark.slow
 def test_one_pressure_off_nominal_is_where_the_written_file_is_evaluated(
         tmp_path: Path) -> None:
     truth = moved_tyre()

@@ -119,6 +119,7 @@ def test_tampered_thirion_fails_reference_case(monkeypatch, capsys):
     assert bad == ["thirion: worst of 8 points"]
 
 
+@pytest.mark.slow
 def test_tampered_burckhardt_fails_presets_and_reference(monkeypatch, capsys):
     _tamper(monkeypatch, "burckhardt", factor=1.01)
     code, report = _cli_json(capsys, "--case", "burckhardt-presets",
@@ -142,6 +143,7 @@ def test_tampered_exponential_decay_fails_fe_manual_cases(monkeypatch, capsys):
     assert len(report["cases"]) == 2
 
 
+@pytest.mark.slow
 def test_tampered_pacejka_sv_inside_sine_fails(monkeypatch, capsys):
     law = get_law("pacejka")
 
