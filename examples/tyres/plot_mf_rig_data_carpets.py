@@ -88,6 +88,7 @@ for ax, (name, xlabel, unit) in zip(axes, (("Fx", "slip ratio [-]", "N"),
     ax.grid(alpha=0.3)
 axes[0].legend(title="load (dashed: truth)", fontsize="small")
 plt.show()
+# sphinx_gallery_thumbnail_number = 1
 
 # %%
 # What the numbers say
