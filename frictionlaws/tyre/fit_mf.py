@@ -86,9 +86,6 @@ _NEEDS: dict[str, tuple[str, ...]] = {
     **{k: ("loads3",) for k in "PEX3 PKX3 PKY4".split()},
     "PEX4": ("both_signs",), "PEY3": ("both_signs",),
 }
-#: Pure-slip selection: |alpha| (rad) and |kappa| within these count as near pure slip.
-ALPHA_ZERO = stages_.ALPHA_PURE
-KAPPA_ZERO = stages_.KAPPA_PURE
 
 
 @dataclass
