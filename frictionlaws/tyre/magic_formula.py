@@ -111,7 +111,7 @@ from ._mf_labelled import labelled
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
-           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EXAMPLES", "packaged_example"]
+           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EQUATIONS", "EXAMPLES", "packaged_example"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Small number added to C*D and K_y in the denominators (the textbook's epsilon) [N].
@@ -131,6 +131,10 @@ FRICTION_SCALINGS = ("linear", "degressive")
 #: Loads above ``FZMAX``: ``extrapolate`` (the equations at the given load, with a
 #: warning) or ``clamp`` (evaluated at FZMAX, as MFeval's limit checks do).
 LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
+#: Where MFeval 4.0 departs from the published equations: ``mfeval`` (its forms, which
+#: its authors matched to TNO's evaluator) or ``published`` (the book and the MF-Tyre
+#: 5.2 manual).  See the module notes.
+EQUATIONS = ("mfeval", "published")
 
 
 @dataclass(frozen=True)
@@ -177,14 +181,15 @@ def _cos_weight(x: Any, B: Any, C: Any, E: Any) -> Any:
 
 
 def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
-                       loads_above_fzmax: str, source: str) -> None:
+                       loads_above_fzmax: str, equations: str, source: str) -> None:
     """Refuse an unknown version or convention, naming the allowed values."""
     if version not in MF_VERSIONS:
         raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
                          f"{', '.join(MF_VERSIONS)}", file=source)
     for what, value, allowed in (("slip_angle", slip_angle, SLIP_ANGLE_INPUTS),
                                  ("friction_scaling", friction_scaling, FRICTION_SCALINGS),
-                                 ("loads_above_fzmax", loads_above_fzmax, LOADS_ABOVE_FZMAX)):
+                                 ("loads_above_fzmax", loads_above_fzmax, LOADS_ABOVE_FZMAX),
+                                 ("equations", equations, EQUATIONS)):
         if value not in allowed:
             raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
                              file=source)
@@ -261,6 +266,10 @@ class MagicFormula:
         Loads above the file's ``FZMAX``: evaluated as given with an
         :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
         to FZMAX (as MFeval's limit checks do).
+    equations : {"mfeval", "published"}
+        Where MFeval 4.0 departs from the published equations (the camber in PDX3's
+        term, MF 5.2's camber variable, LFZO in the trail, the side-force shift in MF
+        5.2's M_z; see the module notes): MFeval's forms (default) or the published ones.
     structure : mapping, optional
         The file's dimensions, vertical and structural stiffnesses, contact-patch
         coefficients and reference speeds (``UNLOADED_RADIUS``, ``VERTICAL_STIFFNESS``,
@@ -274,9 +283,11 @@ class MagicFormula:
                  name: str = "", source: str = "<memory>",
                  notes: list[str] | None = None, slip_angle: str = "tan_alpha",
                  friction_scaling: str = "linear",
-                 loads_above_fzmax: str = "extrapolate",
+                 loads_above_fzmax: str = "extrapolate", equations: str = "mfeval",
                  structure: Mapping[str, float] | None = None) -> None:
-        _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, source)
+        _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, equations,
+                           source)
+        self.equations = equations
         self.slip_angle = slip_angle
         self.friction_scaling = friction_scaling
         self.loads_above_fzmax = loads_above_fzmax
@@ -327,8 +338,8 @@ class MagicFormula:
         pressure : float, optional
             Inflation pressure [Pa] (default: the file's INFLPRES / IP).
         **options : str
-            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
-            class documentation).
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax``, ``equations``
+            (see the class documentation).
         """
         if not isinstance(path, (str, Path)):
             raise InputError(f"expected the path of a property file (or a packaged example "
@@ -357,8 +368,8 @@ class MagicFormula:
         pressure : float, optional
             Inflation pressure [Pa] (default: the file's INFLPRES / IP).
         **options : str
-            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
-            class documentation).
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax``, ``equations``
+            (see the class documentation).
 
         Returns
         -------
@@ -461,7 +472,10 @@ class MagicFormula:
     def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         dfz = (fz - self.fz0) / self.fz0
-        g = self.gamma_star(gamma) if self._six else gamma * c("LGAX")
+        if not self._six:
+            g = gamma * c("LGAX")
+        else:  # MFeval writes gamma itself in PDX3's term; the book gamma* (4.E13)
+            g = np.asarray(gamma) if self.equations == "mfeval" else self.gamma_star(gamma)
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
         self._check_peak("mu_x", mu, fz, dpi)
@@ -496,18 +510,23 @@ class MagicFormula:
             S_V = fz * (c("PVY1") + c("PVY2") * dfz) * c("LVY") * self.lmuy_prime + S_Vg
             S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + (K_g0 * g - S_Vg) / (K + EPS)
         else:
-            g = gamma * c("LGAY")
+            # MFeval evaluates MF 5.2 with the 6.x forms (gamma*, PKY4, PKY5, PEY5, LKYC)
+            g = self._camber_c(gamma)
+            mfe = self.equations == "mfeval"
+            lkyc = c("LKYC") if mfe else 1.0
             mu = ((c("PDY1") + c("PDY2") * dfz) * (1 + c("PPY3") * dpi + c("PPY4") * dpi**2)
                   * (1 - c("PDY3") * g**2) * self.lmuy)
+            pky4, pky5 = (c("PKY4", 2.0), c("PKY5")) if mfe else (2.0, 0.0)
             K = (c("PKY1") * fz0 * (1 + c("PPY1") * dpi)
-                 * np.sin(2.0 * np.arctan(fz / (c("PKY2") * (1 + c("PPY2") * dpi) * fz0)))
+                 * np.sin(pky4 * np.arctan(fz / ((c("PKY2") + pky5 * g**2)
+                                                 * (1 + c("PPY2") * dpi) * fz0)))
                  * (1 - c("PKY3") * np.abs(g)) * c("LKY"))
             E0 = (c("PEY1") + c("PEY2") * dfz) * c("LEY")
-            E_a = E0
+            E_a = E0 * (1 + c("PEY5") * g**2) if mfe else E0
             E_b = E0 * (c("PEY3") + c("PEY4") * g)
-            S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g
+            S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g * lkyc
             S_V = (fz * ((c("PVY1") + c("PVY2") * dfz) * c("LVY")
-                         + (c("PVY3") + c("PVY4") * dfz) * g) * self.lmuy_prime)
+                         + (c("PVY3") + c("PVY4") * dfz) * g * lkyc) * self.lmuy_prime)
         self._check_peak("mu_y", mu, fz, dpi)
         D = mu * fz
         B = K / (C * D + EPS)
@@ -629,7 +648,8 @@ class MagicFormula:
     # ------------------------------------------------------- combined slip
     def _camber_c(self, gamma: Any) -> Any:
         """Camber as the combined-slip terms use it: gamma* (6.x) or gamma LGAY (5.2)."""
-        return self.gamma_star(gamma) if self._six else gamma * self._c("LGAY")
+        return (self.gamma_star(gamma) if self._six or self.equations == "mfeval"
+                else gamma) * (1.0 if self._six else self._c("LGAY"))
 
     def gamma_star(self, gamma: Any) -> Any:
         """Return the camber variable gamma* of the equations.
