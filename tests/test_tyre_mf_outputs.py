@@ -92,6 +92,21 @@ def test_mf62_loaded_radius_reproduces_the_load() -> None:
     assert np.all(np.diff(out["Rl"][[0, 1]]) < 0)
 
 
+def test_mf62_loaded_radius_is_the_least_deflection_root_or_nan_with_a_warning() -> None:
+    mf = MagicFormula.from_file("MagicFormula62")
+    # a small load with camber: the camber term also carries load above the free radius,
+    # where MFeval 4.0's fminsearch may land; the root here is below the free radius
+    out = mf.steady_state(0.0, 0.0, 202.56, np.radians(3.0))
+    assert 0 < out["rho"] < 5e-3 and out["Rl"] < 1.01 * mf.structure["UNLOADED_RADIUS"]
+    # a lateral-force term so strong that no deflection carries the load
+    weak = MagicFormula(mf.coefficients, fnomin=mf.fnomin, version="6.2",
+                        structure={**mf.structure, "Q_FCY": 50.0})
+    with pytest.warns(ExtrapolationWarning, match="no loaded radius"):
+        out = weak.steady_state(0.0, np.radians([0.0, 6.0]), 6000.0)
+    assert np.isfinite(out["Rl"][0]) and np.isnan(out["Rl"][1]) and np.isnan(out["Cz"][1])
+    assert np.isfinite(out["Mz"]).all()
+
+
 def test_a_pressure_per_row_equals_one_evaluation_per_pressure() -> None:
     mf = MagicFormula.from_file("MagicFormula61")
     p = np.array([200e3, 260e3, 330e3])

@@ -46,7 +46,7 @@ The vertical shift S_V is added **outside** the sine.  The version-specific
 terms are:
 
 * **MF 5.2 / PAC2002** (``FITTYP`` 5, 6, 21 or ``PROPERTY_FILE_FORMAT='PAC2002'``):
-  camber g_x = gamma LGAX, g_y = gamma LGAY;
+  camber g_x = gamma LGAX, g_y = gamma LGAY (``equations="published"``; see below);
   ``K_y = PKY1 F'z0 (1 + PPY1 dpi) sin(2 arctan(F_z / (PKY2 F'z0 (1 + PPY2 dpi))))
   (1 - PKY3 |g_y|) LKY``;
   ``E_y = (PEY1 + PEY2 dfz)(1 - (PEY3 + PEY4 g_y) sgn(a_y)) LEY``;
@@ -81,7 +81,15 @@ Conventions, each an option named after what it means (defaults first):
   identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
 * ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
   with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
-  (evaluated at FZMAX, as MFeval's limit checks do).
+  (evaluated at FZMAX, as MFeval's limit checks do);
+* ``equations``: ``"mfeval"`` (MFeval 4.0's forms where they depart from the
+  published ones; its authors matched them to TNO's evaluator) or ``"published"``.
+  In the forces: PDX3's camber term in gamma (MFeval) or gamma* (eq. 4.E13); for
+  MF 5.2 the lateral and combined-slip camber g_y = gamma* LGAY with LKYC on PHY3,
+  PVY3 and PVY4 and the 6.x PKY4, PKY5, PEY5 (MFeval, which evaluates MF 5.2 with
+  the 6.x forms; gamma* = sin(gamma) with ``slip_angle="tan_alpha"``) or
+  g_y = gamma LGAY (MF-Tyre 5.2).  The moments' differences are listed in
+  :mod:`frictionlaws.tyre.mf_outputs`.
 
 Simplifications, stated: no turn slip (all zeta = 1), no speed dependence of
 friction (LMUV ignored: the steady-state curves are for the file's measurement
@@ -1005,7 +1013,8 @@ class MagicFormula:
             "nominal_pressure_Pa": self.nominal_pressure,
             "conventions": {"slip_angle": self.slip_angle,
                             "friction_scaling": self.friction_scaling,
-                            "loads_above_fzmax": self.loads_above_fzmax},
+                            "loads_above_fzmax": self.loads_above_fzmax,
+                            "equations": self.equations},
             "limits_SI": {k: list(v) for k, v in self.limits.items()},
             "loads_N": loads.tolist(),
             "mu_x_peak": np.broadcast_to(lon.mu, loads.shape).tolist(),

@@ -47,15 +47,27 @@ coefficients (QBZ4, QBZ5, QDZ3) are defined in the 2010 paper and as MFeval eval
 them (the book's eqs. 4.E40 and 4.E43 write |gamma*| there).  The two differ by
 gamma^3/6: 4.6e-4 relative at 3 degrees.
 
-**Where MFeval 4.0 departs from the book and this module follows the book**: MFeval
-multiplies the combined-slip trail t by LFZO (the results differ when LFZO is not 1;
-every packaged example has LFZO = 1), and writes gamma instead of sin(gamma) in the
-camber term of the longitudinal peak (PDX3: 4.9e-7 of F_x at 2 degrees).  Checked
-against MFeval 4.0 for the packaged MF 6.1 example with alpha* = tan(alpha) (useMode
-121, camber 0 and 2 degrees): the moments agree within 1e-10 N m; the MF 5.2 and 6.2
-branches (M_y, contact patch, relaxation lengths from PTX/PTY; the MF 6.2 loaded
-radius) and ``slip_angle = "alpha"`` follow the same sources but have no MFeval
-reference here.
+**Where MFeval 4.0 departs from the published equations** the option ``equations`` of
+:class:`~frictionlaws.tyre.magic_formula.MagicFormula` chooses; its default ``mfeval``
+follows MFeval (whose authors matched these forms to TNO's evaluator), ``published`` the
+book and the MF-Tyre 5.2 manual: the combined-slip trail t times LFZO (MFeval) or not;
+MF 5.2's ``F'_y = F_y - S_Vyk`` with S_Vyk from mu_y at zero camber (MFeval) or at the
+camber; and, in the forces, gamma (MFeval) or gamma* in PDX3's term and, for MF 5.2 with
+alpha* = tan(alpha), gamma* = sin(gamma) (MFeval) or gamma in the lateral and
+combined-slip camber terms.  At 3 degrees the MF 5.2 example's M_z differs between the two
+by up to 5e-4 of its peak moment, everything else by less than 1e-4.
+
+**Checked** against MFeval 4.0 on the three packaged examples in both slip-angle
+conventions (useModes 111 and 121, ``saturate=True``), loads from near FZMIN to beyond
+FZMAX, camber -3/0/3 degrees, three pressures per row, pure and combined slip and inputs
+beyond the limits (``tests/data/mfeval``): the moments within 4e-12 of the peak moment,
+the forces within 3e-12 of the peak force; R_e and Omega within 3e-8 and 3e-6 (MFeval ends
+its R_e iteration when the first row of a batch converges); R_l and rho within 1e-6 m
+where MFeval's fminsearch for the MF 6.2 radius converged.  The MF 6.2 loaded radius here
+is the root of least deflection with R_l <= R_omega (NaN and a warning where none carries
+the load); MFeval 4.0 solves it from 0.3 m by fminsearch, for MF 5.2 files too, and stalls
+where the model carries no load.  MF 5.2's loaded radius here is the MF 6.1 closed form
+with the file's Q_FZ2 (0 when absent).
 
 Limits and speed
 ----------------
