@@ -1,8 +1,9 @@
 % Reference outputs of MFeval 4.0 for the packaged Magic Formula examples.
 %
 % Run with MFeval 4.0 on the path, e.g. from the repository root
-%   octave-cli --no-gui --eval "addpath('/path/to/MFeval'); run('tests/data/mfeval/generate_references.m')"
-% (GNU Octave 7.3 with the coder.extrinsic stub described in README.md, or MATLAB).
+%   octave-cli --eval "addpath('/path/to/MFeval'); addpath('/path/to/coder-stub'); run('tests/data/mfeval/generate_references.m')"
+% (GNU Octave, 7.3 here; an Octave script: endfunction, rows, columns; the coder.extrinsic
+% stub is described in README.md).
 % Writes tests/data/mfeval/MF<v>_useMode<m>_grid.csv.gz for v = 52, 61, 62 and m = 111, 121.
 %
 % The inputs are built here, deterministically: per file 25 operating conditions
