@@ -31,6 +31,8 @@ _API = {
     "SelfAffine": "surface",
     "TabulatedPSD": "surface",
     "asphalt_like": "surface",
+    "check_roughness": "surface",
+    "RoughnessWarning": "surface",
     "one_d_to_two_d": "surface",
     "psd_from_profile": "surface",
     "psd_from_profile_csv": "surface",

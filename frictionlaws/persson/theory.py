@@ -42,6 +42,7 @@ from scipy.special import erf
 from ..errors import DomainError, ExtrapolationWarning, InputError
 from .flash import Flash
 from .material import Material
+from .surface import check_roughness
 
 __all__ = ["friction", "flash_temperature", "contact_ratio", "check_conditions", "loss_angular",
            "loss_tabulated", "modulus_sq_angular", "q_nodes"]
@@ -386,6 +387,7 @@ def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: f
     _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
     _check_quadrature(surface.q0, q1, order, panels_per_decade)
+    check_roughness(surface, q1)
     shape, vv, TT, pp = _prepare(material, v, T, p)
     _warn_outside_data(material, surface.q0, q1, vv, TT)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,
