@@ -14,8 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from frictionlaws.errors import InputError
 from frictionlaws.io import datasets_dir
-from frictionlaws.persson import published_comparison
+from frictionlaws.persson import TREAD_THERMAL, published_comparison
 from frictionlaws.persson.published import PUBLISHED_FILE, peak, published_shift
 
 GUIDE = Path(__file__).resolve().parent.parent / "docs" / "user-guide" / "persson.rst"
@@ -70,3 +71,15 @@ def test_peak_is_the_vertex_of_the_parabola_in_log_v():
     assert peak(v, mu) == pytest.approx((2.0, 10**-0.37), rel=1e-9)
     rising = np.log10(v) + 4
     assert peak(v, rising) == (pytest.approx(5.0), pytest.approx(10.0))
+
+
+@pytest.mark.parametrize("T", [240.0, 330.0, math.nan, "293"])
+def test_a_temperature_whose_shift_leaves_the_range_is_refused(T):
+    with pytest.raises(InputError, match=r"T = .* must lie in 243.15\.\.323.15 K"):
+        published_comparison(T=T)
+
+
+def test_the_thermal_properties_must_be_given():
+    with pytest.raises(InputError, match="flash must be a Flash"):
+        published_comparison(flash=None)
+    assert published_comparison(T=283.15, flash=TREAD_THERMAL)[2].published > 0

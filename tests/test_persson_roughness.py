@@ -25,6 +25,7 @@ from frictionlaws.persson import (
     TabulatedPSD,
     asphalt_like,
     check_roughness,
+    contact_ratio,
     friction,
     tread_compound,
 )
@@ -66,6 +67,8 @@ def test_a_surface_far_steeper_than_a_road_is_refused_with_the_reason(h_rms):
     with pytest.raises(InputError, match=rf"rms slope is {slope:.3g} .*rms height "
                                          rf"{h_rms:.3g} m.*above 10 it is refused"):
         friction(tread_compound(), surf, 0.01, 293.15, 2e5)
+    with pytest.raises(InputError, match="rms slope"):
+        contact_ratio(tread_compound(), surf, 0.01, 293.15, 2e5, [1e4, 1e6])
     # the law: an rms height above 1 cm is outside the setting's bounds, a smaller one
     # too steep on this band is refused by the theory
     match = "outside its bounds" if h_rms > 0.01 else rf"rms slope is {slope:.3g} "

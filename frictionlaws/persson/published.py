@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import InputError
 from ..law import NUMPY
 from ..temperature import wlf_formula
 from .flash import TREAD_THERMAL, Flash
@@ -94,6 +95,18 @@ def _first_below(v: np.ndarray, r: np.ndarray, level: float) -> float:
     return float(10.0 ** (x0 + (x1 - x0) * (r[k - 1] - level) / (r[k - 1] - r[k])))
 
 
+def _check_conditions(material: Any, T: Any, flash: Any) -> None:
+    """Refuse a temperature whose shift to T + 20 K leaves the material's range, or no Flash."""
+    if not isinstance(flash, Flash):
+        raise InputError(f"published_comparison: flash must be a Flash (thermal properties), "
+                         f"got {type(flash).__name__}")
+    lo, hi = material.temperature_range()
+    if not (isinstance(T, (int, float)) and lo <= T and T + 20.0 <= hi):
+        raise InputError(f"published_comparison: T = {T!r} K must lie in {lo:.2f}.."
+                         f"{hi - 20.0:.2f} K (the compound's range, less the 20 K of the "
+                         "shift compared)")
+
+
 @functools.lru_cache(maxsize=1)
 def _published() -> dict[str, Any]:
     import json
@@ -142,6 +155,7 @@ def published_comparison(*, T: float = 293.15, p: float = 2e5,
 
     pub = _published()
     mat, surf = tread_compound(), asphalt_like(1e6)
+    _check_conditions(mat, T, flash)
     iso = friction(mat, surf, V_GRID, T, p)
     hot = friction(mat, surf, V_GRID, T, p, flash=flash)
     fp, onset = pub["flash_peak_velocity"], pub["heating_onset_velocity"]

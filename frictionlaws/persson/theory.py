@@ -256,6 +256,8 @@ def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: A
     q = np.asarray(q, dtype=float).ravel()
     if q.size and not np.all(np.isfinite(q)):
         raise InputError("Persson: contact_ratio needs finite wavenumbers q [1/m]")
+    if q.size and q.max() > surface.q0:
+        check_roughness(surface, float(q.max()))
     out = []
     for qi in q:
         if qi <= surface.q0:
