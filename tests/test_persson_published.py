@@ -44,6 +44,15 @@ def test_the_heating_onset_and_the_shift_are_the_stated_numbers(rows):
     assert shift.difference == pytest.approx(13.2, abs=0.05)
 
 
+@pytest.mark.parametrize(("T", "v_peak", "shift_difference"),
+                         [(273.15, 2.404e-3, 6.0), (313.15, 0.2649, 18.3)])
+def test_the_flash_maximum_moves_with_temperature_as_the_guide_says(T, v_peak,
+                                                                    shift_difference):
+    flash_peak, _, shift = published_comparison(T=T)
+    assert flash_peak.predicted == pytest.approx(v_peak, rel=0.01)
+    assert shift.difference == pytest.approx(shift_difference, abs=0.05)
+
+
 def test_the_guide_states_the_computed_numbers(rows):
     text = GUIDE.read_text(encoding="utf-8")
     table = text[text.index("Beside published figures"):]
