@@ -16,16 +16,16 @@ formula stays smooth, and the exporters apply the same floors.
 
 The rooms, each importing only those above it in this list:
 
-* :mod:`.namespace`: the numpy and sympy math namespaces;
-* :mod:`.declaration`: :class:`Variable`, :class:`Param`, :class:`Setting`,
+* :mod:`~frictionlaws.law.namespace`: the numpy and sympy math namespaces;
+* :mod:`~frictionlaws.law.declaration`: :class:`Variable`, :class:`Param`, :class:`Setting`,
   :class:`Derived` and the library's limits (:data:`MU_MAX`, the floors);
-* :mod:`.parameters`: the declaration's fields and parameter values (presets, bounds,
-  the one validation of values, initial guess, summary);
-* :mod:`.domain`: the checks of the variables, the floors, the strict domain;
-* :mod:`.evaluation`: checked and unchecked evaluation, bound functions;
-* :mod:`.text`: the symbolic form, LaTeX and the cached formula text;
-* :mod:`.interop`: the lmfit model and Jupyter's HTML of a law;
-* :mod:`.core`: :class:`Law` itself, assembled from these, and
+* :mod:`~frictionlaws.law.parameters`: the declaration's fields and parameter values
+  (presets, bounds, the one validation of values, initial guess, summary);
+* :mod:`~frictionlaws.law.domain`: the checks of the variables, the floors, the strict domain;
+* :mod:`~frictionlaws.law.evaluation`: checked and unchecked evaluation, bound functions;
+* :mod:`~frictionlaws.law.text`: the symbolic form, LaTeX and the cached formula text;
+* :mod:`~frictionlaws.law.interop`: the lmfit model and Jupyter's HTML of a law;
+* :mod:`~frictionlaws.law.core`: :class:`Law` itself, assembled from these, and
   :class:`~frictionlaws.bound.BoundLaw`, the law bound to values.
 """
 

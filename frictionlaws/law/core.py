@@ -1,10 +1,11 @@
 """The :class:`Law` users build and the registry holds, and a law bound to values.
 
 :class:`Law` is assembled from its rooms: the declaration and its parameters
-(:mod:`.parameters`), the checks of its variables, floors and domain (:mod:`.domain`),
-evaluation (:mod:`.evaluation`) and the formula as text (:mod:`.text`); here it gains
-what hands it on, the frozen form (:meth:`Law.freeze`), the lmfit model and Jupyter's
-HTML (:mod:`.interop`) and pickling by registered id.
+(:mod:`~frictionlaws.law.parameters`), the checks of its variables, floors and domain
+(:mod:`~frictionlaws.law.domain`), evaluation (:mod:`~frictionlaws.law.evaluation`) and
+the formula as text (:mod:`~frictionlaws.law.text`); here it gains what hands it on,
+the frozen form (:meth:`Law.freeze`), the lmfit model and Jupyter's HTML
+(:mod:`~frictionlaws.law.interop`) and pickling by registered id.
 
 :class:`BoundLaw` is to a law what a frozen distribution is to a distribution family
 (:mod:`frictionlaws.bound` has the ways to make one: by law id, from a fit result); it is

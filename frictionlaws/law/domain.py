@@ -26,7 +26,7 @@ __all__ = ["LawDomain", "ZERO_PROBES", "LIMIT_RTOL"]
 #: ``log`` and powers are finite there (down to 1e-300), so a law with a limit reaches it.
 ZERO_PROBES = (1e-20, 1e-90, 1e-290)
 #: Agreement of the last two probes for a limit at 0 to count as reached (relative; for
-#: |mu| below 1, absolute).
+#: ``|mu|`` below 1, absolute).
 LIMIT_RTOL = 1e-9
 #: Physical lower limits of variables: (limit, inclusive).
 _LOWER_LIMITS: dict[str, tuple[float, bool]] = {"p": (0.0, True), "F_N": (0.0, True),

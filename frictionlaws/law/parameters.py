@@ -4,7 +4,8 @@ The fields a law is declared with (documented on :class:`~frictionlaws.law.Law`)
 consistency checks, and everything about parameter and setting values: names, bounds,
 presets, the one validation of values (:meth:`LawDeclaration.check_values`), the
 initial guess and the JSON-able summary.  Evaluation, floors and the symbolic form are
-the rooms built on it (:mod:`.domain`, :mod:`.evaluation`, :mod:`.text`).
+the rooms built on it (:mod:`~frictionlaws.law.domain`,
+:mod:`~frictionlaws.law.evaluation`, :mod:`~frictionlaws.law.text`).
 """
 
 from __future__ import annotations
