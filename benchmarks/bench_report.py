@@ -8,9 +8,10 @@ with the figures drawn by ``--jobs`` processes.  Printed from this one run:
   and best of the following ones, wall and CPU seconds;
 * the CPU seconds of each figure (best of the rounds);
 * the serial / ``jobs`` wall ratio;
-* with ``--against REF``: the report module of the git revision ``REF`` (e.g. ``main``),
-  loaded beside the current one and timed alternately with it on the same comparison,
-  and the median of the paired wall and CPU ratios (current / REF).
+* with ``--against REF``: the report of the git revision ``REF`` (e.g. ``main``; a module
+  or, since it became one, a package), loaded beside the current one and timed
+  alternately with it on the same comparison, and the median of the paired wall and CPU
+  ratios (current / REF).
 
 Wall times on a shared machine are noisy; CPU seconds and paired ratios are steadier.
 
@@ -39,21 +40,45 @@ QUICK = ["coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"]
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def load_revision(ref: str) -> ModuleType:
-    """``frictionlaws/comparison/report.py`` as it is at git revision ``ref``, as a module."""
-    path = "frictionlaws/comparison/report.py"
+def _report_sources(ref: str) -> dict[str, str]:
+    """The report's files at git revision ``ref``: ``report.py`` (a module, as before the
+    report became a package) or the ``report/`` package's modules; path -> source."""
+    def git(*args: str) -> str:
+        return subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True,
+                              text=True).stdout
+
     try:
-        source = subprocess.run(["git", "show", f"{ref}:{path}"], cwd=ROOT, check=True,
-                                capture_output=True, text=True).stdout
+        listed = git("ls-tree", "-r", "--name-only", ref, "frictionlaws/comparison/").split()
+        paths = [p for p in listed if p == "frictionlaws/comparison/report.py"
+                 or (p.startswith("frictionlaws/comparison/report/") and p.endswith(".py"))]
+        if not paths:
+            sys.exit(f"bench_report: no report module at {ref!r}")
+        return {p: git("show", f"{ref}:{p}") for p in paths}
     except (OSError, subprocess.CalledProcessError) as exc:
-        sys.exit(f"bench_report: cannot read {path} at {ref!r} with git: {exc}")
+        sys.exit(f"bench_report: cannot read the report at {ref!r} with git: {exc}")
+
+
+def load_revision(ref: str, where: Path) -> ModuleType:
+    """The comparison report as it is at git revision ``ref``, as a module beside the current
+    one (``frictionlaws.comparison._report_at_ref``, its relative imports resolving as the
+    current report's); a package's modules are written to ``where`` and imported from there.
+    """
     name = "frictionlaws.comparison._report_at_ref"
-    spec = importlib.util.spec_from_loader(name, loader=None)
-    assert spec is not None
+    sources = _report_sources(ref)
+    root = where / "_report_at_ref"
+    if "frictionlaws/comparison/report.py" in sources:
+        root.with_suffix(".py").write_text(sources["frictionlaws/comparison/report.py"])
+        spec = importlib.util.spec_from_file_location(name, root.with_suffix(".py"))
+    else:
+        root.mkdir()
+        for path, source in sources.items():
+            (root / Path(path).name).write_text(source)
+        spec = importlib.util.spec_from_file_location(
+            name, root / "__init__.py", submodule_search_locations=[str(root)])
+    assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
-    module.__package__ = "frictionlaws.comparison"  # its relative imports resolve as usual
     sys.modules[name] = module
-    exec(compile(source, f"{ref}:{path}", "exec"), module.__dict__)  # noqa: S102
+    spec.loader.exec_module(module)
     return module
 
 
@@ -95,8 +120,13 @@ def main() -> None:
     laws = QUICK if args.quick else [
         law.id for law in list_laws("sliding") if all(v in data.variables for v in law.variables)]
     cmp = compare(laws, data, progress=False)
-    old = load_revision(args.against) if args.against else None
+    with tempfile.TemporaryDirectory() as where:
+        old = load_revision(args.against, Path(where)) if args.against else None
+        run(args, laws, cmp, old)
 
+
+def run(args: argparse.Namespace, laws: list[str], cmp: Any, old: ModuleType | None) -> None:
+    """Time the reports and print the figures (see the module's docstring)."""
     first = timed_report(report, cmp)
     now: list[tuple[float, float]] = []
     then: list[tuple[float, float]] = []

@@ -98,11 +98,11 @@ def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
         d mu / d name, column by column (NaN or infinity where the derivative is not
         finite, e.g. d(x**c)/dc at x = 0).
     """
-    from . import law as law_module
+    from .law import evaluation
 
     jac = np.empty((n, len(names)), order="F")
-    block = law_module._BLOCK  # the rows per block of the law's own large evaluations
-    step = block if n >= law_module._BLOCKED_FROM else max(n, 1)
+    block = evaluation._BLOCK  # the rows per block of the law's own large evaluations
+    step = block if n >= evaluation._BLOCKED_FROM else max(n, 1)
     for start in range(0, n, step):  # blocks keep the formula's temporaries small
         part = {k: v[start:start + step] if np.ndim(v) else v for k, v in prepared.items()}
         with np.errstate(all="ignore"):

@@ -194,6 +194,17 @@ def test_api_reference_covers_public_modules(tmp_path):
         assert (tmp_path / f"{module}.rst").exists()
 
 
+def test_the_rooms_table_names_every_room_of_the_law_package():
+    """The contributor page's rooms table follows the law package's layout."""
+    page = (DOCS / "user-guide" / "adding-a-law.rst").read_text(encoding="utf-8")
+    table = page[page.index(".. _package-rooms:"):page.index("Where to touch for")]
+    row = table[table.index("``law/``"):table.index("``registry.py``")]
+    rooms = sorted(p.stem for p in Path(fl.law.__file__).parent.glob("*.py")
+                   if p.stem != "__init__")
+    assert "core" in rooms
+    assert [r for r in rooms if f"``{r}``" not in row] == []
+
+
 def test_shell_session_runs_the_first_fit():
     text = fl_docgen.shell_session(["fit", "--law", "thirion", "thesis-steel"])
     assert text.startswith("$ frictionlaws fit --law thirion thesis-steel\n")

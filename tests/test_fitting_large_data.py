@@ -12,7 +12,7 @@ from scipy.optimize import least_squares
 import frictionlaws as fl
 from frictionlaws import _lsq
 from frictionlaws.fitting import diagnosis as fit_diagnosis
-from frictionlaws.law import _BLOCKED_FROM
+from frictionlaws.law.evaluation import _BLOCKED_FROM
 from frictionlaws.law_examples import EXAMPLES
 
 

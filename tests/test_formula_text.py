@@ -16,8 +16,8 @@ from dataclasses import replace
 import pytest
 
 import frictionlaws as fl
-from frictionlaws import law as law_module
-from frictionlaws.law import (
+from frictionlaws.law import text as law_module
+from frictionlaws.law.text import (
     _CHECK_RTOL,
     FORMULA_TEXT_FILE,
     formula_check,

@@ -55,7 +55,7 @@ def test_law_call_refuses_negative_mu_and_a_strict_domain():
     with pytest.raises(DomainError, match="negative mu"):
         poly3(p=0.25e6, v=2.77, preset="steel")
     # a negative mu in a late block of a large call: named at its index in the array
-    from frictionlaws.law import _BLOCKED_FROM
+    from frictionlaws.law.evaluation import _BLOCKED_FROM
 
     p, v = np.full(_BLOCKED_FROM + 9, 0.1e6), np.full(_BLOCKED_FROM + 9, 1.0)
     p[-3], v[-3] = 0.25e6, 2.77
@@ -155,7 +155,7 @@ def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(
     the numbers are those of the whole-array formula, and a bad value in a late block is
     named with its index in the whole array, as without blocks.  (Blocks of 64 values
     from 256 values here, so that a slow law is quick to test.)"""
-    import frictionlaws.law as law_module
+    import frictionlaws.law.evaluation as law_module
 
     monkeypatch.setattr(law_module, "_BLOCK", 64)
     monkeypatch.setattr(law_module, "_BLOCKED_FROM", 256)

@@ -37,7 +37,7 @@ def _unit_columns_r(jac: np.ndarray, cols: list[int], norms: np.ndarray) -> np.n
     built block by block (``R = qr([R; J_block])``), so a fit on millions of rows needs no
     scaled copy of the Jacobian nor an n-row U of its SVD.
     """
-    from ..law import _BLOCK, _BLOCKED_FROM
+    from ..law.evaluation import _BLOCK, _BLOCKED_FROM
 
     n = jac.shape[0]
     if n < _BLOCKED_FROM:

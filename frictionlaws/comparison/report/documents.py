@@ -14,7 +14,7 @@ from ...sanitize import html_text, markdown_text
 from ..residuals import ALPHA
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..results import Comparison
+    from ..record import ComparisonRecord
 
 from .figures import Figure, _flagged, _test_p, make_figures
 from .text import UNDETERMINED, _legend, _num, _ranges_text, _score, _yes
@@ -22,7 +22,7 @@ from .text import UNDETERMINED, _legend, _num, _ranges_text, _score, _yes
 __all__ = ["RESIDUAL_TESTS_NOTE", "to_markdown", "to_html", "write_report"]
 
 
-def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
+def _metric_table(cmp: ComparisonRecord) -> tuple[list[str], list[list[str]]]:
     head = ["rank", "law", "title", "k", "n", "R²", "adj. R²", "RMSE", "MAE", "max |res|",
             "AIC", "AICc", "BIC", "group", "Akaike w. (in group)", "CV RMSE",
             "CV RMSE (common rows)", "extrap. RMSE", "identifiable", "plausible", "residuals",
@@ -43,7 +43,7 @@ def _metric_table(cmp: Comparison) -> tuple[list[str], list[list[str]]]:
     return head, rows
 
 
-def _sections(cmp: Comparison) -> list[tuple[str, list[Any]]]:
+def _sections(cmp: ComparisonRecord) -> list[tuple[str, list[Any]]]:
     """(heading, items) for the prose parts; an item is a str or (str, sub-items)."""
     out: list[tuple[str, list[Any]]] = []
     plaus: list[Any] = []
@@ -96,7 +96,7 @@ def _sections(cmp: Comparison) -> list[tuple[str, list[Any]]]:
     return out
 
 
-def _method(cmp: Comparison) -> list[str]:
+def _method(cmp: ComparisonRecord) -> list[str]:
     s = cmp.settings
     box = "; ".join(f"{k} {v['display']}" for k, v in s["extended_box"].items())
     hold = "; ".join(sp.describe() for sp in cmp.splits) or "none"
@@ -124,7 +124,7 @@ RESIDUAL_TESTS_NOTE = (
     "constant variable, or residuals all of one sign).")
 
 
-def _residual_table(cmp: Comparison) -> tuple[list[str], list[list[tuple[str, bool]]]]:
+def _residual_table(cmp: ComparisonRecord) -> tuple[list[str], list[list[tuple[str, bool]]]]:
     """Every residual test's p-value per law: header, rows of (text, below ALPHA)."""
     cols = [*cmp.design.varying, "fitted"]
     head = ["law"]
@@ -140,7 +140,7 @@ def _residual_table(cmp: Comparison) -> tuple[list[str], list[list[tuple[str, bo
     return head, rows
 
 
-def _md_residual_tests(cmp: Comparison) -> list[str]:
+def _md_residual_tests(cmp: ComparisonRecord) -> list[str]:
     """The table of residual-test p-values in Markdown, the flagged ones in bold."""
     head, rows = _residual_table(cmp)
     lines = ["## Residual tests (p-values)", "", RESIDUAL_TESTS_NOTE, "",
@@ -149,7 +149,7 @@ def _md_residual_tests(cmp: Comparison) -> list[str]:
                                       for t, bad in row) + " |" for row in rows]
 
 
-def to_markdown(cmp: Comparison, figures: Sequence[Figure]) -> str:
+def to_markdown(cmp: ComparisonRecord, figures: Sequence[Figure]) -> str:
     """The report as Markdown, linking the PNG files."""
     d = cmp.data
     esc = markdown_text  # every text from data, files or laws: one line, HTML escaped
@@ -199,7 +199,7 @@ li{margin:0.2em 0}
 """
 
 
-def _html_ranking(cmp: Comparison) -> list[str]:
+def _html_ranking(cmp: ComparisonRecord) -> list[str]:
     """The ranking table in HTML; each law's title under its id."""
     e = html_text
     head, rows = _metric_table(cmp)
@@ -225,7 +225,7 @@ def _html_ranking(cmp: Comparison) -> list[str]:
     return parts
 
 
-def _html_sections(cmp: Comparison) -> list[str]:
+def _html_sections(cmp: ComparisonRecord) -> list[str]:
     """The prose sections as HTML lists, IMPLAUSIBLE highlighted."""
     e = html_text
 
@@ -245,7 +245,7 @@ def _html_sections(cmp: Comparison) -> list[str]:
     return parts
 
 
-def _html_residual_tests(cmp: Comparison) -> list[str]:
+def _html_residual_tests(cmp: ComparisonRecord) -> list[str]:
     """The table of residual-test p-values in HTML, the flagged ones marked."""
     e = html_text
     head, rows = _residual_table(cmp)
@@ -261,7 +261,7 @@ def _html_residual_tests(cmp: Comparison) -> list[str]:
     return parts
 
 
-def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
+def to_html(cmp: ComparisonRecord, figures: Sequence[Figure]) -> str:
     """Write the report as one self-contained HTML page (figures embedded as base64 PNG).
 
     Parameters
@@ -300,7 +300,7 @@ def to_html(cmp: Comparison, figures: Sequence[Figure]) -> str:
     return "\n".join(parts)
 
 
-def write_report(cmp: Comparison, directory: str | Path, jobs: int = 1) -> dict[str, Path]:
+def write_report(cmp: ComparisonRecord, directory: str | Path, jobs: int = 1) -> dict[str, Path]:
     """Write the PNG figures, ``report.md``, ``report.html`` and ``comparison.json``.
 
     Parameters

@@ -17,7 +17,7 @@ from ..extrapolation import Split, evaluate_on, fmt_value
 from ..residuals import ALPHA
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..results import Comparison, LawComparison
+    from ..record import ComparisonRecord, LawComparison
 
 from .text import (
     BIN_ABOVE,
@@ -47,7 +47,7 @@ class Figure:
     png: bytes
 
 
-def _styles(cmp: Comparison) -> dict[str, dict[str, Any]]:
+def _styles(cmp: ComparisonRecord) -> dict[str, dict[str, Any]]:
     import matplotlib
 
     maps: Any = matplotlib.colormaps  # ListedColormaps: they have .colors
@@ -62,7 +62,7 @@ def _styles(cmp: Comparison) -> dict[str, dict[str, Any]]:
     return out
 
 
-def _law_handles(cmp: Comparison, styles: dict[str, dict[str, Any]],
+def _law_handles(cmp: ComparisonRecord, styles: dict[str, dict[str, Any]],
                  suffix: dict[str, str] | None = None) -> list[Any]:
     from matplotlib.lines import Line2D
 
@@ -133,7 +133,7 @@ def _levels(values: np.ndarray) -> tuple[list[tuple[float, np.ndarray, str]], st
             f"{MAX_PANELS} of {uniq.size} levels shown (those with the most rows)")
 
 
-def _mode_level(cmp: Comparison, rows: np.ndarray, others: list[str]) -> dict[str, float]:
+def _mode_level(cmp: ComparisonRecord, rows: np.ndarray, others: list[str]) -> dict[str, float]:
     """The most common combination of ``others`` among ``rows`` (median if continuous)."""
     if not others:
         return {}
@@ -155,7 +155,7 @@ def _ylim_data(mu: np.ndarray, pad: float = 0.15) -> tuple[float, float]:
     return max(0.0, lo - pad * span) if lo >= 0 else lo - pad * span, hi + pad * span
 
 
-def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: str) -> str:
+def _panel_title(cmp: ComparisonRecord, g: str, level: float, mask: np.ndarray, kind: str) -> str:
     if kind == "bin":
         gm = cmp.data.arrays[g][mask]
         title = f"{g} {fmt_value(g, float(gm.min()))} .. {fmt_value(g, float(gm.max()))}"
@@ -165,7 +165,7 @@ def _panel_title(cmp: Comparison, g: str, level: float, mask: np.ndarray, kind: 
     return f"{title} ({nr} row{'s' if nr != 1 else ''})"
 
 
-def _fits_panel(cmp: Comparison, ax: Any, x: str, fixed: dict[str, float], mask: np.ndarray,
+def _fits_panel(cmp: ComparisonRecord, ax: Any, x: str, fixed: dict[str, float], mask: np.ndarray,
                 styles: dict[str, Any]) -> None:
     """One panel of a fits figure: the rows of ``mask`` and every law at ``fixed``."""
     d = cmp.data
@@ -182,7 +182,7 @@ def _fits_panel(cmp: Comparison, ax: Any, x: str, fixed: dict[str, float], mask:
     ax.grid(alpha=0.3)
 
 
-def _fits_figure(cmp: Comparison, x: str, g: str | None, styles: dict[str, Any]
+def _fits_figure(cmp: ComparisonRecord, x: str, g: str | None, styles: dict[str, Any]
                  ) -> Figure:
     from matplotlib.lines import Line2D
 
@@ -247,7 +247,7 @@ def _flagged(p: float | None) -> bool:
     return p is not None and math.isfinite(p) and p < ALPHA
 
 
-def _strip(cmp: Comparison, r: LawComparison, column: str
+def _strip(cmp: ComparisonRecord, r: LawComparison, column: str
            ) -> tuple[np.ndarray, np.ndarray, bool]:
     """x, standardised y, and whether a test flags it, of one law's strip in one panel."""
     scale = r.metrics["rmse"] if r.metrics["rmse"] > 0 else 1.0
@@ -283,7 +283,7 @@ def _strip_lines(ax: Any, offsets: np.ndarray, flagged: list[bool]) -> None:
                        color="grey", lw=0.6, transform=trans, zorder=1))
 
 
-def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+def _residuals_figure(cmp: ComparisonRecord, styles: dict[str, Any]) -> Figure:
     cols = list(cmp.design.varying) + ["fitted", "qq"]
     n = len(cmp.results)
     fig = _new_figure(3.3 * len(cols) + 1.8, 0.6 * n + 1.7)
@@ -321,7 +321,7 @@ def _residuals_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     return Figure("residuals", "residuals", caption, _png(fig))
 
 
-def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any]) -> None:
+def _holdout_panel(cmp: ComparisonRecord, ax: Any, split: Split, styles: dict[str, Any]) -> None:
     """One split's panel: training and held-out rows, every law fitted below the threshold."""
     d = cmp.data
     mu = d.arrays["mu"]
@@ -357,7 +357,7 @@ def _holdout_panel(cmp: Comparison, ax: Any, split: Split, styles: dict[str, Any
     ax.grid(alpha=0.3)
 
 
-def _holdout_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure | None:
+def _holdout_figure(cmp: ComparisonRecord, styles: dict[str, Any]) -> Figure | None:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -416,13 +416,13 @@ def _box_level(r: LawComparison, x: str, level: dict[str, float],
     return lev
 
 
-def _box_mode(cmp: Comparison, x: str) -> dict[str, float]:
+def _box_mode(cmp: ComparisonRecord, x: str) -> dict[str, float]:
     """The level of the other variables at which the panel of ``x`` is drawn."""
     others = [k for k in cmp.box if k != x and k in cmp.design.varying]
     return _mode_level(cmp, np.ones(cmp.data.n, bool), others)
 
 
-def _box_panel(cmp: Comparison, ax: Any, x: str, styles: dict[str, Any]) -> None:
+def _box_panel(cmp: ComparisonRecord, ax: Any, x: str, styles: dict[str, Any]) -> None:
     """One variable's panel of the plausibility figure."""
     d = cmp.data
     limits = (float(cmp.settings["mu_limits"][0]), float(cmp.settings["mu_limits"][1]))
@@ -453,7 +453,7 @@ def _box_panel(cmp: Comparison, ax: Any, x: str, styles: dict[str, Any]) -> None
     ax.grid(alpha=0.3)
 
 
-def _box_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+def _box_figure(cmp: ComparisonRecord, styles: dict[str, Any]) -> Figure:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -510,7 +510,7 @@ def _log_axis(ax: Any, lo: float, hi: float) -> None:
     ax.xaxis.set_minor_locator(NullLocator())
 
 
-def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
+def _metrics_figure(cmp: ComparisonRecord, styles: dict[str, Any]) -> Figure:
     res = cmp.results
     n = len(res)
     fig = _new_figure(10, 0.45 * n + 2.0)
@@ -559,7 +559,7 @@ def _metrics_figure(cmp: Comparison, styles: dict[str, Any]) -> Figure:
     return Figure("metrics", "metrics", caption, _png(fig))
 
 
-def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
+def _figure_plan(cmp: ComparisonRecord) -> list[tuple[Any, tuple[Any, ...]]]:
     """(drawing function, its extra arguments) of every figure of the report, in order."""
     var = cmp.design.varying
     plan: list[tuple[Any, tuple[Any, ...]]] = []
@@ -574,7 +574,7 @@ def _figure_plan(cmp: Comparison) -> list[tuple[Any, tuple[Any, ...]]]:
     return plan
 
 
-def _draw(cmp: Comparison, index: int) -> Figure | None:
+def _draw(cmp: ComparisonRecord, index: int) -> Figure | None:
     """Draw figure ``index`` of the report's plan."""
     import matplotlib
 
@@ -583,12 +583,12 @@ def _draw(cmp: Comparison, index: int) -> Figure | None:
         return draw(cmp, *args, _styles(cmp)) if args else draw(cmp, _styles(cmp))
 
 
-def _draw_share(cmp: Comparison, indices: Sequence[int]) -> list[Figure | None]:
+def _draw_share(cmp: ComparisonRecord, indices: Sequence[int]) -> list[Figure | None]:
     """Draw several figures of the plan in a worker process (module-level for joblib)."""
     return [_draw(cmp, i) for i in indices]
 
 
-def make_figures(cmp: Comparison, jobs: int = 1) -> list[Figure]:
+def make_figures(cmp: ComparisonRecord, jobs: int = 1) -> list[Figure]:
     """Render every figure of the report.
 
     Each figure is drawn on its own Agg canvas (pyplot and the user's backend are

@@ -15,7 +15,7 @@ from ...units import to_display
 from ..extrapolation import fmt_value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..results import Comparison, LawComparison
+    from ..record import ComparisonRecord, LawComparison
 
 
 
@@ -87,7 +87,7 @@ def _label(var: str) -> str:
     return f"{info.meaning.split(' (')[0]} {var} [{info.display_unit or '-'}]"
 
 
-def _ranges_text(cmp: Comparison) -> str:
+def _ranges_text(cmp: ComparisonRecord) -> str:
     parts = []
     for k, x in cmp.data.arrays.items():
         if k in VARIABLES:
@@ -117,11 +117,11 @@ def _score(r: LawComparison, key: str, fmt: str = ".4f") -> str:
     return _num(value, fmt) + ("" if r.cv.complete else "*")
 
 
-def _common(cmp: Comparison) -> bool:
+def _common(cmp: ComparisonRecord) -> bool:
     return cmp.settings.get("ranking_metric") == "cv_rmse_common"
 
 
-def _columns(cmp: Comparison) -> list[str]:
+def _columns(cmp: ComparisonRecord) -> list[str]:
     cols = ["rank", "law", "k", "n", "R^2", "adj.R^2", "RMSE", "CV RMSE"]
     if _common(cmp):
         cols.append("CV common")
@@ -129,7 +129,7 @@ def _columns(cmp: Comparison) -> list[str]:
                    "rank basis"]
 
 
-def _rows(cmp: Comparison) -> list[list[str]]:
+def _rows(cmp: ComparisonRecord) -> list[list[str]]:
     out = []
     for r in cmp.results:
         m = r.metrics
@@ -145,7 +145,7 @@ def _rows(cmp: Comparison) -> list[list[str]]:
     return out
 
 
-def _header_lines(cmp: Comparison) -> list[str]:
+def _header_lines(cmp: ComparisonRecord) -> list[str]:
     d = cmp.data
     s = cmp.settings
     hold = ", ".join(sp.describe() for sp in cmp.splits) or "none"
@@ -166,7 +166,7 @@ def _section(title: str, lines: Sequence[str]) -> list[str]:
     return ["", title, *lines] if lines else []
 
 
-def _table_footer(cmp: Comparison) -> list[str]:
+def _table_footer(cmp: ComparisonRecord) -> list[str]:
     """The legend lines under the ranked table."""
     out = []
     if _common(cmp):
@@ -178,7 +178,7 @@ def _table_footer(cmp: Comparison) -> list[str]:
     return out
 
 
-def _legend(cmp: Comparison) -> list[str]:
+def _legend(cmp: ComparisonRecord) -> list[str]:
     """What the n/d, weight and rank-basis entries mean (every table format)."""
     out = []
     if any(r.undetermined_scores for r in cmp.results):
@@ -206,7 +206,7 @@ RANK_RULE = ("laws with a determined ranking CV RMSE first (identifiable before 
              "predictions; or no CV RMSE) by fewer parameters, then id")
 
 
-def _table_sections(cmp: Comparison) -> list[str]:
+def _table_sections(cmp: ComparisonRecord) -> list[str]:
     """The flags, trends, warnings, notes, skipped and failed laws under the table."""
     res = cmp.results
     out = _section("NOT IDENTIFIABLE from these data (ranked after the identifiable laws "
@@ -232,7 +232,7 @@ def _table_sections(cmp: Comparison) -> list[str]:
     return out
 
 
-def format_table(cmp: Comparison) -> str:
+def format_table(cmp: ComparisonRecord) -> str:
     """Format the ranked table with flags, notes, skipped and failed laws (plain text).
 
     Parameters
