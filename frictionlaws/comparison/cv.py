@@ -52,10 +52,12 @@ __all__ = ["kfold_assignment", "CVResult", "cross_validate", "error_text", "refi
 #: A held-out row is undetermined when a direction of the parameters that the training
 #: rows cannot determine (singular-value ratio below the fitter's ``RANK_TOL``, 1e-5)
 #: moves its prediction by more than this fraction of the training rows' strongest
-#: response: a step along the valley that leaves chi^2 unchanged then moves the
-#: prediction at least 100 times more than the training rows notice.  Rows the valley
-#: leaves alone respond at round-off (about 1e-9 here), rows it moves at 1e-1 or more.
-PREDICTION_TOL = 1e-3
+#: response.  Along such a direction chi^2 of the training rows does not change, so any
+#: response that is not round-off makes the prediction arbitrary.  Rows the valley
+#: leaves alone respond at round-off (about 1e-9 here); a quadratic in v trained at
+#: 1.0 and 1.1 m/s and asked at 1.2 m/s responds at about 1e-3, so the line sits at
+#: 1e-6, a thousand times above round-off (1e-3 let such near neighbours through).
+PREDICTION_TOL = 1e-6
 
 
 def error_text(exc: BaseException) -> str:
