@@ -5,6 +5,10 @@
   anything imports frictionlaws, so ``import frictionlaws`` finds what ``pip install``
   put in site-packages (or the editable install's finder, for developers).
   ``tests/test_installed.py`` proves it.
+* Property tests draw the same examples on every machine and run (hypothesis profile
+  ``fixed``: derandomised), so a run's verdict does not depend on luck; set
+  ``HYPOTHESIS_PROFILE=explore`` to let hypothesis search afresh (and keep what it finds
+  in its database).
 * ``tests/`` is importable (``law_cases``); matplotlib draws with Agg.
 * ``-m hostile`` (the hostile-input harness, CI budget 60 s) collects only
   ``tests/test_hostile*.py``, where that marker lives
@@ -20,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from hypothesis import settings
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -34,6 +39,9 @@ def _is_root(entry: str) -> bool:
 if "frictionlaws" not in sys.modules:
     sys.path[:] = [p for p in sys.path if not _is_root(p)]
 os.environ.setdefault("MPLBACKEND", "Agg")
+settings.register_profile("fixed", derandomize=True, database=None)
+settings.register_profile("explore")
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fixed"))
 sys.path.insert(0, str(Path(__file__).parent))
 
 
