@@ -443,7 +443,6 @@ KNOWN_FACADE_CIRCLES = [
     ["frictionlaws.comparison.report", "frictionlaws.comparison.report.documents",
      "frictionlaws.comparison.report.figures", "frictionlaws.comparison.report.text",
      "frictionlaws.comparison.results"],
-    ["frictionlaws.tyre.magic_formula", "frictionlaws.tyre.mf_outputs"],
 ]
 
 
