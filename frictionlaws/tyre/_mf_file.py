@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
-from .mf_coefficients import COEFFICIENT_SECTIONS, DECLARED, STRUCTURE_SECTIONS
+from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 
 __all__ = ["version_of", "file_pressures", "file_limits", "EXAMPLES", "packaged_example",
@@ -124,15 +124,10 @@ def packaged_example(name: str) -> Path | None:
 
 
 def file_coefficients(pf: PropertyFile) -> dict[str, float]:
-    """The numeric entries of the evaluated coefficient sections; the required ones (the
-    pure-slip core, :attr:`~frictionlaws.tyre.mf_coefficients.Coefficient.required`) must
-    be there."""
-    coeffs = pf.coefficients(*(s for s in COEFFICIENT_SECTIONS if s != "TURNSLIP_COEFFICIENTS"))
-    for c in DECLARED.values():
-        if c.required and c.section in COEFFICIENT_SECTIONS and c.name not in coeffs:
-            raise InputError(f"[{c.section}] {c.name} is missing: not a Magic Formula "
-                             "property file?", file=pf.path)
-    return coeffs
+    """The numeric entries of the coefficient sections the evaluator reads (not turn slip);
+    the required ones are checked with the values
+    (:func:`~frictionlaws.tyre.mf_coefficients.checked_coefficients`)."""
+    return pf.coefficients(*(s for s in COEFFICIENT_SECTIONS if s != "TURNSLIP_COEFFICIENTS"))
 
 
 def structure(pf: PropertyFile) -> dict[str, float]:

@@ -231,7 +231,7 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
                        "reference pressure and camber")
     both = [(x > 0).sum() >= 3 and (x < 0).sum() >= 3 for x, _, _ in sets]
     c_lo, c_hi = _BOUNDS["PCX1" if d.name == "x" else "PCY1"]  # C = PCX1 at LCX = 1
-    p0, lo, hi = [1.4], [c_lo], [c_hi]
+    p0, lo, hi = [min(max(1.4, c_lo), c_hi)], [c_lo], [c_hi]
     for x, y, fz in sets:
         start = _curve_start(x, y)
         d_max = min(5 * start[1], PEAK_MU[1] * fz)  # a peak the data stop before: physical
@@ -437,7 +437,7 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
 
 
 def _template_value(template: dict[str, float], name: str) -> float:
-    return template.get(name, declared_default(name))
+    return template[name] if name in template else declared_default(name)
 
 
 #: A template value may replace an uninformed coefficient if the refit is no worse than

@@ -249,9 +249,10 @@ class MagicFormula:
     # ----------------------------------------------------------- construction
     def _c(self, name: str, default: float | None = None) -> float:
         """Coefficient ``name``, or its declared default (:mod:`.mf_coefficients`)."""
-        if default is None:
-            default = declared_default(name)
-        return self.coefficients.get(name, default)
+        value = self.coefficients.get(name)
+        if value is not None:
+            return value
+        return declared_default(name) if default is None else default
 
     @classmethod
     def from_file(cls, path: str | Path, *, version: str | None = None,

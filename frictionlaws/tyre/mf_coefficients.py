@@ -37,7 +37,7 @@ from ..law import MU_MAX
 
 __all__ = ["Coefficient", "DECLARED", "SECTIONS", "COEFFICIENT_SECTIONS", "STRUCTURE_SECTIONS",
            "RANGE_SECTIONS", "default", "fit_bounds", "section_keys", "check_values",
-           "checked_coefficients", "outside_fit", "rows"]
+           "checked_coefficients", "outside_fit", "rows", "listing"]
 
 INF = math.inf
 #: Sections of coefficients (the names the evaluator's equations use).
@@ -129,7 +129,7 @@ class Coefficient:
 
     def refusal(self, shown: str, section: str | None = None) -> str:
         """The message refusing the value ``shown`` (as text) of this entry."""
-        unit = f" {self.unit}" if self.unit and "value" not in self.expected() else ""
+        unit = f" {self.unit}" if self.unit else ""
         return (f"[{section or self.section}] {self.name} = {shown} is impossible: expected "
                 f"{self.expected()}{unit} ({self.meaning})")
 
@@ -202,7 +202,7 @@ _SCALING = _group("SCALING_COEFFICIENTS", ALL, "", 1.0, (
     ("LCZ", "vertical stiffness; not evaluated", _NOT_EVALUATED),
 ), bounds=(0.0, INF))
 
-_REQ = {"required": True}
+_REQ = {"required": True, "default": None}
 _LONGITUDINAL = _group("LONGITUDINAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PCX1", "shape factor C_x of the F_x0 curve", {**_REQ, **_POS, "fit": (0.3, 3.0)}),
     ("PDX1", "peak friction mu_x at the nominal load",
@@ -251,7 +251,7 @@ _LATERAL = _group("LATERAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PEY5", "change of E_y with camber squared", {"versions": V6, "unit": "1/rad**2"}),
     ("PKY1", "largest cornering stiffness K_y / F'z0 (negative in ISO files, where a "
              "positive slip angle gives a negative force)", {**_REQ, "unit": "1/rad"}),
-    ("PKY2", "load at which K_y is largest, / F'z0", {**_POS, "fit": (0.05, 50.0)}),
+    ("PKY2", "load at which K_y is largest, / F'z0", {**_REQ, **_POS, "fit": (0.05, 50.0)}),
     ("PKY3", "change of K_y with the camber's magnitude", {"unit": "1/rad"}),
     ("PKY4", "curvature of K_y against load (MF 5.2 fixes it at 2)",
      {"versions": V6, "default": 2.0, **_POS, "fit": (1.0, 4.0)}),
@@ -577,7 +577,8 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
     Raises
     ------
     InputError
-        A value that is not finite, outside its bounds, or two spellings that disagree.
+        A value that is not finite or outside its bounds, a required coefficient missing,
+        or two spellings that disagree.
     """
     check_values({"FNOMIN": fnomin}, source)
     out = {k.upper(): float(v) for k, v in coefficients.items()}
@@ -585,6 +586,10 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
         if not math.isfinite(v):
             raise InputError(f"coefficient {k} is not finite", file=source)
     check_values(out, source)
+    for c in DECLARED.values():
+        if c.required and c.section in COEFFICIENT_SECTIONS and c.name not in out:
+            raise InputError(f"[{c.section}] {c.name} is missing ({c.meaning}): not a Magic "
+                             "Formula property file?", file=source)
     notes = []
     for k, c in DECLARED.items():
         if c.alias_of is None or k not in out:
@@ -604,6 +609,38 @@ def outside_fit(name: str, value: float) -> str | None:
         return None
     return (f"[{c.section}] {name} = {value:g} lies outside {c.fit[0]:g} .. {c.fit[1]:g}, "
             "the range fit-mf searches: unusual for a tyre")
+
+
+def listing(version: str, coefficients: Mapping[str, float], structure: Mapping[str, float]
+            ) -> list[dict[str, object]]:
+    """A model's values beside their declarations, for ``tyre mf --coefficients``.
+
+    Parameters
+    ----------
+    version : str
+        The MF version evaluated: its evaluated coefficients and structure entries are
+        listed, with the value given or the default taken.
+    coefficients, structure : mapping
+        Name -> value of the model (SI); names not declared are listed last as unknown.
+
+    Returns
+    -------
+    list of dict
+        ``name``, ``section``, ``value`` (None: absent without a default), ``given``
+        (False: the declared default), ``unit``, ``meaning``.
+    """
+    given = {**structure, **coefficients}
+    out: list[dict[str, object]] = []
+    for c in rows(version):
+        if c.section in RANGE_SECTIONS or c.alias_of or not c.evaluated:
+            continue
+        value = given.get(c.name, c.default)
+        out.append({"name": c.name, "section": c.section, "value": value,
+                    "given": c.name in given, "unit": c.unit, "meaning": c.meaning})
+    for name in sorted(set(coefficients) - set(DECLARED)):
+        out.append({"name": name, "section": "", "value": coefficients[name], "given": True,
+                    "unit": "", "meaning": "unknown: kept, not used"})
+    return out
 
 
 def rows(version: str | None = None) -> list[Coefficient]:
