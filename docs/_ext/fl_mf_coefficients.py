@@ -53,11 +53,11 @@ def _row(c: object) -> list[str]:
         dflt = "none"
     else:
         dflt = f"{c.default:g}"
-    fit = f"{c.fit[0]:g} .. {c.fit[1]:g}" if c.fit else "bounds"
+    bounds = _range(*c.bounds, c.open_low)
+    fit = f"{c.fit[0]:g} .. {c.fit[1]:g}" if c.fit else ("bounds" if bounds != "–" else "–")
     meaning = c.meaning if c.evaluated else f"{c.meaning} [not evaluated]"
-    return [f"``{c.name}``", ", ".join(c.versions), _cell(c.unit or "1"), dflt,
-            _range(*c.bounds, c.open_low), fit if c.section.endswith("COEFFICIENTS") else "–",
-            _cell(meaning)]
+    return [f"``{c.name}``", ", ".join(c.versions), _cell(c.unit.replace("**2", "²") or "1"),
+            dflt, bounds, fit if c.section.endswith("COEFFICIENTS") else "–", _cell(meaning)]
 
 
 def _table(title: str, entries: list) -> list[str]:

@@ -251,7 +251,8 @@ _LATERAL = _group("LATERAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PEY5", "change of E_y with camber squared", {"versions": V6, "unit": "1/rad**2"}),
     ("PKY1", "largest cornering stiffness K_y / F'z0 (negative in ISO files, where a "
              "positive slip angle gives a negative force)", {**_REQ, "unit": "1/rad"}),
-    ("PKY2", "load at which K_y is largest, / F'z0", {**_REQ, **_POS, "fit": (0.05, 50.0)}),
+    ("PKY2", "load scale of K_y, / F'z0 (the load of largest K_y when PKY4 = 2)",
+     {**_REQ, **_POS, "fit": (0.05, 50.0)}),
     ("PKY3", "change of K_y with the camber's magnitude", {"unit": "1/rad"}),
     ("PKY4", "curvature of K_y against load (MF 5.2 fixes it at 2)",
      {"versions": V6, "default": 2.0, **_POS, "fit": (1.0, 4.0)}),
