@@ -181,7 +181,8 @@ def _tir_with(changes: dict[str, str]) -> str:
     ("FNOMIN", "0", "VERTICAL", r"FNOMIN = 0 is impossible"),
     ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = 'nan' is text, expected a number"),
     ("ALPMAX", "15", "SLIP_ANGLE_RANGE", r"ALPMAX = 15 is impossible: expected -1\.571 <= "
-                                         r"value <= 1\.571 rad"),
+                                         r"value <= 1\.571 rad .*; degrees where the file's "
+                                         "angles are radians\\?"),
     ("CAMMIN", "-30", "INCLINATION_ANGLE_RANGE", r"CAMMIN = -30 is impossible"),
     ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = -1\.5 is impossible: expected > 0"),
     ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected >= 0"),

@@ -130,8 +130,10 @@ class Coefficient:
     def refusal(self, shown: str, section: str | None = None) -> str:
         """The message refusing the value ``shown`` (as text) of this entry."""
         unit = f" {self.unit}" if self.unit else ""
+        hint = ("; degrees where the file's angles are radians?" if self.bounds == ANGLE
+                else "")
         return (f"[{section or self.section}] {self.name} = {shown} is impossible: expected "
-                f"{self.expected()}{unit} ({self.meaning})")
+                f"{self.expected()}{unit} ({self.meaning}){hint}")
 
     def fit_range(self) -> tuple[float, float]:
         """The search range of fit-mf: :attr:`fit`, else the bounds (an open lower bound
