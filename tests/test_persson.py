@@ -204,8 +204,9 @@ def test_self_affine_rms():
         SelfAffine(1e3, 1.2, 1e-10)
 
 
-def synthetic_profile(H=0.8, n=2**16, dx=1e-5, C0=1e-10, q0=2e3, seed=0):
-    """A random-phase line scan with the 1-D spectrum of a self-affine 2-D one."""
+def synthetic_profile(H=0.8, n=2**16, dx=1e-5, C0=1e-15, q0=2e3, seed=0):
+    """A random-phase line scan with the 1-D spectrum of a self-affine 2-D one (rms height
+    about 0.12 mm, rms slope 1.3 over the scan's band: a road-like surface)."""
     from scipy.special import gamma
 
     rng = np.random.default_rng(seed)

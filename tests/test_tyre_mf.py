@@ -183,7 +183,9 @@ def test_values_at_nominal_load_by_hand_mf62():
 
 def test_values_by_hand_mf52_load_dependence_and_camber():
     c = _coeffs("52")
-    mf = MagicFormula.from_file(EXAMPLES / "MagicFormula52_Parameters.json")
+    # the MF-Tyre 5.2 camber gamma itself (MFeval's forms take sin(gamma) with tan(alpha))
+    mf = MagicFormula.from_file(EXAMPLES / "MagicFormula52_Parameters.json",
+                                equations="published")
     fz = 4000.0
     dfz = (fz - c["FNOMIN"]) / c["FNOMIN"]
     g = 0.05

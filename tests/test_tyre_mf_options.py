@@ -146,10 +146,10 @@ def test_missing_inflpres_uses_the_nominal_pressure_with_a_note(tmp_path: Path) 
 def test_cli_options_reach_the_model(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["tyre", "mf", "MagicFormula61", "--json", "--slip-angle", "alpha",
                  "--friction-scaling", "linear", "--loads-above-fzmax", "clamp",
-                 "--loads", "10,20"]) == 0
+                 "--equations", "published", "--loads", "10,20"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["conventions"] == {"slip_angle": "alpha", "friction_scaling": "linear",
-                                  "loads_above_fzmax": "clamp"}
+                                  "loads_above_fzmax": "clamp", "equations": "published"}
     assert out["mu_x_peak"][1] == pytest.approx(
         MagicFormula.from_file("MagicFormula61").mu_x_peak(18000.0))
     assert main(["tyre", "reduce", "MagicFormula61", "--load", "25", "--json",

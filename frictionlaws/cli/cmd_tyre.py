@@ -146,6 +146,9 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
                    default="extrapolate",
                    help="loads above the file's FZMAX: extrapolate with a warning "
                         "(default) or clamp to FZMAX")
+    g.add_argument("--equations", choices=("mfeval", "published"), default="mfeval",
+                   help="where MFeval 4.0 departs from the published equations: its forms "
+                        "(default) or the published ones")
 
 
 def _mf_file(args: argparse.Namespace) -> Any:
@@ -154,7 +157,8 @@ def _mf_file(args: argparse.Namespace) -> Any:
 
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
-                                  loads_above_fzmax=args.loads_above_fzmax)
+                                  loads_above_fzmax=args.loads_above_fzmax,
+                                  equations=args.equations)
 
 
 def _on_property_file(run: Any, args: argparse.Namespace) -> int:

@@ -174,7 +174,10 @@ class _GlobalStage:
     def cost(self, u: np.ndarray) -> float:
         vals = {**self.held, **self.values(u)}
         with np.errstate(all="ignore"):
-            model = np.broadcast_to(np.asarray(self.evaluate(vals), float), self.y.shape)
+            try:  # a point the law refuses is no candidate (as in the local stage)
+                model = np.broadcast_to(np.asarray(self.evaluate(vals), float), self.y.shape)
+            except (ValueError, FloatingPointError, TypeError, ZeroDivisionError):
+                return 1e300
         r = (model - self.y) * (self.w if self.w is not None else 1.0)
         c = float(np.sum(r * r))
         return c if math.isfinite(c) else 1e300

@@ -97,7 +97,8 @@ def _settings(q0: float, H: float, h_rms: float) -> tuple[Setting, ...]:
         Setting("q0", q0, "1/m", "roll-off wavenumber of the self-affine surface", (1.0, 1e6)),
         Setting("H", H, "", "Hurst exponent of the surface (fractal dimension 3 - H)",
                 (0.05, 0.99)),
-        Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0", (1e-9, 0.1)),
+        Setting("h_rms", h_rms, "m", "rms height of the surface over q >= q0 (at most 1 cm; "
+                "the theory also refuses a band q0..q1 of rms slope above 10)", (1e-9, 0.01)),
         Setting("gamma", 1.0, "", "gamma of the correction S(q) = gamma + (1 - gamma) "
                 "P(q)^2 (Persson 2006 suggests about 0.5; 1 = uncorrected, as in 2001)",
                 (0.0, 1.0)),

@@ -7,6 +7,8 @@
   1-D profile to isotropic 2-D conversion.
 * :mod:`.theory`: the contact ratio P(q) and the friction coefficient
   mu(v, T, p) (fast vectorised quadrature).
+* :mod:`.published`: the packaged tread compound's predictions beside
+  published figures.
 
 The registry law ``persson`` (``frictionlaws/laws/persson.py``) wraps it.
 
@@ -31,6 +33,8 @@ _API = {
     "SelfAffine": "surface",
     "TabulatedPSD": "surface",
     "asphalt_like": "surface",
+    "check_roughness": "surface",
+    "RoughnessWarning": "surface",
     "one_d_to_two_d": "surface",
     "psd_from_profile": "surface",
     "psd_from_profile_csv": "surface",
@@ -42,6 +46,8 @@ _API = {
     "friction": "theory",
     "loss_angular": "theory",
     "modulus_sq_angular": "theory",
+    "Comparison": "published",
+    "published_comparison": "published",
 }
 
 __all__ = list(_API)

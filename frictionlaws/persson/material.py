@@ -388,7 +388,7 @@ def tread_compound() -> Material:
     Havriliak-Negami master curve (:func:`havriliak_negami`) at its glass
     transition T_g, shifted by the universal WLF constants, with the
     temperature range T_g .. T_g + 100 K; every number and where it comes from
-    is in the file and in ``datasets/README.md``.  The Prony series is fitted
+    is in the file and in ``datasets/tread-compound/PROVENANCE.md``.  The Prony series is fitted
     to the form on first use (:func:`fit_prony`) and cached.
     """
     from ..temperature import WLF_PRESETS

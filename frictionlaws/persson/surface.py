@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -29,7 +30,16 @@ import numpy as np
 from ..errors import InputError
 
 __all__ = ["SelfAffine", "TabulatedPSD", "psd_from_profile", "psd_from_profile_csv",
-           "asphalt_like", "one_d_to_two_d"]
+           "asphalt_like", "one_d_to_two_d", "check_roughness", "RoughnessWarning",
+           "SLOPE_WARN", "SLOPE_MAX"]
+
+#: rms slope of the band q0..q1 above which :func:`check_roughness` warns, and above
+#: which it refuses the surface (see there).
+SLOPE_WARN, SLOPE_MAX = 3.0, 10.0
+
+
+class RoughnessWarning(UserWarning):
+    """A surface steeper than road surfaces are: the theory's result is doubtful."""
 
 
 @dataclass(frozen=True)
@@ -88,6 +98,17 @@ class SelfAffine:
         h = self.H
         return math.sqrt(math.pi * self.C0 * self.q0**2 / h * (1 - (q1 / self.q0) ** (-2 * h)))
 
+    def rms_slope(self, q1: float | None = None) -> float:
+        """rms slope [-] of the band q0..q1 (default: the surface's q1).
+
+        ``<|grad h|^2> = 2 pi int q^3 C dq
+        = 2 pi C0 q0^4 ((q1/q0)^(2 - 2H) - 1) / (2 - 2H)``.
+        """
+        q1 = self.q1 if q1 is None else q1
+        k = 2.0 - 2.0 * self.H
+        return math.sqrt(2 * math.pi * self.C0 * self.q0**4 * math.expm1(k * math.log(
+            q1 / self.q0)) / k)
+
 
 @dataclass(frozen=True, eq=False)
 class TabulatedPSD:
@@ -137,6 +158,14 @@ class TabulatedPSD:
         q = self.q[self.q <= q1]
         return math.sqrt(2 * math.pi * float(trapezoid(q**2 * self.C(q), np.log(q))))
 
+    def rms_slope(self, q1: float | None = None) -> float:
+        """rms slope [-] of the band q0..q1 (``2 pi int q^3 C dq``, trapezoid in log q)."""
+        from scipy.integrate import trapezoid
+
+        q1 = self.q1 if q1 is None else q1
+        q = self.q[self.q <= q1]
+        return math.sqrt(2 * math.pi * float(trapezoid(q**4 * self.C(q), np.log(q))))
+
 
 def asphalt_like(q1: float = 1e6) -> SelfAffine:
     """An asphalt-like road: q0 = 2 pi / 1 cm, H = 0.8, h_rms = 0.3 mm.
@@ -146,6 +175,39 @@ def asphalt_like(q1: float = 1e6) -> SelfAffine:
     H about 0.8, roll-off near 1 cm, rms of a few tenths of a millimetre).
     """
     return SelfAffine.from_rms(2 * math.pi / 0.01, 0.8, 0.3e-3, q1)
+
+
+def check_roughness(surface: Any, q1: float) -> float:
+    """The rms slope of ``surface`` over q0..q1, refused when the theory cannot take it.
+
+    Persson's theory treats the roughness as a perturbation of small slope on a
+    linear-elastic half-space, and its viscoelastic friction grows about as the
+    rms slope (on the packaged tread compound and the asphalt-like surface, rms
+    slope 1.6 to q1 = 1e6 1/m, the peak mu is 1.6).  Road surfaces measured to
+    the scales that matter have rms slopes of order 1.  Above :data:`SLOPE_WARN`
+    a :class:`RoughnessWarning` says the result is doubtful; above
+    :data:`SLOPE_MAX` (a roughness ten times steeper than 45 degrees, e.g. a
+    rms height of centimetres under a roll-off of 1 cm, which would give a
+    friction coefficient of order ten or more) the surface is refused.
+
+    Raises
+    ------
+    InputError
+        The rms slope exceeds :data:`SLOPE_MAX` (or is not finite).
+    """
+    slope = float(surface.rms_slope(q1))
+    where = (f"q0 = {surface.q0:.4g} to q1 = {q1:.4g} 1/m, rms height {surface.rms(q1):.3g} m")
+    if not slope <= SLOPE_MAX:
+        raise InputError(f"Persson: the surface's rms slope is {slope:.3g} ({where}); the "
+                         "theory takes small slopes on a linear-elastic rubber and road "
+                         f"surfaces have slopes of order 1, so above {SLOPE_MAX:g} it is "
+                         "refused (check the rms height and its unit, H and q1)")
+    if slope > SLOPE_WARN:
+        warnings.warn(f"Persson: the surface's rms slope is {slope:.3g} ({where}), steeper "
+                      "than road surfaces (order 1); the friction computed for it is "
+                      "doubtful (a smaller q1 or rms height is more plausible)",
+                      RoughnessWarning, stacklevel=4)
+    return slope
 
 
 def one_d_to_two_d(q: Any, C1: Any, H: Any) -> np.ndarray:

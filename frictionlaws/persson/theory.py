@@ -42,6 +42,7 @@ from scipy.special import erf
 from ..errors import DomainError, ExtrapolationWarning, InputError
 from .flash import Flash
 from .material import Material
+from .surface import check_roughness
 
 __all__ = ["friction", "flash_temperature", "contact_ratio", "check_conditions", "loss_angular",
            "loss_tabulated", "modulus_sq_angular", "q_nodes"]
@@ -255,6 +256,8 @@ def contact_ratio(material: Material, surface: Any, v: Any, T: Any, p: Any, q: A
     q = np.asarray(q, dtype=float).ravel()
     if q.size and not np.all(np.isfinite(q)):
         raise InputError("Persson: contact_ratio needs finite wavenumbers q [1/m]")
+    if q.size and q.max() > surface.q0:
+        check_roughness(surface, float(q.max()))
     out = []
     for qi in q:
         if qi <= surface.q0:
@@ -386,6 +389,7 @@ def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: f
     _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
     _check_quadrature(surface.q0, q1, order, panels_per_decade)
+    check_roughness(surface, q1)
     shape, vv, TT, pp = _prepare(material, v, T, p)
     _warn_outside_data(material, surface.q0, q1, vv, TT)
     nodes, weights, cum = q_nodes(surface.q0, q1, order=order,

@@ -70,9 +70,11 @@ class MFModel(Protocol):
     against this interface so that their module does not import the class's.
     """
 
+    name: str
     fnomin: float
     fz0: float
     version: str
+    equations: str
     slip_angle: str
     loads_above_fzmax: str
     pressure: float | None

@@ -46,7 +46,7 @@ The vertical shift S_V is added **outside** the sine.  The version-specific
 terms are:
 
 * **MF 5.2 / PAC2002** (``FITTYP`` 5, 6, 21 or ``PROPERTY_FILE_FORMAT='PAC2002'``):
-  camber g_x = gamma LGAX, g_y = gamma LGAY;
+  camber g_x = gamma LGAX, g_y = gamma LGAY (``equations="published"``; see below);
   ``K_y = PKY1 F'z0 (1 + PPY1 dpi) sin(2 arctan(F_z / (PKY2 F'z0 (1 + PPY2 dpi))))
   (1 - PKY3 |g_y|) LKY``;
   ``E_y = (PEY1 + PEY2 dfz)(1 - (PEY3 + PEY4 g_y) sgn(a_y)) LEY``;
@@ -81,7 +81,15 @@ Conventions, each an option named after what it means (defaults first):
   identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
 * ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
   with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
-  (evaluated at FZMAX, as MFeval's limit checks do).
+  (evaluated at FZMAX, as MFeval's limit checks do);
+* ``equations``: ``"mfeval"`` (MFeval 4.0's forms where they depart from the
+  published ones; its authors matched them to TNO's evaluator) or ``"published"``.
+  In the forces: PDX3's camber term in gamma (MFeval) or gamma* (eq. 4.E13); for
+  MF 5.2 the lateral and combined-slip camber g_y = gamma* LGAY with LKYC on PHY3,
+  PVY3 and PVY4 and the 6.x PKY4, PKY5, PEY5 (MFeval, which evaluates MF 5.2 with
+  the 6.x forms; gamma* = sin(gamma) with ``slip_angle="tan_alpha"``) or
+  g_y = gamma LGAY (MF-Tyre 5.2).  The moments' differences are listed in
+  :mod:`frictionlaws.tyre.mf_outputs`.
 
 Simplifications, stated: no turn slip (all zeta = 1), no speed dependence of
 friction (LMUV ignored: the steady-state curves are for the file's measurement
@@ -121,7 +129,7 @@ from .mf_coefficients import default as declared_default
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
-           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EXAMPLES", "packaged_example"]
+           "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EQUATIONS", "EXAMPLES", "packaged_example"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Degressive friction-scaling constant A_mu of MF 6.1.
@@ -137,17 +145,22 @@ FRICTION_SCALINGS = ("linear", "degressive")
 #: Loads above ``FZMAX``: ``extrapolate`` (the equations at the given load, with a
 #: warning) or ``clamp`` (evaluated at FZMAX, as MFeval's limit checks do).
 LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
+#: Where MFeval 4.0 departs from the published equations: ``mfeval`` (its forms, which
+#: its authors matched to TNO's evaluator) or ``published`` (the book and the MF-Tyre
+#: 5.2 manual).  See the module notes.
+EQUATIONS = ("mfeval", "published")
 
 
 def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
-                       loads_above_fzmax: str, source: str) -> None:
+                       loads_above_fzmax: str, equations: str, source: str) -> None:
     """Refuse an unknown version or convention, naming the allowed values."""
     if version not in MF_VERSIONS:
         raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
                          f"{', '.join(MF_VERSIONS)}", file=source)
     for what, value, allowed in (("slip_angle", slip_angle, SLIP_ANGLE_INPUTS),
                                  ("friction_scaling", friction_scaling, FRICTION_SCALINGS),
-                                 ("loads_above_fzmax", loads_above_fzmax, LOADS_ABOVE_FZMAX)):
+                                 ("loads_above_fzmax", loads_above_fzmax, LOADS_ABOVE_FZMAX),
+                                 ("equations", equations, EQUATIONS)):
         if value not in allowed:
             raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
                              file=source)
@@ -200,6 +213,10 @@ class MagicFormula:
         Loads above the file's ``FZMAX``: evaluated as given with an
         :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
         to FZMAX (as MFeval's limit checks do).
+    equations : {"mfeval", "published"}
+        Where MFeval 4.0 departs from the published equations (the camber in PDX3's
+        term, MF 5.2's camber variable, LFZO in the trail, the side-force shift in MF
+        5.2's M_z; see the module notes): MFeval's forms (default) or the published ones.
     structure : mapping, optional
         The file's dimensions, vertical and structural stiffnesses, contact-patch
         coefficients and reference speeds (``UNLOADED_RADIUS``, ``VERTICAL_STIFFNESS``,
@@ -213,9 +230,11 @@ class MagicFormula:
                  name: str = "", source: str = "<memory>",
                  notes: list[str] | None = None, slip_angle: str = "tan_alpha",
                  friction_scaling: str = "linear",
-                 loads_above_fzmax: str = "extrapolate",
+                 loads_above_fzmax: str = "extrapolate", equations: str = "mfeval",
                  structure: Mapping[str, float] | None = None) -> None:
-        _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, source)
+        _check_conventions(version, slip_angle, friction_scaling, loads_above_fzmax, equations,
+                           source)
+        self.equations = equations
         self.slip_angle = slip_angle
         self.friction_scaling = friction_scaling
         self.loads_above_fzmax = loads_above_fzmax
@@ -269,8 +288,8 @@ class MagicFormula:
         pressure : float, optional
             Inflation pressure [Pa] (default: the file's INFLPRES / IP).
         **options : str
-            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
-            class documentation).
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax``, ``equations``
+            (see the class documentation).
         """
         if not isinstance(path, (str, Path)):
             raise InputError(f"expected the path of a property file (or a packaged example "
@@ -299,8 +318,8 @@ class MagicFormula:
         pressure : float, optional
             Inflation pressure [Pa] (default: the file's INFLPRES / IP).
         **options : str
-            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax`` (see the
-            class documentation).
+            ``slip_angle``, ``friction_scaling``, ``loads_above_fzmax``, ``equations``
+            (see the class documentation).
 
         Returns
         -------
@@ -403,7 +422,10 @@ class MagicFormula:
     def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
         c = self._c
         dfz = (fz - self.fz0) / self.fz0
-        g = self.gamma_star(gamma) if self._six else gamma * c("LGAX")
+        if not self._six:
+            g = gamma * c("LGAX")
+        else:  # MFeval writes gamma itself in PDX3's term; the book gamma* (4.E13)
+            g = np.asarray(gamma) if self.equations == "mfeval" else self.gamma_star(gamma)
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
         self._check_peak("mu_x", mu, fz, dpi)
@@ -438,18 +460,23 @@ class MagicFormula:
             S_V = fz * (c("PVY1") + c("PVY2") * dfz) * c("LVY") * self.lmuy_prime + S_Vg
             S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + (K_g0 * g - S_Vg) / (K + EPS)
         else:
-            g = gamma * c("LGAY")
+            # MFeval evaluates MF 5.2 with the 6.x forms (gamma*, PKY4, PKY5, PEY5, LKYC)
+            g = self._camber_c(gamma)
+            mfe = self.equations == "mfeval"
+            lkyc = c("LKYC") if mfe else 1.0
             mu = ((c("PDY1") + c("PDY2") * dfz) * (1 + c("PPY3") * dpi + c("PPY4") * dpi**2)
                   * (1 - c("PDY3") * g**2) * self.lmuy)
+            pky4, pky5 = (c("PKY4", 2.0), c("PKY5")) if mfe else (2.0, 0.0)
             K = (c("PKY1") * fz0 * (1 + c("PPY1") * dpi)
-                 * np.sin(2.0 * np.arctan(fz / (c("PKY2") * (1 + c("PPY2") * dpi) * fz0)))
+                 * np.sin(pky4 * np.arctan(fz / ((c("PKY2") + pky5 * g**2)
+                                                 * (1 + c("PPY2") * dpi) * fz0)))
                  * (1 - c("PKY3") * np.abs(g)) * c("LKY"))
             E0 = (c("PEY1") + c("PEY2") * dfz) * c("LEY")
-            E_a = E0
+            E_a = E0 * (1 + c("PEY5") * g**2) if mfe else E0
             E_b = E0 * (c("PEY3") + c("PEY4") * g)
-            S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g
+            S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g * lkyc
             S_V = (fz * ((c("PVY1") + c("PVY2") * dfz) * c("LVY")
-                         + (c("PVY3") + c("PVY4") * dfz) * g) * self.lmuy_prime)
+                         + (c("PVY3") + c("PVY4") * dfz) * g * lkyc) * self.lmuy_prime)
         self._check_peak("mu_y", mu, fz, dpi)
         D = mu * fz
         B = K / (C * D + EPS)
@@ -571,7 +598,8 @@ class MagicFormula:
     # ------------------------------------------------------- combined slip
     def _camber_c(self, gamma: Any) -> Any:
         """Camber as the combined-slip terms use it: gamma* (6.x) or gamma LGAY (5.2)."""
-        return self.gamma_star(gamma) if self._six else gamma * self._c("LGAY")
+        return (self.gamma_star(gamma) if self._six or self.equations == "mfeval"
+                else gamma) * (1.0 if self._six else self._c("LGAY"))
 
     def gamma_star(self, gamma: Any) -> Any:
         """Return the camber variable gamma* of the equations.
@@ -927,7 +955,8 @@ class MagicFormula:
             "nominal_pressure_Pa": self.nominal_pressure,
             "conventions": {"slip_angle": self.slip_angle,
                             "friction_scaling": self.friction_scaling,
-                            "loads_above_fzmax": self.loads_above_fzmax},
+                            "loads_above_fzmax": self.loads_above_fzmax,
+                            "equations": self.equations},
             "limits_SI": {k: list(v) for k, v in self.limits.items()},
             "loads_N": loads.tolist(),
             "mu_x_peak": np.broadcast_to(lon.mu, loads.shape).tolist(),

@@ -47,15 +47,27 @@ coefficients (QBZ4, QBZ5, QDZ3) are defined in the 2010 paper and as MFeval eval
 them (the book's eqs. 4.E40 and 4.E43 write |gamma*| there).  The two differ by
 gamma^3/6: 4.6e-4 relative at 3 degrees.
 
-**Where MFeval 4.0 departs from the book and this module follows the book**: MFeval
-multiplies the combined-slip trail t by LFZO (the results differ when LFZO is not 1;
-every packaged example has LFZO = 1), and writes gamma instead of sin(gamma) in the
-camber term of the longitudinal peak (PDX3: 4.9e-7 of F_x at 2 degrees).  Checked
-against MFeval 4.0 for the packaged MF 6.1 example with alpha* = tan(alpha) (useMode
-121, camber 0 and 2 degrees): the moments agree within 1e-10 N m; the MF 5.2 and 6.2
-branches (M_y, contact patch, relaxation lengths from PTX/PTY; the MF 6.2 loaded
-radius) and ``slip_angle = "alpha"`` follow the same sources but have no MFeval
-reference here.
+**Where MFeval 4.0 departs from the published equations** the option ``equations`` of
+:class:`~frictionlaws.tyre.magic_formula.MagicFormula` chooses; its default ``mfeval``
+follows MFeval (whose authors matched these forms to TNO's evaluator), ``published`` the
+book and the MF-Tyre 5.2 manual: the combined-slip trail t times LFZO (MFeval) or not;
+MF 5.2's ``F'_y = F_y - S_Vyk`` with S_Vyk from mu_y at zero camber (MFeval) or at the
+camber; and, in the forces, gamma (MFeval) or gamma* in PDX3's term and, for MF 5.2 with
+alpha* = tan(alpha), gamma* = sin(gamma) (MFeval) or gamma in the lateral and
+combined-slip camber terms.  At 3 degrees the MF 5.2 example's M_z differs between the two
+by up to 5e-4 of its peak moment, everything else by less than 1e-4.
+
+**Checked** against MFeval 4.0 on the three packaged examples in both slip-angle
+conventions (useModes 111 and 121, ``saturate=True``), loads from near FZMIN to beyond
+FZMAX, camber -3/0/3 degrees, three pressures per row, pure and combined slip and inputs
+beyond the limits (``tests/data/mfeval``): the moments within 4e-12 of the peak moment,
+the forces within 3e-12 of the peak force; R_e and Omega within 3e-8 and 3e-6 (MFeval ends
+its R_e iteration when the first row of a batch converges); R_l and rho within 1e-6 m
+where MFeval's fminsearch for the MF 6.2 radius converged.  The MF 6.2 loaded radius here
+is the root of least deflection with R_l <= R_omega (NaN and a warning where none carries
+the load); MFeval 4.0 solves it from 0.3 m by fminsearch, for MF 5.2 files too, and stalls
+where the model carries no load.  MF 5.2's loaded radius here is the MF 6.1 closed form
+with the file's Q_FZ2 (0 when absent).
 
 Limits and speed
 ----------------
@@ -70,11 +82,12 @@ are refused: MFeval's low-speed reductions are not reproduced.
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import ExtrapolationWarning, InputError
 from ._mf_core import EPS, mf_curve
 from ._mf_core import MFModel as MagicFormula  # the interface: no import of the class's module
 
@@ -185,7 +198,6 @@ class _Rows:
         self.fz_mx = np.where(low, self.fz * ratio**2, self.fz)
         self.fz_my = np.where(low, self.fz_in * ratio, self.fz_in)
         self.dpi = mf._dpi(None if self.pressure is None else self.pressure)
-        self.dpi_in = mf._dpi(pressure)
         self.shape = shape
 
 
@@ -335,17 +347,22 @@ def _aligning(mf: MagicFormula, r: _Rows, f: dict[str, Any]) -> dict[str, Any]:
         x = B_t * a
         return D_t * np.cos(C_t * np.arctan(x - E_t * (x - np.arctan(x)))) * cos_a
 
-    g0 = mf._lat(fz, 0.0, r.dpi)
+    g0 = mf._lat(r.fz, 0.0, r.dpi)
     fy0_g0 = mf_curve(alpha_s + g0.S_H, g0.B, g0.C, g0.D, g0.E_a, g0.E_b, g0.S_V)
     mz0 = -trail(alpha_t) * fy0_g0 + D_r * np.cos(np.arctan(B_r * alpha_r)) * cos_a
     ratio2 = (f["Kxk"] / K_ya) ** 2 * r.kappa**2
     a_r = np.arctan(np.sqrt(np.tan(alpha_r) ** 2 + ratio2)) * _sgn(alpha_r)
     a_t = np.arctan(np.sqrt(np.tan(alpha_t) ** 2 + ratio2)) * _sgn(alpha_t)
-    t = trail(a_t)
+    t = trail(a_t) * (c("LFZO") if mf.equations == "mfeval" else 1.0)
     M_zr = D_r * np.cos(np.arctan(B_r * a_r))
     s = R0 * (c("SSZ1") + c("SSZ2") * f["Fy"] / mf.fnomin
               + (c("SSZ3") + c("SSZ4") * dfz) * g) * c("LS")
-    fy_arm = f["_G_yk"] * fy0_g0 if mf.version != "5.2" else f["Fy"] - f["_S_Vyk"]
+    if mf.version != "5.2":
+        fy_arm = f["_G_yk"] * fy0_g0
+    elif mf.equations == "mfeval":  # MFeval: the shift S_Vyk with mu_y at zero camber
+        fy_arm = f["Fy"] - mf._gyk(r.kappa, alpha_s, r.fz, g, g0.mu)[1]
+    else:
+        fy_arm = f["Fy"] - f["_S_Vyk"]
     return {"Mz0": mz0, "Mz": -t * fy_arm + M_zr + s * f["Fx"], "t": t, "Mzr": M_zr}
 
 
@@ -389,7 +406,7 @@ def _radii(mf: MagicFormula, r: _Rows, fx: Any, fy: Any) -> dict[str, Any]:
     s = mf.structure
     q_re0, q_v1 = s.get("Q_RE0", 1.0), s.get("Q_V1", 0.0)
     pfz1 = s.get("PFZ1", 0.0)
-    cz = cz0 * (1 + pfz1 * np.asarray(r.dpi_in))
+    cz = cz0 * (1 + pfz1 * np.asarray(r.dpi))
     fz_u = r.fz_in
     deflect = (fz0 / cz) * (s.get("DREFF", 0.0) * np.arctan(s.get("BREFF", 0.0) * fz_u / fz0)
                             + s.get("FREFF", 0.0) * fz_u / fz0)
@@ -404,7 +421,7 @@ def _radii(mf: MagicFormula, r: _Rows, fx: Any, fy: Any) -> dict[str, Any]:
     q_fz1 = np.sqrt(max((cz0 * R0 / fz0) ** 2 - 4 * q_fz2, 0.0))
     if mf.version == "6.2":
         rl, rho = _loaded_radius_62(mf, r, omega, romega, fx, fy, q_fz1, q_fz2)
-        fz_c = r.fz_in
+        fz_c = r.fz
     else:
         fz_c = r.fz_mz
         ext = ((1 + s.get("Q_V2", 0.0) * (R0 / V0) * np.abs(omega)
@@ -430,7 +447,7 @@ def _fz_62(mf: MagicFormula, r: _Rows, rl: Any, omega: Any, romega: Any, fx: Any
     q1, q2 = s.get("Q_CAM1", 0.0), s.get("Q_CAM2", 0.0)
     den = q1 * romega + q2 * romega**2
     shape = np.where(den != 0, (q1 * rl + q2 * rl**2) / np.where(den != 0, den, 1.0), 0.0)
-    rho_g = np.where(g != 0, shape**2 * (rtw / 8) * np.abs(np.tan(g))
+    rho_g = np.where((g != 0) & (den != 0), shape**2 * (rtw / 8) * np.abs(np.tan(g))
                      - s.get("Q_CAM3", 0.0) * rho_fr * np.abs(g), 0.0)
     rho = np.maximum(rho_fr + rho_g, 1e-12)
     corr = ((1 + s.get("Q_V2", 0.0) * (R0 / V0) * np.abs(omega) - (s.get("Q_FCX", 0.0) * fx / fz0)
@@ -441,31 +458,43 @@ def _fz_62(mf: MagicFormula, r: _Rows, rl: Any, omega: Any, romega: Any, fx: Any
 
 def _loaded_radius_62(mf: MagicFormula, r: _Rows, omega: Any, romega: Any, fx: Any, fy: Any,
                       q_fz1: float, q_fz2: float) -> tuple[Any, Any]:
-    """Loaded radius of MF 6.2 where the model's load equals the given one (secant)."""
-    R0 = _need(mf, "UNLOADED_RADIUS")
-    target = r.fz_in
-    x0, x1 = np.full(r.shape, 0.95 * R0), np.full(r.shape, R0)
-    y0 = _fz_62(mf, r, x0, omega, romega, fx, fy, q_fz1, q_fz2)[0] - target
-    y1 = _fz_62(mf, r, x1, omega, romega, fx, fy, q_fz1, q_fz2)[0] - target
-    for _ in range(60):
-        dy = y1 - y0
-        step = np.where(np.abs(dy) > 1e-300, (x1 - x0) / np.where(dy == 0, 1.0, dy) * y1, 0.0)
-        x0, y0 = x1, y1
-        x1 = x1 - step
-        y1 = _fz_62(mf, r, x1, omega, romega, fx, fy, q_fz1, q_fz2)[0] - target
-        if np.all(np.abs(y1) <= 1e-9 * mf.fnomin):
-            break
-    if not np.all(np.abs(y1) <= 1e-6 * mf.fnomin):
-        raise InputError("MF 6.2 loaded radius: no radius gives the load within 1e-6 FNOMIN",
-                         file=mf.source)
-    return x1, _fz_62(mf, r, x1, omega, romega, fx, fy, q_fz1, q_fz2)[1]
+    """Loaded radius of MF 6.2 where the model's load equals the given one.
+
+    The root of smallest deflection with ``R_l <= R_omega``: the load is scanned from
+    the free radius inwards (64 steps) to the first radius that carries it, then
+    bisected to 1e-12 of the radius.  A row without such a radius gets NaN and a
+    warning (the lateral-force term can make the model's load negative at small
+    deflection; a radius above R_omega, where the camber term alone grows with the
+    radius, is not a loaded radius).
+    """
+    target = r.fz
+    def excess(rl: Any) -> Any:
+        return _fz_62(mf, r, rl, omega, romega, fx, fy, q_fz1, q_fz2)[0] - target
+
+    steps = np.linspace(1.0, 0.0, 65)
+    scan = np.stack([excess(romega * f) for f in steps])  # (65, *shape)
+    carried = scan >= 0
+    first = np.argmax(carried, axis=0)
+    found = carried.any(axis=0)
+    hi = romega * steps[np.maximum(first - 1, 0)]  # not yet carrying (or the free radius)
+    lo = romega * steps[first]
+    for _ in range(48):
+        mid = 0.5 * (lo + hi)
+        up = excess(mid) >= 0
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    rl = np.where(found, lo, np.nan)
+    if not np.all(found):
+        warnings.warn(f"{mf.name or 'MF 6.2'}: {int(np.size(found) - np.sum(found))} row(s) "
+                      "have no loaded radius up to the free radius that carries the load: "
+                      "R_l, rho and C_z are NaN there", ExtrapolationWarning, stacklevel=4)
+    return rl, _fz_62(mf, r, rl, omega, romega, fx, fy, q_fz1, q_fz2)[1]
 
 
 def _patch(mf: MagicFormula, r: _Rows) -> dict[str, Any]:
     """Contact patch length 2a and width 2b (eqs. 9-10; MF 5.2: Q_A1, Q_A2, 2b = width)."""
     s, R0, fz0 = mf.structure, _need(mf, "UNLOADED_RADIUS"), mf.fnomin
     w, cz0 = _need(mf, "WIDTH"), _need(mf, "VERTICAL_STIFFNESS")
-    ncz = cz0 * (1 + s.get("PFZ1", 0.0) * np.asarray(r.dpi_in))
+    ncz = cz0 * (1 + s.get("PFZ1", 0.0) * np.asarray(r.dpi))
     bottom = R0 - s.get("RIM_RADIUS", 0.0) - s.get("BOTTOM_OFFST", 0.0)
     fz = np.where(R0 - r.fz_in / ncz < R0 - bottom, bottom * ncz, r.fz_in)
     if mf.version == "5.2":
