@@ -321,7 +321,7 @@ def test_the_documentation_table_is_generated_from_every_declaration(tmp_path: P
     assert cells["PKY4"][0] == "6.1, 6.2" and cells["PKY4"][2] == "2"
     assert cells["FNOMIN"][1] == "N" and cells["ALPMAX"][3] == "-1.571 .. 1.571"
     assert "not evaluated" in cells["PDXP1"][-1] and cells["LFZ0"][2] == "read as LFZO"
-    assert "MF 5.2 fixes it at 2" in cells["PKY4"][-1]
+    assert "MF 5.2 fixes it at 2" in cells["PKY4"][-1] and "MFeval" in cells["PKY4"][-1]
 
 
 def test_cli_lists_a_files_coefficients_beside_their_declarations(tmp_path: Path,

@@ -160,6 +160,8 @@ def _group(section: str, versions: tuple[str, ...], unit: str, default: float | 
 
 
 _NOT_EVALUATED = {"evaluated": False}
+#: MF 6.x terms MFeval also evaluates for MF 5.2 files (``equations="mfeval"``).
+_ALSO_52 = " (read from MF 5.2 files too with equations='mfeval', as MFeval does)"
 _POS = {"bounds": POSITIVE, "open_low": True}
 _SCALING = _group("SCALING_COEFFICIENTS", ALL, "", 1.0, (
     ("LFZO", "nominal load F'z0 = FNOMIN LFZO the coefficients refer to", _POS),
@@ -176,7 +178,7 @@ _SCALING = _group("SCALING_COEFFICIENTS", ALL, "", 1.0, (
              "torque)", _POS),
     ("LEY", "curvature factor E_y"),
     ("LKY", "cornering stiffness K_y (and the slope factors B_t, B_r of M_z)"),
-    ("LKYC", "camber stiffness K_yg0 of F_y", {"versions": V6}),
+    ("LKYC", "camber stiffness K_yg0 of F_y" + _ALSO_52, {"versions": V6}),
     ("LKZC", "camber terms of the residual torque D_r", {"versions": V6}),
     ("LHY", "horizontal shift S_Hy"),
     ("LVY", "vertical shift S_Vy"),
@@ -250,15 +252,15 @@ _LATERAL = _group("LATERAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PEY2", "change of E_y with load"),
     ("PEY3", "asymmetry of E_y between positive and negative slip angles"),
     ("PEY4", "change of that asymmetry with camber", {"unit": "1/rad"}),
-    ("PEY5", "change of E_y with camber squared", {"versions": V6, "unit": "1/rad**2"}),
+    ("PEY5", "change of E_y with camber squared" + _ALSO_52, {"versions": V6, "unit": "1/rad**2"}),
     ("PKY1", "largest cornering stiffness K_y / F'z0 (negative in ISO files, where a "
              "positive slip angle gives a negative force)", {**_REQ, "unit": "1/rad"}),
     ("PKY2", "load scale of K_y, / F'z0 (the load of largest K_y when PKY4 = 2)",
      {**_REQ, **_POS, "fit": (0.05, 50.0)}),
     ("PKY3", "change of K_y with the camber's magnitude", {"unit": "1/rad"}),
-    ("PKY4", "curvature of K_y against load (MF 5.2 fixes it at 2)",
+    ("PKY4", "curvature of K_y against load (the published MF 5.2 fixes it at 2)" + _ALSO_52,
      {"versions": V6, "default": 2.0, **_POS, "fit": (1.0, 4.0)}),
-    ("PKY5", "shift of the load of largest K_y with camber squared",
+    ("PKY5", "shift of the load of largest K_y with camber squared" + _ALSO_52,
      {"versions": V6, "unit": "1/rad**2"}),
     ("PKY6", "camber stiffness K_yg0 / F_z at the nominal load",
      {"versions": V6, "unit": "1/rad"}),
