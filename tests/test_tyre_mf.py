@@ -490,9 +490,14 @@ def test_pressure_outside_the_file_range_warns_and_nonsense_peaks_are_refused(tm
 
     with pytest.warns(ExtrapolationWarning, match="pressure"):
         MagicFormula.from_file(variant("INFLPRES", "260")).summary()
-    for key, value in (("INFLPRES", "2600000"), ("PDX1", "-1.1632"), ("LMUX", "0")):
-        with pytest.raises(InputError, match="is not a friction coefficient"):
-            MagicFormula.from_file(variant(key, value)).summary()
+    with pytest.raises(InputError, match="is not a friction coefficient"):
+        MagicFormula.from_file(variant("INFLPRES", "2600000")).summary()
+    assert main(["tyre", "mf", str(variant("INFLPRES", "2600000"))]) == 2
+    # impossible coefficients are refused when the file is read, by section and name
+    for key, value, sec in (("PDX1", "-1.1632", "LONGITUDINAL"), ("LMUX", "0", "SCALING")):
+        with pytest.raises(InputError, match=rf"\[{sec}_COEFFICIENTS\] {key} = .* is "
+                           "impossible: expected (0 < value|> 0)"):
+            MagicFormula.from_file(variant(key, value))
         assert main(["tyre", "mf", str(variant(key, value))]) == 2
 
 
@@ -503,8 +508,13 @@ def test_a_missing_section_header_and_an_inverted_range_are_refused(tmp_path):
                                    if ln.strip() != "[LONGITUDINAL_COEFFICIENTS]") + "\n")
     with pytest.raises(InputError, match=r"PCX1 belongs to \[LONGITUDINAL_COEFFICIENTS\]"):
         MagicFormula.from_file(no_header)
+    negative = tmp_path / "negative.tir"
+    negative.write_text("\n".join("FZMAX = -5" if ln.startswith("FZMAX") else ln
+                                  for ln in src) + "\n")
+    with pytest.raises(InputError, match=r"\[VERTICAL_FORCE_RANGE\] FZMAX = -5 is impossible"):
+        MagicFormula.from_file(negative)
     inverted = tmp_path / "inverted.tir"
-    inverted.write_text("\n".join("FZMAX = -5" if ln.startswith("FZMAX") else ln
+    inverted.write_text("\n".join("FZMIN = 20000" if ln.startswith("FZMIN") else ln
                                   for ln in src) + "\n")
     with pytest.raises(InputError, match="is not a range"):
         MagicFormula.from_file(inverted)

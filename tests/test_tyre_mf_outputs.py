@@ -194,13 +194,14 @@ def test_a_radius_or_width_that_is_not_positive_is_refused(key: str, value: floa
              for ln in text.splitlines()]
     tir = tmp_path / "odd.tir"
     tir.write_text("\n".join(lines) + "\n")
-    mf = MagicFormula.from_file(tir)
-    with pytest.raises(InputError, match=f"{key} = .* must be positive"):
-        mf.steady_state(0.05, 0.05, mf.fnomin)
-    if key == "UNLOADED_RADIUS":
-        with pytest.raises(InputError, match="must be positive"):
-            mf.mz0(0.05, mf.fnomin)
-        assert main(["tyre", "mf", str(tir)]) == 2
+    with pytest.raises(InputError, match=rf"odd.tir', row \d+: \[DIMENSION\] {key} = "
+                       r".* is impossible: expected > 0 m"):
+        MagicFormula.from_file(tir)
+    good = MagicFormula.from_file(src / "MagicFormula61_Parameters.json")
+    with pytest.raises(InputError, match=rf"\[DIMENSION\] {key} = .* is impossible"):
+        MagicFormula(good.coefficients, fnomin=good.fnomin, version=good.version,
+                     structure={**good.structure, key: value})
+    assert main(["tyre", "mf", str(tir)]) == 2
 
 
 @settings(max_examples=15, deadline=None)

@@ -1011,6 +1011,9 @@ def _generate(app: Any) -> None:
     if missing:
         raise ExtensionError(f"law catalogue is missing registered law(s): {', '.join(missing)}")
     commands = write_cli_reference(gen / "cli.rst")
+    from fl_mf_coefficients import write_mf_coefficients
+
+    write_mf_coefficients(gen / "mf-coefficients.rst")
     modules = write_api_reference(gen / "api")
     try:
         write_shell_sessions(gen / "shell")

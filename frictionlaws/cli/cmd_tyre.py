@@ -80,6 +80,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    "example (MagicFormula52, MagicFormula61, MagicFormula62)")
     _load_options(m, default=None)
     _mf_options(m)
+    m.add_argument("--coefficients", action="store_true",
+                   help="list the coefficients the version evaluates instead: value (or the "
+                        "default taken), SI unit and meaning, from their declarations")
     m.add_argument("--json", action="store_true", help="print one JSON object")
 
     r = tsub.add_parser(
@@ -402,6 +405,8 @@ def _run_mf(args: argparse.Namespace) -> int:
     import numpy as np
 
     mf = _mf_file(args)
+    if args.coefficients:
+        return _print_coefficients(mf, args.json)
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -436,6 +441,28 @@ def _run_mf(args: argparse.Namespace) -> int:
                else "loads above FZMAX evaluated at FZMAX (clamped)")
         print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: {how}",
               file=sys.stderr)
+    return 0
+
+
+def _print_coefficients(mf: Any, as_json: bool) -> int:
+    """``tyre mf --coefficients``: the file's values beside their declarations."""
+    from frictionlaws.tyre.mf_coefficients import listing
+
+    rows = listing(mf.version, mf.coefficients, {**mf.structure, "FNOMIN": mf.fnomin})
+    if as_json:
+        print(json.dumps({"name": mf.name, "version": mf.version, "coefficients": rows},
+                         indent=2))
+        return 0
+    print(f"{mf.name}: Magic Formula {mf.version}; '*' marks a default the file does not "
+          "give, '-' an entry absent without a default")
+    section = None
+    for r in rows:
+        if r["section"] != section:
+            section = r["section"]
+            print(f"[{section or 'unknown'}]")
+        value = "-" if r["value"] is None else f"{r['value']:.6g}"
+        mark = " " if r["given"] else "*"
+        print(f"  {r['name']:<24}{value:>14}{mark} {str(r['unit'] or '1'):<9}{r['meaning']}")
     return 0
 
 

@@ -6,7 +6,9 @@
 * :func:`thesis_comparison`: the source thesis' cornering experiment (constant
   mu against friction fitted to its tribometer data) beside its Table 6-2;
 * :class:`MagicFormula`: the PAC2002 / MF 5.2 and MF 6.1/6.2 pure-slip forces
-  from ADAMS ``.tir`` or JSON property files (:func:`read_property_file`);
+  from ADAMS ``.tir`` or JSON property files (:func:`read_property_file`), whose
+  coefficients are declared (unit, meaning, default, bounds) in
+  :mod:`~frictionlaws.tyre.mf_coefficients`;
 * :func:`reduce_mf`: fit a simple slip law (``pacejka``, ``burckhardt``) to a
   Magic Formula curve at one load;
 * :func:`fit_mf`: fit a Magic Formula property file to tyre test data

@@ -10,10 +10,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
+from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 
 __all__ = ["version_of", "file_pressures", "file_limits", "EXAMPLES", "packaged_example",
-           "STRUCTURE_SECTIONS", "structure"]
+           "STRUCTURE_SECTIONS", "structure", "file_coefficients"]
 
 
 def version_of(pf: PropertyFile) -> tuple[str, str]:
@@ -122,10 +123,11 @@ def packaged_example(name: str) -> Path | None:
     return None
 
 
-#: Sections whose numeric entries describe the tyre's structure and test conditions
-#: (radii, stiffnesses, contact patch, reference speed), used by the moments, radii,
-#: relaxation lengths and contact patch.
-STRUCTURE_SECTIONS = ("MODEL", "DIMENSION", "VERTICAL", "STRUCTURAL", "CONTACT_PATCH")
+def file_coefficients(pf: PropertyFile) -> dict[str, float]:
+    """The numeric entries of the coefficient sections the evaluator reads (not turn slip);
+    the required ones are checked with the values
+    (:func:`~frictionlaws.tyre.mf_coefficients.checked_coefficients`)."""
+    return pf.coefficients(*(s for s in COEFFICIENT_SECTIONS if s != "TURNSLIP_COEFFICIENTS"))
 
 
 def structure(pf: PropertyFile) -> dict[str, float]:

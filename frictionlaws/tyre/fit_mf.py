@@ -56,6 +56,8 @@ from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unr
 from ._fit_mf_rows import _Direction, _levels, _select
 from ._mf_file import structure
 from .magic_formula import EXAMPLES, MagicFormula, mf_curve, packaged_example
+from .mf_coefficients import default as declared_default
+from .mf_coefficients import fit_bounds
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
@@ -228,7 +230,8 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
         raise FitError(f"stage 1: no load with 8 or more pure-slip F{d.name}0 points at the "
                        "reference pressure and camber")
     both = [(x > 0).sum() >= 3 and (x < 0).sum() >= 3 for x, _, _ in sets]
-    p0, lo, hi = [1.4], [0.3], [3.0]
+    c_lo, c_hi = _BOUNDS["PCX1" if d.name == "x" else "PCY1"]  # C = PCX1 at LCX = 1
+    p0, lo, hi = [min(max(1.4, c_lo), c_hi)], [c_lo], [c_hi]
     for x, y, fz in sets:
         start = _curve_start(x, y)
         d_max = min(5 * start[1], PEAK_MU[1] * fz)  # a peak the data stop before: physical
@@ -267,8 +270,8 @@ def _ky_start(curves: list[dict[str, float]], fz0: float, six: bool) -> dict[str
 
     k2_0 = 2.0 * float(fz.max()) / fz0
     p0 = [float(K[np.argmax(np.abs(K))]) / fz0 * 1.2, k2_0] + ([2.0] if free4 else [])
-    lo = [-np.inf, 0.05] + ([1.0] if free4 else [])
-    hi = [np.inf, 50.0] + ([4.0] if free4 else [])
+    lo = [-np.inf, _BOUNDS["PKY2"][0]] + ([_BOUNDS["PKY4"][0]] if free4 else [])
+    hi = [np.inf, _BOUNDS["PKY2"][1]] + ([_BOUNDS["PKY4"][1]] if free4 else [])
     if fz.size >= 2:
         p = least_squares_solve(lambda q: (model(q) - K) / np.abs(K).max(), p0,
                           bounds=(lo, hi)).x
@@ -346,8 +349,8 @@ def _predict(mf: MagicFormula, d: _Direction, names: Sequence[str], p: np.ndarra
     return mf_curve(np.tan(d.slip) + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
 
 
-_BOUNDS = {"PCX1": (0.3, 3.0), "PCY1": (0.3, 3.0), "PKY2": (0.05, 50.0), "PKY4": (1.0, 4.0),
-           "PEX1": (-50.0, 1.0), "PEY1": (-50.0, 1.0)}
+#: The search range of each coefficient, from its declaration (:mod:`.mf_coefficients`).
+_BOUNDS = fit_bounds()
 
 
 def _solve(mf: FittingModel, d: _Direction, names: list[str], method: str = "lm") -> Any:
@@ -434,7 +437,7 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
 
 
 def _template_value(template: dict[str, float], name: str) -> float:
-    return template.get(name, 2.0 if name == "PKY4" else 0.0)
+    return template[name] if name in template else declared_default(name)
 
 
 #: A template value may replace an uninformed coefficient if the refit is no worse than

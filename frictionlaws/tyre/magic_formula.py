@@ -106,7 +106,6 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -114,20 +113,27 @@ import numpy as np
 
 from ..errors import ExtrapolationWarning, InputError
 from ..law import MU_MAX
-from ._mf_file import EXAMPLES, file_limits, file_pressures, packaged_example, structure, version_of
+from ._mf_core import EPS, MFCoefficients, cos_weight, mf_curve
+from ._mf_file import (
+    EXAMPLES,
+    file_coefficients,
+    file_limits,
+    file_pressures,
+    packaged_example,
+    structure,
+    version_of,
+)
 from ._mf_labelled import labelled
+from .mf_coefficients import check_values, checked_coefficients
+from .mf_coefficients import default as declared_default
 from .tir import PropertyFile, read_property_file
 
 __all__ = ["MagicFormula", "MFCoefficients", "mf_curve", "MF_VERSIONS", "SLIP_ANGLE_INPUTS",
            "FRICTION_SCALINGS", "LOADS_ABOVE_FZMAX", "EQUATIONS", "EXAMPLES", "packaged_example"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
-#: Small number added to C*D and K_y in the denominators (the textbook's epsilon) [N].
-EPS = 1e-6
 #: Degressive friction-scaling constant A_mu of MF 6.1.
 A_MU = 10.0
-
-_SCALING_DEFAULT = 1.0
 
 #: How the slip angle enters the lateral curve: ``tan_alpha`` (the book's alpha*,
 #: MFeval useMode +20 "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
@@ -145,49 +151,6 @@ LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
 EQUATIONS = ("mfeval", "published")
 
 
-@dataclass(frozen=True)
-class MFCoefficients:
-    """The Magic Formula factors at one load (arrays when the load is an array).
-
-    ``E = E_a - E_b * sgn(x)`` with ``x`` the shifted slip (``k_x`` or
-    ``a_y``), limited to <= 1.  ``K = B C D`` is the slip stiffness [N per
-    unit slip, or N/rad], ``D = mu F_z`` the peak factor [N], ``S_H`` the
-    horizontal shift [-] or [rad, of tan(alpha)], ``S_V`` the vertical shift [N].
-    """
-
-    B: Any
-    C: Any
-    D: Any
-    E_a: Any
-    E_b: Any
-    K: Any
-    S_H: Any
-    S_V: Any
-    mu: Any
-
-    def E(self, sign: float) -> Any:
-        """E for a shifted slip of sign ``sign`` (+1 or -1), limited to <= 1."""
-        return np.minimum(self.E_a - self.E_b * sign, 1.0)
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"B": self.B, "C": self.C, "D": self.D, "E_plus": self.E(1.0),
-                "E_minus": self.E(-1.0), "K": self.K, "S_H": self.S_H, "S_V": self.S_V,
-                "mu": self.mu}
-
-
-def mf_curve(x: Any, B: Any, C: Any, D: Any, E_a: Any, E_b: Any, S_V: Any) -> Any:
-    """The Magic Formula sine curve at shifted slip ``x``, S_V added outside the sine."""
-    E = np.minimum(E_a - E_b * np.sign(x), 1.0)
-    bx = B * x
-    return D * np.sin(C * np.arctan(bx - E * (bx - np.arctan(bx)))) + S_V
-
-
-def _cos_weight(x: Any, B: Any, C: Any, E: Any) -> Any:
-    """``cos(C arctan(B x - E (B x - arctan(B x))))``, the combined-slip weighting shape."""
-    bx = B * x
-    return np.cos(C * np.arctan(bx - E * (bx - np.arctan(bx))))
-
-
 def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
                        loads_above_fzmax: str, equations: str, source: str) -> None:
     """Refuse an unknown version or convention, naming the allowed values."""
@@ -203,18 +166,6 @@ def _check_conventions(version: str, slip_angle: str, friction_scaling: str,
                              file=source)
 
 
-def _checked_coefficients(coefficients: Mapping[str, float], fnomin: float, source: str
-                          ) -> dict[str, float]:
-    """The coefficients by upper-case name, all finite; FNOMIN a positive load."""
-    if not (math.isfinite(fnomin) and fnomin > 0):
-        raise InputError(f"FNOMIN must be a positive load in N, got {fnomin}", file=source)
-    out = {k.upper(): float(v) for k, v in coefficients.items()}
-    for k, v in out.items():
-        if not math.isfinite(v):
-            raise InputError(f"coefficient {k} is not finite", file=source)
-    return out
-
-
 def _positive_or_none(value: float | None, what: str, source: str) -> float | None:
     """A pressure [Pa]: None, or a positive finite number."""
     if value is None:
@@ -225,27 +176,15 @@ def _positive_or_none(value: float | None, what: str, source: str) -> float | No
     return x
 
 
-def _pure_slip_coefficients(pf: PropertyFile) -> dict[str, float]:
-    """Scaling, longitudinal and lateral coefficients; the pure-slip ones must be there."""
-    coeffs = pf.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
-                             "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS",
-                             "OVERTURNING_COEFFICIENTS", "ROLLING_COEFFICIENTS")
-    for need in ("PCX1", "PDX1", "PKX1", "PCY1", "PDY1", "PKY1"):
-        if need not in coeffs:
-            sec = "LONGITUDINAL" if "X" in need[2:] else "LATERAL"
-            raise InputError(f"[{sec}_COEFFICIENTS] {need} is missing: not a Magic "
-                             "Formula property file?", file=pf.path)
-    return coeffs
-
-
 class MagicFormula:
     """Pure-slip Magic Formula of one tyre (PAC2002 / MF 5.2 or MF 6.1/6.2).
 
     Parameters
     ----------
     coefficients : mapping
-        Coefficient name (``PCX1``, ``PDY2``, ``LMUX``...) -> value.  Absent
-        coefficients are 0 and absent scaling factors (``L...``) are 1.
+        Coefficient name (``PCX1``, ``PDY2``, ``LMUX``...) -> value.  Absent ones take
+        their declared default (:mod:`~frictionlaws.tyre.mf_coefficients`: 0, scaling
+        factors 1); values outside their declared bounds are refused.
     fnomin : float
         Nominal load F_z0 [N] (``[VERTICAL] FNOMIN``).
     version : {"5.2", "6.1", "6.2"}
@@ -299,7 +238,7 @@ class MagicFormula:
         self.slip_angle = slip_angle
         self.friction_scaling = friction_scaling
         self.loads_above_fzmax = loads_above_fzmax
-        self.coefficients = _checked_coefficients(coefficients, fnomin, source)
+        self.coefficients, read = checked_coefficients(coefficients, fnomin, source)
         self.fnomin = float(fnomin)
         self.version = version
         self.pressure = _positive_or_none(pressure, "the inflation pressure", source)
@@ -307,9 +246,10 @@ class MagicFormula:
                                                   "the nominal inflation pressure", source)
         self.limits = dict(limits or {})
         self.structure = {k.upper(): float(v) for k, v in (structure or {}).items()}
+        check_values(self.structure, source)
         self.name = name
         self.source = source
-        self.notes = list(notes or [])
+        self.notes = list(notes or []) + read
         c = self._c
         if c("LFZO", 1.0) <= 0:
             raise InputError("LFZO must be positive", file=source)
@@ -327,9 +267,11 @@ class MagicFormula:
 
     # ----------------------------------------------------------- construction
     def _c(self, name: str, default: float | None = None) -> float:
-        if default is None:
-            default = _SCALING_DEFAULT if name.startswith("L") else 0.0
-        return self.coefficients.get(name, default)
+        """Coefficient ``name``, or its declared default (:mod:`.mf_coefficients`)."""
+        value = self.coefficients.get(name)
+        if value is not None:
+            return value
+        return declared_default(name) if default is None else default
 
     @classmethod
     def from_file(cls, path: str | Path, *, version: str | None = None,
@@ -400,7 +342,7 @@ class MagicFormula:
                              f"{', '.join(MF_VERSIONS)}", file=pf.path)
         if not pf.has("VERTICAL", "FNOMIN"):
             raise InputError("[VERTICAL] FNOMIN (nominal load) is missing", file=pf.path)
-        coeffs = _pure_slip_coefficients(pf)
+        coeffs = file_coefficients(pf)
         p_i, p_nom = file_pressures(pf, notes)
         name = str(pf.metadata.get("Name") or Path(pf.path).stem)
         return cls(coeffs, fnomin=pf.si("VERTICAL", "FNOMIN"), version=version,
@@ -716,7 +658,7 @@ class MagicFormula:
         C = c("RCX1")
         E = np.minimum(c("REX1") + c("REX2") * dfz, 1.0)
         S_H = c("RHX1")
-        return _cos_weight(alpha_s + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
+        return cos_weight(alpha_s + S_H, B, C, E) / cos_weight(S_H, B, C, E)
 
     @labelled(("kappa", "alpha", "fz", "gamma"), ("G_yk", "1", "combined-slip weight of F_y"),
                ("S_Vyk", "N", "slip-induced lateral force shift"))
@@ -764,7 +706,7 @@ class MagicFormula:
         C = c("RCY1")
         E = np.minimum(c("REY1") + c("REY2") * dfz, 1.0)
         S_H = c("RHY1") + c("RHY2") * dfz
-        G = _cos_weight(kappa + S_H, B, C, E) / _cos_weight(S_H, B, C, E)
+        G = cos_weight(kappa + S_H, B, C, E) / cos_weight(S_H, B, C, E)
         D_V = (mu_y * fz * (c("RVY1") + c("RVY2") * dfz + c("RVY3") * g)
                * np.cos(np.arctan(c("RVY4") * alpha_s)))
         S_V = D_V * np.sin(c("RVY5") * np.arctan(c("RVY6") * kappa)) * c("LVYKA")

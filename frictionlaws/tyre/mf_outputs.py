@@ -83,15 +83,13 @@ are refused: MFeval's low-speed reductions are not reproduced.
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from ..errors import ExtrapolationWarning, InputError
-from .magic_formula import EPS, mf_curve
-
-if TYPE_CHECKING:
-    from .magic_formula import MagicFormula
+from ._mf_core import EPS, mf_curve
+from ._mf_core import MFModel as MagicFormula  # the interface: no import of the class's module
 
 __all__ = ["steady_state", "aligning_moment", "aligning_summary", "OUTPUTS"]
 

@@ -41,6 +41,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..sanitize import ascii_line, split_lines, tir_string
+from .mf_coefficients import DECLARED, STRUCTURE_SECTIONS, outside_fit, section_keys
 
 __all__ = ["PropertyFile", "read_property_file", "read_tir", "read_json", "write_tir",
            "format_tir", "json_to_tir", "converted_header", "CHRONO_PROVENANCE"]
@@ -88,38 +89,11 @@ DIMENSIONAL = {
 }
 
 
-def _expand(spec: str) -> frozenset[str]:
-    """``"PCX1 PDX1-3"`` -> {PCX1, PDX1, PDX2, PDX3}."""
-    names: set[str] = set()
-    for item in spec.split():
-        m = re.fullmatch(r"([A-Z_]+?)(\d+)-(\d+)", item)
-        if m:
-            names.update(f"{m.group(1)}{i}" for i in range(int(m.group(2)),
-                                                            int(m.group(3)) + 1))
-        else:
-            names.add(item)
-    return frozenset(names)
-
-
 #: The coefficient names of the Magic Formula 5.2 (PAC2002), 6.1 and 6.2 property
-#: files, per section: a key of a coefficient section outside this list is unknown
-#: (listed to the user, or refused when it is a near miss of an absent name).
-MF_KEYS: dict[str, frozenset[str]] = {
-    "SCALING_COEFFICIENTS": _expand(
-        "LFZO LFZ0 LCX LMUX LEX LKX LHX LVX LGAX LCY LMUY LEY LKY LKYC LKZC LHY LVY LGAY "
-        "LTR LRES LGAZ LXAL LYKA LVYKA LS LSGKP LSGAL LGYR LMX LVMX LMY LMP LMUV LIP LCZ"),
-    "LONGITUDINAL_COEFFICIENTS": _expand(
-        "PCX1 PDX1-3 PEX1-4 PKX1-3 PHX1-2 PVX1-2 PPX1-4 RBX1-3 RCX1 REX1-2 RHX1 PTX1-3"),
-    "LATERAL_COEFFICIENTS": _expand(
-        "PCY1 PDY1-3 PEY1-5 PKY1-7 PHY1-3 PVY1-4 PPY1-5 RBY1-4 RCY1 REY1-2 RHY1-2 RVY1-6 "
-        "PTY1-2"),
-    "ALIGNING_COEFFICIENTS": _expand(
-        "QBZ1-6 QBZ9-10 QCZ1 QDZ1-11 QEZ1-5 QHZ1-4 PPZ1-2 SSZ1-4 QTZ1 MBELT"),
-    "OVERTURNING_COEFFICIENTS": _expand("QSX1-14 PPMX1"),
-    "ROLLING_COEFFICIENTS": _expand("QSY1-8"),
-    "TURNSLIP_COEFFICIENTS": _expand(
-        "PDXP1-3 PKYP1 PDYP1-4 PHYP1-4 PECP1-2 QDTP1 QCRP1-2 QBRP1 QDRP1-2"),
-}
+#: files, per section (from the declarations, :mod:`frictionlaws.tyre.mf_coefficients`):
+#: a key of a coefficient section outside this list is unknown (listed to the user, or
+#: refused when it is a near miss of an absent name).
+MF_KEYS: dict[str, frozenset[str]] = section_keys()
 
 
 @dataclass
@@ -236,9 +210,43 @@ class PropertyFile:
                         f"({near[0]} is absent, so it would take its default)",
                         file=self.path, row=row)
                 unknown.append(f"[{sec}] {key}")
-        if not unknown:
-            return []
-        return [f"unknown keys kept but not used by the Magic Formula: {', '.join(unknown)}"]
+        notes = self.check_bounds()
+        if unknown:
+            notes.append("unknown keys kept but not used by the Magic Formula: "
+                         + ", ".join(unknown))
+        return notes
+
+    def check_bounds(self) -> list[str]:
+        """Check every declared entry against its bounds (in SI, with ``[UNITS]``).
+
+        Returns
+        -------
+        list of str
+            Notes of values outside the range fit-mf searches (possible, but unusual).
+
+        Raises
+        ------
+        InputError
+            A value outside the physically possible ones, naming section, key, value,
+            the bounds and the line.
+        """
+        notes: list[str] = []
+        for sec, entries in self.sections.items():
+            for key, value in entries.items():
+                c = DECLARED.get(key)
+                if c is None or isinstance(value, str) or not (
+                        c.section == sec or (sec in STRUCTURE_SECTIONS
+                                             and c.section in STRUCTURE_SECTIONS)):
+                    continue
+                si = self.si(sec, key)
+                if not c.allows(si):
+                    shown = f"{value:g}" + (f" ({si:g} SI)" if si != value else "")
+                    raise InputError(c.refusal(shown, sec), file=self.path,
+                                     row=self.lines.get((sec, key)))
+                note = outside_fit(key, si)
+                if note:
+                    notes.append(note)
+        return notes
 
     # ------------------------------------------------------------------ units
     def unit(self, kind: str) -> str:

@@ -1,0 +1,346 @@
+"""The declarations of the Magic Formula coefficients, and everything that reads them."""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import inspect
+import json
+import math
+import re
+import warnings
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.tyre import _fit_mf_stages, mf_coefficients, mf_outputs
+from frictionlaws.tyre.magic_formula import MagicFormula
+from frictionlaws.tyre.mf_coefficients import DECLARED, default, fit_bounds
+from frictionlaws.tyre.tir import DIMENSIONAL, MF_KEYS, read_property_file, read_tir
+
+# the package exports fit_mf the function; these are the modules
+fit_mf = importlib.import_module("frictionlaws.tyre.fit_mf")
+magic_formula = importlib.import_module("frictionlaws.tyre.magic_formula")
+EXAMPLES = Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"
+FILES = sorted(EXAMPLES.glob("MagicFormula*_Parameters.json"))
+VERSIONS = ("5.2", "6.1", "6.2")
+
+
+def _evaluator_reads() -> dict[str, set[object]]:
+    """Name -> the literal defaults the evaluator's code passes with it (empty: none).
+
+    Read from the code: ``c("PKY4", 2.0)`` / ``mf._c(...)`` for coefficients,
+    ``s.get("Q_RE0", 1.0)``, ``structure.get(...)``, ``_need(mf, "LONGVL")``,
+    ``s["LATERAL_STIFFNESS"]`` and ``"LATERAL_STIFFNESS" in s`` for the file's structure.
+    """
+    reads: dict[str, set[object]] = {}
+    for module in (magic_formula, mf_outputs):
+        for node in ast.walk(ast.parse(inspect.getsource(module))):
+            name, dflt = None, None
+            if isinstance(node, ast.Call):
+                f = node.func
+                args = node.args
+                if isinstance(f, ast.Name) and f.id == "_need":
+                    args = args[1:]
+                elif not ((isinstance(f, ast.Name) and f.id == "c")
+                          or (isinstance(f, ast.Attribute) and f.attr in ("_c", "get")
+                              and ast.unparse(f.value) in ("s", "self", "mf", "c",
+                                                           "mf.structure", "self.structure"))):
+                    continue
+                if args and isinstance(args[0], ast.Constant) and isinstance(args[0].value, str):
+                    name = args[0].value
+                    if len(args) > 1 and isinstance(args[1], ast.Constant):
+                        dflt = args[1].value
+            elif isinstance(node, ast.Subscript) and ast.unparse(node.value) == "s":
+                if isinstance(node.slice, ast.Constant):
+                    name = node.slice.value
+            elif (isinstance(node, ast.Compare) and isinstance(node.ops[0], ast.In)
+                  and isinstance(node.left, ast.Constant)
+                  and ast.unparse(node.comparators[0]) in ("s", "mf.structure")):
+                name = node.left.value
+            if isinstance(name, str) and re.fullmatch(r"[A-Z][A-Z0-9_]+", name):
+                reads.setdefault(name, set()).update({dflt} if dflt is not None else set())
+    return reads
+
+
+def _fit_mf_names() -> dict[str, set[str]]:
+    """Name -> the versions for which fit-mf fits it (pure, combined, M_z stages)."""
+    names: dict[str, set[str]] = {}
+    for v in VERSIONS:
+        groups = (fit_mf.X_COEFFICIENTS[v] + fit_mf.Y_COEFFICIENTS[v]
+                  + _fit_mf_stages.combined_names("x", v) + _fit_mf_stages.combined_names("y", v)
+                  + sum(_fit_mf_stages.mz_names(v), []))
+        for k in groups:
+            names.setdefault(k, set()).add(v)
+    return names
+
+
+# ---------------------------------------------------------------- completeness
+
+
+def test_every_name_the_evaluator_reads_is_declared_with_the_default_it_uses():
+    reads = _evaluator_reads()
+    assert {"PCX1", "PKY4", "QSX14", "RVY6", "LONGVL", "Q_RE0", "LATERAL_STIFFNESS",
+            "PTY2"} <= set(reads)  # the scanner sees every kind of read
+    assert sorted(set(reads) - set(DECLARED)) == []
+    for name, literals in reads.items():
+        c = DECLARED[name]
+        assert c.evaluated, f"{name} is read by the evaluator but declared not evaluated"
+        for value in literals:  # a default written in the code is the declared one
+            assert c.default is not None and float(value) == c.default, (name, value)
+
+
+def test_every_name_fit_mf_fits_is_declared_in_its_section_and_versions():
+    for name, versions in _fit_mf_names().items():
+        c = DECLARED[name]
+        assert c.evaluated and set(versions) <= set(c.versions), (name, versions, c.versions)
+        assert _fit_mf_stages.section_of(name) == c.section, name
+    for name in list(fit_mf._NEEDS) + list(_fit_mf_stages.NEEDS):
+        assert name in DECLARED, name
+    # the stages hold an undetermined coefficient at the template's value or 0: declared 0
+    pure = set(fit_mf.X_COEFFICIENTS["6.1"] + fit_mf.Y_COEFFICIENTS["6.1"])
+    for name in set(_fit_mf_names()) - pure:
+        assert default(name) == 0.0, name
+
+
+def test_the_reader_knows_exactly_the_declared_names():
+    assert MF_KEYS == mf_coefficients.section_keys()
+    assert sum(len(v) for v in MF_KEYS.values()) > 180
+
+
+def test_every_declared_name_is_in_an_example_file_or_optional():
+    seen: dict[str, set[str]] = {}
+    for f in FILES:
+        mf = MagicFormula.from_file(f)
+        for entries in read_property_file(f).sections.values():
+            for key in entries:
+                seen.setdefault(key, set()).add(mf.version)
+    for c in DECLARED.values():
+        if c.required:  # in every example of its versions
+            assert set(c.versions) <= seen.get(c.name, set()), c.name
+        elif c.name not in seen:  # documented as optional: what its absence means
+            assert c.default is not None or c.section in mf_coefficients.RANGE_SECTIONS, c.name
+    assert {"LFZ0", "LMUV", "Q_A1", "IP"} <= set(DECLARED) - set(seen)
+
+
+def test_declarations_are_whole_and_consistent():
+    units = {"force": "N", "length": "m", "pressure": "Pa", "length/time": "m/s",
+             "force/length": "N/m"}
+    for (sec, key), kind in DIMENSIONAL.items():  # the units the reader converts
+        if key in DECLARED:
+            assert DECLARED[key].unit == units[kind], key
+            assert DECLARED[key].section == sec, key
+    from frictionlaws.units import unit_registry
+
+    ureg = unit_registry()
+    for c in DECLARED.values():
+        assert c.meaning and c.section in mf_coefficients.SECTIONS and c.versions, c.name
+        assert set(c.versions) <= set(VERSIONS), c.name
+        ureg.Unit(c.unit)  # pint reads it
+        if c.default is not None:
+            assert c.allows(c.default), c.name
+        if c.fit is not None:  # the fit searches only possible values
+            assert c.allows(c.fit[0]) and c.allows(c.fit[1]), c.name
+        if c.alias_of is not None:
+            assert DECLARED[c.alias_of].default == c.default, c.name
+        elif c.section == "SCALING_COEFFICIENTS":
+            assert c.default == 1.0 and not c.allows(-0.1), c.name
+        elif c.section in mf_coefficients.COEFFICIENT_SECTIONS and c.name != "PKY4":
+            assert c.default == (None if c.required else 0.0), c.name
+    assert default("PKY4") == 2.0 and DECLARED["FNOMIN"].required
+    assert not DECLARED["FNOMIN"].allows(0.0) and not DECLARED["PCX1"].allows(0.0)
+    assert not DECLARED["ALPMAX"].allows(2.0) and DECLARED["ALPMAX"].allows(1.5)
+
+
+# --------------------------------------------------------------------- reading
+
+
+@pytest.mark.parametrize("path", FILES + sorted(EXAMPLES.glob("*.converted.tir")),
+                         ids=lambda p: p.name)
+def test_the_example_files_pass_the_bounds(path: Path) -> None:
+    pf = read_property_file(path)
+    assert pf.check_bounds() == []  # nothing impossible, nothing even unusual
+    for sec, entries in pf.sections.items():
+        for key, value in entries.items():
+            if key in DECLARED and not isinstance(value, str):
+                assert DECLARED[key].allows(pf.si(sec, key)), key
+
+
+def _tir_with(changes: dict[str, str]) -> str:
+    text = (EXAMPLES / "MagicFormula61_Parameters.converted.tir").read_text()
+    return "\n".join(f"{ln.split('=')[0].strip()} = {changes[ln.split('=')[0].strip()]}"
+                     if ln.split("=")[0].strip() in changes else ln
+                     for ln in text.splitlines()) + "\n"
+
+
+@pytest.mark.parametrize("key,value,section,message", [
+    ("FNOMIN", "-6752", "VERTICAL", r"FNOMIN = -6752 is impossible: expected > 0 N"),
+    ("FNOMIN", "0", "VERTICAL", r"FNOMIN = 0 is impossible"),
+    ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = 'nan' is text, expected a number"),
+    ("ALPMAX", "15", "SLIP_ANGLE_RANGE", r"ALPMAX = 15 is impossible: expected -1\.571 <= "
+                                         r"value <= 1\.571 rad .*; degrees where the file's "
+                                         "angles are radians\\?"),
+    ("CAMMIN", "-30", "INCLINATION_ANGLE_RANGE", r"CAMMIN = -30 is impossible"),
+    ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = -1\.5 is impossible: expected > 0"),
+    ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected >= 0"),
+    ("PKY2", "0", "LATERAL_COEFFICIENTS", r"PKY2 = 0 is impossible"),
+    ("PDY1", "1e6", "LATERAL_COEFFICIENTS", r"PDY1 = 1e\+06 is impossible"),
+    ("VERTICAL_STIFFNESS", "-3e5", "VERTICAL", r"VERTICAL_STIFFNESS = -300000 is impossible"),
+    ("NOMPRES", "0", "OPERATING_CONDITIONS", r"NOMPRES = 0 is impossible"),
+])
+def test_a_hostile_tir_is_refused_naming_file_section_and_name(
+        tmp_path: Path, key: str, value: str, section: str, message: str) -> None:
+    from frictionlaws.cli import main
+
+    path = tmp_path / "hostile.tir"
+    path.write_text(_tir_with({key: value}))
+    with pytest.raises(InputError) as err:
+        MagicFormula.from_file(path)
+    text = str(err.value)
+    assert "hostile.tir" in text and re.search(r"row \d+", text), text
+    assert f"[{section}] " in text and re.search(message, text), text
+    assert main(["tyre", "mf", str(path)]) == 2
+
+
+def test_a_hostile_json_file_and_units_are_judged_in_si(tmp_path: Path) -> None:
+    doc = json.loads(FILES[1].read_text())
+    doc["VERTICAL"]["FNOMIN"] = -1.0
+    (tmp_path / "neg.json").write_text(json.dumps(doc))
+    with pytest.raises(InputError, match=r"neg\.json.*\[VERTICAL\] FNOMIN = -1 is impossible"):
+        MagicFormula.from_file(tmp_path / "neg.json")
+    # FNOMIN in kN is judged in newtons (and passes); a NaN in JSON is not even read
+    kn = _tir_with({"FORCE": "'kN'", "FNOMIN": "6.752"})
+    mf = MagicFormula.from_property_file(read_tir(kn, source="kn.tir"))
+    assert mf.fnomin == pytest.approx(6752.0)
+    with pytest.raises(InputError, match=r"\[VERTICAL\] FNOMIN = -6\.752 \(-6752 SI\) is "
+                                         "impossible"):
+        MagicFormula.from_property_file(read_tir(_tir_with({"FORCE": "'kN'",
+                                                            "FNOMIN": "-6.752"}), source="x"))
+    with pytest.raises(InputError, match="NaN is not a JSON number"):
+        read_property_file(_write(tmp_path / "nan.json",
+                                  FILES[1].read_text().replace('"PCX1": 1.5482',
+                                                               '"PCX1": NaN')))
+
+
+def _write(path: Path, text: str) -> Path:
+    path.write_text(text)
+    return path
+
+
+def test_a_coefficient_built_in_code_is_checked_as_one_read_from_a_file() -> None:
+    mf = MagicFormula.from_file(FILES[1])
+    with pytest.raises(InputError, match=r"\[LONGITUDINAL_COEFFICIENTS\] PCX1 = 0 is "
+                                         "impossible"):
+        MagicFormula({**mf.coefficients, "PCX1": 0.0}, fnomin=mf.fnomin, version="6.1")
+    with pytest.raises(InputError, match=r"\[VERTICAL\] FNOMIN = -1 is impossible"):
+        MagicFormula(mf.coefficients, fnomin=-1.0, version="6.1")
+    with pytest.raises(InputError, match="coefficient PDX2 is not finite"):
+        MagicFormula({**mf.coefficients, "PDX2": math.nan}, fnomin=mf.fnomin)
+
+
+def test_unusual_values_are_noted_and_unknown_names_kept_with_a_note(tmp_path: Path) -> None:
+    text = _tir_with({"PCX1": "3.5"}).replace("[LATERAL_COEFFICIENTS]",
+                                               "[LATERAL_COEFFICIENTS]\nPXY99 = 1.5")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        mf = MagicFormula.from_property_file(read_tir(text, source="odd.tir"))
+    assert any("PCX1 = 3.5 lies outside 0.3 .. 3" in n for n in mf.notes), mf.notes
+    assert any("unknown keys kept" in n and "PXY99" in n for n in mf.notes), mf.notes
+    assert mf.coefficients["PXY99"] == 1.5
+
+
+def test_absent_coefficients_take_their_declared_default() -> None:
+    mf = MagicFormula.from_file(FILES[1])
+    kept = {k: v for k, v in mf.coefficients.items() if k not in ("PKY4", "LKY", "QSX5")}
+    bare = MagicFormula(kept, fnomin=mf.fnomin, version="6.1", structure=mf.structure)
+    full = MagicFormula({**kept, "PKY4": default("PKY4"), "LKY": default("LKY"),
+                         "QSX5": default("QSX5")}, fnomin=mf.fnomin, version="6.1",
+                        structure=mf.structure)
+    alpha = np.radians([-6.0, 2.0, 9.0])
+    assert np.array_equal(bare.fy0(alpha, 5000.0), full.fy0(alpha, 5000.0))
+    assert np.array_equal(bare.steady_state(0.02, alpha, 5000.0)["Mx"],
+                          full.steady_state(0.02, alpha, 5000.0)["Mx"])
+
+
+def test_lfz0_is_read_as_lfzo_and_two_different_spellings_are_refused() -> None:
+    mf = MagicFormula.from_file(FILES[1])
+    base = {k: v for k, v in mf.coefficients.items() if k != "LFZO"}
+    spelt = MagicFormula({**base, "LFZ0": 0.9}, fnomin=mf.fnomin, version="6.1")
+    assert spelt.fz0 == pytest.approx(0.9 * mf.fnomin)
+    assert any("LFZ0 read as LFZO" in n for n in spelt.notes)
+    with pytest.raises(InputError, match="two spellings"):
+        MagicFormula({**base, "LFZ0": 0.9, "LFZO": 1.0}, fnomin=mf.fnomin)
+
+
+# ----------------------------------------------------------------------- fit-mf
+
+
+def test_fit_mf_takes_its_bounds_from_the_declarations(monkeypatch) -> None:
+    """fit-mf's bounds are the declared ones; narrowing a declaration narrows the fit."""
+    assert fit_mf._BOUNDS == fit_bounds()
+    assert fit_mf._BOUNDS["PCX1"] == DECLARED["PCX1"].fit == (0.3, 3.0)
+    assert fit_mf._BOUNDS["PKY4"] == (1.0, 4.0) and fit_mf._BOUNDS["PEY1"] == (-50.0, 1.0)
+    lo, hi = fit_mf._BOUNDS["PDX1"]
+    assert 0.0 < lo < 1e-6 and hi == DECLARED["PDX1"].bounds[1]  # open at 0
+    from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
+
+    truth = moved_tyre("MagicFormula61")
+    data = rig_data(truth, n=15, loads=(0.7, 1.0, 1.3), pressures=(1.0,), cambers_deg=(0.0,),
+                    combined=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        free = fit_mf.fit_mf(data, fittyp=61)
+        assert free.values["PCX1"] > 1.5  # the moved tyre's C_x is about 1.63
+        narrow = replace(DECLARED["PCX1"], fit=(0.3, 1.2))
+        monkeypatch.setitem(DECLARED, "PCX1", narrow)
+        monkeypatch.setattr(fit_mf, "_BOUNDS", fit_bounds())
+        held = fit_mf.fit_mf(data, fittyp=61)
+    assert 0.3 <= held.values["PCX1"] <= 1.2 + 1e-12
+    assert held.errors["x"]["rmse"] > free.errors["x"]["rmse"]
+
+
+# ------------------------------------------------------------------- docs, CLI
+
+
+def test_the_documentation_table_is_generated_from_every_declaration(tmp_path: Path) -> None:
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "docs" / "_ext"))
+    import fl_mf_coefficients
+
+    n = fl_mf_coefficients.write_mf_coefficients(tmp_path / "mf.rst")
+    page = (tmp_path / "mf.rst").read_text(encoding="utf-8")
+    assert n == len(DECLARED) and page == fl_mf_coefficients.mf_coefficients_page()
+    rows = re.findall(r"^   \* - ``([A-Z0-9_]+)``\n((?:     - .*\n){6})", page, re.M)
+    assert sorted(name for name, _ in rows) == sorted(DECLARED)  # one row each, 7 cells
+    cells = {name: [c[len("     - "):] for c in body.splitlines()] for name, body in rows}
+    assert cells["PCX1"][2:5] == ["required", "> 0", "0.3 .. 3"]
+    assert cells["PKY4"][0] == "6.1, 6.2" and cells["PKY4"][2] == "2"
+    assert cells["FNOMIN"][1] == "N" and cells["ALPMAX"][3] == "-1.571 .. 1.571"
+    assert "not evaluated" in cells["PDXP1"][-1] and cells["LFZ0"][2] == "read as LFZO"
+    assert "MF 5.2 fixes it at 2" in cells["PKY4"][-1] and "MFeval" in cells["PKY4"][-1]
+
+
+def test_cli_lists_a_files_coefficients_beside_their_declarations(tmp_path: Path,
+                                                                  capsys) -> None:
+    from frictionlaws.cli import main
+
+    doc = json.loads(FILES[1].read_text())
+    del doc["LATERAL_COEFFICIENTS"]["PKY4"]
+    doc["LATERAL_COEFFICIENTS"]["PXY99"] = 1.5
+    (tmp_path / "t.json").write_text(json.dumps(doc))
+    assert main(["tyre", "mf", str(tmp_path / "t.json"), "--coefficients"]) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"^\[LATERAL_COEFFICIENTS\]$", out, re.M)
+    assert re.search(r"^  PKY4 +2\* 1 +curvature of K_y against load", out, re.M)
+    assert re.search(r"^  PCX1 +1\.5482  1 +shape factor C_x", out, re.M)
+    assert re.search(r"^  FNOMIN +6752  N +nominal", out, re.M)
+    assert re.search(r"^  PXY99 +1\.5 .*unknown: kept, not used", out, re.M)
+    assert "PTX1" not in out and "PDXP1" not in out  # MF 5.2 only; not evaluated
+    assert main(["tyre", "mf", str(tmp_path / "t.json"), "--coefficients", "--json"]) == 0
+    rows = {r["name"]: r for r in json.loads(capsys.readouterr().out)["coefficients"]}
+    assert rows["PKY4"]["value"] == 2.0 and rows["PKY4"]["given"] is False
+    assert rows["RBY4"]["unit"] == "1/rad**2" and rows["PXY99"]["section"] == ""
