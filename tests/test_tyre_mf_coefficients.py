@@ -127,12 +127,11 @@ def test_every_declared_name_is_in_an_example_file_or_optional():
 
 
 def test_declarations_are_whole_and_consistent():
-    units = {"force": "N", "length": "m", "pressure": "Pa", "length/time": "m/s",
-             "force/length": "N/m"}
-    for (sec, key), kind in DIMENSIONAL.items():  # the units the reader converts
-        if key in DECLARED:
-            assert DECLARED[key].unit == units[kind], key
-            assert DECLARED[key].section == sec, key
+    angles = {"", "rad", "1/rad", "1/rad**2"}
+    for c in DECLARED.values():  # every dimension is converted by the reader
+        assert c.unit in angles or c.unit in TO_MM_KN, (c.name, c.unit)
+        assert ((c.section, c.name) in DIMENSIONAL) == (c.unit in TO_MM_KN), c.name
+    assert set(DIMENSIONAL) <= {(c.section, c.name) for c in DECLARED.values()}
     from frictionlaws.units import unit_registry
 
     ureg = unit_registry()
@@ -344,3 +343,38 @@ def test_cli_lists_a_files_coefficients_beside_their_declarations(tmp_path: Path
     rows = {r["name"]: r for r in json.loads(capsys.readouterr().out)["coefficients"]}
     assert rows["PKY4"]["value"] == 2.0 and rows["PKY4"]["given"] is False
     assert rows["RBY4"]["unit"] == "1/rad**2" and rows["PXY99"]["section"] == ""
+
+
+#: From each declared SI unit to millimetres, kilonewtons and seconds (written by hand,
+#: not from the reader's table): the factor a value is multiplied by in such a file.
+TO_MM_KN = {"N": 1e-3, "m": 1e3, "N/m": 1e-6, "1/m": 1e-3, "1/m**2": 1e-6, "N/rad": 1e-3,
+            "m/s": 1e3, "Pa": 1e-9, "N*s/m": 1e-6, "kg": 1.0}
+
+
+def test_a_file_in_millimetres_and_kilonewtons_gives_the_si_files_outputs(
+        tmp_path: Path) -> None:
+    """Every dimensional entry is converted with the file's [UNITS]: the MF 6.2 example
+    written in mm and kN (its camber-deflection and camber-force terms Q_CAM1, Q_CAM2,
+    Q_FYS1..3 included) evaluates to the same moments and radii as in SI."""
+    from frictionlaws.tyre.tir import write_tir
+
+    pf = read_property_file(EXAMPLES / "MagicFormula62_Parameters.json")
+    scaled = 0
+    for entries in pf.sections.values():
+        for key, value in entries.items():
+            unit = DECLARED[key].unit if key in DECLARED else ""
+            if unit in TO_MM_KN and not isinstance(value, str):
+                entries[key] = value * TO_MM_KN[unit]
+                scaled += 1
+    assert {"Q_CAM1", "Q_FYS1"} <= {k for e in pf.sections.values() for k in e}
+    pf.sections["UNITS"] = {**pf.sections.get("UNITS", {}), "LENGTH": "mm", "FORCE": "kN"}
+    path = write_tir(pf, tmp_path / "mm.tir")
+    si = MagicFormula.from_file(EXAMPLES / "MagicFormula62_Parameters.json")
+    mm = MagicFormula.from_file(path)
+    args = (np.array([0.0, 0.05, -0.1]), np.array([0.0, 0.05, 0.1]),
+            np.array([3000.0, 5000.0, 7000.0]), np.array([0.0, 0.05, -0.05]))
+    a, b = mf_outputs.steady_state(si, *args), mf_outputs.steady_state(mm, *args)
+    for name in ("Fx", "Fy", "Mz", "Mx", "My", "Rl", "rho", "Re", "a", "b"):
+        if name in a:
+            np.testing.assert_allclose(b[name], a[name], rtol=1e-9, atol=1e-12, err_msg=name)
+    assert scaled >= 20

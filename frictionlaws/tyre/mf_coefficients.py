@@ -414,6 +414,8 @@ _FILE = [
          {**_POS, "unit": ""}),
         ("RIM_RADIUS", "rim radius (bottoming of the contact patch)",
          {"bounds": POSITIVE, "default": 0.0}),
+        ("RIM_WIDTH", "rim width; not evaluated", {"bounds": POSITIVE, "default": 0.0,
+                                                   "evaluated": False}),
     )),
     *_group("VERTICAL", ALL, "", 0.0, (
         ("FNOMIN", "nominal (rated) load F_z0", {**_POS, **_REQ, "unit": "N",
@@ -445,6 +447,10 @@ _FILE = [
         ("PFZ1", "change of the vertical stiffness with pressure", {"versions": V6}),
         ("BOTTOM_OFFST", "distance of the bottoming contact above the rim",
          {"unit": "m", "bounds": POSITIVE}),
+        ("BOTTOM_STIFF", "vertical stiffness of the bottoming contact; not evaluated",
+         {"unit": "N/m", "bounds": POSITIVE, "evaluated": False}),
+        ("VERTICAL_DAMPING", "vertical damping; not evaluated (steady state)",
+         {"unit": "N*s/m", "bounds": POSITIVE, "evaluated": False}),
         ("Q_A1", "contact length: square-root load term (0 with Q_A2 = 0: from the "
                  "vertical stiffness)", {"versions": V52}),
         ("Q_A2", "contact length: linear load term", {"versions": V52}),

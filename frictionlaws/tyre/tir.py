@@ -62,31 +62,23 @@ _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
 _NUMBER = re.compile(r"^[-+]?(\d+(?:\.\d*)?|\.\d+)([eEdD][-+]?\d+)?$")
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eEdD][-+]?\d+)?$")
 
-#: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`.
-#: Everything else a Magic Formula uses is dimensionless or an angle (radians).
-DIMENSIONAL = {
-    ("VERTICAL", "FNOMIN"): "force",
-    ("VERTICAL", "VERTICAL_STIFFNESS"): "force/length",
-    ("VERTICAL", "VERTICAL_DAMPING"): "force*time/length",
-    ("VERTICAL_FORCE_RANGE", "FZMIN"): "force",
-    ("VERTICAL_FORCE_RANGE", "FZMAX"): "force",
-    ("DIMENSION", "UNLOADED_RADIUS"): "length",
-    ("DIMENSION", "WIDTH"): "length",
-    ("DIMENSION", "RIM_RADIUS"): "length",
-    ("DIMENSION", "RIM_WIDTH"): "length",
-    ("OPERATING_CONDITIONS", "INFLPRES"): "pressure",
-    ("OPERATING_CONDITIONS", "NOMPRES"): "pressure",
-    ("TIRE_CONDITIONS", "IP"): "pressure",
-    ("TIRE_CONDITIONS", "IP_NOM"): "pressure",
-    ("INFLATION_PRESSURE_RANGE", "PRESMIN"): "pressure",
-    ("INFLATION_PRESSURE_RANGE", "PRESMAX"): "pressure",
-    ("MODEL", "LONGVL"): "length/time",
-    ("MODEL", "VXLOW"): "length/time",
-    ("VERTICAL", "BOTTOM_OFFST"): "length",
-    ("VERTICAL", "BOTTOM_STIFF"): "force/length",
-    ("STRUCTURAL", "LONGITUDINAL_STIFFNESS"): "force/length",
-    ("STRUCTURAL", "LATERAL_STIFFNESS"): "force/length",
-}
+#: The SI symbols of the declarations' units and the file's ``[UNITS]`` entry each is
+#: converted from (a unit per radian is per radian in every file: angles must be radians).
+_UNIT_KINDS = {"N": "force", "m": "length", "s": "time", "kg": "mass", "Pa": "pressure"}
+
+
+def _unit_kind(unit: str) -> str | None:
+    """The kind of a declared SI unit (``"N/m"`` -> ``"force/length"``), None if none."""
+    kind = re.sub(r"/rad(\*\*\d)?|\brad(\*\*\d)?\b", "", unit)
+    kind = re.sub(r"\b(N|m|s|kg|Pa)\b", lambda m: _UNIT_KINDS[m.group(1)], kind)
+    return kind if re.search(r"force|length|time|mass|pressure", kind) else None
+
+
+#: Dimensional entries and the kind of unit they carry, for :meth:`PropertyFile.si`,
+#: from the declarations' units (:mod:`frictionlaws.tyre.mf_coefficients`).  Everything
+#: else a Magic Formula uses is dimensionless or an angle (radians).
+DIMENSIONAL = {(c.section, c.name): kind for c in DECLARED.values()
+               if (kind := _unit_kind(c.unit)) is not None}
 
 
 #: The coefficient names of the Magic Formula 5.2 (PAC2002), 6.1 and 6.2 property
@@ -286,16 +278,16 @@ class PropertyFile:
 
         ureg = unit_registry()
         pieces = {"force": self.unit("FORCE"), "length": self.unit("LENGTH"),
-                  "time": self.unit("TIME")}
+                  "time": self.unit("TIME"), "mass": self.unit("MASS")}
         if kind == "pressure" and self.unit("PRESSURE"):
             expr, target = _pint_name(self.unit("PRESSURE")), "pascal"
         else:
             formula = "force/length**2" if kind == "pressure" else kind
-            expr = re.sub(r"\b(force|length|time)\b",
+            expr = re.sub(r"\b(force|length|time|mass)\b",
                           lambda m: f"({_pint_name(pieces[m.group(1)])})", formula)
-            target = re.sub(r"\b(force|length|time)\b",
-                            lambda m: {"force": "newton", "length": "meter",
-                                       "time": "second"}[m.group(1)], formula)
+            target = re.sub(r"\b(force|length|time|mass)\b",
+                            lambda m: {"force": "newton", "length": "meter", "time": "second",
+                                       "mass": "kilogram"}[m.group(1)], formula)
         try:
             unit = parse_unit_text(expr).to_pint()
             return float(ureg.Quantity(1.0, unit).to(target).magnitude)
