@@ -123,6 +123,16 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
                    help="axes of the data: iso (ISO-W, as property files; default) or sae "
                         "(Fz, Fy and alpha negated to ISO)")
+    f.add_argument("--uncertainty", choices=("asymptotic", "sweeps"), default="asymptotic",
+                   help="standard errors: asymptotic (from the Jacobian; default) or sweeps "
+                        "(bootstrap of whole sweeps found in the row order, honest when a "
+                        "sweep's residuals share an offset; costs --resamples refits)")
+    f.add_argument("--resamples", type=int, default=100,
+                   help="resamples of the sweep bootstrap (default 100)")
+    f.add_argument("--seed", type=int, default=0, help="seed of the sweep bootstrap "
+                   "(default 0)")
+    f.add_argument("--jobs", type=int, default=1, help="worker processes of the sweep "
+                   "bootstrap (default 1; -1: one per core)")
     f.add_argument("-o", "--output", required=True, metavar="FILE.tir",
                    help="property file to write")
     f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
@@ -485,7 +495,8 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     with data_source(args.data) as data:
         try:
             res = fit_mf(data, fittyp=args.fittyp, template=args.template,
-                         sign_convention=args.sign_convention)
+                         sign_convention=args.sign_convention, uncertainty=args.uncertainty,
+                         resamples=args.resamples, seed=args.seed, jobs=args.jobs)
         except FitError as exc:  # name standard input, not its private copy
             raise FitError(str(exc).replace(data, shown_source(data))) from None
     res.data.source = shown_source(res.data.source)  # the provenance the file states
