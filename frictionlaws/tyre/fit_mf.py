@@ -231,12 +231,15 @@ def _curve_start(x: np.ndarray, y: np.ndarray) -> list[float]:
     return [K0 / (1.4 * D0), D0, 0.0, 0.0, 0.0, 0.0]
 
 
-def _stage1(d: _Direction) -> list[dict[str, float]]:
+def _stage1(d: _Direction) -> list[list[dict[str, float]]]:
     """Stage 1: one Magic Formula curve per load at the reference conditions (nominal
     pressure, smallest camber), all with one shape factor C (C does not depend on load).
 
     Each curve is ``D sin(C arctan(B x - E (B x - arctan(B x)))) + S_V`` with
-    ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.
+    ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.  Fitted from each shape factor of
+    :data:`STAGE1_SHAPES`; returns the sets of curves, the lowest cost first, of the ends
+    within :data:`STAGE1_TIE` of it (the data do not tell them apart here: the later
+    stages choose).
     """
     sets = [(d.x()[sel], d.force[sel], float(np.mean(d.fz[sel])))
             for sel in (d.reference & (d.load_labels == i) for i in range(d.loads.size))
@@ -261,14 +264,42 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
             out.append(mf_curve(x + sh, B, p[0], D, E, E_b if both[j] else 0.0, sv) - y)
         return np.concatenate(out)
 
-    r = least_squares_solve(resid, p0, bounds=(lo, hi), x_scale="jac")
-    C = float(r.x[0])
+    # from two shape factors: a curve whose peak is flat (C near 1) and a curve with a
+    # peak; the shape and the curvature trade off, and one start can end in the other's
+    # valley
+    ends = sorted((least_squares_solve(resid, _with_shape(p0, c0), bounds=(lo, hi),
+                                       x_scale="jac") for c0 in STAGE1_SHAPES),
+                  key=lambda res: res.cost)
+    return [_curves(r.x, sets, both) for r in ends
+            if r.cost <= (1 + STAGE1_TIE) * ends[0].cost]
+
+
+def _curves(x: np.ndarray, sets: list[tuple[np.ndarray, np.ndarray, float]],
+            both: list[bool]) -> list[dict[str, float]]:
+    """The per-load curves of stage 1 from its parameters ``x``."""
+    C = float(x[0])
     out = []
     for j, (_, _, fz) in enumerate(sets):
-        B, D, E, E_b, sh, sv = (float(v) for v in r.x[1 + 6 * j: 7 + 6 * j])
+        B, D, E, E_b, sh, sv = (float(v) for v in x[1 + 6 * j: 7 + 6 * j])
         out.append({"load": fz, "mu": D / fz, "K": B * C * D, "C": C, "E": E,
                     "E_b": E_b if both[j] else 0.0, "S_H": sh, "S_V": sv, "B": B})
     return out
+
+
+#: The shape factors C stage 1 starts from.
+STAGE1_SHAPES = (1.4, 1.0)
+#: Stage-1 ends within this share of the lowest cost are each carried through the later
+#: pure-slip stages, which keep the better.
+STAGE1_TIE = 0.03
+
+
+def _with_shape(p0: list[float], c0: float) -> np.ndarray:
+    """Stage 1's start with the shape factor ``c0``: each curve's B rescaled so that its
+    slope at zero, B C D, stays."""
+    p = np.array(p0, dtype=float)
+    p[1::6] *= p[0] / c0
+    p[0] = c0
+    return p
 
 
 def _ky_start(curves: list[dict[str, float]], fz0: float, six: bool) -> dict[str, float]:
@@ -439,18 +470,38 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
         mf.coefficients[k] = 0.0
     for k in undetermined:  # ... except those the data cannot determine
         mf.coefficients[k] = _template_value(template, k)
-    curves = _stage1(d)
-    start = _stage2_start(d, curves, mf.fz0, version)
-    mf.coefficients.update({k: v for k, v in start.items() if k in free})
-    rest = [k for k in free if k not in start]
-    if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
-        _solve(mf, d, rest)
-    se, dropped, held = _refine(mf, d, free, template)
+    base = dict(mf.coefficients)
+    best: tuple[float, dict[str, float], list[str], Any, list[dict]] | None = None
+    for curves in _stage1(d):
+        mf.coefficients.clear()
+        mf.coefficients.update(base)
+        kept = list(free)
+        se, dropped, held = _stages23(mf, d, kept, curves, version, template)
+        cost = float(np.sum(((_predict(mf, d, [], np.array([])) - d.force) / d.scale)**2))
+        if best is None or cost < best[0]:
+            best = (cost, dict(mf.coefficients), kept, (se, dropped, held), curves)
+    assert best is not None  # _stage1 returns at least one set of curves
+    _, coefficients, free, (se, dropped, held), curves = best
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
     undetermined.extend(dropped)
     values = {k: float(mf.coefficients[k]) for k in free + held}
     stderr = {k: float(s) for k, s in zip(free, se)}
     stderr.update({k: math.inf for k in held})
     return values, stderr, undetermined, curves
+
+
+def _stages23(mf: FittingModel, d: _Direction, free: list[str], curves: list[dict],
+              version: str, template: dict[str, float]
+              ) -> tuple[np.ndarray, list[str], list[str]]:
+    """Stages 2 and 3 from the stage-1 ``curves`` (``free`` shortened in place): the
+    standard errors, the coefficients dropped to the template and those held."""
+    start = _stage2_start(d, curves, mf.fz0, version)
+    mf.coefficients.update({k: v for k, v in start.items() if k in free})
+    rest = [k for k in free if k not in start]
+    if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
+        _solve(mf, d, rest)
+    return _refine(mf, d, free, template)
 
 
 def _template_value(template: dict[str, float], name: str) -> float:
