@@ -143,6 +143,13 @@ class CombinedData:
         return cls(data.kappa[keep], data.alpha[keep], data.fz[keep], data.gamma[keep],
                    dpi, p, target[keep])
 
+    def thinned(self, most: int) -> CombinedData:
+        """Every k-th row, k the smallest that leaves at most ``most`` rows (the row scales
+        kept)."""
+        step = max(1, -(-self.target.size // most))
+        return CombinedData(*(getattr(self, f)[::step] for f in (
+            "kappa", "alpha", "fz", "gamma", "dpi", "pressure", "target", "scale")))
+
     def spans(self) -> set[str]:
         """What these rows vary: loads2/3, camber (of both signs, of two magnitudes),
         pressure, both signs of slip, cross slip."""
@@ -445,13 +452,16 @@ def _aligning_stages(mf: FittingModel, data: Any, version: str, template: dict[s
 #: starts from; the trail's shape and B_t trade off, and one start can end in the wrong
 #: valley (the best end is kept).
 QBZ1_STARTS = (1.0, 0.6, 1.6)
+#: Rows (every k-th) on which the starts are compared; the stage then runs on all.
+START_ROWS = 1500
 
 
 def _trail_start(mf: FittingModel, names: list[str], d: CombinedData,
                  template: dict[str, float], bounds: dict[str, tuple[float, float]]) -> None:
-    """M_z0 with the residual torque's width held, from each start of :data:`QBZ1_STARTS`;
-    the model is left at the best end."""
+    """M_z0 with the residual torque's width held, from each start of :data:`QBZ1_STARTS`,
+    on at most :data:`START_ROWS` of the rows; the model is left at the best end."""
     start = dict(mf.coefficients)
+    d = d.thinned(START_ROWS)
     qbz1 = start.get("QBZ1", template.get("QBZ1", 0.0))
     best: tuple[float, dict[str, float]] | None = None
     for factor in QBZ1_STARTS:
