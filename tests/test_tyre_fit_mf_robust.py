@@ -183,13 +183,15 @@ def test_the_cli_runs_the_sweep_bootstrap_and_refuses_shuffled_rows(tmp_path: Pa
     csv.write_text("Fz [N],kappa [-],Fx [N]\n" + "".join(rows))
     out = tmp_path / "out.tir"
     assert main(["tyre", "fit-mf", str(csv), "-o", str(out), "--uncertainty", "sweeps",
-                 "--resamples", "20"]) == 0
-    assert "Standard errors: sweep bootstrap: 20 resamples" in out.read_text()
+                 "--boot", "20", "--seed", "2"]) == 0
+    assert "Standard errors: sweep bootstrap: 20 resamples (seed 2)" in out.read_text()
+    assert main(["tyre", "fit-mf", str(csv), "-o", str(tmp_path / "few.tir"), "--uncertainty",
+                 "sweeps", "--boot", "5"]) == 2
     order = np.random.default_rng(0).permutation(len(rows))
     csv.write_text("Fz [N],kappa [-],Fx [N]\n" + "".join(rows[i] for i in order))
     shuffled = tmp_path / "shuffled.tir"
     assert main(["tyre", "fit-mf", str(csv), "-o", str(shuffled), "--uncertainty",
-                 "sweeps", "--resamples", "20"]) == 2
+                 "sweeps", "--boot", "20"]) == 2
     assert not shuffled.exists()
 
 
