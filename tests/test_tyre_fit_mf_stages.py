@@ -38,8 +38,11 @@ def test_rig_data_of_another_tyre_are_recovered_within_the_stated_shares(
     assert worst["Mz"] < 0.03, worst
     # quadratic pressure terms need three pressures: named, at the template's value
     assert {"PPX2", "PPY4"} <= set(res.undetermined)
-    for name in ("RBX1", "RBY1", "RVY1", "QBZ1", "QDZ1", "QDZ6", "SSZ1", "SSZ2", "PPZ1"):
+    for name in ("RBX1", "RBY1", "RVY1", "QBZ1", "QDZ1", "QDZ6", "SSZ1", "SSZ2", "PPZ1",
+                 "QDZ4"):  # gamma^2 beside gamma: cambers of both signs separate them
         assert name in res.values and 0 < res.stderr[name] < math.inf, name
+    # gamma |gamma| beside gamma: cambers of one magnitude do not
+    assert {"QDZ10", "QDZ11"} <= set(res.undetermined)
     assert set(res.errors) == {"x", "y", "x_all", "y_all", "mz"}
     # the rows near pure slip are used despite the jitter (none dropped)
     near_x = np.isfinite(data.fx) & (np.abs(data.alpha) <= math.radians(1.0))
@@ -257,7 +260,7 @@ def test_cambers_of_one_sign_leave_the_terms_they_cannot_separate_and_row_order_
                                     pressure=data.pressure[perm], fx=data.fx[perm],
                                     fy=data.fy[perm], mz=data.mz[perm])
     a, b = fit_mf(data, fittyp=61), fit_mf(shuffled, fittyp=61)
-    for k in ("QBZ5", "QDZ4", "QDZ10", "QDZ11"):  # |gamma| = gamma, gamma^2 = 3 deg |gamma|
+    for k in ("QBZ5", "QDZ4", "QDZ10", "QDZ11"):  # |gamma| = gamma, gamma^2 = 3 deg gamma
         assert k in a.undetermined and k not in a.values
     assert abs(a.values["QBZ4"] - truth.coefficients["QBZ4"]) < 5 * a.stderr["QBZ4"] + 1.0
     assert sorted(a.undetermined) == sorted(b.undetermined)

@@ -82,9 +82,10 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "RVY2": ("combined_y", "loads2"),
     **{k: ("camber",) for k in "QBZ4 QDZ3 QDZ8 QHZ3 QEZ5".split()},
     **{k: ("camber", "loads2") for k in "QDZ9 QHZ4".split()},
-    # |gamma| beside gamma (B_t) needs cambers of both signs; gamma^2 beside |gamma| (D_t)
-    # and gamma |gamma| beside gamma (D_r) need two cambers of different magnitude
-    "QBZ5": ("camber", "camber_signs"), "QDZ4": ("camber", "camber2"),
+    # |gamma| beside gamma (B_t) needs cambers of both signs; gamma^2 beside gamma (D_t,
+    # 1 + QDZ3 gamma + QDZ4 gamma^2 as in MFeval) two nonzero cambers (of either sign or
+    # magnitude); gamma |gamma| beside gamma (D_r) two cambers of different magnitude
+    "QBZ5": ("camber", "camber_signs"), "QDZ4": ("camber", "camber_sq"),
     "QDZ10": ("camber", "camber2"), "QDZ11": ("camber", "loads2", "camber2"),
     **{k: ("loads2",) for k in "QBZ2 QDZ2 QDZ7 QEZ2 QHZ2".split()},
     **{k: ("loads3",) for k in "QBZ3 QEZ3".split()},
@@ -151,8 +152,8 @@ class CombinedData:
             "kappa", "alpha", "fz", "gamma", "dpi", "pressure", "target", "scale")))
 
     def spans(self) -> set[str]:
-        """What these rows vary: loads2/3, camber (of both signs, of two magnitudes),
-        pressure, both signs of slip, cross slip."""
+        """What these rows vary: loads2/3, camber (of both signs, of two magnitudes, two
+        nonzero levels), pressure, both signs of slip, cross slip."""
         have: set[str] = set()
         n_loads = _count_levels(self.fz, 0.03 * float(np.median(self.fz)))
         have.update({"loads2"} if n_loads >= 2 else set())
@@ -164,6 +165,8 @@ class CombinedData:
             have.add("camber_signs")
         if _count_levels(np.abs(self.gamma[np.abs(self.gamma) > tol]), tol) >= 2:
             have.add("camber2")
+        if _count_levels(self.gamma[np.abs(self.gamma) > tol], tol) >= 2:
+            have.add("camber_sq")
         if _count_levels(self.dpi, 0.02) >= 2:
             have.add("pressure")
         if (self.alpha > 0).sum() >= 3 and (self.alpha < 0).sum() >= 3:
