@@ -471,17 +471,17 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
     for k in undetermined:  # ... except those the data cannot determine
         mf.coefficients[k] = _template_value(template, k)
     base = dict(mf.coefficients)
-    best: tuple[float, dict[str, float], list[str], Any, list[dict]] | None = None
+    best: _End | None = None
     for curves in _stage1(d):
         mf.coefficients.clear()
         mf.coefficients.update(base)
         kept = list(free)
         se, dropped, held = _stages23(mf, d, kept, curves, version, template)
-        cost = float(np.sum(((_predict(mf, d, [], np.array([])) - d.force) / d.scale)**2))
-        if best is None or cost < best[0]:
-            best = (cost, dict(mf.coefficients), kept, (se, dropped, held), curves)
+        end = (_cost(mf, d), dict(mf.coefficients), kept, (se, dropped, held), curves)
+        best = end if best is None or end[0] < best[0] else best
     assert best is not None  # _stage1 returns at least one set of curves
-    _, coefficients, free, (se, dropped, held), curves = best
+    _, coefficients, free, (se, dropped, held), curves = _template_restart(mf, d, best,
+                                                                            template)
     mf.coefficients.clear()
     mf.coefficients.update(coefficients)
     undetermined.extend(dropped)
@@ -489,6 +489,38 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
     stderr = {k: float(s) for k, s in zip(free, se)}
     stderr.update({k: math.inf for k in held})
     return values, stderr, undetermined, curves
+
+
+#: A stage-3 end: cost, coefficients, free names, (standard errors, dropped, held) and
+#: the stage-1 curves it came from.
+_End = tuple[float, dict[str, float], list[str], Any, list[dict]]
+def _cost(mf: FittingModel, d: _Direction) -> float:
+    """The weighted sum of squares of the model at the rows of ``d``."""
+    return float(np.sum(((_predict(mf, d, [], np.array([])) - d.force) / d.scale) ** 2))
+
+
+def _template_restart(mf: FittingModel, d: _Direction, best: _End,
+                      template: dict[str, float]) -> _End:
+    """Stage 3 once more, from the template's values of the coefficients ``best`` fitted;
+    the lower cost is kept and the model left there.
+
+    With the peak beyond the data (or a flat one) the per-load curves of stage 1 leave C
+    free to trade against the peak and the curvature, and the coefficients' load and
+    camber structure can then hold stage 3 in that valley; a start from another tyre
+    (the template) can find the other."""
+    cost, coefficients, free, (se, dropped, held), curves = best
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
+    mf.coefficients.update({k: _template_value(template, k) for k in free})
+    kept = list(free)
+    with np.errstate(all="ignore"):
+        se2, dropped2, held2 = _refine(mf, d, kept, template)
+    if _cost(mf, d) < cost:
+        return (_cost(mf, d), dict(mf.coefficients), kept,
+                (se2, dropped + dropped2, held + held2), curves)
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
+    return best
 
 
 def _stages23(mf: FittingModel, d: _Direction, free: list[str], curves: list[dict],

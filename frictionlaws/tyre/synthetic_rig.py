@@ -65,13 +65,15 @@ def moved_tyre(template: str = "MagicFormula61", factors: Mapping[str, float] = 
 def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4, 0.7, 1.0,
              1.3, 1.6), pressures: Sequence[float] = (0.85, 1.1),
              cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0), combined: bool = True,
-             noise: float = 0.01, seed: int = 3) -> TyreData:
+             noise: float = 0.01, seed: int = 3, kappa_max: float = 0.25,
+             alpha_max_deg: float = 12.0) -> TyreData:
     """Flat-track-like measurements of ``truth`` (SI, ISO axes).
 
     At every load (times FNOMIN), pressure (times the nominal pressure) and camber: a
     slip-ratio sweep -0.25..0.25 and a slip-angle sweep -12..12 deg, each up and down
     with ``n`` points, and (``combined``) slip-ratio sweeps -0.2..0.2 (15 points) at slip
-    angles -8, -4, 4 and 8 deg.  The recorded slips jitter (normal, 0.002 in slip ratio;
+    angles -8, -4, 4 and 8 deg (all scaled by ``kappa_max`` / 0.25 and ``alpha_max_deg``
+    / 12).  The recorded slips jitter (normal, 0.002 in slip ratio;
     uniform 0.1-0.3 deg in slip angle on the slip-ratio sweeps, +-0.3 deg elsewhere), the
     load drifts (normal, 1 %; the recorded load is the one applied), and F_x, F_y, M_z
     carry normal noise of ``noise`` times each load's largest magnitude.
@@ -92,6 +94,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
         Noise share of each load's peak.
     seed : int
         Random seed.
+    kappa_max, alpha_max_deg : float
+        The largest slip ratio and slip angle [deg] swept (default 0.25 and 12).
 
     Returns
     -------
@@ -104,8 +108,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
     for fz in truth.fnomin * np.asarray(loads):
         for p in p_nom * np.asarray(pressures):
             for g in np.radians(cambers_deg):
-                k = np.linspace(-0.25, 0.25, n)
-                a = np.radians(np.linspace(-12, 12, n))
+                k = np.linspace(-kappa_max, kappa_max, n)
+                a = np.radians(np.linspace(-alpha_max_deg, alpha_max_deg, n))
                 for ks in (k, k[::-1]):
                     side = np.radians(rng.uniform(0.1, 0.3, n)) * rng.choice([-1, 1], n)
                     blocks.append((fz, ks + rng.normal(0, 0.002, n), side, g, p))
@@ -113,8 +117,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
                     blocks.append((fz, rng.normal(0, 0.002, n),
                                    as_ + np.radians(rng.uniform(-0.3, 0.3, n)), g, p))
                 if combined:
-                    kk = np.linspace(-0.2, 0.2, 15)
-                    for deg in (-8, -4, 4, 8):
+                    kk = np.linspace(-0.8, 0.8, 15) * kappa_max
+                    for deg in np.array([-8, -4, 4, 8]) * alpha_max_deg / 12:
                         blocks.append((fz, kk + rng.normal(0, 0.002, kk.size),
                                        np.radians(deg + rng.uniform(-0.3, 0.3, kk.size)),
                                        g, p))
@@ -138,23 +142,26 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
 def truth_errors(truth: MagicFormula, fitted: MagicFormula, *,
                  loads: Sequence[float] = (0.4, 0.7, 1.0, 1.3, 1.6),
                  pressures: Sequence[float] = (0.85, 1.1),
-                 cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0)) -> dict[str, float]:
+                 cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0), kappa_max: float = 0.25,
+                 alpha_max_deg: float = 12.0) -> dict[str, float]:
     """Largest errors of ``fitted`` against the noise-free ``truth``, as shares of the peak.
 
     At every load (times FNOMIN), pressure (times the nominal pressure) and camber of
     :func:`rig_data`: pure F_x0 on kappa -0.25..0.25 and F_y0 on alpha -12..12 deg, each
     as a share of that curve's peak; combined F_x and F_y on the grid kappa -0.2..0.2 at
     alpha -8, -4, 4, 8 deg, as shares of the pure curves' peaks; and M_z, pure and on the
-    grid, as a share of the pure M_z curve's peak.
+    grid, as a share of the pure M_z curve's peak.  The slips scale with ``kappa_max`` /
+    0.25 and ``alpha_max_deg`` / 12, as in :func:`rig_data`.
 
     Returns
     -------
     dict
         ``"Fx0"``, ``"Fy0"``, ``"Fx"``, ``"Fy"``, ``"Mz"`` -> the largest share [-].
     """
-    k = np.linspace(-0.25, 0.25, 101)
-    a = np.radians(np.linspace(-12, 12, 97))
-    K, A = np.meshgrid(np.linspace(-0.2, 0.2, 21), np.radians([-8.0, -4.0, 4.0, 8.0]))
+    k = np.linspace(-kappa_max, kappa_max, 101)
+    a = np.radians(np.linspace(-alpha_max_deg, alpha_max_deg, 97))
+    K, A = np.meshgrid(np.linspace(-0.8, 0.8, 21) * kappa_max,
+                       np.radians(np.array([-8.0, -4.0, 4.0, 8.0]) * alpha_max_deg / 12))
     out: dict[str, float] = {}
     for fz in truth.fnomin * np.asarray(loads):
         for p in (truth.nominal_pressure or 2.6e5) * np.asarray(pressures):
