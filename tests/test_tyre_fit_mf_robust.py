@@ -269,3 +269,15 @@ def test_repeated_rows_are_named_and_do_not_move_the_estimate() -> None:
                for n in doubled.notes)
     for k in ("PDX1", "PKX1", "PDY1", "QBZ1"):
         assert doubled.values[k] == pytest.approx(once.values[k], rel=1e-4, abs=1e-6)
+
+
+def test_the_rig_sweeps_and_the_comparison_take_their_slip_ranges() -> None:
+    truth = moved_tyre()
+    data = rig_data(truth, n=5, loads=(1.0,), pressures=(1.0,), cambers_deg=(0.0,),
+                    kappa_max=0.15, alpha_max_deg=8.0, noise=0.0)
+    assert np.abs(data.kappa).max() == pytest.approx(0.15, abs=0.01)
+    assert np.degrees(np.abs(data.alpha)).max() == pytest.approx(8.0, abs=0.31)
+    combined = np.abs(data.alpha) > np.radians(1.0)
+    assert np.abs(data.kappa[combined]).max() == pytest.approx(0.12, abs=0.01)
+    # the truth against itself: no error on the narrower grids
+    assert max(truth_errors(truth, truth, kappa_max=0.15, alpha_max_deg=8.0).values()) == 0.0
