@@ -30,34 +30,7 @@ from frictionlaws.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
 from frictionlaws.tyre._fit_mf_peak import FittingModel
 from frictionlaws.tyre._fit_mf_stages import CombinedData, predict_fx, predict_fy, predict_mz
-from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
-
-LOADS = np.array([0.4, 0.7, 1.0, 1.3, 1.6])
-CAMBERS = np.radians([-3.0, 0.0, 3.0])
-
-
-def worst_errors(truth: MagicFormula, fitted: MagicFormula) -> dict[str, float]:
-    """Largest errors against the truth as shares of each curve's peak."""
-    k = np.linspace(-0.25, 0.25, 101)
-    a = np.radians(np.linspace(-12, 12, 97))
-    K, A = np.meshgrid(np.linspace(-0.2, 0.2, 21), np.radians([-8.0, -4.0, 4.0, 8.0]))
-    out: dict[str, float] = {}
-    for fz in truth.fnomin * LOADS:
-        for p in truth.nominal_pressure * np.array([0.85, 1.1]):
-            for g in CAMBERS:
-                tx, ty = truth.fx0(k, fz, g, p), truth.fy0(a, fz, g, p)
-                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=p) for m in (truth, fitted))
-                t, f = (m.steady_state(K, A, fz, g, pressure=p) for m in (truth, fitted))
-                pk = np.abs(t0["Mz"]).max()
-                errs = {"Fx0": np.abs(fitted.fx0(k, fz, g, p) - tx).max() / np.abs(tx).max(),
-                        "Fy0": np.abs(fitted.fy0(a, fz, g, p) - ty).max() / np.abs(ty).max(),
-                        "Fx": np.abs(f["Fx"] - t["Fx"]).max() / np.abs(tx).max(),
-                        "Fy": np.abs(f["Fy"] - t["Fy"]).max() / np.abs(ty).max(),
-                        "Mz": max(np.abs(f0["Mz"] - t0["Mz"]).max(),
-                                  np.abs(f["Mz"] - t["Mz"]).max()) / pk}
-                for name, e in errs.items():
-                    out[name] = max(out.get(name, 0.0), float(e))
-    return out
+from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data, truth_errors
 
 
 def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, float, int]:
@@ -106,7 +79,7 @@ def main() -> None:
                                                                   "Mz")))
     for label, model, s in (("fit_mf (staged)", res.model, staged_s),
                             (f"plain least_squares ({nfev} evaluations)", plain, plain_s)):
-        e = worst_errors(truth, model)
+        e = truth_errors(truth, model)
         print(f"{label:42}{s:>9.1f}" + "".join(f"{100 * e[k]:>7.2f}%"
                                                for k in ("Fx0", "Fy0", "Fx", "Fy", "Mz")))
     print("errors: largest against the noise-free truth, share of the curve's peak "

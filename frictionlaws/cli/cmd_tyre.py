@@ -21,7 +21,9 @@ from typing import Any
 
 from ._common import (
     RANGE_HELP,
+    SEED_MAX,
     UsageError,
+    _boot_jobs,
     add_data_options,
     add_fit_options,
     add_law_source_options,
@@ -126,6 +128,18 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
                    help="axes of the data: iso (ISO-W, as property files; default) or sae "
                         "(Fz, Fy and alpha negated to ISO)")
+    f.add_argument("--uncertainty", choices=("asymptotic", "sweeps"), default="asymptotic",
+                   help="standard errors: asymptotic (from the Jacobian; default) or sweeps "
+                        "(bootstrap of whole sweeps found in the row order, honest when a "
+                        "sweep's residuals share an offset; costs --boot refits)")
+    f.add_argument("--boot", type=bounded_int(20, 100_000), default=100, metavar="N",
+                   help="sweep-bootstrap resamples, 20 to 100000 (default 100; with "
+                        "--uncertainty sweeps)")
+    f.add_argument("--boot-jobs", type=_boot_jobs, default=1, metavar="N",
+                   help="worker processes for the bootstrap refits (default 1; -1 = one "
+                        "per core; with --uncertainty sweeps)")
+    f.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
+                   help=f"seed of the sweep bootstrap, 0 to {SEED_MAX} (default 0)")
     f.add_argument("-o", "--output", required=True, metavar="FILE.tir",
                    help="property file to write")
     f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
@@ -516,7 +530,8 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     with data_source(args.data) as data:
         try:
             res = fit_mf(data, fittyp=args.fittyp, template=args.template,
-                         sign_convention=args.sign_convention)
+                         sign_convention=args.sign_convention, uncertainty=args.uncertainty,
+                         resamples=args.boot, seed=args.seed, jobs=args.boot_jobs)
         except FitError as exc:  # name standard input, not its private copy
             raise FitError(str(exc).replace(data, shown_source(data))) from None
     res.data.source = shown_source(res.data.source)  # the provenance the file states

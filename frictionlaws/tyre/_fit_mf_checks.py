@@ -41,7 +41,7 @@ from ..errors import InputError
 if TYPE_CHECKING:
     from .tyre_data import TyreData
 
-__all__ = ["check_plausible", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
+__all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
            "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE"]
 
 #: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
@@ -207,3 +207,22 @@ def _check_small_slip_slopes(data: TyreData) -> None:
             f"Fy / Fz changes by only {ky:.3g} per rad of slip angle near zero (tyres have "
             "about 5-40): the slip angles look like degrees under a [rad] header",
             file=data.source, column="alpha", row=_row(data, use, a))
+
+
+def repeated_rows(data: TyreData) -> str | None:
+    """A note when rows repeat another row exactly (every column), else None.
+
+    Measured rows with noise never repeat to the last digit: repeats are a file given
+    twice or rows copied.  They are fitted as given (the point estimate is that of the
+    rows counted with their repeats), but the asymptotic standard errors then count
+    them as independent measurements and shrink."""
+    table = np.stack([data.fz, data.kappa, data.alpha, data.gamma, data.pressure,
+                      data.fx, data.fy, data.mz], axis=1)
+    table = np.where(np.isnan(table), np.inf, table)  # NaN (not measured) equals NaN here
+    unique = np.unique(table, axis=0).shape[0]
+    if unique == len(data):
+        return None
+    return (f"{len(data) - unique} of {len(data)} rows repeat another row exactly (every "
+            "column): they are fitted as given, each counted as a measurement, so the "
+            "asymptotic standard errors are too small by about the square root of the "
+            "repeats (remove the copies, or use uncertainty='sweeps')")

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._fit_mf_stages import ALPHA_PURE, KAPPA_PURE
+from ._fit_mf_stages import ALPHA_PURE, KAPPA_PURE, level_scale
 from .tyre_data import TyreData
 
 __all__: list[str] = []
@@ -44,6 +44,7 @@ class _Direction:
     load_labels: np.ndarray
     loads: np.ndarray
     reference: np.ndarray  # the rows at nominal pressure and smallest camber
+    scale: np.ndarray  # each residual is divided by it (largest |force| at its load level)
 
     def x(self) -> np.ndarray:
         """The slip variable of the curve: kappa, or tan(alpha)."""
@@ -70,5 +71,6 @@ def _select(data: TyreData, name: str, p_nom: float | None) -> _Direction | None
         ref &= p_lab == int(np.argmin(np.abs(p_lv - p_nom)))
     g_lv, g_lab = _levels(gamma, math.radians(0.2))
     ref &= g_lab == int(np.argmin(np.abs(g_lv)))
-    return _Direction(name, slip, fz, gamma, dpi, force, labels, loads, ref)
+    return _Direction(name, slip, fz, gamma, dpi, force, labels, loads, ref,
+                      level_scale(fz, force))
 

@@ -9,8 +9,12 @@ With F_x0 and F_y0 fitted (:mod:`frictionlaws.tyre.fit_mf`), the staged procedur
    once on every row with the combined model, so that rows near pure slip (rig jitter)
    count with the slip they were measured at instead of being dropped;
 3. **aligning moment M_z0** (QBZ, QCZ1, QDZ, QEZ, QHZ, PPZ) on the rows near pure side slip
-   with the forces held, then **combined M_z** (SSZ) with M_z0 refined together on every
-   M_z row.
+   with the forces held (first from three starts of the trail's B_t with the residual
+   torque's width B_r held, :func:`_trail_start`; then with B_r free), then **combined
+   M_z** (SSZ) with M_z0 refined together on every M_z row.
+
+In every stage each residual is divided by the largest measured magnitude at its load
+level (:func:`level_scale`), so that every load counts by its share of its own peak.
 
 Each stage fits only the coefficients the data can determine: those whose variable the
 data do not vary (camber, pressure, a second or third load, cross slip) keep the
@@ -30,12 +34,13 @@ from typing import Any
 import numpy as np
 
 from .._lsq import least_squares_solve
+from ..errors import InputError
 from ._fit_mf_peak import FittingModel, peak_penalty
 from .magic_formula import mf_curve
 
 __all__ = ["CombinedData", "StageResult", "LaterStages", "fit_stage", "later_stages",
-           "combined_names", "mz_names", "needs_met", "section_of", "WEAK", "KAPPA_PURE",
-           "ALPHA_PURE"]
+           "combined_names", "mz_names", "needs_met", "section_of", "group_of", "WEAK",
+           "KAPPA_PURE", "ALPHA_PURE", "load_levels", "level_scale"]
 
 #: Rows count as near pure slip within these cross slips (rig jitter is about 0.002 in
 #: kappa and 0.1-0.3 deg in alpha): near-pure longitudinal rows have |alpha| <= 1 deg,
@@ -55,12 +60,17 @@ MAX_ITERATIONS = 60
 FTOL = 1e-7
 #: Cost factor within which the template's value of an uninformed coefficient is kept.
 _DROP_COST = 1.01
+#: A load level with fewer rows than this has its residual scale from its load
+#: (:func:`level_scale`).
+MIN_LEVEL_ROWS = 20
 
 _CX = "RBX1 RBX2 RCX1 REX1 REX2 RHX1".split()
 _CY = "RBY1 RBY2 RBY3 RCY1 REY1 REY2 RHY1 RHY2 RVY1 RVY2 RVY3 RVY4 RVY5 RVY6".split()
 _MZ0 = ("QBZ1 QBZ2 QBZ3 QBZ4 QBZ5 QBZ9 QBZ10 QCZ1 QDZ1 QDZ2 QDZ3 QDZ4 QDZ6 QDZ7 QDZ8 "
         "QDZ9 QEZ1 QEZ2 QEZ3 QEZ4 QEZ5 QHZ1 QHZ2 QHZ3 QHZ4").split()
 _MZ_S = "SSZ1 SSZ2 SSZ3 SSZ4".split()
+#: The width of the residual torque's peak (B_r).
+_BR = ("QBZ9", "QBZ10")
 
 #: What each coefficient needs in the data besides one load.
 NEEDS: dict[str, tuple[str, ...]] = {
@@ -72,9 +82,10 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "RVY2": ("combined_y", "loads2"),
     **{k: ("camber",) for k in "QBZ4 QDZ3 QDZ8 QHZ3 QEZ5".split()},
     **{k: ("camber", "loads2") for k in "QDZ9 QHZ4".split()},
-    # |gamma| beside gamma (B_t) needs cambers of both signs; gamma^2 beside |gamma| (D_t)
-    # and gamma |gamma| beside gamma (D_r) need two cambers of different magnitude
-    "QBZ5": ("camber", "camber_signs"), "QDZ4": ("camber", "camber2"),
+    # |gamma| beside gamma (B_t) needs cambers of both signs; gamma^2 beside gamma (D_t,
+    # 1 + QDZ3 gamma + QDZ4 gamma^2 as in MFeval) two nonzero cambers (of either sign or
+    # magnitude); gamma |gamma| beside gamma (D_r) two cambers of different magnitude
+    "QBZ5": ("camber", "camber_signs"), "QDZ4": ("camber", "camber_sq"),
     "QDZ10": ("camber", "camber2"), "QDZ11": ("camber", "loads2", "camber2"),
     **{k: ("loads2",) for k in "QBZ2 QDZ2 QDZ7 QEZ2 QHZ2".split()},
     **{k: ("loads3",) for k in "QBZ3 QEZ3".split()},
@@ -115,6 +126,12 @@ class CombinedData:
     dpi: np.ndarray
     pressure: np.ndarray
     target: np.ndarray
+    #: Each row's residual is divided by this (:func:`level_scale`).
+    scale: np.ndarray = field(default_factory=lambda: np.array([]))
+
+    def __post_init__(self) -> None:
+        if self.scale.size != self.target.size:
+            self.scale = level_scale(self.fz, self.target)
 
     @classmethod
     def select(cls, data: Any, target: np.ndarray, keep: np.ndarray,
@@ -127,9 +144,16 @@ class CombinedData:
         return cls(data.kappa[keep], data.alpha[keep], data.fz[keep], data.gamma[keep],
                    dpi, p, target[keep])
 
+    def thinned(self, most: int) -> CombinedData:
+        """Every k-th row, k the smallest that leaves at most ``most`` rows (the row scales
+        kept)."""
+        step = max(1, -(-self.target.size // most))
+        return CombinedData(*(getattr(self, f)[::step] for f in (
+            "kappa", "alpha", "fz", "gamma", "dpi", "pressure", "target", "scale")))
+
     def spans(self) -> set[str]:
-        """What these rows vary: loads2/3, camber (of both signs, of two magnitudes),
-        pressure, both signs of slip, cross slip."""
+        """What these rows vary: loads2/3, camber (of both signs, of two magnitudes, two
+        nonzero levels), pressure, both signs of slip, cross slip."""
         have: set[str] = set()
         n_loads = _count_levels(self.fz, 0.03 * float(np.median(self.fz)))
         have.update({"loads2"} if n_loads >= 2 else set())
@@ -141,6 +165,8 @@ class CombinedData:
             have.add("camber_signs")
         if _count_levels(np.abs(self.gamma[np.abs(self.gamma) > tol]), tol) >= 2:
             have.add("camber2")
+        if _count_levels(self.gamma[np.abs(self.gamma) > tol], tol) >= 2:
+            have.add("camber_sq")
         if _count_levels(self.dpi, 0.02) >= 2:
             have.add("pressure")
         if (self.alpha > 0).sum() >= 3 and (self.alpha < 0).sum() >= 3:
@@ -154,6 +180,41 @@ class CombinedData:
 def _count_levels(values: np.ndarray, tol: float) -> int:
     v = np.sort(values)
     return int(np.sum(np.diff(v) > tol)) + 1 if v.size else 0
+
+
+def load_levels(fz: np.ndarray) -> np.ndarray:
+    """The load level of each row: loads within 3 % of the median load of their
+    neighbours (sorted) form one level; labels 0, 1, ... from the lightest."""
+    if fz.size == 0:
+        return np.zeros(0, dtype=int)
+    order = np.argsort(fz)
+    steps = np.diff(fz[order]) > 0.03 * float(np.median(fz))
+    labels = np.empty(fz.size, dtype=int)
+    labels[order] = np.concatenate([[0], np.cumsum(steps)])
+    return labels
+
+
+def level_scale(fz: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """The scale each row's residual is divided by: the largest ``|target|`` measured at
+    its load level.
+
+    A rig's noise and a fit's tolerance are both shares of the curve's peak, which grows
+    with the load; unweighted, the heavy loads would dominate and the light ones be
+    fitted to a larger share of their peak.  A level with fewer than
+    :data:`MIN_LEVEL_ROWS` rows (loads that are not held at levels) takes the largest
+    ``|target|`` of all rows in proportion to its load instead.  Scales are at least
+    1e-3 of the largest ``|target|`` (never zero).
+    """
+    mag = np.abs(target)
+    top = float(np.max(mag)) if mag.size else 1.0
+    top = top if top > 0 else 1.0
+    scale = top * fz / float(np.max(fz)) if fz.size else np.zeros(0)
+    labels = load_levels(fz)
+    for lv in np.unique(labels):
+        m = labels == lv
+        if m.sum() >= MIN_LEVEL_ROWS:
+            scale[m] = np.max(mag[m])
+    return np.maximum(scale, 1e-3 * top)
 
 
 def predict_fx(mf: FittingModel, d: CombinedData) -> np.ndarray:
@@ -224,7 +285,7 @@ def fit_stage(mf: FittingModel, names: list[str], d: CombinedData,
         fitted = dict(mf.coefficients)
         mf.coefficients[worst] = template.get(worst, 0.0)
         refit = _solve(mf, free, d, predict, bounds)
-        if refit.cost <= _DROP_COST * r.cost + 1e-12 * float(np.sum(d.target**2)):
+        if refit.cost <= _DROP_COST * r.cost + 1e-12 * float(np.sum((d.target / d.scale)**2)):
             out.undetermined.append(worst)
             r = refit
         else:
@@ -255,7 +316,8 @@ def _solve(mf: FittingModel, names: list[str], d: CombinedData,
             model = predict(mf, d)
         penalty: Any = (peak_penalty(mf.peak_mu, d.fz) if mf.peak_mu.size == d.fz.size
                         else np.array([]))
-        res = np.concatenate([model - d.target, penalty])
+        res = np.concatenate([(model - d.target) / d.scale,
+                              penalty / d.scale[:penalty.size]])
         return np.where(np.isfinite(res), res, 1e6 * (1 + np.abs(d.target).max()))
 
     p0 = np.array([mf.coefficients.get(k, 0.0) for k in names])
@@ -337,7 +399,7 @@ def later_stages(mf: FittingModel, data: Any, version: str, template: dict[str, 
     for name, target, predict in (("x", data.fx, predict_fx), ("y", data.fy, predict_fy)):
         d = CombinedData.select(data, target, np.ones(len(data), bool), p_nom)
         comb = combined_names(name, version)
-        if not any(_group(k) == name for k in pure):
+        if not any(group_of(k) == name for k in pure):
             out.undetermined.extend(k for k in comb if k not in out.undetermined)
             if d.target.size:
                 out.notes.append(f"F{name}: no pure-slip curve was fitted, so the combined-"
@@ -345,7 +407,7 @@ def later_stages(mf: FittingModel, data: Any, version: str, template: dict[str, 
                                  "the template's)")
             continue
         out.take(fit_stage(mf, comb, d, predict, template, d.spans(), bounds))
-        group = [k for k in out.values if _group(k) == name and out.stderr.get(k) != math.inf]
+        group = [k for k in out.values if group_of(k) == name and out.stderr.get(k) != math.inf]
         joint = fit_stage(mf, group, d, predict, template, set(_ALL), bounds)
         out.take(joint)
         out.errors[f"{name}_all"] = _errors(predict, mf, d)
@@ -360,14 +422,17 @@ def _aligning_stages(mf: FittingModel, data: Any, version: str, template: dict[s
     if not np.isfinite(data.mz).any():
         return
     mz0_names, s_names = mz_names(version)
-    if not any(_group(k) == "y" for k in out.values):
-        out.undetermined.extend(k for k in mz0_names + s_names if k not in out.undetermined)
-        out.notes.append("M_z rows not used: M_z rests on the lateral force, which was not "
-                         "fitted (the aligning coefficients are the template's)")
-        return
+    if not any(group_of(k) == "y" for k in out.values):
+        raise InputError("the Mz column cannot be fitted: M_z rests on the lateral force, "
+                         "and F_y0 was not fitted (no Fy rows near pure side slip); give "
+                         "the Fy of those rows, or leave out the Mz column to fit the rest",
+                         file=data.source, column="Mz")
     pure = CombinedData.select(data, data.mz, np.abs(data.kappa) <= KAPPA_PURE, p_nom)
     every = CombinedData.select(data, data.mz, np.ones(len(data), bool), p_nom)
     if pure.target.size:
+        # the residual torque's width (B_r) last: a narrow peak the data barely sample
+        # would otherwise take up the misfit of the trail and stay where it went
+        _trail_start(mf, [k for k in mz0_names if k not in _BR], pure, template, bounds)
         out.take(fit_stage(mf, mz0_names, pure, predict_mz, template, pure.spans(), bounds))
     else:
         out.notes.append("no M_z rows near pure side slip: M_z0 is fitted on the combined "
@@ -386,13 +451,40 @@ def _aligning_stages(mf: FittingModel, data: Any, version: str, template: dict[s
     out.errors["mz"] = _errors(predict_mz, mf, every)
 
 
+#: Factors on the template's QBZ1 (the trail's stiffness factor B_t) the aligning moment
+#: starts from; the trail's shape and B_t trade off, and one start can end in the wrong
+#: valley (the best end is kept).
+QBZ1_STARTS = (1.0, 0.6, 1.6)
+#: Rows (every k-th) on which the starts are compared; the stage then runs on all.
+START_ROWS = 1500
+
+
+def _trail_start(mf: FittingModel, names: list[str], d: CombinedData,
+                 template: dict[str, float], bounds: dict[str, tuple[float, float]]) -> None:
+    """M_z0 with the residual torque's width held, from each start of :data:`QBZ1_STARTS`,
+    on at most :data:`START_ROWS` of the rows; the model is left at the best end."""
+    start = dict(mf.coefficients)
+    d = d.thinned(START_ROWS)
+    qbz1 = start.get("QBZ1", template.get("QBZ1", 0.0))
+    best: tuple[float, dict[str, float]] | None = None
+    for factor in QBZ1_STARTS:
+        mf.coefficients.clear()
+        mf.coefficients.update(start)
+        mf.coefficients["QBZ1"] = qbz1 * factor
+        r = fit_stage(mf, names, d, predict_mz, template, d.spans(), bounds)
+        if math.isfinite(r.rmse) and (best is None or r.rmse < best[0]):
+            best = (r.rmse, dict(mf.coefficients))
+    mf.coefficients.clear()
+    mf.coefficients.update(start if best is None else best[1])
+
+
 def section_of(name: str) -> str:
     """The property-file section of a force or moment coefficient."""
     return {"x": "LONGITUDINAL_COEFFICIENTS", "y": "LATERAL_COEFFICIENTS",
-            "z": "ALIGNING_COEFFICIENTS"}[_group(name)]
+            "z": "ALIGNING_COEFFICIENTS"}[group_of(name)]
 
 
-def _group(name: str) -> str:
+def group_of(name: str) -> str:
     """"x", "y" or "z" for a force or moment coefficient."""
     if name.startswith(("Q", "SSZ", "PPZ")):
         return "z"

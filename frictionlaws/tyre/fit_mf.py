@@ -51,7 +51,7 @@ import numpy as np
 from .._lsq import least_squares_solve
 from ..errors import ExtrapolationWarning, FitError, InputError
 from . import _fit_mf_stages as stages_
-from ._fit_mf_checks import check_plausible
+from ._fit_mf_checks import check_plausible, repeated_rows
 from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unreached_peaks
 from ._fit_mf_rows import _Direction, _levels, _select
 from ._mf_file import structure
@@ -61,7 +61,8 @@ from .mf_coefficients import fit_bounds
 from .tir import PropertyFile, format_tir, read_property_file
 from .tyre_data import TyreData
 
-__all__ = ["MFFit", "fit_mf", "check_tir_path", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS"]
+__all__ = ["MFFit", "fit_mf", "check_tir_path", "FITTYPS", "X_COEFFICIENTS", "Y_COEFFICIENTS",
+           "UNCERTAINTIES"]
 
 #: FITTYP -> Magic Formula version.
 FITTYPS = {5: "5.2", 6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
@@ -128,16 +129,23 @@ class MFFit:
     seconds: float
     notes: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: How the standard errors were made (:data:`UNCERTAINTIES`, with the details).
+    uncertainty: str = ""
+    #: The asymptotic standard errors (equal to ``stderr`` unless bootstrapped).
+    stderr_asymptotic: dict[str, float] = field(default_factory=dict)
 
     def tir_text(self) -> str:
         """The ``.tir`` text of the fitted property file."""
         fitted = ", ".join(_LABELS[k] for k in self.errors) or "nothing"
-        header = [f"FITTED by frictionlaws fit_mf from {self.data.source} "
+        from .. import __version__
+
+        header = [f"FITTED by frictionlaws {__version__} fit_mf from {self.data.source} "
                   f"({len(self.data)} rows), Magic Formula {self.version}: {fitted}; "
                   "other coefficients and sections from the template.",
                   "Slip angle convention: alpha* = tan(alpha) in the lateral slip "
                   "(MFeval useMode 2x); camber as sin(gamma) in the force terms.",
-                  "Friction scaling: LMU' = LMU (A_mu = 1, as MFeval 4.0)."]
+                  "Friction scaling: LMU' = LMU (A_mu = 1, as MFeval 4.0).",
+                  f"Standard errors: {self.uncertainty or UNCERTAINTIES['asymptotic']}."]
         header += [f"warning: {w}" for w in self.warnings]
         header += [f"note: {n}" for n in self.notes]
         return format_tir(self.property_file, header=header)
@@ -155,7 +163,8 @@ class MFFit:
     def report(self) -> str:
         """Plain-text report: coefficients with standard errors, errors, notes."""
         lines = [f"Magic Formula {self.version} fit to {self.data.source} "
-                 f"({len(self.data)} rows, {self.seconds:.1f} s)"]
+                 f"({len(self.data)} rows, {self.seconds:.1f} s)",
+                 f"standard errors: {self.uncertainty or UNCERTAINTIES['asymptotic']}"]
         for name, v in self.values.items():
             se = self.stderr.get(name, math.nan)
             lines.append(f"  {name:<5} = {v:< 12.6g} +/- {se:.3g}")
@@ -172,6 +181,7 @@ class MFFit:
         return {"version": self.version, "source": self.data.source, "rows": len(self.data),
                 "coefficients": {k: {"value": v, "stderr": self.stderr.get(k)}
                                  for k, v in self.values.items()},
+                "uncertainty": self.uncertainty or UNCERTAINTIES["asymptotic"],
                 "undetermined": list(self.undetermined), "errors": self.errors,
                 "stages": self.stages, "seconds": self.seconds, "notes": list(self.notes),
                 "warnings": list(self.warnings)}
@@ -190,6 +200,13 @@ def check_tir_path(path: str | Path) -> None:
         raise InputError("the property file written is ADAMS .tir text: give the file the "
                          "suffix .tir", file=str(path))
 
+
+#: How the standard errors are made (``uncertainty=`` of :func:`fit_mf`).
+UNCERTAINTIES = {
+    "asymptotic": "asymptotic (Gauss-Newton, s^2 (J^T J)^-1 of each stage; assumes "
+                  "independent residuals, too small when a sweep's residuals share an "
+                  "offset)",
+    "sweeps": "sweep bootstrap"}
 
 #: What each entry of :attr:`MFFit.errors` describes.
 _LABELS = {"x": "Fx0 (rows near pure slip)", "y": "Fy0 (rows near pure slip)",
@@ -216,12 +233,15 @@ def _curve_start(x: np.ndarray, y: np.ndarray) -> list[float]:
     return [K0 / (1.4 * D0), D0, 0.0, 0.0, 0.0, 0.0]
 
 
-def _stage1(d: _Direction) -> list[dict[str, float]]:
+def _stage1(d: _Direction) -> list[list[dict[str, float]]]:
     """Stage 1: one Magic Formula curve per load at the reference conditions (nominal
     pressure, smallest camber), all with one shape factor C (C does not depend on load).
 
     Each curve is ``D sin(C arctan(B x - E (B x - arctan(B x)))) + S_V`` with
-    ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.
+    ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.  Fitted from each shape factor of
+    :data:`STAGE1_SHAPES`; returns the sets of curves, the lowest cost first, of the ends
+    within :data:`STAGE1_TIE` of it (the data do not tell them apart here: the later
+    stages choose).
     """
     sets = [(d.x()[sel], d.force[sel], float(np.mean(d.fz[sel])))
             for sel in (d.reference & (d.load_labels == i) for i in range(d.loads.size))
@@ -247,14 +267,42 @@ def _stage1(d: _Direction) -> list[dict[str, float]]:
             out.append(mf_curve(x + sh, B, p[0], D, E, E_b if both[j] else 0.0, sv) - y)
         return np.concatenate(out)
 
-    r = least_squares_solve(resid, p0, bounds=(lo, hi), x_scale="jac")
-    C = float(r.x[0])
+    # from two shape factors: a curve whose peak is flat (C near 1) and a curve with a
+    # peak; the shape and the curvature trade off, and one start can end in the other's
+    # valley
+    ends = sorted((least_squares_solve(resid, _with_shape(p0, c0), bounds=(lo, hi),
+                                       x_scale="jac") for c0 in STAGE1_SHAPES),
+                  key=lambda res: res.cost)
+    return [_curves(r.x, sets, both) for r in ends
+            if r.cost <= (1 + STAGE1_TIE) * ends[0].cost]
+
+
+def _curves(x: np.ndarray, sets: list[tuple[np.ndarray, np.ndarray, float]],
+            both: list[bool]) -> list[dict[str, float]]:
+    """The per-load curves of stage 1 from its parameters ``x``."""
+    C = float(x[0])
     out = []
     for j, (_, _, fz) in enumerate(sets):
-        B, D, E, E_b, sh, sv = (float(v) for v in r.x[1 + 6 * j: 7 + 6 * j])
+        B, D, E, E_b, sh, sv = (float(v) for v in x[1 + 6 * j: 7 + 6 * j])
         out.append({"load": fz, "mu": D / fz, "K": B * C * D, "C": C, "E": E,
                     "E_b": E_b if both[j] else 0.0, "S_H": sh, "S_V": sv, "B": B})
     return out
+
+
+#: The shape factors C stage 1 starts from.
+STAGE1_SHAPES = (1.4, 1.0)
+#: Stage-1 ends within this share of the lowest cost are each carried through the later
+#: pure-slip stages, which keep the better.
+STAGE1_TIE = 0.03
+
+
+def _with_shape(p0: list[float], c0: float) -> np.ndarray:
+    """Stage 1's start with the shape factor ``c0``: each curve's B rescaled so that its
+    slope at zero, B C D, stays."""
+    p = np.array(p0, dtype=float)
+    p[1::6] *= p[0] / c0
+    p[0] = c0
+    return p
 
 
 def _ky_start(curves: list[dict[str, float]], fz0: float, six: bool) -> dict[str, float]:
@@ -362,14 +410,17 @@ def _solve(mf: FittingModel, d: _Direction, names: list[str], method: str = "lm"
     better end is kept (clipping a solution that ran along a flat direction can leave
     it far from the data).  The residuals are the
     force errors followed by the peak-friction penalty (zero while the peak
-    friction is physical, :func:`~frictionlaws.tyre._fit_mf_peak.peak_penalty`).
+    friction is physical, :func:`~frictionlaws.tyre._fit_mf_peak.peak_penalty`), each
+    divided by the largest measured force at its load level
+    (:func:`~frictionlaws.tyre._fit_mf_stages.level_scale`).
     """
     lo = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[0] for k in names])
     hi = np.array([_BOUNDS.get(k, (-np.inf, np.inf))[1] for k in names])
 
     def resid(p: np.ndarray) -> np.ndarray:
         force = _predict(mf, d, names, p) - d.force
-        return np.concatenate([force, peak_penalty(mf.peak_mu, d.fz)])
+        penalty = peak_penalty(mf.peak_mu, d.fz)
+        return np.concatenate([force / d.scale, penalty / d.scale[:penalty.size]])
 
     def inside(p: np.ndarray) -> np.ndarray:
         with np.errstate(invalid="ignore"):
@@ -422,18 +473,70 @@ def _fit_direction(mf: FittingModel, d: _Direction, data: TyreData, version: str
         mf.coefficients[k] = 0.0
     for k in undetermined:  # ... except those the data cannot determine
         mf.coefficients[k] = _template_value(template, k)
-    curves = _stage1(d)
-    start = _stage2_start(d, curves, mf.fz0, version)
-    mf.coefficients.update({k: v for k, v in start.items() if k in free})
-    rest = [k for k in free if k not in start]
-    if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
-        _solve(mf, d, rest)
-    se, dropped, held = _refine(mf, d, free, template)
+    base = dict(mf.coefficients)
+    best: _End | None = None
+    for curves in _stage1(d):
+        mf.coefficients.clear()
+        mf.coefficients.update(base)
+        kept = list(free)
+        se, dropped, held = _stages23(mf, d, kept, curves, version, template)
+        end = (_cost(mf, d), dict(mf.coefficients), kept, (se, dropped, held), curves)
+        best = end if best is None or end[0] < best[0] else best
+    assert best is not None  # _stage1 returns at least one set of curves
+    _, coefficients, free, (se, dropped, held), curves = _template_restart(mf, d, best,
+                                                                            template)
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
     undetermined.extend(dropped)
     values = {k: float(mf.coefficients[k]) for k in free + held}
     stderr = {k: float(s) for k, s in zip(free, se)}
     stderr.update({k: math.inf for k in held})
     return values, stderr, undetermined, curves
+
+
+#: A stage-3 end: cost, coefficients, free names, (standard errors, dropped, held) and
+#: the stage-1 curves it came from.
+_End = tuple[float, dict[str, float], list[str], Any, list[dict]]
+def _cost(mf: FittingModel, d: _Direction) -> float:
+    """The weighted sum of squares of the model at the rows of ``d``."""
+    return float(np.sum(((_predict(mf, d, [], np.array([])) - d.force) / d.scale) ** 2))
+
+
+def _template_restart(mf: FittingModel, d: _Direction, best: _End,
+                      template: dict[str, float]) -> _End:
+    """Stage 3 once more, from the template's values of the coefficients ``best`` fitted;
+    the lower cost is kept and the model left there.
+
+    With the peak beyond the data (or a flat one) the per-load curves of stage 1 leave C
+    free to trade against the peak and the curvature, and the coefficients' load and
+    camber structure can then hold stage 3 in that valley; a start from another tyre
+    (the template) can find the other."""
+    cost, coefficients, free, (se, dropped, held), curves = best
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
+    mf.coefficients.update({k: _template_value(template, k) for k in free})
+    kept = list(free)
+    with np.errstate(all="ignore"):
+        se2, dropped2, held2 = _refine(mf, d, kept, template)
+    if _cost(mf, d) < cost:
+        return (_cost(mf, d), dict(mf.coefficients), kept,
+                (se2, dropped + dropped2, held + held2), curves)
+    mf.coefficients.clear()
+    mf.coefficients.update(coefficients)
+    return best
+
+
+def _stages23(mf: FittingModel, d: _Direction, free: list[str], curves: list[dict],
+              version: str, template: dict[str, float]
+              ) -> tuple[np.ndarray, list[str], list[str]]:
+    """Stages 2 and 3 from the stage-1 ``curves`` (``free`` shortened in place): the
+    standard errors, the coefficients dropped to the template and those held."""
+    start = _stage2_start(d, curves, mf.fz0, version)
+    mf.coefficients.update({k: v for k, v in start.items() if k in free})
+    rest = [k for k in free if k not in start]
+    if rest:  # stage 2b: pressure, camber and curvature terms with the load terms held
+        _solve(mf, d, rest)
+    return _refine(mf, d, free, template)
 
 
 def _template_value(template: dict[str, float], name: str) -> float:
@@ -469,7 +572,7 @@ def _refine(mf: FittingModel, d: _Direction, free: list[str], template: dict[str
         fitted = dict(mf.coefficients)
         mf.coefficients[worst] = _template_value(template, worst)
         refit = _solve(mf, d, free)
-        if refit.cost <= _DROP_COST * r.cost + 1e-12 * float(np.sum(d.force**2)):
+        if refit.cost <= _DROP_COST * r.cost + 1e-12 * float(np.sum((d.force / d.scale)**2)):
             dropped.append(worst)
             r = refit
         else:
@@ -523,11 +626,33 @@ def _packaged(path: Path) -> PropertyFile:
     return pf
 
 
+#: A template's FNOMIN or nominal pressure this factor or more outside the measured
+#: range is replaced by the median measured value (:func:`_near_data`).
+FAR_FROM_DATA = 2.0
+
+
+def _near_data(name: str, value: float, measured: np.ndarray, unit: str,
+               notes: list[str]) -> float:
+    """``value``, or the median of ``measured`` (3 significant digits) when ``value`` lies
+    more than :data:`FAR_FROM_DATA` times outside the measured range: a reference that far
+    from the data (a car template for a truck tyre) makes every load or pressure
+    polynomial extrapolate and the stage starts fail."""
+    lo, hi = float(np.min(measured)), float(np.max(measured))
+    if lo / FAR_FROM_DATA <= value <= FAR_FROM_DATA * hi:
+        return value
+    new = float(f"{float(np.median(measured)):.3g}")
+    notes.append(f"the template's {name} {value:g} {unit} lies far outside the measured "
+                 f"{lo:g}..{hi:g} {unit}: {name} is set to the median measured {new:g} {unit} "
+                 "(the coefficients refer to it)")
+    return new
+
+
 def _nominal_pressure(pf: PropertyFile, data: TyreData, notes: list[str]) -> float | None:
     measured = data.pressure[np.isfinite(data.pressure)]
     for sec, key in (("OPERATING_CONDITIONS", "NOMPRES"), ("TIRE_CONDITIONS", "IP_NOM")):
         if pf.has(sec, key):
-            return pf.si(sec, key)
+            p = pf.si(sec, key)
+            return _near_data("NOMPRES", p, measured, "Pa", notes) if measured.size else p
     if measured.size:
         p = float(np.median(measured))
         notes.append(f"no nominal pressure in the template: the median measured pressure "
@@ -544,7 +669,8 @@ def _errors(mf: MagicFormula, d: _Direction) -> dict[str, float]:
 
 
 def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
-                p_nom: float | None, data: TyreData, notes: list[str]) -> PropertyFile:
+                p_nom: float | None, data: TyreData, notes: list[str],
+                fnomin: float | None = None) -> PropertyFile:
     """The template with FITTYP, the fitted coefficients, the pressure and the data ranges.
 
     A nominal pressure outside the measured ones stays NOMPRES (the coefficients refer to
@@ -556,6 +682,8 @@ def _build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     for k, v in values.items():
         pf.sections.setdefault(stages_.section_of(k), {})[k] = v
     f_force, f_p = pf.si_factor("force"), pf.si_factor("pressure")
+    if fnomin is not None:
+        pf.sections.setdefault("VERTICAL", {})["FNOMIN"] = fnomin / f_force
     if p_nom is not None and FITTYPS[fittyp] != "5.2":
         oc = pf.sections.setdefault("OPERATING_CONDITIONS", {})
         oc["NOMPRES"] = oc["INFLPRES"] = p_nom / f_p
@@ -592,8 +720,10 @@ def _model_from_template(tpl: PropertyFile, data: TyreData, version: str, notes:
     p_nom = _nominal_pressure(tpl, data, notes)
     radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
               else None)
-    check_plausible(data, fnomin, p_nom if tpl.has("OPERATING_CONDITIONS", "NOMPRES")
-                    else None, radius)
+    p_tpl = (tpl.si("OPERATING_CONDITIONS", "NOMPRES")
+             if tpl.has("OPERATING_CONDITIONS", "NOMPRES") else None)
+    check_plausible(data, fnomin, p_tpl, radius)
+    fnomin = _near_data("FNOMIN", fnomin, data.fz, "N", notes)
     p_fit = p_nom if version != "5.2" else None
     mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
                       pressure=p_fit, nominal_pressure=p_fit, structure=structure(tpl))
@@ -605,7 +735,9 @@ def _model_from_template(tpl: PropertyFile, data: TyreData, version: str, notes:
 
 def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
            template: str | Path | PropertyFile | None = None,
-           sign_convention: str = "iso") -> MFFit:
+           sign_convention: str = "iso", uncertainty: str = "asymptotic",
+           resamples: int = 100, seed: int = 0, jobs: int = 1,
+           sweeps: Sequence[Any] | np.ndarray | None = None) -> MFFit:
     """Fit the Magic Formula to tyre test data, stage by stage (module docstring).
 
     Parameters
@@ -621,6 +753,20 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         packaged example of the version).
     sign_convention : {"iso", "sae"}
         Axes of the measurement when ``data`` is a file.
+    uncertainty : {"asymptotic", "sweeps"}
+        How the standard errors are made.  ``"asymptotic"`` (the default, no extra
+        cost): from the Jacobian of each stage, ``s^2 (J^T J)^-1``, which assumes
+        independent residuals and is too small when a sweep's residuals share an
+        offset.  ``"sweeps"``: the sweep bootstrap
+        (:mod:`frictionlaws.tyre._fit_mf_bootstrap`), which resamples whole sweeps
+        and refits the final stages from the point estimate; it costs about
+        ``resamples`` times the final stages.
+    resamples, seed, jobs : int
+        For ``uncertainty="sweeps"``: resamples (default 100), their seed (default 0)
+        and worker processes (default 1; :func:`frictionlaws.parallel.run_parallel`).
+    sweeps : array-like, optional
+        For ``uncertainty="sweeps"``: a sweep label per row; default: found from the
+        row order (:func:`~frictionlaws.tyre._fit_mf_bootstrap.find_sweeps`).
 
     Returns
     -------
@@ -633,17 +779,13 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     FitError
         Too few pure-slip points.
     """
-    from .tyre_data import read_tyre_data
-
     t0 = time.perf_counter()
-    if fittyp not in FITTYPS:
-        raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
-                         f"{', '.join(str(k) for k in FITTYPS)}")
+    boot = dict(resamples=resamples, seed=seed, jobs=jobs, sweeps=sweeps)
+    data = _checked_inputs(data, fittyp, sign_convention, uncertainty, boot)
     version = FITTYPS[fittyp]
-    if not isinstance(data, TyreData):
-        data = read_tyre_data(data, sign_convention=sign_convention)
     tpl = _template(template, version)
     notes = list(data.notes)
+    notes.extend(filter(None, [repeated_rows(data)]))
     tpl_coeffs, p_nom, p_fit, mf = _model_from_template(tpl, data, version, notes)
     values, stderr, undetermined, stages, errors, warns = _fit_directions(
         mf, data, version, tpl_coeffs, p_fit, notes)
@@ -657,21 +799,68 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     if not values:
         raise FitError(f"{data.source}: nothing could be fitted (no coefficient is "
                        "determined by these rows); no file written")
-    if undetermined:
-        notes.append("not determined by the data, left at the template's value: "
-                     + ", ".join(undetermined))
-    held = [k for k, se in stderr.items() if se == math.inf]
-    if held:
-        notes.append("not determined by the data, and the template's value does not suit "
-                     "them: held at the fitted value (standard error infinite): "
-                     + ", ".join(held))
-    pf = _build_file(tpl, fittyp, values, p_nom, data, notes)
+    notes.extend(_undetermined_notes(undetermined, stderr))
+    pf = _build_file(tpl, fittyp, values, p_nom, data, notes, mf.fnomin)
+    asymptotic = dict(stderr)
+    method = UNCERTAINTIES["asymptotic"]
+    if uncertainty == "sweeps":
+        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, boot)
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
+    fitted.uncertainty, fitted.stderr_asymptotic = method, asymptotic
     fitted.warnings = warns
     for text in warns:
         warnings.warn(text, ExtrapolationWarning, stacklevel=2)
     return fitted
+
+
+def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str,
+                    uncertainty: str, boot: dict[str, Any]) -> TyreData:
+    """The data (read when a file), after the options are checked (before any fit)."""
+    from .tyre_data import read_tyre_data
+
+    if uncertainty not in UNCERTAINTIES:
+        raise InputError(f"uncertainty {uncertainty!r} is not known; expected one of "
+                         f"{', '.join(UNCERTAINTIES)}")
+    if fittyp not in FITTYPS:
+        raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
+                         f"{', '.join(str(k) for k in FITTYPS)}")
+    if not isinstance(data, TyreData):
+        data = read_tyre_data(data, sign_convention=sign_convention)
+    if uncertainty == "sweeps":
+        from ._fit_mf_bootstrap import check_options
+
+        check_options(boot["resamples"], boot["jobs"], boot["sweeps"], len(data))
+    return data
+
+
+def _undetermined_notes(undetermined: list[str], stderr: dict[str, float]) -> list[str]:
+    """The notes naming the coefficients left at the template and those held."""
+    out = []
+    if undetermined:
+        out.append("not determined by the data, left at the template's value: "
+                   + ", ".join(undetermined))
+    held = [k for k, se in stderr.items() if se == math.inf]
+    if held:
+        out.append("not determined by the data, and the template's value does not suit "
+                   "them: held at the fitted value (standard error infinite): "
+                   + ", ".join(held))
+    return out
+
+
+def _bootstrap(mf: FittingModel, data: TyreData, values: dict[str, float],
+               stderr: dict[str, float], p_fit: float | None, options: dict[str, Any]
+               ) -> tuple[dict[str, float], str]:
+    """The sweep bootstrap's standard errors of every coefficient with a finite one (the
+    others keep theirs) and its description."""
+    from ._fit_mf_bootstrap import sweep_bootstrap
+
+    groups: dict[str, list[str]] = {}
+    for k in values:
+        if math.isfinite(stderr.get(k, math.inf)):
+            groups.setdefault(stages_.group_of(k), []).append(k)
+    boot, method = sweep_bootstrap(mf, data, groups, p_fit, _BOUNDS, **options)
+    return {**stderr, **boot}, method
 
 
 def _fit_directions(mf: FittingModel, data: TyreData, version: str,

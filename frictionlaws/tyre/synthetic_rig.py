@@ -18,7 +18,7 @@ import numpy as np
 from .magic_formula import MagicFormula
 from .tyre_data import TyreData
 
-__all__ = ["rig_data", "moved_tyre", "MOVED"]
+__all__ = ["rig_data", "moved_tyre", "truth_errors", "MOVED"]
 
 #: Coefficients of the packaged MF 6.1 example moved (multiplied) to make another tyre:
 #: peak, stiffness, shape, shifts, combined-slip and aligning coefficients, 5-50 %.
@@ -29,7 +29,8 @@ MOVED = {"PDX1": 0.92, "PKX1": 1.15, "PCX1": 1.05, "PEX1": 0.9, "PDY1": 1.06, "P
 
 
 def moved_tyre(template: str = "MagicFormula61", factors: Mapping[str, float] = MOVED,
-               set_to: Mapping[str, float] | None = None) -> MagicFormula:
+               set_to: Mapping[str, float] | None = None, *, fnomin: float | None = None,
+               nominal_pressure: float | None = None) -> MagicFormula:
     """A tyre unlike ``template``: coefficients multiplied by ``factors``, others set.
 
     Parameters
@@ -41,32 +42,38 @@ def moved_tyre(template: str = "MagicFormula61", factors: Mapping[str, float] = 
     set_to : mapping, optional
         Coefficient -> value (default: a moment arm the example lacks, SSZ1 = 0.01,
         SSZ2 = 0.02).
+    fnomin, nominal_pressure : float, optional
+        Another nominal load [N] and nominal pressure [Pa] (default: the template's;
+        for MF 5.2, which has no pressure, 2.6e5 Pa for the rig).
 
     Returns
     -------
     MagicFormula
-        The moved tyre, with the template's FNOMIN, pressures, limits and structure.
+        The moved tyre, with the template's limits and structure.
     """
     base = MagicFormula.from_file(template)
     c = dict(base.coefficients)
     for k, f in factors.items():
         c[k] = c.get(k, 0.0) * f
     c.update({"SSZ1": 0.01, "SSZ2": 0.02} if set_to is None else dict(set_to))
-    return MagicFormula(c, fnomin=base.fnomin, version=base.version, pressure=base.pressure,
-                        nominal_pressure=base.nominal_pressure, limits=base.limits,
-                        structure=base.structure, name=f"moved {base.name}")
+    p = nominal_pressure or base.nominal_pressure or 2.6e5
+    return MagicFormula(c, fnomin=fnomin or base.fnomin, version=base.version, pressure=p,
+                        nominal_pressure=p, limits=base.limits, structure=base.structure,
+                        name=f"moved {base.name}")
 
 
 def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4, 0.7, 1.0,
              1.3, 1.6), pressures: Sequence[float] = (0.85, 1.1),
              cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0), combined: bool = True,
-             noise: float = 0.01, seed: int = 3) -> TyreData:
+             noise: float = 0.01, seed: int = 3, kappa_max: float = 0.25,
+             alpha_max_deg: float = 12.0) -> TyreData:
     """Flat-track-like measurements of ``truth`` (SI, ISO axes).
 
     At every load (times FNOMIN), pressure (times the nominal pressure) and camber: a
     slip-ratio sweep -0.25..0.25 and a slip-angle sweep -12..12 deg, each up and down
     with ``n`` points, and (``combined``) slip-ratio sweeps -0.2..0.2 (15 points) at slip
-    angles -8, -4, 4 and 8 deg.  The recorded slips jitter (normal, 0.002 in slip ratio;
+    angles -8, -4, 4 and 8 deg (all scaled by ``kappa_max`` / 0.25 and ``alpha_max_deg``
+    / 12).  The recorded slips jitter (normal, 0.002 in slip ratio;
     uniform 0.1-0.3 deg in slip angle on the slip-ratio sweeps, +-0.3 deg elsewhere), the
     load drifts (normal, 1 %; the recorded load is the one applied), and F_x, F_y, M_z
     carry normal noise of ``noise`` times each load's largest magnitude.
@@ -87,6 +94,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
         Noise share of each load's peak.
     seed : int
         Random seed.
+    kappa_max, alpha_max_deg : float
+        The largest slip ratio and slip angle [deg] swept (default 0.25 and 12).
 
     Returns
     -------
@@ -99,8 +108,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
     for fz in truth.fnomin * np.asarray(loads):
         for p in p_nom * np.asarray(pressures):
             for g in np.radians(cambers_deg):
-                k = np.linspace(-0.25, 0.25, n)
-                a = np.radians(np.linspace(-12, 12, n))
+                k = np.linspace(-kappa_max, kappa_max, n)
+                a = np.radians(np.linspace(-alpha_max_deg, alpha_max_deg, n))
                 for ks in (k, k[::-1]):
                     side = np.radians(rng.uniform(0.1, 0.3, n)) * rng.choice([-1, 1], n)
                     blocks.append((fz, ks + rng.normal(0, 0.002, n), side, g, p))
@@ -108,8 +117,8 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
                     blocks.append((fz, rng.normal(0, 0.002, n),
                                    as_ + np.radians(rng.uniform(-0.3, 0.3, n)), g, p))
                 if combined:
-                    kk = np.linspace(-0.2, 0.2, 15)
-                    for deg in (-8, -4, 4, 8):
+                    kk = np.linspace(-0.8, 0.8, 15) * kappa_max
+                    for deg in np.array([-8, -4, 4, 8]) * alpha_max_deg / 12:
                         blocks.append((fz, kk + rng.normal(0, 0.002, kk.size),
                                        np.radians(deg + rng.uniform(-0.3, 0.3, kk.size)),
                                        g, p))
@@ -128,3 +137,45 @@ def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4,
     return TyreData.from_arrays(fz=fz, kappa=kappa, alpha=alpha, gamma=gamma,
                                 pressure=pressure, fx=noisy(out["Fx"]), fy=noisy(out["Fy"]),
                                 mz=noisy(out["Mz"]), source="<synthetic rig data>")
+
+
+def truth_errors(truth: MagicFormula, fitted: MagicFormula, *,
+                 loads: Sequence[float] = (0.4, 0.7, 1.0, 1.3, 1.6),
+                 pressures: Sequence[float] = (0.85, 1.1),
+                 cambers_deg: Sequence[float] = (-3.0, 0.0, 3.0), kappa_max: float = 0.25,
+                 alpha_max_deg: float = 12.0) -> dict[str, float]:
+    """Largest errors of ``fitted`` against the noise-free ``truth``, as shares of the peak.
+
+    At every load (times FNOMIN), pressure (times the nominal pressure) and camber of
+    :func:`rig_data`: pure F_x0 on kappa -0.25..0.25 and F_y0 on alpha -12..12 deg, each
+    as a share of that curve's peak; combined F_x and F_y on the grid kappa -0.2..0.2 at
+    alpha -8, -4, 4, 8 deg, as shares of the pure curves' peaks; and M_z, pure and on the
+    grid, as a share of the pure M_z curve's peak.  The slips scale with ``kappa_max`` /
+    0.25 and ``alpha_max_deg`` / 12, as in :func:`rig_data`.
+
+    Returns
+    -------
+    dict
+        ``"Fx0"``, ``"Fy0"``, ``"Fx"``, ``"Fy"``, ``"Mz"`` -> the largest share [-].
+    """
+    k = np.linspace(-kappa_max, kappa_max, 101)
+    a = np.radians(np.linspace(-alpha_max_deg, alpha_max_deg, 97))
+    K, A = np.meshgrid(np.linspace(-0.8, 0.8, 21) * kappa_max,
+                       np.radians(np.array([-8.0, -4.0, 4.0, 8.0]) * alpha_max_deg / 12))
+    out: dict[str, float] = {}
+    for fz in truth.fnomin * np.asarray(loads):
+        for p in (truth.nominal_pressure or 2.6e5) * np.asarray(pressures):
+            for g in np.radians(cambers_deg):
+                tx, ty = truth.fx0(k, fz, g, p), truth.fy0(a, fz, g, p)
+                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=p) for m in (truth, fitted))
+                t, f = (m.steady_state(K, A, fz, g, pressure=p) for m in (truth, fitted))
+                peak = np.abs(t0["Mz"]).max()
+                errs = {"Fx0": np.abs(fitted.fx0(k, fz, g, p) - tx).max() / np.abs(tx).max(),
+                        "Fy0": np.abs(fitted.fy0(a, fz, g, p) - ty).max() / np.abs(ty).max(),
+                        "Fx": np.abs(f["Fx"] - t["Fx"]).max() / np.abs(tx).max(),
+                        "Fy": np.abs(f["Fy"] - t["Fy"]).max() / np.abs(ty).max(),
+                        "Mz": max(np.abs(f0["Mz"] - t0["Mz"]).max(),
+                                  np.abs(f["Mz"] - t["Mz"]).max()) / peak}
+                for name, e in errs.items():
+                    out[name] = max(out.get(name, 0.0), float(e))
+    return out

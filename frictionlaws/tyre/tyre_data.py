@@ -113,6 +113,12 @@ class TyreData:
             i = int(np.argmax(np.abs(self.alpha) >= np.pi / 2))
             raise InputError("slip angle beyond 90 degrees (wrong angle unit?)",
                              file=self.source, column="alpha", row=int(self.rows[i]))
+        for name in ("pressure", "fx", "fy", "mz"):  # NaN: not measured; inf: broken
+            bad = np.isinf(getattr(self, name))
+            if bad.any():
+                raise InputError(f"{name} is infinite (an empty cell means not measured; "
+                                 "infinity is not a measurement)", file=self.source,
+                                 column=name, row=int(self.rows[np.argmax(bad)]))
         bad_p = np.isfinite(self.pressure) & ~(self.pressure > 0)
         if bad_p.any():
             raise InputError("the inflation pressure must be positive", file=self.source,
