@@ -183,6 +183,7 @@ def test_reduce_load_errors_name_the_flag_typed(capsys, argv, message):
     assert message in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_fit_mf_reads_its_data_from_standard_input(capsys, tmp_path, monkeypatch):
     import io
 

@@ -108,6 +108,7 @@ def test_undetermined_coefficients_are_named_and_kept(tmp_path: Path) -> None:
         assert k in res.values and res.stderr[k] > 0
 
 
+@pytest.mark.slow
 def test_ten_thousand_points_fit_quickly() -> None:
     _, data, _ = synthetic("MagicFormula62", n_slip=111)
     assert len(data) == 9990
@@ -169,6 +170,7 @@ def test_csv_errors_name_file_column_row(tmp_path: Path, header: str, row: str,
     assert str(path) in str(exc.value)
 
 
+@pytest.mark.slow
 def test_cli_fit_mf_writes_a_readable_tir_and_a_figure(tmp_path: Path,
                                                         capsys: pytest.CaptureFixture) -> None:
     _, data, _ = synthetic("MagicFormula61", n_slip=15)

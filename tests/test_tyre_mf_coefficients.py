@@ -277,6 +277,7 @@ def test_lfz0_is_read_as_lfzo_and_two_different_spellings_are_refused() -> None:
 # ----------------------------------------------------------------------- fit-mf
 
 
+@pytest.mark.slow
 def test_fit_mf_takes_its_bounds_from_the_declarations(monkeypatch) -> None:
     """fit-mf's bounds are the declared ones; narrowing a declaration narrows the fit."""
     assert fit_mf._BOUNDS == fit_bounds()

@@ -270,8 +270,9 @@ def _stage1(d: _Direction) -> list[list[dict[str, float]]]:
     # from two shape factors: a curve whose peak is flat (C near 1) and a curve with a
     # peak; the shape and the curvature trade off, and one start can end in the other's
     # valley
+    shapes = sorted({min(max(c0, c_lo), c_hi) for c0 in STAGE1_SHAPES}, reverse=True)
     ends = sorted((least_squares_solve(resid, _with_shape(p0, c0), bounds=(lo, hi),
-                                       x_scale="jac") for c0 in STAGE1_SHAPES),
+                                       x_scale="jac") for c0 in shapes),
                   key=lambda res: res.cost)
     return [_curves(r.x, sets, both) for r in ends
             if r.cost <= (1 + STAGE1_TIE) * ends[0].cost]
@@ -297,8 +298,8 @@ STAGE1_TIE = 0.03
 
 
 def _with_shape(p0: list[float], c0: float) -> np.ndarray:
-    """Stage 1's start with the shape factor ``c0``: each curve's B rescaled so that its
-    slope at zero, B C D, stays."""
+    """Stage 1's start with the shape factor ``c0`` (within the declared fit range of C):
+    each curve's B rescaled so that its slope at zero, B C D, stays."""
     p = np.array(p0, dtype=float)
     p[1::6] *= p[0] / c0
     p[0] = c0
