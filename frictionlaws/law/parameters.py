@@ -11,9 +11,9 @@ the rooms built on it (:mod:`~frictionlaws.law.domain`,
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -180,13 +180,7 @@ class LawDeclaration:
         Param
             Its declaration.
         """
-        for p in self.params:
-            if p.name == name:
-                return p
-        raise InputError(
-            f"law '{self.id}' has no parameter '{name}' "
-            f"(parameters: {', '.join(self.param_names)})"
-        )
+        return _named(self.id, "parameter", self.params, name)
 
     def setting(self, name: str) -> Setting:
         """Return the :class:`Setting` called ``name``.
@@ -201,13 +195,7 @@ class LawDeclaration:
         Setting
             Its declaration.
         """
-        for s in self.settings:
-            if s.name == name:
-                return s
-        raise InputError(
-            f"law '{self.id}' has no setting '{name}' "
-            f"(settings: {', '.join(s.name for s in self.settings) or 'none'})"
-        )
+        return _named(self.id, "setting", self.settings, name)
 
     @property
     def defaults(self) -> dict[str, float]:
@@ -496,3 +484,15 @@ def _as_float(name: str, value: Any, law_id: str) -> float:
         return float(value)
     except (TypeError, ValueError):
         raise InputError(f"law '{law_id}': {name} must be a number, got {value!r}") from None
+
+
+_Named = TypeVar("_Named", Param, Setting)
+
+
+def _named(law_id: str, kind: str, items: Sequence[_Named], name: str) -> _Named:
+    """The declaration called ``name`` among ``items``, or an error listing them."""
+    for item in items:
+        if item.name == name:
+            return item
+    raise InputError(f"law '{law_id}' has no {kind} '{name}' "
+                     f"({kind}s: {', '.join(i.name for i in items) or 'none'})")
