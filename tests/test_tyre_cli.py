@@ -246,3 +246,20 @@ def test_fit_mf_writes_only_a_tir_file_name(capsys, tmp_path, name, match):
 def test_thesis_refuses_a_law_given_twice(capsys):
     code, out, err = run(capsys, "thesis", "--laws", "thirion,thirion")
     assert code == 2 and "given twice" in err and "thirion" in err and not out
+
+
+@pytest.mark.parametrize(("options", "named"), [
+    (["--boot", "50"], "--boot is"), (["--seed", "3"], "--seed is"),
+    (["--boot-jobs", "2", "--seed", "1"], "--boot-jobs, --seed are")])
+def test_fit_mf_refuses_bootstrap_options_without_sweeps(capsys, tmp_path, options, named):
+    target = tmp_path / "out.tir"
+    code, out, err = run(capsys, "fit-mf", str(tmp_path / "absent.csv"), "-o", str(target),
+                         *options)
+    assert code == 2 and not out and len(err.splitlines()) == 1
+    assert named in err and "--uncertainty sweeps only" in err
+    assert not target.exists()
+
+
+def test_mf_coefficients_refuses_loads(capsys):
+    code, out, err = run(capsys, "mf", "MagicFormula61", "--coefficients", "--loads", "4")
+    assert code == 2 and not out and "--loads is not used with --coefficients" in err

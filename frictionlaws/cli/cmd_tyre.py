@@ -418,6 +418,10 @@ def _run_thesis(args: argparse.Namespace) -> int:
 def _run_mf(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from ._common import refuse_unused
+
+    if args.coefficients:  # before reading the file: the listing evaluates no load
+        refuse_unused(args, ("loads", "load_unit"), "with --coefficients")
     mf = _mf_file(args)
     if args.coefficients:
         return _print_coefficients(mf, args.json)
@@ -516,6 +520,11 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     from frictionlaws.outputs import check_outputs
     from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
 
+    if args.uncertainty != "sweeps":
+        from ._common import refuse_unused
+
+        refuse_unused(args, ("boot", "boot_jobs", "seed"),
+                      f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
