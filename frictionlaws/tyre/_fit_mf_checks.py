@@ -5,7 +5,15 @@ radians under a ``[deg]`` header, loads in kN under ``[N]``) gives numbers that 
 accepts and turns into a confident, wrong property file.  :func:`check_plausible`
 refuses such data, naming the file, column, row and the unit the values look like.
 
-The tests are physical bounds, not statistics of the data set:
+First the data must be able to determine what is asked of them: a force whose slip is
+constant (``Fx`` without a varying slip ratio, ``Fy`` or ``Mz`` without a varying slip
+angle) is refused, naming the columns not read; so is a force with no trend on its slip
+(all zero, or noise: a correlation with the slip below :data:`MIN_CURVE_CORRELATION`),
+and an ``Fy`` with the sign of the slip angle on most rows beyond 2 degrees (in ISO-W axes
+a positive slip angle gives a negative ``Fy``: the data are in SAE axes, or a column's
+sign is flipped).
+
+The unit tests are physical bounds, not statistics of the data set:
 
 * **slip ratio**: below -1 the wheel would turn backwards; above 1 with the
   longitudinal force staying below half the load (a slip coefficient
@@ -22,7 +30,7 @@ The tests are physical bounds, not statistics of the data set:
 * **load**: a force above :data:`MAX_FORCE_RATIO` (5) times the load on its row, or a
   median load below FNOMIN / 100 or above 100 FNOMIN, means kN given as N (or N as kN);
 * **camber**: beyond :data:`MAX_CAMBER` (30 deg) the values are degrees under a ``[rad]``
-  header;
+  header (or, under another unit's header, impossible);
 * **pressure**: a median pressure below a fifth or above five times the template's
   nominal pressure means kPa as Pa, bar as kPa or the like;
 * **aligning moment**: |M_z| above F_z times the unloaded radius (a trail longer than the
@@ -36,13 +44,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 
 if TYPE_CHECKING:
     from .tyre_data import TyreData
 
 __all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
-           "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE"]
+           "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
+           "MIN_CURVE_CORRELATION"]
 
 #: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
 MAX_SLIP_COEFFICIENT = 150.0
@@ -60,6 +69,12 @@ _SMALL_SLIP = 0.1
 MAX_FORCE_RATIO = 5.0
 #: Largest plausible camber [rad] (30 degrees).
 MAX_CAMBER = math.radians(30.0)
+#: Smallest |correlation| of F_x / F_z with the slip ratio (F_y / F_z with tan(alpha)) for
+#: a force that follows its slip (a tyre's, even on ice: above 0.5; noise: near 0).
+MIN_CURVE_CORRELATION = 0.3
+#: Slip angle beyond which F_y has the opposite sign of alpha in ISO-W axes [rad]
+#: (camber thrust and ply steer can outweigh smaller angles).
+_SIGN_ANGLE = math.radians(2.0)
 
 
 def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
@@ -82,6 +97,9 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
     InputError
         Naming the file, column and row, and the unit the values look like.
     """
+    _check_slip_columns(data)
+    _check_curves(data)
+    _check_fy_sign(data)
     _check_loads(data, fnomin)
     _check_kappa(data)
     _check_alpha(data)
@@ -91,11 +109,7 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
 
 def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
     """Camber, pressure and aligning moment against their physical ranges."""
-    if (np.abs(data.gamma) > MAX_CAMBER).any():
-        raise InputError(
-            f"camber {math.degrees(float(np.abs(data.gamma).max())):.3g} deg: beyond 30 deg "
-            "the values look like degrees under a [rad] header", file=data.source,
-            column="gamma", row=_row(data, np.abs(data.gamma) > MAX_CAMBER, data.gamma))
+    _check_camber(data)
     p = data.pressure[np.isfinite(data.pressure)]
     if p_nom is not None and p.size:
         median = float(np.median(p))
@@ -112,6 +126,93 @@ def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> 
                 f"|Mz| is {arm.max():.3g} m times the load on this row, more than the tyre's "
                 f"radius {radius:g} m: the moments look like N mm under an [N m] header",
                 file=data.source, column="Mz", row=_row(data, arm > radius, arm))
+
+
+def _check_slip_columns(data: TyreData) -> None:
+    """Refuse a force whose slip does not vary (no slip column, or a constant one)."""
+    from .tyre_data import COLUMNS
+
+    for slip, forces, what in (("kappa", ("fx",), "slip-ratio"),
+                               ("alpha", ("fy", "mz"), "slip-angle")):
+        values = getattr(data, slip)
+        given = [f for f in forces if np.isfinite(getattr(data, f)).any()]
+        if not given or np.ptp(values) > 0:
+            continue
+        names = " and ".join(f[0].upper() + f[1:] for f in given)
+        why = (f"no {what} column" if slip in data.missing else "the column is constant")
+        hint = (f"columns not used: {', '.join(data.unused)}; a {what} column is named "
+                f"{', '.join(COLUMNS[slip][1])} (any case) with its unit in brackets"
+                if data.unused else f"measure a {what} sweep, or remove the {names} column")
+        raise InputError(
+            f"{names} given but {slip} is {float(values[0]):g} on every row ({why}): "
+            f"{names} cannot be fitted without a {what} that varies; {hint}",
+            file=data.source, column=slip)
+
+
+def _check_curves(data: TyreData) -> None:
+    """Refuse F_x or F_y with no trend on its slip (all zero, or noise only)."""
+    from ._fit_mf_stages import ALPHA_PURE, KAPPA_PURE
+
+    for name, force, slip, pure in (
+            ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE),
+            ("Fy", data.fy, np.tan(data.alpha), np.abs(data.kappa) <= KAPPA_PURE)):
+        use = np.isfinite(force) & (slip != 0)
+        if (use & pure).sum() >= 5:
+            use &= pure
+        if use.sum() < 3 or np.ptp(slip[use]) == 0:
+            continue
+        ratio = force[use] / data.fz[use]
+        r = 0.0 if np.ptp(ratio) == 0 else float(np.corrcoef(ratio, slip[use])[0, 1])
+        if abs(r) < MIN_CURVE_CORRELATION:
+            top = float(np.max(np.abs(ratio)))
+            raise InputError(
+                f"{name} carries no curve to fit: on {int(use.sum())} rows its ratio to Fz "
+                f"(at most {top:.3g}) has no trend on the slip (correlation {r:.2f}; a "
+                f"tyre's force follows its slip with at least {MIN_CURVE_CORRELATION:g}): "
+                "zero or noise only; check the column, or remove it", file=data.source,
+                column=name, row=_row(data, use, np.where(use, force, 0.0)))
+
+
+def _check_fy_sign(data: TyreData) -> None:
+    """Refuse F_y with the sign of alpha on most rows beyond 2 degrees (not ISO-W)."""
+    from ._fit_mf_stages import KAPPA_PURE
+
+    use = (np.isfinite(data.fy) & (np.abs(data.alpha) > _SIGN_ANGLE)
+           & (np.abs(data.kappa) <= KAPPA_PURE) & (data.fy != 0))
+    if use.sum() < 5:
+        use = np.isfinite(data.fy) & (np.abs(data.alpha) > _SIGN_ANGLE) & (data.fy != 0)
+    same = int((np.sign(data.fy[use]) == np.sign(data.alpha[use])).sum())
+    if use.sum() < 5 or 2 * same <= use.sum():
+        return
+    head = (f"Fy has the sign of the slip angle on {same} of {int(use.sum())} rows with "
+            "|alpha| > 2 deg")
+    if data.sign_convention == "sae":
+        parts: list[str | Argument] = [
+            head + " after the conversion from SAE axes (Fy and alpha negated); in ISO-W "
+            "axes a positive slip angle gives a negative Fy: the data look like ISO-W axes "
+            "already (give ", Argument("sign_convention", "iso"), ", the default) or a "
+            "column of flipped sign (negate Fy, or alpha)"]
+    else:
+        parts = [head + ", taken in ISO-W axes where a positive slip angle gives a negative "
+                 "Fy: the data look like SAE axes (give ", Argument("sign_convention", "sae"),
+                 ") or a column of flipped sign (negate Fy, or alpha)"]
+    raise InputError(parts, file=data.source, column="Fy",
+                     row=_row(data, use, np.where(use, data.fy, 0.0)))
+
+
+def _check_camber(data: TyreData) -> None:
+    """Camber beyond 30 deg: degrees under a [rad] header, or (in another unit) impossible."""
+    wide = np.abs(data.gamma) > MAX_CAMBER
+    if not wide.any():
+        return
+    top = math.degrees(float(np.abs(data.gamma).max()))
+    if data.units.get("gamma", "rad").strip().lower() in ("rad", "radian", "radians"):
+        why = "beyond 30 deg the values look like degrees under a [rad] header"
+    else:
+        why = ("no tyre runs beyond 30 deg (at 90 deg the wheel lies on its side): check the "
+               "camber column")
+    raise InputError(f"camber {top:.3g} deg is impossible: {why}", file=data.source,
+                     column="gamma", row=_row(data, wide, data.gamma))
 
 
 def _row(data: TyreData, mask: np.ndarray, values: np.ndarray) -> int:

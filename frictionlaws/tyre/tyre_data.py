@@ -7,11 +7,13 @@ One row per measured point, units in the headers as elsewhere in frictionlaws::
 ``Fz`` is required, and at least one of ``Fx`` / ``Fy`` / ``Mz`` (the aligning
 moment); ``kappa``, ``alpha``,
 ``gamma`` default to 0 and ``pressure`` to "not measured".  Angles need an
-explicit unit (``deg`` or ``rad``).  Aliases: ``FZ``/``load``, ``SL``/``slip_ratio``,
+explicit unit (``deg`` or ``rad``).  Aliases (any case): ``FZ``/``load``,
+``SR``/``SL``/``slip_ratio``,
 ``SA``/``slip_angle``, ``IA``/``camber``/``inclination``, ``P``/``p``.  The file is read
 by the one table reader (:func:`frictionlaws.io.read_table`) and converted with
 :func:`frictionlaws.units.to_si`.  Columns of other names are not used, and the notes
-say which.
+say which.  A pressure column with blank cells among values is refused (a blank would
+be taken as the nominal pressure).
 
 Sign conventions
 ----------------
@@ -33,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import Argument, InputError
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS"]
 
@@ -42,7 +44,7 @@ SIGN_CONVENTIONS = ("iso", "sae")
 #: Column -> (quantity kind for :func:`frictionlaws.units.to_si`, accepted names).
 COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
     "fz": ("F_N", ("fz", "load", "normal_load")),
-    "kappa": ("s", ("kappa", "sl", "slip_ratio", "longitudinal_slip")),
+    "kappa": ("s", ("kappa", "sr", "sl", "slip_ratio", "longitudinal_slip")),
     "alpha": ("angle", ("alpha", "sa", "slip_angle")),
     "gamma": ("angle", ("gamma", "ia", "camber", "inclination")),
     "pressure": ("p", ("pressure", "p", "inflation_pressure")),
@@ -58,6 +60,9 @@ class TyreData:
 
     ``pressure`` is NaN where not measured; ``fx`` / ``fy`` / ``mz`` are NaN where
     the row has no such force or moment.  ``rows`` are the source rows (for messages).
+    ``unused`` are the file's headers not read, ``missing`` the slip, camber and pressure
+    columns the file lacks (defaulted), ``sign_convention`` the axes the file was read in,
+    ``units`` the unit each column's header gives.
     """
 
     fz: np.ndarray
@@ -71,6 +76,10 @@ class TyreData:
     source: str = "<memory>"
     notes: list[str] = field(default_factory=list)
     mz: np.ndarray = field(default_factory=lambda: np.array([]))
+    unused: tuple[str, ...] = ()
+    missing: tuple[str, ...] = ()
+    sign_convention: str = "iso"
+    units: dict[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.mz.size == 0:
@@ -80,7 +89,8 @@ class TyreData:
         """The rows where ``keep`` is true (source rows and notes kept)."""
         return TyreData(self.fz[keep], self.kappa[keep], self.alpha[keep], self.gamma[keep],
                         self.pressure[keep], self.fx[keep], self.fy[keep], self.rows[keep],
-                        self.source, list(self.notes), self.mz[keep])
+                        self.source, list(self.notes), self.mz[keep], self.unused,
+                        self.missing, self.sign_convention, dict(self.units))
 
     def __len__(self) -> int:
         return int(self.fz.size)
@@ -106,8 +116,7 @@ class TyreData:
                                  column=name, row=int(self.rows[np.argmax(bad)]))
         if np.any(self.fz <= 0):
             i = int(np.argmax(self.fz <= 0))
-            raise InputError("the load Fz must be positive in ISO axes (SAE data have "
-                             "negative loads: use the SAE sign convention)", file=self.source,
+            raise InputError(_negative_load(self.sign_convention), file=self.source,
                              column="Fz", row=int(self.rows[i]))
         if np.any(np.abs(self.alpha) >= np.pi / 2):
             i = int(np.argmax(np.abs(self.alpha) >= np.pi / 2))
@@ -126,6 +135,30 @@ class TyreData:
         if not (np.isfinite(self.fx).any() or np.isfinite(self.fy).any()
                 or np.isfinite(self.mz).any()):
             raise InputError("no Fx, Fy or Mz value: nothing to fit", file=self.source)
+
+
+def _negative_load(convention: str) -> list[str | Argument]:
+    """Why a load is not positive in ISO-W axes, and the sign convention to give."""
+    if convention == "sae":
+        return ["the load Fz must be positive in ISO-W axes; SAE loads are negative and are "
+                "negated, so these loads are positive in the file: the data look like ISO-W "
+                "axes already (give ", Argument("sign_convention", "iso"), ", the default)"]
+    return ["the load Fz must be positive in ISO-W axes (SAE data have negative loads: "
+            "give ", Argument("sign_convention", "sae"), ")"]
+
+
+def _check_blank_pressures(pressure: np.ndarray, table: Any, j: int) -> None:
+    """Refuse blank cells in a pressure column that has values on other rows."""
+    blank = np.flatnonzero(np.isnan(pressure))
+    if blank.size == 0 or blank.size == pressure.size:
+        return
+    rows = [int(table.rows[i]) for i in blank]
+    shown = ", ".join(map(str, rows[:10])) + (f" and {len(rows) - 10} more" if len(rows) > 10
+                                              else "")
+    raise InputError(f"{len(rows)} blank pressure cell(s) (rows {shown}) in a column with "
+                     "values on the other rows: a blank would be taken as the template's "
+                     "nominal pressure; fill in the pressure or remove those rows",
+                     file=table.source, column=table.headers[j], row=rows[0])
 
 
 def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
@@ -212,6 +245,8 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     arrays = {col: (_convert(table, *found[col], col) if col in found
                     else np.full(n, np.nan if col in ("pressure", "fx", "fy", "mz") else 0.0))
               for col in COLUMNS}
+    if "pressure" in found:
+        _check_blank_pressures(arrays["pressure"], table, found["pressure"][0])
     notes = list(table.notes)
     used = {j for j, _ in found.values()}
     unused = [h for j, h in enumerate(table.headers) if j not in used]
@@ -232,6 +267,7 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
                                  for c in missing))
     data = TyreData(arrays["fz"], arrays["kappa"], arrays["alpha"], arrays["gamma"],
                     arrays["pressure"], arrays["fx"], arrays["fy"], np.asarray(table.rows),
-                    source, notes, arrays["mz"])
+                    source, notes, arrays["mz"], tuple(unused), tuple(missing),
+                    sign_convention, {c: u or "" for c, (_, u) in found.items()})
     data.validate()
     return data
