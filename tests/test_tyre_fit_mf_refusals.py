@@ -145,3 +145,23 @@ def test_a_camber_of_90_degrees_is_impossible_not_a_unit(capsys, tmp_path: Path)
     data.gamma[3] = math.pi / 2
     err = _refused(capsys, _write(tmp_path / "c90.csv", data), tmp_path / "o.tir")
     assert "camber 90 deg is impossible" in err and "[rad] header" not in err
+
+
+def test_without_mz_or_combined_rows_the_report_says_so_and_shows_no_combined_errors(
+        ) -> None:
+    import warnings
+
+    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.tyre import fit_mf
+
+    data = rig_data(TRUTH, n=7, loads=(0.7, 1.3), pressures=(1.0,), cambers_deg=(0.0,),
+                    combined=False)
+    data.mz[:] = np.nan
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        res = fit_mf(data, fittyp=61)
+    assert set(res.errors) == {"x", "y"}
+    report = res.report()
+    assert "combined slip" not in report
+    assert "aligning-moment coefficients (Q*Z*, SSZ*): the template's (no Mz column)" in report
+    assert not any(k.startswith(("QBZ", "QDZ", "SSZ")) for k in res.values)

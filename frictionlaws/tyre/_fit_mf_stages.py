@@ -410,7 +410,8 @@ def later_stages(mf: FittingModel, data: Any, version: str, template: dict[str, 
         group = [k for k in out.values if group_of(k) == name and out.stderr.get(k) != math.inf]
         joint = fit_stage(mf, group, d, predict, template, set(_ALL), bounds)
         out.take(joint)
-        out.errors[f"{name}_all"] = _errors(predict, mf, d)
+        if ((np.abs(d.alpha) > ALPHA_PURE) & (np.abs(d.kappa) > KAPPA_PURE)).any():
+            out.errors[f"{name}_all"] = _errors(predict, mf, d)
     _aligning_stages(mf, data, version, template, p_nom, bounds, out)
     return out
 
@@ -420,6 +421,8 @@ def _aligning_stages(mf: FittingModel, data: Any, version: str, template: dict[s
                      out: LaterStages) -> None:
     """M_z0 on the rows near pure side slip, then M_z0 and SSZ together on every row."""
     if not np.isfinite(data.mz).any():
+        out.notes.append("aligning-moment coefficients (Q*Z*, SSZ*): the template's (no Mz "
+                         "column)")
         return
     mz0_names, s_names = mz_names(version)
     if not any(group_of(k) == "y" for k in out.values):
