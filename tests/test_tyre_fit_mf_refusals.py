@@ -80,7 +80,7 @@ def test_the_usual_rig_names_are_read(tmp_path: Path) -> None:
 @given(share=st.floats(0.0, 1.0), seed=st.integers(0, 2**16))
 def test_fy_with_the_sign_of_alpha_on_most_rows_is_refused(share: float, seed: int) -> None:
     data = _small()
-    wide = np.flatnonzero(np.abs(data.alpha) > math.radians(2.0))
+    wide = np.flatnonzero((np.abs(data.alpha) > math.radians(2.0)) & (np.abs(data.kappa) <= 0.01))
     flip = np.random.default_rng(seed).permutation(wide)[:round(share * wide.size)]
     data.fy[flip] = -data.fy[flip]
     if share > 0.8:
@@ -138,6 +138,14 @@ def test_forces_without_a_curve_are_refused_as_such(force: str, kind: str) -> No
     with pytest.raises(InputError, match="carries no curve") as err:
         check_plausible(data, TRUTH.fnomin)
     assert "percent" not in str(err.value) and err.value.column == force.capitalize()
+
+
+def test_a_braking_sweep_to_lock_up_has_a_curve() -> None:
+    kappa = -np.linspace(0.005, 1.0, 200)  # rises to mu 1.2 at 0.1, falls to 0.75 of it
+    mu = np.where(-kappa < 0.1, -12.0 * kappa, 1.2 - 0.5 * (-kappa - 0.1))
+    noise = 1 + 0.01 * np.random.default_rng(0).standard_normal(kappa.size)
+    check_plausible(TyreData.from_arrays(fz=4000.0, kappa=kappa, fx=-mu * 4000.0 * noise),
+                    4000.0)
 
 
 def test_a_camber_of_90_degrees_is_impossible_not_a_unit(capsys, tmp_path: Path) -> None:

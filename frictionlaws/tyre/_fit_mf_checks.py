@@ -8,7 +8,8 @@ refuses such data, naming the file, column, row and the unit the values look lik
 First the data must be able to determine what is asked of them: a force whose slip is
 constant (``Fx`` without a varying slip ratio, ``Fy`` or ``Mz`` without a varying slip
 angle) is refused, naming the columns not read; so is a force with no trend on its slip
-(all zero, or noise: a correlation with the slip below :data:`MIN_CURVE_CORRELATION`),
+(all zero, or noise: a correlation with the slip below :data:`MIN_CURVE_CORRELATION`
+on the rows near pure slip within 0.1 of zero slip, where a tyre's force rises with it),
 and an ``Fy`` with the sign of the slip angle on most rows beyond 2 degrees (in ISO-W axes
 a positive slip angle gives a negative ``Fy``: the data are in SAE axes, or a column's
 sign is flipped).
@@ -157,8 +158,9 @@ def _check_curves(data: TyreData) -> None:
             ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE),
             ("Fy", data.fy, np.tan(data.alpha), np.abs(data.kappa) <= KAPPA_PURE)):
         use = np.isfinite(force) & (slip != 0)
-        if (use & pure).sum() >= 5:
-            use &= pure
+        for narrower in (pure, np.abs(slip) <= 1.01 * _SMALL_SLIP):  # where F rises with slip
+            if (use & narrower).sum() >= 5 and np.ptp(slip[use & narrower]) > 0:
+                use &= narrower
         if use.sum() < 3 or np.ptp(slip[use]) == 0:
             continue
         ratio = force[use] / data.fz[use]
