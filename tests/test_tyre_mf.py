@@ -489,7 +489,7 @@ def test_pressure_outside_the_file_range_warns_and_nonsense_peaks_are_refused(tm
         return path
 
     with pytest.warns(ExtrapolationWarning, match="pressure"):
-        MagicFormula.from_file(variant("INFLPRES", "260")).summary()
+        MagicFormula.from_file(variant("INFLPRES", "1.2e5")).summary()
     with pytest.raises(InputError, match="is not a friction coefficient"):
         MagicFormula.from_file(variant("INFLPRES", "2600000")).summary()
     assert main(["tyre", "mf", str(variant("INFLPRES", "2600000"))]) == 2

@@ -176,15 +176,34 @@ def _tir_with(changes: dict[str, str]) -> str:
 
 
 @pytest.mark.parametrize("key,value,section,message", [
-    ("FNOMIN", "-6752", "VERTICAL", r"FNOMIN = -6752 is impossible: expected > 0 N"),
+    ("FNOMIN", "-6752", "VERTICAL", r"FNOMIN = -6752 is impossible: expected 10 <= value"),
+    ("FNOMIN", "6.752", "VERTICAL", r"FNOMIN = 6\.752 is impossible: expected 10 <= value <= "
+                                    r"2e\+06 N .*; check \[UNITS\]"),
+    ("FNOMIN", "3e6", "VERTICAL", r"FNOMIN = 3e\+06 is impossible"),
+    ("UNLOADED_RADIUS", "394.3", "DIMENSION", r"UNLOADED_RADIUS = 394\.3 is impossible: "
+                                              r"expected 0\.05 <= value <= 3 m .*\[UNITS\]"),
+    ("WIDTH", "255", "DIMENSION", r"WIDTH = 255 is impossible"),
+    ("INFLPRES", "2.6", "OPERATING_CONDITIONS", r"INFLPRES = 2\.6 is impossible: expected "
+                                                r"1e\+04 <= value <= 5e\+06 Pa"),
+    ("NOMPRES", "2.6e8", "OPERATING_CONDITIONS", r"NOMPRES = 2\.6e\+08 is impossible"),
+    ("PRESMAX", "4", "INFLATION_PRESSURE_RANGE", r"PRESMAX = 4 is impossible"),
+    ("VERTICAL_STIFFNESS", "314.9", "VERTICAL", r"VERTICAL_STIFFNESS = 314\.9 is impossible"),
+    ("LONGVL", "1000", "MODEL", r"LONGVL = 1000 is impossible: expected 0\.01 <= value <= 200"),
+    ("PKX1", "1e12", "LONGITUDINAL_COEFFICIENTS", r"PKX1 = 1e\+12 is impossible: expected "
+                                                  r"0 < value <= 1e\+06"),
+    ("PKX1", "1e300", "LONGITUDINAL_COEFFICIENTS", r"PKX1 = 1e\+300 is impossible"),
+    ("PDX2", "-2e6", "LONGITUDINAL_COEFFICIENTS", r"PDX2 = -2e\+06 is impossible: expected "
+                                                  r"-1e\+06 <= value <= 1e\+06"),
+    ("LKX", "5e6", "SCALING_COEFFICIENTS", r"LKX = 5e\+06 is impossible"),
     ("FNOMIN", "0", "VERTICAL", r"FNOMIN = 0 is impossible"),
     ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = 'nan' is text, expected a number"),
     ("ALPMAX", "15", "SLIP_ANGLE_RANGE", r"ALPMAX = 15 is impossible: expected -1\.571 <= "
                                          r"value <= 1\.571 rad .*; degrees where the file's "
                                          "angles are radians\\?"),
     ("CAMMIN", "-30", "INCLINATION_ANGLE_RANGE", r"CAMMIN = -30 is impossible"),
-    ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = -1\.5 is impossible: expected > 0"),
-    ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected >= 0"),
+    ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS",
+     r"PCX1 = -1\.5 is impossible: expected 0 < value"),
+    ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected 0 <= value"),
     ("PKY2", "0", "LATERAL_COEFFICIENTS", r"PKY2 = 0 is impossible"),
     ("PDY1", "1e6", "LATERAL_COEFFICIENTS", r"PDY1 = 1e\+06 is impossible"),
     ("VERTICAL_STIFFNESS", "-3e5", "VERTICAL", r"VERTICAL_STIFFNESS = -300000 is impossible"),
@@ -211,13 +230,14 @@ def test_a_hostile_json_file_and_units_are_judged_in_si(tmp_path: Path) -> None:
     with pytest.raises(InputError, match=r"neg\.json.*\[VERTICAL\] FNOMIN = -1 is impossible"):
         MagicFormula.from_file(tmp_path / "neg.json")
     # FNOMIN in kN is judged in newtons (and passes); a NaN in JSON is not even read
-    kn = _tir_with({"FORCE": "'kN'", "FNOMIN": "6.752"})
-    mf = MagicFormula.from_property_file(read_tir(kn, source="kn.tir"))
+    in_kn = {"FORCE": "'kN'", "FNOMIN": "6.752", "VERTICAL_STIFFNESS": "314.93",
+             "INFLPRES": "260", "NOMPRES": "260", "PRESMIN": "200", "PRESMAX": "400"}
+    mf = MagicFormula.from_property_file(read_tir(_tir_with(in_kn), source="kn.tir"))
     assert mf.fnomin == pytest.approx(6752.0)
     with pytest.raises(InputError, match=r"\[VERTICAL\] FNOMIN = -6\.752 \(-6752 SI\) is "
                                          "impossible"):
-        MagicFormula.from_property_file(read_tir(_tir_with({"FORCE": "'kN'",
-                                                            "FNOMIN": "-6.752"}), source="x"))
+        MagicFormula.from_property_file(read_tir(_tir_with({**in_kn, "FNOMIN": "-6.752"}),
+                                                 source="x"))
     with pytest.raises(InputError, match="NaN is not a JSON number"):
         read_property_file(_write(tmp_path / "nan.json",
                                   FILES[1].read_text().replace('"PCX1": 1.5482',
@@ -379,3 +399,27 @@ def test_a_file_in_millimetres_and_kilonewtons_gives_the_si_files_outputs(
         if name in a:
             np.testing.assert_allclose(b[name], a[name], rtol=1e-9, atol=1e-12, err_msg=name)
     assert scaled >= 20
+
+
+def test_real_tyres_lie_within_the_bounds_and_fit_mf_searches_inside_them() -> None:
+    """A truck tyre (35 kN, 800 kPa, R0 0.55 m) and a bicycle tyre (400 N, 6 bar) are
+    allowed; every fit range lies inside the bounds (with the magnitude limit), and the
+    magnitude limit does not bound fit-mf's search where no fit range is declared."""
+    from frictionlaws.tyre.mf_coefficients import LARGEST_COEFFICIENT, fit_bounds
+
+    truck = {"FNOMIN": 35e3, "NOMPRES": 8e5, "INFLPRES": 8.5e5, "UNLOADED_RADIUS": 0.55,
+             "WIDTH": 0.315, "VERTICAL_STIFFNESS": 1.2e6, "LONGVL": 16.7, "PRESMAX": 9e5}
+    bicycle = {"FNOMIN": 400.0, "NOMPRES": 6e5, "UNLOADED_RADIUS": 0.34, "WIDTH": 0.025,
+               "VERTICAL_STIFFNESS": 1.5e5}
+    for tyre in (truck, bicycle):
+        for name, value in tyre.items():
+            assert DECLARED[name].allows(value), (name, value)
+    for c in DECLARED.values():
+        if c.fit is not None:
+            low, high = c.limits()
+            assert low <= c.fit[0] < c.fit[1] <= high, c.name
+    for name, (lo, _) in fit_bounds().items():
+        assert DECLARED[name].limits()[0] <= lo, name
+    assert "PDX2" not in fit_bounds()
+    assert DECLARED["PDX2"].allows(LARGEST_COEFFICIENT)
+    assert not DECLARED["PDX2"].allows(-1.01 * LARGEST_COEFFICIENT)

@@ -62,6 +62,26 @@ V62 = ("6.2",)
 POSITIVE = (0.0, INF)
 #: A slip or camber angle a property file can state [rad]: within +-90 degrees.
 ANGLE = (-math.pi / 2, math.pi / 2)
+#: The largest magnitude of a coefficient or scaling factor.  The published files stay
+#: below 2e3 (RBY4 = 1747 of the MF 6.x examples); 1e6 leaves room for any real fit while
+#: refusing a value such as 1e12 that only overflows the equations.
+LARGEST_COEFFICIENT = 1e6
+#: The hint of a value beyond what a real tyre has: a unit the file does not state.
+UNITS_HINT = "; check [UNITS]: a value in kN, mm, bar or kPa where the file states N, m or Pa?"
+#: Real tyres, from a bicycle or a caster wheel to a mining truck's: free radius 0.05 m ..
+#: 3 m (the largest earthmover tyres are about 4 m across), section width 0.01 m .. 2 m.
+RADIUS = (0.05, 3.0)
+WIDTH = (0.01, 2.0)
+#: Nominal loads 10 N .. 2e6 N: a toy or caster wheel to the 100 t a mining-truck tyre carries.
+LOAD = (10.0, 2e6)
+#: Inflation pressures 1e4 .. 5e6 Pa: 0.1 bar (a soft tractor or sand tyre) to 50 bar
+#: (aircraft and track-bicycle tyres reach about 15 to 20 bar); 2.6 (bar written as Pa)
+#: and 2.6e8 (kPa read as Pa) are refused.
+PRESSURE = (1e4, 5e6)
+#: Vertical stiffness 1e3 .. 1e8 N/m: a soft bicycle tyre to an earthmover's.
+STIFFNESS = (1e3, 1e8)
+#: Reference speed 0.01 .. 200 m/s: a slow rig to an aircraft tyre at take-off.
+SPEED = (0.01, 200.0)
 
 
 @dataclass(frozen=True)
@@ -96,6 +116,11 @@ class Coefficient:
         A property file must give it (the pure-slip core and FNOMIN).
     alias_of : str, optional
         Another spelling of that name, read as it.
+    largest : float
+        The largest magnitude allowed besides the bounds (coefficients and scaling
+        factors: :data:`LARGEST_COEFFICIENT`); not part of the fit range.
+    hint : str
+        Added to a refusal (what the likely mistake is).
     """
 
     name: str
@@ -110,16 +135,23 @@ class Coefficient:
     evaluated: bool = True
     required: bool = False
     alias_of: str | None = None
+    largest: float = INF
+    hint: str = ""
+
+    def limits(self) -> tuple[float, float]:
+        """The bounds narrowed to :attr:`largest` in magnitude."""
+        lo, hi = self.bounds
+        return max(lo, -self.largest), min(hi, self.largest)
 
     def allows(self, value: float) -> bool:
         """True when ``value`` is finite and within the bounds."""
-        lo, hi = self.bounds
+        lo, hi = self.limits()
         return (math.isfinite(value) and value <= hi
                 and (value > lo if self.open_low else value >= lo))
 
     def expected(self) -> str:
         """The bounds as text: ``> 0``, ``>= 0``, ``-1.571 .. 1.571``, ``any``."""
-        lo, hi = self.bounds
+        lo, hi = self.limits()
         low = f"{'>' if self.open_low else '>='} {lo:g}"
         if math.isinf(hi):
             return "any finite value" if math.isinf(lo) else low
@@ -131,7 +163,7 @@ class Coefficient:
         """The message refusing the value ``shown`` (as text) of this entry."""
         unit = f" {self.unit}" if self.unit else ""
         hint = ("; degrees where the file's angles are radians?" if self.bounds == ANGLE
-                else "")
+                else self.hint)
         return (f"[{section or self.section}] {self.name} = {shown} is impossible: expected "
                 f"{self.expected()}{unit} ({self.meaning}){hint}")
 
@@ -153,6 +185,8 @@ def _group(section: str, versions: tuple[str, ...], unit: str, default: float | 
     for entry in entries:
         name, meaning = entry[0], entry[1]
         kw: dict = {"versions": versions, "unit": unit, "default": default, **common}
+        if section in COEFFICIENT_SECTIONS:
+            kw.setdefault("largest", LARGEST_COEFFICIENT)
         if len(entry) > 2:
             kw.update(entry[2])
         out.append(Coefficient(name=name, section=section, meaning=meaning, **kw))
@@ -400,16 +434,23 @@ _TURNSLIP = _group("TURNSLIP_COEFFICIENTS", V6, "", 0.0, (
 ), evaluated=False)
 
 _NOT_NEEDED = None  # no default: refused by the outputs that need it
+
+
+def _real(bounds: tuple[float, float]) -> dict[str, object]:
+    """The overrides of an entry bounded by what real tyres have (refused with a units hint)."""
+    return {"bounds": bounds, "hint": UNITS_HINT}
+
+
 _FILE = [
     *_group("MODEL", ALL, "m/s", _NOT_NEEDED, (
         ("LONGVL", "reference speed V0 of the measurements (the speed of the "
-                   "steady-state curves)", _POS),
+                   "steady-state curves)", _real(SPEED)),
         ("VXLOW", "speed below which the slips are not formed (low speeds refused here)",
          {"bounds": POSITIVE, "default": 0.0}),
     )),
     *_group("DIMENSION", ALL, "m", _NOT_NEEDED, (
-        ("UNLOADED_RADIUS", "free (unloaded) tyre radius R0", _POS),
-        ("WIDTH", "nominal section width", _POS),
+        ("UNLOADED_RADIUS", "free (unloaded) tyre radius R0", _real(RADIUS)),
+        ("WIDTH", "nominal section width", _real(WIDTH)),
         ("ASPECT_RATIO", "nominal aspect ratio (section height / width)",
          {**_POS, "unit": ""}),
         ("RIM_RADIUS", "rim radius (bottoming of the contact patch)",
@@ -418,10 +459,10 @@ _FILE = [
                                                    "evaluated": False}),
     )),
     *_group("VERTICAL", ALL, "", 0.0, (
-        ("FNOMIN", "nominal (rated) load F_z0", {**_POS, **_REQ, "unit": "N",
+        ("FNOMIN", "nominal (rated) load F_z0", {**_real(LOAD), **_REQ, "unit": "N",
                                                  "default": None}),
         ("VERTICAL_STIFFNESS", "vertical stiffness C_z0 at the nominal pressure",
-         {**_POS, "unit": "N/m", "default": None}),
+         {**_real(STIFFNESS), "unit": "N/m", "default": None}),
         ("BREFF", "effective rolling radius: low-load stiffness factor"),
         ("DREFF", "effective rolling radius: peak value factor"),
         ("FREFF", "effective rolling radius: high-load stiffness factor"),
@@ -474,12 +515,13 @@ _FILE = [
         ("Q_RB2", "contact width: linear deflection term"),
     )),
     *_group("OPERATING_CONDITIONS", V6, "Pa", _NOT_NEEDED, (
-        ("INFLPRES", "inflation pressure evaluated by default", _POS),
-        ("NOMPRES", "nominal pressure p_i0 the pressure terms refer to (dpi = 0)", _POS),
+        ("INFLPRES", "inflation pressure evaluated by default", _real(PRESSURE)),
+        ("NOMPRES", "nominal pressure p_i0 the pressure terms refer to (dpi = 0)",
+         _real(PRESSURE)),
     )),
     *_group("TIRE_CONDITIONS", V52, "Pa", _NOT_NEEDED, (
-        ("IP", "inflation pressure (PAC2002 files)", _POS),
-        ("IP_NOM", "nominal pressure (PAC2002 files)", _POS),
+        ("IP", "inflation pressure (PAC2002 files)", _real(PRESSURE)),
+        ("IP_NOM", "nominal pressure (PAC2002 files)", _real(PRESSURE)),
     )),
     *_group("VERTICAL_FORCE_RANGE", ALL, "N", _NOT_NEEDED, (
         ("FZMIN", "smallest load of the fitted data", {"bounds": POSITIVE}),
@@ -498,8 +540,8 @@ _FILE = [
         ("CAMMAX", "largest camber of the fitted data", {"bounds": ANGLE}),
     )),
     *_group("INFLATION_PRESSURE_RANGE", V6, "Pa", _NOT_NEEDED, (
-        ("PRESMIN", "smallest pressure of the fitted data", {"bounds": POSITIVE}),
-        ("PRESMAX", "largest pressure of the fitted data", _POS),
+        ("PRESMIN", "smallest pressure of the fitted data", _real(PRESSURE)),
+        ("PRESMAX", "largest pressure of the fitted data", _real(PRESSURE)),
     )),
 ]
 
