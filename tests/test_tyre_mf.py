@@ -368,7 +368,7 @@ def test_property_file_errors(tmp_path):
         read_property_file(tmp_path / "missing.tir")
     bad = tmp_path / "bad.json"
     bad.write_text('{"A": {"X": [1, 2]}}')
-    with pytest.raises(InputError, match="expected a number or a string"):
+    with pytest.raises(InputError, match="expected a number, a string or null"):
         read_property_file(bad)
     bad.write_text('{"A": {"X": 1,}')
     with pytest.raises(InputError, match="not valid JSON") as info:

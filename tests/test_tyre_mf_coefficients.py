@@ -423,3 +423,35 @@ def test_real_tyres_lie_within_the_bounds_and_fit_mf_searches_inside_them() -> N
     assert "PDX2" not in fit_bounds()
     assert DECLARED["PDX2"].allows(LARGEST_COEFFICIENT)
     assert not DECLARED["PDX2"].allows(-1.01 * LARGEST_COEFFICIENT)
+
+
+@pytest.mark.parametrize("quoted", ["'61'", '"61"'])
+def test_a_quoted_fittyp_is_the_same_version(tmp_path: Path, quoted: str) -> None:
+    plain = MagicFormula.from_property_file(read_tir(_tir_with({}), source="plain.tir"))
+    tir = MagicFormula.from_property_file(read_tir(_tir_with({"FITTYP": quoted}),
+                                                   source="q.tir"))
+    doc = json.loads(FILES[1].read_text())
+    doc["MODEL"]["FITTYP"] = "61"
+    js = MagicFormula.from_file(_write(tmp_path / "q.json", json.dumps(doc)))
+    assert plain.version == tir.version == js.version == "6.1"
+    assert tir.fy(0.05, 0.0, 4000.0) == plain.fy(0.05, 0.0, 4000.0)
+    with pytest.raises(InputError, match="FITTYP = 6x: not a Magic Formula version"):
+        MagicFormula.from_property_file(read_tir(_tir_with({"FITTYP": "'6x'"}), source="x"))
+
+
+def test_json_null_is_an_absent_entry(tmp_path: Path) -> None:
+    """null takes the declared default (what the NaN refusal advises); a required
+    coefficient given as null is missing, by section and name."""
+    doc = json.loads(FILES[1].read_text())
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX3"] = None
+    mf = MagicFormula.from_file(_write(tmp_path / "opt.json", json.dumps(doc)))
+    assert "PDX3" not in mf.coefficients
+    assert mf.fx(0.1, 0.0, 4000.0, gamma=0.05) != MagicFormula.from_file(FILES[1]).fx(
+        0.1, 0.0, 4000.0, gamma=0.05)
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX1"] = None
+    with pytest.raises(InputError, match=r"req\.json.*\[LONGITUDINAL_COEFFICIENTS\] PDX1 is "
+                                         "missing"):
+        MagicFormula.from_file(_write(tmp_path / "req.json", json.dumps(doc)))
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX1"] = [1.0]
+    with pytest.raises(InputError, match="PDX1: expected a number, a string or null"):
+        MagicFormula.from_file(_write(tmp_path / "list.json", json.dumps(doc)))
