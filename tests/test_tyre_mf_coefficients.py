@@ -455,3 +455,19 @@ def test_json_null_is_an_absent_entry(tmp_path: Path) -> None:
     doc["LONGITUDINAL_COEFFICIENTS"]["PDX1"] = [1.0]
     with pytest.raises(InputError, match="PDX1: expected a number, a string or null"):
         MagicFormula.from_file(_write(tmp_path / "list.json", json.dumps(doc)))
+
+
+def test_a_positive_pky1_is_read_with_a_note_on_the_sign_of_the_lateral_force(
+        tmp_path: Path) -> None:
+    iso = MagicFormula.from_file(FILES[1])
+    assert iso.coefficients["PKY1"] < 0 and not any("PKY1" in n for n in iso.notes)
+    doc = json.loads(FILES[1].read_text())
+    doc["LATERAL_COEFFICIENTS"]["PKY1"] = 22.0
+    mf = MagicFormula.from_file(_write(tmp_path / "pos.json", json.dumps(doc)))
+    sign_notes = [n for n in mf.notes if "PKY1 = 22" in n]
+    assert len(sign_notes) == 1 and "ISO convention" in sign_notes[0]
+    assert "sign of the slip angle" in sign_notes[0]
+    assert mf.fy(0.0, 0.05, 4000.0) > 0 > iso.fy(0.0, 0.05, 4000.0)
+    coefficients = {**iso.coefficients, "PKY1": 22.0}
+    direct = MagicFormula(coefficients, fnomin=iso.fnomin, version=iso.version)
+    assert any("PKY1 = 22" in n for n in direct.notes)

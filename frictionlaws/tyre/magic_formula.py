@@ -249,7 +249,8 @@ class MagicFormula:
         check_values(self.structure, source)
         self.name = name
         self.source = source
-        self.notes = list(notes or []) + read
+        self.notes = list(notes or [])
+        self.notes += [n for n in read if n not in self.notes]
         c = self._c
         if c("LFZO", 1.0) <= 0:
             raise InputError("LFZO must be positive", file=source)

@@ -121,6 +121,9 @@ class Coefficient:
         factors: :data:`LARGEST_COEFFICIENT`); not part of the fit range.
     hint : str
         Added to a refusal (what the likely mistake is).
+    sign : tuple of (int, str), optional
+        The sign the ISO convention of property files gives it (-1 or 1) and what the
+        other sign does: a value of the other sign is read, with that note.
     """
 
     name: str
@@ -137,6 +140,7 @@ class Coefficient:
     alias_of: str | None = None
     largest: float = INF
     hint: str = ""
+    sign: tuple[int, str] | None = None
 
     def limits(self) -> tuple[float, float]:
         """The bounds narrowed to :attr:`largest` in magnitude."""
@@ -288,7 +292,9 @@ _LATERAL = _group("LATERAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PEY4", "change of that asymmetry with camber", {"unit": "1/rad"}),
     ("PEY5", "change of E_y with camber squared" + _ALSO_52, {"versions": V6, "unit": "1/rad**2"}),
     ("PKY1", "largest cornering stiffness K_y / F'z0 (negative in ISO files, where a "
-             "positive slip angle gives a negative force)", {**_REQ, "unit": "1/rad"}),
+             "positive slip angle gives a negative force)",
+     {**_REQ, "unit": "1/rad", "sign": (-1, "the lateral force will have the sign of the "
+                                            "slip angle (the opposite of ISO files)")}),
     ("PKY2", "load scale of K_y, / F'z0 (the load of largest K_y when PKY4 = 2)",
      {**_REQ, **_POS, "fit": (0.05, 50.0)}),
     ("PKY3", "change of K_y with the camber's magnitude", {"unit": "1/rad"}),
@@ -643,7 +649,7 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
         if c.required and c.section in COEFFICIENT_SECTIONS and c.name not in out:
             raise InputError(f"[{c.section}] {c.name} is missing ({c.meaning}): not a Magic "
                              "Formula property file?", file=source)
-    notes = []
+    notes = [n for n in (outside_fit(k, v) for k, v in out.items()) if n]
     for k, c in DECLARED.items():
         if c.alias_of is None or k not in out:
             continue
@@ -656,8 +662,13 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
 
 
 def outside_fit(name: str, value: float) -> str | None:
-    """A note when ``value`` lies outside the declared fit range of ``name`` (else None)."""
+    """A note when ``value`` lies outside the declared fit range of ``name``, or has the
+    other sign than the ISO convention gives it (else None)."""
     c = DECLARED.get(name)
+    if c is not None and c.sign is not None and value * c.sign[0] < 0:
+        want = "< 0" if c.sign[0] < 0 else "> 0"
+        return (f"[{c.section}] {name} = {value:g}: the ISO convention of property files "
+                f"has {name} {want}; {c.sign[1]}")
     if c is None or c.fit is None or c.fit[0] <= value <= c.fit[1]:
         return None
     return (f"[{c.section}] {name} = {value:g} lies outside {c.fit[0]:g} .. {c.fit[1]:g}, "
