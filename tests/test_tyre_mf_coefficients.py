@@ -471,3 +471,44 @@ def test_a_positive_pky1_is_read_with_a_note_on_the_sign_of_the_lateral_force(
     coefficients = {**iso.coefficients, "PKY1": 22.0}
     direct = MagicFormula(coefficients, fnomin=iso.fnomin, version=iso.version)
     assert any("PKY1 = 22" in n for n in direct.notes)
+
+
+def _mf52_with_6x_terms(tmp_path: Path) -> Path:
+    text = (EXAMPLES / "MagicFormula52_Parameters.converted.tir").read_text()
+    text = text.replace("[LATERAL_COEFFICIENTS]\n",
+                        "[LATERAL_COEFFICIENTS]\nPKY6 = -0.9\nPPY1 = 0.5\n", 1)
+    text = text.replace("[LONGITUDINAL_COEFFICIENTS]\n",
+                        "[LONGITUDINAL_COEFFICIENTS]\nPPX1 = -0.5\n", 1)
+    return _write(tmp_path / "mf52x.tir", text)
+
+
+def test_a_pressure_without_a_nominal_pressure_is_never_silently_ignored(
+        tmp_path: Path) -> None:
+    """The MF 5.2 example has no nominal pressure: pressure= warns (it cannot change the
+    outputs), its pressure terms and its 6.x-only PKY6 are noted and listed as not used."""
+    from frictionlaws.tyre.mf_outputs import steady_state
+
+    path = _mf52_with_6x_terms(tmp_path)
+    mf = MagicFormula.from_file(path)
+    assert mf.nominal_pressure is None
+    assert any(n.startswith("PKY6: MF 6.x terms not used by the MF 5.2") for n in mf.notes)
+    assert any(n.startswith("PPX1, PPY1: pressure terms not used") for n in mf.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        plain = mf.fx(0.1, 0.0, 4000.0)  # no pressure given: nothing to warn of
+    for call in (lambda: mf.fx(0.1, 0.0, 4000.0, pressure=1e3),
+                 lambda: mf.fy(0.0, 0.05, 4000.0, pressure=5e6),
+                 lambda: steady_state(mf, 0.1, 0.0, 4000.0, pressure=2e5),
+                 lambda: MagicFormula.from_file(path, pressure=2e5)):
+        with pytest.warns(UserWarning, match="no nominal pressure .* the pressure given is "
+                                             "not used"):
+            call()
+    with pytest.warns(UserWarning):
+        assert mf.fx(0.1, 0.0, 4000.0, pressure=1e3) == plain
+    rows = {r["name"]: r for r in mf_coefficients.listing(mf.version, mf.coefficients, {})}
+    assert str(rows["PKY6"]["meaning"]).startswith("not used by MF 5.2")
+    assert not str(rows["PPX1"]["meaning"]).startswith("not used")  # read with a nominal p
+    with_nominal = MagicFormula(mf.coefficients, fnomin=mf.fnomin, version="5.2",
+                                pressure=2.2e5, nominal_pressure=2e5)
+    assert with_nominal.fx(0.1, 0.0, 4000.0) != plain  # PPX1 is read by MF 5.2 then
+    assert not any("pressure terms not used" in n for n in with_nominal.notes)

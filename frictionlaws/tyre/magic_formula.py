@@ -98,7 +98,9 @@ limited to <= 1 as the textbook requires.  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
 (PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no
-INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
+INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.  A file without
+a nominal pressure has no pressure terms: a ``pressure=`` given then warns (it cannot
+change the outputs), and the pressure terms it holds are noted as not used.
 """
 
 from __future__ import annotations
@@ -124,7 +126,7 @@ from ._mf_file import (
     version_of,
 )
 from ._mf_labelled import labelled
-from .mf_coefficients import check_values, checked_coefficients
+from .mf_coefficients import check_values, checked_coefficients, unused_terms
 from .mf_coefficients import default as declared_default
 from .tir import PropertyFile, read_property_file
 
@@ -250,7 +252,11 @@ class MagicFormula:
         self.name = name
         self.source = source
         self.notes = list(notes or [])
-        self.notes += [n for n in read if n not in self.notes]
+        self.notes += [n for n in read + unused_terms(version, self.coefficients,
+                                                       self.nominal_pressure is not None)
+                       if n not in self.notes]
+        if self.pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self._no_pressure_terms(), UserWarning, stacklevel=2)
         c = self._c
         if c("LFZO", 1.0) <= 0:
             raise InputError("LFZO must be positive", file=source)
@@ -352,9 +358,17 @@ class MagicFormula:
                    source=pf.path, notes=notes, structure=structure(pf), **options)
 
     # ------------------------------------------------------------- helpers
+    def _no_pressure_terms(self) -> str:
+        """Why a pressure does not change this model's outputs (the warning's text)."""
+        return (f"{self.name or 'Magic Formula'}: the property file has no nominal pressure "
+                "(NOMPRES / IP_NOM), so its pressure terms are not evaluated (dpi = 0): the "
+                "pressure given is not used")
+
     def _dpi(self, pressure: Any) -> Any:
         """Relative pressure increment dpi (a float, or an array for a pressure per row)."""
         p = self.pressure if pressure is None else np.asarray(pressure, dtype=float)
+        if pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self._no_pressure_terms(), UserWarning, stacklevel=4)
         if p is None or self.nominal_pressure is None:
             return 0.0
         if not (np.isfinite(p) & (np.asarray(p) > 0)).all():

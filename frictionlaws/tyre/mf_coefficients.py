@@ -37,7 +37,8 @@ from ..law import MU_MAX
 
 __all__ = ["Coefficient", "DECLARED", "SECTIONS", "COEFFICIENT_SECTIONS", "STRUCTURE_SECTIONS",
            "RANGE_SECTIONS", "default", "fit_bounds", "section_keys", "check_values",
-           "checked_coefficients", "outside_fit", "rows", "listing"]
+           "checked_coefficients", "outside_fit", "rows", "listing", "unused_terms",
+           "NOT_READ_BY_52", "PRESSURE_TERMS"]
 
 INF = math.inf
 #: Sections of coefficients (the names the evaluator's equations use).
@@ -661,6 +662,51 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
     return out, notes
 
 
+#: MF 6.x coefficients the MF 5.2 evaluation does not read: its camber stiffness is
+#: PHY3/PVY3's and its rolling resistance has no camber, load exponent or pressure terms.
+#: The other 6.x terms (pressure, M_x, the combined-slip camber terms) it reads, as
+#: MFeval does.
+NOT_READ_BY_52 = frozenset({"PKY6", "PKY7", "PPY5", "QSY5", "QSY6", "QSY7", "QSY8"})
+#: The coefficients of the inflation pressure, read only with a nominal pressure.
+PRESSURE_TERMS = frozenset(c.name for c in DECLARED.values()
+                           if c.section in COEFFICIENT_SECTIONS
+                           and (c.name.startswith(("PPX", "PPY", "PPZ", "PPMX"))
+                                or c.name == "QSY8"))
+
+
+def unused_terms(version: str, coefficients: Mapping[str, float], nominal_pressure: bool
+                 ) -> list[str]:
+    """Notes of the given coefficients a model of ``version`` does not use (else none).
+
+    Parameters
+    ----------
+    version : str
+        The MF version evaluated.
+    coefficients : mapping
+        Upper-case name -> value.
+    nominal_pressure : bool
+        Whether the model has a nominal pressure (without one the pressure terms vanish).
+
+    Returns
+    -------
+    list of str
+        The 6.x terms MF 5.2 does not read; the pressure terms without a nominal
+        pressure (only those not 0).
+    """
+    notes = []
+    if version == "5.2":
+        not_52 = sorted(NOT_READ_BY_52 & set(coefficients))
+        if not_52:
+            notes.append(f"{', '.join(not_52)}: MF 6.x terms not used by the MF 5.2 "
+                         "equations (kept; --coefficients lists them)")
+    pressure = sorted(k for k in PRESSURE_TERMS & set(coefficients)
+                      if coefficients[k] != 0 and k not in NOT_READ_BY_52 | {"QSY8"})
+    if pressure and not nominal_pressure:
+        notes.append(f"{', '.join(pressure)}: pressure terms not used, the file has no "
+                     "nominal pressure (NOMPRES / IP_NOM), so dpi = 0")
+    return notes
+
+
 def outside_fit(name: str, value: float) -> str | None:
     """A note when ``value`` lies outside the declared fit range of ``name``, or has the
     other sign than the ISO convention gives it (else None)."""
@@ -695,12 +741,26 @@ def listing(version: str, coefficients: Mapping[str, float], structure: Mapping[
     """
     given = {**structure, **coefficients}
     out: list[dict[str, object]] = []
-    for c in rows(version):
+    listed = rows(version)
+    for c in listed:
         if c.section in RANGE_SECTIONS or c.alias_of or not c.evaluated:
             continue
         value = given.get(c.name, c.default)
         out.append({"name": c.name, "section": c.section, "value": value,
                     "given": c.name in given, "unit": c.unit, "meaning": c.meaning})
+    used = {c.name for c in listed if c.evaluated}
+    for c in rows():
+        if c.name not in coefficients or c.name in used or c.alias_of:
+            continue
+        meaning = c.meaning  # a 6.x term MF 5.2 reads too, as MFeval does
+        if not (version == "5.2" and c.evaluated and c.section in COEFFICIENT_SECTIONS
+                and c.name not in NOT_READ_BY_52):
+            why = f"not used by MF {version}" if version not in c.versions else "not used"
+            meaning = f"{why}: {c.meaning}"
+        out.append({"name": c.name, "section": c.section, "value": coefficients[c.name],
+                    "given": True, "unit": c.unit, "meaning": meaning})
+    order = {sec: i for i, sec in enumerate(SECTIONS)}
+    out.sort(key=lambda row: order[str(row["section"])])
     for name in sorted(set(coefficients) - set(DECLARED)):
         out.append({"name": name, "section": "", "value": coefficients[name], "given": True,
                     "unit": "", "meaning": "unknown: kept, not used"})
