@@ -512,3 +512,26 @@ def test_a_pressure_without_a_nominal_pressure_is_never_silently_ignored(
                                 pressure=2.2e5, nominal_pressure=2e5)
     assert with_nominal.fx(0.1, 0.0, 4000.0) != plain  # PPX1 is read by MF 5.2 then
     assert not any("pressure terms not used" in n for n in with_nominal.notes)
+
+
+def test_a_peak_friction_that_is_none_blames_the_input_outside_the_files_range() -> None:
+    """A load beyond FZMAX, a camber in degrees, a pressure outside the file's range: each
+    refusal names that input, not the others."""
+    from frictionlaws.cli import main
+    from frictionlaws.tyre.mf_outputs import steady_state
+
+    mf = MagicFormula.from_file("MagicFormula61")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        with pytest.raises(InputError, match=r"the load F_z = 100000 N lies outside the "
+                                             r"file's FZMIN\.\.FZMAX") as err:
+            mf.fx(0.1, 0.0, 1e5)
+        assert "inflation pressure against" not in str(err.value)
+        with pytest.raises(InputError, match=r"camber 3 rad \(171\.9 deg\) lies outside .*"
+                                             "degrees passed as radians") as err:
+            steady_state(mf, 0.0, 0.05, 4000.0, gamma=3.0)
+        assert "PD\\*" not in str(err.value) and "pressure" not in str(err.value).split(";")[1]
+        with pytest.raises(InputError, match="check the inflation pressure against the "
+                                             "file's range"):
+            mf.fx(0.1, 0.0, 4000.0, pressure=4.9e6)
+    assert main(["tyre", "mf", "MagicFormula61", "--loads", "100"]) == 2

@@ -416,22 +416,44 @@ class MagicFormula:
             self._warn_range("pressure", np.asarray(used, dtype=float))
         return fz, gamma, self._dpi(pressure)
 
-    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any) -> None:
+    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any, gamma: Any = 0.0) -> None:
         """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX)."""
         bad = ~((np.asarray(mu) > 0) & (np.asarray(mu) <= MU_MAX))
         if not np.any(bad):
             return
-        i = int(np.flatnonzero(np.broadcast_to(bad, np.shape(bad) or (1,)).ravel())[0])
+        shape = np.shape(mu) or (1,)
+        i = int(np.flatnonzero(np.broadcast_to(bad, shape).ravel())[0])
         mu_i = float(np.ravel(mu)[i] if np.ndim(mu) else mu)
-        fz_i = float(np.ravel(np.broadcast_to(fz, np.shape(mu) or (1,)))[i])
-        dpi_i = float(np.ravel(np.broadcast_to(dpi, np.shape(mu) or (1,)))[i])
+        fz_i, dpi_i, g_i = (float(np.ravel(np.broadcast_to(x, shape))[i])
+                            for x in (fz, dpi, gamma))
         p = self.nominal_pressure * (1 + dpi_i) if self.nominal_pressure else None
-        at = f"F_z = {fz_i:g} N" + (f", inflation {p / 1e6:.4g} MPa" if p else "")
+        at = (f"F_z = {fz_i:g} N" + (f", camber {g_i:g} rad" if g_i else "")
+              + (f", inflation {p / 1e6:.4g} MPa" if p else ""))
         raise InputError(
             f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
-            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); check the "
-            "inflation pressure against the file's range and the PD*/LMU* coefficients",
-            file=self.source)
+            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); "
+            + self._peak_cause(fz_i, g_i, p), file=self.source)
+
+    def _peak_cause(self, fz: float, gamma: float, pressure: float | None) -> str:
+        """The likely cause of a peak friction that is none: the input outside the file's
+        range (load, then camber, then pressure), else the coefficients."""
+        def outside(name: str, x: float) -> tuple[float, float] | None:
+            lim = self.limits.get(name)
+            return lim if lim is not None and not lim[0] <= x <= lim[1] else None
+
+        lim = outside("fz", fz)
+        if lim is not None:
+            return (f"the load F_z = {fz:g} N lies outside the file's FZMIN..FZMAX "
+                    f"{lim[0]:g}..{lim[1]:g} N: too far an extrapolation (check the load "
+                    "and its unit)")
+        lim = outside("gamma", gamma)
+        if lim is not None or abs(gamma) > 0.5:
+            shown = f" {lim[0]:g}..{lim[1]:g} rad" if lim is not None else ""
+            return (f"the camber {gamma:g} rad ({math.degrees(gamma):.4g} deg) lies outside "
+                    f"the file's range{shown}: degrees passed as radians?")
+        if pressure is not None and outside("pressure", pressure) is not None:
+            return "check the inflation pressure against the file's range"
+        return "check the PD*/LMU* coefficients and the inflation pressure"
 
     # ------------------------------------------------------ factors (x, y)
     def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
@@ -443,7 +465,7 @@ class MagicFormula:
             g = np.asarray(gamma) if self.equations == "mfeval" else self.gamma_star(gamma)
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
-        self._check_peak("mu_x", mu, fz, dpi)
+        self._check_peak("mu_x", mu, fz, dpi, gamma)
         D = mu * fz
         C = c("PCX1") * c("LCX")
         K = (fz * (c("PKX1") + c("PKX2") * dfz) * np.exp(c("PKX3") * dfz)
@@ -492,7 +514,7 @@ class MagicFormula:
             S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g * lkyc
             S_V = (fz * ((c("PVY1") + c("PVY2") * dfz) * c("LVY")
                          + (c("PVY3") + c("PVY4") * dfz) * g * lkyc) * self.lmuy_prime)
-        self._check_peak("mu_y", mu, fz, dpi)
+        self._check_peak("mu_y", mu, fz, dpi, gamma)
         D = mu * fz
         B = K / (C * D + EPS)
         return MFCoefficients(B, C, D, E_a, E_b, K, S_H, S_V, mu)
