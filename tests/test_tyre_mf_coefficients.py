@@ -337,7 +337,9 @@ def test_the_documentation_table_is_generated_from_every_declaration(tmp_path: P
     rows = re.findall(r"^   \* - ``([A-Z0-9_]+)``\n((?:     - .*\n){6})", page, re.M)
     assert sorted(name for name, _ in rows) == sorted(DECLARED)  # one row each, 7 cells
     cells = {name: [c[len("     - "):] for c in body.splitlines()] for name, body in rows}
-    assert cells["PCX1"][2:5] == ["required", "> 0", "0.3 .. 3"]
+    assert cells["PCX1"][2:5] == ["required", "0 .. 1e+06 (not the low end)", "0.3 .. 3"]
+    assert cells["PDX2"][3:5] == ["-1e+06 .. 1e+06", "–"]  # fit-mf: no bound declared
+    assert cells["FNOMIN"][3] == "10 .. 2e+06"
     assert cells["PKY4"][0] == "6.1, 6.2" and cells["PKY4"][2] == "2"
     assert cells["FNOMIN"][1] == "N" and cells["ALPMAX"][3] == "-1.571 .. 1.571"
     assert "not evaluated" in cells["PDXP1"][-1] and cells["LFZ0"][2] == "read as LFZO"
