@@ -122,6 +122,7 @@ from ._mf_file import (
     file_limits,
     file_pressures,
     packaged_example,
+    peak_cause,
     structure,
     version_of,
 )
@@ -432,28 +433,7 @@ class MagicFormula:
         raise InputError(
             f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
             f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); "
-            + self._peak_cause(fz_i, g_i, p), file=self.source)
-
-    def _peak_cause(self, fz: float, gamma: float, pressure: float | None) -> str:
-        """The likely cause of a peak friction that is none: the input outside the file's
-        range (load, then camber, then pressure), else the coefficients."""
-        def outside(name: str, x: float) -> tuple[float, float] | None:
-            lim = self.limits.get(name)
-            return lim if lim is not None and not lim[0] <= x <= lim[1] else None
-
-        lim = outside("fz", fz)
-        if lim is not None:
-            return (f"the load F_z = {fz:g} N lies outside the file's FZMIN..FZMAX "
-                    f"{lim[0]:g}..{lim[1]:g} N: too far an extrapolation (check the load "
-                    "and its unit)")
-        lim = outside("gamma", gamma)
-        if lim is not None or abs(gamma) > 0.5:
-            shown = f" {lim[0]:g}..{lim[1]:g} rad" if lim is not None else ""
-            return (f"the camber {gamma:g} rad ({math.degrees(gamma):.4g} deg) lies outside "
-                    f"the file's range{shown}: degrees passed as radians?")
-        if pressure is not None and outside("pressure", pressure) is not None:
-            return "check the inflation pressure against the file's range"
-        return "check the PD*/LMU* coefficients and the inflation pressure"
+            + peak_cause(self.limits, fz_i, g_i, p), file=self.source)
 
     # ------------------------------------------------------ factors (x, y)
     def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:

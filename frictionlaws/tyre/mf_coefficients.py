@@ -68,7 +68,8 @@ ANGLE = (-math.pi / 2, math.pi / 2)
 #: refusing a value such as 1e12 that only overflows the equations.
 LARGEST_COEFFICIENT = 1e6
 #: The hint of a value beyond what a real tyre has: a unit the file does not state.
-UNITS_HINT = "; check [UNITS]: a value in kN, mm, bar or kPa where the file states N, m or Pa?"
+UNITS_HINT = ("; check [UNITS]: is the value in the unit the file states (not kN, mm, bar or "
+              "kPa where it states N, m or Pa, nor the other way round)?")
 #: Real tyres, from a bicycle or a caster wheel to a mining truck's: free radius 0.05 m ..
 #: 3 m (the largest earthmover tyres are about 4 m across), section width 0.01 m .. 2 m.
 RADIUS = (0.05, 3.0)
