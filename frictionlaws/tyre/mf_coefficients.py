@@ -699,7 +699,7 @@ def unused_terms(version: str, coefficients: Mapping[str, float], nominal_pressu
         not_52 = sorted(NOT_READ_BY_52 & set(coefficients))
         if not_52:
             notes.append(f"{', '.join(not_52)}: MF 6.x terms not used by the MF 5.2 "
-                         "equations (kept; --coefficients lists them)")
+                         "equations (kept, listed as not used)")
     pressure = sorted(k for k in PRESSURE_TERMS & set(coefficients)
                       if coefficients[k] != 0 and k not in NOT_READ_BY_52 | {"QSY8"})
     if pressure and not nominal_pressure:
