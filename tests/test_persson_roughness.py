@@ -99,3 +99,15 @@ def test_fits_and_the_command_line_refuse_it(tmp_path, capsys):
     assert main(["fit", "--law", "persson", "--fix", "h_rms=0.1", str(path)]) == 2
     err = capsys.readouterr().err
     assert "h_rms = 0.1 m is outside its bounds" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("q1", [10.0, 628.0, float("nan")])
+def test_a_q1_not_above_q0_is_refused_naming_both(q1: float) -> None:
+    from frictionlaws.persson import asphalt_like, check_roughness
+
+    surface = asphalt_like()
+    assert q1 != q1 or q1 <= surface.q0
+    with pytest.raises(InputError, match=r"q1 = .* 1/m is not above the surface's roll-off "
+                                         r"q0 = 628\.3 1/m: expected q1 > q0"):
+        check_roughness(surface, q1)
+    assert check_roughness(surface, 1e6) > 0

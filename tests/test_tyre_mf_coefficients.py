@@ -176,15 +176,34 @@ def _tir_with(changes: dict[str, str]) -> str:
 
 
 @pytest.mark.parametrize("key,value,section,message", [
-    ("FNOMIN", "-6752", "VERTICAL", r"FNOMIN = -6752 is impossible: expected > 0 N"),
+    ("FNOMIN", "-6752", "VERTICAL", r"FNOMIN = -6752 is impossible: expected 10 <= value"),
+    ("FNOMIN", "6.752", "VERTICAL", r"FNOMIN = 6\.752 is impossible: expected 10 <= value <= "
+                                    r"2e\+06 N .*; check \[UNITS\]"),
+    ("FNOMIN", "3e6", "VERTICAL", r"FNOMIN = 3e\+06 is impossible"),
+    ("UNLOADED_RADIUS", "394.3", "DIMENSION", r"UNLOADED_RADIUS = 394\.3 is impossible: "
+                                              r"expected 0\.05 <= value <= 3 m .*\[UNITS\]"),
+    ("WIDTH", "255", "DIMENSION", r"WIDTH = 255 is impossible"),
+    ("INFLPRES", "2.6", "OPERATING_CONDITIONS", r"INFLPRES = 2\.6 is impossible: expected "
+                                                r"1e\+04 <= value <= 5e\+06 Pa"),
+    ("NOMPRES", "2.6e8", "OPERATING_CONDITIONS", r"NOMPRES = 2\.6e\+08 is impossible"),
+    ("PRESMAX", "4", "INFLATION_PRESSURE_RANGE", r"PRESMAX = 4 is impossible"),
+    ("VERTICAL_STIFFNESS", "314.9", "VERTICAL", r"VERTICAL_STIFFNESS = 314\.9 is impossible"),
+    ("LONGVL", "1000", "MODEL", r"LONGVL = 1000 is impossible: expected 0\.01 <= value <= 200"),
+    ("PKX1", "1e12", "LONGITUDINAL_COEFFICIENTS", r"PKX1 = 1e\+12 is impossible: expected "
+                                                  r"0 < value <= 1e\+06"),
+    ("PKX1", "1e300", "LONGITUDINAL_COEFFICIENTS", r"PKX1 = 1e\+300 is impossible"),
+    ("PDX2", "-2e6", "LONGITUDINAL_COEFFICIENTS", r"PDX2 = -2e\+06 is impossible: expected "
+                                                  r"-1e\+06 <= value <= 1e\+06"),
+    ("LKX", "5e6", "SCALING_COEFFICIENTS", r"LKX = 5e\+06 is impossible"),
     ("FNOMIN", "0", "VERTICAL", r"FNOMIN = 0 is impossible"),
     ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = 'nan' is text, expected a number"),
     ("ALPMAX", "15", "SLIP_ANGLE_RANGE", r"ALPMAX = 15 is impossible: expected -1\.571 <= "
                                          r"value <= 1\.571 rad .*; degrees where the file's "
                                          "angles are radians\\?"),
     ("CAMMIN", "-30", "INCLINATION_ANGLE_RANGE", r"CAMMIN = -30 is impossible"),
-    ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = -1\.5 is impossible: expected > 0"),
-    ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected >= 0"),
+    ("PCX1", "-1.5", "LONGITUDINAL_COEFFICIENTS",
+     r"PCX1 = -1\.5 is impossible: expected 0 < value"),
+    ("LKY", "-1", "SCALING_COEFFICIENTS", r"LKY = -1 is impossible: expected 0 <= value"),
     ("PKY2", "0", "LATERAL_COEFFICIENTS", r"PKY2 = 0 is impossible"),
     ("PDY1", "1e6", "LATERAL_COEFFICIENTS", r"PDY1 = 1e\+06 is impossible"),
     ("VERTICAL_STIFFNESS", "-3e5", "VERTICAL", r"VERTICAL_STIFFNESS = -300000 is impossible"),
@@ -211,13 +230,14 @@ def test_a_hostile_json_file_and_units_are_judged_in_si(tmp_path: Path) -> None:
     with pytest.raises(InputError, match=r"neg\.json.*\[VERTICAL\] FNOMIN = -1 is impossible"):
         MagicFormula.from_file(tmp_path / "neg.json")
     # FNOMIN in kN is judged in newtons (and passes); a NaN in JSON is not even read
-    kn = _tir_with({"FORCE": "'kN'", "FNOMIN": "6.752"})
-    mf = MagicFormula.from_property_file(read_tir(kn, source="kn.tir"))
+    in_kn = {"FORCE": "'kN'", "FNOMIN": "6.752", "VERTICAL_STIFFNESS": "314.93",
+             "INFLPRES": "260", "NOMPRES": "260", "PRESMIN": "200", "PRESMAX": "400"}
+    mf = MagicFormula.from_property_file(read_tir(_tir_with(in_kn), source="kn.tir"))
     assert mf.fnomin == pytest.approx(6752.0)
     with pytest.raises(InputError, match=r"\[VERTICAL\] FNOMIN = -6\.752 \(-6752 SI\) is "
                                          "impossible"):
-        MagicFormula.from_property_file(read_tir(_tir_with({"FORCE": "'kN'",
-                                                            "FNOMIN": "-6.752"}), source="x"))
+        MagicFormula.from_property_file(read_tir(_tir_with({**in_kn, "FNOMIN": "-6.752"}),
+                                                 source="x"))
     with pytest.raises(InputError, match="NaN is not a JSON number"):
         read_property_file(_write(tmp_path / "nan.json",
                                   FILES[1].read_text().replace('"PCX1": 1.5482',
@@ -317,7 +337,9 @@ def test_the_documentation_table_is_generated_from_every_declaration(tmp_path: P
     rows = re.findall(r"^   \* - ``([A-Z0-9_]+)``\n((?:     - .*\n){6})", page, re.M)
     assert sorted(name for name, _ in rows) == sorted(DECLARED)  # one row each, 7 cells
     cells = {name: [c[len("     - "):] for c in body.splitlines()] for name, body in rows}
-    assert cells["PCX1"][2:5] == ["required", "> 0", "0.3 .. 3"]
+    assert cells["PCX1"][2:5] == ["required", "0 .. 1e+06 (not the low end)", "0.3 .. 3"]
+    assert cells["PDX2"][3:5] == ["-1e+06 .. 1e+06", "–"]  # fit-mf: no bound declared
+    assert cells["FNOMIN"][3] == "10 .. 2e+06"
     assert cells["PKY4"][0] == "6.1, 6.2" and cells["PKY4"][2] == "2"
     assert cells["FNOMIN"][1] == "N" and cells["ALPMAX"][3] == "-1.571 .. 1.571"
     assert "not evaluated" in cells["PDXP1"][-1] and cells["LFZ0"][2] == "read as LFZO"
@@ -379,3 +401,139 @@ def test_a_file_in_millimetres_and_kilonewtons_gives_the_si_files_outputs(
         if name in a:
             np.testing.assert_allclose(b[name], a[name], rtol=1e-9, atol=1e-12, err_msg=name)
     assert scaled >= 20
+
+
+def test_real_tyres_lie_within_the_bounds_and_fit_mf_searches_inside_them() -> None:
+    """A truck tyre (35 kN, 800 kPa, R0 0.55 m) and a bicycle tyre (400 N, 6 bar) are
+    allowed; every fit range lies inside the bounds (with the magnitude limit), and the
+    magnitude limit does not bound fit-mf's search where no fit range is declared."""
+    from frictionlaws.tyre.mf_coefficients import LARGEST_COEFFICIENT, fit_bounds
+
+    truck = {"FNOMIN": 35e3, "NOMPRES": 8e5, "INFLPRES": 8.5e5, "UNLOADED_RADIUS": 0.55,
+             "WIDTH": 0.315, "VERTICAL_STIFFNESS": 1.2e6, "LONGVL": 16.7, "PRESMAX": 9e5}
+    bicycle = {"FNOMIN": 400.0, "NOMPRES": 6e5, "UNLOADED_RADIUS": 0.34, "WIDTH": 0.025,
+               "VERTICAL_STIFFNESS": 1.5e5}
+    for tyre in (truck, bicycle):
+        for name, value in tyre.items():
+            assert DECLARED[name].allows(value), (name, value)
+    for c in DECLARED.values():
+        if c.fit is not None:
+            low, high = c.limits()
+            assert low <= c.fit[0] < c.fit[1] <= high, c.name
+    for name, (lo, _) in fit_bounds().items():
+        assert DECLARED[name].limits()[0] <= lo, name
+    assert "PDX2" not in fit_bounds()
+    assert DECLARED["PDX2"].allows(LARGEST_COEFFICIENT)
+    assert not DECLARED["PDX2"].allows(-1.01 * LARGEST_COEFFICIENT)
+
+
+@pytest.mark.parametrize("quoted", ["'61'", '"61"'])
+def test_a_quoted_fittyp_is_the_same_version(tmp_path: Path, quoted: str) -> None:
+    plain = MagicFormula.from_property_file(read_tir(_tir_with({}), source="plain.tir"))
+    tir = MagicFormula.from_property_file(read_tir(_tir_with({"FITTYP": quoted}),
+                                                   source="q.tir"))
+    doc = json.loads(FILES[1].read_text())
+    doc["MODEL"]["FITTYP"] = "61"
+    js = MagicFormula.from_file(_write(tmp_path / "q.json", json.dumps(doc)))
+    assert plain.version == tir.version == js.version == "6.1"
+    assert tir.fy(0.05, 0.0, 4000.0) == plain.fy(0.05, 0.0, 4000.0)
+    with pytest.raises(InputError, match="FITTYP = 6x: not a Magic Formula version"):
+        MagicFormula.from_property_file(read_tir(_tir_with({"FITTYP": "'6x'"}), source="x"))
+
+
+def test_json_null_is_an_absent_entry(tmp_path: Path) -> None:
+    """null takes the declared default (what the NaN refusal advises); a required
+    coefficient given as null is missing, by section and name."""
+    doc = json.loads(FILES[1].read_text())
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX3"] = None
+    mf = MagicFormula.from_file(_write(tmp_path / "opt.json", json.dumps(doc)))
+    assert "PDX3" not in mf.coefficients
+    assert mf.fx(0.1, 0.0, 4000.0, gamma=0.05) != MagicFormula.from_file(FILES[1]).fx(
+        0.1, 0.0, 4000.0, gamma=0.05)
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX1"] = None
+    with pytest.raises(InputError, match=r"req\.json.*\[LONGITUDINAL_COEFFICIENTS\] PDX1 is "
+                                         "missing"):
+        MagicFormula.from_file(_write(tmp_path / "req.json", json.dumps(doc)))
+    doc["LONGITUDINAL_COEFFICIENTS"]["PDX1"] = [1.0]
+    with pytest.raises(InputError, match="PDX1: expected a number, a string or null"):
+        MagicFormula.from_file(_write(tmp_path / "list.json", json.dumps(doc)))
+
+
+def test_a_positive_pky1_is_read_with_a_note_on_the_sign_of_the_lateral_force(
+        tmp_path: Path) -> None:
+    iso = MagicFormula.from_file(FILES[1])
+    assert iso.coefficients["PKY1"] < 0 and not any("PKY1" in n for n in iso.notes)
+    doc = json.loads(FILES[1].read_text())
+    doc["LATERAL_COEFFICIENTS"]["PKY1"] = 22.0
+    mf = MagicFormula.from_file(_write(tmp_path / "pos.json", json.dumps(doc)))
+    sign_notes = [n for n in mf.notes if "PKY1 = 22" in n]
+    assert len(sign_notes) == 1 and "ISO convention" in sign_notes[0]
+    assert "sign of the slip angle" in sign_notes[0]
+    assert mf.fy(0.0, 0.05, 4000.0) > 0 > iso.fy(0.0, 0.05, 4000.0)
+    coefficients = {**iso.coefficients, "PKY1": 22.0}
+    direct = MagicFormula(coefficients, fnomin=iso.fnomin, version=iso.version)
+    assert any("PKY1 = 22" in n for n in direct.notes)
+
+
+def _mf52_with_6x_terms(tmp_path: Path) -> Path:
+    text = (EXAMPLES / "MagicFormula52_Parameters.converted.tir").read_text()
+    text = text.replace("[LATERAL_COEFFICIENTS]\n",
+                        "[LATERAL_COEFFICIENTS]\nPKY6 = -0.9\nPPY1 = 0.5\n", 1)
+    text = text.replace("[LONGITUDINAL_COEFFICIENTS]\n",
+                        "[LONGITUDINAL_COEFFICIENTS]\nPPX1 = -0.5\n", 1)
+    return _write(tmp_path / "mf52x.tir", text)
+
+
+def test_a_pressure_without_a_nominal_pressure_is_never_silently_ignored(
+        tmp_path: Path) -> None:
+    """The MF 5.2 example has no nominal pressure: pressure= warns (it cannot change the
+    outputs), its pressure terms and its 6.x-only PKY6 are noted and listed as not used."""
+    from frictionlaws.tyre.mf_outputs import steady_state
+
+    path = _mf52_with_6x_terms(tmp_path)
+    mf = MagicFormula.from_file(path)
+    assert mf.nominal_pressure is None
+    assert any(n.startswith("PKY6: MF 6.x terms not used by the MF 5.2") for n in mf.notes)
+    assert any(n.startswith("PPX1, PPY1: pressure terms not used") for n in mf.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        plain = mf.fx(0.1, 0.0, 4000.0)  # no pressure given: nothing to warn of
+    for call in (lambda: mf.fx(0.1, 0.0, 4000.0, pressure=1e3),
+                 lambda: mf.fy(0.0, 0.05, 4000.0, pressure=5e6),
+                 lambda: steady_state(mf, 0.1, 0.0, 4000.0, pressure=2e5),
+                 lambda: MagicFormula.from_file(path, pressure=2e5)):
+        with pytest.warns(UserWarning, match="no nominal pressure .* the pressure given is "
+                                             "not used"):
+            call()
+    with pytest.warns(UserWarning):
+        assert mf.fx(0.1, 0.0, 4000.0, pressure=1e3) == plain
+    rows = {r["name"]: r for r in mf_coefficients.listing(mf.version, mf.coefficients, {})}
+    assert str(rows["PKY6"]["meaning"]).startswith("not used by MF 5.2")
+    assert not str(rows["PPX1"]["meaning"]).startswith("not used")  # read with a nominal p
+    with_nominal = MagicFormula(mf.coefficients, fnomin=mf.fnomin, version="5.2",
+                                pressure=2.2e5, nominal_pressure=2e5)
+    assert with_nominal.fx(0.1, 0.0, 4000.0) != plain  # PPX1 is read by MF 5.2 then
+    assert not any("pressure terms not used" in n for n in with_nominal.notes)
+
+
+def test_a_peak_friction_that_is_none_blames_the_input_outside_the_files_range() -> None:
+    """A load beyond FZMAX, a camber in degrees, a pressure outside the file's range: each
+    refusal names that input, not the others."""
+    from frictionlaws.cli import main
+    from frictionlaws.tyre.mf_outputs import steady_state
+
+    mf = MagicFormula.from_file("MagicFormula61")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        with pytest.raises(InputError, match=r"the load F_z = 100000 N lies outside the "
+                                             r"file's FZMIN\.\.FZMAX") as err:
+            mf.fx(0.1, 0.0, 1e5)
+        assert "inflation pressure against" not in str(err.value)
+        with pytest.raises(InputError, match=r"camber 3 rad \(171\.9 deg\) lies outside .*"
+                                             "degrees passed as radians") as err:
+            steady_state(mf, 0.0, 0.05, 4000.0, gamma=3.0)
+        assert "PD\\*" not in str(err.value) and "pressure" not in str(err.value).split(";")[1]
+        with pytest.raises(InputError, match="check the inflation pressure against the "
+                                             "file's range"):
+            mf.fx(0.1, 0.0, 4000.0, pressure=4.9e6)
+    assert main(["tyre", "mf", "MagicFormula61", "--loads", "100"]) == 2

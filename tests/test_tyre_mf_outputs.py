@@ -195,7 +195,7 @@ def test_a_radius_or_width_that_is_not_positive_is_refused(key: str, value: floa
     tir = tmp_path / "odd.tir"
     tir.write_text("\n".join(lines) + "\n")
     with pytest.raises(InputError, match=rf"odd.tir', row \d+: \[DIMENSION\] {key} = "
-                       r".* is impossible: expected > 0 m"):
+                       r".* is impossible: expected 0\.0\d <= value <= \d m"):
         MagicFormula.from_file(tir)
     good = MagicFormula.from_file(src / "MagicFormula61_Parameters.json")
     with pytest.raises(InputError, match=rf"\[DIMENSION\] {key} = .* is impossible"):

@@ -53,8 +53,10 @@ def _row(c: object) -> list[str]:
         dflt = "none"
     else:
         dflt = f"{c.default:g}"
-    bounds = _range(*c.bounds, c.open_low)
-    fit = f"{c.fit[0]:g} .. {c.fit[1]:g}" if c.fit else ("bounds" if bounds != "–" else "–")
+    bounds = _range(*c.limits(), c.open_low)
+    searched = _range(*c.bounds, c.open_low)  # fit-mf: without the magnitude limit
+    fit = (f"{c.fit[0]:g} .. {c.fit[1]:g}" if c.fit
+           else ("bounds" if searched == bounds else searched))
     meaning = c.meaning if c.evaluated else f"{c.meaning} [not evaluated]"
     return [f"``{c.name}``", ", ".join(c.versions), _cell(c.unit.replace("**2", "²") or "1"),
             dflt, bounds, fit if c.section.endswith("COEFFICIENTS") else "–", _cell(meaning)]
@@ -90,8 +92,11 @@ def mf_coefficients_page() -> str:
              "SI ``[UNITS]`` states it (coefficients of the camber angle are per radian). "
              "**Default**: the value the evaluator takes when the file lacks the entry "
              "(*required*: the file is refused without it; *none*: the outputs that need it "
-             "are refused). **Bounds**: the physically possible values; a file outside them "
-             "is refused with its section, name and line. **Fit range**: what "
+             "are refused). **Bounds**: the physically possible values (every coefficient and "
+             "scaling factor within ±1e6; radius, width, nominal load, pressures, vertical "
+             "stiffness and reference speed within what real tyres have, from a bicycle's to "
+             "a mining truck's); a file outside them is refused with its section, name and "
+             "line. **Fit range**: what "
              "``frictionlaws tyre fit-mf`` searches (*bounds*: the bounds); a file value "
              "outside it is noted when read. ``frictionlaws tyre mf FILE --coefficients`` "
              "lists a file's values beside the same declarations.", ""]

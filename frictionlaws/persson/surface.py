@@ -193,8 +193,14 @@ def check_roughness(surface: Any, q1: float) -> float:
     Raises
     ------
     InputError
-        The rms slope exceeds :data:`SLOPE_MAX` (or is not finite).
+        ``q1`` is not above the surface's ``q0`` (no roughness between them), or the
+        rms slope exceeds :data:`SLOPE_MAX` (or is not finite).
     """
+    q0 = float(surface.q0)
+    if not float(q1) > q0:  # also a NaN
+        raise InputError(f"Persson: q1 = {float(q1):.4g} 1/m is not above the surface's "
+                         f"roll-off q0 = {q0:.4g} 1/m: expected q1 > q0 (the largest "
+                         "wavenumber of the roughness, e.g. 1e6 1/m for road surfaces)")
     slope = float(surface.rms_slope(q1))
     where = (f"q0 = {surface.q0:.4g} to q1 = {q1:.4g} 1/m, rms height {surface.rms(q1):.3g} m")
     if not slope <= SLOPE_MAX:

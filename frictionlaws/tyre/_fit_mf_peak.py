@@ -58,7 +58,7 @@ class FittingModel(MagicFormula):
         #: The peak friction of the last evaluation [-], one value per point.
         self.peak_mu: np.ndarray = np.array([])
 
-    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any) -> None:
+    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any, gamma: Any = 0.0) -> None:
         self.peak_mu = np.broadcast_to(np.asarray(mu, dtype=float), np.shape(fz)).copy()
 
 

@@ -7,19 +7,22 @@ ranges in SI, and where the packaged example files are.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from ..errors import InputError
 from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 
-__all__ = ["version_of", "file_pressures", "file_limits", "EXAMPLES", "packaged_example",
-           "STRUCTURE_SECTIONS", "structure", "file_coefficients"]
+__all__ = ["version_of", "file_pressures", "file_limits", "peak_cause", "EXAMPLES",
+           "packaged_example", "STRUCTURE_SECTIONS", "structure", "file_coefficients"]
 
 
 def version_of(pf: PropertyFile) -> tuple[str, str]:
     """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
     fittyp = pf.get("MODEL", "FITTYP")
+    if isinstance(fittyp, str) and fittyp.strip().isdigit():
+        fittyp = float(fittyp)  # quoted ('61' or "61"): the same version number
     fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
     if fittyp is not None:
         known = {61: "6.1", 62: "6.2", 5: "5.2", 6: "5.2", 21: "5.2"}
@@ -62,6 +65,30 @@ def file_pressures(pf: PropertyFile, notes: list[str]) -> tuple[float | None, fl
         notes.append("no inflation pressure (INFLPRES / IP) in the file: the nominal "
                      "pressure is used (dpi = 0); pass pressure= to evaluate at another")
     return p_i, p_nom
+
+
+def peak_cause(limits: dict[str, tuple[float, float]], fz: float, gamma: float,
+               pressure: float | None) -> str:
+    """The likely cause of a peak friction that is none: the input outside the file's
+    validity range (:func:`file_limits`: load, then camber, then pressure), else the
+    coefficients."""
+    def outside(name: str, x: float) -> tuple[float, float] | None:
+        lim = limits.get(name)
+        return lim if lim is not None and not lim[0] <= x <= lim[1] else None
+
+    lim = outside("fz", fz)
+    if lim is not None:
+        return (f"the load F_z = {fz:g} N lies outside the file's FZMIN..FZMAX "
+                f"{lim[0]:g}..{lim[1]:g} N: too far an extrapolation (check the load "
+                "and its unit)")
+    lim = outside("gamma", gamma)
+    if lim is not None or abs(gamma) > 0.5:
+        shown = f" {lim[0]:g}..{lim[1]:g} rad" if lim is not None else ""
+        return (f"the camber {gamma:g} rad ({math.degrees(gamma):.4g} deg) lies outside "
+                f"the file's range{shown}: degrees passed as radians?")
+    if pressure is not None and outside("pressure", pressure) is not None:
+        return "check the inflation pressure against the file's range"
+    return "check the PD*/LMU* coefficients and the inflation pressure"
 
 
 #: Validity ranges of a property file: name, section, MIN key, MAX key, and whether the

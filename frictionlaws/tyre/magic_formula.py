@@ -98,7 +98,9 @@ limited to <= 1 as the textbook requires.  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
 (PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no
-INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.
+INFLPRES is evaluated at the nominal pressure (dpi = 0), with a note.  A file without
+a nominal pressure has no pressure terms: a ``pressure=`` given then warns (it cannot
+change the outputs), and the pressure terms it holds are noted as not used.
 """
 
 from __future__ import annotations
@@ -120,11 +122,12 @@ from ._mf_file import (
     file_limits,
     file_pressures,
     packaged_example,
+    peak_cause,
     structure,
     version_of,
 )
 from ._mf_labelled import labelled
-from .mf_coefficients import check_values, checked_coefficients
+from .mf_coefficients import check_values, checked_coefficients, unused_terms
 from .mf_coefficients import default as declared_default
 from .tir import PropertyFile, read_property_file
 
@@ -249,7 +252,12 @@ class MagicFormula:
         check_values(self.structure, source)
         self.name = name
         self.source = source
-        self.notes = list(notes or []) + read
+        self.notes = list(notes or [])
+        self.notes += [n for n in read + unused_terms(version, self.coefficients,
+                                                       self.nominal_pressure is not None)
+                       if n not in self.notes]
+        if self.pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self._no_pressure_terms(), UserWarning, stacklevel=2)
         c = self._c
         if c("LFZO", 1.0) <= 0:
             raise InputError("LFZO must be positive", file=source)
@@ -351,9 +359,17 @@ class MagicFormula:
                    source=pf.path, notes=notes, structure=structure(pf), **options)
 
     # ------------------------------------------------------------- helpers
+    def _no_pressure_terms(self) -> str:
+        """Why a pressure does not change this model's outputs (the warning's text)."""
+        return (f"{self.name or 'Magic Formula'}: the property file has no nominal pressure "
+                "(NOMPRES / IP_NOM), so its pressure terms are not evaluated (dpi = 0): the "
+                "pressure given is not used")
+
     def _dpi(self, pressure: Any) -> Any:
         """Relative pressure increment dpi (a float, or an array for a pressure per row)."""
         p = self.pressure if pressure is None else np.asarray(pressure, dtype=float)
+        if pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self._no_pressure_terms(), UserWarning, stacklevel=4)
         if p is None or self.nominal_pressure is None:
             return 0.0
         if not (np.isfinite(p) & (np.asarray(p) > 0)).all():
@@ -401,22 +417,23 @@ class MagicFormula:
             self._warn_range("pressure", np.asarray(used, dtype=float))
         return fz, gamma, self._dpi(pressure)
 
-    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any) -> None:
+    def _check_peak(self, name: str, mu: Any, fz: Any, dpi: Any, gamma: Any = 0.0) -> None:
         """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX)."""
         bad = ~((np.asarray(mu) > 0) & (np.asarray(mu) <= MU_MAX))
         if not np.any(bad):
             return
-        i = int(np.flatnonzero(np.broadcast_to(bad, np.shape(bad) or (1,)).ravel())[0])
+        shape = np.shape(mu) or (1,)
+        i = int(np.flatnonzero(np.broadcast_to(bad, shape).ravel())[0])
         mu_i = float(np.ravel(mu)[i] if np.ndim(mu) else mu)
-        fz_i = float(np.ravel(np.broadcast_to(fz, np.shape(mu) or (1,)))[i])
-        dpi_i = float(np.ravel(np.broadcast_to(dpi, np.shape(mu) or (1,)))[i])
+        fz_i, dpi_i, g_i = (float(np.ravel(np.broadcast_to(x, shape))[i])
+                            for x in (fz, dpi, gamma))
         p = self.nominal_pressure * (1 + dpi_i) if self.nominal_pressure else None
-        at = f"F_z = {fz_i:g} N" + (f", inflation {p / 1e6:.4g} MPa" if p else "")
+        at = (f"F_z = {fz_i:g} N" + (f", camber {g_i:g} rad" if g_i else "")
+              + (f", inflation {p / 1e6:.4g} MPa" if p else ""))
         raise InputError(
             f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
-            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); check the "
-            "inflation pressure against the file's range and the PD*/LMU* coefficients",
-            file=self.source)
+            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); "
+            + peak_cause(self.limits, fz_i, g_i, p), file=self.source)
 
     # ------------------------------------------------------ factors (x, y)
     def _long(self, fz: Any, gamma: Any, dpi: Any) -> MFCoefficients:
@@ -428,7 +445,7 @@ class MagicFormula:
             g = np.asarray(gamma) if self.equations == "mfeval" else self.gamma_star(gamma)
         mu = ((c("PDX1") + c("PDX2") * dfz) * (1 + c("PPX3") * dpi + c("PPX4") * dpi**2)
               * (1 - c("PDX3") * g**2) * self.lmux)
-        self._check_peak("mu_x", mu, fz, dpi)
+        self._check_peak("mu_x", mu, fz, dpi, gamma)
         D = mu * fz
         C = c("PCX1") * c("LCX")
         K = (fz * (c("PKX1") + c("PKX2") * dfz) * np.exp(c("PKX3") * dfz)
@@ -477,7 +494,7 @@ class MagicFormula:
             S_H = (c("PHY1") + c("PHY2") * dfz) * c("LHY") + c("PHY3") * g * lkyc
             S_V = (fz * ((c("PVY1") + c("PVY2") * dfz) * c("LVY")
                          + (c("PVY3") + c("PVY4") * dfz) * g * lkyc) * self.lmuy_prime)
-        self._check_peak("mu_y", mu, fz, dpi)
+        self._check_peak("mu_y", mu, fz, dpi, gamma)
         D = mu * fz
         B = K / (C * D + EPS)
         return MFCoefficients(B, C, D, E_a, E_b, K, S_H, S_V, mu)

@@ -37,7 +37,8 @@ from ..law import MU_MAX
 
 __all__ = ["Coefficient", "DECLARED", "SECTIONS", "COEFFICIENT_SECTIONS", "STRUCTURE_SECTIONS",
            "RANGE_SECTIONS", "default", "fit_bounds", "section_keys", "check_values",
-           "checked_coefficients", "outside_fit", "rows", "listing"]
+           "checked_coefficients", "outside_fit", "rows", "listing", "unused_terms",
+           "NOT_READ_BY_52", "PRESSURE_TERMS"]
 
 INF = math.inf
 #: Sections of coefficients (the names the evaluator's equations use).
@@ -62,6 +63,27 @@ V62 = ("6.2",)
 POSITIVE = (0.0, INF)
 #: A slip or camber angle a property file can state [rad]: within +-90 degrees.
 ANGLE = (-math.pi / 2, math.pi / 2)
+#: The largest magnitude of a coefficient or scaling factor.  The published files stay
+#: below 2e3 (RBY4 = 1747 of the MF 6.x examples); 1e6 leaves room for any real fit while
+#: refusing a value such as 1e12 that only overflows the equations.
+LARGEST_COEFFICIENT = 1e6
+#: The hint of a value beyond what a real tyre has: a unit the file does not state.
+UNITS_HINT = ("; check [UNITS]: is the value in the unit the file states (not kN, mm, bar or "
+              "kPa where it states N, m or Pa, nor the other way round)?")
+#: Real tyres, from a bicycle or a caster wheel to a mining truck's: free radius 0.05 m ..
+#: 3 m (the largest earthmover tyres are about 4 m across), section width 0.01 m .. 2 m.
+RADIUS = (0.05, 3.0)
+WIDTH = (0.01, 2.0)
+#: Nominal loads 10 N .. 2e6 N: a toy or caster wheel to the 100 t a mining-truck tyre carries.
+LOAD = (10.0, 2e6)
+#: Inflation pressures 1e4 .. 5e6 Pa: 0.1 bar (a soft tractor or sand tyre) to 50 bar
+#: (aircraft and track-bicycle tyres reach about 15 to 20 bar); 2.6 (bar written as Pa)
+#: and 2.6e8 (kPa read as Pa) are refused.
+PRESSURE = (1e4, 5e6)
+#: Vertical stiffness 1e3 .. 1e8 N/m: a soft bicycle tyre to an earthmover's.
+STIFFNESS = (1e3, 1e8)
+#: Reference speed 0.01 .. 200 m/s: a slow rig to an aircraft tyre at take-off.
+SPEED = (0.01, 200.0)
 
 
 @dataclass(frozen=True)
@@ -96,6 +118,14 @@ class Coefficient:
         A property file must give it (the pure-slip core and FNOMIN).
     alias_of : str, optional
         Another spelling of that name, read as it.
+    largest : float
+        The largest magnitude allowed besides the bounds (coefficients and scaling
+        factors: :data:`LARGEST_COEFFICIENT`); not part of the fit range.
+    hint : str
+        Added to a refusal (what the likely mistake is).
+    sign : tuple of (int, str), optional
+        The sign the ISO convention of property files gives it (-1 or 1) and what the
+        other sign does: a value of the other sign is read, with that note.
     """
 
     name: str
@@ -110,16 +140,24 @@ class Coefficient:
     evaluated: bool = True
     required: bool = False
     alias_of: str | None = None
+    largest: float = INF
+    hint: str = ""
+    sign: tuple[int, str] | None = None
+
+    def limits(self) -> tuple[float, float]:
+        """The bounds narrowed to :attr:`largest` in magnitude."""
+        lo, hi = self.bounds
+        return max(lo, -self.largest), min(hi, self.largest)
 
     def allows(self, value: float) -> bool:
         """True when ``value`` is finite and within the bounds."""
-        lo, hi = self.bounds
+        lo, hi = self.limits()
         return (math.isfinite(value) and value <= hi
                 and (value > lo if self.open_low else value >= lo))
 
     def expected(self) -> str:
         """The bounds as text: ``> 0``, ``>= 0``, ``-1.571 .. 1.571``, ``any``."""
-        lo, hi = self.bounds
+        lo, hi = self.limits()
         low = f"{'>' if self.open_low else '>='} {lo:g}"
         if math.isinf(hi):
             return "any finite value" if math.isinf(lo) else low
@@ -131,7 +169,7 @@ class Coefficient:
         """The message refusing the value ``shown`` (as text) of this entry."""
         unit = f" {self.unit}" if self.unit else ""
         hint = ("; degrees where the file's angles are radians?" if self.bounds == ANGLE
-                else "")
+                else self.hint)
         return (f"[{section or self.section}] {self.name} = {shown} is impossible: expected "
                 f"{self.expected()}{unit} ({self.meaning}){hint}")
 
@@ -153,6 +191,8 @@ def _group(section: str, versions: tuple[str, ...], unit: str, default: float | 
     for entry in entries:
         name, meaning = entry[0], entry[1]
         kw: dict = {"versions": versions, "unit": unit, "default": default, **common}
+        if section in COEFFICIENT_SECTIONS:
+            kw.setdefault("largest", LARGEST_COEFFICIENT)
         if len(entry) > 2:
             kw.update(entry[2])
         out.append(Coefficient(name=name, section=section, meaning=meaning, **kw))
@@ -254,7 +294,9 @@ _LATERAL = _group("LATERAL_COEFFICIENTS", ALL, "", 0.0, (
     ("PEY4", "change of that asymmetry with camber", {"unit": "1/rad"}),
     ("PEY5", "change of E_y with camber squared" + _ALSO_52, {"versions": V6, "unit": "1/rad**2"}),
     ("PKY1", "largest cornering stiffness K_y / F'z0 (negative in ISO files, where a "
-             "positive slip angle gives a negative force)", {**_REQ, "unit": "1/rad"}),
+             "positive slip angle gives a negative force)",
+     {**_REQ, "unit": "1/rad", "sign": (-1, "the lateral force will have the sign of the "
+                                            "slip angle (the opposite of ISO files)")}),
     ("PKY2", "load scale of K_y, / F'z0 (the load of largest K_y when PKY4 = 2)",
      {**_REQ, **_POS, "fit": (0.05, 50.0)}),
     ("PKY3", "change of K_y with the camber's magnitude", {"unit": "1/rad"}),
@@ -400,16 +442,23 @@ _TURNSLIP = _group("TURNSLIP_COEFFICIENTS", V6, "", 0.0, (
 ), evaluated=False)
 
 _NOT_NEEDED = None  # no default: refused by the outputs that need it
+
+
+def _real(bounds: tuple[float, float]) -> dict[str, object]:
+    """The overrides of an entry bounded by what real tyres have (refused with a units hint)."""
+    return {"bounds": bounds, "hint": UNITS_HINT}
+
+
 _FILE = [
     *_group("MODEL", ALL, "m/s", _NOT_NEEDED, (
         ("LONGVL", "reference speed V0 of the measurements (the speed of the "
-                   "steady-state curves)", _POS),
+                   "steady-state curves)", _real(SPEED)),
         ("VXLOW", "speed below which the slips are not formed (low speeds refused here)",
          {"bounds": POSITIVE, "default": 0.0}),
     )),
     *_group("DIMENSION", ALL, "m", _NOT_NEEDED, (
-        ("UNLOADED_RADIUS", "free (unloaded) tyre radius R0", _POS),
-        ("WIDTH", "nominal section width", _POS),
+        ("UNLOADED_RADIUS", "free (unloaded) tyre radius R0", _real(RADIUS)),
+        ("WIDTH", "nominal section width", _real(WIDTH)),
         ("ASPECT_RATIO", "nominal aspect ratio (section height / width)",
          {**_POS, "unit": ""}),
         ("RIM_RADIUS", "rim radius (bottoming of the contact patch)",
@@ -418,10 +467,10 @@ _FILE = [
                                                    "evaluated": False}),
     )),
     *_group("VERTICAL", ALL, "", 0.0, (
-        ("FNOMIN", "nominal (rated) load F_z0", {**_POS, **_REQ, "unit": "N",
+        ("FNOMIN", "nominal (rated) load F_z0", {**_real(LOAD), **_REQ, "unit": "N",
                                                  "default": None}),
         ("VERTICAL_STIFFNESS", "vertical stiffness C_z0 at the nominal pressure",
-         {**_POS, "unit": "N/m", "default": None}),
+         {**_real(STIFFNESS), "unit": "N/m", "default": None}),
         ("BREFF", "effective rolling radius: low-load stiffness factor"),
         ("DREFF", "effective rolling radius: peak value factor"),
         ("FREFF", "effective rolling radius: high-load stiffness factor"),
@@ -474,12 +523,13 @@ _FILE = [
         ("Q_RB2", "contact width: linear deflection term"),
     )),
     *_group("OPERATING_CONDITIONS", V6, "Pa", _NOT_NEEDED, (
-        ("INFLPRES", "inflation pressure evaluated by default", _POS),
-        ("NOMPRES", "nominal pressure p_i0 the pressure terms refer to (dpi = 0)", _POS),
+        ("INFLPRES", "inflation pressure evaluated by default", _real(PRESSURE)),
+        ("NOMPRES", "nominal pressure p_i0 the pressure terms refer to (dpi = 0)",
+         _real(PRESSURE)),
     )),
     *_group("TIRE_CONDITIONS", V52, "Pa", _NOT_NEEDED, (
-        ("IP", "inflation pressure (PAC2002 files)", _POS),
-        ("IP_NOM", "nominal pressure (PAC2002 files)", _POS),
+        ("IP", "inflation pressure (PAC2002 files)", _real(PRESSURE)),
+        ("IP_NOM", "nominal pressure (PAC2002 files)", _real(PRESSURE)),
     )),
     *_group("VERTICAL_FORCE_RANGE", ALL, "N", _NOT_NEEDED, (
         ("FZMIN", "smallest load of the fitted data", {"bounds": POSITIVE}),
@@ -498,8 +548,8 @@ _FILE = [
         ("CAMMAX", "largest camber of the fitted data", {"bounds": ANGLE}),
     )),
     *_group("INFLATION_PRESSURE_RANGE", V6, "Pa", _NOT_NEEDED, (
-        ("PRESMIN", "smallest pressure of the fitted data", {"bounds": POSITIVE}),
-        ("PRESMAX", "largest pressure of the fitted data", _POS),
+        ("PRESMIN", "smallest pressure of the fitted data", _real(PRESSURE)),
+        ("PRESMAX", "largest pressure of the fitted data", _real(PRESSURE)),
     )),
 ]
 
@@ -601,7 +651,7 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
         if c.required and c.section in COEFFICIENT_SECTIONS and c.name not in out:
             raise InputError(f"[{c.section}] {c.name} is missing ({c.meaning}): not a Magic "
                              "Formula property file?", file=source)
-    notes = []
+    notes = [n for n in (outside_fit(k, v) for k, v in out.items()) if n]
     for k, c in DECLARED.items():
         if c.alias_of is None or k not in out:
             continue
@@ -613,9 +663,59 @@ def checked_coefficients(coefficients: Mapping[str, float], fnomin: float, sourc
     return out, notes
 
 
+#: MF 6.x coefficients the MF 5.2 evaluation does not read: its camber stiffness is
+#: PHY3/PVY3's and its rolling resistance has no camber, load exponent or pressure terms.
+#: The other 6.x terms (pressure, M_x, the combined-slip camber terms) it reads, as
+#: MFeval does.
+NOT_READ_BY_52 = frozenset({"PKY6", "PKY7", "PPY5", "QSY5", "QSY6", "QSY7", "QSY8"})
+#: The coefficients of the inflation pressure, read only with a nominal pressure.
+PRESSURE_TERMS = frozenset(c.name for c in DECLARED.values()
+                           if c.section in COEFFICIENT_SECTIONS
+                           and (c.name.startswith(("PPX", "PPY", "PPZ", "PPMX"))
+                                or c.name == "QSY8"))
+
+
+def unused_terms(version: str, coefficients: Mapping[str, float], nominal_pressure: bool
+                 ) -> list[str]:
+    """Notes of the given coefficients a model of ``version`` does not use (else none).
+
+    Parameters
+    ----------
+    version : str
+        The MF version evaluated.
+    coefficients : mapping
+        Upper-case name -> value.
+    nominal_pressure : bool
+        Whether the model has a nominal pressure (without one the pressure terms vanish).
+
+    Returns
+    -------
+    list of str
+        The 6.x terms MF 5.2 does not read; the pressure terms without a nominal
+        pressure (only those not 0).
+    """
+    notes = []
+    if version == "5.2":
+        not_52 = sorted(NOT_READ_BY_52 & set(coefficients))
+        if not_52:
+            notes.append(f"{', '.join(not_52)}: MF 6.x terms not used by the MF 5.2 "
+                         "equations (kept, listed as not used)")
+    pressure = sorted(k for k in PRESSURE_TERMS & set(coefficients)
+                      if coefficients[k] != 0 and k not in NOT_READ_BY_52 | {"QSY8"})
+    if pressure and not nominal_pressure:
+        notes.append(f"{', '.join(pressure)}: pressure terms not used, the file has no "
+                     "nominal pressure (NOMPRES / IP_NOM), so dpi = 0")
+    return notes
+
+
 def outside_fit(name: str, value: float) -> str | None:
-    """A note when ``value`` lies outside the declared fit range of ``name`` (else None)."""
+    """A note when ``value`` lies outside the declared fit range of ``name``, or has the
+    other sign than the ISO convention gives it (else None)."""
     c = DECLARED.get(name)
+    if c is not None and c.sign is not None and value * c.sign[0] < 0:
+        want = "< 0" if c.sign[0] < 0 else "> 0"
+        return (f"[{c.section}] {name} = {value:g}: the ISO convention of property files "
+                f"has {name} {want}; {c.sign[1]}")
     if c is None or c.fit is None or c.fit[0] <= value <= c.fit[1]:
         return None
     return (f"[{c.section}] {name} = {value:g} lies outside {c.fit[0]:g} .. {c.fit[1]:g}, "
@@ -642,12 +742,26 @@ def listing(version: str, coefficients: Mapping[str, float], structure: Mapping[
     """
     given = {**structure, **coefficients}
     out: list[dict[str, object]] = []
-    for c in rows(version):
+    listed = rows(version)
+    for c in listed:
         if c.section in RANGE_SECTIONS or c.alias_of or not c.evaluated:
             continue
         value = given.get(c.name, c.default)
         out.append({"name": c.name, "section": c.section, "value": value,
                     "given": c.name in given, "unit": c.unit, "meaning": c.meaning})
+    used = {c.name for c in listed if c.evaluated}
+    for c in rows():
+        if c.name not in coefficients or c.name in used or c.alias_of:
+            continue
+        meaning = c.meaning  # a 6.x term MF 5.2 reads too, as MFeval does
+        if not (version == "5.2" and c.evaluated and c.section in COEFFICIENT_SECTIONS
+                and c.name not in NOT_READ_BY_52):
+            why = f"not used by MF {version}" if version not in c.versions else "not used"
+            meaning = f"{why}: {c.meaning}"
+        out.append({"name": c.name, "section": c.section, "value": coefficients[c.name],
+                    "given": True, "unit": c.unit, "meaning": meaning})
+    order = {sec: i for i, sec in enumerate(SECTIONS)}
+    out.sort(key=lambda row: order[str(row["section"])])
     for name in sorted(set(coefficients) - set(DECLARED)):
         out.append({"name": name, "section": "", "value": coefficients[name], "given": True,
                     "unit": "", "meaning": "unknown: kept, not used"})

@@ -411,16 +411,21 @@ def _tir_name(name: str, what: str, source: str) -> str:
 
 
 def _json_section(sec: str, body: Mapping[str, Any], source: str) -> dict[str, Value]:
-    """One JSON section: keys upper-cased (unique), values finite numbers or strings."""
+    """One JSON section: keys upper-cased (unique), values finite numbers or strings;
+    ``null`` is an absent entry (the declared default; a required one is then missing)."""
     entries: dict[str, Value] = {}
+    seen: set[str] = set()
     for key, value in body.items():
         k = _tir_name(str(key), f"[{sec}] key", source)
-        if k in entries:
+        if k in seen:
             raise InputError(f"[{sec}] {key} appears twice (case-insensitive)",
                              file=source)
+        seen.add(k)
+        if value is None:
+            continue
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             raise InputError(
-                f"[{sec}] {key}: expected a number or a string, got "
+                f"[{sec}] {key}: expected a number, a string or null (absent), got "
                 f"{type(value).__name__}", file=source)
         if isinstance(value, float) and not math.isfinite(value):
             raise InputError(f"[{sec}] {key} is not finite", file=source)
