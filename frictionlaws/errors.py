@@ -7,8 +7,9 @@ a law name, a parameter) derives from :class:`InputError`.  The CLI turns any
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 __all__ = ["FrictionLawsError", "InputError", "UnknownLawError", "GroupingError",
            "DomainError", "FitError", "ExtrapolationWarning", "Argument", "Label",
@@ -247,3 +248,34 @@ class FitError(FrictionLawsError):
 
 class ExtrapolationWarning(UserWarning):
     """A law is used outside the range its parameters were fitted on or valid for."""
+
+
+def broadcast_shape(named: Mapping[str, Any], source: str | None = None,
+                    subject: str = "") -> tuple[int, ...]:
+    """The common shape of named array inputs, or an :class:`InputError` naming each shape.
+
+    Parameters
+    ----------
+    named : mapping
+        Input name -> scalar or array.
+    source : str, optional
+        The file whose model is evaluated, for the message.
+    subject : str, optional
+        What is evaluated (``"law 'thirion'"``), said first in the message.
+
+    Returns
+    -------
+    tuple of int
+        The shape every input broadcasts to.
+    """
+    import numpy as np
+
+    shapes = {k: np.shape(v) for k, v in named.items()}
+    try:
+        return tuple(np.broadcast_shapes(*shapes.values()))
+    except ValueError:
+        listed = ", ".join(f"{k} {s}" for k, s in shapes.items() if s != ())
+        raise InputError(f"{subject + ': ' if subject else ''}the inputs' shapes do not fit "
+                         f"together ({listed}): give scalars "
+                         "or arrays of one length, one value per row",
+                         file=source) from None

@@ -133,6 +133,13 @@ def test_scalar_in_scalar_out_and_broadcasting(law_id):
     idx = (3, 1) if len(expect_shape) == 2 and expect_shape[1] > 1 else (3, 0)
     one = {v: float(np.broadcast_to(a, expect_shape)[idx]) for v, a in shaped.items()}
     assert np.asarray(grid)[idx] == pytest.approx(raw(law, **one, **case.params), rel=1e-12)
+    # variables whose shapes do not fit together are refused, each shape named
+    if len(law.variables) >= 2:
+        first, second = law.variables[:2]
+        bad = {v: float(np.mean(case.ranges[v])) for v in law.variables}
+        bad[first], bad[second] = x[first][:2], x[second][:3]
+        with pytest.raises(InputError, match=rf"{first} \(2,\), {second} \(3,\)"):
+            raw(law, **bad, **case.params)
 
 
 @pytest.mark.parametrize("law_id", LAW_IDS)

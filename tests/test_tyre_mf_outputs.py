@@ -228,3 +228,18 @@ def test_rows_are_evaluated_alone_and_in_any_order(name: str, seed: int) -> None
         np.testing.assert_allclose(np.asarray(shuffled[key]), v[perm], rtol=1e-12, atol=0)
         np.testing.assert_allclose(np.asarray(alone[key]).ravel()[0], v[i], rtol=1e-8,
                                    atol=1e-12 * (1 + np.abs(v).max()))
+
+
+@settings(max_examples=20, deadline=None)
+@given(n=st.integers(2, 5), m=st.integers(2, 5), which=st.sampled_from(
+    ["alpha", "fz", "gamma", "pressure", "vx"]))
+def test_inputs_whose_shapes_do_not_fit_are_refused_naming_each_shape(n: int, m: int,
+                                                                      which: str) -> None:
+    if n == m:
+        m += 1
+    mf = MagicFormula.from_file("MagicFormula61")
+    values = {"alpha": 0.01, "fz": 4000.0, "gamma": 0.0, "pressure": 250e3, "vx": 16.0}
+    values[which] = np.full(m, values[which])
+    with pytest.raises(InputError, match=rf"kappa \({n},\).*{which} \({m},\)"):
+        mf.steady_state(np.zeros(n), values["alpha"], values["fz"], values["gamma"],
+                        pressure=values["pressure"], vx=values["vx"])

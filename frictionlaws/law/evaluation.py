@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, InputError
+from ..errors import DomainError, InputError, broadcast_shape
 from .declaration import VARIABLES
 from .domain import LawDomain, _all_finite, _first
 from .namespace import NUMPY
@@ -62,6 +62,7 @@ class LawEvaluation(LawDomain):
             plain = {k: (v.values if is_labelled(v) else v) for k, v in variables.items()}
             self.evaluate(plain, params)  # the same checks, on the bare arrays
             return evaluate_labelled(self, variables, params)
+        broadcast_shape(variables, subject=f"law '{self.id}'")
         raw = self._fill_optional(variables, params)
         prepared = self.prepare_variables(raw)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):

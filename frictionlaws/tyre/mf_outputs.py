@@ -87,7 +87,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..errors import ExtrapolationWarning, InputError, broadcast_shape
 from ._mf_core import EPS, mf_curve
 from ._mf_core import MFModel as MagicFormula  # the interface: no import of the class's module
 
@@ -163,8 +163,9 @@ class _Rows:
             raise InputError(f"speeds at or below VXLOW = {vxlow:g} m/s (or backwards) are "
                              "not modelled here: the steady-state outputs need vx > VXLOW",
                              file=mf.source)
-        arrays = [k, a, z, g, v] + ([p] if p is not None else [])
-        shape = np.broadcast_shapes(*(np.shape(x) for x in arrays))
+        named = {"kappa": k, "alpha": a, "fz": z, "gamma": g, "vx": v}
+        shape = broadcast_shape({**named, **({"pressure": p} if p is not None else {})},
+                                mf.source)
         self.kappa_in = np.broadcast_to(k, shape)
         self.fz_in = np.broadcast_to(z, shape)
         self.vx = np.broadcast_to(v, shape)
