@@ -265,7 +265,7 @@ def _fit_option_specs() -> dict[str, tuple[tuple[str, ...], dict[str, Any]]]:
             help="bootstrap replicates, 20 to 100000 (default 1000; with --uncertainty "
                  "bootstrap)")),
         "boot_jobs": (("--boot-jobs",), dict(
-            type=_boot_jobs, default=1, metavar="N",
+            type=boot_jobs_count, default=1, metavar="N",
             help="worker processes for the bootstrap refits (default 1; -1 = one per core; "
                  "with --uncertainty bootstrap)")),
         "boot_interval": (("--boot-interval",), dict(
@@ -292,7 +292,7 @@ def add_fit_options(p: argparse.ArgumentParser | Any, only: Sequence[str] | None
 BOOT_OPTIONS = ("boot", "boot_jobs", "boot_interval")
 
 
-def _boot_jobs(text: str) -> int:
+def boot_jobs_count(text: str) -> int:
     """``--boot-jobs``: -1 or 1..1024."""
     s = str(text).strip()
     if s == "-1":
@@ -300,7 +300,7 @@ def _boot_jobs(text: str) -> int:
     return bounded_int(1, 1024)(s)
 
 
-_boot_jobs.__name__ = "integer"
+boot_jobs_count.__name__ = "integer"
 
 
 def add_progress_option(p: argparse.ArgumentParser | Any) -> None:

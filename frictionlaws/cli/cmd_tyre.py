@@ -23,10 +23,10 @@ from ._common import (
     RANGE_HELP,
     SEED_MAX,
     UsageError,
-    _boot_jobs,
     add_data_options,
     add_fit_options,
     add_law_source_options,
+    boot_jobs_count,
     bound_from_args,
     bounded_int,
     parse_values,
@@ -135,7 +135,7 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("--boot", type=bounded_int(20, 100_000), default=100, metavar="N",
                    help="sweep-bootstrap resamples, 20 to 100000 (default 100; with "
                         "--uncertainty sweeps)")
-    f.add_argument("--boot-jobs", type=_boot_jobs, default=1, metavar="N",
+    f.add_argument("--boot-jobs", type=boot_jobs_count, default=1, metavar="N",
                    help="worker processes for the bootstrap refits (default 1; -1 = one "
                         "per core; with --uncertainty sweeps)")
     f.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",

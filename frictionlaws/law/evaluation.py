@@ -62,13 +62,11 @@ class LawEvaluation(LawDomain):
             plain = {k: (v.values if is_labelled(v) else v) for k, v in variables.items()}
             self.evaluate(plain, params)  # the same checks, on the bare arrays
             return evaluate_labelled(self, variables, params)
-        broadcast_shape(variables, subject=f"law '{self.id}'")
+        shape = broadcast_shape(variables, subject=f"law '{self.id}'")
         raw = self._fill_optional(variables, params)
         prepared = self.prepare_variables(raw)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             out = self.formula(NUMPY, **prepared, **params)
-        shapes = [np.shape(x) for x in variables.values()]
-        shape = np.broadcast_shapes(*shapes) if shapes else ()
         if np.shape(out) != shape:
             out = (np.full(shape, float(out)) if np.ndim(out) == 0
                    else np.broadcast_to(out, shape).copy())
