@@ -131,26 +131,28 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("--template", metavar="FILE", help="property file giving FNOMIN, the "
                    "nominal pressure, the other sections and undetermined coefficients "
                    "(default: the packaged example of the version)")
-    f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
+    f.add_argument("--sign-convention", choices=("iso", "sae"), default=None,
                    help="axes of the data: iso (ISO-W, as property files; default) or sae "
                         "(Fz, Fy and alpha negated to ISO)")
     f.add_argument("--uncertainty", choices=("asymptotic", "sweeps"), default="asymptotic",
                    help="standard errors: asymptotic (from the Jacobian; default) or sweeps "
                         "(bootstrap of whole sweeps found in the row order, honest when a "
                         "sweep's residuals share an offset; costs --boot refits)")
-    f.add_argument("--boot", type=bounded_int(20, 100_000), default=100, metavar="N",
+    f.add_argument("--boot", type=bounded_int(20, 100_000), default=None, metavar="N",
                    help="sweep-bootstrap resamples, 20 to 100000 (default 100; with "
                         "--uncertainty sweeps)")
-    f.add_argument("--boot-jobs", type=boot_jobs_count, default=1, metavar="N",
+    f.add_argument("--boot-jobs", type=boot_jobs_count, default=None, metavar="N",
                    help="worker processes for the bootstrap refits (default 1; -1 = one "
                         "per core; with --uncertainty sweeps)")
-    f.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=0, metavar="SEED",
+    f.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=None, metavar="SEED",
                    help=f"seed of the sweep bootstrap, 0 to {SEED_MAX} (default 0)")
     f.add_argument("-o", "--output", required=True, metavar="FILE.tir",
                    help="property file to write")
     f.add_argument("--plot", metavar="FILE", help="save a figure of data and fit per load "
                    "(png, pdf, svg)")
     f.add_argument("--json", action="store_true", help="print one JSON object")
+    f.set_defaults(_option_flags={"resamples": "--boot", "jobs": "--boot-jobs",
+                                  "sign_convention": "--sign-convention"})
 
 
 def _mf_options(p: argparse.ArgumentParser) -> None:
@@ -481,33 +483,39 @@ def _run_mf(args: argparse.Namespace) -> int:
 
         summary["source"] = shown_source(summary["source"])
     if args.json:
-        print(json.dumps(summary, indent=2))
+        from frictionlaws import jsonio
+
+        print(jsonio.dumps(summary))
         return 0
+    _print_summary(mf, summary)
+    return 0  # the warnings (outside the file's range, clamped) reach stderr once
+
+
+def _print_summary(mf: Any, summary: dict[str, Any]) -> None:
+    """The text of ``tyre mf``: per load, what :meth:`MagicFormula.summary` holds."""
     print(f"{mf.name}: Magic Formula {mf.version}, FNOMIN {mf.fnomin:g} N"
           + (f", inflation {mf.pressure / 1e6:.3g} MPa" if mf.pressure else ""))
-    for n in mf.notes:
+    for n in summary["notes"]:
         print(f"note: {n}")
     moments = "trail_m" in summary
     print(f"{'Fz [kN]':>8}  {'mu_x peak':>9}  {'mu_y peak':>9}  {'Kx [kN]':>9}  "
           f"{'Ky [kN/rad]':>11}" + (f"  {'trail [mm]':>10}  {'Mz0 peak [N m]':>14}  "
                                      f"{'at [deg]':>8}" if moments else ""))
     for i, fz in enumerate(summary["loads_N"]):
-        print(f"{fz / 1000:>8.4g}  {summary['mu_x_peak'][i]:>9.4f}  "
+        mark = "*" if summary["clamped"][i] else " "
+        print(f"{fz / 1000:>8.4g}{mark} {summary['mu_x_peak'][i]:>9.4f}  "
               f"{summary['mu_y_peak'][i]:>9.4f}  {summary['K_x_N'][i] / 1000:>9.2f}  "
               f"{summary['K_y_N_per_rad'][i] / 1000:>11.2f}"
               + (f"  {summary['trail_m'][i] * 1000:>10.2f}  "
                  f"{summary['Mz0_peak_N_m'][i]:>14.1f}  "
                  f"{summary['Mz0_peak_alpha_deg'][i]:>8.2f}" if moments else ""))
+    if any(summary["clamped"]):
+        at = max(summary["loads_evaluated_N"]) / 1000
+        print(f"*: clamped, evaluated at the file's FZMAX = {at:g} kN "
+              "(loads_above_fzmax = clamp)")
     if moments:
         print("trail: pneumatic trail at zero slip; Mz0 peak: the pure-slip aligning moment "
               "of largest magnitude within +-20 deg, at the file's LONGVL")
-    lim = mf.limits.get("fz")
-    if lim and (min(loads) < lim[0] or max(loads) > lim[1]):
-        how = ("extrapolation" if mf.loads_above_fzmax == "extrapolate"
-               else "loads above FZMAX evaluated at FZMAX (clamped)")
-        print(f"warning: loads outside the file's range {lim[0]:g}..{lim[1]:g} N: {how}",
-              file=sys.stderr)
-    return 0
 
 
 def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
@@ -640,12 +648,12 @@ def _run_reduce(args: argparse.Namespace) -> int:
 def _run_fit_mf(args: argparse.Namespace) -> int:
     from frictionlaws.outputs import check_outputs
     from frictionlaws.tyre.mf.fit import check_tir_path, fit_mf
+    from frictionlaws.tyre.mf.fit.staged import refuse_not_applied
 
-    if args.uncertainty != "sweeps":
-        from ._common import refuse_unused
-
-        refuse_unused(args, ("boot", "boot_jobs", "seed"),
-                      f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
+    # the library's one rule of options that do not apply, before anything is read
+    refuse_not_applied(args.data, args.sign_convention, args.uncertainty,
+                       {"resamples": args.boot, "jobs": args.boot_jobs, "seed": args.seed,
+                        "sweeps": None})
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)

@@ -24,17 +24,17 @@ from __future__ import annotations
 
 import json
 import math
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..errors import InputError
 from ..fitting import fit as run_fit
 from ..registry import get_law
 from .mf.model import MagicFormula
+from .mf.notices import collected
 
 __all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve"]
 
@@ -48,7 +48,8 @@ def mf_slip_curve(mf: MagicFormula, fz: float, slip: Any, *, side: str = "brakin
         raise InputError(f"side must be one of {', '.join(SIDES)}, got {side!r}")
     s = np.asarray(slip, dtype=float)
     sign = -1.0 if side == "braking" else 1.0
-    return sign * np.asarray(mf.fx0(sign * s, fz, gamma, pressure)) / fz
+    # per unit of the load evaluated: a load clamped at FZMAX is the force's load too
+    return sign * np.asarray(mf.fx0(sign * s, fz, gamma, pressure)) / mf.evaluated_load(fz)
 
 
 def equivalent_pacejka(mf: MagicFormula, fz: float, *, side: str = "braking",
@@ -62,7 +63,8 @@ def equivalent_pacejka(mf: MagicFormula, fz: float, *, side: str = "braking",
     k = mf.longitudinal(fz, gamma, pressure)
     sign = -1.0 if side == "braking" else 1.0
     return {"B": float(k.B), "C": float(k.C), "D": float(k.mu), "E": float(k.E(sign)),
-            "S_h": float(sign * k.S_H), "S_v": float(sign * k.S_V / fz)}
+            "S_h": float(sign * k.S_H),
+            "S_v": float(sign * k.S_V / mf.evaluated_load(fz))}
 
 
 @dataclass
@@ -94,6 +96,15 @@ class Reduction:
     errors: dict[str, float]
     expected: dict[str, float] | None = None
     notes: list[str] = field(default_factory=list)
+    #: The load the Magic Formula evaluated [N] (FZMAX when ``fz`` was clamped).
+    fz_evaluated: float = math.nan
+    #: What the Magic Formula's evaluation warned of (outside the file's ranges, clamped).
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def clamped(self) -> bool:
+        """True when the load was clamped (evaluated at the file's FZMAX)."""
+        return bool(self.fz_evaluated != self.fz)
 
     @property
     def params(self) -> dict[str, float]:
@@ -103,15 +114,19 @@ class Reduction:
     def to_dict(self) -> dict[str, Any]:
         """JSON-able summary (the fit is included in its save format)."""
         return {"law": self.law, "magic_formula": self.mf_name, "load_N": self.fz,
+                "load_evaluated_N": self.fz_evaluated, "clamped": self.clamped,
                 "side": self.side, "slip_range": [float(self.slip[0]), float(self.slip[-1])],
                 "n_points": int(self.slip.size), "params": self.params,
                 "errors": dict(self.errors), "expected_pacejka": self.expected,
-                "notes": list(self.notes), "fit": json.loads(self.fit.to_json())}
+                "notes": list(self.notes), "warnings": list(self.warnings),
+                "fit": json.loads(self.fit.to_json())}
 
     def report(self) -> str:
         """Plain-text report with units."""
         e = self.errors
-        lines = [f"{self.mf_name}: F_x0/F_z at F_z = {self.fz:g} N ({self.side} side, "
+        at = (f" (clamped: evaluated at FZMAX = {self.fz_evaluated:g} N)" if self.clamped
+              else "")
+        lines = [f"{self.mf_name}: F_x0/F_z at F_z = {self.fz:g} N{at} ({self.side} side, "
                  f"s = {self.slip[0]:g}..{self.slip[-1]:g}, {self.slip.size} points) reduced "
                  f"to law '{self.law}'"]
         for name, p in self.fit.params.items():
@@ -126,7 +141,7 @@ class Reduction:
         lines.append(f"peak: Magic Formula mu {e['mu_peak_mf']:.4f} at s = {e['s_peak_mf']:.4f}; "
                      f"law mu {e['mu_peak_law']:.4f} at s = {e['s_peak_law']:.4f}")
         lines.extend(f"note: {n}" for n in self.notes)
-        lines.extend(f"warning: {w}" for w in self.fit.warnings)
+        lines.extend(f"warning: {w}" for w in (*self.warnings, *self.fit.warnings))
         return "\n".join(lines)
 
 
@@ -163,8 +178,9 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
     Reduction
         The fitted law with its parameters and standard errors, the sampled
         curves, the fit error in mu (RMSE, largest error, R^2), both peaks, the
-        exact ``pacejka`` equivalent when the law is ``pacejka``, and notes
-        (extrapolation warnings of the Magic Formula, fixed parameters).
+        exact ``pacejka`` equivalent when the law is ``pacejka``, the load evaluated (FZMAX
+        when clamped), the warnings of the Magic Formula's evaluation (outside the file's
+        ranges, clamped; also issued) and notes (fixed parameters).
 
     Raises
     ------
@@ -176,12 +192,11 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
     the_law = _slip_law(law)
     fz = _check_request(n, slip_max, fz)
     slip = np.linspace(0.0, slip_max, n)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", ExtrapolationWarning)
+    with collected() as warned:  # of the Magic Formula's evaluation, once each
         mu_mf = mf_slip_curve(mf, fz, slip, side=side, gamma=gamma, pressure=pressure)
         expected = (equivalent_pacejka(mf, fz, side=side, gamma=gamma, pressure=pressure)
                     if the_law.id == "pacejka" else None)
-    notes = list(dict.fromkeys(str(w.message) for w in caught))
+    notes: list[str] = []
     data: dict[str, Any] = {"mu": mu_mf, "s": slip}
     fix = dict(fix or {})
     if "v" in the_law.variables:
@@ -198,7 +213,8 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
         {k: v for k, v in data.items() if k != "mu"}, result.values), dtype=float)
     return Reduction(law=the_law.id, mf_name=mf.name or mf.source, fz=fz, side=side,
                      fit=result, slip=slip, mu_mf=mu_mf, mu_law=mu_law,
-                     errors=_fit_errors(slip, mu_mf, mu_law), expected=expected, notes=notes)
+                     errors=_fit_errors(slip, mu_mf, mu_law), expected=expected, notes=notes,
+                     fz_evaluated=float(mf.evaluated_load(fz)), warnings=warned)
 
 
 def _as_mf(mf: MagicFormula | str) -> MagicFormula:

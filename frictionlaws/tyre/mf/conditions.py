@@ -10,11 +10,12 @@ rows were clamped (:attr:`Conditions.clamped`).
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
 
-from ...errors import InputError, broadcast_shape
+from ...errors import ExtrapolationWarning, InputError, broadcast_shape
 from .parameters import MFParameters
 
 __all__ = ["Conditions"]
@@ -88,38 +89,39 @@ class Conditions:
 
     def _limit(self, p: MFParameters, given: dict[str, Any], saturate: bool
                ) -> dict[str, Any]:
-        """Each input clipped to the file's range (``saturate``) or warned about."""
+        """Each input clamped to the file's range (``saturate``) or warned about outside
+        it (:meth:`~frictionlaws.tyre.mf.parameters.MFParameters.limit`)."""
         clipped: dict[str, Any] = {}
         for name, x in given.items():
             if x is None:
                 clipped[name] = None
-            elif saturate and name in p.limits:
-                clipped[name] = np.clip(x, *p.limits[name])
-                self._record(name, np.asarray(clipped[name]) != x)
-            else:
-                p.warn_range(name, x)
-                clipped[name] = x
+                continue
+            clipped[name], rows = p.limit(name, x, saturate)
+            self._record(name, rows)
         return clipped
 
     def _record(self, name: str, rows: Any) -> None:
         rows = np.broadcast_to(rows, self.shape)
         if rows.any():
-            self.clamped[name] = rows.copy()
+            self.clamped[name] = rows | self.clamped.get(name, False)
 
     def _loads(self, p: MFParameters, saturate: bool) -> None:
         """The loads of the forces and moments: clamped at FZMAX (``saturate`` or
         ``loads_above_fzmax="clamp"``), else warned about; MFeval's reductions below
         FZMIN with ``saturate``."""
-        fzmin, fzmax = p.limits.get("fz", (0.0, np.inf))
-        if saturate or p.loads_above_fzmax == "clamp":
-            self.fz = np.minimum(self.fz_in, fzmax)
-            self._record("fz", (self.fz_in > fzmax) | (saturate & (self.fz_in < fzmin)))
-        else:
-            p.warn_range("fz", self.fz_in)
-            self.fz = self.fz_in
+        fzmin = p.limits.get("fz", (0.0, np.inf))[0]
+        self.fz, above = p.limit_loads(self.fz_in, saturate)
+        self._record("fz", above)
         self.fz_mz = np.maximum(self.fz, fzmin) if saturate else self.fz
         # MFeval's reduction of the load below FZMIN in M_x (squared) and M_y (linear)
         low = saturate & (self.fz_in < fzmin) if fzmin > 0 else np.zeros(self.shape, bool)
+        if np.any(low):
+            self._record("fz", low)
+            warnings.warn(
+                f"{p.name or 'Magic Formula'}: fz of {int(np.sum(low))} row(s) lies below "
+                f"the property file's FZMIN {fzmin:g} N: M_z evaluated at FZMIN, M_x and M_y "
+                "reduced as MFeval's limit checks do (saturate=True), the forces at the load "
+                "given", ExtrapolationWarning, stacklevel=4)
         ratio = np.where(low, self.fz_in / max(fzmin, 1e-300), 1.0)
         self.fz_mx = np.where(low, self.fz * ratio**2, self.fz)
         self.fz_my = np.where(low, self.fz_in * ratio, self.fz_in)

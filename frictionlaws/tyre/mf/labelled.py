@@ -17,6 +17,7 @@ import numpy as np
 
 from ...errors import InputError
 from ...interop import is_labelled
+from .notices import collected
 
 __all__ = ["labelled", "is_labelled", "refuse_plain"]
 
@@ -30,7 +31,8 @@ def labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callabl
     (name, unit, long name).  When any of those arguments is a DataArray, the
     method runs through :func:`xarray.apply_ufunc` on the bare arrays: the
     result is a DataArray (a tuple of them for several outputs) with the
-    broadcast dimensions and the coordinates of the inputs.  Otherwise the method
+    broadcast dimensions and the coordinates of the inputs, its ``units``,
+    ``long_name`` and the ``warnings`` the evaluation raised (also issued).  Otherwise the method
     runs as it is.
     """
     def wrap(method: _F) -> _F:
@@ -83,9 +85,10 @@ def _apply_labelled(method: Callable[..., Any], mf: Any, values: dict[str, Any],
             return np.broadcast_to(np.asarray(out, dtype=float), shape).copy()
         return tuple(np.broadcast_to(np.asarray(o, dtype=float), shape).copy() for o in out)
 
-    result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
-                            output_core_dims=[[] for _ in outputs])
-    named = [r.rename(name).assign_attrs(units=unit, long_name=long)
+    with collected() as warned:  # the evaluation's warnings, kept with the result too
+        result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
+                                output_core_dims=[[] for _ in outputs])
+    named = [r.rename(name).assign_attrs(units=unit, long_name=long, warnings=list(warned))
              for r, (name, unit, long) in zip(
                  result if len(outputs) > 1 else (result,), outputs, strict=True)]
     return named[0] if len(outputs) == 1 else tuple(named)

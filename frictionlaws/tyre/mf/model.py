@@ -124,11 +124,13 @@ from .equations import (
     lateral,
     longitudinal,
     mf_curve,
+    pure_fx,
     slip_variable,
     weight_x,
     weight_y,
 )
 from .labelled import is_labelled, labelled
+from .notices import collected
 from .outputs import (
     aligning_moment,
     aligning_summary,
@@ -260,10 +262,7 @@ class MagicFormula(MFParameters):
     def _inputs(self, fz: Any, gamma: Any, pressure: Any) -> tuple[Any, Any, Any]:
         """Checked load, camber and pressure increment (warned outside the file's ranges;
         the load clamped at FZMAX with ``loads_above_fzmax="clamp"``)."""
-        fz = self.check("fz", fz, positive=True)
-        self.warn_range("fz", fz)
-        if self.loads_above_fzmax == "clamp" and "fz" in self.limits:
-            fz = np.minimum(fz, self.limits["fz"][1])
+        fz, _ = self.limit_loads(self.check("fz", fz, positive=True))
         gamma = np.asarray(gamma, dtype=float)
         if gamma.ndim or gamma != 0.0:
             self.check("gamma", gamma)
@@ -496,8 +495,11 @@ class MagicFormula(MFParameters):
             F_x [N]; equal to :meth:`fx0` where ``alpha = 0``; a DataArray when an
             input is one.
         """
-        out = (np.asarray(self.weight_x(kappa, alpha, fz, gamma))
-               * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
+        kappa = self._kappa(kappa)
+        alpha_s = self._alpha_star(alpha)
+        fz, gamma, dpi = self._inputs(fz, gamma, pressure)
+        out = (np.asarray(weight_x(self, kappa, alpha_s, fz, gamma))
+               * np.asarray(pure_fx(self, kappa, fz, gamma, dpi)))
         return float(out) if np.ndim(out) == 0 else out
 
     @labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
@@ -523,8 +525,13 @@ class MagicFormula(MFParameters):
         float, numpy.ndarray or xarray.DataArray
             F_y [N]; a DataArray when an input is one.
         """
-        G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
-        out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
+        kappa = self._kappa(kappa)
+        alpha_s = self._alpha_star(alpha)
+        fz, gamma, dpi = self._inputs(fz, gamma, pressure)
+        lat = lateral(self, fz, gamma, dpi)
+        G, S_V = weight_y(self, kappa, alpha_s, fz, gamma, lat.mu)
+        fy0 = mf_curve(alpha_s + lat.S_H, lat.B, lat.C, lat.D, lat.E_a, lat.E_b, lat.S_V)
+        out = np.asarray(G) * np.asarray(fy0) + S_V
         return float(out) if np.ndim(out) == 0 else out
 
     @labelled(("fz", "gamma"), ("mu_x_peak", "1", "peak longitudinal friction coefficient"))
@@ -691,18 +698,23 @@ class MagicFormula(MFParameters):
         Returns
         -------
         dict
-            Name, source, version, FNOMIN [N], pressures [Pa], the conventions, the
-            file's limits (SI), and at each load the peak coefficients mu_x, mu_y
+            Name, source, version, FNOMIN [N], pressures [Pa], the conventions as applied,
+            the file's limits (SI), and at each load the peak coefficients mu_x, mu_y
             [-], the stiffnesses K_x [N], K_y [N/rad] and (when the file gives the
             radius and LONGVL) the pneumatic trail at zero slip and the peak pure-slip
-            aligning moment with its slip angle; the keys name the units.
+            aligning moment with its slip angle; the keys name the units.  ``loads_N`` are
+            the loads asked for, ``loads_evaluated_N`` those evaluated and ``clamped`` says
+            which were clamped (at FZMAX); ``warnings`` are the warnings of those loads and
+            the pressure (also issued), ``notes`` the model's notes.
         """
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
                                              1.5 * self.fnomin], float))
-        if self.pressure is not None:  # the loads are this summary's choice, not the pressure
-            self.warn_range("pressure", np.asarray(self.pressure))
-        with warnings.catch_warnings():
+        with collected() as warned:  # of the loads and pressure asked for, once
+            evaluated, clamped = self.limit_loads(self.check("fz", loads, positive=True))
+            if self.pressure is not None:
+                self.warn_range("pressure", np.asarray(self.pressure))
+        with warnings.catch_warnings():  # the summary's own slip grid is not the user's
             warnings.simplefilter("ignore", ExtrapolationWarning)
             lon = self.longitudinal(loads)
             lat = self.lateral(loads)
@@ -711,17 +723,17 @@ class MagicFormula(MFParameters):
             "name": self.name, "source": self.source, "version": self.version,
             "fnomin_N": self.fnomin, "pressure_Pa": self.pressure,
             "nominal_pressure_Pa": self.nominal_pressure,
-            "conventions": {"slip_angle": self.slip_angle,
-                            "friction_scaling": self.friction_scaling,
-                            "loads_above_fzmax": self.loads_above_fzmax,
-                            "equations": self.equations},
+            "conventions": self.applied_conventions,
             "limits_SI": {k: list(v) for k, v in self.limits.items()},
             "loads_N": loads.tolist(),
+            "loads_evaluated_N": np.asarray(evaluated, dtype=float).tolist(),
+            "clamped": np.asarray(clamped, dtype=bool).tolist(),
             "mu_x_peak": np.broadcast_to(lon.mu, loads.shape).tolist(),
             "mu_y_peak": np.broadcast_to(lat.mu, loads.shape).tolist(),
             "K_x_N": np.broadcast_to(lon.K, loads.shape).tolist(),
             "K_y_N_per_rad": np.broadcast_to(lat.K, loads.shape).tolist(),
             **moments,
+            "warnings": warned,
             "notes": list(self.notes),
         }
 

@@ -474,8 +474,9 @@ def labelled_steady_state(mf: MFParameters, inputs: Mapping[str, Any], saturate:
 
     The inputs are aligned (inner join on shared coordinates) and broadcast by their
     dimension names; each output of :data:`OUTPUTS` is a variable with its ``units`` and
-    ``long_name``; the dataset's attributes hold the ``warnings`` of the evaluation and
-    ``clamped``, the inputs clamped on some row (a variable ``clamped`` flags each row).
+    ``long_name``; the dataset's attributes hold the ``warnings`` of the evaluation,
+    ``clamped`` (the inputs clamped on some row; a variable ``clamped`` flags each row) and
+    the model's ``notes`` (options not applied among them).
     Plain arrays (not scalars) beside DataArrays are refused: they have no dimension
     names to broadcast by.
     """
@@ -497,4 +498,5 @@ def labelled_steady_state(mf: MFParameters, inputs: Mapping[str, Any], saturate:
                                                                "clamped to the file's range"})
     return xr.Dataset(data, coords=coords,
                       attrs={"warnings": list(res.warnings), "clamped": sorted(res.clamped),
-                             "source": mf.source, "version": mf.version})
+                             "notes": list(mf.notes), "source": mf.source,
+                             "version": mf.version})

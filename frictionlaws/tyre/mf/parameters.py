@@ -143,14 +143,13 @@ class MFParameters:
         self.notes += [n for n in read + unused_terms(version, self.coefficients,
                                                        self.nominal_pressure is not None)
                        if n not in self.notes]
-        if self.pressure is not None and self.nominal_pressure is None:
-            warnings.warn(self.no_pressure_terms(), UserWarning, stacklevel=2)
         if self.c.LFZO <= 0:
             raise InputError("LFZO must be positive", file=source)
         self.six = version.startswith("6")
-        if loads_above_fzmax == "clamp" and "fz" not in self.limits:
-            self.notes.append("loads_above_fzmax = clamp, but the file gives no FZMAX: "
-                              "loads are not clamped")
+        for text in self.options_not_applied():  # noted and warned of, once: one rule
+            if text not in self.notes:
+                self.notes.append(text)
+            warnings.warn(text, UserWarning, stacklevel=2)
 
     @property
     def c(self) -> CoefficientView:
@@ -206,6 +205,38 @@ class MFParameters:
                              "radii", file=self.source)
         return default
 
+    # ---------------------------------------------------- options not applied
+    def options_not_applied(self) -> list[str]:
+        """The options given that this model cannot apply, each with why (the one rule of
+        options that do not apply to a file: noted and warned of, and reported as not
+        used, on every path; see :attr:`applied_conventions`).
+
+        ``friction_scaling="degressive"`` with MF 5.2 (LMU' = LMU always),
+        ``loads_above_fzmax="clamp"`` without an FZMAX in the file, an inflation
+        pressure given to a file without a nominal pressure (no pressure terms).
+        """
+        label = self.name or "Magic Formula"
+        out = []
+        if not self.six and self.friction_scaling != "linear":
+            out.append(f"{label}: friction_scaling = {self.friction_scaling!r} is not "
+                       "applied: MF 5.2 scales the vertical shifts by LMU itself (LMU' = LMU)")
+        if self.loads_above_fzmax == "clamp" and "fz" not in self.limits:
+            out.append(f"{label}: loads_above_fzmax = 'clamp' is not applied: the file "
+                       "gives no FZMAX, so loads are not clamped")
+        if self.pressure is not None and self.nominal_pressure is None:
+            out.append(self.no_pressure_terms())
+        return out
+
+    @property
+    def applied_conventions(self) -> dict[str, str]:
+        """The conventions as the equations apply them (an option this model cannot apply
+        is reported as what is applied instead: :meth:`options_not_applied`)."""
+        return {"slip_angle": self.slip_angle,
+                "friction_scaling": self.friction_scaling if self.six else "linear",
+                "loads_above_fzmax": (self.loads_above_fzmax if "fz" in self.limits
+                                      else "extrapolate"),
+                "equations": self.equations}
+
     # ------------------------------------------------------ evaluation inputs
     def no_pressure_terms(self) -> str:
         """Why a pressure does not change this model's outputs (the warning's text)."""
@@ -258,6 +289,65 @@ class MFParameters:
                 f"{self.name or 'Magic Formula'}: {name} from {xmin:g} to {xmax:g} lies "
                 f"outside the property file's range {lo:g}..{hi:g} (SI): extrapolation",
                 ExtrapolationWarning, stacklevel=3)
+
+    def clamp(self, name: str, x: Any, why: str) -> tuple[Any, Any]:
+        """``x`` clipped to the file's range of ``name``, and the mask of the values
+        clipped; warns once (:class:`~frictionlaws.errors.ExtrapolationWarning`) naming how
+        many were clamped and why (``why``: the option that asked for it)."""
+        lo, hi = self.limits[name]
+        x = np.asarray(x, dtype=float)
+        clipped = np.clip(x, lo, hi)
+        rows = clipped != x
+        if np.any(rows):
+            out = x[rows]
+            warnings.warn(
+                f"{self.name or 'Magic Formula'}: {name} of {int(np.sum(rows))} value(s), "
+                f"from {float(np.min(out)):g} to {float(np.max(out)):g}, lies outside the "
+                f"property file's range {lo:g}..{hi:g} (SI): evaluated at the range's end "
+                f"(clamped, {why})", ExtrapolationWarning, stacklevel=3)
+        return clipped, rows
+
+    def limit(self, name: str, x: Any, saturate: bool) -> tuple[Any, Any]:
+        """An input of the equations within the file's range of ``name``: clamped to it
+        (``saturate``: as MFeval's limit checks do), else as given with a warning outside
+        it.  Returns the values and the mask of those clamped."""
+        if saturate and name in self.limits:
+            return self.clamp(name, x, "saturate=True")
+        self.warn_range(name, x)
+        return x, np.zeros(np.shape(x), dtype=bool)
+
+    def evaluated_load(self, fz: Any, saturate: bool = False) -> Any:
+        """The load the force equations take for ``fz`` [N]: at most FZMAX when
+        ``loads_above_fzmax="clamp"`` (or ``saturate``) and the file gives one, else
+        ``fz`` (no warning: :meth:`limit_loads` warns)."""
+        lim = self.limits.get("fz")
+        fz = np.asarray(fz, dtype=float)
+        if lim is None or not (saturate or self.loads_above_fzmax == "clamp"):
+            return fz
+        return np.minimum(fz, lim[1])
+
+    def limit_loads(self, fz: Any, saturate: bool = False) -> tuple[Any, Any]:
+        """The loads of the force equations: above FZMAX clamped to it when
+        ``loads_above_fzmax="clamp"`` (or ``saturate``), with a warning naming them; the
+        others as given, warned about outside the file's range.  Returns the loads and the
+        mask of those clamped."""
+        lim = self.limits.get("fz")
+        fz = np.asarray(fz, dtype=float)
+        if lim is None or not (saturate or self.loads_above_fzmax == "clamp"):
+            self.warn_range("fz", fz)
+            return fz, np.zeros(fz.shape, dtype=bool)
+        why = "saturate=True" if saturate else "loads_above_fzmax='clamp'"
+        low = fz[fz <= lim[1]]
+        if low.size and not saturate:  # below FZMIN: extrapolated (saturate: see Conditions)
+            self.warn_range("fz", low)
+        above = fz > lim[1]
+        if np.any(above):
+            warnings.warn(
+                f"{self.name or 'Magic Formula'}: fz of {int(np.sum(above))} value(s), from "
+                f"{float(np.min(fz[above])):g} to {float(np.max(fz[above])):g}, lies above "
+                f"the property file's FZMAX {lim[1]:g} (SI): evaluated at FZMAX (clamped, "
+                f"{why})", ExtrapolationWarning, stacklevel=3)
+        return self.evaluated_load(fz, saturate), above
 
     def check_peak(self, name: str, mu: Any, fz: Any, dpi: Any, gamma: Any = 0.0) -> None:
         """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX).

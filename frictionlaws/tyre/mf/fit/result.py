@@ -70,7 +70,9 @@ class MFFit:
                   f"({len(self.data)} rows), Magic Formula {self.version}: {fitted}; "
                   "other coefficients and sections from the template.",
                   "Slip angle convention: alpha* = tan(alpha) in the lateral slip "
-                  "(MFeval useMode 2x); camber as sin(gamma) in the force terms.",
+                  "(MFeval useMode 2x); camber as sin(gamma) in the lateral and "
+                  "combined-slip terms, gamma itself in PDX3's term (equations as MFeval "
+                  "4.0).",
                   "Friction scaling: LMU' = LMU (A_mu = 1, as MFeval 4.0).",
                   f"Standard errors: {self.uncertainty or UNCERTAINTIES['asymptotic']}."]
         header += [f"warning: {w}" for w in self.warnings]

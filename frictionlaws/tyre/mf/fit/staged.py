@@ -57,13 +57,13 @@ from typing import Any
 
 import numpy as np
 
-from ....errors import ExtrapolationWarning, FitError, InputError
+from ....errors import Argument, ExtrapolationWarning, FitError, InputError
 from ...tyre_data import TyreData, read_tyre_data
 from ..coefficients import fit_bounds
 from ..model import MagicFormula
 from ..property_file import FITTYP_VERSIONS, PropertyFile
 from ..tir import format_tir, read_tir
-from .bootstrap import check_options, sweep_bootstrap
+from .bootstrap import DEFAULT_RESAMPLES, check_options, sweep_bootstrap
 from .checks import repeated_rows
 from .peak import FittingModel, peak_message, unreached_peaks
 from .pure import direction_errors, fit_direction
@@ -72,16 +72,19 @@ from .rows import select_direction
 from .stages import group_of, later_stages
 from .template import build_file, model_from_template, template_file
 
-__all__ = ["fit_mf", "FITTYPS"]
+__all__ = ["fit_mf", "FITTYPS", "BOOTSTRAP_OPTIONS", "refuse_not_applied"]
 
 #: FITTYP -> Magic Formula version (of the property files: one table).
 FITTYPS = FITTYP_VERSIONS
+#: The options of the sweep bootstrap with their defaults (``uncertainty="sweeps"``).
+BOOTSTRAP_OPTIONS: dict[str, Any] = {"resamples": DEFAULT_RESAMPLES, "jobs": 1, "seed": 0,
+                                     "sweeps": None}
 
 
 def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
            template: str | Path | PropertyFile | None = None,
-           sign_convention: str = "iso", uncertainty: str = "asymptotic",
-           resamples: int = 100, seed: int = 0, jobs: int = 1,
+           sign_convention: str | None = None, uncertainty: str = "asymptotic",
+           resamples: int | None = None, seed: int | None = None, jobs: int | None = None,
            sweeps: Sequence[Any] | np.ndarray | None = None) -> MFFit:
     """Fit the Magic Formula to tyre test data, stage by stage (module docstring).
 
@@ -97,8 +100,9 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         Property file providing FNOMIN, the nominal pressure, the other sections
         and the values of coefficients the data cannot determine (default: the
         packaged example of the version).
-    sign_convention : {"iso", "sae"}
-        Axes of the measurement when ``data`` is a file.
+    sign_convention : {"iso", "sae"}, optional
+        Axes of the measurement when ``data`` is a file (default ``"iso"``); refused with
+        :class:`~frictionlaws.tyre.tyre_data.TyreData`, which are in ISO axes already.
     uncertainty : {"asymptotic", "sweeps"}
         How the standard errors are made.  ``"asymptotic"`` (the default, no extra
         cost): from the Jacobian of each stage, ``s^2 (J^T J)^-1``, which assumes
@@ -107,12 +111,14 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         (:mod:`frictionlaws.tyre.mf.fit.bootstrap`), which resamples whole sweeps
         and refits the final stages from the point estimate; it costs about
         ``resamples`` times the final stages.
-    resamples, seed, jobs : int
+    resamples, seed, jobs : int, optional
         For ``uncertainty="sweeps"``: resamples (default 100), their seed (default 0)
         and worker processes (default 1; :func:`frictionlaws.parallel.run_parallel`).
     sweeps : array-like, optional
         For ``uncertainty="sweeps"``: a sweep label per row; default: found from the
-        row order (:func:`~frictionlaws.tyre.mf.fit.bootstrap.find_sweeps`).
+        row order (:func:`~frictionlaws.tyre.mf.fit.bootstrap.find_sweeps`).  These four
+        are refused with another ``uncertainty`` (:data:`BOOTSTRAP_OPTIONS`: an option
+        that does not apply is refused, on every path).
 
     Returns
     -------
@@ -126,8 +132,10 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         Too few pure-slip points.
     """
     t0 = time.perf_counter()
-    boot = dict(resamples=resamples, seed=seed, jobs=jobs, sweeps=sweeps)
-    data = _checked_inputs(data, fittyp, sign_convention, uncertainty, boot)
+    given = dict(resamples=resamples, jobs=jobs, seed=seed, sweeps=sweeps)
+    boot = {k: BOOTSTRAP_OPTIONS[k] if v is None else v for k, v in given.items()}
+    refuse_not_applied(data, sign_convention, uncertainty, given)
+    data = _checked_inputs(data, fittyp, sign_convention or "iso", uncertainty, boot)
     version = FITTYPS[fittyp]
     tpl = template_file(template, version)
     notes = list(data.notes)
@@ -145,7 +153,7 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     if not values:
         raise FitError(f"{data.source}: nothing could be fitted (no coefficient is "
                        "determined by these rows); no file written")
-    notes.extend(_undetermined_notes(undetermined, stderr))
+    notes.extend(_undetermined_notes(undetermined, stderr, tpl_coeffs))
     pf = build_file(tpl, fittyp, values, p_nom, data, notes, mf.fnomin)
     asymptotic = dict(stderr)
     method = UNCERTAINTIES["asymptotic"]
@@ -158,6 +166,45 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     for text in warns:
         warnings.warn(text, ExtrapolationWarning, stacklevel=2)
     return fitted
+
+
+def refuse_not_applied(data: Any, sign_convention: str | None, uncertainty: str,
+                        given: dict[str, Any]) -> None:
+    """Refuse options given that do not apply (the one rule of fit-mf's options: an option
+    that cannot change the fit is refused, naming it, on every path; the command line calls
+    this before it reads anything).
+
+    Parameters
+    ----------
+    data : TyreData, str or Path
+        The data (``sign_convention`` applies to a file only).
+    sign_convention : str or None
+        As given (None: not given).
+    uncertainty : str
+        How the standard errors are made.
+    given : dict
+        ``resamples``, ``jobs``, ``seed``, ``sweeps`` as given (None: not given), in the
+        order they are named.
+
+    Raises
+    ------
+    InputError
+        Naming each option that does not apply.
+    """
+    unused = [k for k, v in given.items() if v is not None]
+    if uncertainty != "sweeps" and unused:
+        parts: list[str | Argument] = []
+        for i, k in enumerate(unused):
+            parts += [", " if i else "", Argument(k)]
+        raise InputError([*parts, f" {'is' if len(unused) == 1 else 'are'} not used with ",
+                          Argument("uncertainty", uncertainty), " (for ",
+                          Argument("uncertainty", "sweeps"), " only); remove "
+                          f"{'it' if len(unused) == 1 else 'them'}"])
+    if isinstance(data, TyreData) and sign_convention is not None:
+        raise InputError([Argument("sign_convention", sign_convention), " is not used: it "
+                          "applies to a data file read here, and TyreData are in ISO axes "
+                          "already (read_tyre_data(path, sign_convention=...) converts); "
+                          "remove it"])
 
 
 def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str,
@@ -176,12 +223,19 @@ def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: s
     return data
 
 
-def _undetermined_notes(undetermined: list[str], stderr: dict[str, float]) -> list[str]:
-    """The notes naming the coefficients left at the template and those held."""
+def _undetermined_notes(undetermined: list[str], stderr: dict[str, float],
+                        template: dict[str, float]) -> list[str]:
+    """The notes naming the coefficients left at the template, those the template lacks
+    too (not written: their declared default applies) and those held."""
     out = []
-    if undetermined:
+    kept = [k for k in undetermined if k in template]
+    absent = [k for k in undetermined if k not in template]
+    if kept:
         out.append("not determined by the data, left at the template's value: "
-                   + ", ".join(undetermined))
+                   + ", ".join(kept))
+    if absent:
+        out.append("not determined by the data and not in the template: not written, so "
+                   "their declared default applies: " + ", ".join(absent))
     held = [k for k, se in stderr.items() if se == math.inf]
     if held:
         out.append("not determined by the data, and the template's value does not suit "

@@ -137,19 +137,23 @@ def model_from_template(tpl: PropertyFile, data: TyreData, version: str, notes: 
     """The template's coefficients, the nominal pressure (of the file; of the fit: None for
     MF 5.2) and the model the stages fit,
     after the data's plausibility against the template (FNOMIN, pressure, radius)."""
-    notes.append(f"template {tpl.path}: FNOMIN, the other sections and the undetermined "
-                 "coefficients come from it")
     tpl_coeffs = tpl.coefficients("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
                                   "LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
     fnomin = tpl.si("VERTICAL", "FNOMIN")
-    p_nom = nominal_pressure(tpl, data, notes)
+    first = len(notes)
+    # MF 5.2 is written without a nominal pressure (it has no pressure terms here)
+    p_nom = nominal_pressure(tpl, data, notes) if version != "5.2" else None
     radius = (tpl.si("DIMENSION", "UNLOADED_RADIUS") if tpl.has("DIMENSION", "UNLOADED_RADIUS")
               else None)
     p_tpl = (tpl.si("OPERATING_CONDITIONS", "NOMPRES")
              if tpl.has("OPERATING_CONDITIONS", "NOMPRES") else None)
     check_plausible(data, fnomin, p_tpl, radius)
-    fnomin = near_data("FNOMIN", fnomin, data.fz, "N", notes)
-    p_fit = p_nom if version != "5.2" else None
+    kept = near_data("FNOMIN", fnomin, data.fz, "N", notes)
+    notes.insert(first, f"template {tpl.path}: "
+                 + ("FNOMIN, " if kept == fnomin else "")
+                 + "the other sections and the undetermined coefficients come from it")
+    fnomin = kept
+    p_fit = p_nom
     mf = FittingModel(dict(tpl_coeffs), fnomin=fnomin, version=version, source=tpl.path,
                       pressure=p_fit, nominal_pressure=p_fit, structure=file_structure(tpl))
     if version == "5.2" and np.isfinite(data.pressure).any():
