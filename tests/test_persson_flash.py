@@ -17,8 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import frictionlaws as fl
-from frictionlaws.errors import DomainError, InputError
-from frictionlaws.law_examples import _persson
+from frictionlaws.base.errors import DomainError, InputError
 from frictionlaws.persson import (
     TREAD_THERMAL,
     Flash,
@@ -29,6 +28,7 @@ from frictionlaws.persson import (
     friction,
     tread_compound,
 )
+from frictionlaws.validation.law_examples import _persson
 
 SURF = asphalt_like(1e6)
 V = np.logspace(-8, 4, 49)

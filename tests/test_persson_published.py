@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.io import datasets_dir
 from frictionlaws.persson import TREAD_THERMAL, published_comparison
 from frictionlaws.persson.published import PUBLISHED_FILE, peak, published_shift

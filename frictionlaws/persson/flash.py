@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["Flash", "TREAD_THERMAL"]
 

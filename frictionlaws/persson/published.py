@@ -20,9 +20,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..law import NUMPY
-from ..temperature import wlf_formula
+from ..viscoelastic.temperature import wlf_formula
 from .flash import TREAD_THERMAL, Flash
 
 __all__ = ["Comparison", "published_comparison", "published_shift", "peak", "PUBLISHED_FILE"]
@@ -122,7 +122,7 @@ def published_shift(T: Any) -> np.ndarray:
     """log10 a_T [decades] of the published WLF fit to a filled rubber (``published.json``).
 
     Its magnitude convention: positive below its reference temperature (the
-    rubber relaxes more slowly when colder), as :mod:`frictionlaws.temperature`.
+    rubber relaxes more slowly when colder), as :mod:`frictionlaws.viscoelastic.temperature`.
     """
     w = _published()["wlf_filled_rubber"]
     return np.asarray(wlf_formula(NUMPY, np.asarray(T, float), w["C1"], w["C2"]["value"],
