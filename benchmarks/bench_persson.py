@@ -14,7 +14,7 @@ fresh process, before anything else touched the material).
 The flash temperature (Persson 2006, :mod:`frictionlaws.persson.flash`): the
 volume closure (the default) against the surface-flux closure shipped before it,
 as the baseline, on the same 100 velocities from 10 um/s to 10 m/s at 20 degC,
-0.2 MPa, best of 3 each, in the same run.
+0.2 MPa, in alternating runs (``bench_laws.paired_times``), best of each.
 
 Run: ``python benchmarks/bench_persson.py``.
 """
@@ -27,6 +27,7 @@ import warnings
 from typing import Any
 
 import numpy as np
+from bench_laws import best_time, paired_times
 
 from frictionlaws.errors import ExtrapolationWarning
 from frictionlaws.law_examples import _persson
@@ -61,24 +62,17 @@ def main() -> None:
     bench_flash(mat, surf)
 
 
-def _best(f: Any, repeat: int = 3) -> float:
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        times.append(time.perf_counter() - t0)
-    return min(times)
-
-
 def bench_flash(mat: Any, surf: Any) -> None:
     """The volume closure against the surface-flux closure (the former default)."""
     v = np.logspace(-5, 1, 100)
     T, p = 293.15, 2e5
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
-        old = _best(lambda: friction(mat, surf, v, T, p, flash=Flash(closure="surface-flux")))
-        new = _best(lambda: friction(mat, surf, v, T, p, flash=TREAD_THERMAL))
-        iso = _best(lambda: friction(mat, surf, v, T, p))
+        new, old = paired_times(
+            lambda: friction(mat, surf, v, T, p, flash=TREAD_THERMAL),
+            lambda: friction(mat, surf, v, T, p, flash=Flash(closure="surface-flux")),
+            rounds=2, run=2)
+        iso = best_time(lambda: friction(mat, surf, v, T, p), repeat=3)
     print(f"flash temperature, 100 velocities 10 um/s..10 m/s at 20 degC: volume closure "
           f"(default) {new * 1e3:.0f} ms; baseline surface-flux closure {old * 1e3:.0f} ms; "
           f"ratio {old / new:.2f}x; isothermal {iso * 1e3:.0f} ms")

@@ -222,14 +222,23 @@ def _warn_outside_data(material: Material, q0: float, q1: float, v: np.ndarray, 
     lo, hi = material.omega_range
     w = v * 10.0 ** material.shift(T)
     out = (v > 0) & ((q1 * w < lo) | (q0 * w > hi))
-    if out.any():
-        k = int(np.flatnonzero(out)[0])
-        warnings.warn(
-            f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = {v[k]:.4g} "
-            f"m/s, T = {T[k]:.5g} K) the sliding excites only frequencies outside the "
-            f"material's measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there "
-            "is the Prony series' continuation, an extrapolation", ExtrapolationWarning,
-            stacklevel=4)
+    _warn_at(out, v, T, f"the sliding excites only frequencies outside the material's "
+             f"measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there is the "
+             "Prony series' continuation, an extrapolation")
+
+
+def _warn_at(out: np.ndarray, v: np.ndarray, T: np.ndarray, what: str | Any) -> None:
+    """One ExtrapolationWarning for the conditions ``out``, naming their count and the first.
+
+    ``what`` says what happens there: text, or a function of the first one's index.
+    """
+    if not out.any():
+        return
+    k = int(np.flatnonzero(out)[0])
+    text = what(k) if callable(what) else what
+    warnings.warn(f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = "
+                  f"{v[k]:.4g} m/s, T = {T[k]:.5g} K) {text}", ExtrapolationWarning,
+                  stacklevel=5)
 
 
 def _index(mask: np.ndarray) -> int | tuple[int, ...]:
@@ -438,14 +447,9 @@ def _check_hot(material: Material, Tq: np.ndarray, v: np.ndarray, T: np.ndarray,
                           f"{T_CEILING:g} K (300 degC), where rubber degrades; no friction "
                           "coefficient is given for these conditions")
     top = material.temperature_range()[1]
-    out = hottest > top * (1 + 1e-12)
-    if out.any():
-        k = int(np.flatnonzero(out)[0])
-        warnings.warn(
-            f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = {v[k]:.4g} "
-            f"m/s, T = {T[k]:.5g} K) the flash temperature reaches {hottest[k]:.4g} K, above "
-            f"the material's data (to {top:.5g} K): the modulus there is the shift's "
-            "extrapolation", ExtrapolationWarning, stacklevel=4)
+    _warn_at(hottest > top * (1 + 1e-12), v, T,
+             lambda k: f"the flash temperature reaches {hottest[k]:.4g} K, above the "
+             f"material's data (to {top:.5g} K): the modulus there is the shift's extrapolation")
 
 
 @dataclass(frozen=True)
