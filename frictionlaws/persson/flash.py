@@ -193,10 +193,12 @@ def _h(x: np.ndarray, how: str) -> np.ndarray:
     """The share of the heat a layer keeps: h_exit or h_mean of x = D q^2 t (series near 0)."""
     x = np.asarray(x, dtype=float)
     small = x < 1e-4
-    xs = np.where(small, 1.0, x)
+    xs, x0 = np.where(small, 1.0, x), np.where(small, x, 0.0)
+    exit_ = -np.expm1(-xs) / xs
     if how == "exit":
-        return np.where(small, 1.0 - x / 2 + x * x / 6, -np.expm1(-xs) / xs)
-    return np.where(small, 0.5 - x / 6 + x * x / 24, (xs + np.expm1(-xs)) / (xs * xs))
+        return np.where(small, 1.0 - x0 / 2 + x0 * x0 / 6, exit_)
+    # (x - 1 + exp(-x)) / x^2 written as (1 - h_exit) / x: no overflow at large x
+    return np.where(small, 0.5 - x0 / 6 + x0 * x0 / 24, (1.0 - exit_) / xs)
 
 
 def temperature_rise(flash: Flash, q: np.ndarray, weights: np.ndarray, cum: np.ndarray,

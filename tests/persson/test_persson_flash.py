@@ -151,6 +151,28 @@ def test_background_heating_is_constant_flux_on_a_half_space():
     assert np.all(background_rise(Flash(), mu, v, p) == 0.0)
 
 
+def test_the_share_a_layer_keeps_is_its_formula_and_finite_at_the_ends():
+    from frictionlaws.persson.flash import _h
+
+    x = np.logspace(-3, 3, 25)
+    assert _h(x, "exit") == pytest.approx(-np.expm1(-x) / x, rel=1e-12)
+    assert _h(x, "mean") == pytest.approx((x - 1 + np.exp(-x)) / x**2, rel=1e-9)
+    ends = np.array([0.0, 1e-12, 1e300])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _h(ends, "exit") == pytest.approx([1.0, 1.0, 1e-300])
+        assert _h(ends, "mean") == pytest.approx([0.5, 0.5, 1e-300])
+
+
+def test_at_rest_nothing_heats_and_nothing_is_warned():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        flash = Flash(sliding_distance=0.1)
+        assert friction(MAT, SURF, 0.0, T20, P, flash=flash) == 0.0
+        rise, _ = _rise(flash, 0.0)
+    assert np.all(rise == 0.0)
+
+
 # ------------------------------------------------------- the solution: scalings and limits
 
 
