@@ -10,18 +10,20 @@ uses ``E(omega, T_q)``.  The friction and the temperatures are solved together
 **The volume closure** (``closure="volume"``, the default).  The friction power
 per unit nominal area, ``mu p v``, is split over the scales as the friction
 integrand: the band of wavenumbers at q' dissipates ``p v dmu(q')``.  As in the
-2006 paper, that heat is made in the contact regions seen at q' (the fraction
-``P(q')`` of the nominal area) and in the rubber's volume, down to the depth
-``1/q'`` that the deformation at that scale reaches, at the rate per unit volume
+2006 paper's picture, that heat is made in the contact regions seen at q' (the
+fraction ``P(q')`` of the nominal area) and in the rubber's volume, down to a depth
+of order ``1/q'`` (here exactly ``1/q'``, a choice), at the rate per unit volume
 
     Qdot(q') = heat_fraction p v dmu(q') q' / P(q'),
 
 for the contact time ``t(q') = d(q')/v`` that a point of the rubber spends in a
-region of diameter ``d(q') = pi/q'`` (half a wavelength).  Diffusion removes the
-heat of that layer at the rate ``D q'^2`` (``D = kappa / (rho c)``), so its
+region of diameter ``d(q') = pi/q'`` (half a wavelength; a choice).  Diffusion
+removes the heat of that layer at the one rate ``D q'^2`` (``D = kappa / (rho c)``;
+a choice: one mode, not the heat equation's spectrum), so its
 temperature after a time s is ``Qdot (1 - exp(-D q'^2 s)) / (rho c D q'^2)``.
-Its mean over the contact time (``contact_temperature="mean"``) or its value at
-the end of it (``"exit"``) is the rise the scale q' contributes:
+Its mean over the contact time (``contact_temperature="mean"``, the default, a
+choice) or its value at the end of it (``"exit"``) is the rise the scale q'
+contributes:
 
     dT(q') = heat_fraction pi p dmu(q') h(x) / (P(q') rho c),  x = pi D q'/v,
     h_exit(x) = (1 - exp(-x)) / x,   h_mean(x) = (x - 1 + exp(-x)) / x^2.
@@ -34,11 +36,12 @@ the contact regions of every coarser scale, so (Persson 2006)
 
     T_q = T + int_{q0}^{q} dT(q') (over ln q', the bands' rises as a density).
 
-**Background heating** (``sliding_distance`` L > 0; the 2006 paper's cumulative
-heating, off by default): all the heat that flows into the rubber, the mean flux
-``heat_fraction mu p v``, raises the temperature of a half-space over the
-sliding time L/v by ``2 heat_fraction mu p sqrt(L v / (pi kappa rho c))``
-(constant flux on a half-space); it is added to every ``T_q``.
+**Background heating** (``sliding_distance`` L > 0, off by default; the paper
+discusses the cumulative heating, the form here is a choice): all the heat that
+flows into the rubber, the mean flux ``heat_fraction mu p v``, raises the
+temperature of a half-space over the sliding time L/v by
+``2 heat_fraction mu p sqrt(L v / (pi kappa rho c))`` (constant flux on a
+half-space, Carslaw and Jaeger); it is added to every ``T_q``.
 
 **The surface-flux closure** (``closure="surface-flux"``, the closure shipped
 before): the heat of each scale is a flux through the surface of a sliding disc
@@ -46,8 +49,10 @@ of radius ``a_q = pi/(2 q)`` whose maximum temperature follows the interpolation
 of Tian and Kennedy (J. Tribol. 116 (1994) 167-174),
 ``dT = j a/kappa * 2/sqrt(pi (1.273 + Pe))``, ``Pe = v a/(2 D)``, and heat made
 at finer scales also heats the coarser regions.  For the same dissipation its
-rise is at least the volume closure's at every scale (term by term, for both
-``contact_temperature`` choices): an upper bound, not the default.
+rise is at least the volume closure's at every scale (each coarser band's term
+is larger, for both ``contact_temperature`` choices, and it adds the finer
+bands; the tests check the sums across speeds, temperatures and pressures): an
+upper bound, not the default.
 
 With no heat (``heat_fraction = 0``) every closure is the isothermal theory,
 exactly.
