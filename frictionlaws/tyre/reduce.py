@@ -31,9 +31,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..base.errors import ExtrapolationWarning, InputError
 from ..fitting import fit as run_fit
-from ..registry import get_law
+from ..law.registry import get_law
 from .mf.model import MagicFormula
 
 __all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve"]

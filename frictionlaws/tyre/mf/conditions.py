@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError, broadcast_shape
+from ...base.errors import InputError, broadcast_shape
 from .parameters import MFParameters
 
 __all__ = ["Conditions"]

@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ExtrapolationWarning, InputError
+from ...base.errors import ExtrapolationWarning, InputError
 from ...law import MU_MAX
 from .coefficients import CoefficientView, check_values, checked_coefficients, unused_terms
 
@@ -245,7 +245,7 @@ class MFParameters:
         return x
 
     def warn_range(self, name: str, x: Any) -> None:
-        """Warn (:class:`~frictionlaws.errors.ExtrapolationWarning`) when ``x`` leaves the
+        """Warn (:class:`~frictionlaws.base.errors.ExtrapolationWarning`) when ``x`` leaves the
         file's validity range of ``name`` (``fz``, ``kappa``, ``alpha``, ``gamma``,
         ``pressure``)."""
         lim = self.limits.get(name)
