@@ -22,7 +22,7 @@ The names below are imported on first use, so that importing a module of the pac
 none of the others.
 """
 
-from .._lazy import lazy_getattr
+from ..base.lazy import lazy_getattr
 
 #: public name -> the submodule that defines it
 _API = {

@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..fitting import fit as run_fit
-from ..registry import get_law
+from ..law.registry import get_law
 from .mf.model import MagicFormula
 from .mf.notices import collected
 

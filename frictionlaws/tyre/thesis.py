@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..fitting import fit
 from .brush import DEFAULT_ANGLES_DEG, BrushModel, BrushTyre, CorneringResult
 

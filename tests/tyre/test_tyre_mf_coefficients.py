@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import fit_mf
 from frictionlaws.tyre.mf import coefficients as mf_coefficients
 from frictionlaws.tyre.mf import declarations, outputs
@@ -139,7 +139,7 @@ def test_declarations_are_whole_and_consistent():
         assert c.unit in angles or c.unit in TO_MM_KN, (c.name, c.unit)
         assert ((c.section, c.name) in DIMENSIONAL) == (c.unit in TO_MM_KN), c.name
     assert set(DIMENSIONAL) <= {(c.section, c.name) for c in DECLARED.values()}
-    from frictionlaws.units import unit_registry
+    from frictionlaws.base.units import unit_registry
 
     ureg = unit_registry()
     for c in DECLARED.values():

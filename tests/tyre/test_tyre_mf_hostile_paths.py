@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, reduce_mf
 
 xr = pytest.importorskip("xarray")

@@ -1,7 +1,7 @@
 """The Magic Formula outputs against MFeval 4.0 on the three packaged examples.
 
-References: ``tests/data/mfeval/MF{52,61,62}_useMode{111,121}_grid.csv.gz``, written by
-``tests/data/mfeval/generate_references.m`` (see the README there): per file and
+References: ``tests/tyre/data/mfeval/MF{52,61,62}_useMode{111,121}_grid.csv.gz``, written by
+``tests/tyre/data/mfeval/generate_references.m`` (see the README there): per file and
 slip-angle convention 25 operating conditions (loads from near FZMIN to near FZMAX,
 camber -3/0/+3 deg, the inflation pressure and 0.8 / 1.2 times it, three speeds) with
 pure, zero and combined slip, and a block outside the file's limits that MFeval
@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre.mf.model import MagicFormula
 from frictionlaws.tyre.mf.outputs import steady_state
 
@@ -170,7 +170,7 @@ def test_mf52_aligning_moment_takes_the_side_force_shift_at_zero_camber_like_mfe
 
 
 def test_an_unknown_equations_choice_is_refused() -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     with pytest.raises(InputError, match="equations must be one of mfeval, published"):
         MagicFormula.from_file("MagicFormula61", equations="book")

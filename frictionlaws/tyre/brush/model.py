@@ -12,10 +12,10 @@ from typing import Any
 import numpy as np
 from scipy.linalg.lapack import dtbtrs
 
-from ...bound import as_bound
-from ...errors import DomainError, ExtrapolationWarning, InputError
+from ...base.errors import DomainError, ExtrapolationWarning, InputError
 from ...law import VARIABLES, Law
-from ...registry import get_law
+from ...law.bound import as_bound
+from ...law.registry import get_law
 from .result import CorneringResult
 from .tyre import (
     BISECTION_STEPS,
@@ -67,7 +67,7 @@ class BrushModel:
     ----------
     law : str, Law, BoundLaw, FitResult or callable
         A registered law (id or :class:`~frictionlaws.law.Law`) with
-        ``params``/``preset``; a :class:`~frictionlaws.bound.BoundLaw` or a fit
+        ``params``/``preset``; a :class:`~frictionlaws.law.bound.BoundLaw` or a fit
         result (its law and values; its fitted data range is used for
         extrapolation warnings); or a plain
         function ``mu(p, v)`` of pressure [Pa] and sliding speed [m/s].

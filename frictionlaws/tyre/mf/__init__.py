@@ -25,7 +25,7 @@ CLI when it builds its parser, loads no numpy).
 
 from __future__ import annotations
 
-from ..._lazy import lazy_getattr
+from ...base.lazy import lazy_getattr
 
 #: public name -> the submodule that defines it
 _API = {

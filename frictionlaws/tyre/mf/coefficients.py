@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from ...errors import InputError
+from ...base.errors import InputError
 from .declarations import (
     COEFFICIENT_SECTIONS,
     DECLARED,

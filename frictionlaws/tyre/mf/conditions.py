@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ExtrapolationWarning, InputError, broadcast_shape
+from ...base.errors import ExtrapolationWarning, InputError, broadcast_shape
 from .parameters import MFParameters
 
 __all__ = ["Conditions"]

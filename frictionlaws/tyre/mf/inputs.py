@@ -26,7 +26,7 @@ class Input:
     meaning : str
         What it is.
     quantity : str
-        The kind of quantity (:data:`frictionlaws.units.QUANTITIES`) its values are read as.
+        The kind of quantity (:data:`frictionlaws.base.units.QUANTITIES`) its values are read as.
     display : str
         The unit a bare number is read in at the command line.
     default : str

@@ -15,8 +15,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ...errors import InputError
-from ...interop import is_labelled
+from ...base.errors import InputError
+from ...fitting.views import is_labelled
 from .notices import collected
 
 __all__ = ["labelled", "is_labelled", "refuse_plain"]

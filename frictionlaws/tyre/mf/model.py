@@ -85,7 +85,7 @@ Conventions, each an option named after what it means (defaults first):
   ``LMU' = A LMU / (1 + (A-1) LMU)`` with A = 10, the value Pacejka 2012 suggests);
   identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
 * ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
-  with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
+  with an :class:`~frictionlaws.base.errors.ExtrapolationWarning`) or ``"clamp"``
   (evaluated at FZMAX, as MFeval's limit checks do);
 * ``equations``: ``"mfeval"`` (MFeval 4.0's forms where they depart from the
   published ones; its authors matched them to TNO's evaluator) or ``"published"``.
@@ -116,7 +116,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ExtrapolationWarning, InputError
+from ...base.errors import ExtrapolationWarning, InputError
 from .coefficients import listing
 from .equations import (
     MFCoefficients,
@@ -173,7 +173,7 @@ class MagicFormula(MFParameters):
     limits : mapping, optional
         Validity ranges from the file: ``fz``, ``kappa``, ``alpha``, ``gamma``,
         ``pressure`` -> (low, high) in SI.  Evaluating outside them warns
-        (:class:`~frictionlaws.errors.ExtrapolationWarning`).
+        (:class:`~frictionlaws.base.errors.ExtrapolationWarning`).
     name, source : str
         Labels for reports.
     notes : list of str
@@ -188,7 +188,7 @@ class MagicFormula(MFParameters):
         uses LMU' = LMU.
     loads_above_fzmax : {"extrapolate", "clamp"}
         Loads above the file's ``FZMAX``: evaluated as given with an
-        :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
+        :class:`~frictionlaws.base.errors.ExtrapolationWarning` (default) or clamped
         to FZMAX (as MFeval's limit checks do).
     equations : {"mfeval", "published"}
         Where MFeval 4.0 departs from the published equations (the camber in PDX3's

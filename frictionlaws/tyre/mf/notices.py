@@ -2,7 +2,7 @@
 
 A condition (an input beyond the file's range, a load clamped, an option not used) is
 raised once, where it arises, as a Python warning
-(:class:`~frictionlaws.errors.ExtrapolationWarning`, :class:`UserWarning`).  Every path
+(:class:`~frictionlaws.base.errors.ExtrapolationWarning`, :class:`UserWarning`).  Every path
 that reports an evaluation collects the warnings with :func:`collected`: the API's
 structured results (:func:`~frictionlaws.tyre.mf.outputs.evaluate`,
 :meth:`~frictionlaws.tyre.mf.model.MagicFormula.summary`), their JSON, the xarray

@@ -78,7 +78,7 @@ with the file's Q_FZ2 (0 when absent).
 Limits and speed
 ----------------
 ``saturate=False`` (the default) evaluates the inputs as given, with an
-:class:`~frictionlaws.errors.ExtrapolationWarning` outside the file's ranges;
+:class:`~frictionlaws.base.errors.ExtrapolationWarning` outside the file's ranges;
 ``saturate=True`` clamps slip ratio, slip angle, camber, pressure and load to the file's
 ranges as MFeval's limit checks do (the load to FZMAX in the forces and to at least
 FZMIN in M_z, the load below FZMIN reduced in M_x and M_y as MFeval does).  The speed
@@ -98,7 +98,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 from .coefficients import RecordingValues
 from .conditions import Conditions
 from .equations import (

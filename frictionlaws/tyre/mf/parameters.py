@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ExtrapolationWarning, InputError
+from ...base.errors import ExtrapolationWarning, InputError
 from ...law import MU_MAX
 from .coefficients import CoefficientView, check_values, checked_coefficients, unused_terms
 
@@ -276,7 +276,7 @@ class MFParameters:
         return x
 
     def warn_range(self, name: str, x: Any) -> None:
-        """Warn (:class:`~frictionlaws.errors.ExtrapolationWarning`) when ``x`` leaves the
+        """Warn (:class:`~frictionlaws.base.errors.ExtrapolationWarning`) when ``x`` leaves the
         file's validity range of ``name`` (``fz``, ``kappa``, ``alpha``, ``gamma``,
         ``pressure``)."""
         lim = self.limits.get(name)
@@ -292,7 +292,7 @@ class MFParameters:
 
     def clamp(self, name: str, x: Any, why: str) -> tuple[Any, Any]:
         """``x`` clipped to the file's range of ``name``, and the mask of the values
-        clipped; warns once (:class:`~frictionlaws.errors.ExtrapolationWarning`) naming how
+        clipped; warns once (:class:`~frictionlaws.base.errors.ExtrapolationWarning`) naming how
         many were clamped and why (``why``: the option that asked for it)."""
         lo, hi = self.limits[name]
         x = np.asarray(x, dtype=float)

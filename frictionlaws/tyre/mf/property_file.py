@@ -23,9 +23,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ...errors import InputError
-from ...sanitize import ascii_line
-from ...units import parse_unit_text, unit_registry
+from ...base.errors import InputError
+from ...base.sanitize import ascii_line
+from ...base.units import parse_unit_text, unit_registry
 from .coefficients import outside_fit, section_keys
 from .declarations import COEFFICIENT_SECTIONS, DECLARED, STRUCTURE_SECTIONS
 
@@ -244,7 +244,7 @@ class PropertyFile:
         """Factor from the file's unit of ``kind`` (e.g. ``"force/length"``) to SI.
 
         The file's units are read by the one unit grammar
-        (:func:`~frictionlaws.units.parse_unit_text`), never evaluated by pint.
+        (:func:`~frictionlaws.base.units.parse_unit_text`), never evaluated by pint.
         """
         ureg = unit_registry()
         pieces = {"force": self.unit("FORCE"), "length": self.unit("LENGTH"),

@@ -24,7 +24,7 @@ entries.  Two spellings of the same content are read here:
 
 Both give a :class:`~frictionlaws.tyre.mf.property_file.PropertyFile`, and
 :func:`format_tir` / :func:`write_tir` write one as ``.tir`` text.  Anything malformed raises
-:class:`~frictionlaws.errors.InputError` naming the file and line.  The packaged example
+:class:`~frictionlaws.base.errors.InputError` naming the file and line.  The packaged example
 files (``datasets/mf-examples``) are found by name here too
 (:func:`packaged_example`, :func:`open_property_file`).
 """
@@ -39,12 +39,12 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-from ... import jsonio
-from ...errors import InputError
+from ...base import jsonio
+from ...base.errors import InputError
+from ...base.limits import read_input
+from ...base.outputs import check_input_file, write_text_atomic
+from ...base.sanitize import ascii_line, split_lines, tir_string
 from ...io import datasets_dir, decode_text
-from ...limits import read_input
-from ...outputs import check_input_file, write_text_atomic
-from ...sanitize import ascii_line, split_lines, tir_string
 from .property_file import PropertyFile, Value, format_number
 
 __all__ = ["read_property_file", "read_tir", "read_json", "write_tir", "format_tir",

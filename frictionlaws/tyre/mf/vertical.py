@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ExtrapolationWarning, InputError
+from ...base.errors import ExtrapolationWarning, InputError
 from .conditions import Conditions
 from .parameters import MFParameters
 

@@ -16,7 +16,7 @@
 
 from __future__ import annotations
 
-from ...._lazy import lazy_getattr
+from ....base.lazy import lazy_getattr
 
 #: public name -> the submodule that defines it
 _API = {

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ....errors import InputError
+from ....base.errors import InputError
 from ....parallel import check_jobs, run_parallel
 from .peak import FittingModel
 from .stages import (

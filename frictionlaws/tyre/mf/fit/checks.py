@@ -44,7 +44,7 @@ import math
 
 import numpy as np
 
-from ....errors import Argument, InputError
+from ....base.errors import Argument, InputError
 from ...tyre_data import COLUMNS, TyreData
 from .stages import ALPHA_PURE, KAPPA_PURE
 

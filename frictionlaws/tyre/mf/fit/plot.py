@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ....errors import InputError
-from ....outputs import atomic_write, check_outputs
+from ....base.errors import InputError
+from ....base.outputs import atomic_write, check_outputs
 from .rows import select_direction
 
 __all__ = ["plot_fit", "check_figure_path"]

@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ...._lsq import least_squares_solve
-from ....errors import FitError
+from ....base.errors import FitError
+from ....fitting.lsq import least_squares_solve
 from ...tyre_data import TyreData
 from ..coefficients import default as declared_default
 from ..coefficients import fit_bounds, needs_met, stage_names

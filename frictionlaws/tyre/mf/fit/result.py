@@ -9,8 +9,8 @@ from pathlib import Path
 from typing import Any
 
 from .... import __version__
-from ....errors import InputError
-from ....outputs import atomic_write, check_outputs
+from ....base.errors import InputError
+from ....base.outputs import atomic_write, check_outputs
 from ...tyre_data import TyreData
 from ..model import MagicFormula
 from ..property_file import PropertyFile
@@ -43,7 +43,7 @@ class MFFit:
         Per direction, the per-load curves of stage 1 (load, mu, K, C, E, S_H, S_V).
     warnings : list of str
         What the data leave open (a peak they do not reach); also issued as
-        :class:`~frictionlaws.errors.ExtrapolationWarning` and written as notes.
+        :class:`~frictionlaws.base.errors.ExtrapolationWarning` and written as notes.
     """
 
     version: str

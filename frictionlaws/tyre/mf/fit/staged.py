@@ -57,7 +57,7 @@ from typing import Any
 
 import numpy as np
 
-from ....errors import Argument, ExtrapolationWarning, FitError, InputError
+from ....base.errors import Argument, ExtrapolationWarning, FitError, InputError
 from ...tyre_data import TyreData, read_tyre_data
 from ..coefficients import fit_bounds
 from ..model import MagicFormula

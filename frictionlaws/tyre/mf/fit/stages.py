@@ -35,8 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from ...._lsq import least_squares_solve
-from ....errors import InputError
+from ....base.errors import InputError
+from ....fitting.lsq import least_squares_solve
 from ..coefficients import ALL_NEEDS, direction_of, needs_met, section_of, stage_names
 from ..equations import lateral, longitudinal, mf_curve, weight_x, weight_y
 from ..outputs import aligning_moment

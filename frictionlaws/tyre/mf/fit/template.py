@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ....errors import InputError
+from ....base.errors import InputError
 from ...tyre_data import TyreData
 from ..coefficients import section_of
 from ..property_file import FITTYP_VERSIONS, PropertyFile, file_structure, version_of
