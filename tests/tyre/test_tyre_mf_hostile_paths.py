@@ -14,13 +14,12 @@ from __future__ import annotations
 import inspect
 import json
 import warnings
-from typing import Any
 
 import numpy as np
 import pytest
 
-from frictionlaws.cli import main
 from frictionlaws.base.errors import ExtrapolationWarning, InputError
+from frictionlaws.cli import main
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, reduce_mf
 
 xr = pytest.importorskip("xarray")
@@ -134,8 +133,7 @@ def test_reduce_at_a_clamped_load_is_the_curve_at_fzmax(capsys) -> None:
     ({"loads_above_fzmax": "clamp"}, "loads_above_fzmax")])
 def test_an_option_a_file_cannot_apply_is_noted_alike_on_every_path(
         tmp_path, capsys, options: dict[str, str], not_applied: str) -> None:
-    from frictionlaws.tyre.mf.tir import format_tir, read_property_file
-    from frictionlaws.tyre.mf.tir import packaged_example
+    from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
 
     pf = read_property_file(packaged_example("MagicFormula52"))
     del pf.sections["VERTICAL_FORCE_RANGE"]  # no FZMAX
