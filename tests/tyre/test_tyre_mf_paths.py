@@ -1,5 +1,7 @@
 """Every output of the Magic Formula's table reaches every path: the API, the CLI's text and
-``--json``, and xarray; every input of the table is an option of the CLI.
+``--json``, and xarray; every input of the table is an option of the CLI; every condition
+an evaluation warns of (an input beyond the file's range, a clamped load, ``saturate``)
+reaches every path with the rows it clamped.
 
 The outputs and inputs are enumerated from the library's own tables
 (:data:`~frictionlaws.tyre.mf.outputs.OUTPUTS`, :data:`~frictionlaws.tyre.mf.inputs.INPUTS`),
@@ -10,6 +12,7 @@ from __future__ import annotations
 
 import json
 import re
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -132,3 +135,89 @@ def _mf_parser(parser: Any) -> Any:
                 if getattr(sub, "choices", None) and "mf" in sub.choices:
                     return sub.choices["mf"]
     raise AssertionError("no tyre mf parser")
+
+
+# --------------------------------------------------- conditions reach every path alike
+
+#: Conditions an evaluation warns of, each with the CLI's options, the API's arguments and
+#: what its warning and rows say: an input beyond the file's range, a load clamped at
+#: FZMAX, inputs clamped by ``saturate``.
+CONDITIONS: dict[str, dict[str, Any]] = {
+    "extrapolated": {"cli": ["--kappa", "0.05,1.5"], "api": {"kappa": [0.05, 1.5]},
+                     "model": {}, "saturate": False, "warning": "kappa from",
+                     "clamped": {}},
+    "clamped": {"cli": ["--loads", "4,25", "--loads-above-fzmax", "clamp"],
+                "api": {"fz": [4000.0, 25000.0]}, "model": {"loads_above_fzmax": "clamp"},
+                "saturate": False, "warning": "evaluated at FZMAX (clamped",
+                "clamped": {"fz": [False, True]}},
+    "saturated": {"cli": ["--kappa", "0.05,1.5", "--saturate"], "api": {"kappa": [0.05, 1.5]},
+                  "model": {}, "saturate": True, "warning": "(clamped, saturate=True)",
+                  "clamped": {"kappa": [False, True]}},
+}
+
+
+def _condition_api(c: dict[str, Any], capsys: Any) -> tuple[list[str], list[list[str]]]:
+    from frictionlaws.tyre.mf.outputs import evaluate
+
+    mf = MagicFormula.from_file("MagicFormula61", **c["model"])
+    kw = {"kappa": 0.05, "alpha": 0.0, "fz": 4000.0, **{k: np.array(v) for k, v in
+                                                          c["api"].items()}}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res = evaluate(mf, kw["kappa"], kw["alpha"], kw["fz"], saturate=c["saturate"])
+    rows = res.to_dict()["rows"]
+    assert [str(w.message) for w in caught] == res.warnings  # once each, as held
+    return res.warnings, [r["clamped"] for r in rows]
+
+
+def _condition_cli_json(c: dict[str, Any], capsys: Any) -> tuple[list[str], list[list[str]]]:
+    code = main(["tyre", "mf", "MagicFormula61", *_with_defaults(c["cli"]), "--json"])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    doc = json.loads(out)
+    return doc["warnings"], [r["clamped"] for r in doc["rows"]]
+
+
+def _condition_cli_text(c: dict[str, Any], capsys: Any) -> tuple[list[str], list[list[str]]]:
+    code = main(["tyre", "mf", "MagicFormula61", *_with_defaults(c["cli"])])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    lines = [line for line in out.splitlines() if line[:1] == " " or line[:1].isdigit()]
+    rows = [[] if line.split()[-1] == "-" else line.split()[-1].split(",")
+            for line in lines]
+    return [line.removeprefix("warning: ") for line in err.splitlines()], rows
+
+
+def _condition_xarray(c: dict[str, Any], capsys: Any) -> tuple[list[str], list[list[str]]]:
+    mf = MagicFormula.from_file("MagicFormula61", **c["model"])
+    kw: dict[str, Any] = {"kappa": 0.05, "alpha": 0.0, "fz": 4000.0}
+    kw.update({k: xr.DataArray(v, dims="row") for k, v in c["api"].items()})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = mf.steady_state(kw["kappa"], kw["alpha"], kw["fz"], saturate=c["saturate"])
+    flags = ds["clamped"].values.tolist()
+    return list(ds.attrs["warnings"]), [sorted(ds.attrs["clamped"]) if f else [] for f in flags]
+
+
+def _with_defaults(argv: list[str]) -> list[str]:
+    """The CLI's options of a condition, with the inputs the API takes by default."""
+    extra = [] if "--kappa" in argv else ["--kappa", "0.05"]
+    return argv + extra + ([] if "--loads" in argv else ["--loads", "4"])
+
+
+#: The paths a condition reaches, each giving (the warnings, the inputs clamped per row).
+CONDITION_PATHS: dict[str, Callable[[dict[str, Any], Any],
+                                    tuple[list[str], list[list[str]]]]] = {
+    "api": _condition_api, "cli-json": _condition_cli_json, "cli-text": _condition_cli_text,
+    "xarray": _condition_xarray}
+
+
+@pytest.mark.parametrize("path", CONDITION_PATHS)
+@pytest.mark.parametrize("condition", CONDITIONS)
+def test_every_condition_reaches_every_path_alike(condition: str, path: str,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    c = CONDITIONS[condition]
+    said, clamped = CONDITION_PATHS[path](c, capsys)
+    assert [w for w in said if c["warning"] in w], (path, said)
+    expected = [[k for k, rows in c["clamped"].items() if rows[i]] for i in range(2)]
+    assert clamped == expected, (path, clamped)
