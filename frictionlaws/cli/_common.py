@@ -35,6 +35,7 @@ from typing import Any
 
 __all__ = [
     "UsageError",
+    "SCHEDULER_TRUST",
     "MergeAssignments",
     "MergeNames",
     "non_negative_int",
@@ -106,6 +107,12 @@ def report_text(report: str, args: argparse.Namespace) -> str:
     prefix = "warning: "
     return "\n".join(prefix + short_warning(line[len(prefix):]) if line.startswith(prefix)
                      else line for line in report.split("\n"))
+
+
+#: The trust a ``--scheduler`` asks for, said in its help (``docs/user-guide/security.rst``).
+SCHEDULER_TRUST = ("The scheduler and its workers are trusted with code execution here (Dask "
+                   "exchanges pickles): only this option connects, $FRICTIONLAWS_SCHEDULER "
+                   "is not read. Needs the 'dask' extra.")
 
 
 class UsageError(Exception):

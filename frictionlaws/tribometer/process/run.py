@@ -83,11 +83,11 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ...parallel import SCHEDULER_ENV, check_jobs, iter_parallel
+    from ...parallel import check_jobs, iter_parallel
 
     jobs = _job_count(jobs)
     check_jobs(jobs)
-    remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
+    remote = scheduler is not None  # only an address given connects, never the environment
     workers = local_workers(jobs)
     if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
         jobs = 1
