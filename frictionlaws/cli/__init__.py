@@ -389,7 +389,7 @@ def _value_options(parser: argparse.ArgumentParser) -> set[str]:
     return out
 
 
-_NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d)")
+_NEGATIVE_VALUE = re.compile(r"^-([0-9]|\.[0-9])")
 
 
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:

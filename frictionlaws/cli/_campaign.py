@@ -66,8 +66,10 @@ def campaign_progress(args: argparse.Namespace) -> bool:
 
 
 def _jobs(text: str) -> int:
-    try:
-        value = int(text)
+    from frictionlaws.numbers import parse_integer
+
+    try:  # the one number parser: no 1_0, no non-ASCII digits
+        value = parse_integer(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
     if value != -1 and not 1 <= value <= 1024:

@@ -17,6 +17,7 @@ from ._common import (
     add_law_source_options,
     bound_from_args,
     bounded_int,
+    bounded_number,
     data_options,
     fit_kwargs,
     parse_assignments,
@@ -130,7 +131,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="point spacing per variable (default log when MAX/MIN >= 100)")
     p.add_argument("--units", default="SI", metavar="SYSTEM",
                    help="unit system of the file: {systems}[,VAR=UNIT]")
-    p.add_argument("--tol", type=float, help="largest interpolation error in mu (adaptive grid)")
+    p.add_argument("--tol", type=bounded_number(0.0, lo_open=True), metavar="TOL",
+                   help="largest interpolation error in mu (adaptive grid; a number > 0)")
     p.add_argument("--max-rows", type=bounded_int(1, 10_000_000), default=200_000, metavar="N",
                    help="largest table allowed (default 200000; 1..10000000)")
     p.add_argument("-o", "--output", required=True, metavar="FILE",
@@ -167,8 +169,10 @@ def _options(args: argparse.Namespace) -> dict:
     opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
             "radioss_id": args.radioss_id}
     if args.lsdyna_contact:
-        try:
-            ids = [int(x) for x in args.lsdyna_contact.split(",")]
+        from frictionlaws.numbers import parse_integer
+
+        try:  # the one number parser: no 1_0, no non-ASCII digits
+            ids = [parse_integer(x) for x in args.lsdyna_contact.split(",")]
         except ValueError:
             ids = []
         if len(ids) not in (2, 4):
