@@ -52,6 +52,7 @@ from .errors import InputError
 __all__ = [
     "check_input_file",
     "check_outputs",
+    "check_unique_names",
     "protect_input",
     "is_protected",
     "atomic_write",
@@ -202,6 +203,38 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         _check_dir_target(out, "output directory")
     for src in ins:
         protect_input(src)
+
+
+def check_unique_names(named: Iterable[tuple[str, str]], *, what: str,
+                       file: str | None = None) -> None:
+    """Refuse outputs of one call whose file names coincide, before any work.
+
+    A command or call that derives a file name per input (a group, a record, a
+    manifest) would otherwise let a later file silently replace an earlier one.  Names
+    that differ only in case coincide too (one file on macOS and Windows).
+
+    Parameters
+    ----------
+    named : iterable of (str, str)
+        (what the output is made from, for the message; the file name it gets).
+    what : str
+        What the outputs are (``"plots"``), for the message.
+    file : str, optional
+        The input that names them (a manifest, a dataset), for the message.
+
+    Raises
+    ------
+    InputError
+        Naming both sources and the name they share.
+    """
+    seen: dict[str, str] = {}
+    for label, name in named:
+        key = os.path.normcase(str(name)).casefold()
+        if key in seen:
+            raise InputError(f"two {what} would be written as '{name}' ({seen[key]} and "
+                             f"{label}; names may not differ only in case): rename one, "
+                             "nothing was written", file=file)
+        seen[key] = label
 
 
 #: Inputs read or named in this process (real paths): never replaced.

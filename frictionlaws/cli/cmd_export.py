@@ -257,10 +257,11 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     Every group is fitted and exported in memory first; the files are written only
     when all succeeded, each atomically, none over an input.
     """
-    from frictionlaws.campaign import fit_groups, key_text
+    from frictionlaws.campaign import check_grouping, fit_groups, group_keys, key_text
     from frictionlaws.errors import InputError
     from frictionlaws.fe_export import export
-    from frictionlaws.outputs import check_outputs, write_text_atomic
+    from frictionlaws.io import load_dataset
+    from frictionlaws.outputs import check_outputs, check_unique_names, write_text_atomic
 
     from ._campaign import split_names
     from ._common import data_source
@@ -269,18 +270,21 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
         raise UsageError("--by writes one file per group: give -o FILE, not -o -")
     options = fit_kwargs(args)
     load = {k: options.pop(k) for k in ("mapping", "units", "area")}
+    by = check_grouping(split_names(args.by), [law])
+    out = Path(args.output)
     with data_source(args.fit) as source:
-        groups = fit_groups(law, source, split_names(args.by), load_options=load, **options)
+        dataset = load_dataset(source, **load)
+    keys = [key for key, _ in group_keys(dataset, list(by))]
+    paths = [_group_path(out, key) for key in keys]
+    # one file per group, each its own name, checked before any fit
+    check_unique_names([(f"group {key_text(k)}", p.name) for k, p in zip(keys, paths)],
+                       what="groups' files", file=args.fit)
+    check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
+    groups = fit_groups(law, dataset, by, **options)
     failed = [key_text(k) for k, r in groups if not r.success]
     if failed:
         raise InputError(f"the fit did not converge for {', '.join(failed)}; nothing exported",
                          file=args.fit)
-    out = Path(args.output)
-    paths = [_group_path(out, key) for key, _ in groups]
-    if len({str(p).casefold() for p in paths}) < len(paths):  # one file on macOS, Windows
-        raise InputError("two groups give the same file name (or names differing only in "
-                         "case); group by other columns", file=args.fit)
-    check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
     results = []
     for (key, fitted), path in zip(groups, paths, strict=True):
         m = fitted.metrics
