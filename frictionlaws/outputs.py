@@ -80,6 +80,7 @@ def check_input_file(path: PathLike, what: str = "input file") -> Path:
     write of this process replaces it.
     """
     p = Path(path)
+    _refuse_nul(p, what)
     try:
         st = p.stat()
     except FileNotFoundError:
@@ -95,6 +96,13 @@ def check_input_file(path: PathLike, what: str = "input file") -> Path:
         raise InputError(f"the {what} is not readable", file=str(p))
     _register(p, st)
     return p
+
+
+def _refuse_nul(path: Path, what: str) -> None:
+    """A name holding a NUL character names no file (the system refuses it)."""
+    if "\x00" in str(path):
+        raise InputError(f"the {what} name holds a NUL character; no file has such a name",
+                         file=str(path).replace("\x00", "\\0"))
 
 
 def _same_file(a: Path, b: Path) -> bool:
@@ -183,6 +191,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
             raise InputError(f"the {what} names a directory (it ends with a slash); give a "
                              "file name", file=str(raw))
         out = Path(raw)
+        _refuse_nul(out, what)
         for src in ins:
             if _same_file(out, src):
                 raise InputError(f"the {what} is also an input; it would be overwritten "
@@ -196,6 +205,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         if raw is None:
             continue
         out = Path(raw)
+        _refuse_nul(out, "output directory")
         for src in ins:
             if _same_file(out, src):
                 raise InputError("the output directory is also an input", file=str(out))

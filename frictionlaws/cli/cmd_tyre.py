@@ -337,12 +337,13 @@ def run(args: argparse.Namespace) -> int:
 
 def _angles(text: str) -> list[float]:
     from frictionlaws.errors import InputError
+    from frictionlaws.numbers import parse_number
 
-    try:
-        return [float(a) for a in text.split(",") if a.strip()]
-    except ValueError:
+    try:  # the one number parser: no 1_0, no non-ASCII digits, finite
+        return [parse_number(a) for a in text.split(",") if a.strip()]
+    except ValueError as exc:
         raise InputError(f"--angles '{text}': expected numbers in degrees, "
-                         "e.g. 1,2,3") from None
+                         f"e.g. 1,2,3 ({exc})") from None
 
 
 def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
