@@ -10,7 +10,7 @@ a standard error of 0.  A shared fit has no resampling: the command line refuses
 from __future__ import annotations
 
 import math
-import time
+import sys
 import warnings
 from pathlib import Path
 
@@ -113,48 +113,47 @@ def test_a_shared_fit_has_no_resampling_and_refuses_one() -> None:
 # ------------------------------------------------------------ the tyre sweep bootstrap
 
 
-def _sweeps(per: int, n: int = 15):
-    """Pure slip-ratio sweeps at three loads, ``per`` sweeps at each."""
-    from frictionlaws.tyre import MagicFormula, TyreData
+def _sweeps(per: int):
+    """Pure-slip sweeps of a rig at two loads, up and down (``per=2``) or up only (1)."""
+    from frictionlaws.tyre import MagicFormula
+    from frictionlaws.tyre._fit_mf_bootstrap import find_sweeps
+    from frictionlaws.tyre.synthetic_rig import rig_data
 
-    truth = MagicFormula.from_file("MagicFormula61")
-    rng = np.random.default_rng(0)
-    k = np.linspace(-0.25, 0.25, n)
-    cols = []
-    for load in (0.5, 1.0, 1.5):
-        for j in range(per):
-            ks = k if j % 2 == 0 else k[::-1]
-            fz = np.full(n, load * truth.fnomin)
-            fx = truth.fx0(ks, fz) * (1 + 0.04 * rng.standard_normal())
-            cols.append((fz, ks, fx))
-    fz, ks, fx = (np.concatenate(c) for c in zip(*cols))
-    return TyreData.from_arrays(fz=fz, kappa=ks, fx=fx)
+    data = rig_data(MagicFormula.from_file("MagicFormula61"), n=9, loads=(0.5, 1.0),
+                    pressures=(1.0,), cambers_deg=(0.0,), combined=False)
+    labels = find_sweeps(data)
+    return data if per == 2 else data.subset(np.flatnonzero(labels % 2 == 0))
 
 
-def test_one_sweep_per_load_is_refused_before_any_fit_naming_the_reason() -> None:
+def test_one_sweep_per_load_is_refused_before_any_fit_naming_the_reason(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     from frictionlaws.tyre import fit_mf
+    from frictionlaws.tyre import fit_mf as module
 
+    def no_fit(*args: object, **kwargs: object) -> None:
+        raise AssertionError("fitted before the bootstrap was checked")
+
+    monkeypatch.setattr(sys.modules[module.__module__], "_fit_directions", no_fit)
     data = _sweeps(per=1)
-    t0 = time.perf_counter()
     with pytest.raises(InputError, match="sweep bootstrap cannot vary") as err:
         fit_mf(data, uncertainty="sweeps", resamples=20)
-    assert time.perf_counter() - t0 < 1.0  # refused before the fit, not after
-    assert "each of the 3 strata" in str(err.value) and "one sweep" in str(err.value)
+    assert "each of the 4 strata" in str(err.value) and "one sweep" in str(err.value)
 
 
 def test_two_sweeps_per_load_are_resampled(tmp_path: Path) -> None:
     from frictionlaws.tyre._fit_mf_bootstrap import check_can_resample
 
-    assert [len(s) for s in check_can_resample(_sweeps(per=2))] == [2, 2, 2]
+    assert [len(s) for s in check_can_resample(_sweeps(per=2))] == [2, 2, 2, 2]
 
 
 def test_the_command_line_refuses_a_sweep_bootstrap_that_cannot_vary(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     data = _sweeps(per=1)
     csv = tmp_path / "one.csv"
-    csv.write_text("Fz [N],kappa [-],Fx [N]\n" + "".join(
-        f"{z!r},{k!r},{x!r}\n" for z, k, x in zip(data.fz.tolist(), data.kappa.tolist(),
-                                                  data.fx.tolist())))
+    csv.write_text("Fz [N],kappa [-],alpha [rad],Fx [N],Fy [N]\n" + "".join(
+        f"{z!r},{k!r},{a!r},{x!r},{y!r}\n" for z, k, a, x, y in zip(
+            data.fz.tolist(), data.kappa.tolist(), data.alpha.tolist(), data.fx.tolist(),
+            data.fy.tolist())))
     out = tmp_path / "one.tir"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
