@@ -467,12 +467,12 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
     if _DECIMAL_COMMA.match(raw):
         raise InputError(f"{key} = {raw}: a decimal comma; write {raw.replace(',', '.')} "
                          "(property files use a decimal point)", file=source, row=lineno)
+    if " " in raw or "\t" in raw:
+        raise InputError(f"{key} = {raw!r}: expected one number or a quoted string",
+                         file=source, row=lineno)
     if looks_numeric(raw):  # nan, inf, 1_000, non-ASCII digits: no number, and no word
         raise InputError(f"{key} = {ascii_line(raw)[:40]} is not a number a property file "
                          f"holds (expected {NUMBER_HELP}, with the digits 0-9)",
-                         file=source, row=lineno)
-    if " " in raw or "\t" in raw:
-        raise InputError(f"{key} = {raw!r}: expected one number or a quoted string",
                          file=source, row=lineno)
     return raw  # a bare word (e.g. TRUE): kept as text
 
@@ -547,7 +547,8 @@ class _TirReader:
             raise InputError(
                 f"[{current}] {key} is given twice (lines {self.lines[(current, key)]} and "
                 f"{lineno}); remove one", file=self.source, row=lineno)
-        self.sections[current][key] = _parse_value(value_text, self.source, lineno, key)
+        self.sections[current][key] = _parse_value(value_text, self.source, lineno,
+                                                     f"[{current}] {key}")
         self.lines[(current, key)] = lineno
         if comment:
             self.comments[(current, key)] = comment
