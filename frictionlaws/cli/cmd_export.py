@@ -164,12 +164,12 @@ def _solver_options(p: argparse.ArgumentParser) -> None:
 
 
 def _options(args: argparse.Namespace) -> dict:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
             "radioss_id": args.radioss_id}
     if args.lsdyna_contact:
-        from frictionlaws.numbers import parse_integer
+        from frictionlaws.base.numbers import parse_integer
 
         try:  # the one number parser: no 1_0, no non-ASCII digits
             ids = [parse_integer(x) for x in args.lsdyna_contact.split(",")]
@@ -257,11 +257,11 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     Every group is fitted and exported in memory first; the files are written only
     when all succeeded, each atomically, none over an input.
     """
-    from frictionlaws.campaign import check_grouping, fit_groups, group_keys, key_text
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.outputs import check_outputs, check_unique_names, write_text_atomic
     from frictionlaws.fe_export import export
+    from frictionlaws.fitting.campaign import check_grouping, fit_groups, group_keys, key_text
     from frictionlaws.io import load_dataset
-    from frictionlaws.outputs import check_outputs, check_unique_names, write_text_atomic
 
     from ._campaign import split_names
     from ._common import data_source
@@ -317,8 +317,8 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
-    from frictionlaws.outputs import check_outputs
 
     if args.format in FORTRAN_FORMATS:
         check_source_name(args.output)

@@ -59,10 +59,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, InputError
+from ..base.errors import DomainError, InputError
+from ..base.units import display_unit, to_display
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
-from ..units import display_unit, to_display
 from .cv import error_text, refit, undetermined_rows
 
 __all__ = ["MU_LIMITS", "TREND_TOL", "TREND_REL", "TREND_ALPHA", "Design", "design_of", "Trend",
@@ -407,7 +407,7 @@ def _holdout_fraction(k: str, v: Any) -> float:
     if k not in VARIABLES:
         raise InputError(f"unknown variable '{k}' (known: {', '.join(VARIABLES)})",
                          option="holdout")
-    from ..numbers import parse_number
+    from ..base.numbers import parse_number
 
     try:  # text through the one number parser (no 0_3, no non-ASCII digits, no nan)
         f = parse_number(v) if isinstance(v, str) else float(v)

@@ -26,7 +26,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["ZERO_SPREAD", "MIN_DETERMINED", "cannot_vary", "check_can_vary", "no_spread",
            "spread_errors", "withheld_message"]

@@ -2,7 +2,7 @@
 and a valid example of its input.
 
 A reader takes the path of a file a user gives and returns what the library works with,
-or raises :class:`~frictionlaws.errors.InputError` naming the file and the place (row,
+or raises :class:`~frictionlaws.base.errors.InputError` naming the file and the place (row,
 column, key) of what it refuses.  The list is what the hostile-input harness walks
 (``tests/base/test_hostile_boundary_walk.py``): every reader here gets every hostile
 class of input (numbers past the one number parser, malformed bytes, encodings, limits,

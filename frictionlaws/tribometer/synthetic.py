@@ -395,7 +395,7 @@ def make_campaign(
     -------
     CampaignTruth
     """
-    from ..outputs import check_unique_names
+    from ..base.outputs import check_unique_names
 
     rig = rig or synthetic_rig()
     root = Path(directory)

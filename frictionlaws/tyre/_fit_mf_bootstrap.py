@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..fitting.resampling import check_can_vary, spread_errors, withheld_message
 from ..parallel import check_jobs, run_parallel
 from . import _fit_mf_stages as stages_

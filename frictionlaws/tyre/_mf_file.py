@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..errors import InputError
-from ..numbers import is_number, parse_number
+from ..base.errors import InputError
+from ..base.numbers import is_number, parse_number
 from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 

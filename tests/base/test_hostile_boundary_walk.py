@@ -10,7 +10,7 @@ Nothing here names a reader, an option or a format by hand:
   (binary bytes, an empty file, a NUL, a truncated file, UTF-16, a line past the csv
   field limit, deep nesting, a file past the size limit, a line separator inside the
   text; checklists 4, 11, 12 and "every parse error is an input error") gives an
-  :class:`~frictionlaws.errors.InputError` naming the file or a result, never another
+  :class:`~frictionlaws.base.errors.InputError` naming the file or a result, never another
   exception;
 * **options** come from the argparse parsers (:func:`frictionlaws.cli.build_parser`):
   every option that takes a number refuses each hostile spelling of it (an option with
@@ -42,7 +42,7 @@ from pathlib import Path
 import pytest
 from hostile import Snapshot, check_outcome, run_cli
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.io.readers import FORMATS, READERS, Reader
 
 pytestmark = pytest.mark.hostile
@@ -195,7 +195,7 @@ def test_every_parse_error_of_every_reader_is_an_input_error(
     raw = source.read_bytes()
     hostile = source.with_name(f"malformed{source.suffix}")
     if cls == "past the size limit":
-        from frictionlaws import limits
+        from frictionlaws.base import limits
 
         monkeypatch.setattr(limits, "MAX_INPUT_BYTES", max(len(raw) // 2, 16))
         hostile.write_bytes(raw)

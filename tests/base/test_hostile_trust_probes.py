@@ -140,7 +140,7 @@ def test_records_whose_plots_share_a_name_are_refused_before_any_work(tmp_path: 
 
 
 def test_a_synthetic_campaign_refuses_records_that_share_a_name(tmp_path: Path) -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
 
     with pytest.raises(InputError, match="a_b_01.csv"):
@@ -151,7 +151,7 @@ def test_a_synthetic_campaign_refuses_records_that_share_a_name(tmp_path: Path) 
 
 def test_export_by_refuses_groups_that_share_a_file_name_before_fitting(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import frictionlaws.campaign as campaign
+    import frictionlaws.fitting.campaign as campaign
 
     def no_fit(*args: object, **kwargs: object) -> None:
         raise AssertionError("fitted before the names were checked")
@@ -170,7 +170,7 @@ def test_export_by_refuses_groups_that_share_a_file_name_before_fitting(
 
 
 def test_a_record_header_beyond_the_csv_field_limit_is_an_input_error(tmp_path: Path) -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.tribometer.records import read_record
 
     rec = tmp_path / "long.csv"

@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 
 import frictionlaws as fl
-from frictionlaws.campaign import fit_many
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.fitting.campaign import fit_many
 from frictionlaws.fitting.resampling import (
     MIN_DETERMINED,
     cannot_vary,

@@ -252,7 +252,7 @@ def test_a_tls_scheduler_without_tls_settings_or_with_another_ca_is_refused(
         tls_cluster: tuple[str, dict], tmp_path: Path) -> None:
     import dask
 
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.parallel import run_parallel
 
     address, settings = tls_cluster
