@@ -158,6 +158,43 @@ def test_every_reader_refuses_every_number_past_the_parser(
                          f"{m.group()!r} stood, at offset {m.start()}")
 
 
+def _byte_readers() -> set[str]:
+    """Modules of the package that read a file's bytes (through the bounded reader)."""
+    package = ROOT / "frictionlaws"
+    out = set()
+    for path in package.rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if any(isinstance(n, ast.Call) and getattr(n.func, "id", None) == "read_input"
+               for n in ast.walk(tree)):
+            out.add(".".join(path.relative_to(ROOT).with_suffix("").parts))
+    return out
+
+
+def test_the_list_of_readers_reaches_every_module_that_reads_a_file(
+        examples: dict[str, Path]) -> None:
+    """A new reader is walked once it is in READERS: every module that reads a file's
+    bytes is reached by some reader of the list (traced while each reads its example)."""
+    import sys
+
+    from frictionlaws.base.limits import read_input
+
+    reached: set[str] = set()
+
+    def trace(frame, event, arg):  # noqa: ANN001, ANN202 - sys.setprofile's signature
+        if event == "call" and frame.f_code is read_input.__code__:
+            reached.add(frame.f_back.f_globals.get("__name__", ""))
+
+    for r in READERS:
+        sys.setprofile(trace)
+        try:
+            r.read(examples[r.name])
+        finally:
+            sys.setprofile(None)
+    missing = _byte_readers() - reached
+    assert "frictionlaws.tyre.tir" in _byte_readers()
+    assert not missing, f"modules that read files but no entry of READERS reaches: {missing}"
+
+
 def _malformed(text: bytes, cls: str) -> bytes:
     if cls == "binary bytes":
         return b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe\xfd" + bytes(range(256))
