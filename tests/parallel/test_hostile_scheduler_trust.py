@@ -19,13 +19,12 @@ import shutil
 import socket
 import struct
 import subprocess
-import threading
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from hostile import Snapshot, check_outcome, run_cli
+from hostile import Snapshot, check_outcome, run_cli, tcp_peer
 
 pytest.importorskip("distributed")
 msgpack = pytest.importorskip("msgpack")
@@ -67,43 +66,6 @@ HANDSHAKE = _framed(msgpack.packb({"compression": None, "python": [3, 12, 0],
                                    "pickle-protocol": 5}))
 
 
-def _peer(replies: list[bytes]) -> Iterator[str]:
-    """A TCP peer on 127.0.0.1 that sends ``replies`` in turn, one after each message
-    it reads (the first at once), on every connection."""
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(8)
-    stop = threading.Event()
-    held: list[socket.socket] = []
-
-    def serve() -> None:
-        server.settimeout(0.1)
-        while not stop.is_set():
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                continue
-            held.append(conn)
-            try:
-                for reply in replies:
-                    conn.sendall(reply)
-                    conn.settimeout(2.0)
-                    conn.recv(65536)
-            except OSError:
-                pass
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-    try:
-        yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
-    finally:
-        stop.set()
-        thread.join(2)
-        for conn in held:
-            conn.close()
-        server.close()
-
-
 @pytest.fixture
 def campaign_csv(tmp_path: Path) -> Path:
     data = tmp_path / "d.csv"
@@ -115,7 +77,7 @@ def campaign_csv(tmp_path: Path) -> Path:
 def _hostile_run(tmp_path: Path, data: Path, replies: list[bytes]) -> tuple[str, Path]:
     marker = tmp_path / "MARKER"
     replies = [r.replace(b"@@", b"") for r in replies]
-    gen = _peer(replies)
+    gen = tcp_peer(replies)
     address = next(gen)
     try:
         snap = Snapshot.take([tmp_path], inputs=[data])
@@ -160,7 +122,7 @@ def test_the_environment_alone_connects_to_nothing(tmp_path: Path, small_campaig
     """``process`` with FRICTIONLAWS_SCHEDULER naming a hostile peer: no connection is
     made at all (the peer never sees a byte), the records are processed here."""
     marker = tmp_path / "MARKER"
-    gen = _peer([_pickled(marker)])
+    gen = tcp_peer([_pickled(marker)])
     address = next(gen)
     try:
         with socket.create_connection(("127.0.0.1", int(address.rsplit(":", 1)[1]))):
