@@ -63,7 +63,7 @@ from ..coefficients import fit_bounds
 from ..model import MagicFormula
 from ..property_file import FITTYP_VERSIONS, PropertyFile
 from ..tir import format_tir, read_tir
-from .bootstrap import check_options, sweep_bootstrap
+from .bootstrap import check_can_resample, check_options, sweep_bootstrap
 from .checks import repeated_rows
 from .peak import FittingModel, peak_message, unreached_peaks
 from .pure import direction_errors, fit_direction
@@ -150,7 +150,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     asymptotic = dict(stderr)
     method = UNCERTAINTIES["asymptotic"]
     if uncertainty == "sweeps":
-        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, boot)
+        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, {**boot,
+                                                                      "warnings_out": warns})
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
     fitted.uncertainty, fitted.stderr_asymptotic = method, asymptotic
@@ -173,6 +174,7 @@ def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: s
         data = read_tyre_data(data, sign_convention=sign_convention)
     if uncertainty == "sweeps":
         check_options(boot["resamples"], boot["jobs"], boot["sweeps"], len(data))
+        check_can_resample(data, boot["sweeps"])  # resamples that cannot vary: refused
     return data
 
 
