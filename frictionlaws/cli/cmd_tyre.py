@@ -191,7 +191,7 @@ def _steady_state_options(p: argparse.ArgumentParser) -> None:
     for name, inp in INPUTS.items():
         if name == "fz":
             continue
-        g.add_argument(f"--{name.replace('_', '-')}", metavar="A,B,C|MIN:MAX:N",
+        g.add_argument(f"--{name.replace('_', '-')}", metavar="MIN:MAX:N|A,B,C",
                        help=f"{inp.meaning}: a list or a range {RANGE_HELP}; bare numbers "
                             f"in {inp.display} (default {inp.default})")
     g.add_argument("--saturate", action="store_true",

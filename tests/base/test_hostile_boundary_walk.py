@@ -280,7 +280,7 @@ TEXT = {"NAME", "LAW", "LAW,...", "A,B,...", "COL=NAME,...", "COL=UNIT,...", "SE
         "COLUMN[,COLUMN]", "NAME[,NAME]", "UNIT", "SYSTEM", "VAR=lin|log,...", "ADDRESS",
         "SHELL", "law", "family", "weights", "uncertainty", "boot_interval", "progress",
         "format", "sign_convention", "slip_angle", "friction_scaling", "loads_above_fzmax",
-        "equations", "side", "case", "pressure_shape"}
+        "equations", "side", "case", "pressure_shape", "outputs"}
 #: Files read, and files or folders written, by destination.
 INPUTS = {"params", "fit", "data", "template", "rig", "manifest", "file", "name"}
 OUTPUTS = {"out", "save", "plot", "output", "records_out"}

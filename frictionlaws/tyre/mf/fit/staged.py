@@ -135,13 +135,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     tpl_coeffs, p_nom, p_fit, mf = model_from_template(tpl, data, version, notes)
     values, stderr, undetermined, stages, errors, warns = _fit_directions(
         mf, data, version, tpl_coeffs, p_fit, notes)
-    later = later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr,
-                                 fit_bounds())
-    values, stderr = later.values, later.stderr
-    undetermined = [k for k in undetermined if k not in values] + [
-        k for k in later.undetermined if k not in undetermined]
-    errors.update(later.errors)
-    notes.extend(later.notes)
+    later = later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr, fit_bounds())
+    values, stderr, undetermined = _with_later(later, undetermined, errors, notes)
     if not values:
         raise FitError(f"{data.source}: nothing could be fitted (no coefficient is "
                        "determined by these rows); no file written")
@@ -159,6 +154,17 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     for text in warns:
         warnings.warn(text, ExtrapolationWarning, stacklevel=2)
     return fitted
+
+
+def _with_later(later: Any, undetermined: list[str], errors: dict, notes: list[str]
+                ) -> tuple[dict[str, float], dict[str, float], list[str]]:
+    """The values, standard errors and undetermined coefficients after the later stages
+    (their errors and notes added to ``errors`` and ``notes``)."""
+    errors.update(later.errors)
+    notes.extend(later.notes)
+    kept = [k for k in undetermined if k not in later.values]
+    return later.values, later.stderr, kept + [k for k in later.undetermined
+                                               if k not in undetermined]
 
 
 def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str,
