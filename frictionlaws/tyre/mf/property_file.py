@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ...base.errors import InputError
+from ...base.numbers import is_number, parse_number
 from ...base.sanitize import ascii_line
 from ...base.units import parse_unit_text, unit_registry
 from .coefficients import outside_fit, section_keys
@@ -43,7 +44,7 @@ _UNIT_KINDS = {"N": "force", "m": "length", "s": "time", "kg": "mass", "Pa": "pr
 
 def _unit_kind(unit: str) -> str | None:
     """The kind of a declared SI unit (``"N/m"`` -> ``"force/length"``), None if none."""
-    kind = re.sub(r"/rad(\*\*\d)?|\brad(\*\*\d)?\b", "", unit)
+    kind = re.sub(r"/rad(\*\*[0-9])?|\brad(\*\*[0-9])?\b", "", unit)
     kind = re.sub(r"\b(N|m|s|kg|Pa)\b", lambda m: _UNIT_KINDS[m.group(1)], kind)
     return kind if re.search(r"force|length|time|mass|pressure", kind) else None
 
@@ -323,8 +324,8 @@ RANGES = (("fz", "VERTICAL_FORCE_RANGE", "FZMIN", "FZMAX", True),
 def version_of(pf: PropertyFile) -> tuple[str, str]:
     """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
     fittyp = pf.get("MODEL", "FITTYP")
-    if isinstance(fittyp, str) and fittyp.strip().isdigit():
-        fittyp = float(fittyp)  # quoted ('61' or "61"): the same version number
+    if isinstance(fittyp, str) and is_number(fittyp):
+        fittyp = parse_number(fittyp)  # quoted ('61' or "61"): the same version number
     fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
     if fittyp is not None:
         if not isinstance(fittyp, float) or fittyp not in FITTYP_VERSIONS:

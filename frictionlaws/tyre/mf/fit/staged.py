@@ -63,7 +63,7 @@ from ..coefficients import fit_bounds
 from ..model import MagicFormula
 from ..property_file import FITTYP_VERSIONS, PropertyFile
 from ..tir import format_tir, read_tir
-from .bootstrap import DEFAULT_RESAMPLES, check_options, sweep_bootstrap
+from .bootstrap import DEFAULT_RESAMPLES, check_can_resample, check_options, sweep_bootstrap
 from .checks import repeated_rows
 from .peak import FittingModel, peak_message, unreached_peaks
 from .pure import direction_errors, fit_direction
@@ -132,10 +132,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         Too few pure-slip points.
     """
     t0 = time.perf_counter()
-    given = dict(resamples=resamples, jobs=jobs, seed=seed, sweeps=sweeps)
-    boot = {k: BOOTSTRAP_OPTIONS[k] if v is None else v for k, v in given.items()}
-    refuse_not_applied(data, sign_convention, uncertainty, given)
-    data = _checked_inputs(data, fittyp, sign_convention or "iso", uncertainty, boot)
+    data, boot = _checked_inputs(data, fittyp, sign_convention, uncertainty,
+                                 dict(resamples=resamples, jobs=jobs, seed=seed, sweeps=sweeps))
     version = FITTYPS[fittyp]
     tpl = template_file(template, version)
     notes = list(data.notes)
@@ -143,13 +141,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     tpl_coeffs, p_nom, p_fit, mf = model_from_template(tpl, data, version, notes)
     values, stderr, undetermined, stages, errors, warns = _fit_directions(
         mf, data, version, tpl_coeffs, p_fit, notes)
-    later = later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr,
-                                 fit_bounds())
-    values, stderr = later.values, later.stderr
-    undetermined = [k for k in undetermined if k not in values] + [
-        k for k in later.undetermined if k not in undetermined]
-    errors.update(later.errors)
-    notes.extend(later.notes)
+    later = later_stages(mf, data, version, tpl_coeffs, p_fit, values, stderr, fit_bounds())
+    values, stderr, undetermined = _with_later(later, undetermined, errors, notes)
     if not values:
         raise FitError(f"{data.source}: nothing could be fitted (no coefficient is "
                        "determined by these rows); no file written")
@@ -158,7 +151,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     asymptotic = dict(stderr)
     method = UNCERTAINTIES["asymptotic"]
     if uncertainty == "sweeps":
-        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, boot)
+        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, {**boot,
+                                                                      "warnings_out": warns})
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
     fitted.uncertainty, fitted.stderr_asymptotic = method, asymptotic
@@ -207,9 +201,24 @@ def refuse_not_applied(data: Any, sign_convention: str | None, uncertainty: str,
                           "remove it"])
 
 
-def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str,
-                    uncertainty: str, boot: dict[str, Any]) -> TyreData:
-    """The data (read when a file), after the options are checked (before any fit)."""
+def _with_later(later: Any, undetermined: list[str], errors: dict, notes: list[str]
+                ) -> tuple[dict[str, float], dict[str, float], list[str]]:
+    """The values, standard errors and undetermined coefficients after the later stages
+    (their errors and notes added to ``errors`` and ``notes``)."""
+    errors.update(later.errors)
+    notes.extend(later.notes)
+    kept = [k for k in undetermined if k not in later.values]
+    return later.values, later.stderr, kept + [k for k in later.undetermined
+                                               if k not in undetermined]
+
+
+def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str | None,
+                    uncertainty: str, given: dict[str, Any]
+                    ) -> tuple[TyreData, dict[str, Any]]:
+    """The data (read when a file) and the bootstrap's options (``given``, with their
+    defaults), after the options are checked (before any fit)."""
+    refuse_not_applied(data, sign_convention, uncertainty, given)
+    boot = {k: BOOTSTRAP_OPTIONS[k] if v is None else v for k, v in given.items()}
     if uncertainty not in UNCERTAINTIES:
         raise InputError(f"uncertainty {uncertainty!r} is not known; expected one of "
                          f"{', '.join(UNCERTAINTIES)}")
@@ -217,10 +226,11 @@ def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: s
         raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
                          f"{', '.join(str(k) for k in FITTYPS)}")
     if not isinstance(data, TyreData):
-        data = read_tyre_data(data, sign_convention=sign_convention)
+        data = read_tyre_data(data, sign_convention=sign_convention or "iso")
     if uncertainty == "sweeps":
         check_options(boot["resamples"], boot["jobs"], boot["sweeps"], len(data))
-    return data
+        check_can_resample(data, boot["sweeps"])  # resamples that cannot vary: refused
+    return data, boot
 
 
 def _undetermined_notes(undetermined: list[str], stderr: dict[str, float],
