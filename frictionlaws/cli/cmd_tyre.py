@@ -486,7 +486,7 @@ def _run_mf(args: argparse.Namespace) -> int:
 
         summary["source"] = shown_source(summary["source"])
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(summary))
         return 0
