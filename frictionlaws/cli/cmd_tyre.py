@@ -529,7 +529,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-        from frictionlaws.tyre._fit_mf_plot import check_figure_path
+        from frictionlaws.base.outputs import check_figure_path
 
         check_figure_path(args.plot)
     from frictionlaws.base.errors import FitError

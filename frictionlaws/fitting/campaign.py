@@ -631,10 +631,10 @@ _GC_EVERY = 50
 
 def _refuse_missing_group_column(dataset: Any, col: str) -> None:
     """Name why a ``by`` column is not there: read under its dataset name, or not read."""
-    from ..io.columns import _ALIAS_LOOKUP, _norm
+    from ..io import column_for
 
     columns = ", ".join(map(str, dataset.frame.columns))
-    canon = _ALIAS_LOOKUP.get(_norm(col))
+    canon = column_for(col)
     if canon is not None and canon != col and canon in dataset.frame.columns:
         raise InputError(f"no column {col} to group by: a column '{col}' is read as the "
                          f"dataset column '{canon}'; group by {canon} (columns read: "

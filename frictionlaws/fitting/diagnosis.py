@@ -37,14 +37,14 @@ def _unit_columns_r(jac: np.ndarray, cols: list[int], norms: np.ndarray) -> np.n
     built block by block (``R = qr([R; J_block])``), so a fit on millions of rows needs no
     scaled copy of the Jacobian nor an n-row U of its SVD.
     """
-    from ..law.evaluation import _BLOCK, _BLOCKED_FROM
+    from ..law.evaluation import BLOCK_ROWS, BLOCKED_FROM
 
     n = jac.shape[0]
-    if n < _BLOCKED_FROM:
+    if n < BLOCKED_FROM:
         return jac[:, cols] / norms
     r = np.zeros((0, len(cols)))
-    for start in range(0, n, _BLOCK):
-        block = jac[start:start + _BLOCK, cols] / norms
+    for start in range(0, n, BLOCK_ROWS):
+        block = jac[start:start + BLOCK_ROWS, cols] / norms
         if not np.all(np.isfinite(block)):
             return block
         r = np.asarray(np.linalg.qr(np.vstack([r, block]), mode="r"))

@@ -33,7 +33,7 @@ from .building import (
     _to_si_checked,
 )
 from .columns import CANONICAL, TEXT_COLUMNS, VARIABLE_COLUMNS, parse_mapping, parse_units
-from .reading import _split_header, _Table, _table_from_frame
+from .reading import Table, _table_from_frame, split_header
 
 __all__ = ["Dataset", "dataset_html"]
 
@@ -454,13 +454,13 @@ class Dataset:
         return path
 
 
-def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
+def _build(table: Table, name: str, mapping: Mapping[str, str] | None,
            units: Mapping[str, str] | None, area: str | float | None,
            provenance: str | None) -> Dataset:
     """The dataset of a table's raw cells: every check of the input layer, in order."""
     notes = list(table.notes)
     _check_headers(table)
-    names = [_split_header(h)[0] for h in table.headers]
+    names = [split_header(h)[0] for h in table.headers]
     assigned, explicit = _assign_columns(table, names, mapping, notes)
     unit_of = _column_units(table, names, assigned, units)
     values = _numbers(table, assigned, explicit, unit_of, notes)

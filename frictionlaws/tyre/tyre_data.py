@@ -162,7 +162,7 @@ def _check_blank_pressures(pressure: np.ndarray, table: Any, j: int) -> None:
 
 
 def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
-    from ..io import _split_header
+    from ..io import split_header as _split_header
 
     found: dict[str, tuple[int, str | None]] = {}
     for j, h in enumerate(headers):
@@ -185,7 +185,7 @@ def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str |
 
 def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
     from ..base.units import parse_unit, to_si, unit_registry
-    from ..io import _to_float
+    from ..io import to_float as _to_float
 
     kind = COLUMNS[col][0]
     header = table.headers[j]
