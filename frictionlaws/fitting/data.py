@@ -13,6 +13,7 @@ import numpy as np
 from ..base.errors import Argument, InputError
 from ..base.units import si_magnitude
 from ..law import VARIABLES, Law
+from .methods import fit_method
 
 __all__ = ["FitData", "as_fit_data", "GROUP_COLUMNS", "CONDITION_COLUMN", "refuse_pooled_groups",
            "MU_DATA_MAX", "check_fit_options", "invalid_rows"]
@@ -221,8 +222,7 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
     Parameters
     ----------
     method : str
-        The lmfit method; one of ``least_squares``, ``leastsq``, ``nelder``, ``lbfgsb``,
-        ``powell``, ``trust-constr``.
+        One of :data:`~frictionlaws.fitting.methods.FIT_METHODS`.
     starts : int or None
         Number of extra starting points, a whole number 0..1000 (None: the default).
     seed : int
@@ -236,9 +236,7 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
         Naming the option (``method``, ``starts``, ``seed``, ``on_invalid``) and the value
         refused.
     """
-    if method not in _METHODS:
-        raise InputError(f"method must be one of {', '.join(_METHODS)}, not {method!r}",
-                         option="method")
+    fit_method(method)
     if starts is not None and (isinstance(starts, bool) or not isinstance(starts, (int, np.integer))
                                or not 0 <= starts <= 1000):
         raise InputError(f"starts must be a whole number 0..1000, not {starts!r}",
@@ -250,9 +248,6 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
     if on_invalid not in ("error", "drop"):
         raise InputError(f"on_invalid must be 'error' or 'drop', not {on_invalid!r}")
 
-
-#: lmfit methods a fit may use (bounded, deterministic).
-_METHODS = ("least_squares", "leastsq", "nelder", "lbfgsb", "powell", "trust-constr")
 
 
 def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> dict[str, float]:

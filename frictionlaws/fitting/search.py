@@ -17,6 +17,7 @@ from ..base.errors import InputError
 from ..base.units import si_magnitude
 from ..law import VARIABLES, Law
 from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_fit_data
+from .methods import fit_method
 
 __all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
 
@@ -325,7 +326,7 @@ class _Search:
     def __post_init__(self) -> None:
         s = self.setup
         self.max_nfev = 300 * (len(s.vary_names) + 1)
-        if self.method != "least_squares":  # lmfit's other minimisers
+        if fit_method(self.method).lmfit_model:
             import lmfit
 
             indep = s.law.variables or ("_shape",)
@@ -393,24 +394,9 @@ class _Search:
 
     def _local(self, start: Mapping[str, float], pinned: tuple[str, ...], tol: float = 1e-8
                ) -> Any:
-        """One local solve: the lean trust region, or lmfit's minimiser when asked."""
-        s = self.setup
-        if self.method != "least_squares":
-            from .lsq import lmfit_fit
-
-            return lmfit_fit(self.model, s.y, self.params(start, pinned), weights=s.w,
-                             method=self.method, max_nfev=self.max_nfev, **self.kwargs)
-        from .lsq import solve
-
-        values = self.start_values(start, pinned)
-        vary = [k for k in s.names if k not in s.fix and k not in pinned]
-        jac = None
-        if self.jac_func is not None:
-            def jac(v: Mapping[str, float]) -> np.ndarray:
-                out = self.jacobian(v, vary)
-                assert out is not None
-                return out
-        return solve(self.evaluate, s.y, s.w, values, vary, s.bounds, self.max_nfev, jac, tol)
+        """One local solve, by the fit method's entry
+        (:data:`~frictionlaws.fitting.methods.FIT_METHODS`)."""
+        return fit_method(self.method).solve(self, start, pinned, tol)
 
     def evaluate(self, values: Mapping[str, float]) -> Any:
         """The model (the law with the fit's settings) at ``values`` on the data."""
@@ -454,7 +440,7 @@ def _polish(search: _Search) -> None:
     comparison give the same scores under every supported numpy and scipy.
     """
     best = search.best
-    if best is None or search.method != "least_squares":
+    if best is None or not fit_method(search.method).polished:
         return
     start = {k: float(best.params[k].value) for k in search.setup.names}
     res = search.solve_from(start, search.best_pinned, POLISH_TOL)
