@@ -3,11 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+from ..base.errors import InputError
+from ..base.outputs import check_outputs, write_text_atomic
+from ..fe_export import export
+from ..fe_export.api import FORMATS
+from ..fe_export.fortran import FORTRAN_FORMATS, check_source_name
+from ..fe_export.systems import SYSTEMS, unit_system
+from ..fitting.campaign import fit_groups, key_text
+from ..law import VARIABLES
+from ._campaign import split_names
 from ._common import (
     FIT_OPTIONS,
     UsageError,
@@ -18,12 +28,14 @@ from ._common import (
     bound_from_args,
     bounded_int,
     data_options,
+    data_source,
     fit_kwargs,
     parse_assignments,
     print_json,
     range_option,
     refuse_unused,
 )
+from .commands import COMMANDS
 
 _EPILOG = """\
 ranges: {box} take MIN:MAX or MIN:MAX:N.  Bare numbers are in the
@@ -58,21 +70,15 @@ class _Formats:
 
 
 def _formats() -> dict[str, tuple[Any, str, bool]]:
-    from frictionlaws.fe_export.api import FORMATS
-
     return FORMATS
 
 
 def _systems() -> dict[str, dict[str, str]]:
-    from frictionlaws.fe_export.systems import SYSTEMS
-
     return SYSTEMS
 
 
 def _system_list(with_units: bool) -> str:
     """``SI (Pa, m/s, K, N), mm-N-s (...)`` or ``SI (default), mm-N-s, ...``."""
-    from frictionlaws.law import VARIABLES
-
     out = []
     for i, (name, units) in enumerate(_systems().items()):
         shown = [units[v] for v in VARIABLES if units.get(v)]
@@ -114,7 +120,7 @@ _BOX = ("p", "v", "T", "F_N", "s")
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "export", help="export a law to Abaqus, LS-DYNA, Ansys, Radioss, tables or Fortran",
+        "export", help=COMMANDS["export"],
         description="Write a friction law in a finite-element code's own input (or a grid, or "
         "an Abaqus user subroutine), in the model's units, with a header stating the law, "
         "parameters, units, box, the maximum interpolation error and where it occurs.",
@@ -162,8 +168,6 @@ def _solver_options(p: argparse.ArgumentParser) -> None:
 
 
 def _options(args: argparse.Namespace) -> dict:
-    from frictionlaws.base.errors import InputError
-
     opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
             "radioss_id": args.radioss_id}
     if args.lsdyna_contact:
@@ -215,9 +219,6 @@ def _check_args(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.fe_export import export
-    from frictionlaws.fe_export.systems import unit_system
-
     _check_args(args)
     system = unit_system(args.units)
     box, spacing = _box(args, system)
@@ -253,14 +254,6 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     Every group is fitted and exported in memory first; the files are written only
     when all succeeded, each atomically, none over an input.
     """
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs, write_text_atomic
-    from frictionlaws.fe_export import export
-    from frictionlaws.fitting.campaign import fit_groups, key_text
-
-    from ._campaign import split_names
-    from ._common import data_source
-
     if args.output == "-":
         raise UsageError("--by writes one file per group: give -o FILE, not -o -")
     options = fit_kwargs(args)
@@ -298,8 +291,6 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
 
 def _group_path(out: Path, key: dict) -> Path:
     """``deck.inp`` and {surface: steel} -> ``deck_steel.inp`` (file-name safe)."""
-    import re
-
     tag = "_".join(re.sub(r"[^A-Za-z0-9.+-]+", "-", str(v)).strip("-") or "none"
                    for v in key.values())
     return out.with_name(f"{out.stem}_{tag}{out.suffix}")
@@ -309,8 +300,6 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
 
     if args.format in FORTRAN_FORMATS:
         check_source_name(args.output)

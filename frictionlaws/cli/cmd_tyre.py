@@ -31,6 +31,7 @@ from ._common import (
     bounded_int,
     parse_values,
 )
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "parse_loads"]
 
@@ -39,7 +40,7 @@ _MAX_LOADS = 1000
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "tyre", help="use friction laws inside tyre models (brush model, Magic Formula)",
+        "tyre", help=COMMANDS["tyre"],
         description="Friction laws inside tyre models: brush-model cornering stiffness with "
         "any sliding law, the thesis' comparison, Magic Formula property files (.tir/JSON) "
         "and their reduction to simple slip laws.")
