@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import argparse
 import os
-from contextlib import nullcontext
+from contextlib import nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -185,9 +185,7 @@ def _write(targets: list[_Target], camps: list[Any], out_dir: Path | None) -> No
         write_tables(tables)
     except BaseException:
         if created and out_dir is not None:
-            import contextlib
-
-            with contextlib.suppress(OSError):
+            with suppress(OSError):
                 out_dir.rmdir()  # only when still empty
         raise
 

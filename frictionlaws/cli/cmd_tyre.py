@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 from typing import Any
 
 from ._common import (
@@ -359,8 +360,6 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
-    import warnings
-
     from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.brush import BrushModel
 
@@ -389,8 +388,6 @@ def _run_cornering(args: argparse.Namespace) -> int:
 
 
 def _run_thesis(args: argparse.Namespace) -> int:
-    import warnings
-
     from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.thesis import thesis_comparison
 

@@ -5,14 +5,26 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from importlib import import_module
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..base.errors import Argument, InputError
+from ..base.numbers import parse_number
+from ..base.outputs import check_outputs, write_text_atomic
+from ..base.units import parse_quantity, si_magnitude
 from ..law import VARIABLES, Law
-from .fortran import FORTRAN_FORMATS, check_source_name
+from ..law.bound import BoundLaw, as_bound, freeze
+from .fortran import (
+    FIELD_VARIABLES,
+    FORTRAN_FORMATS,
+    check_source_name,
+    fortran_source,
+    input_deck,
+    routine_name,
+)
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
@@ -25,8 +37,6 @@ __all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
 
 def _fortran(fmt: str) -> Callable[[Job], Written]:
     def write(job: Job) -> Written:
-        from .fortran import FIELD_VARIABLES, fortran_source, input_deck, routine_name
-
         law = job.law
         fields = [v for v in law.variables if v in FIELD_VARIABLES]
         u = job.units
@@ -103,8 +113,6 @@ def _fortran(fmt: str) -> Callable[[Job], Written]:
 
 def _lazy(module: str, name: str) -> Callable[[Job], Written]:
     def write(job: Job) -> Written:
-        from importlib import import_module
-
         return getattr(import_module(f"frictionlaws.fe_export.{module}"), name)(job)
 
     return write
@@ -271,9 +279,6 @@ _RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
 
 def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
     """One bound of a range: a number in the unit system or a quantity with its unit."""
-    from ..base.numbers import parse_number
-    from ..base.units import parse_quantity
-
     s = s.strip()
     if not s:
         raise InputError(f"'{text}': empty bound; expected MIN:MAX[:N], e.g. "
@@ -333,8 +338,6 @@ def _check_spacing(spacing: Mapping[str, str]) -> None:
 
 def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
     """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
-    from ..base.units import parse_quantity, si_magnitude
-
     if isinstance(spec, AxisSpec):
         return spec
     if isinstance(spec, str):
@@ -376,8 +379,6 @@ def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
 
 def _bound(law: Law | BoundLaw | str | None, params: Any, preset: str | None) -> BoundLaw:
     """The law and its values: a BoundLaw given as ``law`` or ``params``, or bound here."""
-    from ..law.bound import BoundLaw, as_bound, freeze
-
     if isinstance(law, BoundLaw):
         if params is not None or preset is not None:
             raise InputError("a bound law carries its values: give no params or preset with "
@@ -432,8 +433,6 @@ def _check_path(path: str | Path | None, bound: BoundLaw, fmt: str) -> None:
     A Fortran format's file must also have a name compilers read as fixed form.
     """
     if path is not None and str(path) != "-":
-        from ..base.outputs import check_outputs
-
         if fmt in FORTRAN_FORMATS:
             check_source_name(str(path))
 
@@ -447,7 +446,6 @@ def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
     """
     if path is None or str(path) == "-":
         return None
-    from ..base.outputs import check_outputs, write_text_atomic
 
     p = Path(path)
     check_outputs([p], inputs=inputs, what="export file")

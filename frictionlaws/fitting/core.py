@@ -25,6 +25,7 @@ from .diagnosis import (
 )
 from .methods import DEFAULT_METHOD
 from .result import FitResult, ParamEstimate, _provenance
+from .robust import check_uncertainty_options
 from .search import _global_stage, _multistart, _polish, _Search, _Setup, _setup
 from .uncertainty import _ErrorInputs, _robust_errors
 
@@ -67,8 +68,7 @@ def fit(
     mapping, units, area : optional
         Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        One of :data:`~frictionlaws.fitting.methods.FIT_METHODS`: ``"least_squares"``
-        (default: the bounded trust region) or one of lmfit's minimisers.
+        One of :data:`~frictionlaws.fitting.methods.FIT_METHODS` (default: trust region).
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
         Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
         a bootstrap over whole conditions (a law that misses a trend); see
@@ -118,8 +118,6 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
                        uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
                        global_stage: Any, lean: Any) -> None:
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
-    from .robust import check_uncertainty_options
-
     check_fit_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
     if global_stage not in ("auto", "on", "off"):

@@ -10,8 +10,9 @@ from typing import Any
 
 import numpy as np
 
-from ..base.errors import Argument, InputError
-from ..base.units import si_magnitude
+from ..base.errors import Argument, GroupingError, InputError
+from ..base.units import si_magnitude, to_display
+from ..io import load_dataset
 from ..law import VARIABLES, Law
 from .methods import fit_method
 
@@ -68,8 +69,6 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
     elif isinstance(data, Mapping) and "mu" in data:
         fd = _arrays_fit_data(data)
     else:
-        from ..io import load_dataset
-
         ds = load_dataset(data, mapping=mapping, units=units, area=area)
         refuse_pooled_groups(ds)
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
@@ -110,8 +109,6 @@ _ARRAY_LIMITS = {"mu": (0.0, True), "p": (0.0, True), "F_N": (0.0, True), "T": (
 
 def refuse_pooled_groups(dataset: Any) -> None:
     """Raise :class:`~frictionlaws.base.errors.GroupingError` when a grouping column varies."""
-    from ..base.errors import GroupingError
-
     names = getattr(dataset, "column_names", None)
     if names is None:
         return
@@ -372,7 +369,6 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
     var = VARIABLES.get(k)
     if var is None:
         return f"{k} {lo:g}..{hi:g}"
-    from ..base.units import to_display
 
     shown = to_display([lo, hi], k)
     return f"{k} {shown[0]:.4g}..{shown[1]:.4g} {var.display_unit or '-'}"

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..law import NUMPY, Law, formula_check, formula_matches
+from ..law import NUMPY, Law, evaluation, formula_check, formula_matches
 
 __all__ = ["jacobian_function", "model_jacobian", "generate_source", "module_current",
            "write_module", "MODULE_PATH"]
@@ -39,11 +39,11 @@ MODULE_PATH = Path(__file__).parent / "_jacobians.py"
 @functools.cache
 def _table() -> dict[str, tuple[dict[str, Any], Callable[..., Any]]]:
     try:
-        from . import _jacobians
+        from ._jacobians import JACOBIANS
     except ImportError:  # pragma: no cover - the module ships with the package
         return {}
     table: dict[str, tuple[dict[str, Any], Callable[..., Any]]] = dict(
-        _jacobians.JACOBIANS)  # type: ignore[arg-type]
+        JACOBIANS)  # type: ignore[arg-type]
     return table
 
 
@@ -99,8 +99,6 @@ def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
         d mu / d name, column by column (NaN or infinity where the derivative is not
         finite, e.g. d(x**c)/dc at x = 0).
     """
-    from ..law import evaluation
-
     jac = np.empty((n, len(names)), order="F")
     block = evaluation.BLOCK_ROWS  # the rows per block of the law's own large evaluations
     step = block if n >= evaluation.BLOCKED_FROM else max(n, 1)

@@ -15,8 +15,9 @@ import numpy as np
 
 from ..base.errors import InputError
 from ..base.units import si_magnitude
-from ..law import VARIABLES, Law
+from ..law import VARIABLES, Law, Setting
 from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_fit_data
+from .derivatives import jacobian_function, model_jacobian
 from .methods import fit_method
 
 __all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
@@ -304,7 +305,6 @@ def _model_law(law: Law, settings: Mapping[str, float], freed: tuple[str, ...]) 
     """The law with settings fixed to non-default values (they flow through its closure)."""
     if settings == {k: v for k, v in law.setting_values.items() if k not in freed}:
         return law
-    from ..law import Setting
 
     return replace(law, settings=tuple(
         Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
@@ -339,15 +339,12 @@ class _Search:
         self.held = {k: v for k, v in s.model_law.setting_values.items() if k not in s.names}
         self.jac_func = None
         if s.y.size >= ANALYTIC_FROM:
-            from .derivatives import jacobian_function
-
             self.jac_func = jacobian_function(s.law)
 
     def jacobian(self, values: Mapping[str, float], names: list[str]) -> np.ndarray | None:
         """The analytic Jacobian of the model by ``names`` at ``values`` (None: none)."""
         if self.jac_func is None:
             return None
-        from .derivatives import model_jacobian
 
         return model_jacobian(self.jac_func, self.prepared, {**self.held, **values}, names,
                               self.setup.y.size)

@@ -25,8 +25,14 @@ from typing import Any
 
 import numpy as np
 
+from ..base.display import check_units, display_param_unit, unit_text
+from ..base.errors import InputError
+from ..base.units import QUANTITIES, to_display
+from ..law import VARIABLES
 from ..law.evaluation import evaluate_labelled, is_labelled
 from ..law.interop import law_html, lmfit_model, table_html
+from .lsq import central_jacobian as _jacobian
+from .lsq import lmfit_fit
 
 __all__ = [
     "lmfit_model",
@@ -61,8 +67,6 @@ def model_result(result: Any) -> Any:
     lmfit.model.ModelResult
         lmfit's result for the same fit.
     """
-    from ..base.errors import InputError
-
     fd = getattr(result, "fit_data", None)
     if fd is None:
         raise InputError("this result does not hold the data it was fitted to (a result "
@@ -75,7 +79,6 @@ def model_result(result: Any) -> Any:
     for name, value in result.settings.items():
         if name in params and name not in result.params:
             params[name].set(value=value, vary=False)
-    from .lsq import lmfit_fit
 
     y = fd.arrays["mu"]
     xs = {k: fd.arrays[k] for k in law.variables} or {"x": y}
@@ -93,8 +96,6 @@ def params_frame(result: Any, units: str = "display") -> Any:
     :mod:`frictionlaws.base.display`); dimensionless is ``-``.
     """
     import pandas as pd
-
-    from ..base.display import check_units, display_param_unit, unit_text
 
     check_units(units)
     rows = []
@@ -155,9 +156,6 @@ def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any 
     -------
     matplotlib.figure.Figure
     """
-    from ..base.display import check_units
-    from ..base.errors import InputError
-
     check_units(units)
     arrays = _arrays_of(data if data is not None else getattr(result, "fit_data", None))
     if arrays is None or "mu" not in arrays:
@@ -219,8 +217,6 @@ def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.nd
     grows until it stands above round-off, so a parameter sitting at 0 (a bound) keeps
     its true slope instead of a step of 1e-18 that leaves none.
     """
-    from .lsq import central_jacobian as _jacobian
-
     base = result.values
     shape = np.broadcast_shapes(*(np.shape(v) for v in variables.values()))
     law = result.law
@@ -237,8 +233,6 @@ def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.nd
 
 def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str) -> Any:
     import matplotlib.pyplot as plt
-
-    from ..base.units import QUANTITIES, to_display
 
     if ax is None:
         _, ax = plt.subplots(2, 1, figsize=(6, 5), sharex=True,
@@ -268,9 +262,6 @@ def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str
 
 
 def _unit(name: str, display: bool = False) -> str:
-    from ..base.display import unit_text
-    from ..law import VARIABLES
-
     var = VARIABLES.get(name)
     if var is None:
         return unit_text(None)

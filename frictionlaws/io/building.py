@@ -19,6 +19,7 @@ from ..base.sanitize import csv_cell_text
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from ..base.numbers import parse_number
 from .columns import (
     _DIMENSIONLESS,
     CANONICAL,
@@ -72,7 +73,6 @@ def to_float(cell: Any, decimal_comma: bool) -> float | None:
     text = str(cell).strip()
     if text.lower() in MISSING_TOKENS:
         return math.nan
-    from ..base.numbers import parse_number
 
     if text.lower().lstrip("+-") in ("inf", "infinity"):
         return math.inf  # reported as "not finite" with its row

@@ -20,6 +20,9 @@ from ..base.sanitize import comment_lines, csv_cell, split_lines
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from ..base.display import unit_text
+from ..base.outputs import atomic_write
+from ..law.interop import table_html
 from .building import (
     _assign_columns,
     _check_headers,
@@ -441,7 +444,6 @@ class Dataset:
             unit = _units.display_unit(c)
             vals = _units.from_si(self.column(c, float), unit, c)
             columns.append([format(float(x), ".15g") for x in vals])
-        from ..base.outputs import atomic_write  # never over a file read in this process
 
         with atomic_write(path, newline="") as fh:
             if self.provenance:
@@ -488,9 +490,6 @@ def _written_unit(unit: str, column: str) -> str:
 
 def dataset_html(dataset: Any, head: int = 5) -> str:
     """HTML for a dataset: name, source, each column's range in display units, first rows."""
-    from ..base.display import unit_text
-    from ..law.interop import table_html
-
     rows = []
     for col in dataset.column_names:
         if col not in _units.QUANTITIES:

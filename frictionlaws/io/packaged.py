@@ -17,6 +17,8 @@ from ..base.sanitize import split_lines
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from importlib import resources
+
 from .building import _is_frame
 from .columns import parse_mapping, parse_units
 from .dataset import Dataset, _build
@@ -35,8 +37,6 @@ def datasets_dir() -> Any:
     source checkout (tests run from the clone) they are the top-level
     ``datasets/`` folder beside the package.
     """
-    from importlib import resources
-
     try:
         return resources.files("frictionlaws._datasets")
     except ModuleNotFoundError:  # a source checkout not (re)installed

@@ -12,6 +12,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..base.errors import InputError
+from ..base.limits import read_input
+from ..base.outputs import check_input_file
 from ..base.sanitize import split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
@@ -191,8 +193,6 @@ def _read_bytes(p: Path, source: str, what: str) -> bytes:
             else f"{what} not found", file=source)
     if p.is_dir():
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
-    from ..base.limits import read_input
-    from ..base.outputs import check_input_file
 
     check_input_file(p, what)  # a FIFO or device would block or never end
     return read_input(p, what, source)  # bounded in size

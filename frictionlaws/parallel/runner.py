@@ -220,7 +220,7 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
 
 def _dask_client(address: str) -> Any:
     """A Dask client connected to ``address`` within one deadline; InputError naming why not."""
-    from ._network import connect_scheduler
+    from ._network import connect_scheduler  # asyncio and ssl: only with a Dask scheduler
 
     return connect_scheduler(address)
 

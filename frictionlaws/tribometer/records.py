@@ -49,10 +49,11 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError
+from ..base.limits import read_input
 from ..base.outputs import atomic_write, check_input_file
 from ..base.sanitize import split_lines
 from ..base.units import QUANTITIES, canonical_unit, parse_unit, parse_unit_text, unit_registry
-from ..io import decode_text, detect_delimiter
+from ..io import Table, column_numbers, decode_text, detect_delimiter
 from ..io import split_header as _split_header
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
@@ -318,7 +319,6 @@ def _record_text(p: Path, src: str) -> str:
         raise InputError("record file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a record CSV file", file=src)
-    from ..base.limits import read_input
 
     check_input_file(p, "record file")
     raw = read_input(p, "record file", src)  # bounded in size
@@ -399,7 +399,6 @@ def _column_values(col: Any, layout: _Layout, header: str, src: str,
     """A column as floats (NaN where empty): the datasets' number rule, messages and all."""
     if col.dtype.kind in "fiu":
         return np.asarray(col.to_numpy(dtype=float))
-    from ..io import Table, column_numbers  # the one number parser and its messages
 
     table = Table([header], [col.astype(str).tolist()], rows.all(len(col)), src,
                    decimal_comma=layout.decimal_comma, delimiter=layout.delimiter)

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ..parallel import run_parallel
 from .records import Record, write_record
 from .rig import RPM, Rig
 
@@ -404,7 +405,6 @@ def make_campaign(
     specs = _record_specs(conditions, rig, seed, record_kwargs)
     tasks = [(str(root / "records" / name), spec, rseed, rig, name)
              for _, spec, rseed, name in specs]
-    from ..parallel import run_parallel
 
     run_parallel(_write_one, tasks, jobs=jobs if len(tasks) > 8 else 1)
     lines = ["file,load [kg],surface,condition,mode"]

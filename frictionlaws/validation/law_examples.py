@@ -27,12 +27,16 @@ file when an entry is missing.
 
 from __future__ import annotations
 
+import math as _m
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
 
+import numpy as _np
 import numpy as np
+
+from ..persson import SelfAffine, friction, tread_compound
 
 __all__ = ["Sampling", "Reference", "LawExample", "EXAMPLES", "NUMPY_M", "LAWS_MD",
            "TABLE_5_1", "TABLE_5_2", "PACEJKA_DOC", "BURCKHARDT_DOC"]
@@ -277,9 +281,6 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, m
     correction S(q) = gamma + (1 - gamma) P^2 (Persson 2006) multiplies P in the mu
     integrand; isothermal only (a heat fraction other than 0 is refused).
     """
-    import math as _m
-
-    import numpy as _np
     from scipy.integrate import quad, solve_ivp
 
     if material is None:
@@ -337,8 +338,6 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, m
 
 def _persson_baseline(x: Mapping[str, Any], q: Mapping[str, float]) -> Any:
     """The theory called directly on numpy arrays (the benchmark measures the law's wrapper)."""
-    from frictionlaws.persson import SelfAffine, friction, tread_compound
-
     surf = SelfAffine.from_rms(q["q0"], q["H"], q["h_rms"], q["q1"])
     return q["mu_a"] + friction(tread_compound(), surf, x["v"], x["T"], x["p"],
                                 gamma=q.get("gamma", 1.0))

@@ -12,9 +12,11 @@ from pathlib import Path
 from typing import Any
 
 from ...base.errors import InputError
-from ...parallel import local_workers
+from ...io import output_dir
+from ...parallel import SCHEDULER_ENV, check_jobs, iter_parallel, local_workers
+from ..plots import plot_conditions, plot_record
 from ..records import Record, read_record
-from ..rig import Rig
+from ..rig import Rig, load_rig
 from .conditions import summarise
 from .manifest import ManifestEntry, manifest_from_rows, read_manifest
 from .reduce import RecordResult, _base_result, process_record
@@ -56,7 +58,6 @@ def _handle(entry: ManifestEntry, rig: Rig, plots: str | None,
     if plots is None:
         return process_record(rec, entry, rig)  # type: ignore[return-value]
     res, sig = process_record(rec, entry, rig, keep_signals=True)  # type: ignore[misc]
-    from ..plots import plot_record
 
     try:
         plot_record(Path(plots), res, rec, sig)
@@ -83,8 +84,6 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ...parallel import SCHEDULER_ENV, check_jobs, iter_parallel
-
     jobs = _job_count(jobs)
     check_jobs(jobs)
     remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
@@ -227,8 +226,6 @@ def process_many(
         nothing is processed then.
     """
     if not isinstance(rig, Rig):
-        from ..rig import load_rig
-
         rig = load_rig(rig)
     _check_min_repeats(min_repeats)
     names = manifest_names(manifests)
@@ -353,14 +350,11 @@ def process_records(
 def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
     if plots is None:
         return None
-    from ...io import output_dir
 
     return str(output_dir(os.fspath(plots), "plots directory"))
 
 
 def _summary_plot(camp: ProcessedCampaign, plots_dir: str) -> None:
-    from ..plots import plot_conditions
-
     try:
         plot_conditions(Path(plots_dir) / "conditions.png", camp)
     except Exception as exc:  # noqa: BLE001 - report, do not lose the processing
