@@ -20,6 +20,19 @@ import sys
 import warnings
 from typing import Any
 
+import numpy as np
+
+from ..base import jsonio
+from ..base.errors import ExtrapolationWarning, FitError, InputError
+from ..base.numbers import parse_number
+from ..base.outputs import check_figure_path, check_outputs
+from ..base.units import parse_quantity, to_si
+from ..tyre.brush import BrushModel, BrushTyre
+from ..tyre.fit_mf import check_tir_path, fit_mf
+from ..tyre.magic_formula import MagicFormula
+from ..tyre.mf_coefficients import listing
+from ..tyre.reduce import reduce_mf
+from ..tyre.thesis import thesis_comparison
 from ._common import (
     RANGE_HELP,
     SEED_MAX,
@@ -30,7 +43,10 @@ from ._common import (
     boot_jobs_count,
     bound_from_args,
     bounded_int,
+    data_source,
     parse_values,
+    refuse_unused,
+    shown_source,
 )
 from .commands import COMMANDS
 
@@ -169,8 +185,6 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
 
 def _mf_file(args: argparse.Namespace) -> Any:
     """The property file read with the Magic Formula conventions chosen (``-``: stdin)."""
-    from frictionlaws.tyre.magic_formula import MagicFormula
-
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
                                   loads_above_fzmax=args.loads_above_fzmax,
@@ -179,8 +193,6 @@ def _mf_file(args: argparse.Namespace) -> Any:
 
 def _on_property_file(run: Any, args: argparse.Namespace) -> int:
     """Run a command on its property FILE; ``-`` reads it from standard input."""
-    from ._common import data_source
-
     given = args.file
     with data_source(given, _property_name) as path:
         args.file = path
@@ -229,11 +241,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     ``START:STOP:STEP`` form is recognised by a third number that is not a count
     and refused with its translation.
     """
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import to_si
-
     try:
         to_si(1.0, unit, "F_N")
     except InputError as exc:
@@ -249,8 +256,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
 def _refuse_step_form(text: str, flag: str) -> None:
     """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
     number cannot be a count, flagged when it reads both ways."""
-    from frictionlaws.base.numbers import parse_number
-
     parts = str(text or "").split(":")
     if len(parts) != 3:
         return
@@ -271,8 +276,6 @@ def _refuse_step_form(text: str, flag: str) -> None:
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     return parse_quantity(text, kind, what=what)
@@ -280,9 +283,6 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     value = parse_quantity(text, "stiffness_per_length", what="--c-py")
@@ -292,8 +292,6 @@ def _stiffness(text: str | None) -> float | None:
 
 
 def _tyre(args: argparse.Namespace) -> Any:
-    from frictionlaws.tyre.brush import BrushTyre
-
     kw: dict[str, Any] = {}
     for opt, key, kind in (("width", "width", "length"),
                            ("half_length", "half_length_ref", "length"),
@@ -318,8 +316,6 @@ def _warn(messages: list[str]) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-
     cmd = getattr(args, "tyre_command", None)
     if cmd == "cornering":
         return _run_cornering(args)
@@ -336,8 +332,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _angles(text: str) -> list[float]:
-    from frictionlaws.base.errors import InputError
-
     try:
         return [float(a) for a in text.split(",") if a.strip()]
     except ValueError:
@@ -360,9 +354,6 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.brush import BrushModel
-
     loads = parse_loads(args.loads, args.load_unit)
     angles = _angles(args.angles)
     tyre = _tyre(args)
@@ -388,13 +379,8 @@ def _run_cornering(args: argparse.Namespace) -> int:
 
 
 def _run_thesis(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.thesis import thesis_comparison
-
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     if not laws:
-        from frictionlaws.base.errors import InputError
-
         raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
@@ -414,10 +400,6 @@ def _run_thesis(args: argparse.Namespace) -> int:
 
 
 def _run_mf(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from ._common import refuse_unused
-
     if args.coefficients:  # before reading the file: the listing evaluates no load
         refuse_unused(args, ("loads", "load_unit"), "with --coefficients")
     mf = _mf_file(args)
@@ -427,8 +409,6 @@ def _run_mf(args: argparse.Namespace) -> int:
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
     if "source" in summary:
-        from ._common import shown_source
-
         summary["source"] = shown_source(summary["source"])
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -462,8 +442,6 @@ def _run_mf(args: argparse.Namespace) -> int:
 
 def _print_coefficients(mf: Any, as_json: bool) -> int:
     """``tyre mf --coefficients``: the file's values beside their declarations."""
-    from frictionlaws.tyre.mf_coefficients import listing
-
     rows = listing(mf.version, mf.coefficients, {**mf.structure, "FNOMIN": mf.fnomin})
     if as_json:
         print(json.dumps({"name": mf.name, "version": mf.version, "coefficients": rows},
@@ -483,15 +461,10 @@ def _print_coefficients(mf: Any, as_json: bool) -> int:
 
 
 def _run_reduce(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.reduce import reduce_mf
-
     loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:
-        from frictionlaws.base.outputs import check_outputs
-
         check_outputs([args.save], inputs=[args.file])
     mf = _mf_file(args)
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
@@ -504,8 +477,6 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(red.to_dict()))
     else:
         print(red.report())
@@ -515,24 +486,15 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
-
     if args.uncertainty != "sweeps":
-        from ._common import refuse_unused
-
         refuse_unused(args, ("boot", "boot_jobs", "seed"),
                       f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-        from frictionlaws.base.outputs import check_figure_path
 
         check_figure_path(args.plot)
-    from frictionlaws.base.errors import FitError
-
-    from ._common import data_source, shown_source
 
     with data_source(args.data) as data:
         try:
@@ -546,8 +508,6 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.plot:
         res.plot(args.plot)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(res.to_dict()))
         return 0
     print(res.report())
