@@ -376,29 +376,33 @@ def test_dataset_columns_come_from_the_variable_list():
 
 
 def test_export_formats_and_unit_systems_have_one_list():
-    """The CLI's --format choices, its help and the docs read the library's tables."""
+    """The CLI's --format choices, its format flags, its help and the docs read the
+    library's tables (``fe_export.formats``, ``fe_export.systems``)."""
     from frictionlaws.cli import build_parser, cmd_export
-    from frictionlaws.fe_export.api import FORMATS
+    from frictionlaws.fe_export.formats import FORMATS, OPTIONS
     from frictionlaws.fe_export.systems import SYSTEMS
     from frictionlaws.law import VARIABLES
 
     assert cmd_export._BOX == tuple(VARIABLES)
-    assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
-        getattr(e, "value", None) for e in n.elts}
-        for n in ast.walk(TREES["frictionlaws.cli.cmd_export"]))
+    for mod in ("frictionlaws.cli.cmd_export", "frictionlaws.fe_export.api"):
+        assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
+            getattr(e, "value", None) for e in n.elts} for n in ast.walk(TREES[mod]))
+        assert not {"lsdyna_ssid", "ansys_mat", "radioss_id"} & {
+            n.value for n in ast.walk(TREES[mod]) if isinstance(n, ast.Constant)}
     sub = next(a for a in build_parser()._actions
                if isinstance(a, argparse._SubParsersAction))
     export = sub.choices["export"]
     fmt = next(a for a in export._actions if "--format" in a.option_strings)
     assert list(fmt.choices) == list(FORMATS)
+    assert {a.dest for a in export._actions} >= set(OPTIONS)
     text = export.format_help()
-    for name, (_, what, _needs_box) in FORMATS.items():
-        assert f"  {name} " in text and what in text
+    for name, entry in FORMATS.items():
+        assert f"  {name} " in text and entry.line in text
     for name in SYSTEMS:
         assert name in text.split("unit systems:")[1]
     guide = (REPO / "docs" / "user-guide" / "export.rst").read_text(encoding="utf-8")
     table = guide.split("Formats\n-------")[1].split("\nUnits\n")[0]
-    assert set(re.findall(r"``([a-z-]+)``", table.split("what is written")[1])) == set(FORMATS)
+    assert ".. include:: ../generated/export-formats.rst" in table  # written from FORMATS
     units = guide.split("\nUnits\n-----")[1].split("\n\n")[1]
     assert set(re.findall(r"``([A-Za-z-]+)`` \([^)`]*,", units)) == set(SYSTEMS)
 
