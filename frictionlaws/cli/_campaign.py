@@ -11,12 +11,20 @@ from typing import Any
 from ..base import jsonio
 from ..base.display import group_label, parameter_table
 from ..base.errors import InputError
+from ..base.numbers import parse_integer
 from ..base.outputs import check_outputs, write_text_atomic
 from ..base.sanitize import frame_csv
 from ..fitting.campaign import UnreadableDatasets, check_grouping, doubts, fit_many
 from ..fitting.shared import fit_shared
 from . import flag_label
-from ._common import add_progress_option, data_sources, progress_value, refuse_unused, shown_source
+from ._common import (
+    SCHEDULER_TRUST,
+    add_progress_option,
+    data_sources,
+    progress_value,
+    refuse_unused,
+    shown_source,
+)
 
 __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names",
            "campaign_progress"]
@@ -49,7 +57,7 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True,
     g.add_argument("--jobs", type=_jobs, default=1, metavar="N", help=jobs_help)
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run the datasets on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
-                        "(default: $FRICTIONLAWS_SCHEDULER; needs the 'dask' extra)")
+                        f"(or tls:// with Dask's TLS settings). {SCHEDULER_TRUST}")
     g.add_argument("--out", metavar="FILE", default=None,
                    help="write the campaign's tidy table to FILE (.csv, .jsonl or .json)")
     add_progress_option(g)
@@ -74,8 +82,8 @@ def campaign_progress(args: argparse.Namespace) -> bool:
 
 
 def _jobs(text: str) -> int:
-    try:
-        value = int(text)
+    try:  # the one number parser: no 1_0, no non-ASCII digits
+        value = parse_integer(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
     if value != -1 and not 1 <= value <= 1024:

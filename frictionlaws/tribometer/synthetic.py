@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ..base.outputs import check_unique_names
 from ..parallel import run_parallel
 from .records import Record, write_record
 from .rig import RPM, Rig
@@ -398,11 +399,13 @@ def make_campaign(
     """
     rig = rig or synthetic_rig()
     root = Path(directory)
+    specs = _record_specs(conditions, rig, seed, record_kwargs)
+    check_unique_names([(f"condition '{c.name}'", name) for c, _, _, name in specs],
+                       what="records")  # one file per record, before any is written
     (root / "records").mkdir(parents=True, exist_ok=True)
     rig_file = root / "rig.toml"
     rig_file.write_text("# synthetic rig (frictionlaws.tribometer.synthetic)\n" + rig.to_toml(),
                         encoding="utf-8")
-    specs = _record_specs(conditions, rig, seed, record_kwargs)
     tasks = [(str(root / "records" / name), spec, rseed, rig, name)
              for _, spec, rseed, name in specs]
 
