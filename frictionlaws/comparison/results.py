@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..fitting.views import table_html
+from ..law.interop import table_html
 from .plotting import plot_comparison
 from .record import (
     COMPARISON_FORMAT,

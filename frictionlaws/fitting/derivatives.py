@@ -185,7 +185,7 @@ def generate_source(laws: list[Law]) -> str:
 
 
 #: A float literal of the generated code.
-_FLOAT = re.compile(r"-?\d+\.\d+(?:e[-+]?\d+)?")
+_FLOAT = re.compile(r"-?[0-9]+\.[0-9]+(?:e[-+]?[0-9]+)?")
 
 
 def _floats_rounded(text: str) -> str:

@@ -1,19 +1,18 @@
-"""Interoperability with lmfit, pandas, xarray and Jupyter.
+"""The views of a fit result: lmfit, pandas, Jupyter and a figure.
 
-* :func:`lmfit_model`: a law as an :class:`lmfit.Model` whose independent variables are
-  the law's variables and whose parameter hints carry the declared defaults and bounds
-  (settings become fixed parameters), so ``model.make_params()`` is ready to fit.
-* :func:`params_frame`: the parameters of a fit result as a tidy :class:`pandas.DataFrame`.
-* :func:`evaluate_labelled`: evaluation on :class:`xarray.DataArray` inputs that keeps
-  their named dimensions and coordinates (through :func:`xarray.apply_ufunc`).
-* :func:`law_html`, :func:`result_html`, :func:`table_html`: the HTML Jupyter shows for
-  laws, fit results and comparisons (``_repr_html_``).
-* :func:`plot_result`: data, fitted curve, confidence band and residuals of a fit.
+* :func:`model_result`: the fit as lmfit's :class:`~lmfit.model.ModelResult`, refitted
+  by lmfit from the fitted values (the same optimum).
+* :func:`params_frame`: the parameters as a tidy :class:`pandas.DataFrame`, in display
+  units (:mod:`frictionlaws.base.display`) or SI.
+* :func:`result_html`: the HTML Jupyter shows for a fit result (``_repr_html_``).
+* :func:`plot_result`: data, fitted curve, 95 % confidence band
+  (:func:`confidence_band`) and residuals.
 
-The functions of a law alone (:func:`lmfit_model`, :func:`law_html`,
-:func:`evaluate_labelled`) live in the law package (:mod:`frictionlaws.law.interop`,
-:mod:`frictionlaws.law.evaluation`), as the law hands work to them; they are named here
-with the others.  Heavy libraries are imported inside the functions that need them.
+A law's own integrations (its lmfit model, its HTML, evaluation on
+:class:`xarray.DataArray` inputs) are in the law room (:mod:`frictionlaws.law.interop`,
+:mod:`frictionlaws.law.evaluation`); a dataset's HTML beside the dataset
+(:func:`frictionlaws.io.dataset_html`).  Heavy libraries are imported inside the
+functions that need them.
 """
 
 from __future__ import annotations
@@ -29,23 +28,11 @@ from ..base.display import check_units, display_param_unit, unit_text
 from ..base.errors import InputError
 from ..base.units import QUANTITIES, to_display
 from ..law import VARIABLES
-from ..law.evaluation import evaluate_labelled, is_labelled
-from ..law.interop import law_html, lmfit_model, table_html
+from ..law.interop import lmfit_model, table_html
 from .lsq import central_jacobian as _jacobian
 from .lsq import lmfit_fit
 
-__all__ = [
-    "lmfit_model",
-    "model_result",
-    "params_frame",
-    "is_labelled",
-    "evaluate_labelled",
-    "law_html",
-    "result_html",
-    "table_html",
-    "plot_result",
-    "confidence_band",
-]
+__all__ = ["model_result", "params_frame", "result_html", "plot_result", "confidence_band"]
 
 
 # ------------------------------------------------------------------------ lmfit

@@ -51,13 +51,13 @@ def labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callabl
 
 
 def _is_labelled(x: Any) -> bool:
-    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.fitting.views`)."""
+    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.law.evaluation`)."""
     return _interop().is_labelled(x)
 
 
 @functools.lru_cache(maxsize=1)
 def _interop() -> Any:
-    from ..fitting import views as interop
+    from ..law import evaluation as interop
 
     return interop
 

@@ -109,7 +109,7 @@ def test_the_lean_solver_ends_where_lmfit_does(law_id):
     data, fix = _synthetic(law_id, 120)
     law = fl.get_law(law_id)
     ours = fl.fit(law, data, fix=fix, weights=None, starts=0)
-    from frictionlaws.fitting.views import lmfit_model
+    from frictionlaws.law.interop import lmfit_model
 
     model = lmfit_model(law)
     params = model.make_params()
