@@ -45,9 +45,8 @@ KNOWN_PENDING: dict[str, frozenset[str]] = {
     "all": frozenset(),  # modules without __all__
     # private names imported from another room ("importer -> module.name")
     "private": frozenset(),
-    # imports inside functions of modules neither of the package nor heavy ("module: name"):
-    # the tyre room's, which the Magic Formula room's rebuild (issue 36) brings to the top
-    "deferred": frozenset({"frictionlaws.tyre.tir: difflib"}),
+    # imports inside functions of modules neither of the package nor heavy ("module: name")
+    "deferred": frozenset(),
 }
 
 
@@ -456,13 +455,9 @@ def test_the_law_list_check_sees_a_list():
 
 # ------------------------------------------------- circles counting every import
 
-#: The circles left when every import counts.  No new one may appear (a class whose
-#: methods hand work to a module that imports the class is one).  Pending: the tyre
-#: package's, through ``from . import`` (tyre -> fit_mf -> _fit_mf_bootstrap -> tyre),
-#: which the Magic Formula room's rebuild (issue 36) removes.
-KNOWN_FACADE_CIRCLES: list[list[str]] = [
-    ["frictionlaws.tyre", "frictionlaws.tyre._fit_mf_bootstrap", "frictionlaws.tyre.fit_mf"],
-]
+#: The circles left when every import counts: none.  No new one may appear (a class whose
+#: methods hand work to a module that imports the class is one).
+KNOWN_FACADE_CIRCLES: list[list[str]] = []
 
 
 def _source_of(module: str, node: ast.ImportFrom) -> str:
@@ -702,3 +697,22 @@ def test_one_public_class_per_name():
             if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
                 seen.setdefault(node.name, []).append(mod)
     assert {k: v for k, v in seen.items() if len(v) > 1} == {}
+
+
+#: The smallest share of the test files that sit in a folder named after a room.
+MIN_TESTS_IN_ROOMS = 0.80
+
+
+def test_tests_are_laid_out_like_the_package():
+    """``tests/<room>/`` for each room's tests (the package's sub-packages); the project's
+    own checks (code rules, docs, packaging) stay at the top.  Basenames are unique
+    across the tree (pytest imports each test module by its name)."""
+    tests = Path(__file__).resolve().parent
+    files = sorted(tests.rglob("test_*.py"))
+    rooms = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()}
+    folders = {p.parent.name for p in files if p.parent != tests}
+    assert folders <= rooms, f"test folders that are no room: {sorted(folders - rooms)}"
+    in_rooms = [p for p in files if p.parent != tests]
+    assert len(in_rooms) / len(files) >= MIN_TESTS_IN_ROOMS, (len(in_rooms), len(files))
+    names = [p.name for p in files]
+    assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})
