@@ -71,8 +71,10 @@ class MFFit:
                   "other coefficients and sections from the template.",
                   "Slip angle convention: alpha* = tan(alpha) in the lateral slip "
                   "(MFeval useMode 2x); camber as sin(gamma) in the lateral and "
-                  "combined-slip terms, gamma itself in PDX3's term (equations as MFeval "
-                  "4.0).",
+                  "combined-slip terms" + (", gamma itself in PDX3's term" if "PDX3" in
+                                           self.property_file.sections.get(
+                                               "LONGITUDINAL_COEFFICIENTS", {}) else "")
+                  + " (equations as MFeval 4.0).",
                   "Friction scaling: LMU' = LMU (A_mu = 1, as MFeval 4.0).",
                   f"Standard errors: {self.uncertainty or UNCERTAINTIES['asymptotic']}."]
         header += [f"warning: {w}" for w in self.warnings]
