@@ -192,7 +192,7 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
     the_law = _slip_law(law)
     fz = _check_request(n, slip_max, fz)
     slip = np.linspace(0.0, slip_max, n)
-    with collected() as warned:  # of the Magic Formula's evaluation, once each
+    with collected(mf.not_applied) as warned:  # of the Magic Formula's evaluation
         mu_mf = mf_slip_curve(mf, fz, slip, side=side, gamma=gamma, pressure=pressure)
         expected = (equivalent_pacejka(mf, fz, side=side, gamma=gamma, pressure=pressure)
                     if the_law.id == "pacejka" else None)

@@ -19,7 +19,6 @@ from typing import Any
 
 import pytest
 
-from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
 from frictionlaws.tyre.mf.declarations import DECLARED
 from frictionlaws.tyre.mf.property_file import FITTYP_VERSIONS
@@ -38,9 +37,11 @@ def _fitted(tmp_path: Path, truth: str, fittyp: int, template: Any = None,
             ) -> tuple[Any, Path]:
     data = rig_data(MagicFormula.from_file(truth), n=7, loads=loads, pressures=pressures,
                     cambers_deg=(0.0,), combined=False)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ExtrapolationWarning)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         res = fit_mf(data, fittyp=fittyp, template=template)
+    # one warning path: what Python was told is what the result (its file, JSON) holds
+    assert list(dict.fromkeys(str(w.message) for w in caught)) == res.warnings
     return res, res.write(tmp_path / "fitted.tir")
 
 
@@ -66,12 +67,17 @@ def _check_lines_against_the_file(res: Any, path: Path) -> None:
             assert pf.si(sec, name) == pytest.approx(float(value), rel=1e-9), line
     notes = [line.removeprefix("note: ") for line in header if line.startswith("note: ")]
     assert notes == res.notes and json.loads(json.dumps(res.to_dict()))["notes"] == notes
+    said = [line.removeprefix("warning: ") for line in header if line.startswith("warning: ")]
+    assert said == res.warnings and json.loads(json.dumps(res.to_dict()))["warnings"] == said
+    assert [line.removeprefix("warning: ") for line in res.report().splitlines()
+            if line.startswith("warning: ")] == said
 
 
 @pytest.mark.slow
 def test_an_mf52_fit_with_a_pressure_column_notes_no_nominal_pressure(tmp_path: Path) -> None:
     res, path = _fitted(tmp_path, "MagicFormula52", fittyp=5)
     assert not [n for n in res.notes if "NOMPRES" in n]  # none is written
+    assert [w for w in res.warnings if "stop before the peak" in w]  # said on every path
     assert "OPERATING_CONDITIONS" not in read_property_file(path).sections
     _check_lines_against_the_file(res, path)
 

@@ -85,7 +85,7 @@ def _apply_labelled(method: Callable[..., Any], mf: Any, values: dict[str, Any],
             return np.broadcast_to(np.asarray(out, dtype=float), shape).copy()
         return tuple(np.broadcast_to(np.asarray(o, dtype=float), shape).copy() for o in out)
 
-    with collected() as warned:  # the evaluation's warnings, kept with the result too
+    with collected(mf.not_applied) as warned:  # the evaluation's, kept with the result
         result = xr.apply_ufunc(bare, *(values[n] for n in labelled), dask="allowed",
                                 output_core_dims=[[] for _ in outputs])
     named = [r.rename(name).assign_attrs(units=unit, long_name=long, warnings=list(warned))

@@ -710,7 +710,7 @@ class MagicFormula(MFParameters):
         loads = np.atleast_1d(np.asarray(
             loads if loads is not None else [0.5 * self.fnomin, self.fnomin,
                                              1.5 * self.fnomin], float))
-        with collected() as warned:  # of the loads and pressure asked for, once
+        with collected(self.not_applied) as warned:  # of the loads and pressure, once
             evaluated, clamped = self.limit_loads(self.check("fz", loads, positive=True))
             if self.pressure is not None:
                 self.warn_range("pressure", np.asarray(self.pressure))

@@ -2,7 +2,9 @@
 
 A condition (an input beyond the file's range, a load clamped, an option not used) is
 raised once, where it arises, as a Python warning
-(:class:`~frictionlaws.base.errors.ExtrapolationWarning`, :class:`UserWarning`).  Every path
+(:class:`~frictionlaws.base.errors.ExtrapolationWarning`, :class:`UserWarning`); an option
+the model cannot apply is warned of once, when the model is made, and stands in every
+result's warnings after (``collected(mf.not_applied)``).  Every path
 that reports an evaluation collects the warnings with :func:`collected`: the API's
 structured results (:func:`~frictionlaws.tyre.mf.outputs.evaluate`,
 :meth:`~frictionlaws.tyre.mf.model.MagicFormula.summary`), their JSON, the xarray
@@ -15,22 +17,31 @@ from __future__ import annotations
 
 import contextlib
 import warnings
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 __all__ = ["collected"]
 
 
 @contextlib.contextmanager
-def collected() -> Iterator[list[str]]:
+def collected(standing: Sequence[str] = ()) -> Iterator[list[str]]:
     """Collect the warnings raised inside the block, once each, in order.
+
+    Parameters
+    ----------
+    standing : sequence of str
+        Warnings that hold for every evaluation of the model and were issued once already
+        (the options it cannot apply:
+        :attr:`~frictionlaws.tyre.mf.parameters.MFParameters.not_applied`): listed first,
+        not issued again.
 
     Yields
     ------
     list of str
-        Filled when the block ends: the text of each distinct warning.  The warnings are
-        then issued again (once each), so that the caller's filters apply to them.
+        Filled when the block ends: ``standing``, then the text of each other distinct
+        warning raised inside.  Those are then issued again (once each), so that the
+        caller's filters apply to them.
     """
-    texts: list[str] = []
+    texts: list[str] = list(dict.fromkeys(standing))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield texts
@@ -40,6 +51,7 @@ def collected() -> Iterator[list[str]]:
         if key in seen:
             continue
         seen.add(key)
-        texts.append(str(w.message))
+        if str(w.message) not in texts:
+            texts.append(str(w.message))
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno,
                                source=w.source)

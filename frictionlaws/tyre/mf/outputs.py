@@ -324,7 +324,7 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
 
     ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
     """
-    with collected() as warned:
+    with collected(mf.not_applied) as warned:
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate)
         e = Evaluation(mf, r)
         outputs: dict[str, np.ndarray] = {}

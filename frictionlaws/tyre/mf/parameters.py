@@ -146,7 +146,10 @@ class MFParameters:
         if self.c.LFZO <= 0:
             raise InputError("LFZO must be positive", file=source)
         self.six = version.startswith("6")
-        for text in self.options_not_applied():  # noted and warned of, once: one rule
+        #: The options given that this model cannot apply (:meth:`options_not_applied`):
+        #: noted, warned of once here, and listed in every result's warnings.
+        self.not_applied = self.options_not_applied()
+        for text in self.not_applied:  # noted and warned of, once: one rule
             if text not in self.notes:
                 self.notes.append(text)
             warnings.warn(text, UserWarning, stacklevel=2)

@@ -61,6 +61,7 @@ from ....base.errors import Argument, ExtrapolationWarning, FitError, InputError
 from ...tyre_data import TyreData, read_tyre_data
 from ..coefficients import fit_bounds
 from ..model import MagicFormula
+from ..notices import collected
 from ..property_file import FITTYP_VERSIONS, PropertyFile
 from ..tir import format_tir, read_tir
 from .bootstrap import DEFAULT_RESAMPLES, check_can_resample, check_options, sweep_bootstrap
@@ -131,9 +132,19 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     FitError
         Too few pure-slip points.
     """
+    given = dict(resamples=resamples, jobs=jobs, seed=seed, sweeps=sweeps)
+    with collected() as raised:  # every warning of the fit, once: the file's, JSON's, text's
+        fitted = _fitted(data, fittyp, template, sign_convention, uncertainty, given)
+    fitted.warnings = raised
+    return fitted
+
+
+def _fitted(data: TyreData | str | Path, fittyp: int,
+            template: str | Path | PropertyFile | None, sign_convention: str | None,
+            uncertainty: str, given: dict[str, Any]) -> MFFit:
+    """:func:`fit_mf`'s work; its warnings are issued (:func:`fit_mf` collects them)."""
     t0 = time.perf_counter()
-    data, boot = _checked_inputs(data, fittyp, sign_convention, uncertainty,
-                                 dict(resamples=resamples, jobs=jobs, seed=seed, sweeps=sweeps))
+    data, boot = _checked_inputs(data, fittyp, sign_convention, uncertainty, given)
     version = FITTYPS[fittyp]
     tpl = template_file(template, version)
     notes = list(data.notes)
