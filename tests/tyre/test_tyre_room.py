@@ -1,7 +1,9 @@
 """The Magic Formula room's own rules, checked on the package's source.
 
 * ``frictionlaws/tyre/mf/`` holds the Magic Formula: no ``_fit_mf_*`` / ``_mf_*`` fragment at
-  ``tyre/``'s top, no module of ``tyre/mf/`` over 800 lines;
+  ``tyre/``'s top, no module of ``tyre/`` over 800 lines; the modules left at ``tyre/``'s top
+  under the Magic Formula's earlier import paths are plain public re-exports (imports from
+  ``tyre/mf/`` and ``__all__``, nothing else), their docstrings saying so;
 * no private function, class or constant (nor a private module) is imported from another
   module of the tyre package: what is shared is public in its module;
 * imports sit at the top of the file (only matplotlib, sympy, dask and xarray may be
@@ -98,9 +100,35 @@ def test_the_magic_formula_is_a_room_of_modules_under_800_lines():
     top = [p.name for p in TYRE.glob("*.py")]
     assert [n for n in top if n.startswith(("_fit_mf", "_mf"))] == []
     assert (TYRE / "mf" / "model.py").is_file() and (TYRE / "mf" / "fit" / "staged.py").is_file()
-    long = {str(p.relative_to(TYRE)): n for p in (TYRE / "mf").rglob("*.py")
+    long = {str(p.relative_to(TYRE)): n for p in TYRE.rglob("*.py")
             if (n := len(p.read_text(encoding="utf-8").splitlines())) > MAX_MF_LINES}
     assert long == {}
+
+
+#: The modules at ``tyre/``'s top that hold the Magic Formula's import paths of earlier
+#: releases: plain public re-exports, nothing else.
+SHIMS = ("magic_formula", "mf_coefficients", "mf_outputs", "tir")
+
+
+def test_the_earlier_import_paths_are_plain_public_re_exports():
+    for name in SHIMS:
+        tree = ast.parse((TYRE / f"{name}.py").read_text(encoding="utf-8"))
+        doc = ast.get_docstring(tree) or ""
+        assert "import path of earlier releases" in doc and "re-exports" in doc, name
+        body = [n for n in tree.body
+                if not (isinstance(n, ast.Expr) and isinstance(n.value, ast.Constant))]
+        imported: list[str] = []
+        for node in body:
+            if isinstance(node, ast.ImportFrom) and node.module != "__future__":
+                assert node.level == 1 and (node.module or "").startswith("mf."), name
+                imported += [a.asname or a.name for a in node.names]
+            elif isinstance(node, ast.Assign):
+                assert [t.id for t in node.targets if isinstance(t, ast.Name)] == ["__all__"]
+                exported = ast.literal_eval(node.value)
+            else:
+                assert isinstance(node, ast.ImportFrom), (name, ast.dump(node)[:80])
+        assert sorted(exported) == sorted(imported), name
+        assert not [n for n in imported if n.startswith("_")], name
 
 
 def test_no_private_name_crosses_a_module_of_the_tyre_package():
