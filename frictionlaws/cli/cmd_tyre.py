@@ -52,6 +52,7 @@ from ._common import (
     data_source,
     parse_values,
     refuse_unused,
+    report_text,
     shown_source,
 )
 from .commands import COMMANDS
@@ -355,6 +356,15 @@ def _tyre(args: argparse.Namespace) -> Any:
     return BrushTyre(**kw)
 
 
+def _said_once(report: str, raised: list[str], args: argparse.Namespace) -> str:
+    """A result's report without the ``warning:`` lines of ``raised``, the warnings the
+    result also issued as Python warnings, which the command line prints on stderr once
+    each (as ``tyre mf`` does): each warning is said once, on one channel."""
+    lines = [line for line in report.split("\n")
+             if line.removeprefix("warning: ") not in raised or not line.startswith("warning: ")]
+    return report_text("\n".join(lines), args)
+
+
 def _warn(messages: list[str]) -> None:
     for m in messages:
         print(f"warning: {m}", file=sys.stderr)
@@ -596,7 +606,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.json:
         print(jsonio.dumps(red.to_dict()))
     else:
-        print(red.report())
+        print(_said_once(red.report(), red.warnings, args))
         if args.save:
             print(f"saved: {args.save}")
     return 0
@@ -628,6 +638,6 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.json:
         print(jsonio.dumps(res.to_dict()))
         return 0
-    print(res.report())
+    print(_said_once(res.report(), res.warnings, args))
     print(f"written: {args.output}" + (f", {args.plot}" if args.plot else ""))
     return 0

@@ -259,3 +259,36 @@ def test_the_corpus_is_generated_over_every_condition_and_file() -> None:
     assert len(CASES) > 50 and len(SUMMARY) >= 6
     assert {s for pair in PAIRS.values() for s in pair} == set(SINGLE)
     assert Path(__file__).name.startswith("test_tyre_")
+
+
+# ------------------------------------------------------------- the reduction to a slip law
+
+#: The summary's single conditions (loads and options): ``tyre reduce`` takes the same.
+REDUCE = [n for n in SUMMARY if "+" not in n]
+
+
+@pytest.mark.parametrize("file", ["MagicFormula52", "no-load-range"])  # each fit costs
+@pytest.mark.parametrize("case", REDUCE)
+def test_the_reduction_says_a_condition_alike_on_every_path(
+        case: str, file: str, files: dict[str, str],
+        capsys: pytest.CaptureFixture[str]) -> None:
+    from frictionlaws.tyre.reduce import reduce_mf
+
+    c = SINGLE[case]
+    path = files[file]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mf = MagicFormula.from_file(path, **c.model)
+        red = reduce_mf(mf, "pacejka", fz=c.inputs.get("fz", mf.fnomin), n=21)
+    assert list(dict.fromkeys(str(w.message) for w in caught)) == red.warnings
+    argv = ["tyre", "reduce", path, "--load", str(c.inputs.get("fz", mf.fnomin) / 1e3),
+            "--points", "21", *([] if c.cli[0] == "--loads" else c.cli)]
+    assert main([*argv, "--json"]) == 0
+    out, _ = capsys.readouterr()
+    doc = json.loads(out)
+    assert doc["warnings"] == red.warnings and doc["clamped"] == red.clamped
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert [line.removeprefix("warning: ") for line in err.splitlines()] == [
+        short_warning(w) for w in red.warnings]
+    assert not [w for w in red.warnings if short_warning(w) in out]  # said once: on stderr
