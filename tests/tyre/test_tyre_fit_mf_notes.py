@@ -105,3 +105,26 @@ def test_coefficients_the_template_lacks_are_said_not_to_be_written(tmp_path: Pa
     note = next(n for n in res.notes if "not in the template" in n)
     assert {"PPX1", "PPY1", "PDX3"} <= set(re.findall(r"[A-Z][A-Z0-9]+", note))
     _check_lines_against_the_file(res, path)
+
+
+@pytest.mark.parametrize("name", ["MagicFormula52", "MagicFormula61", "MagicFormula62"])
+def test_a_converted_file_is_what_its_header_says(tmp_path: Path, name: str) -> None:
+    """json_to_tir's header: "same sections, keys and values as the source; its
+    non-section members follow", read back."""
+    from frictionlaws.tyre.mf.tir import json_to_tir, packaged_example
+
+    src = packaged_example(name)
+    dst = json_to_tir(src, tmp_path / "converted.tir", provenance="the packaged example")
+    header = [line[2:] for line in dst.read_text().splitlines() if line.startswith("! ")]
+    assert "Same sections, keys and values as the source" in header[1]
+    before, after = read_property_file(src), read_property_file(dst)
+    assert list(after.sections) == list(before.sections)
+    for sec, body in before.sections.items():
+        assert list(after.sections[sec]) == list(body), sec
+        for key, value in body.items():
+            got = after.sections[sec][key]
+            assert got == (pytest.approx(value, rel=1e-12) if isinstance(value, float)
+                           else value), (sec, key)
+    members = [line.removeprefix("JSON member ") for line in header
+               if line.startswith("JSON member ")]
+    assert members == [f"{k}: {json.dumps(v)}" for k, v in before.metadata.items()]
