@@ -7,7 +7,11 @@ With F_x0 and F_y0 fitted (:mod:`frictionlaws.tyre.mf.fit.pure`), the staged pro
    coefficients held;
 2. **forces together**: the pure and combined coefficients of each direction refined at
    once on every row with the combined model, so that rows near pure slip (rig jitter)
-   count with the slip they were measured at instead of being dropped;
+   count with the slip they were measured at instead of being dropped; only when the
+   data have combined-slip rows: without them the weighting functions are the
+   template's (another tyre's), and the rows away from pure slip (F_y on a slip-ratio
+   sweep, F_x on a slip-angle sweep) fitted to them would move the pure-slip shifts, so
+   the pure-slip fit stands and those rows are named in a note;
 3. **aligning moment M_z0** (QBZ, QCZ1, QDZ, QEZ, QHZ, PPZ) on the rows near pure side slip
    with the forces held (first from three starts of the trail's B_t with the residual
    torque's width B_r held, :func:`_trail_start`; then with B_r free), then **combined
@@ -373,7 +377,11 @@ def later_stages(mf: FittingModel, data: Any, version: str, template: dict[str, 
                                  f"slip rows cannot be used (the F{name} coefficients are "
                                  "the template's)")
             continue
-        out.take(fit_stage(mf, comb, d, predict, template, d.spans(), bounds))
+        have = d.spans()
+        out.take(fit_stage(mf, comb, d, predict, template, have, bounds))
+        if not any(needs_met(k, have) for k in comb):
+            out.notes.extend(_off_pure_note(name, d))
+            continue
         group = [k for k in out.values if group_of(k) == name and out.stderr.get(k) != math.inf]
         joint = fit_stage(mf, group, d, predict, template, set(ALL_NEEDS), bounds)
         out.take(joint)
@@ -381,6 +389,20 @@ def later_stages(mf: FittingModel, data: Any, version: str, template: dict[str, 
             out.errors[f"{name}_all"] = _errors(predict, mf, d)
     _aligning_stages(mf, data, version, template, p_nom, bounds, out)
     return out
+
+
+def _off_pure_note(name: str, d: CombinedData) -> list[str]:
+    """The note on the rows of F``name`` away from pure slip that a fit without
+    combined-slip rows leaves out (none when there are none)."""
+    off = (np.abs(d.alpha) > ALPHA_PURE if name == "x" else np.abs(d.kappa) > KAPPA_PURE)
+    if not off.any():
+        return []
+    other, weight = (("|alpha| > 1 deg", "G_xa") if name == "x" else
+                     ("|kappa| > 0.01", "G_yk and S_Vyk"))
+    return [f"F{name}: {int(off.sum())} rows away from pure slip ({other}) are not fitted: "
+            f"without combined-slip rows the weighting function ({weight}) is the "
+            f"template's, and fitted to it those rows would move the pure-slip "
+            "coefficients (the shifts most)"]
 
 
 def _aligning_stages(mf: FittingModel, data: Any, version: str, template: dict[str, float],
