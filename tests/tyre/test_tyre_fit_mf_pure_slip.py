@@ -19,7 +19,8 @@ import pytest
 
 from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, MFFit, TyreData, fit_mf
-from frictionlaws.tyre.synthetic_rig import moved_tyre
+from frictionlaws.tyre.mf.fit.stages import CombinedData, together_rows
+from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data
 
 #: Loads of the sweeps, times FNOMIN.
 LOADS = (0.4, 0.7, 1.0, 1.3, 1.6)
@@ -127,3 +128,22 @@ def test_pure_sweeps_of_a_corpus_of_tyres_stay_within_their_pinned_shares(
     truth = moved_tyre(template, factors, {}) if factors else MagicFormula.from_file(template)
     worst, _ = _fit(truth, pure_sweeps(truth, coupled=coupled), tmp_path, fittyp)
     assert worst["Fx0"][0] <= bound and worst["Fy0"][0] <= bound, worst
+
+
+@pytest.mark.parametrize("coupled", [True, False])
+def test_without_combined_slip_rows_the_forces_are_refined_on_the_rows_near_pure_slip(
+        coupled: bool) -> None:
+    truth = MagicFormula.from_file("MagicFormula52")
+    data = pure_sweeps(truth, n=21, loads=(1.0,), coupled=coupled)
+    every = np.ones(len(data), bool)
+    for name, target, near in (("x", data.fx, data.alpha == 0.0),
+                               ("y", data.fy, data.kappa == 0.0)):
+        d = CombinedData.select(data, target, every, None)
+        rows = together_rows(d, name)
+        assert rows.sum() == near.sum() and rows[near].all()
+        assert d.rows(rows).target.size == rows.sum()
+    # with combined-slip rows the weighting functions are fitted: every row counts
+    rig = rig_data(moved_tyre(), n=9, loads=(1.0,), pressures=(1.0,), cambers_deg=(0.0,))
+    for name, target in (("x", rig.fx), ("y", rig.fy)):
+        assert together_rows(CombinedData.select(rig, target, np.ones(len(rig), bool), None),
+                             name).all()
