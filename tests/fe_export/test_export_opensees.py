@@ -105,18 +105,18 @@ def test_a_comment_line_never_continues_onto_the_command(text: str) -> None:
     assert "{" not in line and "}" not in line
 
 
-HOSTILE = "C:\\fits\\run{1}\\ [exec rm] $x ;\\"
+TRICKY_SOURCE = "C:\\fits\\run{1}\\ [exec rm] $x ;\\"
 
 
 @pytest.mark.skipif(shutil.which("tclsh") is None, reason="tclsh is not installed")
 def test_tcl_itself_reads_one_command(tmp_path) -> None:
     """Tcl reads the file, and a hostile line right above the command, as we do."""
-    text = export("exponential-decay", DECAY, "opensees", units="mm-N-s", source=HOSTILE,
+    text = export("exponential-decay", DECAY, "opensees", units="mm-N-s", source=TRICKY_SOURCE,
                   options={"opensees_tag": 7}).text
-    assert text.count(HOSTILE[:10]) == 1
+    assert text.count(TRICKY_SOURCE[:10]) == 1
     lines = text.splitlines()
     decks = {"file": text, "hostile last": "\n".join(
-        [*lines[:-1], tcl_comment("# " + HOSTILE), lines[-1]]) + "\n"}
+        [*lines[:-1], tcl_comment("# " + TRICKY_SOURCE), lines[-1]]) + "\n"}
     for name, deck_text in decks.items():
         deck = tmp_path / f"{name.replace(' ', '_')}.tcl"
         deck.write_text(deck_text)
