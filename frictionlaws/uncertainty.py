@@ -36,8 +36,8 @@ from .parallel import batches, local_workers, starmap_local
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
            "check_uncertainty_options", "condition_ids", "sandwich_cov",
-           "residual_structure", "Refit", "BootstrapResult", "bootstrap", "intervals",
-           "rank", "MIN_DETERMINED", "ZERO_SPREAD"]
+           "residual_structure", "residual_structures", "Refit", "BootstrapResult",
+           "bootstrap", "intervals", "rank", "MIN_DETERMINED", "ZERO_SPREAD"]
 
 #: Uncertainty methods of a fit.
 UNCERTAINTY_METHODS = ("asymptotic", "sandwich", "bootstrap")
@@ -170,28 +170,99 @@ class Structure:
 def _runs_p(e: np.ndarray) -> tuple[float, float]:
     """Number of sign runs and its one-sided p (too few runs) by the normal approximation."""
     s = np.sign(e)
-    s = s[s != 0]
-    n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
-    if n1 == 0 or n2 == 0:
-        return math.nan, math.nan
-    runs = 1 + int(np.sum(s[1:] != s[:-1]))
+    runs, p = _runs_rows(s[s != 0][None, :])
+    return float(runs[0]), float(p[0])
+
+
+def _runs_rows(s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_runs_p` of sign rows ``s`` (``(B, m)``, no zeros): runs and p, NaN where
+    a row has one sign only (p also where the variance vanishes)."""
+    n1, n2 = np.sum(s > 0, axis=1).astype(float), np.sum(s < 0, axis=1).astype(float)
+    runs = 1.0 + np.sum(s[:, 1:] != s[:, :-1], axis=1)
     n = n1 + n2
-    mean = 2.0 * n1 * n2 / n + 1.0
-    var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
-    if var <= 0:
-        return float(runs), math.nan
-    return float(runs), _norm_cdf((runs - mean) / math.sqrt(var))
+    one_sign = (n1 == 0) | (n2 == 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean = 2.0 * n1 * n2 / n + 1.0
+        var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
+        z = (runs - mean) / np.sqrt(np.where(var > 0, var, 1.0))
+    p = np.array([_norm_cdf(float(x)) for x in z])
+    return (np.where(one_sign, math.nan, runs),
+            np.where(one_sign | ~(var > 0), math.nan, p))
 
 
 def _lag1_p(e: np.ndarray) -> tuple[float, float]:
     """Lag-1 autocorrelation and its one-sided p (positive correlation) under independence."""
-    d = e - e.mean()
-    den = float(np.sum(d**2))
-    if den <= 0:
-        return math.nan, math.nan
-    r1 = float(np.sum(d[1:] * d[:-1]) / den)
-    n = e.size
-    return r1, _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
+    r1, p = _lag1_rows(np.asarray(e, float)[None, :])
+    return float(r1[0]), float(p[0])
+
+
+def _lag1_rows(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_lag1_p` of rows ``e`` (``(B, n)``): NaN where a row does not vary."""
+    d = e - e.mean(axis=1, keepdims=True)
+    den = np.sum(d**2, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r1 = np.sum(d[:, 1:] * d[:, :-1], axis=1) / den
+    n = e.shape[1]
+    p = np.array([_norm_cdf(float(-(x + 1.0 / n) * math.sqrt(n))) for x in r1])
+    return np.where(den > 0, r1, math.nan), np.where(den > 0, p, math.nan)
+
+
+def residual_structures(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
+                        variables: Sequence[str]) -> list[Structure | None]:
+    """:func:`residual_structure` of ``B`` fits on equally many rows at once.
+
+    Parameters
+    ----------
+    resid : numpy.ndarray
+        The weighted residuals, ``(B, n)``.
+    arrays : mapping
+        Each variable's values, ``(B, n)``.
+    variables : sequence of str
+        The variables to order the rows by (those that vary in a row's fit).
+
+    Returns
+    -------
+    list
+        One :class:`Structure` (or None) per row, as :func:`residual_structure` gives it.
+    """
+    out: list[Structure | None] = [None] * len(resid)
+    names = [v for v in variables if v in arrays]
+    if resid.shape[1] < 8 or not names:
+        return out
+    varies = np.array([np.ptp(arrays[v], axis=1) > 0 for v in names]).reshape(len(names), -1)
+    fine = np.all(np.isfinite(resid), axis=1)
+    for pattern in {tuple(col) for col in varies.T}:
+        present = [v for v, on in zip(names, pattern) if on]
+        rows = np.flatnonzero(fine & np.all(varies.T == pattern, axis=1))
+        found: list[list[tuple[float, str, str, float]]] = [[] for _ in rows]
+        for var in present:
+            others = [arrays[o][rows] for o in reversed(present) if o != var]
+            order = np.lexsort([*others, arrays[var][rows]], axis=-1)
+            _collect(np.take_along_axis(resid[rows], order, axis=1), var, found)
+        for i, tests in zip(rows, found):
+            if not tests:
+                continue
+            p, var, test, stat = min(tests)
+            out[i] = Structure(var, test, stat, p, len(tests))
+    return out
+
+
+def _collect(e: np.ndarray, var: str, found: list[list[tuple[float, str, str, float]]]
+             ) -> None:
+    """The runs and lag-1 tests of ordered residual rows ``e``, added to ``found``."""
+    signs = np.sign(e)
+    plain = np.all(signs != 0, axis=1)
+    runs, p_runs = _runs_rows(signs[plain])
+    r1, p_lag = _lag1_rows(e)
+    runs_all = np.full((len(e), 2), math.nan)
+    runs_all[plain] = np.column_stack([runs, p_runs])
+    for i in np.flatnonzero(~plain):  # a residual of exactly 0: its sign is left out
+        runs_all[i] = _runs_p(e[i])
+    for i, tests in enumerate(found):
+        if math.isfinite(runs_all[i, 1]):
+            tests.append((float(runs_all[i, 1]), var, "runs", float(runs_all[i, 0])))
+        if math.isfinite(p_lag[i]):
+            tests.append((float(p_lag[i]), var, "lag1", float(r1[i])))
 
 
 def _norm_cdf(z: float) -> float:

@@ -12,6 +12,7 @@ import numpy as np
 from ..errors import FitError, InputError
 from ..law import Law
 from ..registry import get_law
+from .batch import polish
 from .data import check_fit_options
 from .diagnosis import (
     _correlation,
@@ -104,6 +105,8 @@ def fit(
     setup.notes.extend(_global_stage(search, global_stage, seed))
     if lean:
         _polish(search)
+    else:
+        polish(search)  # to the optimum itself: the result a batch of fits gives too
     if search.best is None:
         errors = search.errors
         raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "

@@ -18,7 +18,7 @@ from ..law import VARIABLES, Law
 from ..units import si_magnitude
 from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_fit_data
 
-__all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
+__all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL", "RANDOM_STARTS"]
 
 
 #: Rows from which a fit uses the laws' analytic Jacobians (and MINPACK first).  Below,
@@ -439,6 +439,10 @@ class _Search:
             self.best, self.best_pinned = res, pinned
 
 
+#: Random starts tried when the deterministic ones disagree (or all fail).
+RANDOM_STARTS = 6
+
+
 #: Tolerances of the polish of a lean fit (:func:`_polish`).
 POLISH_TOL = 1e-13
 
@@ -492,7 +496,7 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
     forced = starts is not None and int(starts) > 0
     if not s.law.linear and (disagree or search.best is None or forced):
         rng = np.random.default_rng(seed)
-        n_random = 6 if starts is None else int(starts)
+        n_random = RANDOM_STARTS if starts is None else int(starts)
         for start in _random_starts(s.law, s.guess, s.vary_names, n_random, rng):
             search.run(start)
 

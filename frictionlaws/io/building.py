@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import units as _units
 from ..errors import Argument, InputError
+from ..numbers import parse_number, parse_numbers
 from ..sanitize import csv_cell_text
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
@@ -64,8 +65,6 @@ def _to_float(cell: Any, decimal_comma: bool) -> float | None:
     text = str(cell).strip()
     if text.lower() in MISSING_TOKENS:
         return math.nan
-    from ..numbers import parse_number
-
     if text.lower().lstrip("+-") in ("inf", "infinity"):
         return math.inf  # reported as "not finite" with its row
     try:  # the one number parser: no 1_000, no full-width digits, no overflow
@@ -302,6 +301,10 @@ def _column_numbers(table: _Table, j: int, commas: bool = False) -> np.ndarray:
     thousands separator or a decimal point) and refused.
     """
     col = table.headers[j]
+    if table.from_file:  # every cell a plain number or empty: the column at once
+        fast = parse_numbers(table.columns[j], decimal_comma=commas)
+        if fast is not None:
+            return fast
     out = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
         if commas and isinstance(cell, str) and _THOUSANDS.fullmatch(cell.strip()):

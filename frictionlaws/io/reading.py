@@ -32,6 +32,11 @@ _SPREADSHEET_ERROR = re.compile(
     r"^[\"']?#(N/A|VALUE!|DIV/0!|REF!|NUM!|NAME\?|NULL!)", re.IGNORECASE)
 
 
+#: The control bytes that mark binary content (all below 32 but tab, line feed, form
+#: feed and carriage return).
+_CONTROLS = bytes(b for b in range(32) if b not in (9, 10, 12, 13))
+
+
 # --------------------------------------------------------------------------- reading text
 @dataclass
 class _Table:
@@ -86,7 +91,7 @@ def decode_text(raw: bytes, source: str, what: str = "CSV file") -> tuple[str, s
                 raise InputError(f"starts with a {codec.upper()} byte-order mark but does not "
                                  f"decode as {codec.upper()}", file=source) from None
     head = raw[:8192]
-    controls = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
+    controls = len(head) - len(head.translate(None, _CONTROLS))
     if b"\x00" in head or controls > max(2, len(head) // 20):
         raise InputError(
             f"is not a text {what} (binary content, e.g. a spreadsheet or an image); "
@@ -233,6 +238,8 @@ def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],
 def _split(line: str, delimiter: str | None, source: str, row: int) -> list[str]:
     if delimiter is None:
         return [line.strip()]
+    if '"' not in line:  # no quoting: the cells csv reads, spaces after a delimiter skipped
+        return [cell.lstrip(" ") for cell in line.split(delimiter)]
     try:
         return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True,
                                strict=True))

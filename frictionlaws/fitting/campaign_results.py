@@ -1,0 +1,348 @@
+"""A campaign's results: records in blocks (one per chunk of datasets), the tidy table,
+streaming to a file.
+
+A worker of :func:`frictionlaws.campaign.fit_many` returns one :class:`Block` per chunk
+of datasets.  Sent between processes, a block travels as one JSON text (written by the
+worker), so the calling process unpacks a few strings instead of thousands of small
+objects; the records are read from it only when asked for (:attr:`Block.records`).
+:class:`Campaign` holds the blocks; its table (:meth:`Campaign.to_frame`) and records
+come from them.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["Campaign", "Block", "doubts", "key_text", "group_column", "tidy_columns",
+           "stream_blocks"]
+
+
+def key_text(key: Mapping[str, Any]) -> str:
+    """Write a group key as text, variables with their SI unit.
+
+    Parameters
+    ----------
+    key : mapping
+        Column -> value.
+
+    Returns
+    -------
+    str
+        E.g. ``surface=steel, T=293.15 K``.
+    """
+    from ..law import VARIABLES
+
+    parts = []
+    for col, value in key.items():
+        unit = VARIABLES[col].unit if col in VARIABLES else ""
+        text = f"{value:g}" if isinstance(value, float) else str(value)
+        parts.append(f"{col}={text}{' ' + unit if unit else ''}")
+    return ", ".join(parts)
+
+
+class Block:
+    """The records of one chunk of a campaign's datasets, and the datasets it could not read.
+
+    Parameters
+    ----------
+    records : list of dict
+        The chunk's records, in order.
+    problems : list of InputError
+        Why each unreadable dataset of the chunk cannot be read (then no records).
+    """
+
+    def __init__(self, records: list[dict[str, Any]],
+                 problems: Sequence[InputError] = ()) -> None:
+        self._records: list[dict[str, Any]] | None = records
+        self._text: str | None = None
+        self.count = len(records)
+        self.problems = list(problems)
+
+    @property
+    def records(self) -> list[dict[str, Any]]:
+        """The records (read from the block's JSON text on first use)."""
+        if self._records is None:
+            self._records = json.loads(self._text or "[]")
+            self._text = None
+        return self._records
+
+    def __len__(self) -> int:
+        return self.count
+
+    def __getstate__(self) -> dict[str, Any]:
+        text = self._text if self._records is None else json.dumps(
+            self._records, separators=(",", ":"))
+        return {"text": text, "count": self.count, "problems": self.problems}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._records, self._text = None, state["text"]
+        self.count, self.problems = state["count"], state["problems"]
+
+
+class Campaign:
+    """The results of :func:`~frictionlaws.campaign.fit_many`: one plain record per
+    (dataset, group, law).
+
+    Each record has ``dataset``, ``source``, ``group`` (column -> value), ``law``,
+    ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
+    warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
+    fit could not be made).
+
+    Parameters
+    ----------
+    records : list of dict, optional
+        The records held in memory (empty when they were streamed to ``path``).
+    by : tuple of str
+        The grouping columns.
+    laws : tuple of str
+        The law ids fitted.
+    notes : list of str
+        Remarks on the campaign as a whole.
+    path : Path, optional
+        The file the records were streamed to.
+    count : int
+        Number of records (also when streamed).
+    failed : list of dict
+        The failed records of a streamed campaign.
+    blocks : list of Block, optional
+        The records as the workers returned them (instead of ``records``).
+    """
+
+    def __init__(self, records: list[dict[str, Any]] | None = None, by: tuple[str, ...] = (),
+                 laws: tuple[str, ...] = (), notes: list[str] | None = None,
+                 path: Path | None = None, count: int = 0,
+                 failed: list[dict[str, Any]] | None = None, *,
+                 blocks: Sequence[Block] = ()) -> None:
+        self._records = list(records) if records is not None or not blocks else None
+        self._blocks = list(blocks)
+        self.by, self.laws = tuple(by), tuple(laws)
+        self.notes = list(notes or [])
+        self.path, self.failed = path, list(failed or [])
+        self.count = count or sum(len(b) for b in self._blocks)
+
+    @property
+    def records(self) -> list[dict[str, Any]]:
+        """The records held in memory, in the campaign's order (empty when streamed)."""
+        if self._records is None:
+            self._records = [rec for block in self._blocks for rec in block.records]
+            self._blocks = []
+        return self._records
+
+    def __len__(self) -> int:
+        return self.count if self._records is None else (len(self._records) or self.count)
+
+    def __repr__(self) -> str:
+        where = f", streamed to {self.path}" if self.path is not None else ""
+        return (f"<Campaign: {len(self)} fits of {', '.join(self.laws)}"
+                f"{' by ' + ', '.join(self.by) if self.by else ''}{where}>")
+
+    @property
+    def errors(self) -> list[dict[str, Any]]:
+        """Records whose fit failed, with the reason."""
+        return [r for r in self.records if "error" in r] or list(self.failed)
+
+    def rows(self) -> Iterator[dict[str, Any]]:
+        """Tidy rows: one per (dataset, group, law, parameter), metrics repeated."""
+        for rec in self.records:
+            yield from _tidy(rec, self.by)
+
+    def to_frame(self) -> Any:
+        """The tidy rows as a :class:`pandas.DataFrame` (units in the ``unit`` column).
+
+        For a campaign streamed to a CSV file (``fit_many(..., output=...)``) the
+        frame is read back from that file.
+        """
+        import pandas as pd
+
+        if self.path is not None and not self.records:
+            if self.path.suffix.lower() == ".csv":
+                return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
+            raise InputError("a campaign streamed to JSON Lines is read with "
+                             "pandas.read_json(path, lines=True)", file=str(self.path))
+        frame = pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
+        for col in frame.columns:
+            if frame[col].dtype == object:  # None -> NaN, as read back from a CSV
+                frame[col] = frame[col].where(frame[col].notna(), np.nan)
+        return frame
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able: the records, the grouping columns, laws and notes."""
+        return {"by": list(self.by), "laws": list(self.laws), "records": self.records,
+                "notes": list(self.notes)}
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
+        from .. import jsonio
+        from ..outputs import write_text_atomic
+
+        target = Path(path)
+        if target.suffix.lower() == ".json":
+            return write_text_atomic(target, jsonio.dumps(self.to_dict()) + "\n")
+        if target.suffix.lower() != ".csv":
+            raise InputError("campaign results are written as .csv or .json",
+                             file=str(target))
+        from ..sanitize import frame_csv
+
+        return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
+
+    def summary(self) -> str:
+        """One line per record: dataset, group, law, R^2, RMSE or the error."""
+        lines = []
+        for rec in self.records:
+            group = key_text(rec["group"])
+            head = f"{rec['dataset']}{' [' + group + ']' if group else ''} {rec['law']}"
+            if "error" in rec:
+                lines.append(f"{head}: error: {rec['error']}")
+                continue
+            m = rec["result"]["metrics"]
+            doubt = doubts(rec["result"])
+            lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
+                         f"n = {m.get('n')}{'; ' + doubt if doubt else ''}")
+        return "\n".join(lines)
+
+
+def doubts(result: Mapping[str, Any]) -> str:
+    """A fit's doubts in words: undetermined parameters, withheld errors, warnings.
+
+    Parameters
+    ----------
+    result : mapping
+        A record's ``result`` (:meth:`FitResult.to_dict`).
+
+    Returns
+    -------
+    str
+        E.g. ``cannot determine a, b; 1 warning (listed in the JSON output)``; empty when
+        the fit has no doubts.
+    """
+    parts = []
+    undetermined = result.get("non_identifiable") or []
+    if undetermined:
+        parts.append(f"cannot determine {', '.join(undetermined)}")
+    withheld = [k for k, e in (result.get("params") or {}).items()
+                if not e.get("fixed") and e.get("stderr") is None and k not in undetermined]
+    if withheld:
+        parts.append(f"no standard error for {', '.join(withheld)}")
+    n = len(result.get("warnings") or [])
+    if n:
+        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed in the JSON output)")
+    return "; ".join(parts)
+
+
+def _fmt(x: Any) -> str:
+    return "-" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.4g}"
+
+
+_METRICS = ("r2", "rmse", "aic", "bic", "n")
+
+
+def group_column(name: str) -> str:
+    """Name the tidy table's column of grouping column ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A grouping column.
+
+    Returns
+    -------
+    str
+        ``name``, followed by ``[unit]`` (SI) when it is a law variable.
+    """
+    from ..law import VARIABLES
+
+    unit = VARIABLES[name].unit if name in VARIABLES else ""
+    return f"{name} [{unit}]" if unit else name
+
+
+def tidy_columns(by: Sequence[str]) -> list[str]:
+    """List the columns of a campaign's tidy table (the CSV header).
+
+    Parameters
+    ----------
+    by : sequence of str
+        The grouping columns.
+
+    Returns
+    -------
+    list of str
+        The header, grouping columns with their units.
+    """
+    return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
+            "stderr", "ci95_low", "ci95_high", "uncertainty", "unit", "fixed", "converged",
+            *_METRICS,
+            "warnings", "error"]
+
+
+def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]:
+    base = {"dataset": rec["dataset"], **{group_column(c): rec["group"].get(c) for c in by},
+            "law": rec["law"], "rows": rec.get("rows")}
+    if "error" in rec:
+        yield {**base, "error": rec["error"]}
+        return
+    res = rec["result"]
+    metrics = {k: res["metrics"].get(k) for k in _METRICS}
+    for name, est in res["params"].items():
+        ci = est.get("ci95") or (None, None)
+        yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
+               "ci95_low": ci[0], "ci95_high": ci[1],
+               "uncertainty": (res.get("uncertainty") or {}).get("method"),
+               "unit": est["unit"] or "-",
+               "fixed": est["fixed"], "converged": res["success"], **metrics,
+               "warnings": len(res["warnings"]), "error": None}
+
+
+def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],
+                  laws: tuple[str, ...]) -> Campaign:
+    """Write the records of ``blocks`` as they come (CSV tidy rows or JSON Lines).
+
+    Only the failed records are kept; the file appears only when complete (an error
+    while the blocks come leaves no file).
+
+    Parameters
+    ----------
+    blocks : iterable of Block
+        The campaign's blocks, in order.
+    output : Path
+        A checked ``.csv`` or ``.jsonl`` file.
+    by, laws : tuple of str
+        The grouping columns and the laws.
+
+    Returns
+    -------
+    Campaign
+        With the file, the number of records and the failed ones.
+    """
+    import csv
+    import gc
+
+    from .. import jsonio
+    from ..outputs import atomic_write
+    from ..sanitize import csv_row
+
+    count, failed = 0, []
+    as_csv = output.suffix.lower() == ".csv"
+    with atomic_write(output, newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=tidy_columns(by)) if as_csv else None
+        if writer is not None:
+            writer.writeheader()
+        for block in blocks:
+            for rec in block.records:
+                count += 1
+                if "error" in rec:
+                    failed.append(rec)
+                if writer is not None:
+                    writer.writerows(csv_row(jsonio.to_jsonable(row)) for row in _tidy(rec, by))
+                else:
+                    fh.write(jsonio.dumps(rec, indent=None) + "\n")
+            gc.collect()  # a one-fit path (lmfit) leaves reference cycles: free them
+    return Campaign([], by, laws, path=output, count=count, failed=failed)
