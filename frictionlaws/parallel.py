@@ -250,7 +250,7 @@ def chunk_size(total: int | None, workers: int) -> int:
         return MAX_CHUNK
     if not total or total <= 0:
         return 64
-    return max(1, min(MAX_CHUNK, -(-total // (_CHUNKS_PER_WORKER * workers))))
+    return max(1, min(MAX_CHUNK, total // (_CHUNKS_PER_WORKER * workers)))
 
 
 def batch_size(total: int | None, workers: int) -> int:

@@ -238,7 +238,7 @@ def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],
 def _split(line: str, delimiter: str | None, source: str, row: int) -> list[str]:
     if delimiter is None:
         return [line.strip()]
-    if '"' not in line:  # no quoting: the cells csv reads, spaces after a delimiter skipped
+    if '"' not in line and line:  # no quoting: the cells csv reads, leading spaces skipped
         return [cell.lstrip(" ") for cell in line.split(delimiter)]
     try:
         return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True,
