@@ -21,9 +21,10 @@ not at all when they are streamed to a file).
 from __future__ import annotations
 
 import collections
+import functools
 import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -39,7 +40,7 @@ from .fitting.campaign_results import (
     stream_blocks,
     tidy_columns,
 )
-from .io import load_dataset
+from .io import Dataset, load_dataset
 from .parallel import (
     DASK_WORKER_CONFIG,
     MAX_BATCH,
@@ -163,6 +164,12 @@ def iter_datasets(sources: Any) -> list[Any]:
     """
     if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Iterable):
         sources = [sources]
+    if len(sources) == 1 and isinstance(sources[0], (str, os.PathLike)) \
+            and os.path.isdir(sources[0]):
+        listed = _csv_files(os.fspath(sources[0]))
+        if not listed:
+            raise InputError("the directory holds no *.csv dataset", file=str(sources[0]))
+        return listed
     out: list[Any] = []
     for item in sources:
         if isinstance(item, (str, os.PathLike)) and os.path.isdir(item):
@@ -178,26 +185,39 @@ def iter_datasets(sources: Any) -> list[Any]:
 
 
 class _ListedFile(str):
-    """A file found in a directory listing (a path as text), with its real path."""
+    """A file found in a directory listing (a path as text), with its real path and stem."""
 
     key: str | None = None
+    stem: str = ""
+
+
+class _Listing(list):  # type: ignore[type-arg]
+    """The files of one directory listing, none a link: distinct files of distinct stems."""
 
 
 def _csv_files(folder: str) -> list[str]:
     """The ``*.csv`` entries of ``folder`` sorted by name, files with their real path.
 
     One directory listing: the real path of a plain file is the directory's own joined
-    with its name, so only links are resolved one by one.
+    with its name, so only links are resolved one by one.  Without links (and other
+    entries than files) the listing is a :class:`_Listing` of plain paths: its files are
+    distinct and so are their stems (each name is its stem and ``.csv``).
     """
-    real = os.path.realpath(folder)
+    csv = ".csv"
     with os.scandir(folder) as entries:
-        found = sorted((e.name, e.is_file(), e.is_symlink()) for e in entries
-                       if os.path.normcase(e.name).endswith(".csv"))
+        found = sorted((e.name, e.is_file(follow_symlinks=False)) for e in entries
+                       if os.path.normcase(e.name).endswith(csv))
+    prefix = os.path.join(folder, "")
+    if all(is_file for _, is_file in found):
+        return _Listing(prefix + name for name, _ in found)
+    real = os.path.join(os.path.realpath(folder), "")
     out: list[str] = []
-    for name, is_file, is_link in found:
-        path = _ListedFile(os.path.join(folder, name))
-        if is_file:
-            path.key = os.path.realpath(path) if is_link else os.path.join(real, name)
+    for name, plain in found:
+        path = _ListedFile(prefix + name)
+        if plain or os.path.isfile(path):
+            path.key = real + name if plain else os.path.realpath(path)
+            dot = name.rfind(".")  # the stem as pathlib writes it
+            path.stem = name[:dot] if 0 < dot < len(name) - 1 else name
         out.append(path)
     return out
 
@@ -308,7 +328,6 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
         first appear in the data.
     """
     from .fitting import fit
-    from .io import Dataset, load_dataset
 
     check_grouping(by, [law])
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
@@ -392,6 +411,8 @@ def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
     InputError
         When one file is given twice.
     """
+    if isinstance(sources, _Listing):
+        return [None] * len(sources)
     seen: dict[str, int] = {}
     names = []
     for i, src in enumerate(sources):
@@ -428,8 +449,8 @@ def _file_key(source: Any) -> str | None:
 
 def _own_name(source: Any, is_file: bool) -> str:
     """The name :func:`~frictionlaws.io.load_dataset` gives a source, without loading it."""
-    from .io import Dataset
-
+    if isinstance(source, _ListedFile) and is_file:
+        return source.stem
     if isinstance(source, (str, os.PathLike)):
         return Path(source).stem if is_file else os.fspath(source)
     if isinstance(source, Dataset):
@@ -444,7 +465,23 @@ def _plain_error(exc: InputError) -> InputError:
                       option=exc.option)
 
 
-def _fit_chunk(jobs: Sequence[_Job]) -> Block:
+@dataclass(frozen=True)
+class _Settings:
+    """What every dataset of a campaign is read and fitted with (sent once per chunk)."""
+
+    laws: tuple[str, ...]
+    by: tuple[str, ...]
+    fit_options: Mapping[str, Any]
+    load_options: Mapping[str, Any]
+
+    def job(self, item: tuple[Any, str | None, str | None, bool]) -> _Job:
+        """One dataset's job from its item ``(source, label, shown, check_only)``."""
+        return _Job(item[0], self.laws, self.by, self.fit_options, self.load_options,
+                    item[1], item[2], item[3])
+
+
+def _fit_chunk(settings: _Settings, items: Sequence[tuple[Any, str | None, str | None, bool]]
+               ) -> Block:
     """Read a chunk of datasets, split them into groups and fit every law to every group.
 
     Groups of fewer than :data:`~frictionlaws.fitting.batch.POLISH_ROWS` rows wait, and
@@ -458,9 +495,10 @@ def _fit_chunk(jobs: Sequence[_Job]) -> Block:
     from .fitting.stacked import stackable
 
     problems: list[InputError] = []
-    records: list[dict[str, Any]] = []
-    waiting = _Waiting(stackable(jobs[0].fit_options) if jobs else False)
-    for job in jobs:
+    heads: list[tuple[Any, ...]] = []
+    parts: list[Any] = []
+    waiting = _Waiting(stackable(settings.fit_options))
+    for job in map(settings.job, items):
         try:
             ds = load_dataset(job.source, **job.load_options)
             groups = group_keys(ds, job.by)
@@ -469,22 +507,19 @@ def _fit_chunk(jobs: Sequence[_Job]) -> Block:
             continue
         if job.check_only or problems:
             continue
+        name, source = job.label or ds.name, job.shown or str(ds.source)
         for key, mask in groups:
             subset = group_subset(ds, key, mask)
             fd = waiting.data(subset, job)
+            rows = int(mask.sum())
             for law in job.laws:
-                record: dict[str, Any] = {"dataset": job.label or ds.name,
-                                          "source": job.shown or str(ds.source),
-                                          "group": key, "law": law, "rows": int(mask.sum())}
-                records.append(record)
-                if fd is None:
-                    record.update(_fit_one(law, subset, job))
-                else:
-                    waiting.add(law, fd, record, subset, job)
+                heads.append((name, source, key, law, rows))
+                parts.append(_fit_one(law, subset, job) if fd is None else None)
+                if fd is not None:
+                    waiting.add(law, fd, len(parts) - 1, subset, job)
     if problems:
-        return Block([], problems)
-    waiting.fit()
-    return Block(records)
+        return Block(problems=problems)
+    return Block(heads, parts, waiting.fit(parts))
 
 
 @dataclass
@@ -492,8 +527,7 @@ class _Waiting:
     """The groups of a chunk waiting to be fitted in stacks, law by law."""
 
     on: bool
-    members: dict[str, list[tuple[Any, dict[str, Any], Any, _Job]]] = field(
-        default_factory=dict)
+    members: dict[str, list[tuple[Any, int, Any, _Job]]] = field(default_factory=dict)
 
     def data(self, subset: Any, job: _Job) -> Any:
         """The fit data of a group to stack (None: fit it at once)."""
@@ -507,20 +541,24 @@ class _Waiting:
         except InputError:  # the one-fit path says why, as it would alone
             return None
 
-    def add(self, law: str, fd: Any, record: dict[str, Any], subset: Any, job: _Job) -> None:
-        self.members.setdefault(law, []).append((fd, record, subset, job))
+    def add(self, law: str, fd: Any, at: int, subset: Any, job: _Job) -> None:
+        self.members.setdefault(law, []).append((fd, at, subset, job))
 
-    def fit(self) -> None:
-        """Fit every stack; the members handed back are fitted one by one."""
-        from .fitting.stacked import fit_stacked
+    def fit(self, parts: list[Any]) -> list[Any]:
+        """Fit every stack, its members' parts pointing into its columns; the members
+        handed back are fitted one by one.  The stacks' results (one per law)."""
+        from .fitting.stacked import stack_fits
         from .registry import get_law
 
+        tables = []
         for law, members in self.members.items():
             seed = members[0][3].fit_options.get("seed", 0)
-            results = fit_stacked(get_law(law), [m[0] for m in members], seed)
-            for (_, record, subset, job), result in zip(members, results):
-                record.update({"result": result} if result is not None
-                              else _fit_one(law, subset, job))
+            fits = stack_fits(get_law(law), [m[0] for m in members], seed)
+            for j, (_, at, subset, job) in enumerate(members):
+                row = int(fits.row[j])
+                parts[at] = (len(tables), row) if row >= 0 else _fit_one(law, subset, job)
+            tables.append(fits)
+        return tables
 
 
 def _fit_one(law: str, data: Any, job: _Job) -> dict[str, Any]:
@@ -632,15 +670,14 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
     names = dict(source_names or {})
-    options, loading = dict(fit_options), dict(load_options or {})
-    work = [_Job(str(src) if isinstance(src, _ListedFile) else src, law_ids, columns, options,
-                 loading, label,
-                 names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike)) else None)
-            for src, label in zip(sources, dataset_labels(sources))]
+    settings = _Settings(law_ids, columns, dict(fit_options), dict(load_options or {}))
+    work = [(str(src) if isinstance(src, _ListedFile) else src, label,
+             names.get(os.fspath(src)) if names and isinstance(src, (str, os.PathLike))
+             else None) for src, label in zip(sources, dataset_labels(sources))]
     refusal = _Refusal(len(work))
     blocks = refusal.watch(iter_chunks(
-        _fit_chunk, (replace(job, check_only=True) if refusal.problems else job
-                     for job in work),
+        functools.partial(_fit_chunk, settings),
+        ((*item, bool(refusal.problems)) for item in work),
         jobs=jobs, scheduler=scheduler, progress=progress, total=len(work)))
     if target is not None:
         return stream_blocks(blocks, target, columns, law_ids)
@@ -700,7 +737,6 @@ class _CompareJob:
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
     """Load one dataset and compare the laws on each of its groups (plain records)."""
     from .comparison import compare
-    from .io import load_dataset
 
     try:
         ds = load_dataset(job.source, **job.load_options)

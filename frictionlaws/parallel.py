@@ -10,7 +10,6 @@ for them, each process paying its start-up and its memory) or than there are tas
 
 from __future__ import annotations
 
-import functools
 import importlib
 import itertools
 import os
@@ -159,7 +158,7 @@ def iter_chunks(func: Callable[[list[Any]], Any], items: Iterable[Any], *, jobs:
     elif jobs == 1:
         results = ((len(chunk), func(chunk)) for chunk in batches(items, chunk_size(total, 1)))
     else:
-        results = _on_joblib(func, items, jobs, total, True)
+        results = _on_loky(func, items, jobs, total)
     if not progress:
         yield from (result for _, result in results)
         return
@@ -298,31 +297,42 @@ def _progress(results: Iterable[Any], on: bool, total: int | None) -> Iterable[A
 
 
 def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
-               total: int | None, chunked: bool = False) -> Iterator[Any]:
-    """``func`` over ``items`` on ``jobs`` local processes (loky), in batches, in order.
-
-    ``chunked``: ``func`` takes a whole chunk (:func:`iter_chunks`); each result comes
-    as ``(items in the chunk, result)``.
-    """
+               total: int | None) -> Iterator[Any]:
+    """``func`` over ``items`` on ``jobs`` local processes (loky), in batches, in order."""
     joblib = importlib.import_module("joblib")  # untyped library: Any
 
     workers = local_workers(jobs, total)
-    size = chunk_size(total, workers) if chunked else batch_size(total, workers)
-    task = func if chunked else functools.partial(_run_batch, func)
-    counts: deque[int] = deque()
-
-    def tasks() -> Iterator[Any]:
-        for batch in batches(items, size):
-            counts.append(len(batch))
-            yield joblib.delayed(task)(batch)
-
+    size = batch_size(total, workers)
+    tasks = (joblib.delayed(_run_batch)(func, batch) for batch in batches(items, size))
     parallel = joblib.Parallel(n_jobs=workers, batch_size=1, pre_dispatch=_WINDOW * workers,
                                return_as="generator")
-    for part in parallel(tasks()):
-        if chunked:
-            yield counts.popleft(), part
-        else:
-            yield from part
+    for part in parallel(tasks):
+        yield from part
+
+
+def _on_loky(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
+             total: int | None) -> Iterator[tuple[int, Any]]:
+    """``func`` over chunks of ``items`` on ``jobs`` local processes: ``(items, result)``
+    of each chunk, in order.
+
+    The chunks go straight to the process pool joblib's loky back end keeps (one pool,
+    reused from call to call), a window of :data:`_WINDOW` chunks per worker in flight:
+    without joblib's dispatching layer, which costs the calling process more than the
+    chunks themselves.
+    """
+    executor = importlib.import_module("joblib.executor")  # untyped library: Any
+
+    workers = local_workers(jobs, total)
+    pool = executor.get_memmapping_executor(workers)
+    window: deque[tuple[int, Any]] = deque()
+    for batch in batches(items, chunk_size(total, workers)):
+        window.append((len(batch), pool.submit(func, batch)))
+        if len(window) >= _WINDOW * workers:
+            count, future = window.popleft()
+            yield count, future.result()
+    while window:
+        count, future = window.popleft()
+        yield count, future.result()
 
 
 def _dask_client(address: str) -> Any:

@@ -185,7 +185,7 @@ def _runs_rows(s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         mean = 2.0 * n1 * n2 / n + 1.0
         var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
         z = (runs - mean) / np.sqrt(np.where(var > 0, var, 1.0))
-    p = np.array([_norm_cdf(float(x)) for x in z])
+    p = _norm_cdf(z)
     return (np.where(one_sign, math.nan, runs),
             np.where(one_sign | ~(var > 0), math.nan, p))
 
@@ -203,7 +203,7 @@ def _lag1_rows(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(divide="ignore", invalid="ignore"):
         r1 = np.sum(d[:, 1:] * d[:, :-1], axis=1) / den
     n = e.shape[1]
-    p = np.array([_norm_cdf(float(-(x + 1.0 / n) * math.sqrt(n))) for x in r1])
+    p = _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
     return np.where(den > 0, r1, math.nan), np.where(den > 0, p, math.nan)
 
 
@@ -234,40 +234,52 @@ def residual_structures(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
     for pattern in {tuple(col) for col in varies.T}:
         present = [v for v, on in zip(names, pattern) if on]
         rows = np.flatnonzero(fine & np.all(varies.T == pattern, axis=1))
-        found: list[list[tuple[float, str, str, float]]] = [[] for _ in rows]
+        if not present or not rows.size:
+            continue
+        tests: list[tuple[str, str, np.ndarray, np.ndarray]] = []
         for var in present:
             others = [arrays[o][rows] for o in reversed(present) if o != var]
             order = np.lexsort([*others, arrays[var][rows]], axis=-1)
-            _collect(np.take_along_axis(resid[rows], order, axis=1), var, found)
-        for i, tests in zip(rows, found):
-            if not tests:
-                continue
-            p, var, test, stat = min(tests)
-            out[i] = Structure(var, test, stat, p, len(tests))
+            tests += _tests(np.take_along_axis(resid[rows], order, axis=1), var)
+        _strongest(tests, rows, out)
     return out
 
 
-def _collect(e: np.ndarray, var: str, found: list[list[tuple[float, str, str, float]]]
-             ) -> None:
-    """The runs and lag-1 tests of ordered residual rows ``e``, added to ``found``."""
+def _tests(e: np.ndarray, var: str) -> list[tuple[str, str, np.ndarray, np.ndarray]]:
+    """The runs and lag-1 tests of ordered residual rows ``e``: (var, test, statistic, p)."""
     signs = np.sign(e)
     plain = np.all(signs != 0, axis=1)
-    runs, p_runs = _runs_rows(signs[plain])
-    r1, p_lag = _lag1_rows(e)
-    runs_all = np.full((len(e), 2), math.nan)
-    runs_all[plain] = np.column_stack([runs, p_runs])
+    runs, p_runs = np.full(len(e), math.nan), np.full(len(e), math.nan)
+    runs[plain], p_runs[plain] = _runs_rows(signs[plain])
     for i in np.flatnonzero(~plain):  # a residual of exactly 0: its sign is left out
-        runs_all[i] = _runs_p(e[i])
-    for i, tests in enumerate(found):
-        if math.isfinite(runs_all[i, 1]):
-            tests.append((float(runs_all[i, 1]), var, "runs", float(runs_all[i, 0])))
-        if math.isfinite(p_lag[i]):
-            tests.append((float(p_lag[i]), var, "lag1", float(r1[i])))
+        runs[i], p_runs[i] = _runs_p(e[i])
+    r1, p_lag = _lag1_rows(e)
+    return [(var, "runs", runs, p_runs), (var, "lag1", r1, p_lag)]
 
 
-def _norm_cdf(z: float) -> float:
-    """Standard normal distribution function (math.erfc: no SciPy call on the fit path)."""
-    return 0.5 * math.erfc(-z / math.sqrt(2.0))
+def _strongest(tests: list[tuple[str, str, np.ndarray, np.ndarray]], rows: np.ndarray,
+               out: list[Structure | None]) -> None:
+    """Each row's smallest p (ties by variable and test name, as :func:`min` of the
+    tuples ``(p, variable, test, statistic)``), and the number of tests made."""
+    p = np.column_stack([t[3] for t in tests])
+    stat = np.column_stack([t[2] for t in tests])
+    made = np.isfinite(p)
+    rank = np.argsort(np.argsort([f"{v}\x00{t}" for v, t, _, _ in tests]))
+    order = np.lexsort((np.broadcast_to(rank, p.shape), np.where(made, p, np.inf)), axis=-1)
+    best = order[:, 0]
+    for i, row in enumerate(rows):
+        count = int(made[i].sum())
+        if count:
+            var, test = tests[best[i]][:2]
+            out[row] = Structure(var, test, float(stat[i, best[i]]), float(p[i, best[i]]),
+                                 count)
+
+
+def _norm_cdf(z: Any) -> Any:
+    """Standard normal distribution function (array-capable)."""
+    from scipy.special import ndtr
+
+    return ndtr(z)
 
 
 def _order_by(key: np.ndarray, others: list[np.ndarray]) -> np.ndarray:

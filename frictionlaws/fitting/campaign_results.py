@@ -2,16 +2,15 @@
 streaming to a file.
 
 A worker of :func:`frictionlaws.campaign.fit_many` returns one :class:`Block` per chunk
-of datasets.  Sent between processes, a block travels as one JSON text (written by the
-worker), so the calling process unpacks a few strings instead of thousands of small
-objects; the records are read from it only when asked for (:attr:`Block.records`).
-:class:`Campaign` holds the blocks; its table (:meth:`Campaign.to_frame`) and records
-come from them.
+of datasets.  The fits made in stacks stay in the stacks' columns
+(:class:`~frictionlaws.fitting.stacked.StackedFits`): a block travels between processes
+as a few arrays, not thousands of small objects, and its records are written out only
+when asked for (:attr:`Block.records`).  :class:`Campaign` holds the blocks; its table
+(:meth:`Campaign.to_frame`) and records come from them.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
@@ -52,40 +51,57 @@ def key_text(key: Mapping[str, Any]) -> str:
 class Block:
     """The records of one chunk of a campaign's datasets, and the datasets it could not read.
 
+    A record is its head (``dataset``, ``source``, ``group``, ``law``, ``rows``) and its
+    part: a dict (``{"result": ...}`` or ``{"error": ...}``) for a fit made alone, or
+    ``(table, row)`` for one made in a stack, whose numbers stay in the stack's columns
+    (:class:`~frictionlaws.fitting.stacked.StackedFits`) until a record or a table row is
+    asked for.  So a block is cheap to send between processes and to keep.
+
     Parameters
     ----------
-    records : list of dict
-        The chunk's records, in order.
+    heads : list of tuple
+        ``(dataset, source, group, law, rows)`` of each record, in order.
+    parts : list
+        Each record's part, as said above.
+    tables : list of StackedFits
+        The stacks the parts point into.
     problems : list of InputError
         Why each unreadable dataset of the chunk cannot be read (then no records).
     """
 
-    def __init__(self, records: list[dict[str, Any]],
+    def __init__(self, heads: list[tuple[Any, ...]] | None = None,
+                 parts: list[Any] | None = None, tables: Sequence[Any] = (),
                  problems: Sequence[InputError] = ()) -> None:
-        self._records: list[dict[str, Any]] | None = records
-        self._text: str | None = None
-        self.count = len(records)
+        self.heads, self.parts = heads or [], parts or []
+        self.tables = list(tables)
         self.problems = list(problems)
+
+    def __len__(self) -> int:
+        return len(self.heads)
 
     @property
     def records(self) -> list[dict[str, Any]]:
-        """The records (read from the block's JSON text on first use)."""
-        if self._records is None:
-            self._records = json.loads(self._text or "[]")
-            self._text = None
-        return self._records
+        """The records, written out."""
+        out = []
+        for (dataset, source, group, law, rows), part in zip(self.heads, self.parts):
+            rec = {"dataset": dataset, "source": source, "group": group, "law": law,
+                   "rows": rows}
+            if isinstance(part, dict):
+                rec.update(part)
+            else:
+                rec["result"] = self.tables[part[0]].at(part[1])
+            out.append(rec)
+        return out
 
-    def __len__(self) -> int:
-        return self.count
-
-    def __getstate__(self) -> dict[str, Any]:
-        text = self._text if self._records is None else json.dumps(
-            self._records, separators=(",", ":"))
-        return {"text": text, "count": self.count, "problems": self.problems}
-
-    def __setstate__(self, state: dict[str, Any]) -> None:
-        self._records, self._text = None, state["text"]
-        self.count, self.problems = state["count"], state["problems"]
+    def tidy(self, by: Sequence[str]) -> Iterator[tuple[Any, ...]]:
+        """The records' rows of the tidy table (:func:`tidy_columns`), in order."""
+        for (dataset, _, group, law, rows), part in zip(self.heads, self.parts):
+            if isinstance(part, dict):
+                yield from _tidy({"dataset": dataset, "group": group, "law": law,
+                                  "rows": rows, **part}, by)
+            else:
+                base = (dataset, *(group.get(c) for c in by), law, rows)
+                yield from self.tables[part[0]].tidy(part[1], base)
 
 
 class Campaign:
@@ -137,6 +153,11 @@ class Campaign:
             self._blocks = []
         return self._records
 
+    def _tidy_rows(self) -> list[tuple[Any, ...]]:
+        if self._records is None:
+            return [row for block in self._blocks for row in block.tidy(self.by)]
+        return [row for rec in self._records for row in _tidy(rec, self.by)]
+
     def __len__(self) -> int:
         return self.count if self._records is None else (len(self._records) or self.count)
 
@@ -152,8 +173,9 @@ class Campaign:
 
     def rows(self) -> Iterator[dict[str, Any]]:
         """Tidy rows: one per (dataset, group, law, parameter), metrics repeated."""
-        for rec in self.records:
-            yield from _tidy(rec, self.by)
+        columns = tidy_columns(self.by)
+        for row in self._tidy_rows():
+            yield dict(zip(columns, row))
 
     def to_frame(self) -> Any:
         """The tidy rows as a :class:`pandas.DataFrame` (units in the ``unit`` column).
@@ -163,12 +185,12 @@ class Campaign:
         """
         import pandas as pd
 
-        if self.path is not None and not self.records:
+        if self.path is not None and self._records == []:
             if self.path.suffix.lower() == ".csv":
                 return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
             raise InputError("a campaign streamed to JSON Lines is read with "
                              "pandas.read_json(path, lines=True)", file=str(self.path))
-        frame = pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
+        frame = pd.DataFrame(self._tidy_rows(), columns=tidy_columns(self.by))
         for col in frame.columns:
             if frame[col].dtype == object:  # None -> NaN, as read back from a CSV
                 frame[col] = frame[col].where(frame[col].notna(), np.nan)
@@ -283,22 +305,25 @@ def tidy_columns(by: Sequence[str]) -> list[str]:
             "warnings", "error"]
 
 
-def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]:
-    base = {"dataset": rec["dataset"], **{group_column(c): rec["group"].get(c) for c in by},
-            "law": rec["law"], "rows": rec.get("rows")}
+def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[tuple[Any, ...]]:
+    """A record's tidy rows, as tuples in the order of :func:`tidy_columns`."""
+    group = rec["group"]
+    base = (rec["dataset"], *(group.get(c) for c in by), rec["law"], rec.get("rows"))
     if "error" in rec:
-        yield {**base, "error": rec["error"]}
+        yield (*base, *_NO_FIT, rec["error"])
         return
     res = rec["result"]
-    metrics = {k: res["metrics"].get(k) for k in _METRICS}
+    metrics = res["metrics"]
+    tail = (res["success"], *(metrics.get(k) for k in _METRICS), len(res["warnings"]), None)
+    method = (res.get("uncertainty") or {}).get("method")
     for name, est in res["params"].items():
         ci = est.get("ci95") or (None, None)
-        yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
-               "ci95_low": ci[0], "ci95_high": ci[1],
-               "uncertainty": (res.get("uncertainty") or {}).get("method"),
-               "unit": est["unit"] or "-",
-               "fixed": est["fixed"], "converged": res["success"], **metrics,
-               "warnings": len(res["warnings"]), "error": None}
+        yield (*base, name, est["value"], est["stderr"], ci[0], ci[1], method,
+               est["unit"] or "-", est["fixed"], *tail)
+
+
+#: The cells of a failed fit's row from ``param`` to ``warnings``.
+_NO_FIT = (None,) * (9 + len(_METRICS) + 1)
 
 
 def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],
@@ -330,19 +355,23 @@ def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],
     from ..sanitize import csv_row
 
     count, failed = 0, []
+    columns = tidy_columns(by)
     as_csv = output.suffix.lower() == ".csv"
     with atomic_write(output, newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=tidy_columns(by)) if as_csv else None
         if writer is not None:
             writer.writeheader()
         for block in blocks:
-            for rec in block.records:
-                count += 1
-                if "error" in rec:
-                    failed.append(rec)
-                if writer is not None:
-                    writer.writerows(csv_row(jsonio.to_jsonable(row)) for row in _tidy(rec, by))
-                else:
-                    fh.write(jsonio.dumps(rec, indent=None) + "\n")
+            count += len(block)
+            errors = [i for i, part in enumerate(block.parts)
+                      if isinstance(part, dict) and "error" in part]
+            if errors:
+                records = block.records
+                failed += [records[i] for i in errors]
+            if writer is not None:
+                writer.writerows(csv_row(jsonio.to_jsonable(dict(zip(columns, row))))
+                                 for row in block.tidy(by))
+            else:
+                fh.writelines(jsonio.dumps(rec, indent=None) + "\n" for rec in block.records)
             gc.collect()  # a one-fit path (lmfit) leaves reference cycles: free them
     return Campaign([], by, laws, path=output, count=count, failed=failed)

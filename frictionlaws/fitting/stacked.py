@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -47,7 +47,7 @@ from .diagnosis import (
 from .search import RANDOM_STARTS, _clip, _random_starts, _starts
 from .uncertainty import structure_record, structure_warning
 
-__all__ = ["fit_stacked", "stackable", "STACKED_OPTIONS"]
+__all__ = ["fit_stacked", "stack_fits", "StackedFits", "stackable", "STACKED_OPTIONS"]
 
 #: The options of :func:`fit` a stacked fit takes, and the values it takes them with;
 #: with any other option or value every member is fitted alone.
@@ -107,12 +107,18 @@ def fit_stacked(law: Law, data: Sequence[FitData], seed: int = 0
         (``params``, ``metrics``, ``success``, ``warnings``, ``non_identifiable``,
         ``derived``, ``uncertainty``; JSON-able), or None: fit it with :func:`fit`.
     """
+    fits = stack_fits(law, data, seed)
+    return [fits.result(i) for i in range(len(data))]
+
+
+def stack_fits(law: Law, data: Sequence[FitData], seed: int = 0) -> StackedFits:
+    """:func:`fit_stacked`, its results kept in columns (:class:`StackedFits`)."""
     from ..derivatives import jacobian_function
 
-    out: list[dict[str, Any] | None] = [None] * len(data)
+    fits = StackedFits.empty(law, len(data))
     jac_func = jacobian_function(law)
     if jac_func is None:
-        return out
+        return fits
     buckets: dict[tuple[Any, ...], list[int]] = {}
     for i, fd in enumerate(data):
         if _eligible(law, fd):
@@ -121,12 +127,10 @@ def fit_stacked(law: Law, data: Sequence[FitData], seed: int = 0
     for members in buckets.values():
         stack = _Stack.of(law, [data[i] for i in members], jac_func, seed)
         try:
-            results = stack.fit()
+            stack.fit(fits, np.array(members))
         except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError):
             continue  # a formula that does not take stacked arrays: one fit each
-        for i, res in zip(members, results):
-            out[i] = res
-    return out
+    return fits.compressed()
 
 
 def _eligible(law: Law, fd: FitData) -> bool:
@@ -164,15 +168,13 @@ class _Stack:
     def names(self) -> list[str]:
         return self.prob.names
 
-    def fit(self) -> list[dict[str, Any] | None]:
-        """Solve from the starts of :func:`fit`, then diagnose the members that agree."""
+    def fit(self, fits: StackedFits, members: np.ndarray) -> None:
+        """Solve from the starts of :func:`fit`, diagnose the members that agree and put
+        those kept into ``fits`` (the stack's members are ``members`` there)."""
         theta, ok = self._solve()
-        out: list[dict[str, Any] | None] = [None] * len(self.data)
         rows = np.flatnonzero(ok)
         if rows.size:
-            for i, res in zip(rows, _Diagnosis(self, rows, theta[rows]).results()):
-                out[i] = res
-        return out
+            _Diagnosis(self, rows, theta[rows]).put(fits, members[rows])
 
     def _solve(self) -> tuple[np.ndarray, np.ndarray]:
         """Each member's optimum and whether the search of :func:`fit` ends there: every
@@ -275,8 +277,8 @@ class _Diagnosis:
                     unit[n] = one
         self.cov[idx] = unit * self.redchi[idx, None, None]
 
-    def results(self) -> list[dict[str, Any] | None]:
-        """Each member's result (None: fit it alone)."""
+    def put(self, fits: StackedFits, members: np.ndarray) -> None:
+        """Put the results of the members kept into ``fits`` (at ``members``)."""
         weak = self._identifiability()
         self._covariance()
         self._check_values()
@@ -287,11 +289,42 @@ class _Diagnosis:
         self._check_fit(metrics)
         derived = self._derived()
         structures = self._structures()
-        return [self._result(i, se[i], weak[i], metrics, derived, structures[i])
-                if self.keep[i] else None for i in range(len(self.rows))]
+        keep = np.flatnonzero(self.keep)
+        at = members[keep]
+        fits.row[at] = at
+        fits.values[at], fits.errors[at] = self.theta[keep], se[keep]
+        fits.low[at], fits.high[at], fits.cut[at] = self._intervals(se, keep)
+        fits.weak[at] = weak[keep]
+        fits.metrics[at] = np.column_stack([metrics[key] for key in _METRICS])[keep]
+        fits.size[at] = self.n
+        fits.weighted[at] = [self.data[i].weights is not None for i in keep]
+        for d, (name, _, _) in enumerate(fits.derived_names):
+            fits.derived[at, d] = np.column_stack(derived[name])[keep]
+        for i, m in zip(keep, at):
+            st = structures[i]
+            if st is not None:
+                fits.variable[m] = fits.variables.index(st.variable)
+                fits.test[m] = _TESTS.index(st.test)
+                fits.statistic[m], fits.p_value[m], fits.n_tests[m] = \
+                    st.statistic, st.p_value, st.n_tests
 
-    def _identifiability(self) -> list[list[str]]:
-        """The poorly determined parameters of each member; undetermined ones dropped."""
+    def _intervals(self, se: np.ndarray, keep: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The 95 % intervals of the members ``keep`` cut at the bounds (by
+        :func:`~frictionlaws.fitting.diagnosis._clip_interval`), and where cut."""
+        from scipy.special import stdtrit
+
+        tval = float(stdtrit(self.n - self.k, 0.975))
+        theta, err = self.theta[keep], se[keep]
+        low, high = theta - tval * err, theta + tval * err
+        lo = np.array([self.law.param(k).bounds[0] for k in self.names])
+        hi = np.array([self.law.param(k).bounds[1] for k in self.names])
+        cut = (low < lo) | (high > hi)
+        return np.maximum(low, lo), np.minimum(high, hi), cut
+
+    def _identifiability(self) -> np.ndarray:
+        """The poorly determined parameters of each member (a mask); members with
+        undetermined ones dropped."""
         norms = np.sqrt(np.einsum("bnk,bnk->bk", self.jac, self.jac))
         self.keep &= np.all(np.isfinite(norms) & (norms > 0), axis=1)
         unit = self.jac / np.where(norms > 0, norms, 1.0)[:, None, :]
@@ -300,14 +333,14 @@ class _Diagnosis:
         near = (np.abs(rel - RANK_TOL) <= _MARGIN * RANK_TOL) | (
             np.abs(rel - WEAK_TOL) <= _MARGIN * WEAK_TOL)
         self.keep &= np.all(rel >= RANK_TOL * (1 + _MARGIN), axis=1) & ~np.any(near, axis=1)
-        weak: list[list[str]] = [[] for _ in self.rows]
+        weak = np.zeros((len(self.rows), self.k), bool)
         for i in np.flatnonzero(self.keep & np.any(rel < WEAK_TOL, axis=1)):
             for j in np.flatnonzero(rel[i] < WEAK_TOL):
                 comp = np.abs(vt[i, j])
                 if np.any(np.abs(comp - 0.1 * comp.max()) <= _MARGIN * comp.max()):
                     self.keep[i] = False
             _, found = _directions(rel[i], vt[i], self.names, [])
-            weak[i] = [k for k in self.names if k in found]
+            weak[i] = [k in found for k in self.names]
         return weak
 
     def _check_values(self) -> None:
@@ -380,36 +413,142 @@ class _Diagnosis:
                 self.keep[i] = False
         return found
 
-    def _result(self, i: int, se: np.ndarray, weak: list[str],
-                metrics: Mapping[str, np.ndarray], derived: Mapping[str, Any],
-                structure: Any) -> dict[str, Any]:
-        """One member's result, as :func:`_compact` keeps :meth:`FitResult.to_dict`."""
+#: The metrics kept in :attr:`StackedFits.metrics`, in its columns' order.
+_METRICS = ("r2", "adj_r2", "rmse", "mae", "max_abs_residual", "aic", "aicc", "bic",
+            "chisqr", "redchi")
+#: The residual-structure tests, by their index in :attr:`StackedFits.test`.
+_TESTS = ("runs", "lag1")
+
+
+@dataclass
+class StackedFits:
+    """The results of a law's stacked fits, in columns (one row per member fitted).
+
+    Numbers and flags only, so they are cheap to keep and to send between processes:
+    the warnings are written when a result is (by the functions :func:`fit` writes them
+    with).  :meth:`result` gives one member's result as :func:`fit_stacked` does,
+    :meth:`tidy` its rows of a campaign's table.  ``row[i]`` is the row of member ``i``,
+    -1 for one handed back.
+    """
+
+    law: str
+    names: list[str]
+    units: list[str]
+    bounds: list[tuple[float, float]]
+    derived_names: list[tuple[str, str, str]]
+    variables: list[str]
+    row: np.ndarray
+    values: np.ndarray
+    errors: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    cut: np.ndarray
+    weak: np.ndarray
+    metrics: np.ndarray
+    size: np.ndarray
+    weighted: np.ndarray
+    derived: np.ndarray
+    #: Residual structure: index into ``variables`` (-1: none), test, statistic, p, tests.
+    variable: np.ndarray
+    test: np.ndarray
+    statistic: np.ndarray
+    p_value: np.ndarray
+    n_tests: np.ndarray
+
+    @classmethod
+    def empty(cls, law: Law, count: int) -> StackedFits:
+        """Room for ``count`` members, none fitted yet."""
+        k, nd = len(law.params), len(law.derived)
+        return cls(law.id, list(law.param_names), [p.unit for p in law.params],
+                   [p.bounds for p in law.params],
+                   [(d.name, d.unit, d.meaning) for d in law.derived], list(VARIABLES),
+                   np.full(count, -1), *(np.full((count, k), np.nan) for _ in range(4)),
+                   np.zeros((count, k), bool), np.zeros((count, k), bool),
+                   np.full((count, len(_METRICS)), np.nan), np.zeros(count, int),
+                   np.zeros(count, bool), np.full((count, nd, 2), np.nan),
+                   np.full(count, -1), np.zeros(count, int), np.full(count, np.nan),
+                   np.full(count, np.nan), np.zeros(count, int))
+
+    _ROWS = ("values", "errors", "low", "high", "cut", "weak", "metrics", "size", "weighted",
+             "derived", "variable", "test", "statistic", "p_value", "n_tests")
+
+    def compressed(self) -> StackedFits:
+        """The same results with only the rows of the members fitted (``row`` points there)."""
+        kept = self.row >= 0
+        row = np.full(len(self.row), -1)
+        row[kept] = np.arange(int(kept.sum()))
+        return replace(self, row=row, **{a: getattr(self, a)[kept] for a in self._ROWS})
+
+    def result(self, member: int) -> dict[str, Any] | None:
+        """Member ``member``'s result (as :func:`_compact` keeps :meth:`FitResult.to_dict`),
+        None when it was handed back."""
+        r = int(self.row[member])
+        return None if r < 0 else self.at(r)
+
+    def structure(self, r: int) -> Any:
+        """The residual structure of row ``r`` (a :class:`~frictionlaws.uncertainty.
+        Structure`), or None."""
+        from ..uncertainty import Structure
+
+        v = int(self.variable[r])
+        return None if v < 0 else Structure(
+            self.variables[v], _TESTS[int(self.test[r])], float(self.statistic[r]),
+            float(self.p_value[r]), int(self.n_tests[r]))
+
+    def warnings(self, r: int) -> list[str]:
+        """The warnings of row ``r``, in :func:`fit`'s order and words."""
         from scipy.special import stdtrit
 
-        law, warn = self.law, [weak_warning(weak)] if weak else []
-        dof = self.n - self.k
-        tval = float(stdtrit(dof, 0.975))
-        params = {}
-        for j, k in enumerate(self.names):
-            p = law.param(k)
-            value, err = float(self.theta[i, j]), float(se[j])
-            ci = _clip_interval(k, (value - tval * err, value + tval * err), p.bounds, warn)
-            params[k] = {"value": value, "stderr": err, "ci95": [ci[0], ci[1]], "unit": p.unit,
-                         "fixed": False, "identifiable": True}
+        warn = [weak_warning([k for k, w in zip(self.names, self.weak[r]) if w])] \
+            if self.weak[r].any() else []
+        if self.cut[r].any():
+            tval = float(stdtrit(int(self.size[r]) - len(self.names), 0.975))
+            for j in np.flatnonzero(self.cut[r]):
+                value, err = self.values[r, j], self.errors[r, j]
+                _clip_interval(self.names[j], (value - tval * err, value + tval * err),
+                               self.bounds[j], warn)
+        st = self.structure(r)
+        if st is not None and st.significant:
+            warn.append(structure_warning(st, "asymptotic"))
+        return warn
+
+    def at(self, r: int) -> dict[str, Any]:
+        """The result in row ``r``."""
+        values, errors = self.values[r].tolist(), self.errors[r].tolist()
+        low, high = self.low[r].tolist(), self.high[r].tolist()
+        params = {k: {"value": values[j], "stderr": errors[j], "ci95": [low[j], high[j]],
+                      "unit": self.units[j], "fixed": False, "identifiable": True}
+                  for j, k in enumerate(self.names)}
+        metrics = {k: _number(v) for k, v in zip(_METRICS, self.metrics[r].tolist())}
+        metrics.update(n=int(self.size[r]), k=len(self.names), weighted=bool(self.weighted[r]))
         uncertainty: dict[str, Any] = {"method": "asymptotic"}
-        if structure is not None:
-            uncertainty["residual_structure"] = structure_record(structure)
-            if structure.significant:
-                warn.append(structure_warning(structure, "asymptotic"))
-        uncertainty["asymptotic_stderr"] = {k: params[k]["stderr"] for k in self.names}
-        row = {key: _number(float(v[i])) for key, v in metrics.items() if key != "flat"}
-        row.update(n=self.n, k=self.k, weighted=self.data[i].weights is not None)
-        return {"params": params, "metrics": row, "success": True, "warnings": warn,
-                "non_identifiable": [],
-                "derived": {d.name: {"value": float(derived[d.name][0][i]),
-                                     "stderr": float(derived[d.name][1][i]), "unit": d.unit,
-                                     "meaning": d.meaning} for d in law.derived},
+        st = self.structure(r)
+        if st is not None:
+            uncertainty["residual_structure"] = structure_record(st)
+        uncertainty["asymptotic_stderr"] = dict(zip(self.names, errors))
+        derived = self.derived[r].tolist()
+        return {"params": params, "metrics": metrics, "success": True,
+                "warnings": self.warnings(r), "non_identifiable": [],
+                "derived": {name: {"value": derived[d][0], "stderr": derived[d][1],
+                                   "unit": unit, "meaning": meaning}
+                            for d, (name, unit, meaning) in enumerate(self.derived_names)},
                 "uncertainty": uncertainty}
+
+    def tidy(self, r: int, base: tuple[Any, ...]) -> list[tuple[Any, ...]]:
+        """The rows of the result in row ``r`` in a campaign's tidy table, after ``base``
+        (dataset, group values, law, rows); the columns of
+        :func:`~frictionlaws.fitting.campaign_results.tidy_columns`."""
+        from ..uncertainty import STRUCTURE_ALPHA
+
+        m = self.metrics[r].tolist()
+        count = int(self.weak[r].any()) + int(self.cut[r].sum()) + int(
+            self.variable[r] >= 0 and self.p_value[r] * self.n_tests[r] < STRUCTURE_ALPHA)
+        tail = (True, _number(m[0]), _number(m[2]), _number(m[5]), _number(m[7]),
+                int(self.size[r]), count, None)
+        values, errors = self.values[r].tolist(), self.errors[r].tolist()
+        low, high = self.low[r].tolist(), self.high[r].tolist()
+        return [(*base, k, values[j], errors[j], low[j], high[j], "asymptotic",
+                 self.units[j] or "-", False, *tail) for j, k in enumerate(self.names)]
 
 
 def _number(x: float) -> float | None:

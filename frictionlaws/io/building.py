@@ -354,9 +354,10 @@ _PHYSICAL: dict[str, tuple[Callable[[np.ndarray], np.ndarray], str]] = {
 }
 
 
-def _first_bad(table: _Table, j: int, bad: np.ndarray, message: str) -> None:
-    """Raise naming the first of the rows ``bad`` (indices), if any."""
-    if bad.size:
+def _first_bad(table: _Table, j: int, mask: np.ndarray, message: str) -> None:
+    """Raise naming the first of the rows where ``mask`` is True, if any."""
+    if mask.any():
+        bad = np.flatnonzero(mask)
         i = int(bad[0])
         raise InputError(message.format(cell=table.columns[j][i], where=_where(table, i),
                                         more=f" ({bad.size} such rows)" if bad.size > 1
@@ -375,10 +376,10 @@ def _to_si_checked(table: _Table, assigned: Mapping[str, int],
         if canon in _PHYSICAL:
             bad_fn, msg = _PHYSICAL[canon]
             with np.errstate(invalid="ignore"):
-                bad = np.flatnonzero(bad_fn(arr) & ~np.isnan(arr))
+                bad = bad_fn(arr) & ~np.isnan(arr)
             _first_bad(table, j, bad, "value {cell}{where} is not allowed: " + msg + "{more}")
         si[canon] = _units.to_si(arr, unit, canon, column=table.headers[j], file=table.source)
-        _first_bad(table, j, np.flatnonzero(np.isinf(si[canon])),
+        _first_bad(table, j, np.isinf(si[canon]),
                    "value {cell} " + unit + "{where} overflows when converted to SI: "
                    "not a measured value")
         note = _units.conversion_note(unit, canon, column=table.headers[j])
@@ -386,7 +387,7 @@ def _to_si_checked(table: _Table, assigned: Mapping[str, int],
             notes.append(note)
         if canon == "T":
             with np.errstate(invalid="ignore"):
-                bad = np.flatnonzero(si[canon] < 0)
+                bad = si[canon] < 0
             _first_bad(table, j, bad, "temperature {cell} " + unit + "{where} is below "
                        "absolute zero (is the unit right?)")
     return si
@@ -401,7 +402,10 @@ def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
     """
     keep = np.ones(len(table.rows), dtype=bool)
     for canon in [c for c in CANONICAL if c in si]:
-        nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
+        missing = np.isnan(si[canon])
+        if not missing.any():
+            continue
+        nan_rows = np.flatnonzero(missing & keep)
         if not nan_rows.size:
             continue
         keep[nan_rows] = False

@@ -5,8 +5,10 @@ the file, column and row of anything refused.
 from __future__ import annotations
 
 import csv
+import errno
 import os
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -152,12 +154,17 @@ def read_table(path: str | os.PathLike[str], *, source: str | None = None,
 
 
 def _read_bytes(p: Path, source: str, what: str) -> bytes:
-    if not p.exists():
-        raise InputError(
-            "file not found; expected a CSV file or the name of a packaged dataset"
-            if what == "data file"
-            else f"{what} not found", file=source)
-    if p.is_dir():
+    try:
+        mode: int | None = os.stat(p).st_mode
+    except OSError as exc:  # not there: named here; anything else: by check_input_file
+        if exc.errno not in (errno.ENOENT, errno.ENOTDIR, errno.EBADF, errno.ELOOP):
+            mode = None
+        else:
+            raise InputError(
+                "file not found; expected a CSV file or the name of a packaged dataset"
+                if what == "data file"
+                else f"{what} not found", file=source) from None
+    if mode is not None and stat.S_ISDIR(mode):
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
     from ..limits import read_input
     from ..outputs import check_input_file
@@ -175,6 +182,9 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
     data: list[list[str]] = []
     rows: list[int] = []
     for number, line in enumerate(lines, start=1):
+        if header is not None and delimiter is not None and _plain_rows(
+                lines, number - 1, delimiter, data, rows):
+            break  # the rest: plain rows, split at once
         stripped = line.strip()
         if stripped.startswith("#") and not (header is not None
                                              and _SPREADSHEET_ERROR.match(stripped)):
@@ -206,6 +216,25 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
     columns = _rectangular(data, rows, headers, delimiter, source)
     return _Table(headers, columns, rows, source, comments, [], delimiter in (";", "\t"),
                   True, delimiter)
+
+
+def _plain_rows(lines: list[str], start: int, delimiter: str, data: list[list[str]],
+                rows: list[int]) -> bool:
+    """The data rows from line ``start`` (0-based) on, when none is quoted or a comment.
+
+    Then every non-blank line is a row, split at the delimiter (as the csv module
+    splits an unquoted line, spaces after a delimiter skipped), and True is returned;
+    otherwise nothing is read and False is returned (the lines go one by one).
+    """
+    rest = lines[start:]
+    if any('"' in line or "#" in line for line in rest):
+        return False
+    for number, line in enumerate(rest, start=start + 1):
+        if line and not line.isspace():
+            cells = line.split(delimiter)
+            data.append([cell.lstrip(" ") for cell in cells] if " " in line else cells)
+            rows.append(number)
+    return True
 
 
 def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],

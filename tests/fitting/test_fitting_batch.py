@@ -14,7 +14,6 @@ hostile ones.
 
 from __future__ import annotations
 
-import math
 import pickle
 
 import numpy as np
@@ -26,7 +25,7 @@ from frictionlaws.campaign import _compact, fit_many
 from frictionlaws.fitting import as_fit_data
 from frictionlaws.fitting.batch import POLISH_ROWS, Problems, solve
 from frictionlaws.fitting.campaign_results import Block
-from frictionlaws.fitting.stacked import fit_stacked, stackable
+from frictionlaws.fitting.stacked import fit_stacked, stack_fits, stackable
 
 RANGES = {"p": (2e4, 5e5), "v": (0.01, 3.0), "F_N": (10.0, 1000.0), "s": (0.01, 0.3)}
 KINDS = ("clean", "clean", "weighted", "noisy", "outlier", "ragged", "extra-T", "bound",
@@ -260,20 +259,24 @@ def test_an_unreadable_dataset_stops_the_fits_of_its_chunk(tmp_path, monkeypatch
     folder = _campaign_folder(tmp_path, 6)
     (folder / "ds00002.csv").write_text("mu,p [MPa]\n0.5,abc\n")
     made = []
-    monkeypatch.setattr(stacked, "fit_stacked", lambda *a, **k: made.append(a) or [])
+    monkeypatch.setattr(stacked, "stack_fits", lambda *a, **k: made.append(a))
     with pytest.raises(UnreadableDatasets, match="1 of 6 datasets") as info:
         fit_many(LAWS, folder)
     assert "ds00002.csv" in str(info.value) and made == []
 
 
-def test_a_block_travels_as_one_text_and_gives_its_records_back():
-    records = [{"dataset": "a", "group": {"T": 293.15}, "law": "coulomb", "rows": 3,
-                "result": {"params": {"mu0": {"value": 0.1 + 0.2, "stderr": None}},
-                           "warnings": ["x"], "success": True}},
-               {"dataset": "b", "group": {}, "law": "coulomb", "error": "no rows"}]
-    block = Block(records)
+def test_a_block_travels_as_columns_and_gives_its_records_back():
+    law = fl.get_law("thirion")
+    rng = np.random.default_rng(2)
+    data = [generated(law, kind, rng) for kind in ("clean", "weighted", "bound")]
+    fits = stack_fits(law, [as_fit_data(d) for d in data])
+    assert fits.row.tolist() == [0, 1, -1]  # the bound-hitting member handed back
+    heads = [(f"d{i}", f"d{i}.csv", {}, "thirion", 24) for i in range(3)]
+    parts = [(0, 0), (0, 1), {"error": "no start gave a finite result"}]
+    block = Block(heads, parts, [fits])
     moved = pickle.loads(pickle.dumps(block))
-    assert moved._records is None and len(moved) == 2 and moved.problems == []
-    assert moved.records == records
-    assert math.isclose(moved.records[0]["result"]["params"]["mu0"]["value"], 0.1 + 0.2,
-                        rel_tol=0, abs_tol=0)
+    assert len(moved) == 3 and moved.problems == []
+    assert moved.records == block.records
+    assert_same(moved.records[1]["result"], _compact(fl.fit(law, data[1]).to_dict()))
+    assert list(moved.tidy(())) == list(block.tidy(()))
+    assert len(list(block.tidy(()))) == 2 + 2 + 1

@@ -1,9 +1,9 @@
 """The table reader's column at once: the same numbers and refusals as cell by cell.
 
 :func:`frictionlaws.numbers.parse_numbers` reads a column of plain numbers in one go and
-the reader splits unquoted lines without the csv module; both must give exactly what the
-cell-by-cell path gives (and leave everything else to it): checked on generated cells,
-lines and whole files, hostile ones included.
+the reader splits the rows of a file without quotes or comments at once; both must give
+exactly what the cell-by-cell, line-by-line path gives (and leave everything else to it):
+checked on generated cells, lines and whole files, hostile ones included.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import frictionlaws.io.building as building
+import frictionlaws.io.reading as reading
 from frictionlaws.errors import InputError
 from frictionlaws.io import load_dataset
 from frictionlaws.io.reading import _split
@@ -106,5 +107,32 @@ def test_a_file_reads_alike_with_and_without_the_column_at_once(tmp_path, monkey
 
     fast = read()
     monkeypatch.setattr(building, "parse_numbers", lambda *a, **k: None)
+    monkeypatch.setattr(reading, "_plain_rows", lambda *a: False)
     slow = read()
     assert repr(fast) == repr(slow)  # NaN included
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.lists(st.sampled_from(["0.5", " 1", "2 ", "", "x", "#3", '"4"', "5,5",
+                                          " ", "\t6"]), min_size=1, max_size=4),
+                min_size=1, max_size=6),
+       st.sampled_from([",", ";", "\t"]))
+def test_generated_files_read_alike_row_by_row(tmp_path_factory, rows, delimiter):
+    header = delimiter.join(["mu", "p [MPa]", "v [m/s]", "note"])
+    path = tmp_path_factory.mktemp("gen") / "data.csv"
+    path.write_text("\n".join([header] + [delimiter.join(r) for r in rows]) + "\n")
+
+    def read():
+        try:
+            ds = load_dataset(path)
+        except InputError as exc:
+            return str(exc)
+        return {c: ds.column(c).tolist() for c in ds.column_names}, ds.notes, \
+            ds.rows.tolist()
+
+    fast = read()
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(building, "parse_numbers", lambda *a, **k: None)
+        patch.setattr(reading, "_plain_rows", lambda *a: False)
+        slow = read()
+    assert repr(fast) == repr(slow)
