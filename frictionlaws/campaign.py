@@ -191,7 +191,7 @@ class _ListedFile(str):
     stem: str = ""
 
 
-class _Listing(list):  # type: ignore[type-arg]
+class _Listing(list[str]):
     """The files of one directory listing, none a link: distinct files of distinct stems."""
 
 
@@ -550,7 +550,7 @@ class _Waiting:
         from .fitting.stacked import stack_fits
         from .registry import get_law
 
-        tables = []
+        tables: list[Any] = []
         for law, members in self.members.items():
             seed = members[0][3].fit_options.get("seed", 0)
             fits = stack_fits(get_law(law), [m[0] for m in members], seed)

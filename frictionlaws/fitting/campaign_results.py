@@ -138,7 +138,8 @@ class Campaign:
                  path: Path | None = None, count: int = 0,
                  failed: list[dict[str, Any]] | None = None, *,
                  blocks: Sequence[Block] = ()) -> None:
-        self._records = list(records) if records is not None or not blocks else None
+        self._records: list[dict[str, Any]] | None = (
+            list(records or []) if records is not None or not blocks else None)
         self._blocks = list(blocks)
         self.by, self.laws = tuple(by), tuple(laws)
         self.notes = list(notes or [])

@@ -103,10 +103,7 @@ def fit(
     search = _Search(setup, method)
     _multistart(search, starts, seed)
     setup.notes.extend(_global_stage(search, global_stage, seed))
-    if lean:
-        _polish(search)
-    else:
-        polish(search)  # to the optimum itself: the result a batch of fits gives too
+    (_polish if lean else polish)(search)  # to the optimum itself (a stack's too)
     if search.best is None:
         errors = search.errors
         raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "

@@ -21,11 +21,12 @@ from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_f
 __all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL", "RANDOM_STARTS"]
 
 
-#: Rows from which a fit uses the laws' analytic Jacobians (and MINPACK first).  Below,
-#: fits have few rows per parameter and are often ill-conditioned, so that the solver's
-#: path decides between near-equal optima: there the trust region with finite
-#: differences keeps the path of the results pinned by tests/test_pinned_*.py (the
-#: thesis data have 19 rows, the synthetic pins 80), and a fit costs little anyway.
+#: Rows from which a fit's search uses the laws' analytic Jacobians (and MINPACK first).
+#: Below, fits have few rows per parameter and are often ill-conditioned, so that the
+#: search's path decides between near-equal minima: there the trust region with finite
+#: differences chooses the minimum the results pinned by tests/test_pinned_*.py come from
+#: (the thesis data have 19 rows, the synthetic pins 80); the best fit is then continued
+#: to that minimum itself with the analytic Jacobian (:func:`.batch.polish`).
 ANALYTIC_FROM = 100
 
 

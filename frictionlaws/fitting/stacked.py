@@ -157,7 +157,8 @@ class _Stack:
     def of(cls, law: Law, data: list[FitData], jac_func: Any, seed: int = 0) -> _Stack:
         y = np.stack([fd.arrays["mu"] for fd in data])
         x = {k: np.stack([fd.arrays[k] for fd in data]) for k in law.variables}
-        w = None if data[0].weights is None else np.stack([fd.weights for fd in data])
+        w = None if data[0].weights is None else np.stack(
+            [np.asarray(fd.weights, float) for fd in data])
         names = list(law.param_names)
         prob = Problems(law, names, dict(law.setting_values), law.prepare_variables(x), y, w,
                         np.array([law.param(k).bounds[0] for k in names], float),
@@ -459,10 +460,14 @@ class StackedFits:
     def empty(cls, law: Law, count: int) -> StackedFits:
         """Room for ``count`` members, none fitted yet."""
         k, nd = len(law.params), len(law.derived)
+
+        def nan() -> np.ndarray:
+            return np.full((count, k), np.nan)
+
         return cls(law.id, list(law.param_names), [p.unit for p in law.params],
                    [p.bounds for p in law.params],
                    [(d.name, d.unit, d.meaning) for d in law.derived], list(VARIABLES),
-                   np.full(count, -1), *(np.full((count, k), np.nan) for _ in range(4)),
+                   np.full(count, -1), nan(), nan(), nan(), nan(),
                    np.zeros((count, k), bool), np.zeros((count, k), bool),
                    np.full((count, len(_METRICS)), np.nan), np.zeros(count, int),
                    np.zeros(count, bool), np.full((count, nd, 2), np.nan),
