@@ -51,7 +51,7 @@ import psutil
 from scipy.optimize import curve_fit
 
 import frictionlaws as fl
-from frictionlaws.campaign import fit_many
+from frictionlaws.fitting.campaign import fit_many
 
 LAWS = ("thirion", "coulomb", "quadratic-pv")
 P_MPA = np.repeat([0.03, 0.06, 0.12, 0.25], 6)

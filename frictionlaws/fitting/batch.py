@@ -2,10 +2,10 @@
 
 :class:`Problems` stacks ``B`` problems of one law on ``n`` rows each (``y``, weights and
 variables as ``(B, n)`` arrays); :func:`solve` minimises every ``sum(((y - f) * w)**2)``
-at once with the law's analytic Jacobian (:mod:`frictionlaws.derivatives`), numpy doing
+at once with the law's analytic Jacobian (:mod:`frictionlaws.fitting.derivatives`), numpy doing
 the loops over the problems.  The same solver with ``B = 1`` continues every small
 single fit to its optimum (:func:`polish`), so a fit made alone and one made in a batch
-(:mod:`frictionlaws.fitting.batchfit`) end at the same point.
+(:mod:`frictionlaws.fitting.stacked`) end at the same point.
 
 The iteration: the columns of the Jacobian are scaled to unit length, the damped
 Gauss-Newton step ``(A + lam * max(eig A) I) ds = -g`` (``A = Js' Js``, ``g = Js' r``)
@@ -76,7 +76,7 @@ class Problems:
     lo, hi : numpy.ndarray
         The bounds of the varied parameters, ``(k,)``.
     jac_func : callable
-        The law's generated derivative function (:func:`frictionlaws.derivatives.
+        The law's generated derivative function (:func:`frictionlaws.fitting.derivatives.
         jacobian_function`).
     """
 
@@ -264,14 +264,15 @@ def polish(search: Any) -> None:
     point with the analytic Jacobian until it converges (:func:`solve`); its covariance
     is then ``inv(J' J)`` of that Jacobian at the optimum.  Nothing changes when the
     solve does not converge (an optimum on a bound, a model that is not finite) or
-    ends higher than the search did.
+    ends higher than the search did, or the data cannot determine some parameter (the
+    optimum is a valley: any point of it is the fit, and the search's stays).
 
     Parameters
     ----------
     search : frictionlaws.fitting.search._Search
         The finished search (its ``best`` is replaced).
     """
-    from ..derivatives import jacobian_function
+    from .derivatives import jacobian_function
 
     s, best = search.setup, search.best
     if (best is None or search.method != "least_squares" or not best.success
@@ -285,7 +286,7 @@ def polish(search: Any) -> None:
     held = {**search.held, **{k: v for k, v in start.items() if k not in vary}}
     prob = one_problem(s.model_law, vary, held, s.x, s.y, s.w, s.bounds, jac_func)
     sol = solve(prob, np.array([[start[k] for k in vary]]))
-    if not sol.converged[0]:
+    if not sol.converged[0] or _undetermined(prob.jacobian(sol.theta)[0]):
         return
     fit = local_fit_at(prob, sol.theta, {k: start[k] for k in s.names if k not in vary},
                        best.message, best.nfev + int(sol.iterations[0]))
@@ -293,10 +294,23 @@ def polish(search: Any) -> None:
         search.best = fit
 
 
+def _undetermined(jac: np.ndarray) -> bool:
+    """True when the data cannot determine some direction of the parameters (relative
+    singular value of the unit-column Jacobian below :data:`~.diagnosis.RANK_TOL`): the
+    optimum is then a valley, not a point, and the search's end point stays."""
+    from .diagnosis import RANK_TOL
+
+    norms = np.linalg.norm(jac, axis=0)
+    if not np.all(np.isfinite(jac)) or not np.all(norms > 0):
+        return True
+    s = np.linalg.svd(jac / norms, compute_uv=False)
+    return bool(s[-1] < RANK_TOL * s[0])
+
+
 def local_fit_at(prob: Problems, theta: np.ndarray, held: Mapping[str, float],
                  message: str, nfev: int) -> Any:
-    """The :class:`~frictionlaws._lsq.LocalFit` of one problem (``B = 1``) at ``theta``."""
-    from .._lsq import Estimate, LocalFit, fit_statistics, scaled_covariance
+    """The :class:`~frictionlaws.fitting.lsq.LocalFit` of one problem (``B = 1``) at ``theta``."""
+    from .lsq import Estimate, LocalFit, fit_statistics, scaled_covariance
 
     model = prob.model(theta)[0].copy()
     r = prob.residual(theta)[0]

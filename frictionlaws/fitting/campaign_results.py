@@ -1,7 +1,7 @@
 """A campaign's results: records in blocks (one per chunk of datasets), the tidy table,
 streaming to a file.
 
-A worker of :func:`frictionlaws.campaign.fit_many` returns one :class:`Block` per chunk
+A worker of :func:`frictionlaws.fitting.campaign.fit_many` returns one :class:`Block` per chunk
 of datasets.  The fits made in stacks stay in the stacks' columns
 (:class:`~frictionlaws.fitting.stacked.StackedFits`): a block travels between processes
 as a few arrays, not thousands of small objects, and its records are written out only
@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["Campaign", "Block", "doubts", "key_text", "group_column", "tidy_columns",
            "stream_blocks"]
@@ -105,7 +105,7 @@ class Block:
 
 
 class Campaign:
-    """The results of :func:`~frictionlaws.campaign.fit_many`: one plain record per
+    """The results of :func:`~frictionlaws.fitting.campaign.fit_many`: one plain record per
     (dataset, group, law).
 
     Each record has ``dataset``, ``source``, ``group`` (column -> value), ``law``,
@@ -204,8 +204,8 @@ class Campaign:
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
-        from .. import jsonio
-        from ..outputs import write_text_atomic
+        from ..base import jsonio
+        from ..base.outputs import write_text_atomic
 
         target = Path(path)
         if target.suffix.lower() == ".json":
@@ -213,7 +213,7 @@ class Campaign:
         if target.suffix.lower() != ".csv":
             raise InputError("campaign results are written as .csv or .json",
                              file=str(target))
-        from ..sanitize import frame_csv
+        from ..base.sanitize import frame_csv
 
         return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
 
@@ -351,9 +351,9 @@ def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],
     import csv
     import gc
 
-    from .. import jsonio
-    from ..outputs import atomic_write
-    from ..sanitize import csv_row
+    from ..base import jsonio
+    from ..base.outputs import atomic_write
+    from ..base.sanitize import csv_row
 
     count, failed = 0, []
     columns = tidy_columns(by)

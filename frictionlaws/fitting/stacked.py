@@ -9,7 +9,7 @@ same bounds, and the solver every small fit ends with
 a point that depends on the path to it).  The diagnosis of :func:`fit` then runs for
 the whole stack at once: the identifiability of the Jacobian (one batched SVD), the
 covariance, standard errors and intervals, the goodness of fit, the derived
-quantities, the residual structure (:func:`~frictionlaws.uncertainty.
+quantities, the residual structure (:func:`~frictionlaws.fitting.robust.
 residual_structures`) and the warnings they raise, written by the same functions.
 
 A member is handed back (None) for :func:`fit` to fit alone whenever its fit needs
@@ -113,7 +113,7 @@ def fit_stacked(law: Law, data: Sequence[FitData], seed: int = 0
 
 def stack_fits(law: Law, data: Sequence[FitData], seed: int = 0) -> StackedFits:
     """:func:`fit_stacked`, its results kept in columns (:class:`StackedFits`)."""
-    from ..derivatives import jacobian_function
+    from .derivatives import jacobian_function
 
     fits = StackedFits.empty(law, len(data))
     jac_func = jacobian_function(law)
@@ -245,7 +245,7 @@ class _Diagnosis:
     """The diagnosis of :func:`fit` for the accepted members of a stack, at once."""
 
     def __init__(self, stack: _Stack, rows: np.ndarray, theta: np.ndarray) -> None:
-        from .._lsq import fit_statistics
+        from .lsq import fit_statistics
 
         self.stack, self.rows, self.theta = stack, rows, theta
         self.law, self.names = stack.law, stack.names
@@ -264,7 +264,7 @@ class _Diagnosis:
     def _covariance(self) -> None:
         """``inv(J' J)`` times the reduced chi-square of the members kept (a singular one
         is dropped)."""
-        from .._lsq import scaled_covariance
+        from .lsq import scaled_covariance
 
         idx = np.flatnonzero(self.keep)
         unit = scaled_covariance(self.jac[idx])
@@ -370,7 +370,7 @@ class _Diagnosis:
 
     def _check_errors(self, se: np.ndarray) -> None:
         """No member with an error that is not finite, or zero to rounding."""
-        from ..uncertainty import ZERO_SPREAD
+        from .robust import ZERO_SPREAD
 
         self.keep &= np.all(np.isfinite(se) & (se > ZERO_SPREAD * np.abs(self.theta)), axis=1)
 
@@ -390,7 +390,7 @@ class _Diagnosis:
         fitted alone."""
         if not self.law.derived:
             return {}
-        from ..uncertainty import ZERO_SPREAD
+        from .robust import ZERO_SPREAD
 
         values: dict[str, Any] = {k: np.full(len(self.rows), v)
                                   for k, v in self.law.setting_values.items()}
@@ -403,7 +403,7 @@ class _Diagnosis:
     def _structures(self) -> list[Any]:
         """The residual structure of each member (its significance not within rounding
         of the level)."""
-        from ..uncertainty import STRUCTURE_ALPHA, residual_structures
+        from .robust import STRUCTURE_ALPHA, residual_structures
 
         names = _condition_vars(self.data[0])
         arrays = {v: np.stack([fd.arrays[v] for fd in self.data]) for v in names}
@@ -491,9 +491,9 @@ class StackedFits:
         return None if r < 0 else self.at(r)
 
     def structure(self, r: int) -> Any:
-        """The residual structure of row ``r`` (a :class:`~frictionlaws.uncertainty.
+        """The residual structure of row ``r`` (a :class:`~frictionlaws.fitting.robust.
         Structure`), or None."""
-        from ..uncertainty import Structure
+        from .robust import Structure
 
         v = int(self.variable[r])
         return None if v < 0 else Structure(
@@ -543,7 +543,7 @@ class StackedFits:
         """The rows of the result in row ``r`` in a campaign's tidy table, after ``base``
         (dataset, group values, law, rows); the columns of
         :func:`~frictionlaws.fitting.campaign_results.tidy_columns`."""
-        from ..uncertainty import STRUCTURE_ALPHA
+        from .robust import STRUCTURE_ALPHA
 
         m = self.metrics[r].tolist()
         count = int(self.weak[r].any()) + int(self.cut[r].sum()) + int(

@@ -12,10 +12,10 @@ from typing import TYPE_CHECKING, Any, TypeGuard
 
 import numpy as np
 
-from .. import units as _units
-from ..errors import Argument, InputError
-from ..numbers import parse_number, parse_numbers
-from ..sanitize import csv_cell_text
+from ..base import units as _units
+from ..base.errors import Argument, InputError
+from ..base.numbers import parse_number, parse_numbers
+from ..base.sanitize import csv_cell_text
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd

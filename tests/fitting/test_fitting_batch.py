@@ -21,9 +21,9 @@ import pandas as pd
 import pytest
 
 import frictionlaws as fl
-from frictionlaws.campaign import _compact, fit_many
 from frictionlaws.fitting import as_fit_data
 from frictionlaws.fitting.batch import POLISH_ROWS, Problems, solve
+from frictionlaws.fitting.campaign import _compact, fit_many
 from frictionlaws.fitting.campaign_results import Block
 from frictionlaws.fitting.stacked import fit_stacked, stack_fits, stackable
 
@@ -168,7 +168,7 @@ def test_the_solver_reaches_the_least_squares_optimum_of_a_linear_law():
     p, v = rng.uniform(2e4, 5e5, (40, 24)), rng.uniform(0.01, 3, (40, 24))
     y = 0.8 + 1e-6 * p - 0.05 * v + 0.02 * rng.standard_normal((40, 24))
     names = list(law.param_names)
-    from frictionlaws.derivatives import jacobian_function
+    from frictionlaws.fitting.derivatives import jacobian_function
 
     prob = Problems(law, names, {}, law.prepare_variables({"p": p, "v": v}), y, None,
                     np.full(6, -np.inf), np.full(6, np.inf), jacobian_function(law))
@@ -186,7 +186,7 @@ def test_the_solver_stops_on_a_bound_and_says_it_did_not_converge():
     law = fl.get_law("thirion")
     p = np.tile(np.linspace(2e4, 5e5, 24), (3, 1))
     y = 0.3 + 1e-7 * p  # rising with p: b would be negative
-    from frictionlaws.derivatives import jacobian_function
+    from frictionlaws.fitting.derivatives import jacobian_function
 
     prob = Problems(law, ["a", "b"], {}, law.prepare_variables({"p": p}), y, None,
                     np.array([1e-9, 0.0]), np.array([np.inf, np.inf]), jacobian_function(law))
@@ -230,7 +230,7 @@ def _campaign_folder(tmp_path, count, seed=0):
 
 def test_a_campaign_of_30_datasets_gives_the_values_of_one_fit_each(tmp_path, monkeypatch):
     """The issue's measure: 30 datasets x 3 laws, every record that of fit alone."""
-    import frictionlaws.campaign as campaign
+    import frictionlaws.fitting.campaign as campaign
 
     folder = _campaign_folder(tmp_path, 30)
     alone_calls = []
@@ -254,7 +254,7 @@ def test_options_a_stack_does_not_take_give_one_fit_each(tmp_path):
 
 def test_an_unreadable_dataset_stops_the_fits_of_its_chunk(tmp_path, monkeypatch):
     import frictionlaws.fitting.stacked as stacked
-    from frictionlaws.campaign import UnreadableDatasets
+    from frictionlaws.fitting.campaign import UnreadableDatasets
 
     folder = _campaign_folder(tmp_path, 6)
     (folder / "ds00002.csv").write_text("mu,p [MPa]\n0.5,abc\n")

@@ -1,6 +1,6 @@
 """The table reader's column at once: the same numbers and refusals as cell by cell.
 
-:func:`frictionlaws.numbers.parse_numbers` reads a column of plain numbers in one go and
+:func:`frictionlaws.base.numbers.parse_numbers` reads a column of plain numbers in one go and
 the reader splits the rows of a file without quotes or comments at once; both must give
 exactly what the cell-by-cell, line-by-line path gives (and leave everything else to it):
 checked on generated cells, lines and whole files, hostile ones included.
@@ -18,10 +18,10 @@ from hypothesis import strategies as st
 
 import frictionlaws.io.building as building
 import frictionlaws.io.reading as reading
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
+from frictionlaws.base.numbers import parse_number, parse_numbers
 from frictionlaws.io import load_dataset
 from frictionlaws.io.reading import _split
-from frictionlaws.numbers import parse_number, parse_numbers
 
 NUMBERS = st.one_of(
     st.floats(allow_nan=False, allow_infinity=False).map(repr),
