@@ -104,6 +104,38 @@ class Block:
                 yield from self.tables[part[0]].tidy(part[1], base)
 
 
+    def columns(self, by: Sequence[str]) -> dict[str, np.ndarray]:
+        """The records' tidy table, column by column (object arrays: the cells :meth:`tidy`
+        gives), the stacks' rows written at once."""
+        names = tidy_columns(by)
+        counts = np.array([len(self.tables[p[0]].names) if not isinstance(p, dict) else 0
+                           for p in self.parts], int)
+        loose = {i: list(_tidy({"dataset": h[0], "group": h[2], "law": h[3], "rows": h[4],
+                                **p}, by))
+                 for i, (h, p) in enumerate(zip(self.heads, self.parts)) if isinstance(p, dict)}
+        for i, rows in loose.items():
+            counts[i] = len(rows)
+        starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(int)
+        heads = np.empty((len(self.heads), 3 + len(by)), object)
+        heads[:] = [(h[0], *(h[2].get(c) for c in by), h[3], h[4]) for h in self.heads]
+        out = {c: np.repeat(heads[:, j], counts) for j, c in enumerate(names[:3 + len(by)])}
+        out.update({c: np.full(int(counts.sum()), None, object) for c in names[3 + len(by):]})
+        for i, rows in loose.items():
+            for n, row in enumerate(rows):
+                for c, cell in zip(names[3 + len(by):], row[3 + len(by):]):
+                    out[c][starts[i] + n] = cell
+        for t, table in enumerate(self.tables):
+            at = [(i, p[1]) for i, p in enumerate(self.parts)
+                  if not isinstance(p, dict) and p[0] == t]
+            if not at:
+                continue
+            records, rows = np.array(at).T
+            spots = (starts[records][:, None] + np.arange(len(table.names))).ravel()
+            for c, cells in table.tidy_columns(rows).items():
+                out[c][spots] = cells
+        return out
+
+
 class Campaign:
     """The results of :func:`~frictionlaws.fitting.campaign.fit_many`: one plain record per
     (dataset, group, law).
@@ -191,7 +223,13 @@ class Campaign:
                 return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
             raise InputError("a campaign streamed to JSON Lines is read with "
                              "pandas.read_json(path, lines=True)", file=str(self.path))
-        frame = pd.DataFrame(self._tidy_rows(), columns=tidy_columns(self.by))
+        columns = tidy_columns(self.by)
+        if self._records is None:  # the blocks' columns at once
+            parts = [block.columns(self.by) for block in self._blocks]
+            frame = pd.DataFrame({c: np.concatenate([p[c] for p in parts]).tolist() if parts
+                                  else [] for c in columns}, columns=columns)
+        else:
+            frame = pd.DataFrame(self._tidy_rows(), columns=columns)
         for col in frame.columns:
             if frame[col].dtype == object:  # None -> NaN, as read back from a CSV
                 frame[col] = frame[col].where(frame[col].notna(), np.nan)

@@ -283,7 +283,9 @@ class _Diagnosis:
         weak = self._identifiability()
         self._covariance()
         self._check_values()
-        se = np.sqrt(np.abs(np.diagonal(self.cov, axis1=1, axis2=2)))
+        var = np.diagonal(self.cov, axis1=1, axis2=2)
+        with np.errstate(invalid="ignore"):  # a negative variance: no error (fit says so)
+            se = np.sqrt(np.where(var > 0, var, np.nan))
         self._check_errors(se)
         metrics = metric_table(self.y, self.fitted, self.k, self.aic, self.bic, self.chisqr,
                                self.redchi)
@@ -539,21 +541,58 @@ class StackedFits:
                             for d, (name, unit, meaning) in enumerate(self.derived_names)},
                 "uncertainty": uncertainty}
 
+    def warning_counts(self, rows: np.ndarray) -> np.ndarray:
+        """How many warnings the results in ``rows`` have (without writing them)."""
+        from .robust import STRUCTURE_ALPHA
+
+        significant = (self.variable[rows] >= 0) & (
+            self.p_value[rows] * self.n_tests[rows] < STRUCTURE_ALPHA)
+        return (self.weak[rows].any(axis=1).astype(int) + self.cut[rows].sum(axis=1)
+                + significant.astype(int))
+
+    def tidy_columns(self, rows: np.ndarray) -> dict[str, np.ndarray]:
+        """The table columns from ``param`` to ``warnings`` of the results in ``rows``: one
+        entry per (result, parameter), results in the order given (object arrays, entries
+        as :meth:`tidy` writes them)."""
+        k, m = len(self.names), len(rows)
+
+        def per_param(a: np.ndarray) -> np.ndarray:
+            return _cells(a[rows].ravel())
+
+        def per_result(a: np.ndarray) -> np.ndarray:
+            return np.repeat(_cells(a), k)
+
+        return {"param": np.tile(np.array(self.names, object), m),
+                "value": per_param(self.values), "stderr": per_param(self.errors),
+                "ci95_low": per_param(self.low), "ci95_high": per_param(self.high),
+                "uncertainty": np.full(m * k, "asymptotic", object),
+                "unit": np.tile(np.array([u or "-" for u in self.units], object), m),
+                "fixed": np.full(m * k, False, object), "converged": np.full(m * k, True, object),
+                "r2": per_result(self.metrics[rows, 0]), "rmse": per_result(self.metrics[rows, 2]),
+                "aic": per_result(self.metrics[rows, 5]), "bic": per_result(self.metrics[rows, 7]),
+                "n": per_result(self.size[rows]), "warnings": per_result(self.warning_counts(rows)),
+                "error": np.full(m * k, None, object)}
+
     def tidy(self, r: int, base: tuple[Any, ...]) -> list[tuple[Any, ...]]:
         """The rows of the result in row ``r`` in a campaign's tidy table, after ``base``
         (dataset, group values, law, rows); the columns of
         :func:`~frictionlaws.fitting.campaign_results.tidy_columns`."""
-        from .robust import STRUCTURE_ALPHA
-
         m = self.metrics[r].tolist()
-        count = int(self.weak[r].any()) + int(self.cut[r].sum()) + int(
-            self.variable[r] >= 0 and self.p_value[r] * self.n_tests[r] < STRUCTURE_ALPHA)
+        count = int(self.warning_counts(np.array([r]))[0])
         tail = (True, _number(m[0]), _number(m[2]), _number(m[5]), _number(m[7]),
                 int(self.size[r]), count, None)
         values, errors = self.values[r].tolist(), self.errors[r].tolist()
         low, high = self.low[r].tolist(), self.high[r].tolist()
         return [(*base, k, values[j], errors[j], low[j], high[j], "asymptotic",
                  self.units[j] or "-", False, *tail) for j, k in enumerate(self.names)]
+
+
+def _cells(a: np.ndarray) -> np.ndarray:
+    """Numbers as table cells: Python numbers in an object array, None where not finite."""
+    out = a.astype(object)
+    if a.dtype.kind == "f":
+        out[~np.isfinite(a)] = None
+    return out
 
 
 def _number(x: float) -> float | None:

@@ -280,3 +280,27 @@ def test_a_block_travels_as_columns_and_gives_its_records_back():
     assert_same(moved.records[1]["result"], _compact(fl.fit(law, data[1]).to_dict()))
     assert list(moved.tidy(())) == list(block.tidy(()))
     assert len(list(block.tidy(()))) == 2 + 2 + 1
+
+
+def test_the_table_of_blocks_equals_the_table_of_their_records(tmp_path):
+    """Stacked, alone and failed fits, groups: the columns written at once give the
+    frame the records' rows give."""
+    from frictionlaws.fitting.campaign import tidy_columns
+
+    rng = np.random.default_rng(1)
+    p = np.tile(np.repeat([0.05, 0.1, 0.2, 0.3], 3), 2)
+    for i in range(4):
+        mu = np.full(24, 0.5) if i == 1 else \
+            1 / (0.3 + 3e-6 * p * 1e6) + 0.02 * rng.standard_normal(24)
+        pd.DataFrame({"mu": mu, "p [MPa]": p, "surface": np.repeat(["steel", "ice"], 12)}
+                     ).to_csv(tmp_path / f"x{i}.csv", index=False)
+    (tmp_path / "x9.csv").write_text(  # two rows a group: exponential-decay cannot fit
+        "mu,p [MPa],surface\n0.5,0.1,steel\n0.6,0.2,steel\n0.5,0.1,ice\n0.7,0.2,ice\n")
+    camp = fit_many(["thirion", "coulomb", "exponential-decay"], tmp_path, by="surface")
+    fast = camp.to_frame()
+    rows = pd.DataFrame(list(camp.rows()), columns=tidy_columns(camp.by))
+    for col in rows.columns:
+        if rows[col].dtype == object:
+            rows[col] = rows[col].where(rows[col].notna(), np.nan)
+    pd.testing.assert_frame_equal(fast, rows)
+    assert fast["error"].notna().sum() >= 6 and fast["warnings"].max() >= 1
