@@ -8,6 +8,9 @@ Each round times, one after the other:
   ``curve_fit`` (plain numpy models, the laws' defaults as the start, no bounds: the
   fastest a user would write; no uncertainty, warnings or table);
 * the campaign serially: ``fit_many(LAWS, folder)`` and its table (``to_frame()``);
+* reading every file with ``pandas.read_csv`` and with the library's reader
+  (:func:`frictionlaws.io.load_dataset`, which also checks units, values and rows and
+  converts to SI);
 * the campaign on all local workers (``jobs=-1``; the pool is started before the first
   round, so start-up is not timed), then once more for its memory (the sampling of the
   memory takes CPU time, so the timed run has none).
@@ -140,6 +143,22 @@ class Round:
     caller_cpu: float
     caller_frame_cpu: float
     memory: dict[str, Peak]
+    read_csv: float = 0.0
+    load_dataset: float = 0.0
+
+
+def reading(files: list[Path]) -> tuple[float, float]:
+    """Seconds to read every file with ``pandas.read_csv`` and with the library's reader
+    (:func:`frictionlaws.io.load_dataset`: units, checks, SI)."""
+    from frictionlaws.io import load_dataset
+
+    t0 = time.perf_counter()
+    for path in files:
+        pd.read_csv(path)
+    t1 = time.perf_counter()
+    for path in files:
+        load_dataset(path)
+    return t1 - t0, time.perf_counter() - t1
 
 
 def one_round(folder: Path, files: list[Path], jobs: int) -> tuple[Round, bool]:
@@ -162,7 +181,8 @@ def one_round(folder: Path, files: list[Path], jobs: int) -> tuple[Round, bool]:
     with peak_memory() as memory["parallel"]:  # again, for the memory
         fit_many(LAWS, folder, jobs=jobs).to_frame()
     same = serial_frame.equals(frame)
-    return Round(bare, serial, parallel, cpu1 - cpu0, cpu2 - cpu1, memory), same
+    return Round(bare, serial, parallel, cpu1 - cpu0, cpu2 - cpu1, memory,
+                 *reading(files)), same
 
 
 def amdahl(speedup: float, workers: int, target: int = 16) -> tuple[float, float]:
@@ -192,6 +212,10 @@ def report(rounds: list[Round], workers: int, count: int) -> None:
     print(f"  campaign, {workers} workers               {parallel:8.2f} s  "
           f"({count / parallel:7.0f} datasets/s)  {speedup:.2f}x serial (target >= 1.6x "
           "for 2)")
+    read_csv = med(r.read_csv for r in rounds)
+    reader = med(r.load_dataset / r.read_csv for r in rounds)
+    print(f"  reading every file: pandas.read_csv {read_csv:.2f} s, the library's reader "
+          f"(load_dataset) {reader:.2f}x that (target <= 1.0x)")
     print(f"  caller's CPU while the workers fit  {100 * caller:6.2f} % of the serial time "
           f"(target <= 3 %); its table afterwards {1e3 * frame_cpu:.0f} ms CPU")
     for label in ("bare", "serial", "parallel"):
