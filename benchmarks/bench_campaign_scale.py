@@ -8,12 +8,12 @@ Each round times, one after the other:
   ``curve_fit`` (plain numpy models, the laws' defaults as the start, no bounds: the
   fastest a user would write; no uncertainty, warnings or table);
 * the campaign serially: ``fit_many(LAWS, folder)`` and its table (``to_frame()``);
-* reading every file with ``pandas.read_csv`` and with the library's reader
-  (:func:`frictionlaws.io.load_dataset`, which also checks units, values and rows and
-  converts to SI);
 * the campaign on all local workers (``jobs=-1``; the pool is started before the first
   round, so start-up is not timed), then once more for its memory (the sampling of the
-  memory takes CPU time, so the timed run has none).
+  memory takes CPU time, so the timed run has none);
+* reading every file with ``pandas.read_csv`` and with the library's reader
+  (:func:`frictionlaws.io.load_dataset`, which also checks units, values and rows and
+  converts to SI).
 
 Printed per round and as medians over the rounds: wall times, the campaign's time
 against the bare loop, the workers' speed-up over the serial campaign, the CPU time of
