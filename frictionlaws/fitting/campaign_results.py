@@ -104,10 +104,14 @@ class Block:
                 yield from self.tables[part[0]].tidy(part[1], base)
 
 
-    def columns(self, by: Sequence[str]) -> dict[str, np.ndarray]:
-        """The records' tidy table, column by column (object arrays: the cells :meth:`tidy`
-        gives), the stacks' rows written at once."""
+    def columns(self, by: Sequence[str]) -> dict[str, Any]:
+        """The records' tidy table, column by column, the stacks' rows written at once.
+
+        A numeric column is ``(values, present)`` (floats, NaN where the cell is empty),
+        any other an object array of the cells :meth:`tidy` gives.
+        """
         names = tidy_columns(by)
+        width = 3 + len(by)
         counts = np.array([len(self.tables[p[0]].names) if not isinstance(p, dict) else 0
                            for p in self.parts], int)
         loose = {i: list(_tidy({"dataset": h[0], "group": h[2], "law": h[3], "rows": h[4],
@@ -116,24 +120,61 @@ class Block:
         for i, rows in loose.items():
             counts[i] = len(rows)
         starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(int)
-        heads = np.empty((len(self.heads), 3 + len(by)), object)
+        heads = np.empty((len(self.heads), width), object)
         heads[:] = [(h[0], *(h[2].get(c) for c in by), h[3], h[4]) for h in self.heads]
-        out = {c: np.repeat(heads[:, j], counts) for j, c in enumerate(names[:3 + len(by)])}
-        out.update({c: np.full(int(counts.sum()), None, object) for c in names[3 + len(by):]})
+        out: dict[str, Any] = {c: np.repeat(heads[:, j], counts)
+                               for j, c in enumerate(names[:width])}
+        total = int(counts.sum())
+        for c in names[width:]:
+            out[c] = (np.full(total, np.nan), np.zeros(total, bool)) if c in NUMERIC_COLUMNS \
+                else np.full(total, None, object)
         for i, rows in loose.items():
             for n, row in enumerate(rows):
-                for c, cell in zip(names[3 + len(by):], row[3 + len(by):]):
-                    out[c][starts[i] + n] = cell
+                for c, cell in zip(names[width:], row[width:]):
+                    _put(out[c], starts[i] + n, cell)
         for t, table in enumerate(self.tables):
             at = [(i, p[1]) for i, p in enumerate(self.parts)
                   if not isinstance(p, dict) and p[0] == t]
-            if not at:
-                continue
-            records, rows = np.array(at).T
-            spots = (starts[records][:, None] + np.arange(len(table.names))).ravel()
-            for c, cells in table.tidy_columns(rows).items():
-                out[c][spots] = cells
+            if at:
+                records, rows = np.array(at).T
+                spots = (starts[records][:, None] + np.arange(len(table.names))).ravel()
+                for c, cells in table.tidy_columns(rows).items():
+                    _put(out[c], spots, cells)
         return out
+
+
+#: The tidy table's columns of numbers (kept as floats until the frame is made), and
+#: those of whole numbers among them.
+NUMERIC_COLUMNS = frozenset({"value", "stderr", "ci95_low", "ci95_high", "r2", "rmse", "aic",
+                             "bic", "n", "warnings"})
+INTEGER_COLUMNS = frozenset({"n", "warnings"})
+
+
+def _put(column: Any, at: Any, cells: Any) -> None:
+    """Write ``cells`` at ``at`` into a column of :meth:`Block.columns` (a numeric cell of
+    None stays empty)."""
+    if isinstance(column, tuple):
+        if cells is not None:
+            column[0][at], column[1][at] = cells, True
+    else:
+        column[at] = cells
+
+
+def _frame_column(name: str, parts: Sequence[Any]) -> list[Any] | np.ndarray:
+    """One column of the frame from the blocks' parts, as pandas reads the list of its
+    cells: numbers as floats (NaN for empty cells), whole numbers as integers when none is
+    empty, a column of empty cells as objects."""
+    if not parts:
+        return []
+    if not isinstance(parts[0], tuple):
+        return np.concatenate(parts).tolist()
+    values = np.concatenate([p[0] for p in parts])
+    present = np.concatenate([p[1] for p in parts])
+    if not present.any():
+        return [None] * len(values)
+    if name in INTEGER_COLUMNS and present.all():
+        return values.astype(np.int64)
+    return values
 
 
 class Campaign:
@@ -226,8 +267,8 @@ class Campaign:
         columns = tidy_columns(self.by)
         if self._records is None:  # the blocks' columns at once
             parts = [block.columns(self.by) for block in self._blocks]
-            frame = pd.DataFrame({c: np.concatenate([p[c] for p in parts]).tolist() if parts
-                                  else [] for c in columns}, columns=columns)
+            frame = pd.DataFrame({c: _frame_column(c, [p[c] for p in parts])
+                                  for c in columns}, columns=columns)
         else:
             frame = pd.DataFrame(self._tidy_rows(), columns=columns)
         for col in frame.columns:

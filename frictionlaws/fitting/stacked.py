@@ -551,16 +551,16 @@ class StackedFits:
                 + significant.astype(int))
 
     def tidy_columns(self, rows: np.ndarray) -> dict[str, np.ndarray]:
-        """The table columns from ``param`` to ``warnings`` of the results in ``rows``: one
-        entry per (result, parameter), results in the order given (object arrays, entries
-        as :meth:`tidy` writes them)."""
+        """The table columns from ``param`` to ``error`` of the results in ``rows``: one
+        entry per (result, parameter), results in the order given (numbers as arrays of
+        numbers, finite: a stacked result has no empty cell; text and flags as objects)."""
         k, m = len(self.names), len(rows)
 
         def per_param(a: np.ndarray) -> np.ndarray:
-            return _cells(a[rows].ravel())
+            return a[rows].ravel()
 
         def per_result(a: np.ndarray) -> np.ndarray:
-            return np.repeat(_cells(a), k)
+            return np.repeat(a, k)
 
         return {"param": np.tile(np.array(self.names, object), m),
                 "value": per_param(self.values), "stderr": per_param(self.errors),
@@ -585,14 +585,6 @@ class StackedFits:
         low, high = self.low[r].tolist(), self.high[r].tolist()
         return [(*base, k, values[j], errors[j], low[j], high[j], "asymptotic",
                  self.units[j] or "-", False, *tail) for j, k in enumerate(self.names)]
-
-
-def _cells(a: np.ndarray) -> np.ndarray:
-    """Numbers as table cells: Python numbers in an object array, None where not finite."""
-    out = a.astype(object)
-    if a.dtype.kind == "f":
-        out[~np.isfinite(a)] = None
-    return out
 
 
 def _number(x: float) -> float | None:
