@@ -117,11 +117,7 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         The results, in the order of ``items``; the caller may consume them as they
         come, so nothing but the current results is held.
     """
-    check_jobs(jobs)
-    if scheduler is None:
-        _unread_environment()
-    if total is None and isinstance(items, Sized):
-        total = len(items)
+    total = _checked(jobs, scheduler, items, total)
     if scheduler is not None:
         results: Iterable[Any] = _on_dask(func, items, scheduler, total)
     elif jobs == 1:
@@ -165,11 +161,7 @@ def iter_chunks(func: Callable[[list[Any]], Any], items: Iterable[Any], *, jobs:
     object
         ``func(chunk)`` for each chunk, in the order of ``items``.
     """
-    check_jobs(jobs)
-    if scheduler is None:
-        _unread_environment()
-    if total is None and isinstance(items, Sized):
-        total = len(items)
+    total = _checked(jobs, scheduler, items, total)
     if scheduler is not None:
         results: Iterable[tuple[int, Any]] = _on_dask(func, items, scheduler, total, True)
     elif jobs == 1:
@@ -186,6 +178,17 @@ def iter_chunks(func: Callable[[list[Any]], Any], items: Iterable[Any], *, jobs:
             yield result
     finally:
         bar.close()
+
+
+def _checked(jobs: Any, scheduler: str | None, items: Iterable[Any], total: int | None
+             ) -> int | None:
+    """The job count checked, the unread environment named; the number of items."""
+    check_jobs(jobs)
+    if scheduler is None:
+        _unread_environment()
+    if total is None and isinstance(items, Sized):
+        total = len(items)
+    return total
 
 
 def run_parallel(func: Callable[[Any], Any], items: Iterable[Any], **kw: Any) -> list[Any]:
