@@ -335,24 +335,24 @@ def _on_loky(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
     """``func`` over chunks of ``items`` on ``jobs`` local processes: ``(items, result)``
     of each chunk, in order.
 
-    The chunks go straight to the process pool joblib's loky back end keeps (one pool,
-    reused from call to call), a window of :data:`_WINDOW` chunks per worker in flight:
-    without joblib's dispatching layer, which costs the calling process more than the
-    chunks themselves.
+    One task a chunk, on the process pool of joblib's loky back end (the pool every
+    ``jobs`` caller shares, its workers' thread limits set as joblib sets them); a window
+    of :data:`_WINDOW` chunks per worker in flight.
     """
-    executor = importlib.import_module("joblib.executor")  # untyped library: Any
+    joblib = importlib.import_module("joblib")  # untyped library: Any
 
     workers = local_workers(jobs, total)
-    pool = executor.get_memmapping_executor(workers)
-    window: deque[tuple[int, Any]] = deque()
-    for batch in batches(items, chunk_size(total, workers)):
-        window.append((len(batch), pool.submit(func, batch)))
-        if len(window) >= _WINDOW * workers:
-            count, future = window.popleft()
-            yield count, future.result()
-    while window:
-        count, future = window.popleft()
-        yield count, future.result()
+    counts: deque[int] = deque()
+
+    def tasks() -> Iterator[Any]:
+        for batch in batches(items, chunk_size(total, workers)):
+            counts.append(len(batch))
+            yield joblib.delayed(func)(batch)
+
+    parallel = joblib.Parallel(n_jobs=workers, batch_size=1, pre_dispatch=_WINDOW * workers,
+                               return_as="generator")
+    for result in parallel(tasks()):
+        yield counts.popleft(), result
 
 
 def _dask_client(address: str) -> Any:
