@@ -32,6 +32,9 @@ from typing import Any
 import numpy as np
 
 from ..law import NUMPY, Law
+from .derivatives import jacobian_function
+from .diagnosis import RANK_TOL
+from .lsq import Estimate, LocalFit, fit_statistics, scaled_covariance
 
 __all__ = ["GRADIENT_TOL", "FLOOR_TOL", "MAX_ITERATIONS", "POLISH_ROWS", "Problems",
            "Solution", "solve", "polish"]
@@ -272,8 +275,6 @@ def polish(search: Any) -> None:
     search : frictionlaws.fitting.search._Search
         The finished search (its ``best`` is replaced).
     """
-    from .derivatives import jacobian_function
-
     s, best = search.setup, search.best
     if (best is None or search.method != "least_squares" or not best.success
             or s.y.size >= POLISH_ROWS):
@@ -298,8 +299,6 @@ def _undetermined(jac: np.ndarray) -> bool:
     """True when the data cannot determine some direction of the parameters (relative
     singular value of the unit-column Jacobian below :data:`~.diagnosis.RANK_TOL`): the
     optimum is then a valley, not a point, and the search's end point stays."""
-    from .diagnosis import RANK_TOL
-
     norms = np.linalg.norm(jac, axis=0)
     if not np.all(np.isfinite(jac)) or not np.all(norms > 0):
         return True
@@ -310,8 +309,6 @@ def _undetermined(jac: np.ndarray) -> bool:
 def local_fit_at(prob: Problems, theta: np.ndarray, held: Mapping[str, float],
                  message: str, nfev: int) -> Any:
     """The :class:`~frictionlaws.fitting.lsq.LocalFit` of one problem (``B = 1``) at ``theta``."""
-    from .lsq import Estimate, LocalFit, fit_statistics, scaled_covariance
-
     model = prob.model(theta)[0].copy()
     r = prob.residual(theta)[0]
     ndata, nvary = r.size, len(prob.names)

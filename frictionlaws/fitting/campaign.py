@@ -31,7 +31,10 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import Argument, FitError, InputError
-from ..io import Dataset, load_dataset
+from ..base.jsonio import to_jsonable
+from ..base.outputs import check_outputs
+from ..io import MISSING_TOKENS, Dataset, column_for, load_dataset
+from ..law.registry import get_law
 from ..parallel import (
     DASK_WORKER_CONFIG,
     MAX_BATCH,
@@ -41,6 +44,8 @@ from ..parallel import (
     iter_parallel,
     run_parallel,
 )
+from . import as_fit_data, fit
+from .batch import POLISH_ROWS
 from .campaign_results import (
     Block,
     Campaign,
@@ -50,6 +55,7 @@ from .campaign_results import (
     stream_blocks,
     tidy_columns,
 )
+from .stacked import stack_fits, stackable
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
            "run_parallel", "group_subset",
@@ -122,8 +128,6 @@ def check_grouping(by: Sequence[str], laws: Sequence[str] = ()) -> tuple[str, ..
     InputError
         A column given twice, empty, or naming a measured quantity.
     """
-    from ..law.registry import get_law
-
     columns = (by,) if isinstance(by, str) else tuple(by)
     used = {v: get_law(law).id for law in laws for v in get_law(law).variables}
     seen: set[str] = set()
@@ -278,8 +282,6 @@ def _refuse_empty_keys(dataset: Any, by: Sequence[str]) -> None:
     An empty cell is no group: fitting its rows as a group of their own (or with
     another) would give a result that belongs to no condition.
     """
-    from ..io import MISSING_TOKENS
-
     frame = dataset.frame
     for col in by:
         lost = (getattr(dataset, "dropped", None) or {}).get(col)
@@ -327,8 +329,6 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
         The group key (column -> value) and its fit, in the order the groups
         first appear in the data.
     """
-    from . import fit
-
     check_grouping(by, [law])
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
     out = []
@@ -492,8 +492,6 @@ def _fit_chunk(settings: _Settings, items: Sequence[tuple[Any, str | None, str |
     grouped makes the chunk a list of such problems, without fits (the campaign is
     refused).
     """
-    from .stacked import stackable
-
     problems: list[InputError] = []
     heads: list[tuple[Any, ...]] = []
     parts: list[Any] = []
@@ -531,9 +529,6 @@ class _Waiting:
 
     def data(self, subset: Any, job: _Job) -> Any:
         """The fit data of a group to stack (None: fit it at once)."""
-        from . import as_fit_data
-        from .batch import POLISH_ROWS
-
         if not self.on or len(subset) >= POLISH_ROWS:
             return None
         try:
@@ -547,9 +542,6 @@ class _Waiting:
     def fit(self, parts: list[Any]) -> list[Any]:
         """Fit every stack, its members' parts pointing into its columns; the members
         handed back are fitted one by one.  The stacks' results (one per law)."""
-        from ..law.registry import get_law
-        from .stacked import stack_fits
-
         tables: list[Any] = []
         for law, members in self.members.items():
             seed = members[0][3].fit_options.get("seed", 0)
@@ -563,8 +555,6 @@ class _Waiting:
 
 def _fit_one(law: str, data: Any, job: _Job) -> dict[str, Any]:
     """One fit of ``law`` to ``data``: ``{"result": ...}`` or ``{"error": ...}``."""
-    from . import fit
-
     try:
         res = fit(law, data, **job.fit_options)
     except (InputError, FitError) as exc:
@@ -586,17 +576,13 @@ _KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derive
 
 def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
     """The parts of a fit's dict a campaign table needs, as plain JSON-able values."""
-    from ..base.jsonio import to_jsonable
-
     return to_jsonable({k: doc[k] for k in _KEEP if k in doc})
 
 
 def _refuse_missing_group_column(dataset: Any, col: str) -> None:
     """Name why a ``by`` column is not there: read under its dataset name, or not read."""
-    from ..io.columns import _ALIAS_LOOKUP, _norm
-
     columns = ", ".join(map(str, dataset.frame.columns))
-    canon = _ALIAS_LOOKUP.get(_norm(col))
+    canon = column_for(col)
     if canon is not None and canon != col and canon in dataset.frame.columns:
         raise InputError(f"no column {col} to group by: a column '{col}' is read as the "
                          f"dataset column '{canon}'; group by {canon} (columns read: "
@@ -661,8 +647,6 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         A grouping column that is a measured quantity (:func:`check_grouping`), no
         law, or an output that cannot be written.
     """
-    from ..law.registry import get_law
-
     law_ids = tuple(get_law(law).id for law in ([laws] if isinstance(laws, str) else laws))
     if not law_ids:
         raise InputError("no law given")
@@ -713,8 +697,6 @@ class _Refusal:
 def _check_output(output: Any, sources: Sequence[Any]) -> Path | None:
     if output is None:
         return None
-    from ..base.outputs import check_outputs
-
     target = Path(output)
     if target.suffix.lower() not in (".csv", ".jsonl"):
         raise InputError("streamed campaign results are written as .csv or .jsonl",
@@ -736,7 +718,7 @@ class _CompareJob:
 
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
     """Load one dataset and compare the laws on each of its groups (plain records)."""
-    from ..comparison import compare
+    from ..comparison import compare  # the comparisons: not on the path of a plain fit
 
     try:
         ds = load_dataset(job.source, **job.load_options)

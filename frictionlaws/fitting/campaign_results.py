@@ -11,6 +11,8 @@ when asked for (:attr:`Block.records`).  :class:`Campaign` holds the blocks; its
 
 from __future__ import annotations
 
+import csv
+import gc
 import math
 import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
@@ -19,7 +21,11 @@ from typing import Any
 
 import numpy as np
 
+from ..base import jsonio
 from ..base.errors import InputError
+from ..base.outputs import atomic_write, write_text_atomic
+from ..base.sanitize import csv_row, frame_csv
+from ..law import VARIABLES
 
 __all__ = ["Campaign", "Block", "doubts", "key_text", "group_column", "tidy_columns",
            "stream_blocks"]
@@ -38,8 +44,6 @@ def key_text(key: Mapping[str, Any]) -> str:
     str
         E.g. ``surface=steel, T=293.15 K``.
     """
-    from ..law import VARIABLES
-
     parts = []
     for col, value in key.items():
         unit = VARIABLES[col].unit if col in VARIABLES else ""
@@ -283,17 +287,12 @@ class Campaign:
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
-        from ..base import jsonio
-        from ..base.outputs import write_text_atomic
-
         target = Path(path)
         if target.suffix.lower() == ".json":
             return write_text_atomic(target, jsonio.dumps(self.to_dict()) + "\n")
         if target.suffix.lower() != ".csv":
             raise InputError("campaign results are written as .csv or .json",
                              file=str(target))
-        from ..base.sanitize import frame_csv
-
         return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
 
     def summary(self) -> str:
@@ -360,8 +359,6 @@ def group_column(name: str) -> str:
     str
         ``name``, followed by ``[unit]`` (SI) when it is a law variable.
     """
-    from ..law import VARIABLES
-
     unit = VARIABLES[name].unit if name in VARIABLES else ""
     return f"{name} [{unit}]" if unit else name
 
@@ -427,13 +424,6 @@ def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],
     Campaign
         With the file, the number of records and the failed ones.
     """
-    import csv
-    import gc
-
-    from ..base import jsonio
-    from ..base.outputs import atomic_write
-    from ..base.sanitize import csv_row
-
     count, failed = 0, []
     columns = tidy_columns(by)
     as_csv = output.suffix.lower() == ".csv"

@@ -35,6 +35,7 @@ import numpy as np
 from ..law import VARIABLES, Law
 from .batch import POLISH_ROWS, Problems, solve
 from .data import FitData, _condition_vars, invalid_rows
+from .derivatives import jacobian_function
 from .diagnosis import (
     RANK_TOL,
     WEAK_TOL,
@@ -44,6 +45,8 @@ from .diagnosis import (
     metric_table,
     weak_warning,
 )
+from .lsq import fit_statistics, scaled_covariance
+from .robust import STRUCTURE_ALPHA, ZERO_SPREAD, Structure, residual_structures
 from .search import RANDOM_STARTS, _clip, _random_starts, _starts
 from .uncertainty import structure_record, structure_warning
 
@@ -113,8 +116,6 @@ def fit_stacked(law: Law, data: Sequence[FitData], seed: int = 0
 
 def stack_fits(law: Law, data: Sequence[FitData], seed: int = 0) -> StackedFits:
     """:func:`fit_stacked`, its results kept in columns (:class:`StackedFits`)."""
-    from .derivatives import jacobian_function
-
     fits = StackedFits.empty(law, len(data))
     jac_func = jacobian_function(law)
     if jac_func is None:
@@ -245,8 +246,6 @@ class _Diagnosis:
     """The diagnosis of :func:`fit` for the accepted members of a stack, at once."""
 
     def __init__(self, stack: _Stack, rows: np.ndarray, theta: np.ndarray) -> None:
-        from .lsq import fit_statistics
-
         self.stack, self.rows, self.theta = stack, rows, theta
         self.law, self.names = stack.law, stack.names
         self.data = [stack.data[i] for i in rows]
@@ -264,8 +263,6 @@ class _Diagnosis:
     def _covariance(self) -> None:
         """``inv(J' J)`` times the reduced chi-square of the members kept (a singular one
         is dropped)."""
-        from .lsq import scaled_covariance
-
         idx = np.flatnonzero(self.keep)
         unit = scaled_covariance(self.jac[idx])
         if unit is None:  # some member is singular: one by one
@@ -372,8 +369,6 @@ class _Diagnosis:
 
     def _check_errors(self, se: np.ndarray) -> None:
         """No member with an error that is not finite, or zero to rounding."""
-        from .robust import ZERO_SPREAD
-
         self.keep &= np.all(np.isfinite(se) & (se > ZERO_SPREAD * np.abs(self.theta)), axis=1)
 
     def _check_fit(self, metrics: Mapping[str, np.ndarray]) -> None:
@@ -392,8 +387,6 @@ class _Diagnosis:
         fitted alone."""
         if not self.law.derived:
             return {}
-        from .robust import ZERO_SPREAD
-
         values: dict[str, Any] = {k: np.full(len(self.rows), v)
                                   for k, v in self.law.setting_values.items()}
         values.update({k: self.theta[:, j] for j, k in enumerate(self.names)})
@@ -405,8 +398,6 @@ class _Diagnosis:
     def _structures(self) -> list[Any]:
         """The residual structure of each member (its significance not within rounding
         of the level)."""
-        from .robust import STRUCTURE_ALPHA, residual_structures
-
         names = _condition_vars(self.data[0])
         arrays = {v: np.stack([fd.arrays[v] for fd in self.data]) for v in names}
         found = residual_structures(self.resid, arrays, names)
@@ -495,8 +486,6 @@ class StackedFits:
     def structure(self, r: int) -> Any:
         """The residual structure of row ``r`` (a :class:`~frictionlaws.fitting.robust.
         Structure`), or None."""
-        from .robust import Structure
-
         v = int(self.variable[r])
         return None if v < 0 else Structure(
             self.variables[v], _TESTS[int(self.test[r])], float(self.statistic[r]),
@@ -543,8 +532,6 @@ class StackedFits:
 
     def warning_counts(self, rows: np.ndarray) -> np.ndarray:
         """How many warnings the results in ``rows`` have (without writing them)."""
-        from .robust import STRUCTURE_ALPHA
-
         significant = (self.variable[rows] >= 0) & (
             self.p_value[rows] * self.n_tests[rows] < STRUCTURE_ALPHA)
         return (self.weak[rows].any(axis=1).astype(int) + self.cut[rows].sum(axis=1)
