@@ -35,6 +35,7 @@ from ..law import NUMPY, Law
 from .derivatives import jacobian_function
 from .diagnosis import RANK_TOL
 from .lsq import Estimate, LocalFit, fit_statistics, scaled_covariance
+from .methods import fit_method
 
 __all__ = ["GRADIENT_TOL", "FLOOR_TOL", "MAX_ITERATIONS", "POLISH_ROWS", "Problems",
            "Solution", "solve", "polish"]
@@ -262,8 +263,9 @@ def polish(search: Any) -> None:
 
     The search's local solves stop at lmfit's tolerances (``1e-8``) with a Jacobian of
     finite differences, some ``1e-5`` (relative) short of the optimum and, on few rows,
-    where exactly depends on the solver's path.  For laws with an analytic Jacobian and
-    fits of fewer than :data:`POLISH_ROWS` rows the best fit is continued from its end
+    where exactly depends on the solver's path.  For a polished method (the default; see
+    :data:`~frictionlaws.fitting.methods.FIT_METHODS`), laws with an analytic Jacobian
+    and fits of fewer than :data:`POLISH_ROWS` rows the best fit is continued from its end
     point with the analytic Jacobian until it converges (:func:`solve`); its covariance
     is then ``inv(J' J)`` of that Jacobian at the optimum.  Nothing changes when the
     solve does not converge (an optimum on a bound, a model that is not finite) or
@@ -276,7 +278,7 @@ def polish(search: Any) -> None:
         The finished search (its ``best`` is replaced).
     """
     s, best = search.setup, search.best
-    if (best is None or search.method != "least_squares" or not best.success
+    if (best is None or not fit_method(search.method).polished or not best.success
             or s.y.size >= POLISH_ROWS):
         return
     jac_func = jacobian_function(s.law)

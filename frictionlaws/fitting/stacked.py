@@ -46,6 +46,7 @@ from .diagnosis import (
     weak_warning,
 )
 from .lsq import fit_statistics, scaled_covariance
+from .methods import DEFAULT_METHOD
 from .robust import STRUCTURE_ALPHA, ZERO_SPREAD, Structure, residual_structures
 from .search import RANDOM_STARTS, _clip, _random_starts, _starts
 from .uncertainty import structure_record, structure_warning
@@ -56,7 +57,7 @@ __all__ = ["fit_stacked", "stack_fits", "StackedFits", "stackable", "STACKED_OPT
 #: with any other option or value every member is fitted alone.
 STACKED_OPTIONS: dict[str, tuple[Any, ...] | None] = {
     "weights": ("auto", None), "seed": None, "on_invalid": ("error", "drop"),
-    "global_stage": ("auto", "off"), "method": ("least_squares",),
+    "global_stage": ("auto", "off"), "method": (DEFAULT_METHOD,),
     "uncertainty": ("asymptotic",), "lean": (False,), "starts": (None,),
     "n_boot": None, "n_jobs": None, "interval": None,
 }
