@@ -29,8 +29,10 @@ def test_rebuild_rewrites_a_stale_cache_and_only_it(tmp_path) -> None:
     assert caches.rebuild(copies) == []
 
 
-def test_the_command_names_what_it_found() -> None:
+def test_the_command_names_what_it_found(tmp_path) -> None:
+    # Run away from the source tree, so the command imports the package the tests import
+    # (an installed copy in CI, the source tree in an editable install).
     proc = subprocess.run([sys.executable, "-m", "frictionlaws.caches"], capture_output=True,
-                          text=True, check=True)
+                          text=True, check=True, cwd=tmp_path)
     assert proc.stdout.startswith("every cache is current: ")
     assert str(FORMULA_TEXT_FILE) in proc.stdout and str(MODULE_PATH) in proc.stdout
