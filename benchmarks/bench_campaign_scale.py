@@ -24,7 +24,12 @@ workers the serial fraction is ``e = (1/S - 1/p) / (1 - 1/p)`` (Karp-Flatt: ever
 that did not run in parallel, the caller's share, start-up of chunks, the last chunk
 waiting, and on a shared machine the other processes' load), and Amdahl's law projects
 ``1 / (e + (1 - e) / 16)`` for 16 workers; the caller's own CPU share gives the bound
-that no number of workers passes.  The load average is printed before and after.
+that no number of workers passes.  CPU times are printed too (the serial campaign's, the
+workers' together and the busiest worker's): on a machine shared with other users'
+sessions the scheduler gives each session a fair share, so the wall-time speed-up of
+more workers stays near 1 while the others keep the cores busy, and the serial CPU over
+the busiest worker's CPU (plus the caller's) is the speed-up a free core per worker
+gives.  The load average is printed before and after.
 
 It checks (exit 1 otherwise) that the parallel campaign's table equals the serial one
 (same shape, columns, types and a hash of every cell).
@@ -147,6 +152,9 @@ class Round:
     memory: dict[str, Peak]
     read_csv: float = 0.0
     load_dataset: float = 0.0
+    #: CPU time [s] of the serial campaign, and of each worker in the parallel one.
+    cpu_serial: float = 0.0
+    cpu_workers: list[float] = field(default_factory=list)
 
 
 def reading(files: list[Path]) -> tuple[float, float]:
@@ -171,21 +179,37 @@ def one_round(folder: Path, files: list[Path], jobs: int) -> tuple[Round, bool]:
         bare_loop(files)
         bare = time.perf_counter() - t0
     with peak_memory() as memory["serial"]:
-        t0 = time.perf_counter()
+        cpu_serial, t0 = time.process_time(), time.perf_counter()
         serial_table = digest(fit_many(LAWS, folder).to_frame())
         serial = time.perf_counter() - t0
+        cpu_serial = time.process_time() - cpu_serial
+    workers0 = worker_cpu()
     cpu0, t0 = time.process_time(), time.perf_counter()  # the caller's CPU: no sampling
     camp = fit_many(LAWS, folder, jobs=jobs)
     cpu1 = time.process_time()
     frame = camp.to_frame()
     parallel = time.perf_counter() - t0
     cpu2 = time.process_time()
+    workers = {pid: t - workers0.get(pid, 0.0) for pid, t in worker_cpu().items()}
     same = digest(frame) == serial_table
     del camp, frame
     with peak_memory() as memory["parallel"]:  # again, for the memory
         fit_many(LAWS, folder, jobs=jobs).to_frame()
     return Round(bare, serial, parallel, cpu1 - cpu0, cpu2 - cpu1, memory,
-                 *reading(files)), same
+                 *reading(files), cpu_serial=cpu_serial,
+                 cpu_workers=sorted(workers.values(), reverse=True)), same
+
+
+def worker_cpu() -> dict[int, float]:
+    """CPU time [s] used so far by each worker process of this one, by pid."""
+    out = {}
+    for proc in psutil.Process().children(recursive=True):
+        try:
+            t = proc.cpu_times()
+        except psutil.Error:
+            continue
+        out[proc.pid] = t.user + t.system
+    return out
 
 
 def digest(frame: pd.DataFrame) -> tuple[Any, ...]:
@@ -233,9 +257,29 @@ def report(rounds: list[Round], workers: int, count: int) -> None:
         peaks = [r.memory[label] for r in rounds]
         print(f"  peak memory, {label:<8}  caller {max(p.caller for p in peaks):7.1f} MB, "
               f"workers {max(p.workers for p in peaks):7.1f} MB (resident, sampled)")
+    busiest = med(r.cpu_serial / (r.cpu_workers[0] + r.caller_cpu + r.caller_frame_cpu)
+                  for r in rounds if r.cpu_workers)
+    spent = med(sum(r.cpu_workers) / r.cpu_serial for r in rounds if r.cpu_workers)
+    print(f"  CPU time: the workers together spent {spent:.2f}x the serial campaign's CPU; "
+          f"the serial CPU over the busiest worker's (plus the caller's) is {busiest:.2f}: "
+          "the speed-up with a free core per worker")
     print(f"  Amdahl: serial fraction {e:.3f} from the speed-up on {workers} workers "
           f"(Karp-Flatt) -> {s16:.1f}x projected for 16 workers; the caller's share alone "
           f"({100 * caller:.2f} %) bounds 16 workers at {bound:.1f}x")
+
+
+#: What each timed line runs (printed with the figures, so they say what they compare).
+COMPARED = f"""compared, per round, on the same files:
+  bare loop:          for each file: frame = pandas.read_csv(file); scipy.optimize.curve_fit(
+                        model, x, frame['mu'], p0=law defaults) for each of {LAWS}
+  campaign, serial:   frictionlaws.fitting.campaign.fit_many({LAWS}, folder).to_frame()
+  campaign, workers:  fit_many({LAWS}, folder, jobs=JOBS).to_frame()
+  reading:            pandas.read_csv(file) / frictionlaws.io.load_dataset(file), every file"""
+
+
+def load_average() -> str:
+    """The 1, 5 and 15 minute load averages (the other processes' share of the cores)."""
+    return " ".join(f"{x:.2f}" for x in os.getloadavg())
 
 
 def main() -> int:
@@ -258,7 +302,9 @@ def main() -> int:
         fit_many(LAWS, warm, jobs=args.jobs).to_frame()  # start the pool, import
         bare_loop(sorted(warm.glob("*.csv")))
         print(f"{args.n} datasets x {len(LAWS)} laws; {psutil.cpu_count()} cores, "
-              f"{workers} workers; load average {os.getloadavg()[0]:.1f}", flush=True)
+              f"{workers} workers; load average (1, 5, 15 min) {load_average()}", flush=True)
+        print(f"run as: python {' '.join(sys.argv)}\n{COMPARED.replace('JOBS', str(args.jobs))}",
+              flush=True)
         rounds, same = [], True
         for i in range(args.rounds):
             result, agree = one_round(folder, files, args.jobs)
@@ -268,9 +314,9 @@ def main() -> int:
                   f"({result.serial / result.bare:.2f}x), {workers} workers "
                   f"{result.parallel:.2f} s ({result.serial / result.parallel:.2f}x), caller "
                   f"{100 * result.caller_cpu / result.serial:.2f} %; load "
-                  f"{os.getloadavg()[0]:.1f}", flush=True)
+                  f"{load_average()}", flush=True)
     report(rounds, workers, args.n)
-    print(f"load average at the end {os.getloadavg()[0]:.1f}; tables "
+    print(f"load average (1, 5, 15 min) at the end {load_average()}; tables "
           f"{'identical' if same else 'DIFFER'} serially and on the workers")
     return 0 if same else 1
 
