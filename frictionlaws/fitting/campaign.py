@@ -570,7 +570,7 @@ def _shown_error(exc: Exception, job: Any) -> str:
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
-_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived",
+_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "notes", "derived",
          "uncertainty")
 
 

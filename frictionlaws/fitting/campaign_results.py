@@ -26,6 +26,7 @@ from ..base.errors import InputError
 from ..base.outputs import atomic_write, write_text_atomic
 from ..base.sanitize import csv_row, frame_csv
 from ..law import VARIABLES
+from .stacked import notes_text
 
 __all__ = ["Campaign", "Block", "doubts", "key_text", "group_column", "tidy_columns",
            "stream_blocks"]
@@ -187,8 +188,8 @@ class Campaign:
 
     Each record has ``dataset``, ``source``, ``group`` (column -> value), ``law``,
     ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
-    warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
-    fit could not be made).
+    warnings, notes such as the rows the reader dropped, and convergence, as in
+    :meth:`FitResult.to_dict`) or ``error`` (why that fit could not be made).
 
     Parameters
     ----------
@@ -312,7 +313,8 @@ class Campaign:
 
 
 def doubts(result: Mapping[str, Any]) -> str:
-    """A fit's doubts in words: undetermined parameters, withheld errors, warnings.
+    """A fit's doubts in words: undetermined parameters, withheld errors, warnings, and
+    its notes (rows dropped, columns ignored, ...) as they are.
 
     Parameters
     ----------
@@ -322,8 +324,8 @@ def doubts(result: Mapping[str, Any]) -> str:
     Returns
     -------
     str
-        E.g. ``cannot determine a, b; 1 warning (listed in the JSON output)``; empty when
-        the fit has no doubts.
+        E.g. ``cannot determine a, b; 1 warning (listed in the JSON output); dropped 1
+        row (row 3): empty or NaN in column 'p [MPa]'``; empty when the fit has no doubts.
     """
     parts = []
     undetermined = result.get("non_identifiable") or []
@@ -336,6 +338,7 @@ def doubts(result: Mapping[str, Any]) -> str:
     n = len(result.get("warnings") or [])
     if n:
         parts.append(f"{n} warning{'s' if n > 1 else ''} (listed in the JSON output)")
+    parts.extend(result.get("notes") or [])
     return "; ".join(parts)
 
 
@@ -379,7 +382,7 @@ def tidy_columns(by: Sequence[str]) -> list[str]:
     return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
             "stderr", "ci95_low", "ci95_high", "uncertainty", "unit", "fixed", "converged",
             *_METRICS,
-            "warnings", "error"]
+            "warnings", "notes", "error"]
 
 
 def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[tuple[Any, ...]]:
@@ -391,7 +394,8 @@ def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[tuple[Any, ...]
         return
     res = rec["result"]
     metrics = res["metrics"]
-    tail = (res["success"], *(metrics.get(k) for k in _METRICS), len(res["warnings"]), None)
+    tail = (res["success"], *(metrics.get(k) for k in _METRICS), len(res["warnings"]),
+            notes_text(res.get("notes")), None)
     method = (res.get("uncertainty") or {}).get("method")
     for name, est in res["params"].items():
         ci = est.get("ci95") or (None, None)
@@ -399,8 +403,8 @@ def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[tuple[Any, ...]
                est["unit"] or "-", est["fixed"], *tail)
 
 
-#: The cells of a failed fit's row from ``param`` to ``warnings``.
-_NO_FIT = (None,) * (9 + len(_METRICS) + 1)
+#: The cells of a failed fit's row from ``param`` to ``notes``.
+_NO_FIT = (None,) * (9 + len(_METRICS) + 2)
 
 
 def stream_blocks(blocks: Iterable[Block], output: Path, by: tuple[str, ...],

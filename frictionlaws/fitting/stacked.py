@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -51,7 +51,8 @@ from .robust import STRUCTURE_ALPHA, ZERO_SPREAD, Structure, residual_structures
 from .search import RANDOM_STARTS, _clip, _random_starts, _starts
 from .uncertainty import structure_record, structure_warning
 
-__all__ = ["fit_stacked", "stack_fits", "StackedFits", "stackable", "STACKED_OPTIONS"]
+__all__ = ["fit_stacked", "stack_fits", "StackedFits", "stackable", "STACKED_OPTIONS",
+           "notes_text"]
 
 #: The options of :func:`fit` a stacked fit takes, and the values it takes them with;
 #: with any other option or value every member is fitted alone.
@@ -132,7 +133,9 @@ def stack_fits(law: Law, data: Sequence[FitData], seed: int = 0) -> StackedFits:
             stack.fit(fits, np.array(members))
         except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError):
             continue  # a formula that does not take stacked arrays: one fit each
-    return fits.compressed()
+    fits = fits.compressed()
+    fits.notes = {int(r): list(fd.notes) for r, fd in zip(fits.row, data) if r >= 0 and fd.notes}
+    return fits
 
 
 def _eligible(law: Law, fd: FitData) -> bool:
@@ -449,6 +452,9 @@ class StackedFits:
     statistic: np.ndarray
     p_value: np.ndarray
     n_tests: np.ndarray
+    #: The notes of the members' data (rows dropped, columns ignored, ...), by row; a
+    #: row without notes is not listed.
+    notes: dict[int, list[str]] = field(default_factory=dict)
 
     @classmethod
     def empty(cls, law: Law, count: int) -> StackedFits:
@@ -526,6 +532,7 @@ class StackedFits:
         derived = self.derived[r].tolist()
         return {"params": params, "metrics": metrics, "success": True,
                 "warnings": self.warnings(r), "non_identifiable": [],
+                "notes": list(self.notes.get(r, [])),
                 "derived": {name: {"value": derived[d][0], "stderr": derived[d][1],
                                    "unit": unit, "meaning": meaning}
                             for d, (name, unit, meaning) in enumerate(self.derived_names)},
@@ -559,6 +566,8 @@ class StackedFits:
                 "r2": per_result(self.metrics[rows, 0]), "rmse": per_result(self.metrics[rows, 2]),
                 "aic": per_result(self.metrics[rows, 5]), "bic": per_result(self.metrics[rows, 7]),
                 "n": per_result(self.size[rows]), "warnings": per_result(self.warning_counts(rows)),
+                "notes": per_result(np.array([notes_text(self.notes.get(int(r)))
+                                              for r in rows], object)),
                 "error": np.full(m * k, None, object)}
 
     def tidy(self, r: int, base: tuple[Any, ...]) -> list[tuple[Any, ...]]:
@@ -568,11 +577,27 @@ class StackedFits:
         m = self.metrics[r].tolist()
         count = int(self.warning_counts(np.array([r]))[0])
         tail = (True, _number(m[0]), _number(m[2]), _number(m[5]), _number(m[7]),
-                int(self.size[r]), count, None)
+                int(self.size[r]), count, notes_text(self.notes.get(r)), None)
         values, errors = self.values[r].tolist(), self.errors[r].tolist()
         low, high = self.low[r].tolist(), self.high[r].tolist()
         return [(*base, k, values[j], errors[j], low[j], high[j], "asymptotic",
                  self.units[j] or "-", False, *tail) for j, k in enumerate(self.names)]
+
+
+def notes_text(notes: Sequence[str] | None) -> str | None:
+    """A result's notes as one cell of a campaign's table (None: no notes).
+
+    Parameters
+    ----------
+    notes : sequence of str or None
+        The notes.
+
+    Returns
+    -------
+    str or None
+        The notes joined by `` | ``.
+    """
+    return " | ".join(notes) if notes else None
 
 
 def _number(x: float) -> float | None:

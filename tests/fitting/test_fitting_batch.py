@@ -304,3 +304,53 @@ def test_the_table_of_blocks_equals_the_table_of_their_records(tmp_path):
             rows[col] = rows[col].where(rows[col].notna(), np.nan)
     pd.testing.assert_frame_equal(fast, rows)
     assert fast["error"].notna().sum() >= 6 and fast["warnings"].max() >= 1
+
+
+def _spoil(folder, rng, count):
+    """Blank, NaN or negate a cell of ``count`` of the files at random (the reader drops
+    such a row or notes it); the spoiled datasets' names."""
+    files = sorted(folder.glob("*.csv"))
+    spoiled = set()
+    for i in rng.choice(len(files), count, replace=False):
+        lines = files[i].read_text().splitlines()
+        row = int(rng.integers(1, len(lines)))
+        cells = lines[row].split(",")
+        col = int(rng.integers(0, 3))
+        cells[col] = str(rng.choice(["", "nan", "NaN"])) if col < 2 else "-" + cells[col]
+        lines[row] = ",".join(cells)
+        files[i].write_text("\n".join(lines) + "\n")
+        spoiled.add(files[i].stem)
+    return spoiled
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_rows_the_reader_drops_are_noted_in_every_record_and_table(tmp_path, seed,
+                                                                   monkeypatch):
+    """Nothing dropped silently: a dataset's notes (rows dropped, negative speeds) are in
+    its records, as fit alone gives them, and in the table, stacked or alone, held or
+    streamed."""
+    import frictionlaws.fitting.campaign as campaign
+
+    rng = np.random.default_rng(seed)
+    folder = _campaign_folder(tmp_path, 8, seed)
+    spoiled = _spoil(folder, rng, 4)
+    alone_calls = []
+    one = campaign._fit_one
+    monkeypatch.setattr(campaign, "_fit_one", lambda *a: alone_calls.append(a[0]) or one(*a))
+    camp = fit_many(LAWS, folder)
+    noted = [rec for rec in camp.records if rec["result"]["notes"]]
+    assert {rec["dataset"] for rec in noted} == spoiled
+    assert len(alone_calls) < len(noted)  # some noted fits were made in a stack
+    for rec in camp.records:
+        alone = fl.fit(rec["law"], folder / f"{rec['dataset']}.csv")
+        assert_same(rec["result"], _compact(alone.to_dict()))
+    streamed = fit_many(LAWS, folder, output=tmp_path / "out.csv").to_frame()
+    for frame in (camp.to_frame(), streamed):
+        for rec in camp.records:
+            cells = frame.loc[(frame["dataset"] == rec["dataset"])
+                              & (frame["law"] == rec["law"]), "notes"]
+            notes = rec["result"]["notes"]
+            if notes:
+                assert (cells == " | ".join(notes)).all(), rec["dataset"]
+            else:
+                assert cells.isna().all(), rec["dataset"]
