@@ -566,9 +566,17 @@ class StackedFits:
                 "r2": per_result(self.metrics[rows, 0]), "rmse": per_result(self.metrics[rows, 2]),
                 "aic": per_result(self.metrics[rows, 5]), "bic": per_result(self.metrics[rows, 7]),
                 "n": per_result(self.size[rows]), "warnings": per_result(self.warning_counts(rows)),
-                "notes": per_result(np.array([notes_text(self.notes.get(int(r)))
-                                              for r in rows], object)),
+                "notes": per_result(self._notes_cells(rows)),
                 "error": np.full(m * k, None, object)}
+
+    def _notes_cells(self, rows: np.ndarray) -> np.ndarray:
+        """The notes cells of the results in ``rows`` (None for most: no notes)."""
+        cells = np.full(len(rows), None, object)
+        if self.notes:
+            for i, r in enumerate(rows.tolist()):
+                if r in self.notes:
+                    cells[i] = notes_text(self.notes[r])
+        return cells
 
     def tidy(self, r: int, base: tuple[Any, ...]) -> list[tuple[Any, ...]]:
         """The rows of the result in row ``r`` in a campaign's tidy table, after ``base``
