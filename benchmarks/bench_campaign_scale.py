@@ -251,8 +251,10 @@ def report(rounds: list[Round], workers: int, count: int) -> None:
     reader = med(r.load_dataset / r.read_csv for r in rounds)
     print(f"  reading every file: pandas.read_csv {read_csv:.2f} s, the library's reader "
           f"(load_dataset) {reader:.2f}x that (target <= 1.0x)")
+    with_table = med((r.caller_cpu + r.caller_frame_cpu) / r.serial for r in rounds)
     print(f"  caller's CPU while the workers fit  {100 * caller:6.2f} % of the serial time "
-          f"(target <= 3 %); its table afterwards {1e3 * frame_cpu:.0f} ms CPU")
+          f"(target <= 3 %); its table afterwards {1e3 * frame_cpu:.0f} ms CPU "
+          f"({100 * with_table:.2f} % with the table)")
     for label in ("bare", "serial", "parallel"):
         peaks = [r.memory[label] for r in rounds]
         print(f"  peak memory, {label:<8}  caller {max(p.caller for p in peaks):7.1f} MB, "
