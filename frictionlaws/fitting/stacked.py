@@ -110,7 +110,8 @@ def fit_stacked(law: Law, data: Sequence[FitData], seed: int = 0
     list
         Per member, the parts of :meth:`FitResult.to_dict` a campaign record keeps
         (``params``, ``metrics``, ``success``, ``warnings``, ``non_identifiable``,
-        ``derived``, ``uncertainty``; JSON-able), or None: fit it with :func:`fit`.
+        ``notes``, ``derived``, ``uncertainty``; JSON-able), or None: fit it with
+        :func:`fit`.
     """
     fits = stack_fits(law, data, seed)
     return [fits.result(i) for i in range(len(data))]
