@@ -18,18 +18,20 @@ Each round times, one after the other:
 Printed per round and as medians over the rounds: wall times, the campaign's time
 against the bare loop, the workers' speed-up over the serial campaign, the CPU time of
 the calling process while the workers run (``time.process_time``, every thread of it)
-against the serial wall time, and the peak memory (resident set, sampled every 20 ms)
-of the calling process and of the workers.  From the measured speed-up ``S`` on ``p``
-workers the serial fraction is ``e = (1/S - 1/p) / (1 - 1/p)`` (Karp-Flatt: everything
-that did not run in parallel, the caller's share, start-up of chunks, the last chunk
-waiting, and on a shared machine the other processes' load), and Amdahl's law projects
-``1 / (e + (1 - e) / 16)`` for 16 workers; the caller's own CPU share gives the bound
-that no number of workers passes.  CPU times are printed too (the serial campaign's, the
-workers' together and the busiest worker's): on a machine shared with other users'
-sessions the scheduler gives each session a fair share, so the wall-time speed-up of
-more workers stays near 1 while the others keep the cores busy, and the serial CPU over
-the busiest worker's CPU (plus the caller's) is the speed-up a free core per worker
-gives.  The load average is printed before and after.
+against the serial wall time, and the peak memory (resident set, sampled every 20 ms) of
+the calling process and of the workers (the timed bare loop and serial campaign sample
+only the caller's own, a cheap read; the workers' memory is sampled in the untimed
+repeat of the parallel run, as listing them costs the caller CPU). From the measured
+speed-up ``S`` on ``p`` workers the serial fraction is ``e = (1/S - 1/p) / (1 - 1/p)``
+(Karp-Flatt: everything that did not run in parallel, the caller's share, start-up of
+chunks, the last chunk waiting, and on a shared machine the other processes' load), and
+Amdahl's law projects ``1 / (e + (1 - e) / 16)`` for 16 workers; the caller's own CPU
+share gives the bound that no number of workers passes. CPU times are printed too (the
+serial campaign's, the workers' together and the busiest worker's): on a machine shared
+with other users' sessions the scheduler gives each session a fair share, so the
+wall-time speed-up of more workers stays near 1 while the others keep the cores busy,
+and the serial CPU over the busiest worker's CPU (plus the caller's) is the speed-up a
+free core per worker gives. The load average is printed before and after.
 
 It checks (exit 1 otherwise) that the parallel campaign's table equals the serial one
 (same shape, columns, types and a hash of every cell).
@@ -114,23 +116,25 @@ class Peak:
     """Peak resident memory [MB] of this process and of its workers, sampled."""
 
     caller: float = 0.0
-    workers: float = 0.0
+    workers: float | None = None
     stop: threading.Event = field(default_factory=threading.Event)
 
     def sample(self) -> None:
         me = psutil.Process()
         while not self.stop.wait(0.02):
             try:
-                kids = sum(c.memory_info().rss for c in me.children(recursive=True))
                 self.caller = max(self.caller, me.memory_info().rss / 1e6)
-                self.workers = max(self.workers, kids / 1e6)
+                if self.workers is not None:  # listing the workers costs the caller CPU
+                    kids = sum(c.memory_info().rss for c in me.children(recursive=True))
+                    self.workers = max(self.workers, kids / 1e6)
             except psutil.Error:
                 continue
 
 
 @contextmanager
-def peak_memory() -> Iterator[Peak]:
-    peak = Peak()
+def peak_memory(workers: bool = False) -> Iterator[Peak]:
+    """Sample the peak memory of this process (and of its workers, when ``workers``)."""
+    peak = Peak(workers=0.0 if workers else None)
     thread = threading.Thread(target=peak.sample, daemon=True)
     thread.start()
     try:
@@ -180,9 +184,11 @@ def one_round(folder: Path, files: list[Path], jobs: int) -> tuple[Round, bool]:
         bare = time.perf_counter() - t0
     with peak_memory() as memory["serial"]:
         cpu_serial, t0 = time.process_time(), time.perf_counter()
-        serial_table = digest(fit_many(LAWS, folder).to_frame())
+        frame = fit_many(LAWS, folder).to_frame()
         serial = time.perf_counter() - t0
         cpu_serial = time.process_time() - cpu_serial
+    serial_table = digest(frame)  # not timed
+    del frame
     workers0 = worker_cpu()
     cpu0, t0 = time.process_time(), time.perf_counter()  # the caller's CPU: no sampling
     camp = fit_many(LAWS, folder, jobs=jobs)
@@ -193,7 +199,7 @@ def one_round(folder: Path, files: list[Path], jobs: int) -> tuple[Round, bool]:
     workers = {pid: t - workers0.get(pid, 0.0) for pid, t in worker_cpu().items()}
     same = digest(frame) == serial_table
     del camp, frame
-    with peak_memory() as memory["parallel"]:  # again, for the memory
+    with peak_memory(workers=True) as memory["parallel"]:  # again, for the memory
         fit_many(LAWS, folder, jobs=jobs).to_frame()
     return Round(bare, serial, parallel, cpu1 - cpu0, cpu2 - cpu1, memory,
                  *reading(files), cpu_serial=cpu_serial,
@@ -257,8 +263,9 @@ def report(rounds: list[Round], workers: int, count: int) -> None:
           f"({100 * with_table:.2f} % with the table)")
     for label in ("bare", "serial", "parallel"):
         peaks = [r.memory[label] for r in rounds]
-        print(f"  peak memory, {label:<8}  caller {max(p.caller for p in peaks):7.1f} MB, "
-              f"workers {max(p.workers for p in peaks):7.1f} MB (resident, sampled)")
+        kids = [p.workers for p in peaks if p.workers is not None]
+        print(f"  peak memory, {label:<8}  caller {max(p.caller for p in peaks):7.1f} MB"
+              + (f", workers {max(kids):7.1f} MB" if kids else "") + " (resident, sampled)")
     busiest = med(r.cpu_serial / (r.cpu_workers[0] + r.caller_cpu + r.caller_frame_cpu)
                   for r in rounds if r.cpu_workers)
     spent = med(sum(r.cpu_workers) / r.cpu_serial for r in rounds if r.cpu_workers)
