@@ -604,7 +604,7 @@ def notes_text(notes: Sequence[str] | None) -> str | None:
     Returns
     -------
     str or None
-        The notes joined by `` | ``.
+        The notes joined by ``' | '``.
     """
     return " | ".join(notes) if notes else None
 
