@@ -12,7 +12,9 @@
 * :func:`reduce_mf`: fit a simple slip law (``pacejka``, ``burckhardt``) to a
   Magic Formula curve at one load;
 * :func:`fit_mf`: fit a Magic Formula property file to tyre test data
-  (:func:`read_tyre_data`) and write it as ``.tir``.
+  (:func:`read_tyre_data`) and write it as ``.tir``;
+* :func:`transient_slip`: the forces over time of a tyre whose slips relax over the
+  relaxation lengths (MF-Tyre's first-order transient model).
 
 Units are SI everywhere (N, m, Pa, m/s, rad).
 """
@@ -23,6 +25,7 @@ from .magic_formula import MagicFormula, MFCoefficients
 from .reduce import Reduction, equivalent_pacejka, mf_slip_curve, reduce_mf
 from .thesis import TABLE_6_2, ThesisComparison, thesis_comparison, thesis_ratios
 from .tir import PropertyFile, read_property_file, write_tir
+from .transient import TransientSlip, transient_slip
 from .tyre_data import TyreData, read_tyre_data
 
 __all__ = [
@@ -38,6 +41,8 @@ __all__ = [
     "PropertyFile",
     "read_property_file",
     "write_tir",
+    "TransientSlip",
+    "transient_slip",
     "Reduction",
     "reduce_mf",
     "equivalent_pacejka",

@@ -25,7 +25,7 @@ fminsearch for the MF 6.2 radius stalled.
 from __future__ import annotations
 
 import warnings
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -56,7 +56,7 @@ def _column(d: pd.DataFrame, name: str) -> str:
     return next(c for c in d.columns if c.split(" [")[0] == name)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _tyre(v: str, variant: int, slip_angle: str) -> MagicFormula:
     source = f"MagicFormula{v}" if variant == 0 else DATA / f"MF{v}_turnslip_variant.tir"
     return MagicFormula.from_file(source, slip_angle=slip_angle)
@@ -96,7 +96,7 @@ def _evaluate(v: str, d: pd.DataFrame) -> dict[str, np.ndarray]:
     return out
 
 
-@lru_cache(maxsize=None)
+@cache
 def _evaluated(v: str) -> tuple[pd.DataFrame, dict[str, np.ndarray]]:
     d = _reference(v)
     return d, _evaluate(v, d)

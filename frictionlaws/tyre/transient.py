@@ -1,0 +1,266 @@
+"""The tyre's transient response: slip relaxing over the relaxation lengths.
+
+A tyre does not build its force the instant the slip changes: the carcass deflects first,
+and the contact patch has to roll a distance of the order of the relaxation length
+sigma before the force settles.  MF-Tyre's transient model (Pacejka, *Tire and Vehicle
+Dynamics*, 3rd ed. 2012, chapter 8: the single-contact-point model with first-order
+relaxation) lags the slips by a first-order filter in the travelled distance
+and evaluates the steady-state Magic Formula at the lagged slips::
+
+    sigma_kappa d(kappa')/dt + |V_x| kappa' = |V_x| kappa
+    sigma_alpha d(alpha')/dt + |V_x| alpha' = |V_x| alpha
+
+    F_x(t) = F_x(kappa', alpha', F_z, gamma), F_y(t) = F_y(...), M_z(t) = M_z(...)
+
+with the relaxation lengths sigma_kappa, sigma_alpha the ones :meth:`MagicFormula.steady_state
+<frictionlaws.tyre.MagicFormula.steady_state>` gives (``sigmax``, ``sigmay``: MF 6.x
+K / C, MF 5.2 from PTX/PTY), evaluated at each instant's load, camber and pressure.  Per
+unit of distance travelled s = integral |V_x| dt the lag is ``d(kappa')/ds = (kappa -
+kappa') / sigma_kappa``: after a step in the slip angle the slip (and, in the linear range,
+the side force) reaches 1 - 1/e = 63.2 % of its new steady value after one relaxation
+length of travel.  At standstill (V_x = 0) the lagged slips hold their values.
+
+**Integration.** The inputs are taken as piecewise linear in time between the samples
+given (two samples at the same time make a jump).  Over a step the lag rolls
+``x = ds / sigma`` relaxation lengths, ds the distance rolled (exact for the
+piecewise-linear speed) and 1 / sigma the mean of its values at the step's ends; the
+update is the exact solution for an input changing linearly over the step (a
+first-order hold)::
+
+    y1 = u1 + (y0 - u0) exp(-x) - (u1 - u0) (1 - exp(-x)) / x
+
+so a step, a ramp or a sampled sine at constant speed and load are integrated without
+error beyond rounding whatever the step size, and a held input at any speed.  Where the
+speed or the relaxation length changes within a step while the input changes too, the
+update is second-order accurate in the step (against scipy's ``solve_ivp`` at rtol
+1e-11, for the speed rising from 8 to 32 m/s in 0.3 s, the load +-40 % and a 1-8 Hz
+chirp of the slip angle: 1.7e-6 of the peak slip angle at 0.25 ms steps, 4.4e-7 at
+0.125 ms).
+
+What is not modelled: the carcass mass and damping, the low-speed damping MF-Tyre adds
+near standstill, the separate relaxation of the pneumatic trail and the turn-slip (spin)
+states of the contact-mass model; the aligning moment is the steady-state one at the
+lagged slips.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, broadcast_shape
+from .magic_formula import MagicFormula
+
+__all__ = ["TransientSlip", "transient_slip", "relax", "travelled", "TRANSIENT_OUTPUTS"]
+
+#: The fields of :class:`TransientSlip`: name -> (unit, meaning).
+TRANSIENT_OUTPUTS: dict[str, tuple[str, str]] = {
+    "t": ("s", "time"),
+    "distance": ("m", "distance rolled, the integral of |V_x| over time"),
+    "kappa": ("1", "slip ratio given"),
+    "alpha": ("rad", "slip angle given"),
+    "kappa_t": ("1", "transient (lagged) slip ratio kappa'"),
+    "alpha_t": ("rad", "transient (lagged) slip angle alpha'"),
+    "sigma_x": ("m", "longitudinal relaxation length"),
+    "sigma_y": ("m", "lateral relaxation length"),
+    "Fx": ("N", "longitudinal force at the lagged slips"),
+    "Fy": ("N", "lateral force at the lagged slips"),
+    "Mz": ("N m", "aligning moment at the lagged slips"),
+    "Fx_steady": ("N", "steady-state longitudinal force at the slips given"),
+    "Fy_steady": ("N", "steady-state lateral force at the slips given"),
+    "Mz_steady": ("N m", "steady-state aligning moment at the slips given"),
+}
+
+
+@dataclass(frozen=True)
+class TransientSlip:
+    """Time histories of the transient response (SI units, see :data:`TRANSIENT_OUTPUTS`).
+
+    Attributes
+    ----------
+    t, distance, kappa, alpha, kappa_t, alpha_t, sigma_x, sigma_y : numpy.ndarray
+        Time [s], distance rolled [m], the slips given, the lagged slips and the
+        relaxation lengths [m], one value per sample.
+    Fx, Fy, Mz : numpy.ndarray
+        Forces [N] and aligning moment [N m] at the lagged slips.
+    Fx_steady, Fy_steady, Mz_steady : numpy.ndarray
+        The steady-state values at the slips given (what the tyre tends to).
+    """
+
+    t: np.ndarray
+    distance: np.ndarray
+    kappa: np.ndarray
+    alpha: np.ndarray
+    kappa_t: np.ndarray
+    alpha_t: np.ndarray
+    sigma_x: np.ndarray
+    sigma_y: np.ndarray
+    Fx: np.ndarray
+    Fy: np.ndarray
+    Mz: np.ndarray
+    Fx_steady: np.ndarray
+    Fy_steady: np.ndarray
+    Mz_steady: np.ndarray
+
+    def as_dict(self) -> dict[str, np.ndarray]:
+        """The histories by name (the keys of :data:`TRANSIENT_OUTPUTS`).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+        """
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def _times(t: Any) -> np.ndarray:
+    """The sample times: one dimension, finite, at least two, never decreasing."""
+    t = np.asarray(t, dtype=float)
+    if t.ndim != 1 or t.size < 2:
+        raise InputError(f"t must be a one-dimensional array of at least two sample times "
+                         f"[s], got shape {t.shape}", option="t")
+    if not np.isfinite(t).all():
+        i = int(np.flatnonzero(~np.isfinite(t))[0])
+        raise InputError(f"t must be finite; t[{i}] = {t[i]}", option="t")
+    back = np.flatnonzero(np.diff(t) < 0)
+    if back.size:
+        i = int(back[0])
+        raise InputError(f"t must not decrease; t[{i + 1}] = {t[i + 1]:g} s follows "
+                         f"t[{i}] = {t[i]:g} s (equal times make a jump)", option="t")
+    return t
+
+
+def _histories(t: np.ndarray, named: dict[str, Any]) -> dict[str, np.ndarray]:
+    """Every input as one value per sample: scalars spread, arrays of the length of t."""
+    shape = broadcast_shape({"t": t, **{k: v for k, v in named.items() if v is not None}},
+                            subject="transient_slip")
+    if shape != t.shape:
+        raise InputError(f"transient_slip: the inputs must be scalars or arrays of the "
+                         f"length of t ({t.size}); they broadcast to {shape}")
+    out = {}
+    for name, value in named.items():
+        if value is None:
+            continue
+        x = np.broadcast_to(np.asarray(value, dtype=float), shape)
+        if not np.isfinite(x).all():
+            i = int(np.flatnonzero(~np.isfinite(x))[0])
+            raise InputError(f"{name} must be finite; {name}[{i}] = {x[i]}", option=name)
+        out[name] = x
+    return out
+
+
+def travelled(t: Any, vx: Any) -> np.ndarray:
+    """Distance rolled, the integral of |V_x| over time for V_x linear between samples.
+
+    Parameters
+    ----------
+    t : array-like
+        Sample times [s], never decreasing.
+    vx : array-like
+        Forward speed [m/s] at the samples.
+
+    Returns
+    -------
+    numpy.ndarray
+        Distance [m] from the first sample, exact for the piecewise-linear speed
+        (a step where the speed changes sign rolls (v0^2 + v1^2) h / (2 (|v0| + |v1|))).
+    """
+    t = np.asarray(t, dtype=float)
+    v0, v1 = np.asarray(vx, dtype=float)[:-1], np.asarray(vx, dtype=float)[1:]
+    h = np.diff(t)
+    same = v0 * v1 >= 0
+    denom = np.where(same, 1.0, np.abs(v0) + np.abs(v1))
+    step = np.where(same, 0.5 * (np.abs(v0) + np.abs(v1)), 0.5 * (v0**2 + v1**2) / denom) * h
+    return np.concatenate([[0.0], np.cumsum(step)])
+
+
+def relax(u: Any, lag: Any, y0: float | None = None) -> np.ndarray:
+    """The first-order lag ``dy/ds = (u - y) / sigma`` of an input linear between samples.
+
+    Parameters
+    ----------
+    u : array-like
+        The input at the samples.
+    lag : array-like
+        Per step between samples, the relaxation lengths rolled: the integral of
+        ``|V_x| / sigma`` over the step, >= 0 (0: no travel, the state holds; one value
+        fewer than ``u``).
+    y0 : float, optional
+        The state at the first sample (default: the input there, i.e. settled).
+
+    Returns
+    -------
+    numpy.ndarray
+        The lagged input y at the samples: exact for an input linear in the lag
+        variable over each step (in time at constant speed and relaxation length), and
+        for an input held constant over a step at any speed.
+    """
+    u = np.asarray(u, dtype=float)
+    x = np.asarray(lag, dtype=float)
+    decay = np.exp(-x)
+    # (1 - exp(-x)) / x, -> 1 as x -> 0 (no travel: the state holds)
+    gain = np.where(x > 1e-300, -np.expm1(-x) / np.where(x > 1e-300, x, 1.0), 1.0)
+    du = np.diff(u)
+    y = np.empty_like(u)
+    y[0] = u[0] if y0 is None else y0
+    for k in range(x.size):
+        if x[k] == 0:  # no travel: the state holds exactly
+            y[k + 1] = y[k]
+        else:
+            y[k + 1] = u[k + 1] + (y[k] - u[k]) * decay[k] - du[k] * gain[k]
+    return y
+
+
+def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = 0.0,
+                   alpha: Any = 0.0, gamma: Any = 0.0, pressure: Any = None,
+                   initial: tuple[float, float] | None = None) -> TransientSlip:
+    """Forces and aligning moment of a tyre whose slips relax over the relaxation lengths.
+
+    Parameters
+    ----------
+    mf : MagicFormula
+        The tyre, read with the structure its steady-state outputs need.
+    t : array-like
+        Sample times [s], never decreasing (two equal times make a jump of the inputs).
+    vx : float or array-like
+        Forward speed [m/s] per sample (the lag runs on |V_x|).
+    fz : float or array-like
+        Vertical load [N] per sample.
+    kappa, alpha, gamma : float or array-like
+        Slip ratio [-], slip angle [rad] and camber [rad] per sample.
+    pressure : float or array-like, optional
+        Inflation pressure [Pa] (default: the file's).
+    initial : (float, float), optional
+        The lagged slips (kappa', alpha') at the first sample; default: settled at the
+        slips given there.
+
+    Returns
+    -------
+    TransientSlip
+        The histories (see :data:`TRANSIENT_OUTPUTS`).
+    """
+    t = _times(t)
+    h = _histories(t, {"vx": vx, "fz": fz, "kappa": kappa, "alpha": alpha,
+                       "gamma": gamma, "pressure": pressure})
+    p = h.get("pressure")
+    sigma = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], pressure=p, vx=h["vx"])
+    sx, sy = sigma["sigmax"], sigma["sigmay"]
+    for name, s in (("sigmax", sx), ("sigmay", sy)):
+        if not (np.isfinite(s) & (s > 0)).all():
+            i = int(np.flatnonzero(~(np.isfinite(s) & (s > 0)))[0])
+            raise InputError(f"the relaxation length {name} = {s[i]:g} m at sample {i} is not "
+                             "positive: the transient lag needs one", file=mf.source)
+    s = travelled(t, h["vx"])
+    ds = np.diff(s)
+    k0, a0 = (None, None) if initial is None else (float(initial[0]), float(initial[1]))
+    kt = relax(h["kappa"], ds * 0.5 * (1 / sx[:-1] + 1 / sx[1:]), k0)
+    at = relax(h["alpha"], ds * 0.5 * (1 / sy[:-1] + 1 / sy[1:]), a0)
+    lagged = mf.steady_state(kt, at, h["fz"], h["gamma"], pressure=p, vx=h["vx"])
+    steady = mf.steady_state(h["kappa"], h["alpha"], h["fz"], h["gamma"], pressure=p,
+                             vx=h["vx"])
+    return TransientSlip(t=t, distance=s, kappa=np.array(h["kappa"]),
+                         alpha=np.array(h["alpha"]), kappa_t=kt, alpha_t=at, sigma_x=sx,
+                         sigma_y=sy, Fx=lagged["Fx"], Fy=lagged["Fy"], Mz=lagged["Mz"],
+                         Fx_steady=steady["Fx"], Fy_steady=steady["Fy"],
+                         Mz_steady=steady["Mz"])
