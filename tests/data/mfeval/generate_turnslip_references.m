@@ -184,13 +184,12 @@ function c = condition(i, block, p, pi0, version)
     end
 endfunction
 
-function [inputs, tags] = build(p, pi0, version, variant, R0)
+function [inputs, tags] = build(p, pi0, version, variant, R0, k)
     % Every sweep of the four blocks: inputs and [block sweep useMode] per row.
     has_ts = variant == 1 || ~strcmp(version, '52');
     kinds = {'alpha', 'kappa', 'phit'};
     inputs = [];
     tags = [];
-    k = 0;
     plan = {};  % {block, modes, number of sweeps, kinds}
     if has_ts
         plan(end + 1, :) = {1, [112 122 212 222], 12, kinds};
@@ -254,6 +253,7 @@ for n = 1:numel(names)
     variant_file = fullfile(outdir, ['MF' v '_turnslip_variant.tir']);
     write_variant(src, variant_file, v);
     table = [];
+    nsweeps = 0;  % sweeps numbered through both variants
     for variant = [0 1]
         if variant == 0
             params = read_with_crlf(src);
@@ -261,7 +261,8 @@ for n = 1:numel(names)
             params = read_with_crlf(variant_file);
         end
         pi0 = params.INFLPRES;
-        [inputs, tags] = build(params, pi0, v, variant, params.UNLOADED_RADIUS);
+        [inputs, tags] = build(params, pi0, v, variant, params.UNLOADED_RADIUS, nsweeps);
+        nsweeps = max(tags(:, 2));
         for s = unique(tags(:, 2))'
             at = tags(:, 2) == s;
             out = solver.fullSteadyState(params, inputs(at, :), tags(find(at, 1), 3));
