@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from frictionlaws.errors import InputError
@@ -151,6 +153,21 @@ def test_at_standstill_the_lagged_slips_hold() -> None:
     u = np.array([0.0, 1.0, 1.0, 0.5])
     y = relax(u, np.array([0.0, 0.0, 0.0]), y0=0.2)
     assert np.array_equal(y, [0.2, 0.2, 0.2, 0.2])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(0, 0.5), st.floats(-1, 1), st.floats(0, 1e3)),
+                min_size=1, max_size=40),
+       st.floats(-1, 1))
+def test_the_lag_stays_within_the_range_of_its_input(steps: list, y0: float) -> None:
+    # a first-order lag of a piecewise-linear input never leaves the range of the input
+    # and its start, whatever the steps (zero-length ones too) and rates (huge ones too)
+    lag = np.array([h * a for h, _, a in steps])
+    u = np.array([0.0] + [x for _, x, _ in steps])
+    y = relax(u, lag, y0)
+    lo, hi = min(u.min(), y0), max(u.max(), y0)
+    assert np.isfinite(y).all()
+    assert np.all(y >= lo - 1e-12) and np.all(y <= hi + 1e-12)
 
 
 def test_the_distance_is_the_integral_of_the_speed_magnitude() -> None:
