@@ -229,8 +229,8 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     """
     import numpy as np
 
-    from frictionlaws.errors import InputError
-    from frictionlaws.units import to_si
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.units import to_si
 
     try:
         to_si(1.0, unit, "F_N")
@@ -247,7 +247,7 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
 def _refuse_step_form(text: str, flag: str) -> None:
     """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
     number cannot be a count, flagged when it reads both ways."""
-    from frictionlaws.numbers import parse_number
+    from frictionlaws.base.numbers import parse_number
 
     parts = str(text or "").split(":")
     if len(parts) != 3:
@@ -269,7 +269,7 @@ def _refuse_step_form(text: str, flag: str) -> None:
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
-    from frictionlaws.units import parse_quantity
+    from frictionlaws.base.units import parse_quantity
 
     if text is None:
         return None
@@ -278,8 +278,8 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
-    from frictionlaws.errors import InputError
-    from frictionlaws.units import parse_quantity
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.units import parse_quantity
 
     if text is None:
         return None
@@ -316,7 +316,7 @@ def _warn(messages: list[str]) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     cmd = getattr(args, "tyre_command", None)
     if cmd == "cornering":
@@ -334,7 +334,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _angles(text: str) -> list[float]:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     try:
         return [float(a) for a in text.split(",") if a.strip()]
@@ -360,7 +360,7 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 def _run_cornering(args: argparse.Namespace) -> int:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.brush import BrushModel
 
     loads = parse_loads(args.loads, args.load_unit)
@@ -390,12 +390,12 @@ def _run_cornering(args: argparse.Namespace) -> int:
 def _run_thesis(args: argparse.Namespace) -> int:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.thesis import thesis_comparison
 
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     if not laws:
-        from frictionlaws.errors import InputError
+        from frictionlaws.base.errors import InputError
 
         raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
@@ -485,14 +485,14 @@ def _print_coefficients(mf: Any, as_json: bool) -> int:
 
 
 def _run_reduce(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.tyre.reduce import reduce_mf
 
     loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:
-        from frictionlaws.outputs import check_outputs
+        from frictionlaws.base.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
     mf = _mf_file(args)
@@ -506,7 +506,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(red.to_dict()))
     else:
@@ -517,7 +517,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
 
     if args.uncertainty != "sweeps":
@@ -532,7 +532,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         from frictionlaws.tyre._fit_mf_plot import check_figure_path
 
         check_figure_path(args.plot)
-    from frictionlaws.errors import FitError
+    from frictionlaws.base.errors import FitError
 
     from ._common import data_source, shown_source
 
@@ -548,7 +548,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.plot:
         res.plot(args.plot)
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(res.to_dict()))
         return 0

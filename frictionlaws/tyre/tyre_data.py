@@ -11,7 +11,7 @@ explicit unit (``deg`` or ``rad``).  Aliases (any case): ``FZ``/``load``,
 ``SR``/``SL``/``slip_ratio``,
 ``SA``/``slip_angle``, ``IA``/``camber``/``inclination``, ``P``/``p``.  The file is read
 by the one table reader (:func:`frictionlaws.io.read_table`) and converted with
-:func:`frictionlaws.units.to_si`.  Columns of other names are not used, and the notes
+:func:`frictionlaws.base.units.to_si`.  Columns of other names are not used, and the notes
 say which.  A pressure column with blank cells among values is refused (a blank would
 be taken as the nominal pressure).
 
@@ -35,13 +35,13 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS"]
 
 SIGN_CONVENTIONS = ("iso", "sae")
 
-#: Column -> (quantity kind for :func:`frictionlaws.units.to_si`, accepted names).
+#: Column -> (quantity kind for :func:`frictionlaws.base.units.to_si`, accepted names).
 COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
     "fz": ("F_N", ("fz", "load", "normal_load")),
     "kappa": ("s", ("kappa", "sr", "sl", "slip_ratio", "longitudinal_slip")),
@@ -184,8 +184,8 @@ def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str |
 
 
 def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
+    from ..base.units import parse_unit, to_si, unit_registry
     from ..io import _to_float
-    from ..units import parse_unit, to_si, unit_registry
 
     kind = COLUMNS[col][0]
     header = table.headers[j]
