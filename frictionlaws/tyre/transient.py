@@ -50,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, broadcast_shape
+from ..base.errors import InputError, broadcast_shape
 from .magic_formula import MagicFormula
 
 __all__ = ["TransientSlip", "transient_slip", "relax", "travelled", "TRANSIENT_OUTPUTS"]

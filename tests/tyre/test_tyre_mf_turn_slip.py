@@ -11,7 +11,7 @@ import warnings
 import numpy as np
 import pytest
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.tyre import MagicFormula
 
 FZ = 5000.0

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.tyre import MagicFormula, TransientSlip, transient_slip
 from frictionlaws.tyre.transient import TRANSIENT_OUTPUTS, relax, travelled
 
