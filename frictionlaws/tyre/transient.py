@@ -51,7 +51,7 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError, broadcast_shape
-from .magic_formula import MagicFormula
+from .mf.model import MagicFormula
 
 __all__ = ["TransientSlip", "transient_slip", "relax", "travelled", "TRANSIENT_OUTPUTS"]
 

@@ -36,6 +36,8 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import Argument, InputError
+from ..base.units import parse_unit, to_si, unit_registry
+from ..io import _split_header, _to_float, read_table
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS"]
 
@@ -162,8 +164,6 @@ def _check_blank_pressures(pressure: np.ndarray, table: Any, j: int) -> None:
 
 
 def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
-    from ..io import _split_header
-
     found: dict[str, tuple[int, str | None]] = {}
     for j, h in enumerate(headers):
         name, unit = _split_header(h)
@@ -184,9 +184,6 @@ def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str |
 
 
 def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
-    from ..base.units import parse_unit, to_si, unit_registry
-    from ..io import _to_float
-
     kind = COLUMNS[col][0]
     header = table.headers[j]
     if kind == "angle":
@@ -232,8 +229,6 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     InputError
         Naming the file, column and row of what cannot be used.
     """
-    from ..io import read_table
-
     if sign_convention not in SIGN_CONVENTIONS:
         raise InputError(f"sign convention must be one of {', '.join(SIGN_CONVENTIONS)}, "
                          f"got {sign_convention!r}")

@@ -34,7 +34,7 @@ import pytest
 
 from frictionlaws.tyre import MagicFormula
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "mfeval"
+DATA = Path(__file__).resolve().parent / "data" / "mfeval"
 VERSIONS = ("52", "61", "62")
 #: The model outputs compared (MFeval's column name -> the output here).
 OUTPUTS = ("Fx", "Fy", "Mx", "My", "Mz", "Re", "rho", "2a", "t", "mux", "muy", "omega",
