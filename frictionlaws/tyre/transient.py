@@ -37,10 +37,16 @@ update is second-order accurate in the step (against scipy's ``solve_ivp`` at rt
 chirp of the slip angle: 1.7e-6 of the peak slip angle at 0.25 ms steps, 4.4e-7 at
 0.125 ms).
 
+A wheel speed ``omega`` may drive the slip ratio instead: then ``sigma_kappa d(kappa')/dt
++ |V_x| kappa' = R_e Omega - V_x``, the slip speed (:func:`relax_source`), which holds at
+standstill too, where kappa' integrates the slip speed over sigma_kappa (a carcass winding
+up).  Turn slip ``phit`` and the options of the steady state pass to it.
+
 What is not modelled: the carcass mass and damping, the low-speed damping MF-Tyre adds
-near standstill, the separate relaxation of the pneumatic trail and the turn-slip (spin)
-states of the contact-mass model; the aligning moment is the steady-state one at the
-lagged slips.
+near standstill (at ``|V_x| <= VXLOW`` the forces fade with the steady state's low-speed
+reductions of the lagged slips), the separate relaxation of the pneumatic trail and the
+turn-slip (spin) states of the contact-mass model; the aligning moment is the steady-state
+one at the lagged slips.
 """
 
 from __future__ import annotations
@@ -53,13 +59,14 @@ import numpy as np
 from ..base.errors import InputError, broadcast_shape
 from .mf.model import MagicFormula
 
-__all__ = ["TransientSlip", "transient_slip", "relax", "travelled", "TRANSIENT_OUTPUTS"]
+__all__ = ["TransientSlip", "transient_slip", "relax", "relax_source", "travelled",
+           "TRANSIENT_OUTPUTS"]
 
 #: The fields of :class:`TransientSlip`: name -> (unit, meaning).
 TRANSIENT_OUTPUTS: dict[str, tuple[str, str]] = {
     "t": ("s", "time"),
     "distance": ("m", "distance rolled, the integral of |V_x| over time"),
-    "kappa": ("1", "slip ratio given"),
+    "kappa": ("1", "slip ratio given (or of the wheel speed given)"),
     "alpha": ("rad", "slip angle given"),
     "kappa_t": ("1", "transient (lagged) slip ratio kappa'"),
     "alpha_t": ("rad", "transient (lagged) slip angle alpha'"),
@@ -212,8 +219,60 @@ def relax(u: Any, lag: Any, y0: float | None = None) -> np.ndarray:
     return y
 
 
-def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = 0.0,
-                   alpha: Any = 0.0, gamma: Any = 0.0, pressure: Any = None,
+def _gains(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(1 - exp(-x)) / x and (x - 1 + exp(-x)) / x^2, -> 1 and 1/2 as x -> 0."""
+    small = x < 1e-2
+    safe = np.where(small, 1.0, x)
+    g1 = np.where(small, 1 - x / 2 + x**2 / 6 - x**3 / 24, -np.expm1(-safe) / safe)
+    g2 = np.where(small, 0.5 - x / 6 + x**2 / 24 - x**3 / 120,
+                  (safe + np.expm1(-safe)) / safe**2)
+    return g1, g2
+
+
+def relax_source(w: Any, lag: Any, gain: Any, y0: float) -> np.ndarray:
+    """The lag ``sigma dy/dt + |V_x| y = w`` of a source ``w`` linear between samples.
+
+    The form of the slip ratio driven by the wheel speed (``w = R_e Omega - V_x``, the
+    slip speed), which holds at standstill too: there the state integrates ``w / sigma``.
+
+    Parameters
+    ----------
+    w : array-like
+        The source at the samples [m/s].
+    lag : array-like
+        Per step, the relaxation lengths rolled (the integral of ``|V_x| / sigma``).
+    gain : array-like
+        Per step, the integral of ``1 / sigma`` over time [s/m].
+    y0 : float
+        The state at the first sample.
+
+    Returns
+    -------
+    numpy.ndarray
+        The state at the samples: exact for a source linear over each step at constant
+        speed and relaxation length (and the same as :func:`relax` of ``w / |V_x|``).
+    """
+    w = np.asarray(w, dtype=float)
+    x = np.asarray(lag, dtype=float)
+    c = np.asarray(gain, dtype=float)
+    decay = np.exp(-x)
+    g1, g2 = _gains(x)
+    dw = np.diff(w)
+    y = np.empty_like(w)
+    y[0] = y0
+    for k in range(x.size):
+        y[k + 1] = y[k] * decay[k] + c[k] * (w[k] * g1[k] + dw[k] * g2[k])
+    return y
+
+
+def _step_mean(x: np.ndarray) -> np.ndarray:
+    """The mean of the values at the two ends of each step."""
+    return 0.5 * (x[:-1] + x[1:])
+
+
+def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = None,
+                   alpha: Any = 0.0, gamma: Any = 0.0, phit: Any = 0.0, omega: Any = None,
+                   pressure: Any = None, turn_slip: bool = False, limit_checks: bool = True,
                    initial: tuple[float, float] | None = None) -> TransientSlip:
     """Forces and aligning moment of a tyre whose slips relax over the relaxation lengths.
 
@@ -227,40 +286,68 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = 0
         Forward speed [m/s] per sample (the lag runs on |V_x|).
     fz : float or array-like
         Vertical load [N] per sample.
-    kappa, alpha, gamma : float or array-like
-        Slip ratio [-], slip angle [rad] and camber [rad] per sample.
+    kappa : float or array-like, optional
+        Slip ratio [-] per sample (default 0); or give ``omega``.
+    alpha, gamma : float or array-like
+        Slip angle [rad] and camber [rad] per sample.
+    phit : float or array-like
+        Turn slip [1/m] per sample, evaluated in the steady state (with ``turn_slip``).
+    omega : float or array-like, optional
+        Wheel angular speed [rad/s] per sample instead of ``kappa``: the slip ratio then
+        relaxes towards the slip speed, ``sigma_kappa d(kappa')/dt + |V_x| kappa' = R_e
+        Omega - V_x`` (R_e at that wheel speed), which holds at standstill too.
     pressure : float or array-like, optional
         Inflation pressure [Pa] (default: the file's).
+    turn_slip, limit_checks : bool
+        The options of :meth:`MagicFormula.steady_state
+        <frictionlaws.tyre.MagicFormula.steady_state>` (at ``|V_x| <= VXLOW`` the limit
+        checks' low-speed reductions apply to the lagged slips as to steady ones).
     initial : (float, float), optional
         The lagged slips (kappa', alpha') at the first sample; default: settled at the
-        slips given there.
+        slips given there (with ``omega`` at a standing wheel: 0).
 
     Returns
     -------
     TransientSlip
-        The histories (see :data:`TRANSIENT_OUTPUTS`).
+        The histories (see :data:`TRANSIENT_OUTPUTS`); with ``omega``, ``kappa`` is the
+        slip ratio of the wheel speed (NaN at a standing wheel, where the steady-state
+        values are NaN too).
     """
+    if kappa is not None and omega is not None:
+        raise InputError("transient_slip: give the slip ratio kappa or the wheel speed "
+                         "omega, not both")
     t = _times(t)
-    h = _histories(t, {"vx": vx, "fz": fz, "kappa": kappa, "alpha": alpha,
-                       "gamma": gamma, "pressure": pressure})
-    p = h.get("pressure")
-    sigma = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], pressure=p, vx=h["vx"])
-    sx, sy = sigma["sigmax"], sigma["sigmay"]
+    h = _histories(t, {"vx": vx, "fz": fz, "kappa": 0.0 if kappa is None else kappa,
+                       "alpha": alpha, "gamma": gamma, "phit": phit, "omega": omega,
+                       "pressure": pressure})
+    opts = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
+            "turn_slip": turn_slip, "limit_checks": limit_checks}
+    rest = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], omega=h.get("omega"), **opts)
+    sx, sy = rest["sigmax"], rest["sigmay"]
     for name, s in (("sigmax", sx), ("sigmay", sy)):
         if not (np.isfinite(s) & (s > 0)).all():
             i = int(np.flatnonzero(~(np.isfinite(s) & (s > 0)))[0])
             raise InputError(f"the relaxation length {name} = {s[i]:g} m at sample {i} is not "
                              "positive: the transient lag needs one", file=mf.source)
-    s = travelled(t, h["vx"])
-    ds = np.diff(s)
+    dist = travelled(t, h["vx"])
+    lag_x = np.diff(dist) * _step_mean(1 / sx)
     k0, a0 = (None, None) if initial is None else (float(initial[0]), float(initial[1]))
-    kt = relax(h["kappa"], ds * 0.5 * (1 / sx[:-1] + 1 / sx[1:]), k0)
-    at = relax(h["alpha"], ds * 0.5 * (1 / sy[:-1] + 1 / sy[1:]), a0)
-    lagged = mf.steady_state(kt, at, h["fz"], h["gamma"], pressure=p, vx=h["vx"])
-    steady = mf.steady_state(h["kappa"], h["alpha"], h["fz"], h["gamma"], pressure=p,
-                             vx=h["vx"])
-    return TransientSlip(t=t, distance=s, kappa=np.array(h["kappa"]),
-                         alpha=np.array(h["alpha"]), kappa_t=kt, alpha_t=at, sigma_x=sx,
-                         sigma_y=sy, Fx=lagged["Fx"], Fy=lagged["Fy"], Mz=lagged["Mz"],
-                         Fx_steady=steady["Fx"], Fy_steady=steady["Fy"],
-                         Mz_steady=steady["Mz"])
+    if omega is None:
+        slip = np.array(h["kappa"])
+        kt = relax(slip, lag_x, k0)
+    else:
+        speed, slip_speed = np.abs(h["vx"]), rest["Re"] * h["omega"] - h["vx"]
+        moving = speed > 0
+        slip = np.where(moving, slip_speed / np.where(moving, speed, 1.0), np.nan)
+        start = k0 if k0 is not None else (slip[0] if moving[0] else 0.0)
+        kt = relax_source(slip_speed, lag_x, np.diff(t) * _step_mean(1 / sx), start)
+    at = relax(h["alpha"], np.diff(dist) * _step_mean(1 / sy), a0)
+    lagged = mf.steady_state(kt, at, h["fz"], h["gamma"], **opts)
+    known = np.isfinite(slip)
+    steady = mf.steady_state(np.where(known, slip, 0.0), h["alpha"], h["fz"], h["gamma"],
+                             **opts)
+    return TransientSlip(t=t, distance=dist, kappa=slip, alpha=np.array(h["alpha"]),
+                         kappa_t=kt, alpha_t=at, sigma_x=sx, sigma_y=sy, Fx=lagged["Fx"],
+                         Fy=lagged["Fy"], Mz=lagged["Mz"],
+                         **{f"{n}_steady": np.where(known, steady[n], np.nan)
+                            for n in ("Fx", "Fy", "Mz")})

@@ -49,9 +49,10 @@ def test_a_standing_wheel_carries_no_slip_force(mf61: MagicFormula) -> None:
                  np.radians(1.0), vx=0.0)
     for name in ("Fx", "Fy", "My"):
         np.testing.assert_array_equal(out[name], 0.0, err_msg=name)
-    # without the limit checks nothing is reduced: the slips act as given
+    # without the limit checks nothing is reduced: the slip ratio acts as given (the
+    # lateral slip alpha* = tan(alpha) sgn(V_x) is 0 at a standing wheel, as in MFeval)
     raw = _quiet(mf61, 0.1, np.radians(4.0), FZ, vx=0.0, limit_checks=False)
-    assert abs(raw["Fx"]) > 1000.0 and abs(raw["Fy"]) > 1000.0
+    assert abs(raw["Fx"]) > 1000.0
 
 
 def test_running_backwards_turns_the_longitudinal_force_and_rolling_moment(
@@ -104,7 +105,8 @@ def test_without_limit_checks_the_curvature_factors_are_not_capped() -> None:
     assert np.abs(capped - free).max() > 0.01 * np.abs(capped).max()
     lon = mf.longitudinal(FZ)
     x = lon.B * (kappa + lon.S_H)
-    e = 1.6 * ref.coefficients.get("LEX", 1.0)
+    e = lon.E_a - lon.E_b * np.sign(x)
+    assert np.all(e > 1)
     expected = lon.D * np.sin(lon.C * np.arctan(x - e * (x - np.arctan(x)))) + lon.S_V
     np.testing.assert_allclose(free, expected, rtol=1e-10)
 

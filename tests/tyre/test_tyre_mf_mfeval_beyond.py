@@ -14,7 +14,12 @@ MFeval's useMode maps to the options here digit by digit: hundreds 1 (limit chec
 supplied wheel speed (MFeval's eighth input) is ``omega=``.
 
 Compared: the 23 model outputs (MFeval's outputs 1, 2, 4-6, 13-30); its outputs 3 and
-7-12 echo its inputs after its own clamps.  Left out, and counted: rows where MFeval gives
+7-12 echo its inputs after its own clamps.  Twice: with MFeval's wheel speed given (so that
+both evaluate the same spin; every equation), and as a user calls it, the wheel speed
+estimated from the slip ratio: MFeval ends that estimate's iteration when the first row
+of a call has converged, so its omega of MF 6.x files (whose free radius grows with the
+speed, Q_V1) lies up to 5e-5 of the peak from the fixed point this evaluator converges
+to, and the turn-slip outputs, whose camber spin takes omega, inherit up to 2e-6.  Left out, and counted: rows where MFeval gives
 no number (NaN: its turn-slip residual torque at phit = 0 exactly, 0/0 in its
 zeta_7; its turn-slip side force at a standing wheel, vx = 0 exactly, with limit checks),
 and, as in ``test_tyre_mf_mfeval_grid.py``, the loaded radius, deflection and vertical
@@ -68,9 +73,11 @@ def _options(mode: int) -> dict:
             "turn_slip": units == 2, "slip_angle": "alpha" if tens == 1 else "tan_alpha"}
 
 
-def _evaluate(v: str, d: pd.DataFrame) -> dict[str, np.ndarray]:
+def _evaluate(v: str, d: pd.DataFrame, mfeval_omega: bool = False
+              ) -> dict[str, np.ndarray]:
     """Every output per reference row: one evaluation per group of sweeps of equal length
-    (a 2-D array, one sweep per row, so that instKya runs along each sweep)."""
+    (a 2-D array, one sweep per row, so that instKya runs along each sweep); the wheel
+    speed as MFeval took it on every row (``mfeval_omega``) or where it was given."""
     out = {name: np.full(len(d), np.nan) for name in OUTPUTS}
     sweeps = d.groupby("sweep").indices
     keys = d.groupby("sweep")[["variant", "block", "useMode"]].first()
@@ -84,6 +91,8 @@ def _evaluate(v: str, d: pd.DataFrame) -> dict[str, np.ndarray]:
         mf = _tyre(v, variant, opt.pop("slip_angle"))
         col = {c.split(" [")[0]: d[c].to_numpy()[idx] for c in d.columns[4:12]}
         omega = col["omega_in"] if block == 3 else None
+        if mfeval_omega:
+            omega = d["omega [rad/s]"].to_numpy()[idx]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # beyond the limits, low speed: warned
             res = mf.steady_state(col["kappa"], col["alpha"], col["Fz"], col["gamma"],
@@ -97,9 +106,10 @@ def _evaluate(v: str, d: pd.DataFrame) -> dict[str, np.ndarray]:
 
 
 @cache
-def _evaluated(v: str) -> tuple[pd.DataFrame, dict[str, np.ndarray]]:
+def _evaluated(v: str, mfeval_omega: bool = False
+               ) -> tuple[pd.DataFrame, dict[str, np.ndarray]]:
     d = _reference(v)
-    return d, _evaluate(v, d)
+    return d, _evaluate(v, d, mfeval_omega)
 
 
 def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
@@ -115,13 +125,14 @@ def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
             return np.zeros(len(d), bool)
         r0 = np.where(d["variant"] == 0, _tyre(v, 0, "alpha").structure["UNLOADED_RADIUS"],
                       _tyre(v, 1, "alpha").structure["UNLOADED_RADIUS"])
-        rows &= (d["rho [m]"].to_numpy() > 0) & (d["Rl [m]"].to_numpy() < r0)
+        rl = d["Rl [m]"].to_numpy()
+        rows &= (d["rho [m]"].to_numpy() > 0) & (rl > 0) & (rl < r0)
     return rows
 
 
-def worst(v: str, name: str) -> dict[tuple[int, int], float]:
+def worst(v: str, name: str, mfeval_omega: bool = False) -> dict[tuple[int, int], float]:
     """Worst disagreement per (variant, useMode): a share of the peak, or metres."""
-    d, ours = _evaluated(v)
+    d, ours = _evaluated(v, mfeval_omega)
     rows = _compared(v, d, name)
     ref = d[_column(d, name)].to_numpy()
     out = {}
@@ -141,10 +152,43 @@ def worst(v: str, name: str) -> dict[tuple[int, int], float]:
 @pytest.mark.slow
 @pytest.mark.parametrize("v", VERSIONS)
 @pytest.mark.parametrize("name", OUTPUTS)
-def test_every_output_matches_mfeval_past_steady_rolling(v: str, name: str) -> None:
-    bad = {k: e for k, e in worst(v, name).items()
+def test_every_output_matches_mfeval_at_its_wheel_speed(v: str, name: str) -> None:
+    bad = {k: e for k, e in worst(v, name, mfeval_omega=True).items()
            if e > LENGTH_M.get(name, SHARE_OF.get(name, SHARE))}
     assert not bad, f"MF {v} {name}: worst per (variant, useMode): {bad}"
+
+
+#: As a user calls it (the wheel speed estimated): MFeval's early end of its R_e
+#: iteration (the module's text) in omega, and through the camber spin in turn slip.
+ESTIMATED = {"omega": 1e-4}
+ESTIMATED_TURN_SLIP = 2e-6
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("v", VERSIONS)
+@pytest.mark.parametrize("name", OUTPUTS)
+def test_every_output_matches_mfeval_as_called(v: str, name: str) -> None:
+    limit = LENGTH_M.get(name, SHARE_OF.get(name, ESTIMATED.get(name, SHARE)))
+    bad = {k: e for k, e in worst(v, name).items()
+           if e > (max(limit, ESTIMATED_TURN_SLIP) if k[1] % 10 == 2 else limit)}
+    assert not bad, f"MF {v} {name}: worst per (variant, useMode): {bad}"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("v", ["61", "62"])
+def test_the_wheel_speed_gap_is_mfevals_unfinished_iteration(v: str) -> None:
+    # omega R_e(omega) = (1 + kappa) V_x at the fixed point; MFeval's R_e is taken one step
+    # on from its omega, so its residual shows how far its iteration was from the end
+    d, ours = _evaluated(v)
+    kappa, vx = d["kappa [-]"].to_numpy(), d["Vx [m/s]"].to_numpy()
+    free = (d["block"].to_numpy() != 3) & (np.abs(vx) > 1) & (kappa > -0.9)
+    w_ref, re_ref = d["omega [rad/s]"].to_numpy()[free], d["Re [m]"].to_numpy()[free]
+    target = (1 + kappa[free]) * vx[free]
+    theirs = np.abs(w_ref * re_ref - target) / np.abs(target)
+    mine = np.abs(ours["omega"][free] * ours["Re"][free] - target) / np.abs(target)
+    assert mine.max() < 1e-12 < 1e-7 < theirs.max()
+    gap = np.abs(ours["omega"][free] - w_ref) / np.abs(w_ref)
+    assert gap.max() <= 2 * theirs.max()
 
 
 @pytest.mark.slow
@@ -162,7 +206,7 @@ def test_the_references_cover_the_stated_inputs() -> None:
         assert ts["phit [1/m]"].min() == -2 and ts["phit [1/m]"].max() == 2
         assert set(np.unique(ts["useMode"])) == {112, 122, 212, 222}
         speeds = d["Vx [m/s]"]
-        assert speeds.min() == -20 and (speeds == 0).any() and (speeds == 1).any()  # VXLOW
+        assert (speeds == -20).any() and (speeds == 0).any() and (speeds == 1).any()  # VXLOW
         assert ((speeds > 0) & (speeds < 1)).any() and ((speeds < 0) & (speeds > -1)).any()
         assert (d["omega_in [rad/s]"] != 0).sum() > 100
         assert {211, 221} <= set(np.unique(d["useMode"]))
@@ -175,7 +219,9 @@ def test_the_references_cover_the_stated_inputs() -> None:
 def test_the_compared_rows_are_most_rows() -> None:
     for v in VERSIONS:
         d = _reference(v)
-        for name in ("Fx", "Fy", "Mz", "instKya"):
+        for name in ("Fx", "Fy", "Mz"):
             assert _compared(v, d, name).mean() > 0.8, name
+        # instKya: along the sweeps of slip angle (elsewhere the angle does not change)
+        assert _compared(v, d, "instKya").sum() > 300
         if v == "62":
             assert _compared(v, d, "Rl").sum() > 800

@@ -64,15 +64,17 @@ def test_turn_slip_reduces_the_peak_side_force(mf61: MagicFormula) -> None:
 @pytest.mark.parametrize("gamma_deg", [0.0, 3.0])
 def test_the_residual_torque_is_continuous_at_zero_spin(mf61: MagicFormula,
                                                          gamma_deg: float) -> None:
-    # MFeval 4.0 gives NaN at phit = 0 exactly (0/0 in its zeta_7); here the limit
+    # MFeval 4.0 gives NaN at phit = 0 exactly (0/0 in its zeta_7); here the limit.  The
+    # spin moment rises steeply from 0 (about 1.7e3 N m per 1/m here): 1e-9 1/m away the
+    # outputs differ by less than 1e-5
     kappa, alpha = SLIPS
     g = np.radians(gamma_deg)
     at0 = mf61.steady_state(kappa, alpha, FZ, g, phit=0.0, turn_slip=True)
     for name in ("Mz", "Mzr", "Fy", "Fx"):
         assert np.isfinite(at0[name]).all(), name
-        for p in (-1e-7, 1e-7):
+        for p in (-1e-9, 1e-9):
             near = mf61.steady_state(kappa, alpha, FZ, g, phit=p, turn_slip=True)[name]
-            np.testing.assert_allclose(near, at0[name], rtol=0, atol=1e-4, err_msg=name)
+            np.testing.assert_allclose(near, at0[name], rtol=0, atol=1e-5, err_msg=name)
 
 
 def test_camber_acts_as_spin_in_the_turn_slip_model(mf61: MagicFormula) -> None:

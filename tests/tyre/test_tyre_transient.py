@@ -10,7 +10,7 @@ from scipy.integrate import solve_ivp
 
 from frictionlaws.base.errors import InputError
 from frictionlaws.tyre import MagicFormula, TransientSlip, transient_slip
-from frictionlaws.tyre.transient import TRANSIENT_OUTPUTS, relax, travelled
+from frictionlaws.tyre.transient import TRANSIENT_OUTPUTS, relax, relax_source, travelled
 
 FZ = 4000.0
 VX = 20.0
@@ -175,6 +175,52 @@ def test_the_distance_is_the_integral_of_the_speed_magnitude() -> None:
     vx = np.array([2.0, -2.0, 4.0, 4.0, 4.0])
     s = travelled(t, vx)
     assert s == pytest.approx([0.0, 1.0, 1.0 + 20 / 12, 1.0 + 20 / 12, 5.0 + 20 / 12])
+
+
+def test_a_wheel_speed_history_relaxes_the_slip_ratio_as_its_slip_speed(
+        mf: MagicFormula) -> None:
+    # sigma d(kappa')/dt + |V_x| kappa' = R_e Omega - V_x: the same lag as of the slip
+    # ratio (R_e Omega - V_x) / |V_x| at a speed that does not stop
+    t = np.linspace(0.0, 0.5, 501)
+    free = VX / 0.3  # about free rolling [rad/s]
+    omega = free * (1 - 0.08 * np.sin(2 * np.pi * 3 * t) ** 2)
+    r = transient_slip(mf, t, VX, FZ, omega=omega)
+    re = mf.steady_state(0.0, 0.0, FZ, vx=VX, omega=omega)["Re"]
+    slip = (re * omega - VX) / VX
+    np.testing.assert_allclose(r.kappa, slip, rtol=1e-12)
+    lag = np.diff(r.distance) / r.sigma_x[0]
+    np.testing.assert_allclose(r.kappa_t, relax(slip, lag), rtol=0, atol=1e-14)
+    steady = mf.steady_state(slip, 0.0, FZ, vx=VX)["Fx"]
+    np.testing.assert_allclose(r.Fx_steady, steady, rtol=1e-12)
+
+
+def test_at_standstill_a_spinning_wheel_winds_up_its_slip() -> None:
+    # V_x = 0: kappa' integrates the slip speed R_e Omega / sigma
+    w = np.array([0.5, 0.5, 0.5])
+    y = relax_source(w, np.zeros(2), np.array([0.1, 0.1]), 0.0)
+    np.testing.assert_allclose(y, [0.0, 0.05, 0.1], rtol=1e-15)
+
+
+def test_running_backwards_turns_the_longitudinal_force(mf: MagicFormula) -> None:
+    t = np.linspace(0.0, 0.2, 21)
+    kappa = np.where(np.arange(t.size) >= 1, -0.05, 0.0)
+    fwd = transient_slip(mf, t, VX, FZ, kappa=kappa)
+    back = transient_slip(mf, t, -VX, FZ, kappa=kappa)
+    np.testing.assert_allclose(back.kappa_t, fwd.kappa_t, rtol=1e-15)
+    np.testing.assert_allclose(back.Fx, -fwd.Fx, rtol=1e-12)
+
+
+def test_turn_slip_histories_reach_the_steady_state(mf: MagicFormula) -> None:
+    t = np.linspace(0.0, 1.0, 11)
+    r = transient_slip(mf, t, VX, FZ, alpha=np.radians(2.0), phit=0.3, turn_slip=True)
+    steady = mf.steady_state(0.0, np.radians(2.0), FZ, vx=VX, phit=0.3, turn_slip=True)
+    np.testing.assert_array_equal(r.Fy, steady["Fy"])
+    assert r.sigma_y[0] == pytest.approx(steady["sigmay"])  # zeta_3 in K_y: sigma_y too
+
+
+def test_slip_ratio_and_wheel_speed_together_are_refused(mf: MagicFormula) -> None:
+    with pytest.raises(InputError, match="kappa or the wheel speed omega, not both"):
+        transient_slip(mf, [0.0, 1.0], VX, FZ, kappa=0.01, omega=60.0)
 
 
 def test_the_result_names_its_histories_with_units(mf: MagicFormula) -> None:

@@ -613,12 +613,14 @@ class MagicFormula(MFParameters):
         return float(K) if np.ndim(K) == 0 else K
 
     def steady_state(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-                     pressure: Any = None, vx: Any = None, saturate: bool = False
-                     ) -> dict[str, Any]:
+                     pressure: Any = None, vx: Any = None, saturate: bool = False, *,
+                     phit: Any = 0.0, omega: Any = None, turn_slip: bool = False,
+                     limit_checks: bool = True) -> dict[str, Any]:
         """Every steady-state output per row: forces, moments, radii, stiffnesses.
 
         See :func:`frictionlaws.tyre.mf.outputs.steady_state` (the outputs, their units
-        and equations, the camber convention of the moments).
+        and equations, the camber convention of the moments) and
+        :mod:`frictionlaws.tyre.mf.turn_slip` (turn slip).
 
         Parameters
         ----------
@@ -627,9 +629,17 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
         vx : float or array-like, optional
-            Forward speed [m/s] (default: the file's LONGVL).
+            Forward speed [m/s] (default: the file's LONGVL; negative: backwards).
         saturate : bool
             Clamp the inputs at the file's limits as MFeval does (default False).
+        phit : float or array-like
+            Turn slip, the path curvature [1/m] (default 0; with ``turn_slip``).
+        omega : float or array-like, optional
+            Wheel angular speed [rad/s] (default: from the slip ratio).
+        turn_slip : bool
+            MF-Tyre's turn-slip model (MFeval's useModes x2; default False).
+        limit_checks : bool
+            MFeval's limit checks (default True); False: its useModes 2xx.
 
         Returns
         -------
@@ -637,10 +647,11 @@ class MagicFormula(MFParameters):
             ``Fx``, ``Fy``, ``Mx``, ``My``, ``Mz``, ``Mz0``, ``t``, ``Mzr``, ``Re``, ``Rl``...
         """
         inputs = {"kappa": kappa, "alpha": alpha, "fz": fz, "gamma": gamma,
-                  "pressure": pressure, "vx": vx}
+                  "pressure": pressure, "vx": vx, "phit": phit, "omega": omega}
         if any(map(is_labelled, inputs.values())):
-            return labelled_steady_state(self, inputs, saturate)
-        return steady_state(self, kappa, alpha, fz, gamma, pressure, vx, saturate)
+            return labelled_steady_state(self, inputs, saturate, turn_slip, limit_checks)
+        return steady_state(self, kappa, alpha, fz, gamma, pressure, vx, saturate, phit=phit,
+                            omega=omega, turn_slip=turn_slip, limit_checks=limit_checks)
 
     def mz(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
            pressure: Any = None) -> Any:
