@@ -120,6 +120,8 @@ def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
         # the packaged MF 5.2 file has no carcass stiffness (MFeval takes its reader's
         # built-in 300 and 100 kN/m, of no particular tyre); its variant has one
         rows &= d["variant"].to_numpy() == 1
+    if name == "instKya":  # a slope along the sweeps of the slip angle alone
+        rows &= _angle_sweeps(d)
     if name in ("Rl", "rho", "Cz"):
         if v == "52":
             return np.zeros(len(d), bool)
@@ -128,6 +130,19 @@ def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
         rl = d["Rl [m]"].to_numpy()
         rows &= (d["rho [m]"].to_numpy() > 0) & (rl > 0) & (rl < r0)
     return rows
+
+
+def _angle_sweeps(d: pd.DataFrame) -> np.ndarray:
+    """Rows whose next row of the sweep (the last row: the one before) differs in the slip
+    angle only: where instKya is a slope of F_y against the angle (MFeval takes the
+    difference along its rows whatever changes)."""
+    others = d[["sweep", "kappa [-]", "Fz [N]", "gamma [rad]", "phit [1/m]", "Vx [m/s]",
+                "P [Pa]", "omega_in [rad/s]"]].to_numpy()
+    same = (np.diff(others, axis=0) == 0).all(axis=1)
+    nxt = np.append(same, False)
+    prev = np.insert(same, 0, False)
+    last = np.append(d["sweep"].to_numpy()[1:] != d["sweep"].to_numpy()[:-1], True)
+    return np.where(last, prev, nxt)
 
 
 def worst(v: str, name: str, mfeval_omega: bool = False) -> dict[tuple[int, int], float]:

@@ -489,9 +489,6 @@ _ROLLING = _group("ROLLING_COEFFICIENTS", ALL, "", 0.0, (
 ))
 
 _TS = "turn slip: "
-#: A turn-slip shape factor the model divides by: positive, no default (turn slip is
-#: refused for a file without it).
-_TS_SHAPE = {"bounds": POSITIVE, "open_low": True, "default": None}
 _TURNSLIP = _group("TURNSLIP_COEFFICIENTS", ALL, "", 0.0, (
     ("PDXP1", _TS + "reduction of the F_x peak with spin (zeta_1)"),
     ("PDXP2", _TS + "change of that reduction with load"),
@@ -501,7 +498,8 @@ _TURNSLIP = _group("TURNSLIP_COEFFICIENTS", ALL, "", 0.0, (
     ("PDYP2", _TS + "change of that reduction with load"),
     ("PDYP3", _TS + "change of that reduction with slip angle"),
     ("PDYP4", _TS + "shape of that reduction against spin"),
-    ("PHYP1", _TS + "shape C_Hyp of the spin-induced shift of F_y", _TS_SHAPE),
+    ("PHYP1", _TS + "shape C_Hyp of the spin-induced shift of F_y (turn slip needs it "
+              "not 0)"),
     ("PHYP2", _TS + "amplitude of that shift at the nominal load"),
     ("PHYP3", _TS + "change of that amplitude with load"),
     ("PHYP4", _TS + "curvature E_Hyp of that shift (<= 1 with the limit checks)"),
@@ -511,7 +509,8 @@ _TURNSLIP = _group("TURNSLIP_COEFFICIENTS", ALL, "", 0.0, (
     ("QCRP1", _TS + "spin moment at large spin M_zp,inf / (mu_y R0 F_z)"),
     ("QCRP2", _TS + "growth of the spin moment at 90 deg slip with spin"),
     ("QBRP1", _TS + "reduction of the residual torque's slope with spin (zeta_6)"),
-    ("QDRP1", _TS + "shape C_Drp of the spin moment (the parking moment)", _TS_SHAPE),
+    ("QDRP1", _TS + "shape C_Drp of the spin moment, the parking moment (turn slip "
+              "needs it not 0)"),
     ("QDRP2", _TS + "change of the spin moment's peak; not evaluated (MFeval 4.0 does "
               "not read it either)", _NOT_EVALUATED),
 ))

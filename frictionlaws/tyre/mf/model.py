@@ -334,8 +334,19 @@ class MagicFormula(MFParameters):
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return lateral(self, fz, gamma, dpi)
 
-    @labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
-    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    def _turning(self, name: str, kappa: Any, alpha: Any, fz: Any, gamma: Any, pressure: Any,
+                 phit: Any, turn_slip: bool) -> Any | None:
+        """Output ``name`` of the steady state with turn slip (None without it: the caller's
+        own path); a turn slip without the model is refused there."""
+        if not turn_slip and not np.any(np.asarray(phit, dtype=float) != 0):
+            return None
+        out = self.steady_state(kappa, alpha, fz, gamma, pressure, phit=phit,
+                                turn_slip=turn_slip)[name]
+        return float(out) if np.ndim(out) == 0 else out
+
+    @labelled(("kappa", "fz", "gamma", "phit"), ("F_x0", "N", "pure longitudinal force"))
+    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure longitudinal force F_x0 [N].
 
         Parameters
@@ -348,6 +359,8 @@ class MagicFormula(MFParameters):
             Inclination (camber) angle [rad].
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
@@ -355,14 +368,18 @@ class MagicFormula(MFParameters):
             F_x0 [N], broadcast over the inputs; a DataArray (named ``F_x0``, with
             the inputs' dimensions and coordinates) when an input is one.
         """
+        turned = self._turning("Fx", kappa, 0.0, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         kappa = self._kappa(kappa)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         k = longitudinal(self, fz, gamma, dpi)
         out = mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
         return float(out) if np.ndim(out) == 0 else out
 
-    @labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
-    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    @labelled(("alpha", "fz", "gamma", "phit"), ("F_y0", "N", "pure lateral force"))
+    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure lateral force F_y0 [N].
 
         The slip enters as tan(alpha) or alpha (the ``slip_angle`` convention, see
@@ -378,6 +395,8 @@ class MagicFormula(MFParameters):
             Inclination (camber) angle [rad].
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
@@ -385,6 +404,9 @@ class MagicFormula(MFParameters):
             F_y0 [N], broadcast over the inputs; a DataArray (named ``F_y0``, with
             the inputs' dimensions and coordinates) when an input is one.
         """
+        turned = self._turning("Fy", 0.0, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         alpha_s = self._alpha_star(alpha)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         k = lateral(self, fz, gamma, dpi)
@@ -474,9 +496,9 @@ class MagicFormula(MFParameters):
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return weight_y(self, kappa, alpha_s, fz, gamma, lateral(self, fz, gamma, dpi).mu)
 
-    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
+    @labelled(("kappa", "alpha", "fz", "gamma", "phit"), ("F_x", "N", "longitudinal force"))
     def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
 
         Parameters
@@ -490,19 +512,25 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row.
 
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
+
         Returns
         -------
         float, numpy.ndarray or xarray.DataArray
             F_x [N]; equal to :meth:`fx0` where ``alpha = 0``; a DataArray when an
             input is one.
         """
+        turned = self._turning("Fx", kappa, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         out = (np.asarray(self.weight_x(kappa, alpha, fz, gamma))
                * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
         return float(out) if np.ndim(out) == 0 else out
 
-    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
+    @labelled(("kappa", "alpha", "fz", "gamma", "phit"), ("F_y", "N", "lateral force"))
     def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
 
         Equal to :meth:`fy0` where ``kappa = 0``.
@@ -518,11 +546,17 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row.
 
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
+
         Returns
         -------
         float, numpy.ndarray or xarray.DataArray
             F_y [N]; a DataArray when an input is one.
         """
+        turned = self._turning("Fy", kappa, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
@@ -654,7 +688,7 @@ class MagicFormula(MFParameters):
                             omega=omega, turn_slip=turn_slip, limit_checks=limit_checks)
 
     def mz(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Aligning moment M_z [N m] under combined slip at the file's speed LONGVL.
 
         Parameters
@@ -663,16 +697,20 @@ class MagicFormula(MFParameters):
             Slip ratio [-], slip angle [rad], vertical load [N], camber [rad]; broadcast.
         pressure : float or array-like, optional
             Inflation pressure [Pa] (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
         float or numpy.ndarray
             M_z [N m]; equal to :meth:`mz0` plus ``s F_x`` where ``kappa = 0``.
         """
-        out = aligning_moment(self, kappa, alpha, fz, gamma, pressure)["Mz"]
+        out = aligning_moment(self, kappa, alpha, fz, gamma, pressure, phit=phit,
+                              turn_slip=turn_slip)["Mz"]
         return float(out) if np.ndim(out) == 0 else out
 
-    def mz0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    def mz0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure-slip aligning moment M_z0 [N m] (eq. 4.E31) at the file's speed LONGVL.
 
         Parameters
@@ -681,13 +719,16 @@ class MagicFormula(MFParameters):
             Slip angle [rad], vertical load [N], camber [rad]; broadcast.
         pressure : float or array-like, optional
             Inflation pressure [Pa] (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
         float or numpy.ndarray
             M_z0 [N m].
         """
-        out = aligning_moment(self, 0.0, alpha, fz, gamma, pressure)["Mz0"]
+        out = aligning_moment(self, 0.0, alpha, fz, gamma, pressure, phit=phit,
+                              turn_slip=turn_slip)["Mz0"]
         return float(out) if np.ndim(out) == 0 else out
 
     def summary(self, loads: Any = None) -> dict[str, Any]:

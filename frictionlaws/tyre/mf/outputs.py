@@ -123,7 +123,15 @@ from .moments import (
 )
 from .notices import collected
 from .parameters import MFParameters
-from .turn_slip import Spin, residual_zetas, spin, zeta_trail, zeta_x, zeta_y
+from .turn_slip import (
+    Spin,
+    check_turn_slip,
+    residual_zetas,
+    spin,
+    zeta_trail,
+    zeta_x,
+    zeta_y,
+)
 from .vertical import carcass_stiffness, loaded_radius, patch, relaxation, rolling_radius
 
 __all__ = ["Output", "OUTPUTS", "Evaluation", "steady_state", "evaluate", "SteadyState",
@@ -263,16 +271,21 @@ class Evaluation:
     @cached_property
     def inst_kya(self) -> Any:
         """instKya [N/rad]: the slope of F_y against the evaluated slip angle between
-        neighbouring points of the last axis (MFeval's output 29, a forward difference,
-        the last point taking the one before); NaN where the angle does not change and
-        for a single point."""
-        shape = self.r.shape
+        neighbouring points of the last axis that differ in the slip angle only (MFeval's
+        output 29, a forward difference along its rows, the last point taking the one
+        before); NaN where the angle does not change, where another input changes too,
+        and for a single point."""
+        r = self.r
+        shape = r.shape
         if not shape or shape[-1] < 2:
             return np.full(shape, np.nan)
-        fy = np.broadcast_to(self.fy[0], shape)
-        a = np.broadcast_to(self.r.alpha, shape)
-        da, dfy = np.diff(a, axis=-1), np.diff(fy, axis=-1)
-        slope = np.where(da != 0, dfy / np.where(da != 0, da, 1.0), np.nan)
+        da = np.diff(np.broadcast_to(r.alpha, shape), axis=-1)
+        dfy = np.diff(np.broadcast_to(self.fy[0], shape), axis=-1)
+        sweep = da != 0
+        for x in (r.kappa_in, r.fz_in, r.gamma, r.pressure, r.vx, r.phit_in, r.omega):
+            if x is not None and np.ndim(x):
+                sweep &= np.diff(np.broadcast_to(x, shape), axis=-1) == 0
+        slope = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
         return np.concatenate([slope, slope[..., -1:]], axis=-1)
 
     @cached_property
@@ -342,8 +355,8 @@ OUTPUTS: dict[str, Output] = {
     "sigmax": Output("m", "longitudinal relaxation length",
                      lambda e: e.relaxation["sigmax"]),
     "sigmay": Output("m", "lateral relaxation length", lambda e: e.relaxation["sigmay"]),
-    "instKya": Output("N/rad", "slope of F_y against the slip angle along the last axis "
-                      "(MFeval's instKya)", lambda e: e.inst_kya),
+    "instKya": Output("N/rad", "slope of F_y against the slip angle between neighbours "
+                      "along the last axis (MFeval's instKya)", lambda e: e.inst_kya),
 }
 
 
@@ -550,9 +563,10 @@ def coefficient_users(mf: MFParameters) -> dict[str, tuple[str, ...]]:
     """Which outputs use each coefficient of ``mf``'s version, found by evaluating them.
 
     Each output of :data:`OUTPUTS` is evaluated alone (at combined slip, with camber and
-    the model's pressure) with a mapping that records the coefficients read; a
-    coefficient read through the nominal load F'z0 (LFZO) or the friction scaling (LMUX,
-    LMUY) counts for every output that reads those.
+    the model's pressure; without and, when the file has its coefficients, with turn
+    slip) with a mapping that records the coefficients read; a coefficient read through
+    the nominal load F'z0 (LFZO) or the friction scaling (LMUX, LMUY) counts for every
+    output that reads those.
 
     Parameters
     ----------
@@ -567,17 +581,27 @@ def coefficient_users(mf: MFParameters) -> dict[str, tuple[str, ...]]:
     """
     users: dict[str, list[str]] = {}
     model = copy.copy(mf)
+    try:
+        check_turn_slip(mf)
+        modes = (False, True)
+    except InputError:  # no turn-slip coefficients: evaluated without turn slip only
+        modes = (False,)
     for name, output in OUTPUTS.items():
-        model.coefficients = RecordingValues(mf.coefficients)
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                r = Conditions(model, 0.05, np.radians(3.0), mf.fnomin, np.radians(2.0),
-                               None, None, False)
-                output.value(Evaluation(model, r))
-        except InputError:  # the file cannot give this output (no radius, no stiffness)
-            continue
-        for coefficient in sorted(model.coefficients.read):
+        read: set[str] = set()
+        for turn_slip in modes:
+            model.coefficients = values = RecordingValues(mf.coefficients)
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    r = Conditions(model, 0.05, np.radians(3.0), mf.fnomin, np.radians(2.0),
+                                   None, None, False, 0.1 if turn_slip else 0.0,
+                                   turn_slip=turn_slip)
+                    values.read.clear()  # the check of the turn-slip coefficients
+                    output.value(Evaluation(model, r))
+            except InputError:  # the file cannot give this output (no radius, stiffness)
+                continue
+            read |= values.read
+        for coefficient in sorted(read):
             users.setdefault(coefficient, []).append(name)
     return {k: tuple(v) for k, v in users.items()}
 

@@ -59,18 +59,18 @@ TURN_SLIP_COEFFICIENTS = ("PDXP1", "PDXP2", "PDXP3", "PKYP1", "PDYP1", "PDYP2", 
                           "PDYP4", "PHYP1", "PHYP2", "PHYP3", "PHYP4", "PECP1", "PECP2",
                           "QDTP1", "QCRP1", "QCRP2", "QBRP1", "QDRP1")
 #: Those the model divides by (the shape factors of the spin-induced shift and of the
-#: spin moment): a file evaluated with turn slip must give them.
+#: spin moment): a file evaluated with turn slip must give them, not 0.
 NEEDED = ("PHYP1", "QDRP1")
 _PI2 = 2 / np.pi
 
 
 def check_turn_slip(p: MFParameters) -> None:
-    """Refuse turn slip for a file without the turn-slip coefficients it needs."""
-    missing = [n for n in NEEDED if p.coefficients.get(n) is None]
+    """Refuse turn slip for a file without the turn-slip coefficients it divides by."""
+    missing = [n for n in NEEDED if not p.coefficients.get(n)]
     if missing:
         have = [n for n in TURN_SLIP_COEFFICIENTS if p.coefficients.get(n) is not None]
         what = ("has no [TURNSLIP_COEFFICIENTS]" if not have
-                else f"lacks {', '.join(missing)} in [TURNSLIP_COEFFICIENTS]")
+                else f"gives no {' or '.join(missing)} other than 0 in [TURNSLIP_COEFFICIENTS]")
         raise InputError(f"turn slip: the property file {what}, which the turn-slip model "
                          f"needs ({', '.join(TURN_SLIP_COEFFICIENTS)}; MFeval would take its "
                          "reader's built-in values, those of another tyre)", file=p.source)
