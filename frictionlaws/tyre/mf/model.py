@@ -96,10 +96,14 @@ Conventions, each an option named after what it means (defaults first):
   g_y = gamma LGAY (MF-Tyre 5.2).  The moments' differences are listed in
   :mod:`frictionlaws.tyre.mf.outputs`.
 
-Simplifications, stated: no turn slip (all zeta = 1), no speed dependence of
-friction (LMUV ignored: the steady-state curves are for the file's measurement
-speed ``LONGVL``).  Absent coefficients are 0, absent scaling factors 1.  E is
-limited to <= 1 as the textbook requires.  Pressure terms are used whenever
+Turn slip (``turn_slip=True`` with the path curvature ``phit``), low speed, running
+backwards, a given wheel speed and MFeval's useModes 2xx are options of
+:meth:`MagicFormula.steady_state` (and ``phit``, ``turn_slip`` of the force and moment
+methods, at LONGVL): :mod:`~frictionlaws.tyre.mf.turn_slip`,
+:mod:`~frictionlaws.tyre.mf.conditions`.  Simplifications, stated: no speed dependence of
+friction (LMUV ignored: the steady-state curves are for the file's measurement speed
+``LONGVL``).  Absent coefficients are 0, absent scaling factors 1.  E is limited to <= 1
+as the textbook requires (unless ``limit_checks=False``).  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
 (PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no

@@ -7,14 +7,16 @@ row and one function of an :class:`Evaluation` (the checked conditions, the tyre
 several outputs share, computed once when first needed).
 
 :func:`steady_state` evaluates, for one :class:`~frictionlaws.tyre.mf.model.MagicFormula`
-and per row of load, slips, camber, pressure and speed, the outputs MFeval's
-``fullSteadyState`` gives for steady rolling without turn slip: the combined-slip
+and per row of load, slips, camber, pressure, speed, turn slip and wheel speed, the
+outputs MFeval's ``fullSteadyState`` gives (turn slip: :mod:`.turn_slip`; low speed,
+running backwards and the limit checks: :mod:`.conditions`): the combined-slip
 forces, the aligning moment M_z with its pneumatic trail t and residual torque
 M_zr, the pure-slip aligning moment M_z0, the overturning moment M_x, the rolling
 resistance moment M_y, the effective rolling radius R_e, the loaded radius R_l and
 deflection rho, the vertical stiffness, the contact patch length 2a and width 2b,
 the longitudinal and lateral stiffnesses C_x, C_y and relaxation lengths sigma_x,
-sigma_y, the slip stiffnesses K_xk and K_ya and the peak friction coefficients.
+sigma_y, the slip stiffnesses K_xk and K_ya, the peak friction coefficients and instKya,
+the slope of F_y against the slip angle between neighbours along the last axis.
 
 Equations
 ---------
@@ -69,7 +71,13 @@ FZMAX, camber -3/0/3 degrees, three pressures per row, pure and combined slip an
 beyond the limits (``tests/tyre/data/mfeval``): the moments within 4e-12 of the peak moment,
 the forces within 3e-12 of the peak force; R_e and Omega within 3e-8 and 3e-6 (MFeval ends
 its R_e iteration when the first row of a batch converges); R_l and rho within 1e-6 m
-where MFeval's fminsearch for the MF 6.2 radius converged.  The MF 6.2 loaded radius here
+where MFeval's fminsearch for the MF 6.2 radius converged.  Past steady rolling (turn slip
+with phit -2..2 1/m, speeds -20..2 m/s through VXLOW, a given wheel speed, without limit
+checks: ``tests/tyre/data/mfeval/MF*_beyond_steady.csv.gz``, packaged files and turn-slip
+variants, useModes 111-222): every output within 5e-11 of its peak at MFeval's wheel
+speed; estimating the wheel speed, MFeval's omega lies up to 5e-5 of the peak from the
+fixed point (its early end of the iteration), which the turn slip's camber spin carries
+into F_y, t and M_z by up to 1.5e-6.  The MF 6.2 loaded radius here
 is the root of least deflection with R_l <= R_omega (NaN and a warning where none carries
 the load); MFeval 4.0 solves it from 0.3 m by fminsearch, for MF 5.2 files too, and stalls
 where the model carries no load.  MF 5.2's loaded radius here is the MF 6.1 closed form
@@ -82,8 +90,10 @@ Limits and speed
 ``saturate=True`` clamps slip ratio, slip angle, camber, pressure and load to the file's
 ranges as MFeval's limit checks do (the load to FZMAX in the forces and to at least
 FZMIN in M_z, the load below FZMIN reduced in M_x and M_y as MFeval does).  The speed
-``vx`` [m/s] defaults to the file's LONGVL; speeds at or below VXLOW (and backwards)
-are refused: MFeval's low-speed reductions are not reproduced.
+``vx`` [m/s] defaults to the file's LONGVL; at and below VXLOW MF-Tyre's low-speed
+reductions apply, with a warning, and a negative speed runs the tyre backwards
+(:mod:`~frictionlaws.tyre.mf.conditions`).  ``limit_checks=False`` evaluates as MFeval's
+useModes 2xx (no E capped at 1, no low-speed reductions).
 """
 
 
