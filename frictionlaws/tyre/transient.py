@@ -320,8 +320,8 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
     h = _histories(t, {"vx": vx, "fz": fz, "kappa": 0.0 if kappa is None else kappa,
                        "alpha": alpha, "gamma": gamma, "phit": phit, "omega": omega,
                        "pressure": pressure})
-    opts = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
-            "turn_slip": turn_slip, "limit_checks": limit_checks}
+    opts: dict[str, Any] = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
+                            "turn_slip": turn_slip, "limit_checks": limit_checks}
     rest = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], omega=h.get("omega"), **opts)
     sx, sy = rest["sigmax"], rest["sigmay"]
     for name, s in (("sigmax", sx), ("sigmay", sy)):

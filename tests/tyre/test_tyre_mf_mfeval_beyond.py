@@ -1,8 +1,8 @@
 """The Magic Formula past steady rolling against MFeval 4.0: turn slip, low speed,
 running backwards, a supplied wheel speed, instKya and no limit checks.
 
-References: ``tests/data/mfeval/MF{52,61,62}_beyond_steady.csv.gz``, written by
-``tests/data/mfeval/generate_turnslip_references.m`` (see the README there), for the
+References: ``tests/tyre/data/mfeval/MF{52,61,62}_beyond_steady.csv.gz``, written by
+``tests/tyre/data/mfeval/generate_turnslip_references.m`` (see the README there), for the
 packaged examples and for their turn-slip variants (``MF{v}_turnslip_variant.tir``: every
 turn-slip coefficient non-zero; the MF 5.2 variant adds the turn-slip and carcass-stiffness
 sections the packaged 5.2 file lacks).  Rows come in sweeps (one MFeval call each) of one
@@ -19,9 +19,12 @@ both evaluate the same spin; every equation), and as a user calls it, the wheel 
 estimated from the slip ratio: MFeval ends that estimate's iteration when the first row
 of a call has converged, so its omega of MF 6.x files (whose free radius grows with the
 speed, Q_V1) lies up to 5e-5 of the peak from the fixed point this evaluator converges
-to, and the turn-slip outputs, whose camber spin takes omega, inherit up to 2e-6.  Left out, and counted: rows where MFeval gives
-no number (NaN: its turn-slip residual torque at phit = 0 exactly, 0/0 in its
-zeta_7; its turn-slip side force at a standing wheel, vx = 0 exactly, with limit checks),
+to, and the turn-slip outputs, whose camber spin takes omega, inherit up to 2e-6.
+
+Left out: rows where MFeval gives no number (NaN: its turn-slip residual torque at
+phit = 0 exactly, 0/0 in its zeta_7; its turn-slip side force at a standing wheel, vx = 0
+exactly, with limit checks; instKya where the angle does not change), instKya where
+another input than the angle changes along the sweep (MFeval differences whatever changes),
 and, as in ``test_tyre_mf_mfeval_grid.py``, the loaded radius, deflection and vertical
 stiffness of the MF 5.2 file (a different vertical model by design) and where MFeval's
 fminsearch for the MF 6.2 radius stalled.

@@ -591,11 +591,12 @@ def coefficient_users(mf: MFParameters) -> dict[str, tuple[str, ...]]:
     """
     users: dict[str, list[str]] = {}
     model = copy.copy(mf)
+    modes: tuple[bool, ...] = (False,)
     try:
         check_turn_slip(mf)
         modes = (False, True)
     except InputError:  # no turn-slip coefficients: evaluated without turn slip only
-        modes = (False,)
+        pass
     for name, output in OUTPUTS.items():
         read: set[str] = set()
         for turn_slip in modes:
