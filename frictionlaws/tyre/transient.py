@@ -270,6 +270,29 @@ def _step_mean(x: np.ndarray) -> np.ndarray:
     return 0.5 * (x[:-1] + x[1:])
 
 
+def _relaxation_lengths(mf: MagicFormula, rest: dict[str, Any]
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """sigma_x, sigma_y [m] per sample, refused where one is not positive."""
+    sx, sy = rest["sigmax"], rest["sigmay"]
+    for name, s in (("sigmax", sx), ("sigmay", sy)):
+        if not (np.isfinite(s) & (s > 0)).all():
+            i = int(np.flatnonzero(~(np.isfinite(s) & (s > 0)))[0])
+            raise InputError(f"the relaxation length {name} = {s[i]:g} m at sample {i} is not "
+                             "positive: the transient lag needs one", file=mf.source)
+    return sx, sy
+
+
+def _wheel_speed_slip(t: np.ndarray, h: dict[str, np.ndarray], re: np.ndarray,
+                      sx: np.ndarray, lag_x: np.ndarray, k0: float | None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """(kappa of the wheel speed, NaN at standstill; kappa') from the slip speed."""
+    speed, slip_speed = np.abs(h["vx"]), re * h["omega"] - h["vx"]
+    moving = speed > 0
+    slip = np.where(moving, slip_speed / np.where(moving, speed, 1.0), np.nan)
+    start = k0 if k0 is not None else (slip[0] if moving[0] else 0.0)
+    return slip, relax_source(slip_speed, lag_x, np.diff(t) * _step_mean(1 / sx), start)
+
+
 def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = None,
                    alpha: Any = 0.0, gamma: Any = 0.0, phit: Any = 0.0, omega: Any = None,
                    pressure: Any = None, turn_slip: bool = False, limit_checks: bool = True,
@@ -323,12 +346,7 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
     opts: dict[str, Any] = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
                             "turn_slip": turn_slip, "limit_checks": limit_checks}
     rest = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], omega=h.get("omega"), **opts)
-    sx, sy = rest["sigmax"], rest["sigmay"]
-    for name, s in (("sigmax", sx), ("sigmay", sy)):
-        if not (np.isfinite(s) & (s > 0)).all():
-            i = int(np.flatnonzero(~(np.isfinite(s) & (s > 0)))[0])
-            raise InputError(f"the relaxation length {name} = {s[i]:g} m at sample {i} is not "
-                             "positive: the transient lag needs one", file=mf.source)
+    sx, sy = _relaxation_lengths(mf, rest)
     dist = travelled(t, h["vx"])
     lag_x = np.diff(dist) * _step_mean(1 / sx)
     k0, a0 = (None, None) if initial is None else (float(initial[0]), float(initial[1]))
@@ -336,11 +354,7 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
         slip = np.array(h["kappa"])
         kt = relax(slip, lag_x, k0)
     else:
-        speed, slip_speed = np.abs(h["vx"]), rest["Re"] * h["omega"] - h["vx"]
-        moving = speed > 0
-        slip = np.where(moving, slip_speed / np.where(moving, speed, 1.0), np.nan)
-        start = k0 if k0 is not None else (slip[0] if moving[0] else 0.0)
-        kt = relax_source(slip_speed, lag_x, np.diff(t) * _step_mean(1 / sx), start)
+        slip, kt = _wheel_speed_slip(t, h, rest["Re"], sx, lag_x, k0)
     at = relax(h["alpha"], np.diff(dist) * _step_mean(1 / sy), a0)
     lagged = mf.steady_state(kt, at, h["fz"], h["gamma"], **opts)
     known = np.isfinite(slip)
