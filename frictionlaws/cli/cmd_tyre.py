@@ -17,10 +17,26 @@ Sub-commands:
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import sys
+import warnings
 from typing import Any
 
+import numpy as np
+
+from ..base import jsonio
+from ..base.errors import ExtrapolationWarning, FitError, InputError
+from ..base.numbers import parse_number
+from ..base.outputs import check_figure_path, check_outputs
+from ..base.units import parse_quantity, to_si
+from ..tyre.brush import BrushModel, BrushTyre
+from ..tyre.mf.fit import check_tir_path, fit_mf
+from ..tyre.mf.inputs import INPUTS
+from ..tyre.mf.model import MagicFormula
+from ..tyre.mf.outputs import OUTPUTS, evaluate
+from ..tyre.reduce import reduce_mf
+from ..tyre.thesis import thesis_comparison
 from ._common import (
     RANGE_HELP,
     SEED_MAX,
@@ -32,8 +48,12 @@ from ._common import (
     bound_from_args,
     bounded_int,
     bounded_number,
+    data_source,
     parse_values,
+    refuse_unused,
+    shown_source,
 )
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "parse_loads"]
 
@@ -42,7 +62,7 @@ _MAX_LOADS = 1000
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "tyre", help="use friction laws inside tyre models (brush model, Magic Formula)",
+        "tyre", help=COMMANDS["tyre"],
         description="Friction laws inside tyre models: brush-model cornering stiffness with "
         "any sliding law, the thesis' comparison, Magic Formula property files (.tir/JSON) "
         "and their reduction to simple slip laws.")
@@ -182,8 +202,6 @@ MAX_STEADY_ROWS = 100_000
 def _steady_state_options(p: argparse.ArgumentParser) -> None:
     """One option per input of the steady state (the library's table, read without numpy),
     the load being ``--loads``; ``--saturate`` and ``--outputs``."""
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     g = p.add_argument_group(
         "steady state at given conditions",
         "with any of these, every steady-state output (or those of --outputs) is printed "
@@ -211,8 +229,6 @@ def _steady_state_options(p: argparse.ArgumentParser) -> None:
 
 
 def _steady_state_dests() -> list[str]:
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     return [n for n in INPUTS if n != "fz"] + list(_STEADY_STATE_EXTRA)
 
 
@@ -222,8 +238,6 @@ def _steady_state_given(args: argparse.Namespace) -> bool:
 
 def _mf_file(args: argparse.Namespace) -> Any:
     """The property file read with the Magic Formula conventions chosen (``-``: stdin)."""
-    from frictionlaws.tyre.mf.model import MagicFormula
-
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
                                   loads_above_fzmax=args.loads_above_fzmax,
@@ -232,8 +246,6 @@ def _mf_file(args: argparse.Namespace) -> Any:
 
 def _on_property_file(run: Any, args: argparse.Namespace) -> int:
     """Run a command on its property FILE; ``-`` reads it from standard input."""
-    from ._common import data_source
-
     given = args.file
     with data_source(given, _property_name) as path:
         args.file = path
@@ -282,11 +294,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     ``START:STOP:STEP`` form is recognised by a third number that is not a count
     and refused with its translation.
     """
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import to_si
-
     try:
         to_si(1.0, unit, "F_N")
     except InputError as exc:
@@ -302,8 +309,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
 def _refuse_step_form(text: str, flag: str) -> None:
     """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
     number cannot be a count, flagged when it reads both ways."""
-    from frictionlaws.base.numbers import parse_number
-
     parts = str(text or "").split(":")
     if len(parts) != 3:
         return
@@ -324,8 +329,6 @@ def _refuse_step_form(text: str, flag: str) -> None:
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     return parse_quantity(text, kind, what=what)
@@ -333,9 +336,6 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     value = parse_quantity(text, "stiffness_per_length", what="--c-py")
@@ -345,8 +345,6 @@ def _stiffness(text: str | None) -> float | None:
 
 
 def _tyre(args: argparse.Namespace) -> Any:
-    from frictionlaws.tyre.brush import BrushTyre
-
     kw: dict[str, Any] = {}
     for opt, key, kind in (("width", "width", "length"),
                            ("half_length", "half_length_ref", "length"),
@@ -371,8 +369,6 @@ def _warn(messages: list[str]) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-
     cmd = getattr(args, "tyre_command", None)
     if cmd == "cornering":
         return _run_cornering(args)
@@ -389,9 +385,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _angles(text: str) -> list[float]:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.numbers import parse_number
-
     try:  # the one number parser: no 1_0, no non-ASCII digits, finite
         return [parse_number(a) for a in text.split(",") if a.strip()]
     except ValueError as exc:
@@ -414,11 +407,6 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
-    import warnings
-
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.brush import BrushModel
-
     loads = parse_loads(args.loads, args.load_unit)
     angles = _angles(args.angles)
     tyre = _tyre(args)
@@ -444,15 +432,8 @@ def _run_cornering(args: argparse.Namespace) -> int:
 
 
 def _run_thesis(args: argparse.Namespace) -> int:
-    import warnings
-
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.thesis import thesis_comparison
-
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     if not laws:
-        from frictionlaws.base.errors import InputError
-
         raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
@@ -472,10 +453,6 @@ def _run_thesis(args: argparse.Namespace) -> int:
 
 
 def _run_mf(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from ._common import refuse_unused
-
     if args.coefficients:  # before reading the file: the listing evaluates no load
         refuse_unused(args, ("loads", "load_unit", *_steady_state_dests()),
                       "with --coefficients")
@@ -488,8 +465,6 @@ def _run_mf(args: argparse.Namespace) -> int:
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
     if "source" in summary:
-        from ._common import shown_source
-
         summary["source"] = shown_source(summary["source"])
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -523,13 +498,6 @@ def _run_mf(args: argparse.Namespace) -> int:
 
 def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
     """Every combination of the input values given (SI), one row each, as flat arrays."""
-    import itertools
-
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     given: dict[str, Any] = {}
     for name, inp in INPUTS.items():
         if name == "fz":
@@ -552,10 +520,6 @@ def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
 
 def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
     """``tyre mf FILE --kappa ...``: every output of the library's table, per row."""
-    from frictionlaws.base import jsonio
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.mf.outputs import OUTPUTS, evaluate
-
     names = None
     if args.outputs is not None:
         names = [x.strip() for x in args.outputs.split(",") if x.strip()]
@@ -570,8 +534,6 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
                    phit=0.0 if grid["phit"] is None else grid["phit"], omega=grid["omega"],
                    turn_slip=args.turn_slip, limit_checks=not args.no_limit_checks)
     if args.json:
-        from ._common import shown_source
-
         out = {"name": mf.name, "source": shown_source(mf.source), "version": mf.version,
                **res.to_dict(), "notes": list(mf.notes)}
         print(jsonio.dumps(out))
@@ -619,15 +581,10 @@ def _print_coefficients(mf: Any, as_json: bool) -> int:
 
 
 def _run_reduce(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.reduce import reduce_mf
-
     loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:
-        from frictionlaws.base.outputs import check_outputs
-
         check_outputs([args.save], inputs=[args.file])
     mf = _mf_file(args)
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
@@ -640,8 +597,6 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(red.to_dict()))
     else:
         print(red.report())
@@ -651,24 +606,15 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre.mf.fit import check_tir_path, fit_mf
-
     if args.uncertainty != "sweeps":
-        from ._common import refuse_unused
-
         refuse_unused(args, ("boot", "boot_jobs", "seed"),
                       f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
     inputs = [args.data] + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-        from frictionlaws.tyre.mf.fit.plot import check_figure_path
 
         check_figure_path(args.plot)
-    from frictionlaws.base.errors import FitError
-
-    from ._common import data_source, shown_source
 
     with data_source(args.data) as data:
         try:
@@ -682,8 +628,6 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.plot:
         res.plot(args.plot)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(res.to_dict()))
         return 0
     print(res.report())

@@ -37,7 +37,7 @@ import numpy as np
 
 from ..base.errors import Argument, InputError
 from ..base.units import parse_unit, to_si, unit_registry
-from ..io import _split_header, _to_float, read_table
+from ..io import read_table, split_header, to_float
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS"]
 
@@ -166,7 +166,7 @@ def _check_blank_pressures(pressure: np.ndarray, table: Any, j: int) -> None:
 def _column_index(headers: list[str], source: str) -> dict[str, tuple[int, str | None]]:
     found: dict[str, tuple[int, str | None]] = {}
     for j, h in enumerate(headers):
-        name, unit = _split_header(h)
+        name, unit = split_header(h)
         key = name.strip().lower().replace(" ", "_")
         for col, (_, aliases) in COLUMNS.items():
             if key in aliases:
@@ -194,7 +194,7 @@ def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
                              column=header)
     values = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
-        v = _to_float(cell, table.decimal_comma)
+        v = to_float(cell, table.decimal_comma)
         if v is None:
             raise InputError(f"'{cell}' is not a number", file=table.source, column=header,
                              row=table.rows[i])
