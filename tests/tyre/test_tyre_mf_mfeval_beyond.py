@@ -8,6 +8,12 @@ turn-slip coefficient non-zero; the MF 5.2 variant adds the turn-slip and carcas
 sections the packaged 5.2 file lacks).  Rows come in sweeps (one MFeval call each) of one
 input: slip angle, slip ratio, turn slip phit or speed.
 
+Two sets of references, each checked the same way: the development set
+(``MF{v}_beyond_steady.csv.gz``, golden-ratio inputs, used while the equations were written)
+and a held-out set (``MF{v}_heldout.csv.gz`` with ``MF{v}_heldout_variant.tir``, generated
+afterwards by the same script from a seeded random draw, ``heldout_seed = 38038``: other
+inputs, sweep points and turn-slip coefficients, never looked at while developing).
+
 MFeval's useMode maps to the options here digit by digit: hundreds 1 (limit checks) is
 ``saturate=True``, 2 is ``limit_checks=False``; tens 1 is ``slip_angle="alpha"``, 2
 ``slip_angle="tan_alpha"``; units 2 is ``turn_slip=True`` with the row's ``phit``.  A
@@ -44,6 +50,9 @@ from frictionlaws.tyre import MagicFormula
 
 DATA = Path(__file__).resolve().parent / "data" / "mfeval"
 VERSIONS = ("52", "61", "62")
+#: The reference sets: (the outputs' file, the turn-slip variant's file) after "MF{v}_".
+SETS = {"beyond": ("beyond_steady.csv.gz", "turnslip_variant.tir"),
+        "heldout": ("heldout.csv.gz", "heldout_variant.tir")}
 #: The model outputs compared (MFeval's column name -> the output here).
 OUTPUTS = ("Fx", "Fy", "Mx", "My", "Mz", "Re", "rho", "2a", "t", "mux", "muy", "omega",
            "Rl", "2b", "Mzr", "Cx", "Cy", "Cz", "Kya", "sigmax", "sigmay", "instKya", "Kxk")
@@ -56,8 +65,8 @@ SHARE_OF = {"Cz": 1e-4}
 LENGTH_M = {"Rl": 1e-6, "rho": 1e-6}
 
 
-def _reference(v: str) -> pd.DataFrame:
-    return pd.read_csv(DATA / f"MF{v}_beyond_steady.csv.gz")
+def _reference(v: str, refs: str = "beyond") -> pd.DataFrame:
+    return pd.read_csv(DATA / f"MF{v}_{SETS[refs][0]}")
 
 
 def _column(d: pd.DataFrame, name: str) -> str:
@@ -65,8 +74,8 @@ def _column(d: pd.DataFrame, name: str) -> str:
 
 
 @cache
-def _tyre(v: str, variant: int, slip_angle: str) -> MagicFormula:
-    source = f"MagicFormula{v}" if variant == 0 else DATA / f"MF{v}_turnslip_variant.tir"
+def _tyre(v: str, variant: int, slip_angle: str, refs: str = "beyond") -> MagicFormula:
+    source = f"MagicFormula{v}" if variant == 0 else DATA / f"MF{v}_{SETS[refs][1]}"
     return MagicFormula.from_file(source, slip_angle=slip_angle)
 
 
@@ -76,7 +85,7 @@ def _options(mode: int) -> dict:
             "turn_slip": units == 2, "slip_angle": "alpha" if tens == 1 else "tan_alpha"}
 
 
-def _evaluate(v: str, d: pd.DataFrame, mfeval_omega: bool = False
+def _evaluate(v: str, d: pd.DataFrame, mfeval_omega: bool = False, refs: str = "beyond"
               ) -> dict[str, np.ndarray]:
     """Every output per reference row: one evaluation per group of sweeps of equal length
     (a 2-D array, one sweep per row, so that instKya runs along each sweep); the wheel
@@ -91,7 +100,7 @@ def _evaluate(v: str, d: pd.DataFrame, mfeval_omega: bool = False
     for (variant, block, mode, _n), members in groups.items():
         idx = np.array(members)  # (sweeps, points)
         opt = _options(mode)
-        mf = _tyre(v, variant, opt.pop("slip_angle"))
+        mf = _tyre(v, variant, opt.pop("slip_angle"), refs)
         col = {c.split(" [")[0]: d[c].to_numpy()[idx] for c in d.columns[4:12]}
         omega = col["omega_in"] if block == 3 else None
         if mfeval_omega:
@@ -109,13 +118,13 @@ def _evaluate(v: str, d: pd.DataFrame, mfeval_omega: bool = False
 
 
 @cache
-def _evaluated(v: str, mfeval_omega: bool = False
+def _evaluated(v: str, mfeval_omega: bool = False, refs: str = "beyond"
                ) -> tuple[pd.DataFrame, dict[str, np.ndarray]]:
-    d = _reference(v)
-    return d, _evaluate(v, d, mfeval_omega)
+    d = _reference(v, refs)
+    return d, _evaluate(v, d, mfeval_omega, refs)
 
 
-def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
+def _compared(v: str, d: pd.DataFrame, name: str, refs: str = "beyond") -> np.ndarray:
     """Rows where MFeval's value is a number of its equations (see the module's text)."""
     ref = d[_column(d, name)].to_numpy()
     rows = np.isfinite(ref)
@@ -129,7 +138,7 @@ def _compared(v: str, d: pd.DataFrame, name: str) -> np.ndarray:
         if v == "52":
             return np.zeros(len(d), bool)
         r0 = np.where(d["variant"] == 0, _tyre(v, 0, "alpha").structure["UNLOADED_RADIUS"],
-                      _tyre(v, 1, "alpha").structure["UNLOADED_RADIUS"])
+                      _tyre(v, 1, "alpha", refs).structure["UNLOADED_RADIUS"])
         rl = d["Rl [m]"].to_numpy()
         rows &= (d["rho [m]"].to_numpy() > 0) & (rl > 0) & (rl < r0)
     return rows
@@ -148,10 +157,11 @@ def _angle_sweeps(d: pd.DataFrame) -> np.ndarray:
     return np.where(last, prev, nxt)
 
 
-def worst(v: str, name: str, mfeval_omega: bool = False) -> dict[tuple[int, int], float]:
+def worst(v: str, name: str, mfeval_omega: bool = False, refs: str = "beyond"
+          ) -> dict[tuple[int, int], float]:
     """Worst disagreement per (variant, useMode): a share of the peak, or metres."""
-    d, ours = _evaluated(v, mfeval_omega)
-    rows = _compared(v, d, name)
+    d, ours = _evaluated(v, mfeval_omega, refs)
+    rows = _compared(v, d, name, refs)
     ref = d[_column(d, name)].to_numpy()
     out = {}
     for (variant, mode), idx in d.groupby(["variant", "useMode"]).indices.items():
@@ -168,10 +178,11 @@ def worst(v: str, name: str, mfeval_omega: bool = False) -> dict[tuple[int, int]
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("refs", SETS)
 @pytest.mark.parametrize("v", VERSIONS)
 @pytest.mark.parametrize("name", OUTPUTS)
-def test_every_output_matches_mfeval_at_its_wheel_speed(v: str, name: str) -> None:
-    bad = {k: e for k, e in worst(v, name, mfeval_omega=True).items()
+def test_every_output_matches_mfeval_at_its_wheel_speed(refs: str, v: str, name: str) -> None:
+    bad = {k: e for k, e in worst(v, name, mfeval_omega=True, refs=refs).items()
            if e > LENGTH_M.get(name, SHARE_OF.get(name, SHARE))}
     assert not bad, f"MF {v} {name}: worst per (variant, useMode): {bad}"
 
@@ -183,11 +194,12 @@ ESTIMATED_TURN_SLIP = 2e-6
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("refs", SETS)
 @pytest.mark.parametrize("v", VERSIONS)
 @pytest.mark.parametrize("name", OUTPUTS)
-def test_every_output_matches_mfeval_as_called(v: str, name: str) -> None:
+def test_every_output_matches_mfeval_as_called(refs: str, v: str, name: str) -> None:
     limit = LENGTH_M.get(name, SHARE_OF.get(name, ESTIMATED.get(name, SHARE)))
-    bad = {k: e for k, e in worst(v, name).items()
+    bad = {k: e for k, e in worst(v, name, refs=refs).items()
            if e > (max(limit, ESTIMATED_TURN_SLIP) if k[1] % 10 == 2 else limit)}
     assert not bad, f"MF {v} {name}: worst per (variant, useMode): {bad}"
 
@@ -217,9 +229,10 @@ def test_a_mf52_file_without_carcass_stiffness_gives_no_cx_cy() -> None:
     assert np.isfinite(ours["Cx"][~packaged]).all()
 
 
-def test_the_references_cover_the_stated_inputs() -> None:
+@pytest.mark.parametrize("refs", SETS)
+def test_the_references_cover_the_stated_inputs(refs: str) -> None:
     for v in VERSIONS:
-        d = _reference(v)
+        d = _reference(v, refs)
         ts = d[d["useMode"] % 10 == 2]
         assert ts["phit [1/m]"].min() == -2 and ts["phit [1/m]"].max() == 2
         assert set(np.unique(ts["useMode"])) == {112, 122, 212, 222}
@@ -234,12 +247,13 @@ def test_the_references_cover_the_stated_inputs() -> None:
             assert d["P [Pa]"].nunique() > 50
 
 
-def test_the_compared_rows_are_most_rows() -> None:
+@pytest.mark.parametrize("refs", SETS)
+def test_the_compared_rows_are_most_rows(refs: str) -> None:
     for v in VERSIONS:
-        d = _reference(v)
+        d = _reference(v, refs)
         for name in ("Fx", "Fy", "Mz"):
-            assert _compared(v, d, name).mean() > 0.8, name
+            assert _compared(v, d, name, refs).mean() > 0.8, name
         # instKya: along the sweeps of slip angle (elsewhere the angle does not change)
-        assert _compared(v, d, "instKya").sum() > 300
+        assert _compared(v, d, "instKya", refs).sum() > 150
         if v == "62":
-            assert _compared(v, d, "Rl").sum() > 800
+            assert _compared(v, d, "Rl", refs).sum() > 0.4 * len(d)

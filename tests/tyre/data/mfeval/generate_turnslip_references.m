@@ -34,6 +34,13 @@
 % Columns: variant (0 packaged, 1 turn-slip variant), block, sweep, useMode, the inputs
 % as given (Fz, kappa, alpha, gamma, phit, Vx, P, omega; omega 0: not given), then
 % MFeval's outputs 1-30 (11 significant digits).
+%
+% Held-out set: with a variable heldout_seed defined before the script runs,
+%   octave-cli --eval "...; heldout_seed = 38038; run('tests/tyre/data/mfeval/generate_turnslip_references.m')"
+% the script writes MF<v>_heldout_variant.tir and MF<v>_heldout.csv.gz instead: the same
+% blocks with fewer sweeps, every fixed input, sweep point and turn-slip coefficient drawn
+% from Octave's Mersenne twister seeded with heldout_seed (coefficients 0.6-1.4 times the
+% development variant's), so that no point coincides with the development set.
 1;  % a script with local functions (defined first, as Octave requires)
 
 function params = read_with_crlf(src)
@@ -58,31 +65,41 @@ endfunction
 
 function write_variant(src, dst, version)
     % The packaged file with every turn-slip coefficient non-zero.
+    global HELDOUT
     ts = {'PDXP1', 0.45; 'PDXP2', 0.2; 'PDXP3', 2.5; 'PKYP1', 1.3; 'PDYP1', 0.5; ...
           'PDYP2', 0.15; 'PDYP3', 1.8; 'PDYP4', 0.35; 'PHYP1', 1.1; 'PHYP2', 0.18; ...
           'PHYP3', 0.06; 'PHYP4', -3.2; 'PECP1', 0.55; 'PECP2', 0.12; 'QDTP1', 11.5; ...
           'QCRP1', 0.24; 'QCRP2', 0.13; 'QBRP1', 0.14; 'QDRP1', 1.2};
+    cs = [352000, 161500, 0.12, -0.07, -0.21, 0.05];  % C_x, C_y, PCFX1-2, PCFY1-2
+    seeded = '';
+    if ~isempty(HELDOUT)
+        for i = 1:rows(ts)
+            ts{i, 2} = four_digits(ts{i, 2} * span(rand(), 0.6, 1.4));
+        end
+        cs = four_digits(cs .* span(rand(1, 6), 0.6, 1.4));
+        seeded = sprintf(', drawn with seed %d', HELDOUT);
+    end
     text = fileread(src);
     text = strrep(text, sprintf('\r\n'), sprintf('\n'));
     head = sprintf(['! Derived by tests/tyre/data/mfeval/generate_turnslip_references.m from\n' ...
                     '! datasets/mf-examples/%s (Project Chrono, BSD-3-Clause, example data):\n' ...
-                    '! every turn-slip coefficient set to a non-zero value%s.\n'], ...
-                   src(max(strfind(src, '/')) + 1:end), ...
+                    '! every turn-slip coefficient set to a non-zero value%s%s.\n'], ...
+                   src(max(strfind(src, '/')) + 1:end), seeded, ...
                    ifelse_text(strcmp(version, '52'), ...
                                '; [STRUCTURAL] and [TURNSLIP_COEFFICIENTS] added', ''));
     if strcmp(version, '52')
         add = sprintf(['$----------------------------------------------------------------structural\n' ...
                        '[STRUCTURAL]\n' ...
-                       'LONGITUDINAL_STIFFNESS     = 352000\n' ...
-                       'LATERAL_STIFFNESS          = 161500\n' ...
-                       'PCFX1                      = 0.12\n' ...
-                       'PCFX2                      = -0.07\n' ...
+                       'LONGITUDINAL_STIFFNESS     = %.10g\n' ...
+                       'LATERAL_STIFFNESS          = %.10g\n' ...
+                       'PCFX1                      = %.10g\n' ...
+                       'PCFX2                      = %.10g\n' ...
                        'PCFX3                      = 0\n' ...
-                       'PCFY1                      = -0.21\n' ...
-                       'PCFY2                      = 0.05\n' ...
+                       'PCFY1                      = %.10g\n' ...
+                       'PCFY2                      = %.10g\n' ...
                        'PCFY3                      = 0\n' ...
                        '$-----------------------------------------------------turnslip_coefficients\n' ...
-                       '[TURNSLIP_COEFFICIENTS]\n']);
+                       '[TURNSLIP_COEFFICIENTS]\n'], cs);
         for i = 1:rows(ts)
             add = [add sprintf('%-27s= %.10g\n', ts{i, 1}, ts{i, 2})];
         end
@@ -102,6 +119,12 @@ function write_variant(src, dst, version)
     fclose(fid);
 endfunction
 
+function y = four_digits(x)
+    % x rounded to four significant digits (x non-zero).
+    e = 10 .^ (floor(log10(abs(x))) - 3);
+    y = round(x ./ e) .* e;
+endfunction
+
 function out = ifelse_text(cond, a, b)
     if cond
         out = a;
@@ -111,7 +134,13 @@ function out = ifelse_text(cond, a, b)
 endfunction
 
 function u = golden(i, j)
-    % A deterministic low-discrepancy number in [0, 1): the i-th of sequence j.
+    % A deterministic low-discrepancy number in [0, 1): the i-th of sequence j (the
+    % development set); for the held-out set, the next number of the seeded twister.
+    global HELDOUT
+    if ~isempty(HELDOUT)
+        u = rand();
+        return
+    end
     g = [0.6180339887498949, 0.7548776662466927, 0.5698402909980532, ...
          0.8191725133961645, 0.4142135623730951, 0.7320508075688772, ...
          0.2360679774997897, 0.6457513110645906, 0.3166247903554, 0.1622776601683795];
@@ -122,19 +151,35 @@ function x = span(u, lo, hi)
     x = lo + u * (hi - lo);
 endfunction
 
+function x = points(fixed, lo, hi)
+    % The sweep's points: the development set's fixed list, or as many drawn (sorted) in
+    % [lo, hi] for the held-out set, with the list's first and last kept where they are
+    % ends the sweep must reach (lo = fixed(1), hi = fixed(end)).
+    global HELDOUT
+    x = fixed(:);
+    if isempty(HELDOUT)
+        return
+    end
+    x = sort(span(rand(numel(x), 1), lo, hi));
+    if lo == fixed(1) && hi == fixed(end)
+        x([1 end]) = [lo; hi];
+    end
+endfunction
+
 function rows_ = sweep(kind, c, p)
     % Rows [Fz kappa alpha gamma phit Vx P omega] of one sweep of `kind` at condition c.
+    global HELDOUT
     switch kind
         case 'alpha'
-            a = deg2rad([-14 -8 -4 -1.5 0 1 3 6 11]');
+            a = deg2rad(points([-14 -8 -4 -1.5 0 1 3 6 11], -15, 12));
             n = numel(a);
             rows_ = [repmat(c.fz, n, 1), repmat(c.kappa, n, 1), a];
         case 'kappa'
-            k = [-0.45 -0.15 -0.05 -0.012 0 0.008 0.04 0.12 0.35]';
+            k = points([-0.45 -0.15 -0.05 -0.012 0 0.008 0.04 0.12 0.35], -0.5, 0.4);
             n = numel(k);
             rows_ = [repmat(c.fz, n, 1), k, repmat(c.alpha, n, 1)];
         case 'phit'
-            ph = [-2 -1.1 -0.4 -0.08 0 0.03 0.25 0.9 2]';
+            ph = points([-2 -1.1 -0.4 -0.08 0 0.03 0.25 0.9 2], -2, 2);
             n = numel(ph);
             rows_ = [repmat([c.fz c.kappa c.alpha c.gamma], n, 1), ph, ...
                      repmat([c.vx c.p c.omega], n, 1)];
@@ -143,6 +188,12 @@ function rows_ = sweep(kind, c, p)
             v = [-20 -6 -2 -1 -0.6 -0.25 0 0.1 0.45 1 1.4 2]' * p.VXLOW;
             v(1:3) = [-20 -6 -2]';  % m/s
             v(end) = 2;
+            if ~isempty(HELDOUT)  % -20, -VXLOW, 0, VXLOW, 2 m/s and points between
+                u = rand(7, 1);
+                w = p.VXLOW;
+                v = [-20; span(sort(u(1:2)), -20, -w); -w; span(sort(u(3:4)), -w, 0); 0; ...
+                     span(sort(u(5:6)), 0, w); w; span(u(7), w, 2); 2];
+            end
             n = numel(v);
             rows_ = [repmat([c.fz c.kappa c.alpha c.gamma c.phit], n, 1), v, ...
                      repmat(c.p, n, 1), c.omega * v];  % omega per unit speed
@@ -191,15 +242,20 @@ function [inputs, tags] = build(p, pi0, version, variant, R0, k)
     inputs = [];
     tags = [];
     plan = {};  % {block, modes, number of sweeps, kinds}
+    global HELDOUT
+    n = [12 4 4 4 4 10];  % sweeps per mode of the plan's rows
+    if ~isempty(HELDOUT)
+        n = [6 3 4 3 3 4];
+    end
     if has_ts
-        plan(end + 1, :) = {1, [112 122 212 222], 12, kinds};
-        plan(end + 1, :) = {2, [112 122 212 222], 4, {'vx'}};
-        plan(end + 1, :) = {3, [112 212], 4, {'alpha', 'vx', 'phit', 'kappa'}};
+        plan(end + 1, :) = {1, [112 122 212 222], n(1), kinds};
+        plan(end + 1, :) = {2, [112 122 212 222], n(2), {'vx'}};
+        plan(end + 1, :) = {3, [112 212], n(3), {'alpha', 'vx', 'phit', 'kappa'}};
     end
     if variant == 0
-        plan(end + 1, :) = {2, [111 121 211 221], 4, {'vx'}};
-        plan(end + 1, :) = {3, [111 121 211], 4, {'alpha', 'vx', 'kappa', 'alpha'}};
-        plan(end + 1, :) = {4, [211 221], 10, {'alpha', 'kappa'}};
+        plan(end + 1, :) = {2, [111 121 211 221], n(4), {'vx'}};
+        plan(end + 1, :) = {3, [111 121 211], n(5), {'alpha', 'vx', 'kappa', 'alpha'}};
+        plan(end + 1, :) = {4, [211 221], n(6), {'alpha', 'kappa'}};
     end
     for b = 1:rows(plan)
         [block, modes, nsweeps, blockkinds] = plan{b, :};
@@ -236,6 +292,14 @@ function [inputs, tags] = build(p, pi0, version, variant, R0, k)
     end
 endfunction
 
+global HELDOUT
+HELDOUT = [];
+stem = {'_turnslip_variant.tir', '_beyond_steady.csv'};
+if exist('heldout_seed', 'var') && ~isempty(heldout_seed)
+    HELDOUT = heldout_seed;
+    rand('twister', heldout_seed);
+    stem = {'_heldout_variant.tir', '_heldout.csv'};
+end
 outdir = fileparts(mfilename('fullpath'));
 root = fullfile(outdir, '..', '..', '..', '..');
 names = {'52', '61', '62'};
@@ -250,7 +314,7 @@ solver = feval('mfeval.Solver');
 for n = 1:numel(names)
     v = names{n};
     src = fullfile(root, 'datasets', 'mf-examples', ['MagicFormula' v '_Parameters.converted.tir']);
-    variant_file = fullfile(outdir, ['MF' v '_turnslip_variant.tir']);
+    variant_file = fullfile(outdir, ['MF' v stem{1}]);
     write_variant(src, variant_file, v);
     table = [];
     nsweeps = 0;  % sweeps numbered through both variants
@@ -269,7 +333,7 @@ for n = 1:numel(names)
             table = [table; repmat(variant, sum(at), 1), tags(at, :), inputs(at, :), out];
         end
     end
-    path = fullfile(outdir, ['MF' v '_beyond_steady.csv']);
+    path = fullfile(outdir, ['MF' v stem{2}]);
     fid = fopen(path, 'w');
     fprintf(fid, '%s\n', strjoin([inlabels, labels], ','));
     fmt = [repmat('%d,', 1, 4), repmat('%.15g,', 1, 8), repmat('%.11g,', 1, 30)];
