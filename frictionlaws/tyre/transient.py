@@ -58,6 +58,7 @@ import numpy as np
 
 from ..base.errors import InputError, broadcast_shape
 from .mf.model import MagicFormula
+from .mf.parameters import real_array
 
 __all__ = ["TransientSlip", "transient_slip", "relax", "relax_source", "travelled",
            "TRANSIENT_OUTPUTS"]
@@ -123,7 +124,7 @@ class TransientSlip:
 
 def _times(t: Any) -> np.ndarray:
     """The sample times: one dimension, finite, at least two, never decreasing."""
-    t = np.asarray(t, dtype=float)
+    t = real_array("t", t)
     if t.ndim != 1 or t.size < 2:
         raise InputError(f"t must be a one-dimensional array of at least two sample times "
                          f"[s], got shape {t.shape}", option="t")
@@ -140,16 +141,14 @@ def _times(t: Any) -> np.ndarray:
 
 def _histories(t: np.ndarray, named: dict[str, Any]) -> dict[str, np.ndarray]:
     """Every input as one value per sample: scalars spread, arrays of the length of t."""
-    shape = broadcast_shape({"t": t, **{k: v for k, v in named.items() if v is not None}},
-                            subject="transient_slip")
+    named = {k: real_array(k, v) for k, v in named.items() if v is not None}
+    shape = broadcast_shape({"t": t, **named}, subject="transient_slip")
     if shape != t.shape:
         raise InputError(f"transient_slip: the inputs must be scalars or arrays of the "
                          f"length of t ({t.size}); they broadcast to {shape}")
     out = {}
     for name, value in named.items():
-        if value is None:
-            continue
-        x = np.broadcast_to(np.asarray(value, dtype=float), shape)
+        x = np.broadcast_to(value, shape)
         if not np.isfinite(x).all():
             i = int(np.flatnonzero(~np.isfinite(x))[0])
             raise InputError(f"{name} must be finite; {name}[{i}] = {x[i]}", option=name)
@@ -265,6 +264,18 @@ def relax_source(w: Any, lag: Any, gain: Any, y0: float) -> np.ndarray:
     return y
 
 
+def _initial(initial: Any) -> tuple[float | None, float | None]:
+    """The lagged slips (kappa', alpha') at the first sample, or (None, None): settled."""
+    if initial is None:
+        return None, None
+    pair = real_array("initial", initial)
+    if pair.shape != (2,) or not np.isfinite(pair).all():
+        raise InputError("initial must be the two lagged slips (kappa' [-], alpha' [rad]) at "
+                         f"the first sample, finite; got {str(initial)[:40]!r}",
+                         option="initial")
+    return float(pair[0]), float(pair[1])
+
+
 def _step_mean(x: np.ndarray) -> np.ndarray:
     """The mean of the values at the two ends of each step."""
     return 0.5 * (x[:-1] + x[1:])
@@ -349,7 +360,7 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
     sx, sy = _relaxation_lengths(mf, rest)
     dist = travelled(t, h["vx"])
     lag_x = np.diff(dist) * _step_mean(1 / sx)
-    k0, a0 = (None, None) if initial is None else (float(initial[0]), float(initial[1]))
+    k0, a0 = _initial(initial)
     if omega is None:
         slip = np.array(h["kappa"])
         kt = relax(slip, lag_x, k0)

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import InputError, broadcast_shape
-from .parameters import MFParameters
+from .parameters import MFParameters, real_array
 from .turn_slip import check_turn_slip
 
 __all__ = ["Conditions"]
@@ -111,13 +111,16 @@ class Conditions:
                  pressure: Any, vx: Any, phit: Any, omega: Any, saturate: bool,
                  turn_slip: bool, limit_checks: bool) -> dict[str, Any]:
         """The inputs as float arrays, each checked; the options checked together."""
+        for name, flag in (("saturate", saturate), ("turn_slip", turn_slip),
+                           ("limit_checks", limit_checks)):
+            if not isinstance(flag, (bool, np.bool_)):
+                raise InputError(f"{name} must be True or False, not {flag!r:.40}")
         if saturate and not limit_checks:
             raise InputError("saturate=True clamps the inputs as MFeval's limit checks do: "
                              "it needs limit_checks=True")
         out = {"kappa": p.check("kappa", kappa), "alpha": p.check("alpha", alpha),
                "fz": p.check("fz", fz, positive=True), "gamma": p.check("gamma", gamma),
-               "pressure": np.asarray(p.pressure if pressure is None else pressure,
-                                      dtype=float)
+               "pressure": real_array("pressure", p.pressure if pressure is None else pressure)
                if (pressure is not None or p.pressure is not None) else None,
                "vx": p.check("vx", p.need("LONGVL") if vx is None else vx),
                "phit": p.check("phit", phit),

@@ -428,6 +428,20 @@ class SteadyState:
         return out
 
 
+def _refuse_overflow(name: str, value: np.ndarray, r: Conditions) -> None:
+    """Refuse inputs that take an output past floating point (an infinity is no result:
+    the speed terms grow with the square of the speed or wheel speed)."""
+    bad = np.isinf(value)
+    if not bad.any():
+        return
+    i = int(np.flatnonzero(bad.ravel())[0])
+    at = {"vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
+    row = ", ".join(f"{k} = {float(np.broadcast_to(v, r.shape).ravel()[i]):g}"
+                    for k, v in at.items() if v is not None)
+    raise InputError(f"{name} is not finite at row {i} ({row}): the inputs there lie past "
+                     "what the Magic Formula's terms hold in floating point")
+
+
 def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
              pressure: Any = None, vx: Any = None, saturate: bool = False,
              names: Any = None, *, phit: Any = 0.0, omega: Any = None,
@@ -437,7 +451,7 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
 
     ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
     """
-    with collected() as warned:
+    with collected() as warned, np.errstate(over="ignore", divide="ignore"):
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
                        turn_slip, limit_checks)
         e = Evaluation(mf, r)
@@ -447,6 +461,7 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
             if value is not None:
                 outputs[name] = np.broadcast_to(np.asarray(value, dtype=float),
                                                 r.shape).copy()
+                _refuse_overflow(name, outputs[name], r)
     given = {"kappa": r.kappa_in, "alpha": alpha, "fz": r.fz_in, "gamma": gamma,
              "pressure": r.pressure, "vx": r.vx,
              "phit": r.phit_in if turn_slip else None, "omega": r.omega}

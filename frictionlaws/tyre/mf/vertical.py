@@ -73,7 +73,13 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
              (-q_fz1 + np.sqrt(np.maximum(q_fz1**2 + 4 * q_fz2 * rhs, 0.0))) / (2 * q_fz2))
         rho = np.maximum(x * R0, 0.0)
         rl = np.maximum(romega - rho, 0.0)
-    return {"Rl": rl, "rho": rho, "Cz": fz_c / rho}
+    flat = ~(rho > 0)  # no deflection left (a wheel speed far past the model's): no C_z
+    if np.any(flat & np.isfinite(rho)):
+        warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(flat & np.isfinite(rho)))} "
+                      "row(s) have no deflection at their wheel speed (the free radius has "
+                      "grown past the load's): C_z is NaN there", ExtrapolationWarning,
+                      stacklevel=4)
+    return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho)}
 
 
 def fz_62(p: MFParameters, r: Conditions, rl: Any, omega: Any, romega: Any, fx: Any,
