@@ -69,3 +69,6 @@ for ax in axes[:, 0]:
 axes[0, 0].legend(fontsize="small")
 plt.show()
 print(f"bandwidth V / (2 pi sigma_y) = {vx / (2 * np.pi * sigma):.1f} Hz")
+
+# The gallery thumbnail: figure 1 of this example (the step response).
+# sphinx_gallery_thumbnail_number = 1
