@@ -313,6 +313,7 @@ def _unit_product(tokens: list[str], i: int, depth: int
     return factors, i
 
 
+@functools.lru_cache(maxsize=256)
 def parse_unit_text(text: str) -> UnitText:
     """Read a unit text with the one unit grammar (no arithmetic, bounded powers).
 
