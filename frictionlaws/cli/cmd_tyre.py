@@ -9,7 +9,8 @@ Sub-commands:
 * ``mf``: summary of a Magic Formula property file (.tir or JSON);
 * ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
   F_x0/F_z curve at one load;
-* ``fit-mf``: fit a Magic Formula property file to tyre test data.
+* ``fit-mf``: fit a Magic Formula property file to tyre test data;
+* ``prepare``: turn a raw rig run into the steady sweeps fit-mf uses.
 """
 
 from __future__ import annotations
@@ -106,7 +107,33 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    "(usable with --params)")
 
     _add_fit_mf(tsub)
+    _add_prepare(tsub)
     return p
+
+
+def _add_prepare(tsub: argparse._SubParsersAction) -> None:
+    r = tsub.add_parser(
+        "prepare", help="turn a raw rig run into the steady sweeps fit-mf uses",
+        description="Read a raw rig run (one row per sample under a row of channel names "
+        "such as ET, SA, SL, FX, FY, FZ, MZ and a row of their units, SAE axes), convert it "
+        "to SI and ISO-W axes and cut it into steady sweeps: lifts, transitions between "
+        "loads, cambers and pressures, the warm-up and one-way stretches are dropped and "
+        "counted, the force channels' zero offsets measured while lifted are subtracted, the "
+        "forces' lag behind the slip is found from the up and down halves of each sweep and "
+        "taken out, and each sweep is averaged in blocks, up and down apart. Writes what "
+        "fit-mf would use.")
+    r.add_argument("raw", metavar="RAW", help="raw rig run (text; '-' reads standard input)")
+    r.add_argument("-o", "--output", required=True, metavar="FILE",
+                   help="the sweeps written: FILE.csv (a tidy CSV, with sweep and direction "
+                        "columns) or FILE.tdx (TYDEX)")
+    r.add_argument("--plots", metavar="DIR", help="write segments.png (the run, kept and "
+                   "dropped) and sweeps.png (the rows kept) into DIR")
+    r.add_argument("--sign-convention", choices=("sae", "iso"), default="sae",
+                   help="axes of the run: sae (default, as the public test programmes "
+                        "publish) or iso (ISO-W)")
+    r.add_argument("--warm-up", metavar="TIME", help="drop the first TIME (e.g. '60 s') "
+                   "as warm-up, beside the conditions the run returns to later")
+    r.add_argument("--json", action="store_true", help="print one JSON object")
 
 
 def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
@@ -329,8 +356,10 @@ def run(args: argparse.Namespace) -> int:
         return _on_property_file(_run_reduce, args)
     if cmd == "fit-mf":
         return _run_fit_mf(args)
+    if cmd == "prepare":
+        return _run_prepare(args)
     raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce, "
-                     "fit-mf")
+                     "fit-mf, prepare")
 
 
 def _angles(text: str) -> list[float]:
@@ -554,4 +583,42 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         return 0
     print(res.report())
     print(f"written: {args.output}" + (f", {args.plot}" if args.plot else ""))
+    return 0
+
+
+def _run_prepare(args: argparse.Namespace) -> int:
+    from frictionlaws.errors import InputError
+    from frictionlaws.outputs import check_outputs
+    from frictionlaws.tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
+    from frictionlaws.tyre.data.tydex import write_tydex
+
+    from ._common import data_source, shown_source
+
+    suffix = args.output.lower().rsplit(".", 1)[-1] if "." in args.output else ""
+    if suffix not in ("csv", "tdx"):
+        raise InputError("the sweeps are written as a tidy CSV (.csv) or a TYDEX file (.tdx): "
+                         "give the output one of these suffixes", file=args.output)
+    warmup = _quantity(args.warm_up, "time", "--warm-up") or 0.0
+    check_outputs([args.output], dirs=[args.plots], inputs=[args.raw])
+    with data_source(args.raw, "stdin.txt") as path:
+        prepared = prepare_run(load_raw_run(path, sign_convention=args.sign_convention),
+                               warmup=warmup)
+        shown = shown_source(path)
+        prepared.run.source = prepared.data.source = shown
+        provenance = [f"steady sweeps prepared by frictionlaws tyre prepare from {shown}",
+                      *prepared.summary()[1:], *(f"note: {n}" for n in prepared.notes)]
+        if suffix == "csv":
+            write_tyre_csv(prepared.data, args.output, provenance)
+        else:
+            write_tydex(prepared.data, args.output, comments=provenance)
+        plots = write_plots(prepared, args.plots) if args.plots else []
+    if args.json:
+        from frictionlaws import jsonio
+
+        out = prepared.to_dict()
+        out["written"] = [args.output, *map(str, plots)]
+        print(jsonio.dumps(out))
+        return 0
+    print(prepared.report())
+    print("written: " + ", ".join([args.output, *map(str, plots)]))
     return 0

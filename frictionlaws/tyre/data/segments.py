@@ -157,8 +157,9 @@ class PreparedRun:
                  f"{_shown(self.levels['camber'], 180 / math.pi, 'deg')}; pressures "
                  f"{_shown(self.levels['pressure'], 1e-3, 'kPa')}",
                  f"kept {kept} samples ({100 * kept / n:.1f} %) in {lat} slip-angle sweeps "
-                 f"and {len(sweeps) - lat} slip-ratio sweeps: {len(self.data)} rows "
-                 f"(bins of {BINS_PER_SWEEP} per sweep, up and down apart)"]
+                 f"and {len(sweeps) - lat} slip-ratio sweeps: {len(self.data)} rows (blocks of "
+                 f"{MIN_BLOCK} or more samples, about {BINS_PER_SWEEP} per pass, up and down "
+                 "apart)"]
         for reason, (count, seconds) in self.dropped().items():
             lines.append(f"dropped {reason}: {count} samples ({seconds:.1f} s, "
                          f"{100 * count / n:.1f} %)")
@@ -183,7 +184,7 @@ class PreparedRun:
 def _shown(values: np.ndarray, scale: float, unit: str) -> str:
     if values.size == 0:
         return "none (not measured)"
-    return ", ".join(f"{v * scale:.3g}" for v in values) + f" {unit}"
+    return ", ".join(f"{round(v * scale, 2) + 0.0:.3g}" for v in values) + f" {unit}"
 
 
 # ------------------------------------------------------------------ helpers

@@ -12,9 +12,10 @@ explicit unit (``deg`` or ``rad``).  Aliases (any case): ``FZ``/``load``,
 ``SL``/``slip_ratio``, ``SA``/``slip_angle``, ``IA``/``camber``/``inclination``, ``P``/``p``.
 ``SR``, a rig's slip ratio on the loaded radius, is read as kappa only when no ``SL`` (the
 slip ratio on the effective rolling radius, the Magic Formula's kappa) is given, and the
-notes say which was read.  A ``sweep`` column (one label per sweep, as ``tyre prepare``
-writes it) is kept with the rows.  The file is read by the one table reader
-(:func:`frictionlaws.io.read_table`) and converted with :func:`frictionlaws.units.to_si`.
+notes say which was read.  The columns ``tyre prepare`` writes beside (``sweep``, a label
+per sweep; ``direction``, +1 up and -1 down; ``samples``; ``time``) are kept with the rows.
+The file is read by the one table reader (:func:`frictionlaws.io.read_table`) and converted
+with :func:`frictionlaws.units.to_si`.
 Columns of other names are not used, and the notes say which.  A pressure column with
 blank cells among values is refused (a blank would be taken as the nominal pressure).
 :func:`write_tyre_csv` writes such a file; :func:`join` joins the data of several files.
@@ -44,7 +45,8 @@ from ...errors import Argument, InputError
 from .channels import KINDS, convert
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS", "to_iso_axes",
-           "check_sign_convention", "join", "write_tyre_csv", "tyre_csv_text", "CSV_UNITS"]
+           "check_sign_convention", "join", "write_tyre_csv", "tyre_csv_text", "CSV_UNITS",
+           "EXTRA_COLUMNS"]
 
 SIGN_CONVENTIONS = ("iso", "sae")
 
@@ -294,19 +296,31 @@ def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
     return si
 
 
-def _sweep_column(table: Any) -> dict[str, np.ndarray]:
-    """The ``sweep`` labels of the rows, when the file has such a column."""
+#: Per-row columns a file may carry beside the tyre data (as ``tyre prepare`` writes them):
+#: name -> what it is.
+EXTRA_COLUMNS = {"sweep": "a label per sweep", "direction": "+1 up, -1 down",
+                 "samples": "samples a row averages", "time": "time [s]"}
+
+
+def _extra_columns(table: Any) -> dict[str, np.ndarray]:
+    """The :data:`EXTRA_COLUMNS` of the file (``time`` in SI), each complete."""
     from ...io import split_header
 
+    out: dict[str, np.ndarray] = {}
     for j, h in enumerate(table.headers):
-        if split_header(h)[0].strip().lower() == "sweep":
-            labels = _cells(table, j)
-            if not np.all(np.isfinite(labels)):
-                i = int(np.argmax(~np.isfinite(labels)))
-                raise InputError("a sweep label is missing", file=table.source, column=h,
-                                 row=table.rows[i])
-            return {"sweep": labels}
-    return {}
+        name, unit = split_header(h)
+        key = name.strip().lower()
+        if key not in EXTRA_COLUMNS or key in out:
+            continue
+        values = _cells(table, j)
+        if key == "time":
+            values = convert(values, unit or "", "time", file=table.source, column=h)
+        if not np.all(np.isfinite(values)):
+            i = int(np.argmax(~np.isfinite(values)))
+            raise InputError(f"a {key} value is missing ({EXTRA_COLUMNS[key]})",
+                             file=table.source, column=h, row=table.rows[i])
+        out[key] = values
+    return out
 
 
 def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreData:
@@ -328,7 +342,7 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     InputError
         Naming the file, column and row of what cannot be used.
     """
-    from ...io import read_table
+    from ...io import read_table, split_header
 
     check_sign_convention(sign_convention)
     source = str(path)
@@ -342,10 +356,10 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
               for col in COLUMNS}
     if "pressure" in found:
         _check_blank_pressures(arrays["pressure"], table, found["pressure"][0])
-    extra = _sweep_column(table)
+    extra = _extra_columns(table)
     used = {j for j, _ in found.values()}
     unused = [h for j, h in enumerate(table.headers) if j not in used
-              and not (extra and h.strip().lower() == "sweep")]
+              and split_header(h)[0].strip().lower() not in extra]
     if unused:
         notes.append(f"columns not used (not a tyre-data column): {', '.join(unused)}")
     notes.append(to_iso_axes(arrays, sign_convention))

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -68,6 +69,8 @@ _DESCRIPTIONS = {"fz": "Vertical force, W axes", "kappa": "Longitudinal slip",
                  "alpha": "Slip angle", "gamma": "Inclination angle",
                  "pressure": "Inflation pressure", "fx": "Longitudinal force",
                  "fy": "Lateral force, W axes", "mz": "Aligning moment, W axes"}
+#: A TYDEX name: ASCII letters, digits and underscores.
+_NAME = re.compile(r"[A-Za-z0-9_]{1,10}")
 #: Text that stands for a missing value in the data of other tools.
 _NOT_AVAILABLE = "NOTAVAIL"
 _FIXED = ("TYDEX lines are fixed width: name in columns 1-10, description 11-40, unit "
@@ -297,9 +300,10 @@ def _fields(line: str, number: int, source: str, what: str) -> tuple[str, str, s
     if "\t" in line:
         raise InputError(f"a tab in a {what} line: {_FIXED}", file=source, row=number)
     name = line[:10].strip()
-    if not name or " " in name:
+    if not _NAME.fullmatch(name):
         raise InputError(f"the name field (columns 1-10) of this {what} line holds "
-                         f"'{line[:10].strip()[:20]}': {_FIXED}", file=source, row=number)
+                         f"{ascii(line[:10].strip()[:20])}, not a name of letters, digits and "
+                         f"_: {_FIXED}", file=source, row=number)
     return name.upper(), line[10:40].strip(), line[40:50].strip(), line[50:].strip()
 
 
