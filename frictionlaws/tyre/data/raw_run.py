@@ -238,6 +238,7 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     run.notes.append(to_iso_axes(run.quantities, sign_convention))
     _check_axes(run)
     _check_angles(run)
+    _check_units(run)
     return run
 
 
@@ -320,3 +321,58 @@ def _check_angles(run: RawRun) -> None:
             raise InputError(f"{what} (unit '{run.units[name]}'): degrees under a radian "
                              "unit?", file=run.source, column=name,
                              row=int(run.lines[np.argmax(bad)]))
+
+
+def _refuse_unit(run: RawRun, q: str, message: str, where: np.ndarray) -> None:
+    name = run.channels.get(q, q.upper())
+    raise InputError(f"{message} (unit '{run.units.get(name, '')}')", file=run.source,
+                     column=name, row=int(run.lines[int(np.argmax(where))]))
+
+
+def _check_units(run: RawRun) -> None:
+    """Slips, forces and moments against what tyres do (the bounds of a fit's checks): a unit
+    that is wrong by a factor would otherwise shrink or blow up the sweeps."""
+    from .._fit_mf_checks import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
+
+    q = run.quantities
+    fz = q["fz"]
+    loaded = fz > 0.1 * np.percentile(fz, 95)
+    if not loaded.any():
+        raise InputError("no sample carries a load", file=run.source,
+                         column=run.channels["fz"])
+    kappa, tan_a = q["kappa"], np.tan(q["alpha"])
+    if np.mean(np.abs(kappa[loaded]) > 1) > 0.01:
+        _refuse_unit(run, "kappa", "slip ratios beyond -1..1: percent given as fractions?",
+                     loaded & (np.abs(kappa) > 1))
+    for force, slip, other, limit, what in (
+            ("fy", tan_a, np.abs(kappa) < 0.01, MAX_CORNERING_COEFFICIENT,
+             "a cornering coefficient of {c:.0f} per rad (tyres have 5-40): the slip angles "
+             "look like radians under a degree unit"),
+            ("fx", kappa, np.abs(q["alpha"]) < math.radians(1.0), MAX_SLIP_COEFFICIENT,
+             "a slip coefficient of {c:.0f} (tyres have 10-40): the slip ratios look like "
+             "fractions under a percent unit")):
+        use = loaded & other & (np.abs(slip) > 1e-6)
+        if force in q and use.sum() > 10:
+            ratio = float(np.percentile(np.abs(q[force][use] / fz[use]), 99.9))
+            coef = ratio / float(np.max(np.abs(slip[use])))
+            if coef > limit:
+                _refuse_unit(run, "alpha" if force == "fy" else "kappa", what.format(c=coef),
+                             use)
+    _check_loads_and_moments(run, loaded)
+
+
+def _check_loads_and_moments(run: RawRun, loaded: np.ndarray) -> None:
+    """Forces of a few percent of the load at most (a load unit too large), or moments
+    beyond the load times the loaded radius (N mm as N m)."""
+    q = run.quantities
+    fz = q["fz"][loaded]
+    forces = [np.abs(q[k][loaded]) for k in ("fx", "fy") if k in q]
+    if forces and float(np.percentile(np.max(forces, axis=0) / fz, 99)) < 0.02:
+        _refuse_unit(run, "fz", "the forces stay below 2 % of the load: the load looks "
+                                "larger than it is (kN under N?)", loaded)
+    if "mz" in q and "loaded_radius" in q:
+        arm = np.abs(q["mz"][loaded]) / fz
+        radius = q["loaded_radius"][loaded]
+        if float(np.percentile(arm / radius, 99)) > 1:
+            _refuse_unit(run, "mz", "|MZ| exceeds the load times the loaded radius: the "
+                                    "moments look like N mm under N m", loaded)

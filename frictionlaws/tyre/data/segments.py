@@ -40,11 +40,14 @@ from .table import TyreData
 
 __all__ = ["Segment", "PreparedRun", "prepare_run", "REASONS", "LIFT_SHARE", "SMOOTH_S",
            "MIN_LEVEL_S", "SETTLE_S", "MIN_CONDITION_S", "MIN_HOLD_S", "BINS_PER_SWEEP",
-           "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S",
+           "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE", "FORCE_WEIGHT",
            "KAPPA_SWEEP", "ALPHA_SWEEP"]
 
 #: A sample is lifted when its load is below this share of the run's 95th-percentile load.
 LIFT_SHARE = 0.1
+#: While lifted, the forces are zero offsets where the load is below this share of the
+#: run's 95th-percentile load (off the road, not touching it).
+OFF_ROAD_SHARE = 0.02
 #: The median filter of load, camber, pressure and slip angle [s].
 SMOOTH_S = 1.0
 #: A level of load, camber or pressure is held this long in all or more [s].
@@ -125,7 +128,10 @@ def _finite(v: float) -> float | None:
 class PreparedRun:
     """Steady sweeps of a raw run (module documentation) and what was dropped.
 
-    ``status`` holds, per sample, the code of :data:`REASONS` (0: kept).
+    ``status`` holds, per sample, the code of :data:`REASONS` (0: kept); ``lags`` the
+    (sweep kind, lag [s]) found in each sweep kept; ``offsets`` the force channels' zero
+    offsets measured while lifted (``"time"`` [s], ``"fx"``, ``"fy"`` [N], ``"mz"`` [N m]
+    at each lift; empty without lifts or when not subtracted).
     """
 
     data: TyreData
@@ -135,6 +141,8 @@ class PreparedRun:
     levels: dict[str, np.ndarray]
     notes: list[str] = field(default_factory=list)
     rate: float = math.nan
+    lags: list[tuple[str, float]] = field(default_factory=list)
+    offsets: dict[str, np.ndarray] = field(default_factory=dict)
 
     def dropped(self) -> dict[str, tuple[int, float]]:
         """Reason -> (samples, seconds) of what was dropped."""
@@ -243,6 +251,8 @@ class _Work:
     #: (sweep kind, lag found) of every sweep kept.
     lags: list[tuple[str, float]] = field(default_factory=list)
     lag: bool = True
+    #: The zero offsets measured in lifts (:attr:`PreparedRun.offsets`).
+    offsets: dict[str, np.ndarray] = field(default_factory=dict)
 
     def samples(self, seconds: float) -> int:
         return max(1, int(round(seconds * self.rate)))
@@ -279,10 +289,12 @@ def _lifts(w: _Work) -> np.ndarray:
 
 
 def _zero_offsets(w: _Work, lifted: np.ndarray) -> None:
-    """Subtract the forces measured while lifted, interpolated between lifts."""
+    """Subtract the forces measured while off the road (load below :data:`OFF_ROAD_SHARE`
+    of the reference), interpolated between lifts."""
     t = w.q["time"]
     centres, values = [], []
-    for a, b in _runs(lifted):
+    off = lifted & (w.q["fz"] < OFF_ROAD_SHARE * np.percentile(w.q["fz"], 95))
+    for a, b in _runs(off):
         if b - a < w.samples(0.5):
             continue
         inner = slice(a + (b - a) // 5, b - (b - a) // 5)
@@ -294,6 +306,8 @@ def _zero_offsets(w: _Work, lifted: np.ndarray) -> None:
                        "measured, the forces are taken as they are")
         return
     table = np.array(values)
+    w.offsets = {"time": np.array(centres), **{k: table[:, j] for j, k in
+                                                enumerate(("fx", "fy", "mz")) if k in w.q}}
     said = []
     for j, (k, unit) in enumerate((("fx", "N"), ("fy", "N"), ("mz", "N m"))):
         if k in w.q:
@@ -433,6 +447,9 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
            rows: list) -> None:
     """Average one sweep in blocks, up and down apart (module documentation), or drop it
     as one-way."""
+    sub = _moving(w, sub, w.q["alpha" if kind == "lateral" else "kappa"][sub], level, cond)
+    if sub.size < 2 * MIN_BLOCK:
+        return
     x = w.q["alpha" if kind == "lateral" else "kappa"][sub]
     direction = _directions(x, w.samples(0.3))
     share = float(np.mean(direction > 0))
@@ -468,6 +485,23 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
 def _range(f: np.ndarray) -> float:
     span = float(np.percentile(f, 98) - np.percentile(f, 2)) if f.size else 0.0
     return span if span > 0 and math.isfinite(span) else math.inf
+
+
+def _moving(w: _Work, sub: np.ndarray, x: np.ndarray, level: float,
+            cond: dict[str, float]) -> np.ndarray:
+    """``sub`` without the still samples at its ends (a slip below a fifth of the sweep's
+    median speed there: a dwell, dropped as such)."""
+    speed = np.abs(np.gradient(_smooth(x, w.samples(0.3))))
+    moving = speed > 0.2 * float(np.median(speed))
+    if not moving.any():
+        w.drop(sub[0], sub[-1] + 1, "dwell", alpha=level, **cond)
+        return sub[:0]
+    first, last = int(np.argmax(moving)), int(moving.size - np.argmax(moving[::-1]))
+    if first:
+        w.drop(sub[0], sub[first], "dwell", alpha=level, **cond)
+    if last < sub.size:
+        w.drop(sub[last], sub[-1] + 1, "dwell", alpha=level, **cond)
+    return sub[first:last]
 
 
 def _shaping(w: _Work, sub: np.ndarray, kind: str) -> list[str]:
@@ -658,7 +692,7 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
     _lag_notes(w)
     notes = list(run.notes) + w.notes
     prepared = PreparedRun(_data(w, rows, list(notes)), run, w.segments, w.status, levels,
-                           notes, w.rate)
+                           notes, w.rate, w.lags, w.offsets)
     prepared.data.notes.append("prepared from a raw rig run: "
                                + "; ".join(prepared.summary()[1:]))
     if check:

@@ -30,10 +30,12 @@ from ..magic_formula import MagicFormula
 from .table import TyreData
 
 __all__ = ["RawRunSpec", "SyntheticRun", "synthetic_raw_run", "sweep_data", "COLD_GRIP",
-           "RAW_UNITS", "PHASES"]
+           "RAW_UNITS", "PHASES", "LIFTED_NOISE"]
 
 #: The grip of the cold tyre at the start of the warm-up, as a share of the warm tyre's.
 COLD_GRIP = 0.9
+#: The noise of the force channels of a lifted tyre, a share of the lightest load's.
+LIFTED_NOISE = 0.2
 #: Channel -> unit written (SI as the public programmes publish).
 RAW_UNITS = {"ET": "s", "V": "kph", "N": "rpm", "SA": "deg", "IA": "deg", "RL": "cm",
              "RE": "cm", "P": "kPa", "FX": "N", "FY": "N", "FZ": "N", "MX": "N-m",
@@ -164,8 +166,8 @@ def _timeline(truth: MagicFormula, spec: RawRunSpec) -> dict[str, np.ndarray]:
     tl.add(2.0, "lift", fz=0.0)
     for p in spec.pressures:
         for g in spec.cambers_deg:
-            tl.add(4.0, "lift", fz=0.0, p=p * p_nom, gamma=math.radians(g))
-            tl.add(1.0, "lift")
+            tl.add(3.0, "lift", fz=0.0)
+            tl.add(3.0, "lift", p=p * p_nom, gamma=math.radians(g))
             for load in spec.loads:
                 _condition(tl, spec, load * fnom)
     tl.add(3.0, "lift", fz=0.0)
@@ -194,7 +196,8 @@ def _noise_scale(force: np.ndarray, level: np.ndarray) -> np.ndarray:
     if held.size == 0:
         return np.full(force.size, np.abs(force).max())
     peaks = np.array([np.abs(force[level == lv]).max() for lv in held])
-    return np.interp(level, held, peaks)
+    scale = np.interp(level, held, peaks)
+    return np.where(level > 0, scale, LIFTED_NOISE * peaks.min())
 
 
 def synthetic_raw_run(truth: MagicFormula, spec: RawRunSpec | None = None) -> SyntheticRun:
