@@ -107,12 +107,27 @@ def _settings(q0: float, H: float, h_rms: float) -> tuple[Setting, ...]:
     )
 
 
-def _notes(T_domain: tuple[float, float]) -> str:
+def _flash_note(thermal: Flash | None) -> str:
+    """How the setting heat_fraction heats the rubber (the law's thermal properties)."""
+    from ..persson.flash import TREAD_THERMAL
+
+    f = TREAD_THERMAL if thermal is None else thermal
+    how = ("the heat of each scale made in the rubber's volume down to the depth 1/q, "
+           f"its {f.contact_temperature} temperature over the contact time"
+           if f.closure == "volume" else "the heat of each scale a flux through sliding "
+           "discs (an upper bound)")
+    background = (f", background heating over a sliding distance of {f.sliding_distance:g} m"
+                  if f.sliding_distance > 0 else ", no background heating")
+    return (f"flash temperature, Persson 2006, in the {f.closure} closure of "
+            f"frictionlaws.persson.flash: {how}; conductivity {f.conductivity:g} W/(m K), "
+            f"heat capacity {f.heat_capacity:g} J/(m^3 K){background}; mu_a makes no heat")
+
+
+def _notes(T_domain: tuple[float, float], thermal: Flash | None) -> str:
     return ("No closed form: the Fortran user-subroutine formats are refused, tables are "
             "exported. By default isothermal and uncorrected (gamma = 1, heat_fraction = 0, "
-            "the 2001 theory); the settings gamma (S(q) correction) and heat_fraction (flash "
-            "temperature, Persson 2006, in the simplified closure of "
-            "frictionlaws.persson.flash) turn the 2006 refinements on. T is held to the "
+            "the 2001 theory); the settings gamma (S(q) correction) and heat_fraction ("
+            f"{_flash_note(thermal)}) turn the 2006 refinements on. T is held to the "
             f"material's range {T_domain[0]:.2f}..{T_domain[1]:.2f} K and p to 1 Pa..100 MPa "
             "(refused outside them, in calls, fits and exported boxes); v = 0 gives the static "
             "limit mu = mu_a (the viscoelastic part vanishes linearly in v). Build another "
@@ -186,7 +201,7 @@ def persson_law(material: Material | None = None, *, id: str = "persson",
         f"{what}, on a self-affine surface C(q) = C0 (q/q0)^(-2(1+H)) with the rms height "
         "h_rms (asphalt-like: q0 = 2 pi/1 cm, H = 0.8, h_rms = 0.3 mm), plus an additive "
         "contribution mu_a.",
-        notes=_notes(T_domain),
+        notes=_notes(T_domain, thermal),
     )
     if register_law:
         register(law)

@@ -7,8 +7,9 @@
   1-D profile to isotropic 2-D conversion.
 * :mod:`.theory`: the contact ratio P(q) and the friction coefficient
   mu(v, T, p) (fast vectorised quadrature).
-* :mod:`.published`: the packaged tread compound's predictions beside
-  published figures.
+* :mod:`.flash`: the flash temperature (Persson 2006), the settings and closures.
+* :mod:`.published`: the flash temperature's own figures on the packaged tread
+  compound, and the published figures (of other rubbers) that are not compared.
 
 The registry law ``persson`` (``frictionlaws/laws/persson.py``) wraps it.
 
@@ -46,8 +47,9 @@ _API = {
     "friction": "theory",
     "loss_angular": "theory",
     "modulus_sq_angular": "theory",
-    "Comparison": "published",
-    "published_comparison": "published",
+    "CLOSURES": "flash",
+    "FlashFigures": "published",
+    "flash_figures": "published",
 }
 
 __all__ = list(_API)

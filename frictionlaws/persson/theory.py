@@ -4,8 +4,9 @@ Sources: B. N. J. Persson, Theory of rubber friction and contact mechanics,
 J. Chem. Phys. 115 (2001) 3840-3861; B. N. J. Persson,
 O. Albohr, U. Tartaglino, A. I. Volokitin, E. Tosatti, On the nature of surface
 roughness with application to contact mechanics, sealing, rubber friction and
-adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62.
-Without the flash-temperature correction (isothermal rubber; not implemented).
+adhesion, J. Phys.: Condens. Matter 17 (2005) R1-R62; the refinements of
+B. N. J. Persson, J. Phys.: Condens. Matter 18 (2006) 7789 (the correction S(q)
+and the flash temperature, :mod:`.flash`) are options.
 
 .. code-block:: text
 
@@ -33,6 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -40,12 +42,12 @@ import numpy as np
 from scipy.special import erf
 
 from ..errors import DomainError, ExtrapolationWarning, InputError
-from .flash import Flash
+from .flash import Flash, background_rise, temperature_rise
 from .material import Material
 from .surface import check_roughness
 
-__all__ = ["friction", "flash_temperature", "contact_ratio", "check_conditions", "loss_angular",
-           "loss_tabulated", "modulus_sq_angular", "q_nodes"]
+__all__ = ["friction", "flash_temperature", "T_CEILING", "contact_ratio", "check_conditions",
+           "loss_angular", "loss_tabulated", "modulus_sq_angular", "q_nodes"]
 
 
 def loss_angular(material: Material, omega0: Any) -> np.ndarray:
@@ -220,16 +222,23 @@ def _warn_outside_data(material: Material, q0: float, q1: float, v: np.ndarray, 
     lo, hi = material.omega_range
     w = v * 10.0 ** material.shift(T)
     out = (v > 0) & ((q1 * w < lo) | (q0 * w > hi))
-    if out.any():
-        import warnings
+    _warn_at(out, v, T, f"the sliding excites only frequencies outside the material's "
+             f"measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there is the "
+             "Prony series' continuation, an extrapolation")
 
-        k = int(np.flatnonzero(out)[0])
-        warnings.warn(
-            f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = {v[k]:.4g} "
-            f"m/s, T = {T[k]:.5g} K) the sliding excites only frequencies outside the "
-            f"material's measured master curve ({lo:.3g} .. {hi:.3g} rad/s at T_ref): mu there "
-            "is the Prony series' continuation, an extrapolation", ExtrapolationWarning,
-            stacklevel=4)
+
+def _warn_at(out: np.ndarray, v: np.ndarray, T: np.ndarray, what: str | Any) -> None:
+    """One ExtrapolationWarning for the conditions ``out``, naming their count and the first.
+
+    ``what`` says what happens there: text, or a function of the first one's index.
+    """
+    if not out.any():
+        return
+    k = int(np.flatnonzero(out)[0])
+    text = what(k) if callable(what) else what
+    warnings.warn(f"Persson: at {int(out.sum())} of {v.size} conditions (the first: v = "
+                  f"{v[k]:.4g} m/s, T = {T[k]:.5g} K) {text}", ExtrapolationWarning,
+                  stacklevel=5)
 
 
 def _index(mask: np.ndarray) -> int | tuple[int, ...]:
@@ -342,9 +351,12 @@ def friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
 
 
 def flash_temperature(material: Material, surface: Any, v: Any, T: Any, p: Any, *,
-                      flash: Flash, q1: float | None = None, gamma: float = 1.0
+                      flash: Flash, q1: float | None = None, gamma: float = 1.0,
+                      order: int = 10, panels_per_decade: float = 2.0
                       ) -> tuple[np.ndarray, np.ndarray]:
     """The temperatures T_q [K] the rubber has at each length scale while sliding.
+
+    The same solution as :func:`friction` with ``flash`` (same arguments).
 
     Returns
     -------
@@ -352,8 +364,8 @@ def flash_temperature(material: Material, surface: Any, v: Any, T: Any, p: Any, 
         The quadrature wavenumbers [1/m] and the temperatures, one row per
         point of the broadcast v, T, p (flattened).
     """
-    _, nodes, Tq = _friction(material, surface, v, T, p, q1=q1, order=10,
-                             panels_per_decade=2.0, gamma=gamma, flash=flash)
+    _, nodes, Tq = _friction(material, surface, v, T, p, q1=q1, order=order,
+                             panels_per_decade=panels_per_decade, gamma=gamma, flash=flash)
     return nodes, Tq
 
 
@@ -386,6 +398,9 @@ def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: f
               order: int, panels_per_decade: float, gamma: float, flash: Flash | None
               ) -> tuple[Any, np.ndarray, np.ndarray]:
     """mu (as :func:`friction` returns it), the q nodes and T_q (points x nodes)."""
+    if flash is not None and not isinstance(flash, Flash):
+        raise InputError(f"Persson: flash must be a Flash (thermal properties) or None, got "
+                         f"{type(flash).__name__}")
     _check_gamma(gamma)
     q1 = float(surface.q1 if q1 is None else q1)
     _check_quadrature(surface.q0, q1, order, panels_per_decade)
@@ -408,9 +423,33 @@ def _friction(material: Material, surface: Any, v: Any, T: Any, p: Any, *, q1: f
             dmu, _ = _integrand(material, surface, vv[b], TT[b], pp[b], grid, gamma)
             Tq[b] = TT[b][:, None]
         mu[b] = dmu.sum(axis=1)
+    if heated:
+        _check_hot(material, Tq, vv, TT, pp)
     # v = 0: no excitation, Im E(0) = 0, the exact limit (mu falls linearly in v towards it)
     mu[vv == 0.0] = 0.0
     return (float(mu[0]) if shape == () else mu.reshape(shape)), nodes, Tq
+
+
+#: Highest rubber temperature [K] a friction coefficient is given for (300 degC: rubbers
+#: degrade above about 200-300 degC, and the modulus there is no longer the measured one).
+T_CEILING = 573.15
+
+
+def _check_hot(material: Material, Tq: np.ndarray, v: np.ndarray, T: np.ndarray,
+               p: np.ndarray) -> None:
+    """Refuse rubber temperatures above :data:`T_CEILING`; warn above the material's data."""
+    hottest = Tq.max(axis=1)
+    over = hottest > T_CEILING
+    if over.any():
+        k = int(np.flatnonzero(over)[0])
+        raise DomainError(f"Persson: at v = {v[k]:.4g} m/s, T = {T[k]:.5g} K, p = {p[k]:.4g} Pa "
+                          f"the flash temperature reaches {hottest[k]:.4g} K, above "
+                          f"{T_CEILING:g} K (300 degC), where rubber degrades; no friction "
+                          "coefficient is given for these conditions")
+    top = material.temperature_range()[1]
+    _warn_at(hottest > top * (1 + 1e-12), v, T,
+             lambda k: f"the flash temperature reaches {hottest[k]:.4g} K, above the "
+             f"material's data (to {top:.5g} K): the modulus there is the shift's extrapolation")
 
 
 @dataclass(frozen=True)
@@ -437,16 +476,13 @@ def _integrand(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p
 
 def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray, p: np.ndarray,
                  grid: _Grid, gamma: float, flash: Flash) -> tuple[np.ndarray, np.ndarray]:
-    """Self-consistent T_q and the integrand with it (the closure of :mod:`.flash`).
+    """Self-consistent T_q and the integrand with it (the closures of :mod:`.flash`).
 
     Damped fixed-point iteration, each point's step at most :data:`_DAMP_MAX` of
     the full one, halved whenever its change grows (a hot rubber on the glassy
     side heats itself further, and a fuller step overshoots there) and let grow
     slowly again while it shrinks.
     """
-    a = np.pi / (2.0 * grid.nodes)
-    phi = 2.0 / np.sqrt(np.pi * (1.273 + v[:, None] * a[None, :] / (2.0 * flash.diffusivity)))
-    c = flash.heat_fraction * p * v / flash.conductivity
     Tq = np.repeat(T[:, None], grid.nodes.size, axis=1)
     omega = np.full(v.size, _DAMP_MAX)
     last = np.full(v.size, np.inf)
@@ -454,17 +490,19 @@ def _flash_solve(material: Material, surface: Any, v: np.ndarray, T: np.ndarray,
     change = np.zeros(0)
     for _ in range(flash.max_iter):
         dmu, P = _integrand(material, surface, v[live], Tq[live], p[live], grid, gamma)
-        K = a[None, :] * phi[live] / np.maximum(P, 1e-300)
-        finer = np.cumsum(dmu[:, ::-1], axis=1)[:, ::-1]        # sum over q' >= q
-        coarser = np.cumsum(dmu * K, axis=1) - dmu * K           # sum over q' < q of dmu K
-        step = T[live, None] + c[live, None] * (K * finer + coarser) - Tq[live]
+        rise = temperature_rise(flash, grid.nodes, grid.weights, grid.cum, dmu, P, v[live],
+                                p[live])
+        rise += background_rise(flash, dmu.sum(axis=1), v[live], p[live])[:, None]
+        step = T[live, None] + rise - Tq[live]
         change = np.max(np.abs(step), axis=1)
         going = change >= flash.tol
         w = np.where(change > last[live], omega[live] / 2,
                      np.minimum(omega[live] * 1.05, _DAMP_MAX))
         omega[live] = np.maximum(w, _DAMP_MIN)
         last[live] = change
-        Tq[live[going]] += omega[live[going], None] * step[going]
+        # a converged point takes the full step: T_q is then the map's own value (below tol
+        # from the fixed point), so a rise smaller than tol is kept, not rounded to 0
+        Tq[live] += np.where(going, omega[live], 1.0)[:, None] * step
         live = live[going]
         if live.size == 0:
             return _integrand(material, surface, v, Tq, p, grid, gamma)[0], Tq
