@@ -292,3 +292,28 @@ def test_the_formats_are_told_apart_and_read_together(raw, tmp_path: Path) -> No
     assert [f.format for f in files] == ["raw", "tydex"]
     assert data.notes[0] == "2 files read together (raw, tydex)"
     assert np.unique(data.extra["file"]).tolist() == [0, 1]
+
+
+@pytest.mark.slow
+def test_a_raw_run_fitted_reproduces_the_noise_free_truth(tmp_path: Path) -> None:
+    """From a raw run of a tyre unlike the template (its imperfections all on) to a property
+    file within 1 % of the peak for Fx0, Fy0, 2 % combined and 3 % for Mz."""
+    import warnings
+
+    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.tyre import fit_mf
+    from frictionlaws.tyre.synthetic_rig import moved_tyre, truth_errors
+
+    truth = moved_tyre()
+    spec = RawRunSpec(loads=(0.4, 1.0, 1.6), cambers_deg=(-3.0, 0.0, 3.0),
+                      pressures=(0.85, 1.1), rate=50.0, cycles=1)
+    path = synthetic_raw_run(truth, spec).write(tmp_path / "held.dat")
+    data, _ = read_tyre_files([path])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        fitted = fit_mf(data)
+        e = truth_errors(truth, fitted.model, loads=spec.loads, pressures=spec.pressures,
+                         cambers_deg=spec.cambers_deg)  # at +-12 deg, beyond the blocks' means
+    assert e["Fx0"] < 0.01 and e["Fy0"] < 0.01, e
+    assert e["Fx"] < 0.02 and e["Fy"] < 0.02, e
+    assert e["Mz"] < 0.03, e

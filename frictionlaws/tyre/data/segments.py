@@ -10,8 +10,9 @@
    :data:`SMOOTH_S` s) and cuts the run into **conditions** where all three stay at one
    level; samples between levels are **transitions**, the first :data:`SETTLE_S` s of a
    condition **settling**, a condition shorter than :data:`MIN_CONDITION_S` s **short**;
-   conditions at the start that the run returns to later are the **warm-up** (so are the
-   first ``warmup`` seconds, when given);
+   conditions at the start that begin before the tread is warm (its temperature within
+   :data:`WARM_MARGIN_K` of its running value) or that the run returns to later are the
+   **warm-up** (so are the first ``warmup`` seconds, when given);
 3. finds the **sweeps** in each condition: slip-angle levels held for :data:`MIN_HOLD_S` s
    or more carry slip-ratio sweeps (pure at zero slip angle, combined elsewhere); a hold
    without a slip-ratio sweep is a **dwell**; between the holds the slip angle sweeps (with
@@ -41,6 +42,7 @@ from .table import TyreData
 __all__ = ["Segment", "PreparedRun", "prepare_run", "REASONS", "LIFT_SHARE", "SMOOTH_S",
            "MIN_LEVEL_S", "SETTLE_S", "MIN_CONDITION_S", "MIN_HOLD_S", "BINS_PER_SWEEP",
            "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE", "FORCE_WEIGHT",
+           "WARM_MARGIN_K",
            "KAPPA_SWEEP", "ALPHA_SWEEP"]
 
 #: A sample is lifted when its load is below this share of the run's 95th-percentile load.
@@ -48,6 +50,8 @@ LIFT_SHARE = 0.1
 #: While lifted, the forces are zero offsets where the load is below this share of the
 #: run's 95th-percentile load (off the road, not touching it).
 OFF_ROAD_SHARE = 0.02
+#: The tread is warm within this of its running temperature [K].
+WARM_MARGIN_K = 5.0
 #: The median filter of load, camber, pressure and slip angle [s].
 SMOOTH_S = 1.0
 #: A level of load, camber or pressure is held this long in all or more [s].
@@ -62,9 +66,10 @@ MIN_HOLD_S = 1.0
 BINS_PER_SWEEP = 30
 #: The fewest samples a block averages (fewer, at the end of a direction: dropped).
 MIN_BLOCK = 3
-#: The weight of the forces against the slip in the length along a sweep that sizes the
-#: blocks (0: blocks of equal slip).
-FORCE_WEIGHT = 0.3
+#: The weight of each force and moment against the slip in the length along a sweep that
+#: sizes the blocks (0: blocks of equal slip): the aligning moment's sharp peak near zero
+#: slip angle gets short blocks.
+FORCE_WEIGHT = {"fx": 0.3, "fy": 0.3, "mz": 1.0}
 #: A slip-ratio sweep spans this much or more (2nd to 98th percentile) [-].
 KAPPA_SWEEP = 0.02
 #: A slip-angle sweep spans this much or more [rad].
@@ -375,17 +380,42 @@ def _kept_conditions(w: _Work, pieces: list, levels: dict[str, np.ndarray]
         else:
             long.append((a, b, key, lab))
     keys = [k for _, _, k, _ in long]
+    warm = _warm_from(w)
     leading = True
     out = []
     for i, (a, b, key, lab) in enumerate(long):
         cond = _condition_values(levels, lab)
-        leading = leading and key in keys[i + 1:]
+        leading = leading and (key in keys[i + 1:] or a < warm)
         if leading:
             w.drop(a, b, "warm-up", **cond)
         else:
             w.drop(a, min(b, a + w.samples(SETTLE_S)), "settling", **cond)
             out.append((a, b, cond))
     return out
+
+
+def _warm_from(w: _Work) -> int:
+    """The first sample at which the tread is warm: its temperature (median-filtered over
+    :data:`SMOOTH_S` s) within :data:`WARM_MARGIN_K` of the median over the run's second
+    half (0 without a tread temperature channel, with a note)."""
+    if "temperature" not in w.q:
+        w.notes.append("no tread temperature channel (TSTC): the warm-up is taken as the "
+                       "conditions at the start that the run returns to later")
+        return 0
+    t = _smooth(w.q["temperature"], w.samples(SMOOTH_S))
+    loaded = w.status != REASONS.index("lift")
+    half = np.arange(t.size) >= t.size // 2
+    if not (loaded & half).any():
+        return 0
+    running = float(np.median(t[loaded & half]))
+    warm = loaded & (t >= running - WARM_MARGIN_K)
+    first = int(np.argmax(warm)) if warm.any() else 0
+    if first:
+        w.notes.append(f"the tread ({w.run.channels['temperature']}) reaches its running "
+                       f"temperature ({running - 273.15:.0f} degC, within {WARM_MARGIN_K:g} K)"
+                       f" at {w.q['time'][first]:.0f} s: conditions that start before are "
+                       "the warm-up")
+    return first
 
 
 def _span(x: np.ndarray) -> float:
@@ -459,7 +489,7 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
     forces = [k for k in ("fx", "fy", "mz") if k in w.q]
     shaping = _shaping(w, sub, kind)
     block, piece = _blocks(x, direction, [w.rates[k][sub] / w.rate for k in shaping],
-                           [_range(w.q[k][sub]) for k in shaping])
+                           [_range(w.q[k][sub]) / FORCE_WEIGHT.get(k, 1.0) for k in shaping])
     thin = block < 0
     w.status[sub[thin]] = REASONS.index("thin bin")
     b = _Bins(block[~thin], x[~thin], direction[~thin], piece[~thin])
@@ -526,7 +556,7 @@ def _blocks(x: np.ndarray, direction: np.ndarray, steps: list[np.ndarray],
     span_x = float(np.ptp(x)) or 1.0
     arc2 = np.diff(x, prepend=x[0]) ** 2 / span_x ** 2
     for step, span in zip(steps, spans):
-        arc2 = arc2 + (FORCE_WEIGHT * step / span) ** 2
+        arc2 = arc2 + (step / span) ** 2
     arc = np.sqrt(arc2)
     turns = np.flatnonzero(np.diff(direction) != 0) + 1
     passes = np.split(np.arange(x.size), turns)
@@ -706,7 +736,7 @@ def _rates(w: _Work) -> None:
     """d/dt of Fx, Fy, Mz: Savitzky-Golay (quadratic) over :data:`DERIVATIVE_S` s."""
     from scipy.signal import savgol_filter
 
-    size = max(5, w.samples(DERIVATIVE_S) | 1)
+    size = max(3, w.samples(DERIVATIVE_S) | 1)
     for k in ("fx", "fy", "mz"):
         if k in w.q:
             w.rates[k] = (savgol_filter(w.q[k], size, 2, deriv=1, delta=1.0 / w.rate)

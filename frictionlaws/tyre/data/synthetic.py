@@ -253,7 +253,8 @@ def _channels(out: dict[str, np.ndarray], radii: dict[str, np.ndarray],
     speed = spec.speed_kph + rng.normal(0, 0.1, n)
     fz_meas = fz + rng.normal(0, 0.003, n) * np.maximum(c["fz"], 200.0)
     omega = (1 + c["kappa"]) * (spec.speed_kph / 3.6) / radii["Re"]
-    temp = 25 + 35 * (1 - np.exp(-t / 60.0)) + 4 * np.abs(out["Fy"]) / np.maximum(fz, 1) * 1.0
+    heat = 1 - np.exp(-3 * t / max(spec.warmup_s, 1.0))  # warm by the end of the warm-up
+    temp = 25 + 30 * heat + 4 * np.abs(out["Fy"]) / np.maximum(fz, 1)
     ch = {"ET": t, "V": speed, "N": omega * 60 / (2 * math.pi) + rng.normal(0, 0.05, n),
           "SA": -np.degrees(c["alpha"]) + rng.normal(0, 0.03, n),
           "IA": np.degrees(c["gamma"]) + rng.normal(0, 0.02, n),
