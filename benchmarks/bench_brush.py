@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from frictionlaws.errors import DomainError
+from frictionlaws.base.errors import DomainError
 from frictionlaws.tyre.brush import BrushModel
 
 #: A law whose friction rises with the sliding speed (a unique local steady state).

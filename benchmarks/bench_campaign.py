@@ -5,7 +5,7 @@ For each way of running it prints the wall time, datasets per second and the rat
 the serial run of the same round, and the CPU time spent by the calling process and
 all its worker processes (the CPU cost of the parallel machinery, which the load of
 a shared machine does not change much).  The Dask cluster runs twice: with the
-workers configured as :data:`frictionlaws.campaign.DASK_WORKER_CONFIG` recommends and
+workers configured as :data:`frictionlaws.fitting.campaign.DASK_WORKER_CONFIG` recommends and
 with Dask's defaults, to show what that configuration is worth.
 
 It checks (and exits 1 otherwise) that every run gives the serial table exactly, and
@@ -37,7 +37,7 @@ import pandas as pd
 import psutil
 
 import frictionlaws as fl
-from frictionlaws.campaign import DASK_WORKER_CONFIG, fit_many
+from frictionlaws.fitting.campaign import DASK_WORKER_CONFIG, fit_many
 
 LAWS = ("thirion", "coulomb", "quadratic-pv")
 #: Growth of the caller's peak memory per extra dataset still called flat: the sorted

@@ -31,7 +31,7 @@ from typing import Any
 
 from frictionlaws.comparison import compare
 from frictionlaws.fitting import as_fit_data, fit
-from frictionlaws.registry import list_laws
+from frictionlaws.law.registry import list_laws
 
 QUICK = ["coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"]
 

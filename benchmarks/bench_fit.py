@@ -19,7 +19,7 @@ import numpy as np
 from scipy.optimize import curve_fit
 
 import frictionlaws as fl
-from frictionlaws.law_examples import EXAMPLES, NUMPY_M
+from frictionlaws.validation.law_examples import EXAMPLES, NUMPY_M
 
 LAWS = ("thirion", "pacejka", "burckhardt", "savkoor")
 

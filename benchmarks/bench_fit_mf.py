@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
 from frictionlaws.tyre._fit_mf_peak import FittingModel
 from frictionlaws.tyre._fit_mf_stages import CombinedData, predict_fx, predict_fy, predict_mz

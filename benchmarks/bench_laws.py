@@ -21,11 +21,12 @@ import time
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.law_examples import EXAMPLES, NUMPY_M
+from frictionlaws.validation.law_examples import EXAMPLES, NUMPY_M
 
 
 def hand_written(law):
-    """The law's independent reference form (frictionlaws/law_examples.py) run on numpy arrays.
+    """The law's independent reference form (frictionlaws/validation/law_examples.py) run
+    on numpy arrays.
 
     The reference forms are written by hand from the catalogue, not from the law modules; the
     baseline applies the floors the law declares (|v|, v_min, p_min), as the law itself does.

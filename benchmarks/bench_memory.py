@@ -21,7 +21,7 @@ CHILD = r"""
 import json, resource, sys
 import numpy as np
 import frictionlaws as fl
-from frictionlaws.law_examples import EXAMPLES
+from frictionlaws.validation.law_examples import EXAMPLES
 side, law_id, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
 law = fl.get_law(law_id)
 ex = EXAMPLES[law_id].battery

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.law import NUMPY
-from frictionlaws.registry import get_law
+from frictionlaws.law.registry import get_law
 from frictionlaws.tyre import MagicFormula
 
 N = 1_000_000

@@ -3,7 +3,7 @@
 The fast path (:func:`frictionlaws.persson.friction`: Gauss-Legendre panels in
 ln q, spectral cumulative integral for G, tabulated angular integrals, all
 velocities at once) against the baseline of the independent reference
-implementation (``frictionlaws.law_examples._persson``: one adaptive
+implementation (``frictionlaws.validation.law_examples._persson``: one adaptive
 ODE in ln q per velocity, fixed Gauss-Legendre angular integrals of the Prony
 sum), timed on 10 of the velocities and scaled to 100.  Both use the packaged
 tread compound on the asphalt-like surface; the largest relative difference is
@@ -29,9 +29,9 @@ from typing import Any
 import numpy as np
 from bench_laws import best_time, paired_times
 
-from frictionlaws.errors import ExtrapolationWarning
-from frictionlaws.law_examples import _persson
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.persson import TREAD_THERMAL, Flash, asphalt_like, friction, tread_compound
+from frictionlaws.validation.law_examples import _persson
 
 
 def main() -> None:

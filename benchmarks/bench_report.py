@@ -21,6 +21,7 @@ Run: ``python benchmarks/bench_report.py [--quick] [--rounds 5] [--jobs 2] [--ag
 from __future__ import annotations
 
 import argparse
+import importlib
 import importlib.util
 import statistics
 import subprocess
@@ -34,7 +35,7 @@ from typing import Any
 from frictionlaws.comparison import compare, report
 from frictionlaws.comparison.report import figures as report_figures
 from frictionlaws.fitting import as_fit_data
-from frictionlaws.registry import list_laws
+from frictionlaws.law.registry import list_laws
 
 QUICK = ["coulomb", "thirion", "thesis-poly2", "thesis-poly3", "savkoor"]
 ROOT = Path(__file__).resolve().parent.parent
@@ -58,11 +59,40 @@ def _report_sources(ref: str) -> dict[str, str]:
         sys.exit(f"bench_report: cannot read the report at {ref!r} with git: {exc}")
 
 
+#: Modules that moved into rooms (old dotted name -> new one, under ``frictionlaws.``): a
+#: revision from before the move imports them by their old names.
+MOVED_MODULES = {
+    "errors": "base.errors", "numbers": "base.numbers", "units": "base.units",
+    "limits": "base.limits", "sanitize": "base.sanitize", "outputs": "base.outputs",
+    "jsonio": "base.jsonio", "display": "base.display", "_lazy": "base.lazy",
+    "_lsq": "fitting.lsq", "derivatives": "fitting.derivatives", "uncertainty": "fitting.robust",
+    "shared": "fitting.shared", "campaign": "fitting.campaign", "interop": "fitting.views",
+    "temperature": "viscoelastic.temperature", "mastercurve": "viscoelastic.mastercurve",
+    "registry": "law.registry", "bound": "law.bound", "_network": "parallel._network",
+    "law_examples": "validation.law_examples", "plotting": "comparison.plotting",
+}
+
+
+def alias_moved_modules() -> list[str]:
+    """Make each moved module importable under its old name too (for an older revision's
+    report); returns the names added to ``sys.modules``, for the caller to remove."""
+    added = []
+    for old, new in MOVED_MODULES.items():
+        name = f"frictionlaws.{old}"
+        if name not in sys.modules and importlib.util.find_spec(name) is None:
+            sys.modules[name] = importlib.import_module(f"frictionlaws.{new}")
+            added.append(name)
+    return added
+
+
 def load_revision(ref: str, where: Path) -> ModuleType:
     """The comparison report as it is at git revision ``ref``, as a module beside the current
     one (``frictionlaws.comparison._report_at_ref``, its relative imports resolving as the
-    current report's); a package's modules are written to ``where`` and imported from there.
+    current report's, the modules moved since under their old names too:
+    :func:`alias_moved_modules`); a package's modules are written to ``where`` and imported
+    from there.
     """
+    alias_moved_modules()
     name = "frictionlaws.comparison._report_at_ref"
     sources = _report_sources(ref)
     root = where / "_report_at_ref"

@@ -7,31 +7,31 @@ when a function that needs them is called.
 
 from __future__ import annotations
 
-from ._lazy import lazy_getattr
+from .base.lazy import lazy_getattr
 
 __version__ = "0.1.0"
 
 #: public name -> module that defines it
 _API = {
-    "get_law": "registry",
-    "list_laws": "registry",
-    "register": "registry",
-    "REGISTRY": "registry",
+    "get_law": "law.registry",
+    "list_laws": "law.registry",
+    "register": "law.registry",
+    "REGISTRY": "law.registry",
     "Law": "law",
     "Param": "law",
     "Setting": "law",
     "Derived": "law",
     "VARIABLES": "law",
-    "InputError": "errors",
-    "FitError": "errors",
-    "UnknownLawError": "errors",
+    "InputError": "base.errors",
+    "FitError": "base.errors",
+    "UnknownLawError": "base.errors",
     "fit": "fitting",
     "FitResult": "fitting",
     "load_result": "fitting",
-    "BoundLaw": "bound",
-    "with_wlf": "temperature",
-    "wlf_log_aT": "temperature",
-    "build_master_curve": "mastercurve",
+    "BoundLaw": "law.bound",
+    "with_wlf": "viscoelastic.temperature",
+    "wlf_log_aT": "viscoelastic.temperature",
+    "build_master_curve": "viscoelastic.mastercurve",
     "load_dataset": "io",
     "Dataset": "io",
     "list_datasets": "io",

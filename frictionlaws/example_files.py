@@ -31,8 +31,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InputError
-from .outputs import atomic_dir
+from .base.errors import InputError
+from .base.outputs import atomic_dir
 
 __all__ = ["EXAMPLE_FILES", "write_example_files"]
 

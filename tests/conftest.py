@@ -9,9 +9,10 @@
   ``fixed``: derandomised), so a run's verdict does not depend on luck; set
   ``HYPOTHESIS_PROFILE=explore`` to let hypothesis search afresh (and keep what it finds
   in its database).
-* ``tests/`` is importable (``law_cases``); matplotlib draws with Agg.
-* ``-m hostile`` (the hostile-input harness, CI budget 60 s) collects only
-  ``tests/test_hostile*.py``, where that marker lives
+* ``tests/`` is importable (the ``hostile`` harness), and so is each room's folder (its
+  test modules and helpers such as ``law_cases``); matplotlib draws with Agg.
+* ``-m hostile`` (the hostile-input harness, CI budget 60 s) collects only the
+  ``test_hostile*.py`` files (in each room's folder), where that marker lives
   (``tests/test_hostile_marker_scope.py`` keeps it so): importing the whole suite
   to deselect it cost about 15 s of CPU in each xdist process.
 """
@@ -43,6 +44,11 @@ settings.register_profile("fixed", derandomize=True, database=None)
 settings.register_profile("explore")
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fixed"))
 sys.path.insert(0, str(Path(__file__).parent))
+# Each room's folder too, in every process (pytest adds a test file's folder when it
+# collects it, but pytest-xdist's controller collects nothing, and it imports a test
+# module by name to rebuild a warning class that module defines).
+sys.path += [str(p) for p in sorted(Path(__file__).parent.iterdir())
+             if p.is_dir() and any(p.glob("test_*.py")) and str(p) not in sys.path]
 
 
 def pytest_ignore_collect(collection_path: Path, config: Any) -> bool | None:

@@ -274,7 +274,7 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 def test_no_import_circle():
     graph = import_graph()
-    assert "frictionlaws.law" in graph["frictionlaws.registry"]  # the graph sees imports
+    assert "frictionlaws.law.registry" in graph["frictionlaws.fitting.core"]  # sees imports
     assert _cycles(graph) == []
 
 
@@ -286,11 +286,11 @@ def test_the_circle_check_finds_circles():
 
 def test_imports_inside_functions_and_for_types_do_not_count():
     src = ("from typing import TYPE_CHECKING\n"
-           "from .law import Law\n"
-           "if TYPE_CHECKING:\n    from .fitting import FitResult\n"
-           "def f():\n    from .io import load_dataset\n")
+           "from ..law import Law\n"
+           "if TYPE_CHECKING:\n    from ..io import Dataset\n"
+           "def f():\n    from ..comparison import compare\n")
     nodes = list(_import_time_nodes(ast.parse(src).body))
-    got = set().union(*[_targets("frictionlaws.registry", n) for n in nodes])
+    got = set().union(*[_targets("frictionlaws.fitting.core", n) for n in nodes])
     assert got == {"frictionlaws.law"}
 
 
@@ -299,7 +299,7 @@ def test_imports_inside_functions_and_for_types_do_not_count():
 
 def _unit_columns() -> dict[str, dict[str, str]]:
     """Each per-quantity column of the one unit table: SI unit, display unit, example."""
-    from frictionlaws.units import QUANTITIES
+    from frictionlaws.base.units import QUANTITIES
 
     return {col: {k: getattr(q, attr) for k, q in QUANTITIES.items()}
             for col, attr in (("SI unit", "si"), ("display unit", "display"),
@@ -328,20 +328,20 @@ def test_units_of_a_quantity_are_declared_once():
     """SI and display units live in ``units.QUANTITIES`` only; nothing copies a column."""
     from dataclasses import fields
 
+    from frictionlaws.base.units import QUANTITIES
     from frictionlaws.law import VARIABLES, Variable
-    from frictionlaws.units import QUANTITIES
 
     assert not {"unit", "display_unit", "si", "display"} & {f.name for f in fields(Variable)}
     for name, var in VARIABLES.items():
         assert (var.unit, var.display_unit) == (QUANTITIES[name].si, QUANTITIES[name].display)
     columns = _unit_columns()
     copies = {mod: list(_copied_columns(tree, columns)) for mod, tree in TREES.items()
-              if mod != "frictionlaws.units"}
+              if mod != "frictionlaws.base.units"}
     assert not {m: c for m, c in copies.items() if c}
-    built = {mod for mod, tree in TREES.items() if mod != "frictionlaws.units"
+    built = {mod for mod, tree in TREES.items() if mod != "frictionlaws.base.units"
              and any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
                      and n.func.id == "Quantity" for n in ast.walk(tree))}
-    assert not built, f"Quantity declared outside frictionlaws.units: {sorted(built)}"
+    assert not built, f"Quantity declared outside frictionlaws.base.units: {sorted(built)}"
 
 
 def test_the_copy_check_finds_a_copied_unit_column():
@@ -357,8 +357,8 @@ def test_the_copy_check_finds_a_copied_unit_column():
 def test_dataset_columns_come_from_the_variable_list():
     """io's columns and aliases are keyed from the one variable list and the unit table."""
     from frictionlaws import io
+    from frictionlaws.base.units import QUANTITIES
     from frictionlaws.law import VARIABLES
-    from frictionlaws.units import QUANTITIES
 
     assert io.VARIABLE_COLUMNS == tuple(VARIABLES)
     assert tuple(io.ALIASES) == io.CANONICAL  # one alias entry per column, same order
@@ -399,7 +399,7 @@ def test_export_formats_and_unit_systems_have_one_list():
 #: Directories the docs build writes (ignored by git): generated from the registry.
 _GENERATED_DOCS = ("_build", "auto_examples", "gen_modules", "generated")
 #: The one file outside the law modules that names every law: the example table.
-LAW_TABLE = "frictionlaws/law_examples.py"
+LAW_TABLE = "frictionlaws/validation/law_examples.py"
 
 
 def _names_every_law(text: str, ids: list[str]) -> bool:
@@ -468,19 +468,24 @@ def test_no_new_circle_counting_deferred_and_type_only_imports():
 
 
 def test_the_law_package_imports_only_the_layers_below_it():
-    """The law's rooms import each other, errors and units: never the registry, bound
-    laws or the integrations, which import the law (every import counted)."""
+    """The law room imports only itself and the base room's errors and units; its
+    declaration rooms never import the registry or bound laws, which import them (every
+    import counted)."""
     graph = full_import_graph()
-    rooms = [m for m in graph if m.startswith("frictionlaws.law.")]
-    assert "frictionlaws.law.core" in rooms
+    rooms = [m for m in graph if m == "frictionlaws.law" or m.startswith("frictionlaws.law.")]
+    assert {"frictionlaws.law.core", "frictionlaws.law.registry"} <= set(rooms)
+    below = ("frictionlaws.base", "frictionlaws.base.errors", "frictionlaws.base.units")
     outside = {f"{m} -> {t}" for m in rooms for t in graph[m]
-               if not t.startswith("frictionlaws.law.")
-               and t not in ("frictionlaws.law", "frictionlaws.errors", "frictionlaws.units")}
+               if not (t == "frictionlaws.law" or t.startswith("frictionlaws.law.")
+                       or t in below)}
     assert outside == set()
+    outer = ("frictionlaws.law.registry", "frictionlaws.law.bound")
+    upward = {f"{m} -> {t}" for m in rooms if m not in outer for t in graph[m] if t in outer}
+    assert upward == set()
 
 
 #: The one module that calls a least-squares solver or lmfit's minimisation.
-SOLVER_MODULE = "frictionlaws._lsq"
+SOLVER_MODULE = "frictionlaws.fitting.lsq"
 _SOLVER_NAMES = {"least_squares", "leastsq", "curve_fit", "minimize", "Minimizer"}
 
 

@@ -25,7 +25,7 @@ import fl_docgen  # noqa: E402
 
 import frictionlaws as fl  # noqa: E402
 from frictionlaws.law import Law, Param  # noqa: E402
-from frictionlaws.registry import REGISTRY  # noqa: E402
+from frictionlaws.law.registry import REGISTRY  # noqa: E402
 
 GALLERY = sorted(EXAMPLES.rglob("plot_*.py"))
 
@@ -183,8 +183,8 @@ def test_cli_reference_documents_every_command(tmp_path):
 
 def test_api_reference_covers_public_modules(tmp_path):
     modules = fl_docgen.write_api_reference(tmp_path)
-    for core in ("frictionlaws.law", "frictionlaws.registry", "frictionlaws.fitting",
-                 "frictionlaws.io", "frictionlaws.units", "frictionlaws.errors"):
+    for core in ("frictionlaws.law", "frictionlaws.law.registry", "frictionlaws.fitting",
+                 "frictionlaws.io", "frictionlaws.base.units", "frictionlaws.base.errors"):
         assert core in modules
     assert not [m for m in modules if "._" in m or ".cmd_" in m]
     index = (tmp_path / "index.rst").read_text(encoding="utf-8")
@@ -194,11 +194,27 @@ def test_api_reference_covers_public_modules(tmp_path):
         assert (tmp_path / f"{module}.rst").exists()
 
 
+def _rooms_table() -> str:
+    page = (DOCS / "user-guide" / "adding-a-law.rst").read_text(encoding="utf-8")
+    return page[page.index(".. _package-rooms:"):page.index("Where to touch for")]
+
+
+def test_the_rooms_table_names_every_room_of_the_package():
+    """The contributor page's map names every room (sub-package) and every loose module."""
+    package = Path(fl.__file__).parent
+    rooms = [f"``{p.name}/``" for p in package.iterdir()
+             if p.is_dir() and (p / "__init__.py").is_file()]
+    loose = [f"``{p.name}``" for p in package.glob("*.py")
+             if p.stem not in ("__init__", "__main__")]
+    assert "``fitting/``" in rooms and "``base/``" in rooms
+    table = _rooms_table()
+    assert [r for r in rooms + loose if r not in table] == []
+
+
 def test_the_rooms_table_names_every_room_of_the_law_package():
     """The contributor page's rooms table follows the law package's layout."""
-    page = (DOCS / "user-guide" / "adding-a-law.rst").read_text(encoding="utf-8")
-    table = page[page.index(".. _package-rooms:"):page.index("Where to touch for")]
-    row = table[table.index("``law/``"):table.index("``registry.py``")]
+    table = _rooms_table()
+    row = table[table.index("``law/``"):table.index("``laws/``")]
     rooms = sorted(p.stem for p in Path(fl.law.__file__).parent.glob("*.py")
                    if p.stem != "__init__")
     assert "core" in rooms

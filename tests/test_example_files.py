@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 import frictionlaws as fl
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import InputError
 from frictionlaws.example_files import EXAMPLE_FILES, write_example_files
 
 

@@ -33,7 +33,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 
 import frictionlaws as fl
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 
 pytestmark = pytest.mark.hostile
 

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 import frictionlaws as fl
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import InputError
 
 PACKAGE = Path(fl.__file__).resolve().parent
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 from scipy.integrate import trapezoid
 
+from frictionlaws.base.errors import DomainError, ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import DomainError, ExtrapolationWarning, InputError
 from frictionlaws.law import NUMPY, Law
-from frictionlaws.registry import get_law
+from frictionlaws.law.registry import get_law
 from frictionlaws.tyre import BrushModel, BrushTyre
 from frictionlaws.tyre.brush import DEFAULT_C_PY
 

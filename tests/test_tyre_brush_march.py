@@ -21,7 +21,7 @@ from types import ModuleType
 import numpy as np
 import pytest
 
-from frictionlaws.errors import DomainError
+from frictionlaws.base.errors import DomainError
 from frictionlaws.tyre.brush import BrushModel, BrushTyre
 from frictionlaws.tyre.brush import tyre as brush_tyre
 

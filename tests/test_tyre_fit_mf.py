@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, read_property_file, read_tyre_data
 
 CASES = (("MagicFormula52", 6), ("MagicFormula61", 61), ("MagicFormula62", 62))

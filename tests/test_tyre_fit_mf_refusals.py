@@ -10,8 +10,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import InputError
 from frictionlaws.tyre import MagicFormula, TyreData, read_tyre_data
 from frictionlaws.tyre._fit_mf_checks import check_plausible
 from frictionlaws.tyre.synthetic_rig import rig_data
@@ -159,7 +159,7 @@ def test_without_mz_or_combined_rows_the_report_says_so_and_shows_no_combined_er
         ) -> None:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre import fit_mf
 
     data = rig_data(TRUTH, n=7, loads=(0.7, 1.3), pressures=(1.0,), cambers_deg=(0.0,),

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf
 from frictionlaws.tyre._fit_mf_bootstrap import find_sweeps
 from frictionlaws.tyre._fit_mf_stages import level_scale

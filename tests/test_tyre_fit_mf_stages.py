@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from frictionlaws.base.errors import ExtrapolationWarning, FitError, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, FitError, InputError
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf, read_tyre_data
 from frictionlaws.tyre._fit_mf_checks import check_plausible
 from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data, truth_errors

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, read_property_file
 from frictionlaws.tyre.magic_formula import mf_curve
 from frictionlaws.tyre.tir import (

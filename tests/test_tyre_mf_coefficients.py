@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import _fit_mf_stages, mf_coefficients, mf_outputs
 from frictionlaws.tyre.magic_formula import MagicFormula
 from frictionlaws.tyre.mf_coefficients import DECLARED, default, fit_bounds
@@ -132,7 +132,7 @@ def test_declarations_are_whole_and_consistent():
         assert c.unit in angles or c.unit in TO_MM_KN, (c.name, c.unit)
         assert ((c.section, c.name) in DIMENSIONAL) == (c.unit in TO_MM_KN), c.name
     assert set(DIMENSIONAL) <= {(c.section, c.name) for c in DECLARED.values()}
-    from frictionlaws.units import unit_registry
+    from frictionlaws.base.units import unit_registry
 
     ureg = unit_registry()
     for c in DECLARED.values():

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre.magic_formula import MagicFormula
 from frictionlaws.tyre.mf_outputs import steady_state
 
@@ -170,7 +170,7 @@ def test_mf52_aligning_moment_takes_the_side_force_shift_at_zero_camber_like_mfe
 
 
 def test_an_unknown_equations_choice_is_refused() -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     with pytest.raises(InputError, match="equations must be one of mfeval, published"):
         MagicFormula.from_file("MagicFormula61", equations="book")

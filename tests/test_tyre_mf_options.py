@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre import MagicFormula, read_property_file
 from frictionlaws.tyre.tir import format_tir
 

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictionlaws.errors import ExtrapolationWarning, InputError
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.tyre.magic_formula import MagicFormula
 from frictionlaws.tyre.mf_outputs import OUTPUTS, steady_state
 

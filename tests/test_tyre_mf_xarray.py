@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.tyre.magic_formula import MagicFormula
 
 xr = pytest.importorskip("xarray")

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning, InputError
-from frictionlaws.registry import get_law
+from frictionlaws.base.errors import ExtrapolationWarning, InputError
+from frictionlaws.law.registry import get_law
 from frictionlaws.tyre import MagicFormula, equivalent_pacejka, mf_slip_curve, reduce_mf
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "datasets" / "mf-examples"

@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import TABLE_6_2, thesis_comparison, thesis_ratios
 
 

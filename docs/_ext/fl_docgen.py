@@ -201,7 +201,7 @@ def _to_display(name: str, values: np.ndarray) -> tuple[np.ndarray, str]:
     _, si, disp = _var_info(name)
     if not disp or disp == si:
         return np.asarray(values, float), si
-    from frictionlaws.units import from_si
+    from frictionlaws.base.units import from_si
 
     return from_si(values, disp, name), disp
 
@@ -594,7 +594,7 @@ def write_catalogue(outdir: str | Path, laws: Sequence[Any] | None = None,
     Returns the law ids written.  A law that fails to render raises
     :class:`RuntimeError` naming it.
     """
-    from frictionlaws.registry import list_laws
+    from frictionlaws.law.registry import list_laws
 
     outdir = Path(outdir)
     laws = list(list_laws() if laws is None else laws)
@@ -621,7 +621,7 @@ def write_catalogue(outdir: str | Path, laws: Sequence[Any] | None = None,
 
 def check_catalogue(outdir: str | Path) -> list[str]:
     """Registered law ids missing from the catalogue in ``outdir`` (empty when complete)."""
-    from frictionlaws.registry import list_laws
+    from frictionlaws.law.registry import list_laws
 
     outdir = Path(outdir)
     index = (outdir / "index.rst").read_text(encoding="utf-8") if (

@@ -10,8 +10,8 @@ temperature? A *global* fit with ``b`` shared across the groups answers this, an
 comparison with separate fits says whether the data agree.
 
 The data here are synthetic (the truth is known); the steps are those for measured data:
-:func:`frictionlaws.campaign.fit_many` for the separate fits by group,
-:func:`frictionlaws.shared.fit_shared` for the global fit.
+:func:`frictionlaws.fitting.campaign.fit_many` for the separate fits by group,
+:func:`frictionlaws.fitting.shared.fit_shared` for the global fit.
 """
 
 # %%
@@ -24,8 +24,8 @@ import numpy as np
 import pandas as pd
 
 import frictionlaws as fl
-from frictionlaws.campaign import fit_many
-from frictionlaws.shared import fit_shared
+from frictionlaws.fitting.campaign import fit_many
+from frictionlaws.fitting.shared import fit_shared
 
 law = fl.get_law("thirion")
 rng = np.random.default_rng(11)

@@ -25,8 +25,8 @@ import warnings
 import matplotlib.pyplot as plt
 
 import frictionlaws as fl
-from frictionlaws.errors import DomainError
-from frictionlaws.plotting import plot_fit_grid
+from frictionlaws.base.errors import DomainError
+from frictionlaws.comparison.plotting import plot_fit_grid
 
 data = fl.load_dataset("thesis-steel")
 print(data)
@@ -49,7 +49,7 @@ print(f"fitted {len(results)} laws")
 # Each panel shows the measured points (coloured by disc velocity) and the fitted law at
 # the velocities it was fitted on; open circles are rows a law could not use (v = 0 for the
 # log-velocity laws), and no curve is drawn there. A red title marks a fit with parameters
-# the data cannot determine. :func:`frictionlaws.plotting.plot_fit_grid` draws the grid.
+# the data cannot determine. :func:`frictionlaws.comparison.plotting.plot_fit_grid` draws the grid.
 fig = plot_fit_grid(results, data, x="p", by="v")
 fig.axes[0].set_ylim(0, 4.5)
 plt.show()

@@ -30,7 +30,7 @@ import warnings
 import matplotlib.pyplot as plt
 import numpy as np
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.persson import (
     TREAD_THERMAL,
     Flash,

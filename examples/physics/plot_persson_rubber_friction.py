@@ -29,8 +29,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.mastercurve import build_master_curve, load_dma_example
 from frictionlaws.persson import asphalt_like, friction, material_from_master_curve
+from frictionlaws.viscoelastic.mastercurve import build_master_curve, load_dma_example
 
 d = load_dma_example()
 mc = build_master_curve(d["f"], np.column_stack([d["E_stor"], d["E_loss"]]), d["T"],

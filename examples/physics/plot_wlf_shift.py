@@ -11,9 +11,9 @@ rescales the velocity,
     \log_{10} a_T = -\frac{C_1 (T - T_\mathrm{ref})}{C_2 + T - T_\mathrm{ref}},
 
 and a law measured at the reference temperature holds at another temperature when it is
-evaluated at the reduced velocity :math:`a_T(T)\,v`. :func:`frictionlaws.temperature.with_wlf`
-turns any velocity-dependent law into such a temperature-aware law. Here it is applied to
-the Savkoor law, a bell in log velocity.
+evaluated at the reduced velocity :math:`a_T(T)\,v`.
+:func:`frictionlaws.viscoelastic.temperature.with_wlf` turns any velocity-dependent law into
+such a temperature-aware law. Here it is applied to the Savkoor law, a bell in log velocity.
 """
 
 # %%
@@ -29,8 +29,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import frictionlaws as fl
-from frictionlaws.errors import ExtrapolationWarning
-from frictionlaws.temperature import WLF_PRESETS, with_wlf, wlf_log_aT
+from frictionlaws.base.errors import ExtrapolationWarning
+from frictionlaws.viscoelastic.temperature import WLF_PRESETS, with_wlf, wlf_log_aT
 
 T_G = 273.15 - 50.0
 T = np.linspace(T_G - 20.0, T_G + 140.0, 400)

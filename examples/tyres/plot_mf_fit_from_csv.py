@@ -23,7 +23,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
 
 warnings.simplefilter("ignore", ExtrapolationWarning)

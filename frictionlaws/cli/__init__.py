@@ -197,8 +197,8 @@ def _mark_nested(p: argparse.ArgumentParser) -> None:
 
 
 def _one_line(text: str) -> str:
-    """A message on one line, at most :data:`~frictionlaws.limits.MAX_MESSAGE_CHARS` long."""
-    from frictionlaws.errors import bounded_message
+    """A message on one line, at most :data:`~frictionlaws.base.limits.MAX_MESSAGE_CHARS` long."""
+    from frictionlaws.base.errors import bounded_message
 
     return bounded_message(" ".join(str(text).split()))
 
@@ -329,7 +329,7 @@ def _strictly(text: str) -> str:
     """``text`` as strict JSON: ``NaN``/``Infinity`` become ``null``; other text unchanged."""
     import json
 
-    from frictionlaws.jsonio import dumps
+    from frictionlaws.base.jsonio import dumps
 
     def refuse(name: str) -> Any:
         raise ValueError(name)
@@ -350,7 +350,7 @@ def _strictly(text: str) -> str:
 def _strict_json_stdout(enabled: bool) -> Iterator[None]:
     """With ``--json``, hold stdout and make sure it leaves as strict JSON.
 
-    Commands write their document with :func:`frictionlaws.jsonio.dumps`; this is
+    Commands write their document with :func:`frictionlaws.base.jsonio.dumps`; this is
     the safety net that keeps ``NaN`` and ``Infinity`` out of stdout whatever a
     command printed.
     """
@@ -631,7 +631,7 @@ def _failure(exc: Exception, args: argparse.Namespace) -> tuple[str, int]:
     """The one-line message and exit code of a failed command."""
     import json
 
-    from frictionlaws.errors import FitError, InputError
+    from frictionlaws.base.errors import FitError, InputError
 
     if isinstance(exc, (InputError, UsageError)):
         return _input_message(exc, args), 2

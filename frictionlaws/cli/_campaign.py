@@ -93,7 +93,7 @@ def split_names(items: list[str]) -> list[str]:
     InputError
         When a name is given twice.
     """
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     out: list[str] = []
     for chunk in items:
@@ -132,7 +132,7 @@ def wants_campaign(args: argparse.Namespace) -> bool:
     bool
         True for several datasets, a directory, ``--by`` or ``--shared``.
     """
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     data = args.data if isinstance(args.data, list) else [args.data]
     if data.count("-") > 1:
@@ -145,8 +145,8 @@ def _check_out(args: argparse.Namespace) -> None:
     """``--out`` is checked before any work: suffix, not an input, writable."""
     if not args.out:
         return
-    from frictionlaws.errors import InputError
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.outputs import check_outputs
 
     if Path(args.out).suffix.lower() not in (".csv", ".jsonl", ".json"):
         raise InputError("--out takes a .csv, .jsonl or .json file", file=args.out)
@@ -155,7 +155,7 @@ def _check_out(args: argparse.Namespace) -> None:
 
 
 def _refuse_without_by(args: argparse.Namespace) -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     if getattr(args, "shared", []) and not args.by:
         raise InputError("--shared needs --by (the groups that share the parameters)")
@@ -190,7 +190,7 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
 
 
 def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
-    from frictionlaws.campaign import check_grouping
+    from frictionlaws.fitting.campaign import check_grouping
 
     _refuse_without_by(args)
     _check_out(args)
@@ -205,7 +205,7 @@ def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> i
     if args.out and stream is None:
         camp.save(args.out)
     if getattr(args, "json", False):
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(camp.to_dict() if camp.records else
                            {"output": str(camp.path), "fits": len(camp),
@@ -222,8 +222,8 @@ def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> i
 
 def _by_table(camp: Any) -> str:
     """Each law's fits as one table: a row per dataset and group, parameters in display units."""
-    from frictionlaws.campaign import doubts
-    from frictionlaws.display import group_label, parameter_table
+    from frictionlaws.base.display import group_label, parameter_table
+    from frictionlaws.fitting.campaign import doubts
 
     several = len({rec["dataset"] for rec in camp.records}) > 1
     blocks = []
@@ -246,10 +246,10 @@ def _by_table(camp: Any) -> str:
 
 def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
              load: dict[str, Any], fit_kwargs: dict[str, Any]) -> Any:
-    """:func:`~frictionlaws.campaign.fit_many`; a campaign with unreadable datasets is
+    """:func:`~frictionlaws.fitting.campaign.fit_many`; a campaign with unreadable datasets is
     refused with one ``error:`` line per dataset, the last one summing up (exit 2)."""
-    from frictionlaws.campaign import UnreadableDatasets, fit_many
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.fitting.campaign import UnreadableDatasets, fit_many
 
     from . import flag_label
     from ._common import shown_source
@@ -272,7 +272,7 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
 
 def _refuse_if_only_input_errors(camp: Any) -> None:
     """Every dataset failed to load or group: bad input (exit 2), not failed fits."""
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     errors = camp.errors
     if errors and len(errors) == len(camp) and all(r.get("input_error") for r in errors):
@@ -281,8 +281,8 @@ def _refuse_if_only_input_errors(camp: Any) -> None:
 
 def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
                 fit_kwargs: dict[str, Any], load: dict[str, Any]) -> int:
-    from frictionlaws.errors import InputError
-    from frictionlaws.shared import fit_shared
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.fitting.shared import fit_shared
 
     data = args.data if isinstance(args.data, list) else [args.data]
     if len(data) != 1:
@@ -297,16 +297,16 @@ def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
     res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
                      weights=fit_kwargs.get("weights", "auto"), load_options=load)
     if args.out:
-        from frictionlaws import jsonio
-        from frictionlaws.outputs import check_outputs, write_text_atomic
-        from frictionlaws.sanitize import frame_csv
+        from frictionlaws.base import jsonio
+        from frictionlaws.base.outputs import check_outputs, write_text_atomic
+        from frictionlaws.base.sanitize import frame_csv
 
         check_outputs([args.out], inputs=data)
         text = (frame_csv(res.to_frame()) if Path(args.out).suffix.lower() == ".csv"
                 else jsonio.dumps(res.to_dict()) + "\n")
         write_text_atomic(args.out, text)
     if getattr(args, "json", False):
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(res.to_dict()))
     else:

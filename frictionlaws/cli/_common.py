@@ -364,7 +364,7 @@ def parse_assignments(items: Sequence[str] | str | None, what: str) -> dict[str,
 
 def parse_floats(items: Sequence[str] | str | None, what: str) -> dict[str, float]:
     """Merge ``n=0.333,...`` pieces into finite floats (the strict number parser)."""
-    from frictionlaws.numbers import parse_number
+    from frictionlaws.base.numbers import parse_number
 
     out = {}
     for k, v in parse_assignments(items, what).items():
@@ -439,7 +439,7 @@ def add_law_source_options(p: argparse.ArgumentParser | Any, *, fit: bool = True
 
     ``--preset``, ``--params`` and ``--fit`` exclude each other; ``--set`` gives or
     overrides values (alone or over a preset).  :func:`bound_from_args` turns them
-    into a :class:`~frictionlaws.bound.BoundLaw`.  With ``fit``, the command also
+    into a :class:`~frictionlaws.law.bound.BoundLaw`.  With ``fit``, the command also
     needs :func:`add_data_options` and :func:`add_fit_options`.
     """
     src = p.add_mutually_exclusive_group()
@@ -455,7 +455,8 @@ def add_law_source_options(p: argparse.ArgumentParser | Any, *, fit: bool = True
 
 
 def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
-    """``--preset/--set/--params/--fit`` (and ``--law``) as a :class:`~frictionlaws.bound.BoundLaw`.
+    """``--preset/--set/--params/--fit`` (and ``--law``) as a
+    :class:`~frictionlaws.law.bound.BoundLaw`.
 
     ``--params`` gives the law itself (``law`` must agree when given); ``--fit``
     fits ``law`` with the command's data and fit options (a fit that did not
@@ -469,7 +470,7 @@ def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
     InputError
         A law that does not match the file, an unknown preset, a bad value...
     """
-    from frictionlaws.bound import bound_from_result, freeze
+    from frictionlaws.law.bound import bound_from_result, freeze
 
     fit_data = getattr(args, "fit", None)
     if not fit_data and hasattr(args, "fix"):
@@ -491,10 +492,10 @@ def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
 
 
 def _bound_from_file(path: str, law: str | None) -> Any:
-    from frictionlaws.bound import Source, bound_from_result
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.fitting import load_result
-    from frictionlaws.registry import get_law
+    from frictionlaws.law.bound import Source, bound_from_result
+    from frictionlaws.law.registry import get_law
 
     with data_source(path, "stdin.json") as real:  # '-': the file from standard input
         result = load_result(real)
@@ -570,9 +571,9 @@ class RangeSpec:
 
 def _bound(text: str, quantity: str, option: str, whole: str,
            unit: str | Callable[[float], float] | None) -> float:
-    from frictionlaws.errors import InputError
-    from frictionlaws.numbers import parse_number
-    from frictionlaws.units import parse_quantity, to_si
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.numbers import parse_number
+    from frictionlaws.base.units import parse_quantity, to_si
 
     s = text.strip()
     if not s:
@@ -702,7 +703,7 @@ def data_source(data: str, name: str | Callable[[bytes], str] = "stdin.csv"
     """
     if data != STDIN:
         if os.path.lexists(data):  # a path, not a packaged name: refuse FIFOs, directories
-            from frictionlaws.outputs import check_input_file
+            from frictionlaws.base.outputs import check_input_file
 
             check_input_file(data, "data file")
         yield data
@@ -711,8 +712,8 @@ def data_source(data: str, name: str | Callable[[bytes], str] = "stdin.csv"
         raise UsageError("DATA '-' reads standard input, which is a terminal here; pipe a "
                          "table in (e.g. 'cat runs.csv | frictionlaws fit - ...') or give "
                          "a file name")
-    from frictionlaws.errors import InputError
-    from frictionlaws.limits import read_stream
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.limits import read_stream
 
     raw = read_stream(sys.stdin)  # bounded in size
 
@@ -748,6 +749,6 @@ def shown_source(path: str) -> str:
 
 def print_json(obj: Any) -> None:
     """Print ``obj`` as strict JSON on stdout (null for non-finite numbers)."""
-    from frictionlaws.jsonio import dumps
+    from frictionlaws.base.jsonio import dumps
 
     print(dumps(obj))

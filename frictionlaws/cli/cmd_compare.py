@@ -91,7 +91,7 @@ def _max_rows(text: str) -> int | str:
 
 def _mu_max(text: str) -> float:
     """``--mu-max``: a finite number > 0 (the one number parser: no 'inf', no overflow)."""
-    from frictionlaws.numbers import parse_number
+    from frictionlaws.base.numbers import parse_number
 
     try:
         value = parse_number(text)
@@ -117,8 +117,8 @@ def _rows_option(args: argparse.Namespace) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.outputs import check_outputs
 
     inputs = [d for d in args.data if Path(d).exists()]
     check_outputs([args.out], dirs=[args.report], inputs=inputs)
@@ -135,8 +135,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_one(args: argparse.Namespace, data: str) -> int:
+    from frictionlaws.base.outputs import atomic_dir
     from frictionlaws.comparison import compare
-    from frictionlaws.outputs import atomic_dir
 
     from ._common import data_source
 
@@ -163,10 +163,10 @@ def _run_one(args: argparse.Namespace, data: str) -> int:
 
 
 def _run_many(args: argparse.Namespace) -> int:
-    from frictionlaws import jsonio
-    from frictionlaws.campaign import compare_many
+    from frictionlaws.base import jsonio
+    from frictionlaws.base.outputs import write_text_atomic
     from frictionlaws.comparison.results import mark_undetermined
-    from frictionlaws.outputs import write_text_atomic
+    from frictionlaws.fitting.campaign import compare_many
 
     from ._common import data_sources, shown_source
 
@@ -180,7 +180,7 @@ def _run_many(args: argparse.Namespace) -> int:
                              **_options(args))
     shown = mark_undetermined(frame)  # undetermined scores as n/d in text and CSV
     if args.out:
-        from frictionlaws.sanitize import frame_csv
+        from frictionlaws.base.sanitize import frame_csv
 
         text = (frame_csv(shown, float_format="%.10g")
                 if args.out.lower().endswith(".csv")

@@ -24,12 +24,12 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws import jsonio
+    from frictionlaws.base import jsonio
     from frictionlaws.io import list_datasets, load_dataset
 
     if args.name is None:
         if args.map or args.units or args.area:
-            from frictionlaws.errors import InputError
+            from frictionlaws.base.errors import InputError
 
             raise InputError("--map, --units and --area need a dataset NAME or file")
         items = list_datasets()

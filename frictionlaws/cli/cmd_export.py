@@ -162,7 +162,7 @@ def _solver_options(p: argparse.ArgumentParser) -> None:
 
 
 def _options(args: argparse.Namespace) -> dict:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
             "radioss_id": args.radioss_id}
@@ -253,10 +253,10 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     Every group is fitted and exported in memory first; the files are written only
     when all succeeded, each atomically, none over an input.
     """
-    from frictionlaws.campaign import fit_groups, key_text
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.outputs import check_outputs, write_text_atomic
     from frictionlaws.fe_export import export
-    from frictionlaws.outputs import check_outputs, write_text_atomic
+    from frictionlaws.fitting.campaign import fit_groups, key_text
 
     from ._campaign import split_names
     from ._common import data_source
@@ -309,8 +309,8 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
-    from frictionlaws.outputs import check_outputs
 
     if args.format in FORTRAN_FORMATS:
         check_source_name(args.output)

@@ -38,7 +38,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     if wants_campaign(args):
         if args.save:
@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     if args.save:
         from pathlib import Path
 
-        from frictionlaws.outputs import check_outputs
+        from frictionlaws.base.outputs import check_outputs
 
         check_outputs([args.save], inputs=[data] if Path(data).exists() else [])
     result = run_fit(args, args.law, data)

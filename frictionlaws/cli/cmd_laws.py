@@ -18,7 +18,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.registry import list_laws
+    from frictionlaws.law.registry import list_laws
 
     laws = list_laws(args.family)
     if args.json:

@@ -76,7 +76,7 @@ class _Target:
 
 def _plan(args: argparse.Namespace, names: list[str]) -> tuple[list[_Target], Path | None]:
     """The output files of every manifest, and the output directory (None: -o is a file)."""
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     if str(args.output).strip() == "-":
         raise InputError("-o -: process writes a dataset file (or a directory of them), not "
@@ -104,7 +104,7 @@ def _refuse_collisions(targets: list[_Target]) -> None:
     """Two outputs with one name (also differing in case only) name both manifests."""
     import os
 
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     seen: dict[str, tuple[str, str]] = {}
     for t in targets:
@@ -122,7 +122,7 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
                        out_dir: Path | None, rig: Any) -> None:
     """Every output checked before any work: no input among them (manifests, the rig and
     every record the manifests list, resolved as the processing resolves them)."""
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.tribometer.process import read_manifest
 
     _refuse_collisions(targets)
@@ -138,12 +138,12 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
 def run(args: argparse.Namespace) -> int:
     from contextlib import nullcontext
 
-    from frictionlaws.outputs import atomic_dir, check_dir_move
+    from frictionlaws.base.outputs import atomic_dir, check_dir_move
     from frictionlaws.tribometer.process import manifest_names, process_many
     from frictionlaws.tribometer.rig import load_rig
 
     if "-" in args.manifest:
-        from frictionlaws.errors import InputError
+        from frictionlaws.base.errors import InputError
 
         raise InputError("MANIFEST '-': a manifest names its record files relative to its "
                          "own folder, which standard input does not have; give the "
@@ -172,7 +172,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _refuse_empty(args: argparse.Namespace, empty: list[str]) -> None:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     where = f"manifests {', '.join(empty)}: " if len(empty) > 1 else ""
     raise InputError(
@@ -183,7 +183,7 @@ def _refuse_empty(args: argparse.Namespace, empty: list[str]) -> None:
 
 def _write(targets: list[_Target], camps: list[Any], out_dir: Path | None) -> None:
     """Write every dataset and per-record table together; on failure, none of them."""
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.tribometer.process import write_tables
 
     created = out_dir is not None and not out_dir.exists()
@@ -211,7 +211,7 @@ def _report(args: argparse.Namespace, targets: list[_Target], camps: list[Any], 
             written: bool) -> None:
     """The summaries as text, or (``--json``) one strict JSON document."""
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         docs = []
         for t, c in zip(targets, camps, strict=True):

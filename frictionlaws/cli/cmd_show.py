@@ -100,7 +100,7 @@ def _references(law: Any) -> list[str]:
 
 def describe(law_name: str) -> str:
     """The text ``show`` prints for a law."""
-    from frictionlaws.registry import get_law
+    from frictionlaws.law.registry import get_law
 
     law = get_law(law_name)
     return "\n".join([*_header(law), *_declared_values(law), *_domain_and_derived(law),
@@ -138,7 +138,7 @@ def _bound(args: argparse.Namespace) -> Any:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.registry import get_law
+    from frictionlaws.law.registry import get_law
 
     bound = _bound(args)
     if args.json:

@@ -256,8 +256,8 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     """
     import numpy as np
 
-    from frictionlaws.errors import InputError
-    from frictionlaws.units import to_si
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.units import to_si
 
     try:
         to_si(1.0, unit, "F_N")
@@ -274,7 +274,7 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
 def _refuse_step_form(text: str, flag: str) -> None:
     """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
     number cannot be a count, flagged when it reads both ways."""
-    from frictionlaws.numbers import parse_number
+    from frictionlaws.base.numbers import parse_number
 
     parts = str(text or "").split(":")
     if len(parts) != 3:
@@ -296,7 +296,7 @@ def _refuse_step_form(text: str, flag: str) -> None:
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
-    from frictionlaws.units import parse_quantity
+    from frictionlaws.base.units import parse_quantity
 
     if text is None:
         return None
@@ -305,8 +305,8 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
-    from frictionlaws.errors import InputError
-    from frictionlaws.units import parse_quantity
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.units import parse_quantity
 
     if text is None:
         return None
@@ -343,7 +343,7 @@ def _warn(messages: list[str]) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     cmd = getattr(args, "tyre_command", None)
     if cmd == "cornering":
@@ -363,7 +363,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _angles(text: str) -> list[float]:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
 
     try:
         return [float(a) for a in text.split(",") if a.strip()]
@@ -389,7 +389,7 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 def _run_cornering(args: argparse.Namespace) -> int:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.brush import BrushModel
 
     loads = parse_loads(args.loads, args.load_unit)
@@ -419,12 +419,12 @@ def _run_cornering(args: argparse.Namespace) -> int:
 def _run_thesis(args: argparse.Namespace) -> int:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre.thesis import thesis_comparison
 
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     if not laws:
-        from frictionlaws.errors import InputError
+        from frictionlaws.base.errors import InputError
 
         raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
@@ -514,14 +514,14 @@ def _print_coefficients(mf: Any, as_json: bool) -> int:
 
 
 def _run_reduce(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
+    from frictionlaws.base.errors import InputError
     from frictionlaws.tyre.reduce import reduce_mf
 
     loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:
-        from frictionlaws.outputs import check_outputs
+        from frictionlaws.base.outputs import check_outputs
 
         check_outputs([args.save], inputs=[args.file])
     mf = _mf_file(args)
@@ -535,7 +535,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(red.to_dict()))
     else:
@@ -546,7 +546,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
-    from frictionlaws.outputs import check_outputs
+    from frictionlaws.base.outputs import check_outputs
     from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
 
     if args.uncertainty != "sweeps":
@@ -561,7 +561,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         from frictionlaws.tyre._fit_mf_plot import check_figure_path
 
         check_figure_path(args.plot)
-    from frictionlaws.errors import FitError
+    from frictionlaws.base.errors import FitError
 
     from ._common import data_source, shown_source
 
@@ -577,7 +577,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.plot:
         res.plot(args.plot)
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         print(jsonio.dumps(res.to_dict()))
         return 0
@@ -587,8 +587,11 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
 
 
 def _run_prepare(args: argparse.Namespace) -> int:
-    from frictionlaws.errors import InputError
-    from frictionlaws.outputs import check_outputs
+    import numpy as np
+
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.base.outputs import check_outputs
+    from frictionlaws.tyre._fit_mf_checks import check_plausible
     from frictionlaws.tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
     from frictionlaws.tyre.data.tydex import write_tydex
 
@@ -603,6 +606,7 @@ def _run_prepare(args: argparse.Namespace) -> int:
     with data_source(args.raw, "stdin.txt") as path:
         prepared = prepare_run(load_raw_run(path, sign_convention=args.sign_convention),
                                warmup=warmup)
+        check_plausible(prepared.data, float(np.median(prepared.data.fz)))
         shown = shown_source(path)
         prepared.run.source = prepared.data.source = shown
         provenance = [f"steady sweeps prepared by frictionlaws tyre prepare from {shown}",
@@ -613,7 +617,7 @@ def _run_prepare(args: argparse.Namespace) -> int:
             write_tydex(prepared.data, args.output, comments=provenance)
         plots = write_plots(prepared, args.plots) if args.plots else []
     if args.json:
-        from frictionlaws import jsonio
+        from frictionlaws.base import jsonio
 
         out = prepared.to_dict()
         out["written"] = [args.output, *map(str, plots)]

@@ -63,11 +63,11 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, FitError, InputError
+from ..base.errors import DomainError, FitError, InputError
 from ..fitting import FitData, as_fit_data, fit, invalid_rows
 from ..law import VARIABLES, Law
+from ..law.registry import get_law, list_laws
 from ..parallel import local_workers, starmap_local
-from ..registry import get_law, list_laws
 from .cv import CVResult, combine_folds, error_text, kfold_assignment, score_fold
 from .extrapolation import (
     MU_LIMITS,

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import FitError, InputError
+from ..base.errors import FitError, InputError
 from ..fitting import RANK_TOL, FitData, FitResult, fit
 from ..fitting.diagnosis import _jacobian
 from ..law import Law

@@ -59,10 +59,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, InputError
+from ..base.errors import DomainError, InputError
+from ..base.units import display_unit, to_display
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
-from ..units import display_unit, to_display
 from .cv import error_text, refit, undetermined_rows
 
 __all__ = ["MU_LIMITS", "TREND_TOL", "TREND_REL", "TREND_ALPHA", "Design", "design_of", "Trend",

@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
+from ..base.jsonio import dumps as _dumps
 from ..fitting import FitData, FitResult
-from ..jsonio import dumps as _dumps
 from ..law import VARIABLES, Law
-from ..registry import get_law
+from ..law.registry import get_law
 from .cv import CVResult
 from .extrapolation import Design, HoldoutResult, Plausibility, Split, Trend, fmt_value
 from .residuals import ResidualAnalysis

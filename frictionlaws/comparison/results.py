@@ -35,7 +35,7 @@ class Comparison(ComparisonRecord):
     """
 
     def _repr_html_(self) -> str:
-        from ..interop import table_html
+        from ..fitting.views import table_html
 
         rows = mark_undetermined(self.to_frame()).to_dict("records")
         return table_html(rows, caption=f"laws compared on {self.data.name} "
@@ -54,13 +54,13 @@ class Comparison(ComparisonRecord):
     def plot(self, **kw: Any) -> Any:
         """Bar chart of each law's fit, CV and extrapolation RMSE, in rank order.
 
-        See :func:`frictionlaws.plotting.plot_comparison` (``ax``, ``log``).
+        See :func:`frictionlaws.comparison.plotting.plot_comparison` (``ax``, ``log``).
 
         Returns
         -------
         matplotlib.figure.Figure
         """
-        from ..plotting import plot_comparison
+        from .plotting import plot_comparison
 
         return plot_comparison(self, **kw)
 

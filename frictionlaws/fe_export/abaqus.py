@@ -12,7 +12,7 @@ one that must stay because a later column is used holds a single value ``0``
 
 ``abaqus-decay``: ``*FRICTION, EXPONENTIAL DECAY`` with ``mu_s, mu_k, d_c``,
 exact only when the law is of that form (see :mod:`.exact`); otherwise an
-:class:`~frictionlaws.errors.InputError` suggests fitting ``exponential-decay``
+:class:`~frictionlaws.base.errors.InputError` suggests fitting ``exponential-decay``
 with ``delta = 1`` first.
 """
 
@@ -22,7 +22,7 @@ import itertools
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 from .exact import exp_decay_form
 from .fortran import FIELD_VARIABLES
 from .job import Job, Written, commented, model_axes, tabulated

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import itertools
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .job import Job, Written, commented, model_axes, tabulated
 
 __all__ = ["write_ansys", "OUTSIDE_ANSYS"]

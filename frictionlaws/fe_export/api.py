@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 from ..law import VARIABLES, Law
 from .fortran import FORTRAN_FORMATS, check_source_name
 from .grid import MAX_ROWS, AxisSpec, Grid
@@ -18,7 +18,7 @@ from .job import Job, Written
 from .systems import UnitSystem, unit_system
 
 if TYPE_CHECKING:
-    from ..bound import BoundLaw
+    from ..law.bound import BoundLaw
 
 __all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
 
@@ -271,8 +271,8 @@ _RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
 
 def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
     """One bound of a range: a number in the unit system or a quantity with its unit."""
-    from ..numbers import parse_number
-    from ..units import parse_quantity
+    from ..base.numbers import parse_number
+    from ..base.units import parse_quantity
 
     s = s.strip()
     if not s:
@@ -333,7 +333,7 @@ def _check_spacing(spacing: Mapping[str, str]) -> None:
 
 def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
     """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
-    from ..units import parse_quantity, si_magnitude
+    from ..base.units import parse_quantity, si_magnitude
 
     if isinstance(spec, AxisSpec):
         return spec
@@ -376,7 +376,7 @@ def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
 
 def _bound(law: Law | BoundLaw | str | None, params: Any, preset: str | None) -> BoundLaw:
     """The law and its values: a BoundLaw given as ``law`` or ``params``, or bound here."""
-    from ..bound import BoundLaw, as_bound, freeze
+    from ..law.bound import BoundLaw, as_bound, freeze
 
     if isinstance(law, BoundLaw):
         if params is not None or preset is not None:
@@ -432,7 +432,7 @@ def _check_path(path: str | Path | None, bound: BoundLaw, fmt: str) -> None:
     A Fortran format's file must also have a name compilers read as fixed form.
     """
     if path is not None and str(path) != "-":
-        from ..outputs import check_outputs
+        from ..base.outputs import check_outputs
 
         if fmt in FORTRAN_FORMATS:
             check_source_name(str(path))
@@ -447,7 +447,7 @@ def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
     """
     if path is None or str(path) == "-":
         return None
-    from ..outputs import check_outputs, write_text_atomic
+    from ..base.outputs import check_outputs, write_text_atomic
 
     p = Path(path)
     check_outputs([p], inputs=inputs, what="export file")
@@ -469,7 +469,7 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     Parameters
     ----------
     law : Law or BoundLaw or str or None
-        The law (id or alias), or a :class:`~frictionlaws.bound.BoundLaw`
+        The law (id or alias), or a :class:`~frictionlaws.law.bound.BoundLaw`
         (``law.freeze(...)``, ``result.bound``) that carries its values, their
         source and fitted ranges; may be None when ``params`` is a bound law or
         a fit result.
@@ -501,12 +501,12 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         max/min >= 100, else lin).
     path : str or Path, optional
         Write the file there, atomically; never over the fitted data, the params
-        file or a file read in this process (:mod:`frictionlaws.outputs`).
+        file or a file read in this process (:mod:`frictionlaws.base.outputs`).
     max_rows : int
         Largest table allowed.
     source : str, optional
         How the parameters were obtained (written in the header; default: the
-        bound law's :class:`~frictionlaws.bound.Source`).
+        bound law's :class:`~frictionlaws.law.bound.Source`).
     options : mapping, optional
         Format options (ids of the solver's cards), see :data:`OPTIONS`.
 

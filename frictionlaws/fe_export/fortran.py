@@ -43,7 +43,7 @@ import zlib
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..law import VARIABLES, Law
 
 __all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES",
@@ -154,11 +154,11 @@ def _printer() -> Any:
 def _comment(lines: Sequence[str], width: int = 72) -> list[str]:
     """Fixed-form comment lines ('C' in column 1), wrapped at ``width``.
 
-    Every line goes through :func:`~frictionlaws.sanitize.ascii_line` first.
+    Every line goes through :func:`~frictionlaws.base.sanitize.ascii_line` first.
     """
     import textwrap
 
-    from ..sanitize import ascii_line
+    from ..base.sanitize import ascii_line
 
     out = []
     for line in map(ascii_line, lines):

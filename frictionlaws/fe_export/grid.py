@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 
 __all__ = [
     "AxisSpec",

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 from ..law import MU_MAX, VARIABLES, Law
 from .grid import AxisSpec, Grid, GridError, make_grid
 from .systems import UnitSystem
@@ -88,7 +88,7 @@ class Job:
     source : str
         Where the parameter values came from.
     fit : BoundLaw, optional
-        The :class:`~frictionlaws.bound.BoundLaw` the values came from (standard
+        The :class:`~frictionlaws.law.bound.BoundLaw` the values came from (standard
         errors, fixed parameters, fitted ranges).
     options : dict
         Format-specific options.
@@ -208,7 +208,7 @@ class Job:
         """
         import itertools
 
-        from ..errors import DomainError
+        from ..base.errors import DomainError
 
         names = list(self.variables)
         if not names or (needs_box and any(v not in self.specs for v in names)):
@@ -415,10 +415,10 @@ class Job:
 def commented(lines: Sequence[str], prefix: str, width: int = 78) -> list[str]:
     """Header lines as comments, wrapped to ``width`` columns.
 
-    Every line goes through :func:`~frictionlaws.sanitize.ascii_line` first: a name or
+    Every line goes through :func:`~frictionlaws.base.sanitize.ascii_line` first: a name or
     source with a line break or a control character stays inside its comment.
     """
-    from ..sanitize import ascii_line
+    from ..base.sanitize import ascii_line
 
     out = []
     for line in map(ascii_line, lines):

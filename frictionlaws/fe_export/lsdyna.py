@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .exact import ExpDecay, exp_decay_form
 from .grid import Grid
 from .job import Job, Written, commented, tabulated

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .exact import exp_decay_form, quadratic_pv_form
 from .grid import Grid, GridError, breakpoints, tabulate
 from .job import Job, Written, commented

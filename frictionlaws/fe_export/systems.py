@@ -5,7 +5,7 @@ own consistent system.  A :class:`UnitSystem` names the unit of each variable
 (pressure, sliding velocity, temperature, normal load) in that system; the
 exporters convert from the library's SI (a law is always evaluated in SI) with
 the affine maps ``x_model = (x_si - offset) / scale`` computed by pint through
-:mod:`frictionlaws.units`.
+:mod:`frictionlaws.base.units`.
 
 Named systems (case and punctuation do not matter):
 
@@ -22,9 +22,9 @@ import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.units import QUANTITIES
 from ..law import VARIABLES
-from ..units import QUANTITIES
 
 if TYPE_CHECKING:
     import numpy as np
@@ -71,7 +71,7 @@ class UnitSystem:
 
     def affine(self, var: str) -> tuple[float, float]:
         """``(scale, offset)`` with ``x_si = scale * x_model + offset``."""
-        from ..units import to_si
+        from ..base.units import to_si
 
         unit = self.units[var]
         zero = float(to_si(0.0, unit, var))
@@ -118,7 +118,7 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
     InputError
         For an unknown system name, variable or unit (with the accepted ones).
     """
-    from ..units import canonical_unit
+    from ..base.units import canonical_unit
 
     if isinstance(spec, UnitSystem):
         return spec

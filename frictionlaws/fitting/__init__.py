@@ -2,14 +2,14 @@
 
 :func:`fit` minimises the (weighted) squared residual of a law's declaration with
 scipy's bounded trust region, the way lmfit's ``least_squares`` method does
-(:mod:`frictionlaws._lsq`; lmfit's other minimisers on request), starts from the
+(:mod:`frictionlaws.fitting.lsq`; lmfit's other minimisers on request), starts from the
 law's data-driven guess, tries several starts where the surface may have several
 minima, and returns a :class:`FitResult` with values, standard errors, 95 %
 confidence intervals, the correlation matrix, goodness of fit and warnings.
 
 On :data:`ANALYTIC_FROM` rows or more the solver and the
 identifiability analysis use each law's analytic Jacobian, derived once from its
-symbolic form (:mod:`frictionlaws.derivatives`).  The deterministic starts are
+symbolic form (:mod:`frictionlaws.fitting.derivatives`).  The deterministic starts are
 scored by their chi^2 and refined best first; the search stops when a second start
 reproduces the best chi^2.
 

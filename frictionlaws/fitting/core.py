@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import FitError, InputError
+from ..base.errors import FitError, InputError
 from ..law import Law
-from ..registry import get_law
+from ..law.registry import get_law
 from .data import check_fit_options
 from .diagnosis import (
     _correlation,
@@ -70,7 +70,7 @@ def fit(
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
         Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
         a bootstrap over whole conditions (a law that misses a trend); see
-        :mod:`frictionlaws.uncertainty`.
+        :mod:`frictionlaws.fitting.robust`.
     n_boot, n_jobs : int
         Bootstrap replicates (20..100000) and joblib workers (-1: one per core).
     interval : {"bca", "percentile"}
@@ -116,7 +116,7 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
                        uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
                        global_stage: Any, lean: Any) -> None:
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
-    from ..uncertainty import check_uncertainty_options
+    from .robust import check_uncertainty_options
 
     check_fit_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)

@@ -10,9 +10,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
+from ..base.units import si_magnitude
 from ..law import VARIABLES, Law
-from ..units import si_magnitude
 
 __all__ = ["FitData", "as_fit_data", "GROUP_COLUMNS", "CONDITION_COLUMN", "refuse_pooled_groups",
            "MU_DATA_MAX", "check_fit_options", "invalid_rows"]
@@ -108,8 +108,8 @@ _ARRAY_LIMITS = {"mu": (0.0, True), "p": (0.0, True), "F_N": (0.0, True), "T": (
 
 
 def refuse_pooled_groups(dataset: Any) -> None:
-    """Raise :class:`~frictionlaws.errors.GroupingError` when a grouping column varies."""
-    from ..errors import GroupingError
+    """Raise :class:`~frictionlaws.base.errors.GroupingError` when a grouping column varies."""
+    from ..base.errors import GroupingError
 
     names = getattr(dataset, "column_names", None)
     if names is None:
@@ -377,7 +377,7 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
     var = VARIABLES.get(k)
     if var is None:
         return f"{k} {lo:g}..{hi:g}"
-    from ..units import to_display
+    from ..base.units import to_display
 
     shown = to_display([lo, hi], k)
     return f"{k} {shown[0]:.4g}..{shown[1]:.4g} {var.display_unit or '-'}"

@@ -11,9 +11,9 @@ from typing import Any
 
 import numpy as np
 
-from .._lsq import central_jacobian as _jacobian
 from ..law import Law
 from .data import FitData, _fmt_range
+from .lsq import central_jacobian as _jacobian
 from .result import ParamEstimate, _numpy_ns
 from .search import _Search, _Setup
 
@@ -284,7 +284,7 @@ def _withhold_doubtful(law: Law, diag: _Diagnosis, estimates: dict[str, ParamEst
     data, identical resamples), so it is withheld with a warning; a derived quantity
     has no error when a parameter it depends on has none.
     """
-    from ..uncertainty import ZERO_SPREAD
+    from .robust import ZERO_SPREAD
 
     def nil(se: float | None, value: float) -> bool:
         return se is not None and se <= ZERO_SPREAD * abs(value)

@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..base.errors import ExtrapolationWarning, InputError
 from ..law import VARIABLES, Law
-from ..registry import get_law
+from ..law.registry import get_law
 
 if TYPE_CHECKING:
-    from ..bound import BoundLaw
+    from ..law.bound import BoundLaw
 
 from .data import FitData, _fmt_range
 
@@ -126,14 +126,14 @@ class FitResult:
         """lmfit's :class:`~lmfit.model.ModelResult` of this fit (None without its data).
 
         lmfit's own minimiser result when it ran the fit; otherwise lmfit refits the law
-        from this optimum (:func:`frictionlaws.interop.model_result`), so its tools
+        from this optimum (:func:`frictionlaws.fitting.views.model_result`), so its tools
         (``fit_report()``, ``conf_interval()``, ``eval_uncertainty()``) apply.
         """
         if self.local_fit is not None and hasattr(self.local_fit, "model"):
             return self.local_fit
         if self.fit_data is None:
             return None
-        from ..interop import model_result
+        from .views import model_result
 
         return model_result(self)
 
@@ -152,7 +152,7 @@ class FitResult:
     @property
     def bound(self) -> BoundLaw:
         """The law bound to the fitted values, with the fitted data's ranges."""
-        from ..bound import bound_from_result
+        from ..law.bound import bound_from_result
 
         return bound_from_result(self)
 
@@ -162,7 +162,7 @@ class FitResult:
         Parameters
         ----------
         warn : bool
-            Issue an :class:`~frictionlaws.errors.ExtrapolationWarning` outside the
+            Issue an :class:`~frictionlaws.base.errors.ExtrapolationWarning` outside the
             fitted range.
         **variables
             Variable name -> values (SI).
@@ -182,8 +182,8 @@ class FitResult:
     def extrapolation(self, variables: Mapping[str, Any]) -> list[str]:
         """Return a message for each variable outside the ranges of the data fitted.
 
-        The one rule (:func:`frictionlaws.bound.outside_ranges`) that
-        :meth:`BoundLaw.extrapolation <frictionlaws.bound.BoundLaw.extrapolation>` applies.
+        The one rule (:func:`frictionlaws.law.bound.outside_ranges`) that
+        :meth:`BoundLaw.extrapolation <frictionlaws.law.bound.BoundLaw.extrapolation>` applies.
 
         Parameters
         ----------
@@ -195,7 +195,7 @@ class FitResult:
         list of str
             One message per variable with values outside its fitted range.
         """
-        from ..bound import outside_ranges
+        from ..law.bound import outside_ranges
 
         return outside_ranges(self.law, self.data.get("ranges", {}), variables)
 
@@ -256,21 +256,21 @@ class FitResult:
         ----------
         units : {"display", "si"}
             ``"display"`` (default): pressures in MPa, so Thirion's ``b`` is in 1/MPa;
-            ``"si"``: the values as fitted (1/Pa).  See :mod:`frictionlaws.display`.
+            ``"si"``: the values as fitted (1/Pa).  See :mod:`frictionlaws.base.display`.
 
         Returns
         -------
         pandas.DataFrame
             Value, stderr, CI, unit and fixed flag per parameter.
         """
-        from ..interop import params_frame
+        from .views import params_frame
 
         return params_frame(self, units)
 
     def plot(self, data: Any = None, *, units: str = "display", **kw: Any) -> Any:
         """Plot data, fit, 95 % band and residuals.
 
-        See :func:`frictionlaws.interop.plot_result`.
+        See :func:`frictionlaws.fitting.views.plot_result`.
 
         Parameters
         ----------
@@ -279,19 +279,19 @@ class FitResult:
         units : {"display", "si"}
             The horizontal axis in display units (p in MPa; default) or SI.
         **kw
-            Passed to :func:`frictionlaws.interop.plot_result`.
+            Passed to :func:`frictionlaws.fitting.views.plot_result`.
 
         Returns
         -------
         matplotlib.figure.Figure
             The figure.
         """
-        from ..interop import plot_result
+        from .views import plot_result
 
         return plot_result(self, data, units=units, **kw)
 
     def _repr_html_(self) -> str:
-        from ..interop import result_html
+        from .views import result_html
 
         return result_html(self)
 
@@ -316,7 +316,7 @@ class FitResult:
         str
             The JSON text.
         """
-        from ..jsonio import dumps
+        from ..base.jsonio import dumps
 
         return dumps(self.to_dict(), indent=indent)
 
@@ -333,7 +333,7 @@ class FitResult:
         Path
             The file written.
         """
-        from ..outputs import check_outputs, write_text_atomic
+        from ..base.outputs import check_outputs, write_text_atomic
 
         source = self.data.get("source") if isinstance(self.data, Mapping) else None
         check_outputs([path], inputs=[source] if source else [])
@@ -406,7 +406,7 @@ class FitResult:
 def _display_line(params: Mapping[str, ParamEstimate],
                   derived: Mapping[str, Mapping[str, Any]]) -> str:
     """The values with pressures in MPa (``b = 4.72 +/- 0.381 1/MPa``), or ``""`` if none."""
-    from ..display import display_param_unit
+    from ..base.display import display_param_unit
 
     items: list[tuple[str, Any, Any, Any]] = [
         (k, e.value, e.stderr, e.unit) for k, e in params.items() if not e.fixed]
@@ -499,9 +499,9 @@ def load_result(path: str | Path) -> FitResult:
     InputError
         Naming the file and the offending key.
     """
-    from .. import jsonio
-    from ..limits import read_input
-    from ..outputs import check_input_file
+    from ..base import jsonio
+    from ..base.limits import read_input
+    from ..base.outputs import check_input_file
 
     path = check_input_file(path, "params file")
     raw = read_input(path, "params file")  # bounded in size
@@ -546,7 +546,7 @@ def load_result(path: str | Path) -> FitResult:
 
 def _loaded_uncertainty(doc: Mapping[str, Any], file: str) -> dict[str, Any]:
     """The saved ``uncertainty`` record; its method must be a known one."""
-    from ..uncertainty import UNCERTAINTY_METHODS
+    from .robust import UNCERTAINTY_METHODS
 
     info = _obj(doc, "uncertainty")
     method = info.get("method")

@@ -1,5 +1,5 @@
 """The search for the best optimum: deterministic and random starts, the scout subsample of
-large data, the global stage, and the solver calls (:mod:`frictionlaws._lsq`).
+large data, the global stage, and the solver calls (:mod:`frictionlaws.fitting.lsq`).
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.units import si_magnitude
 from ..law import VARIABLES, Law
-from ..units import si_magnitude
 from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_fit_data
 
 __all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
@@ -338,7 +338,7 @@ class _Search:
         self.held = {k: v for k, v in s.model_law.setting_values.items() if k not in s.names}
         self.jac_func = None
         if s.y.size >= ANALYTIC_FROM:
-            from ..derivatives import jacobian_function
+            from .derivatives import jacobian_function
 
             self.jac_func = jacobian_function(s.law)
 
@@ -346,7 +346,7 @@ class _Search:
         """The analytic Jacobian of the model by ``names`` at ``values`` (None: none)."""
         if self.jac_func is None:
             return None
-        from ..derivatives import model_jacobian
+        from .derivatives import model_jacobian
 
         return model_jacobian(self.jac_func, self.prepared, {**self.held, **values}, names,
                               self.setup.y.size)
@@ -396,11 +396,11 @@ class _Search:
         """One local solve: the lean trust region, or lmfit's minimiser when asked."""
         s = self.setup
         if self.method != "least_squares":
-            from .._lsq import lmfit_fit
+            from .lsq import lmfit_fit
 
             return lmfit_fit(self.model, s.y, self.params(start, pinned), weights=s.w,
                              method=self.method, max_nfev=self.max_nfev, **self.kwargs)
-        from .._lsq import solve
+        from .lsq import solve
 
         values = self.start_values(start, pinned)
         vary = [k for k in s.names if k not in s.fix and k not in pinned]

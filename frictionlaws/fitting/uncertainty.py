@@ -49,7 +49,7 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     ``estimates``, ``derived``, ``corr`` and ``warn_msgs`` are updated in place; the
     returned record says which method was used (kept by :meth:`FitResult.to_dict`).
     """
-    from ..uncertainty import residual_structure
+    from .robust import residual_structure
 
     method = opts["method"]
     info: dict[str, Any] = {"method": method}
@@ -90,7 +90,7 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
 def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
                     estimates: Mapping[str, ParamEstimate], warn_msgs: list[str]) -> None:
     """Warn when a robust method's errors exceed the asymptotic ones by > NARROW_RATIO."""
-    from ..uncertainty import NARROW_RATIO
+    from .robust import NARROW_RATIO
 
     if method == "asymptotic":
         return
@@ -140,7 +140,7 @@ def _apply_sandwich(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
 
     False (the asymptotic errors stay) when the sandwich cannot be computed.
     """
-    from ..uncertainty import sandwich_cov
+    from .robust import sandwich_cov
 
     cov = sandwich_cov(inp.jac, inp.weighted_resid)
     if cov is None:
@@ -166,7 +166,7 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                      derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
                      warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
     """Condition-resampling bootstrap errors and intervals, parameters and derived alike."""
-    from ..uncertainty import (
+    from .robust import (
         MIN_DETERMINED,
         Refit,
         bootstrap,

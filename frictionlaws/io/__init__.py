@@ -25,7 +25,7 @@ mapped explicitly (``mapping="mu=FC,p=CP,v=DV"``).  The full schema, the rules f
 what is an error and what is a reported drop, and the provenance of the
 packaged datasets are in ``datasets/README.md``.
 
-Every problem with the user's input raises :class:`~frictionlaws.errors.InputError`
+Every problem with the user's input raises :class:`~frictionlaws.base.errors.InputError`
 naming the file, the column and the row (the line number a text editor or
 spreadsheet shows; the header of a file without comments is row 1).  Rows are
 never dropped silently: each drop is written to :attr:`Dataset.notes`.

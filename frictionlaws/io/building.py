@@ -12,9 +12,9 @@ from typing import TYPE_CHECKING, Any, TypeGuard
 
 import numpy as np
 
-from .. import units as _units
-from ..errors import Argument, InputError
-from ..sanitize import csv_cell_text
+from ..base import units as _units
+from ..base.errors import Argument, InputError
+from ..base.sanitize import csv_cell_text
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
@@ -64,7 +64,7 @@ def _to_float(cell: Any, decimal_comma: bool) -> float | None:
     text = str(cell).strip()
     if text.lower() in MISSING_TOKENS:
         return math.nan
-    from ..numbers import parse_number
+    from ..base.numbers import parse_number
 
     if text.lower().lstrip("+-") in ("inf", "infinity"):
         return math.inf  # reported as "not finite" with its row

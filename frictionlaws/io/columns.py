@@ -9,8 +9,8 @@ import unicodedata
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from .. import units as _units
-from ..errors import Argument, InputError
+from ..base import units as _units
+from ..base.errors import Argument, InputError
 from ..law import VARIABLES
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
@@ -23,7 +23,7 @@ __all__ = ["VARIABLE_COLUMNS", "CANONICAL", "TEXT_COLUMNS", "ALIASES", "MISSING_
 
 
 #: The canonical columns that are independent variables of a law
-#: (:data:`frictionlaws.law.VARIABLES`; their units: :data:`frictionlaws.units.QUANTITIES`).
+#: (:data:`frictionlaws.law.VARIABLES`; their units: :data:`frictionlaws.base.units.QUANTITIES`).
 VARIABLE_COLUMNS: tuple[str, ...] = tuple(VARIABLES)
 
 

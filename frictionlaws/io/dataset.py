@@ -5,6 +5,7 @@ assembly from a read table (:func:`_build`).
 from __future__ import annotations
 
 import csv
+import html
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -12,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import units as _units
-from ..errors import InputError
-from ..sanitize import comment_lines, csv_cell, split_lines
+from ..base import units as _units
+from ..base.errors import InputError
+from ..base.sanitize import comment_lines, csv_cell, split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
@@ -34,7 +35,7 @@ from .building import (
 from .columns import CANONICAL, TEXT_COLUMNS, VARIABLE_COLUMNS, parse_mapping, parse_units
 from .reading import _split_header, _Table, _table_from_frame
 
-__all__ = ["Dataset"]
+__all__ = ["Dataset", "dataset_html"]
 
 
 # --------------------------------------------------------------------------- Dataset
@@ -146,8 +147,6 @@ class Dataset:
         return f"Dataset({self.name!r}, {len(self)} rows, columns: {cols})"
 
     def _repr_html_(self) -> str:
-        from ..interop import dataset_html
-
         return dataset_html(self)
 
     @property
@@ -424,7 +423,7 @@ class Dataset:
         ----------
         path : str or path-like
             The file to write (replaced atomically if it exists; never a file
-            read in this process, see :mod:`frictionlaws.outputs`).
+            read in this process, see :mod:`frictionlaws.base.outputs`).
 
         Returns
         -------
@@ -442,7 +441,7 @@ class Dataset:
             unit = _units.display_unit(c)
             vals = _units.from_si(self.column(c, float), unit, c)
             columns.append([format(float(x), ".15g") for x in vals])
-        from ..outputs import atomic_write  # never over a file read in this process
+        from ..base.outputs import atomic_write  # never over a file read in this process
 
         with atomic_write(path, newline="") as fh:
             if self.provenance:
@@ -486,3 +485,31 @@ def _written_unit(unit: str, column: str) -> str:
         return unit
     return _units.canonical_unit(unit, column)
 
+
+def dataset_html(dataset: Any, head: int = 5) -> str:
+    """HTML for a dataset: name, source, each column's range in display units, first rows."""
+    from ..base.display import unit_text
+    from ..law.interop import table_html
+
+    rows = []
+    for col in dataset.column_names:
+        if col not in _units.QUANTITIES:
+            values = sorted({str(x) for x in dataset.column(col)})
+            rows.append({"column": col, "unit": "", "range": ", ".join(values[:8])
+                         + (", ..." if len(values) > 8 else ""), "distinct": len(values),
+                         "given in": ""})
+            continue
+        shown = _units.to_display(dataset.column(col, float), col)
+        rows.append({"column": col, "unit": unit_text(_units.display_unit(col)),
+                     "range": f"{shown.min():.4g} .. {shown.max():.4g}",
+                     "distinct": len(np.unique(shown)),
+                     "given in": dataset.units.get(col, "")})
+    first = dataset.to_frame("display").head(head)
+    notes = "".join(f"<li>{html.escape(n)}</li>" for n in dataset.notes)
+    return "\n".join([
+        f"<h4>dataset <code>{html.escape(str(dataset.name))}</code>: {len(dataset)} rows</h4>",
+        f"<p>source: {html.escape(str(dataset.source))}</p>",
+        table_html(rows, caption="columns (display units)"),
+        f"<p>first {len(first)} rows</p>",
+        first.to_html(index=False, float_format=lambda x: f"{x:.6g}"),
+        f"<ul>{notes}</ul>" if notes else ""])

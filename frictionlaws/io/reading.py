@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..errors import InputError
-from ..sanitize import split_lines
+from ..base.errors import InputError
+from ..base.sanitize import split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
@@ -154,8 +154,8 @@ def _read_bytes(p: Path, source: str, what: str) -> bytes:
             else f"{what} not found", file=source)
     if p.is_dir():
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
-    from ..limits import read_input
-    from ..outputs import check_input_file
+    from ..base.limits import read_input
+    from ..base.outputs import check_input_file
 
     check_input_file(p, what)  # a FIFO or device would block or never end
     return read_input(p, what, source)  # bounded in size

@@ -26,7 +26,7 @@ The rooms, each importing only those above it in this list:
 * :mod:`~frictionlaws.law.text`: the symbolic form, LaTeX and the cached formula text;
 * :mod:`~frictionlaws.law.interop`: the lmfit model and Jupyter's HTML of a law;
 * :mod:`~frictionlaws.law.core`: :class:`Law` itself, assembled from these, and
-  :class:`~frictionlaws.bound.BoundLaw`, the law bound to values.
+  :class:`~frictionlaws.law.bound.BoundLaw`, the law bound to values.
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ the frozen form (:meth:`Law.freeze`), the lmfit model and Jupyter's HTML
 (:mod:`~frictionlaws.law.interop`) and pickling by registered id.
 
 :class:`BoundLaw` is to a law what a frozen distribution is to a distribution family
-(:mod:`frictionlaws.bound` has the ways to make one: by law id, from a fit result); it is
+(:mod:`frictionlaws.law.bound` has the ways to make one: by law id, from a fit result); it is
 defined beside :class:`Law` because each refers to the other.
 """
 
@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..base.errors import ExtrapolationWarning, InputError
 from .declaration import VARIABLES
 from .evaluation import LawEvaluation
 from .interop import law_html, lmfit_model
@@ -146,7 +146,7 @@ class Law(LawEvaluation, LawText):
     def lmfit_model(self, values: Mapping[str, float] | None = None) -> Any:
         """Return the law as an :class:`lmfit.Model`.
 
-        See :func:`frictionlaws.interop.lmfit_model`.
+        See :func:`frictionlaws.fitting.views.lmfit_model`.
 
         Parameters
         ----------
@@ -161,7 +161,7 @@ class Law(LawEvaluation, LawText):
         return lmfit_model(self, values=values)
 
 
-#: How a law id is looked up again (set by :mod:`frictionlaws.registry` when it loads,
+#: How a law id is looked up again (set by :mod:`frictionlaws.law.registry` when it loads,
 #: so that this module does not import the registry).
 _LOOKUP: dict[str, Callable[[str], Law]] = {}
 
@@ -234,8 +234,8 @@ class Source:
 class BoundLaw:
     """A law with fixed, checked parameter values, their source and fitted ranges.
 
-    Build it with :meth:`Law.freeze`, :func:`~frictionlaws.bound.freeze`,
-    :func:`~frictionlaws.bound.bound_from_result` or :func:`~frictionlaws.bound.as_bound`
+    Build it with :meth:`Law.freeze`, :func:`~frictionlaws.law.bound.freeze`,
+    :func:`~frictionlaws.law.bound.bound_from_result` or :func:`~frictionlaws.law.bound.as_bound`
     rather than directly; the constructor checks ``values`` (complete, finite, inside
     their bounds, admissible) with :meth:`Law.check_values <frictionlaws.law.Law.check_values>`.
 
@@ -309,7 +309,7 @@ class BoundLaw:
         The variables are checked as by calling the law (non-finite values, a
         negative pressure, a slip ratio outside the domain...), and so is mu
         (finite; not negative for a sliding law).  With ``warn``, an
-        :class:`~frictionlaws.errors.ExtrapolationWarning` says when a
+        :class:`~frictionlaws.base.errors.ExtrapolationWarning` says when a
         variable leaves the fitted range.
 
         Returns

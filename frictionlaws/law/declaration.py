@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..units import QUANTITIES
+from ..base.units import QUANTITIES
 from .namespace import NUMPY
 
 __all__ = ["VARIABLES", "Variable", "Param", "Setting", "Derived", "FAMILIES",
@@ -37,12 +37,12 @@ class Variable:
     """An independent variable a law may use (always in SI units inside).
 
     Its units are not declared here: :attr:`unit` and :attr:`display_unit` are read
-    from the one table of units, :data:`frictionlaws.units.QUANTITIES`.
+    from the one table of units, :data:`frictionlaws.base.units.QUANTITIES`.
 
     Parameters
     ----------
     name : str
-        The variable's name (a key of :data:`~frictionlaws.units.QUANTITIES`).
+        The variable's name (a key of :data:`~frictionlaws.base.units.QUANTITIES`).
     meaning : str
         What the variable is, in a few words ("contact pressure").
     typical : tuple of float
@@ -65,7 +65,7 @@ class Variable:
 
 
 #: The independent variables known to frictionlaws (their units are read from
-#: :data:`frictionlaws.units.QUANTITIES`).
+#: :data:`frictionlaws.base.units.QUANTITIES`).
 VARIABLES: dict[str, Variable] = {
     "p": Variable("p", "contact pressure", (1e4, 1e6)),
     "v": Variable("v", "sliding velocity (magnitude)", (1e-3, 10.0)),

@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, InputError
-from ..units import si_magnitude
+from ..base.errors import DomainError, InputError
+from ..base.units import si_magnitude
 from .declaration import VARIABLES
 from .namespace import NUMPY
 from .parameters import LawDeclaration

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DomainError, InputError, broadcast_shape
+from ..base.errors import DomainError, InputError, broadcast_shape
 from .declaration import VARIABLES
 from .domain import LawDomain, _all_finite, _first
 from .namespace import NUMPY

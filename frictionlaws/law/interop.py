@@ -1,6 +1,6 @@
 """A law in other tools' terms: an :class:`lmfit.Model`, and the HTML Jupyter shows.
 
-:mod:`frictionlaws.interop` gathers these with the other integrations (pandas, xarray,
+:mod:`frictionlaws.fitting.views` gathers these with the other integrations (pandas, xarray,
 plots); they live here, beside the law, because :class:`~frictionlaws.law.Law` hands its
 :meth:`~frictionlaws.law.Law.lmfit_model` and ``_repr_html_`` to them.  Heavy libraries
 are imported inside the functions that need them.

@@ -17,8 +17,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ..errors import InputError
-from ..units import si_magnitude
+from ..base.errors import InputError
+from ..base.units import si_magnitude
 from .declaration import FAMILIES, VARIABLES, Derived, Param, Setting
 
 __all__ = ["LawDeclaration"]

@@ -110,7 +110,7 @@ class LawText(LawDeclaration):
 
 
 #: The shipped cache of formula texts (see :meth:`LawText.pretty`).
-FORMULA_TEXT_FILE = Path(__file__).parent.parent / "formula_text.json"
+FORMULA_TEXT_FILE = Path(__file__).parent / "formula_text.json"
 #: Relative agreement of :func:`formula_check` values with the cached ones.
 _CHECK_RTOL = 1e-9
 

@@ -1,7 +1,7 @@
 """The built-in laws. Importing this package registers every law.
 
 One module per group of laws; each declares its laws once with
-:func:`frictionlaws.registry.register`.  Every public module of this package is a
+:func:`frictionlaws.law.registry.register`.  Every public module of this package is a
 law module: a new one is found here without being listed anywhere.
 """
 
@@ -12,7 +12,7 @@ __all__ = ["LAW_MODULES"]
 
 #: Registration order of the first law modules (the order ``frictionlaws laws``, the
 #: catalogue and comparisons list the laws in); any other module follows, by name.
-_FIRST = ("basic", "thesis", "velocity", "slip", "persson")
+_FIRST = ("basic", "polynomial", "velocity", "slip", "persson")
 
 
 def _law_modules() -> tuple[str, ...]:

@@ -1,7 +1,8 @@
 """Analytic Jacobians of the built-in laws: GENERATED, do not edit.
 
-Written by ``python -m frictionlaws.derivatives`` from each law's symbolic form
-(sympy, common subexpressions shared); see :mod:`frictionlaws.derivatives`.
+Written by ``python -m frictionlaws.fitting.derivatives`` from each law's
+symbolic form (sympy, common subexpressions shared); see
+:mod:`frictionlaws.fitting.derivatives`.
 """
 
 # ruff: noqa

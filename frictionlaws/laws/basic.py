@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ..law import F_MIN, Derived, Law, Param, Setting
-from ..registry import register
+from ..law.registry import register
 from ._guess import linear_guess, linear_lstsq
 
 __all__ = ["INF"]

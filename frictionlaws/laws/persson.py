@@ -20,7 +20,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from ..law import Law, Param, Setting
-from ..registry import register
+from ..law.registry import register
 
 if TYPE_CHECKING:
     from ..persson.flash import Flash

@@ -16,8 +16,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..law import NUMPY, P_MIN, V_MIN, Derived, Law, Param, Setting
-from ..registry import register
-from ..temperature import WLF_PRESETS, WLFLaw, wlf_formula, wlf_settings
+from ..law.registry import register
+from ..viscoelastic.temperature import WLF_PRESETS, WLFLaw, wlf_formula, wlf_settings
 from ._guess import spread, subsample
 
 __all__ = ["nackenhorst_from_thesis", "P_REF_SAVKOOR", "P_REF_NACKENHORST", "P_REF_HUEMER",
@@ -269,7 +269,7 @@ def nackenhorst_from_thesis(c1: float, c2: float, c3: float, c4: float, c5: floa
         ``{"A", "n", "b0", "b1", "b2"}`` for law ``nackenhorst``.
     """
     if c2 <= 0 or c5 <= 0 or c7 <= 0:
-        from ..errors import InputError
+        from ..base.errors import InputError
 
         raise InputError("c2, c5 and c7 are scales and must be positive")
     return {

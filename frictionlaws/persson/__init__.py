@@ -19,7 +19,7 @@ laws (which declares ``persson``) loads none of these modules.
 
 from __future__ import annotations
 
-from .._lazy import lazy_getattr
+from ..base.lazy import lazy_getattr
 
 #: public name -> the submodule that defines it
 _API = {

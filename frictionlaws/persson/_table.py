@@ -8,9 +8,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.units import to_si
 from ..io import _split_header, _to_float, read_table
-from ..units import to_si
 
 __all__ = ["read_columns"]
 
@@ -26,7 +26,7 @@ def read_columns(path: str | os.PathLike[str], wanted: Mapping[str, tuple[str, s
         handled by :mod:`frictionlaws.io`).
     wanted : mapping
         Output name -> (column name in the file, quantity kind of
-        :data:`frictionlaws.units.QUANTITIES`).  The unit comes from the
+        :data:`frictionlaws.base.units.QUANTITIES`).  The unit comes from the
         header (``E_stor [MPa]``) or from ``units``.
     units : mapping, optional
         Column name -> unit, for headers without one.

@@ -66,7 +66,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["Flash", "TREAD_THERMAL", "CLOSURES", "CONTACT_TEMPERATURES", "temperature_rise",
            "background_rise"]

@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..law import NUMPY
-from ..temperature import wlf_formula
+from ..viscoelastic.temperature import wlf_formula
 
 __all__ = ["Shift", "Material", "fit_prony", "material_from_master_curve", "material_from_csv",
            "default_material", "havriliak_negami", "tread_compound"]
@@ -233,7 +233,7 @@ def fit_prony(omega: Any, E_stor: Any, E_loss: Any, *, per_decade: float = 1.0,
 
 def material_from_master_curve(mc: Any, *, nu: float = 0.5, per_decade: float = 1.0,
                                wlf: bool = False, source: str = "") -> Material:
-    """A material from a :class:`frictionlaws.mastercurve.MasterCurve` of E', E''.
+    """A material from a :class:`frictionlaws.viscoelastic.mastercurve.MasterCurve` of E', E''.
 
     The master curve's ``x`` is a frequency [Hz] and its properties are
     ``E_stor`` and ``E_loss`` [Pa].  The shift is the master curve's own table
@@ -274,7 +274,7 @@ def material_from_csv(path: str | os.PathLike[str], *, columns: Mapping[str, str
         CSV with columns ``f [Hz]``, ``E_stor [MPa]``, ``E_loss [MPa]``,
         ``T [degC]`` (units in the headers, any pint unit of the right kind),
         read by :mod:`frictionlaws.io`; several temperatures are shifted into a
-        master curve by :func:`frictionlaws.mastercurve.build_master_curve`, one
+        master curve by :func:`frictionlaws.viscoelastic.mastercurve.build_master_curve`, one
         temperature is taken as the master curve itself (then ``T`` may be
         absent and the shift is a WLF with ``T_ref`` and the universal
         constants, C1 = 17.44, C2 = 51.6 K, and the material's data cover
@@ -288,7 +288,7 @@ def material_from_csv(path: str | os.PathLike[str], *, columns: Mapping[str, str
     nu, per_decade, wlf
         As :func:`material_from_master_curve`.
     """
-    from ..mastercurve import build_master_curve
+    from ..viscoelastic.mastercurve import build_master_curve
     from ._table import read_columns
 
     _check_nu(nu)
@@ -327,14 +327,15 @@ def default_material() -> Material:
     master curve's own table of shifts (these shifts do not follow WLF; see
     ``datasets/README.md``).  Built on first use and cached.
     """
-    from ..mastercurve import build_master_curve, load_dma_example
+    from ..viscoelastic.mastercurve import build_master_curve, load_dma_example
 
     d = load_dma_example()
     mc = build_master_curve(d["f"], np.column_stack([d["E_stor"], d["E_loss"]]), d["T"],
                             groups=d["set"], T_ref=DEFAULT_T_REF, y_names=["E_stor", "E_loss"],
                             x_name="f", fit=False)
     return material_from_master_curve(mc, source="datasets/dma-pyvisco (NREL pyvisco DMA "
-                                      "sweeps), master curve by frictionlaws.mastercurve")
+                                      "sweeps), master curve by "
+                                      "frictionlaws.viscoelastic.mastercurve")
 
 
 def havriliak_negami(omega: Any, E_r: float, E_g: float, tau0: float, alpha: float,
@@ -391,7 +392,7 @@ def tread_compound() -> Material:
     is in the file and in ``datasets/tread-compound/PROVENANCE.md``.  The Prony series is fitted
     to the form on first use (:func:`fit_prony`) and cached.
     """
-    from ..temperature import WLF_PRESETS
+    from ..viscoelastic.temperature import WLF_PRESETS
 
     d = _tread_spec()
     m, sh, pr = d["modulus"], d["shift"], d["prony"]

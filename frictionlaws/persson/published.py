@@ -24,10 +24,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..io import datasets_dir
 from ..law import NUMPY
-from ..temperature import wlf_formula
+from ..viscoelastic.temperature import wlf_formula
 from .flash import TREAD_THERMAL, Flash
 from .material import tread_compound
 from .surface import asphalt_like
@@ -174,7 +174,7 @@ def published_shift(T: Any) -> np.ndarray:
     """log10 a_T [decades] of the published WLF fit to another filled rubber (``published.json``).
 
     Its magnitude convention: positive below its reference temperature (the
-    rubber relaxes more slowly when colder), as :mod:`frictionlaws.temperature`.
+    rubber relaxes more slowly when colder), as :mod:`frictionlaws.viscoelastic.temperature`.
     Context for the packaged compound's chosen (universal) shift, not a check
     of it: the rubbers differ.
     """

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["SelfAffine", "TabulatedPSD", "psd_from_profile", "psd_from_profile_csv",
            "asphalt_like", "one_d_to_two_d", "check_roughness", "RoughnessWarning",

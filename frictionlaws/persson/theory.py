@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from scipy.special import erf
 
-from ..errors import DomainError, ExtrapolationWarning, InputError
+from ..base.errors import DomainError, ExtrapolationWarning, InputError
 from .flash import Flash, background_rise, temperature_rise
 from .material import Material
 from .surface import check_roughness

@@ -47,7 +47,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["MIN_POOL", "PooledResult", "pooled_outliers", "pooled_thresholds",
            "inner_count", "outlier_power", "grubbs_critical"]

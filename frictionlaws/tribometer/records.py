@@ -30,7 +30,7 @@ refused because pint reads 1 Hz as 1 rad/s while a rotation counter means
 1 rev/s; write ``rpm``, ``rad/s`` or ``turn/s``.
 
 Other columns are ignored.  Every problem raises
-:class:`~frictionlaws.errors.InputError` with the file, column and row (the
+:class:`~frictionlaws.base.errors.InputError` with the file, column and row (the
 header is row 1); :mod:`~frictionlaws.tribometer.process` turns it into an
 "unusable record" with that message as the reason.
 """
@@ -48,12 +48,12 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
+from ..base.outputs import atomic_write, check_input_file
+from ..base.sanitize import split_lines
+from ..base.units import QUANTITIES, canonical_unit, parse_unit, parse_unit_text, unit_registry
 from ..io import _detect_delimiter, decode_text
 from ..io import split_header as _split_header
-from ..outputs import atomic_write, check_input_file
-from ..sanitize import split_lines
-from ..units import QUANTITIES, canonical_unit, parse_unit, parse_unit_text, unit_registry
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
 
@@ -318,7 +318,7 @@ def _record_text(p: Path, src: str) -> str:
         raise InputError("record file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a record CSV file", file=src)
-    from ..limits import read_input
+    from ..base.limits import read_input
 
     check_input_file(p, "record file")
     raw = read_input(p, "record file", src)  # bounded in size

@@ -2,7 +2,7 @@
 
 A rig file describes one tribometer and how its records are processed.  Every
 dimensional value is a string with its unit, parsed with pint through
-:mod:`frictionlaws.units`, so ``"40 mm"`` and ``"0.04 m"`` mean the same::
+:mod:`frictionlaws.base.units`, so ``"40 mm"`` and ``"0.04 m"`` mean the same::
 
     track_radius = "40 mm"        # mean radius of the pin track
     pin_diameter = "20 mm"        # or: contact_area = "314.16 mm^2"
@@ -60,10 +60,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
-from ..limits import check_nesting, nesting_error, read_input
-from ..outputs import check_input_file
-from ..units import parse_quantity
+from ..base.errors import InputError
+from ..base.limits import check_nesting, nesting_error, read_input
+from ..base.outputs import check_input_file
+from ..base.units import parse_quantity
 
 __all__ = [
     "FilterSettings",
@@ -673,7 +673,7 @@ def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default:
         raise InputError(f"'{prefix}{key}' must be a string with a unit, e.g. \"10 rpm\"",
                          file=src)
     parts = raw.strip().split(None, 1)
-    from ..numbers import parse_number
+    from ..base.numbers import parse_number
 
     try:
         number = parse_number(parts[0])  # the one number parser (no 1_0, no overflow)

@@ -58,7 +58,7 @@ import numpy as np
 from scipy import signal as _sig
 from scipy.ndimage import uniform_filter1d
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .rig import FilterSettings, WindowSettings
 
 __all__ = ["lowpass", "auto_cutoff", "spectrum", "CutoffInfo", "find_window", "Window",

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from ..parallel import check_jobs, run_parallel
 from . import _fit_mf_stages as stages_
 from ._fit_mf_peak import FittingModel

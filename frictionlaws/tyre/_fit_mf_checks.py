@@ -45,7 +45,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import Argument, InputError
+from ..base.errors import Argument, InputError
 
 if TYPE_CHECKING:
     from .tyre_data import TyreData

@@ -35,7 +35,7 @@ def check_figure_path(path: str | Path) -> str:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    from ..errors import InputError
+    from ..base.errors import InputError
 
     fmt = Path(path).suffix.lstrip(".").lower() or "png"
     known = FigureCanvasAgg(Figure()).get_supported_filetypes()
@@ -56,7 +56,7 @@ def plot_fit(result: Any, path: str | Path) -> Path:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    from ..outputs import atomic_write, check_outputs
+    from ..base.outputs import atomic_write, check_outputs
     from ._fit_mf_rows import _select
 
     fmt = check_figure_path(path)

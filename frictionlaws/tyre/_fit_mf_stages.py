@@ -33,8 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from .._lsq import least_squares_solve
-from ..errors import InputError
+from ..base.errors import InputError
+from ..fitting.lsq import least_squares_solve
 from ._fit_mf_peak import FittingModel, peak_penalty
 from .magic_formula import mf_curve
 

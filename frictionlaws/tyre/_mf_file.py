@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 

@@ -13,7 +13,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["labelled"]
 
@@ -51,13 +51,13 @@ def labelled(arrays: tuple[str, ...], *outputs: tuple[str, str, str]) -> Callabl
 
 
 def _is_labelled(x: Any) -> bool:
-    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.interop`)."""
+    """True for an :class:`xarray.DataArray` (the test of :mod:`frictionlaws.fitting.views`)."""
     return _interop().is_labelled(x)
 
 
 @functools.lru_cache(maxsize=1)
 def _interop() -> Any:
-    from .. import interop
+    from ..fitting import views as interop
 
     return interop
 

@@ -48,8 +48,8 @@ from typing import Any
 
 import numpy as np
 
-from .._lsq import least_squares_solve
-from ..errors import ExtrapolationWarning, FitError, InputError
+from ..base.errors import ExtrapolationWarning, FitError, InputError
+from ..fitting.lsq import least_squares_solve
 from . import _fit_mf_stages as stages_
 from ._fit_mf_checks import check_plausible, repeated_rows
 from ._fit_mf_peak import PEAK_MU, FittingModel, peak_message, peak_penalty, unreached_peaks
@@ -114,7 +114,7 @@ class MFFit:
         Per direction, the per-load curves of stage 1 (load, mu, K, C, E, S_H, S_V).
     warnings : list of str
         What the data leave open (a peak they do not reach); also issued as
-        :class:`~frictionlaws.errors.ExtrapolationWarning` and written as notes.
+        :class:`~frictionlaws.base.errors.ExtrapolationWarning` and written as notes.
     """
 
     version: str
@@ -152,7 +152,7 @@ class MFFit:
 
     def write(self, path: str | Path) -> Path:
         """Write the ``.tir`` file atomically (checked as an output first)."""
-        from ..outputs import atomic_write, check_outputs
+        from ..base.outputs import atomic_write, check_outputs
 
         check_tir_path(path)
         check_outputs([path], inputs=[self.data.source])

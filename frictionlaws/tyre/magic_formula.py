@@ -80,7 +80,7 @@ Conventions, each an option named after what it means (defaults first):
   ``LMU' = A LMU / (1 + (A-1) LMU)`` with A = 10, the value Pacejka 2012 suggests);
   identical when LMUX = LMUY = 1, and MF 5.2 is always linear;
 * ``loads_above_fzmax``: ``"extrapolate"`` (the equations at the given load,
-  with an :class:`~frictionlaws.errors.ExtrapolationWarning`) or ``"clamp"``
+  with an :class:`~frictionlaws.base.errors.ExtrapolationWarning`) or ``"clamp"``
   (evaluated at FZMAX, as MFeval's limit checks do);
 * ``equations``: ``"mfeval"`` (MFeval 4.0's forms where they depart from the
   published ones; its authors matched them to TNO's evaluator) or ``"published"``.
@@ -113,7 +113,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..base.errors import ExtrapolationWarning, InputError
 from ..law import MU_MAX
 from ._mf_core import EPS, MFCoefficients, cos_weight, mf_curve
 from ._mf_file import (
@@ -199,7 +199,7 @@ class MagicFormula:
     limits : mapping, optional
         Validity ranges from the file: ``fz``, ``kappa``, ``alpha``, ``gamma``,
         ``pressure`` -> (low, high) in SI.  Evaluating outside them warns
-        (:class:`~frictionlaws.errors.ExtrapolationWarning`).
+        (:class:`~frictionlaws.base.errors.ExtrapolationWarning`).
     name, source : str
         Labels for reports.
     notes : list of str
@@ -214,7 +214,7 @@ class MagicFormula:
         uses LMU' = LMU.
     loads_above_fzmax : {"extrapolate", "clamp"}
         Loads above the file's ``FZMAX``: evaluated as given with an
-        :class:`~frictionlaws.errors.ExtrapolationWarning` (default) or clamped
+        :class:`~frictionlaws.base.errors.ExtrapolationWarning` (default) or clamped
         to FZMAX (as MFeval's limit checks do).
     equations : {"mfeval", "published"}
         Where MFeval 4.0 departs from the published equations (the camber in PDX3's

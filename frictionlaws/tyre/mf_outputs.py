@@ -72,7 +72,7 @@ with the file's Q_FZ2 (0 when absent).
 Limits and speed
 ----------------
 ``saturate=False`` (the default) evaluates the inputs as given, with an
-:class:`~frictionlaws.errors.ExtrapolationWarning` outside the file's ranges;
+:class:`~frictionlaws.base.errors.ExtrapolationWarning` outside the file's ranges;
 ``saturate=True`` clamps slip ratio, slip angle, camber, pressure and load to the file's
 ranges as MFeval's limit checks do (the load to FZMAX in the forces and to at least
 FZMIN in M_z, the load below FZMIN reduced in M_x and M_y as MFeval does).  The speed
@@ -87,7 +87,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError, broadcast_shape
+from ..base.errors import ExtrapolationWarning, InputError, broadcast_shape
 from ._mf_core import EPS, mf_curve
 from ._mf_core import MFModel as MagicFormula  # the interface: no import of the class's module
 

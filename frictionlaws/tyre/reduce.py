@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ExtrapolationWarning, InputError
+from ..base.errors import ExtrapolationWarning, InputError
 from .magic_formula import MagicFormula
 
 __all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve"]
@@ -212,7 +212,7 @@ def _as_mf(mf: MagicFormula | str) -> MagicFormula:
 
 def _slip_law(law: str) -> Any:
     """The registered law ``law``, refused unless it is a slip law of ``s`` (and ``v``)."""
-    from ..registry import get_law
+    from ..law.registry import get_law
 
     the_law = get_law(law)
     if the_law.family != "slip":

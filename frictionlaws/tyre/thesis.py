@@ -195,7 +195,7 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
         result = fit(law, dataset)
         label = f"{result.law.id} ({name})"
         if label in fits:  # one column per law: a second would replace the first unseen
-            from ..errors import InputError
+            from ..base.errors import InputError
 
             raise InputError(f"laws: '{law}' is law '{result.law.id}', given twice")
         fits[label] = result

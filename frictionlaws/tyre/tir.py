@@ -24,7 +24,7 @@ entries.  Two spellings of the same content are read here:
 
 Both give a :class:`PropertyFile`.  Keys and section names are case-insensitive
 (stored in upper case).  Anything malformed raises
-:class:`~frictionlaws.errors.InputError` naming the file and line.  The
+:class:`~frictionlaws.base.errors.InputError` naming the file and line.  The
 ``[UNITS]`` section is honoured: :meth:`PropertyFile.si` converts the
 dimensional entries (loads, lengths, pressures, stiffnesses) to SI with pint.
 """
@@ -39,8 +39,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError
-from ..sanitize import ascii_line, split_lines, tir_string
+from ..base.errors import InputError
+from ..base.sanitize import ascii_line, split_lines, tir_string
 from .mf_coefficients import DECLARED, STRUCTURE_SECTIONS, outside_fit, section_keys
 
 __all__ = ["PropertyFile", "read_property_file", "read_tir", "read_json", "write_tir",
@@ -272,9 +272,9 @@ class PropertyFile:
         """Factor from the file's unit of ``kind`` (e.g. ``"force/length"``) to SI.
 
         The file's units are read by the one unit grammar
-        (:func:`~frictionlaws.units.parse_unit_text`), never evaluated by pint.
+        (:func:`~frictionlaws.base.units.parse_unit_text`), never evaluated by pint.
         """
-        from ..units import parse_unit_text, unit_registry
+        from ..base.units import parse_unit_text, unit_registry
 
         ureg = unit_registry()
         pieces = {"force": self.unit("FORCE"), "length": self.unit("LENGTH"),
@@ -299,7 +299,7 @@ class PropertyFile:
         """Raise when the file's angles are not in radians (coefficients assume radians)."""
         unit = self.unit("ANGLE").lower()
         if unit not in ("radian", "radians", "rad"):
-            from ..units import parse_unit_text, unit_registry
+            from ..base.units import parse_unit_text, unit_registry
 
             ureg = unit_registry()
             try:
@@ -351,9 +351,9 @@ def read_property_file(path: str | Path) -> PropertyFile:
     if not isinstance(path, (str, Path)):
         raise InputError(f"expected the path of a property file, got {type(path).__name__}")
     path = Path(path)
+    from ..base.limits import read_input
+    from ..base.outputs import check_input_file
     from ..io import decode_text
-    from ..limits import read_input
-    from ..outputs import check_input_file
 
     check_input_file(path, "property file")
     raw = read_input(path, "property file")  # bounded in size
@@ -387,7 +387,7 @@ def read_json(text: str | Mapping[str, Any], *, source: str = "<memory>") -> Pro
 
 def _json_document(text: str, source: str) -> Any:
     """The decoded JSON text (strict JSON: the project's one reader)."""
-    from .. import jsonio
+    from ..base import jsonio
 
     try:
         return jsonio.loads(text)
@@ -592,7 +592,7 @@ def format_tir(pf: PropertyFile, *, header: Iterable[str] = ()) -> str:
 
 def write_tir(pf: PropertyFile, path: str | Path, *, header: Iterable[str] = ()) -> Path:
     """Write ``pf`` as an ADAMS ``.tir`` file (see :func:`format_tir`)."""
-    from ..outputs import write_text_atomic  # atomic, never over a file read
+    from ..base.outputs import write_text_atomic  # atomic, never over a file read
 
     return write_text_atomic(Path(path), format_tir(pf, header=header))
 

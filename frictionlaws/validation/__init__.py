@@ -71,7 +71,7 @@ def run_validation(names: Iterable[str] | None = None, *,
     """
     import warnings
 
-    from ..errors import ExtrapolationWarning
+    from ..base.errors import ExtrapolationWarning
 
     cases = select_cases(list_cases(), list(names) if names else None)
     with warnings.catch_warnings():

@@ -25,7 +25,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 __all__ = ["Tol", "Check", "CaseRun", "Case", "CaseResult", "ValidationReport",
            "run_cases", "select_cases"]

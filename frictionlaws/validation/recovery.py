@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..law_examples import EXAMPLES
+from .law_examples import EXAMPLES
 from .reference import REFERENCES, evaluate_reference
 
 __all__ = ["RecoverySetup", "RECOVERY_SETUPS", "NOISE_LEVELS", "SAMPLE_SIZES", "Z_LIMIT",
@@ -68,7 +68,7 @@ class RecoverySetup:
 
 
 #: Law id -> :class:`RecoverySetup`, from the one example table
-#: (:mod:`frictionlaws.law_examples`: each entry's ``recovery`` or ``battery`` sampling).
+#: (:mod:`frictionlaws.validation.law_examples`: each entry's ``recovery`` or ``battery`` sampling).
 RECOVERY_SETUPS: dict[str, RecoverySetup] = {
     law_id: RecoverySetup(ex.study.params, ex.study.ranges, ex.study.log, ex.study.fix,
                           not ex.recovery_identifiable)

@@ -17,7 +17,7 @@ velocity enters as ``|v|`` (catalogue convention).
 
 :data:`REFERENCES` maps law id -> :class:`Reference` with the reference
 points, the settings the catalogue documents and the published presets.  The
-forms themselves live in the one example table, :mod:`frictionlaws.law_examples`;
+forms themselves live in the one example table, :mod:`frictionlaws.validation.law_examples`;
 the validation suite fails when a built-in law has no entry there.
 """
 
@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from itertools import product
 
-from ..law_examples import (
+from .law_examples import (
     BURCKHARDT_DOC,
     EXAMPLES,
     LAWS_MD,
@@ -39,7 +39,8 @@ from ..law_examples import (
 __all__ = ["Reference", "REFERENCES", "reference_points", "evaluate_reference",
            "LAWS_MD", "TABLE_5_1", "TABLE_5_2", "PACEJKA_DOC", "BURCKHARDT_DOC"]
 
-#: Law id -> :class:`Reference`, from the one example table (:mod:`frictionlaws.law_examples`).
+#: Law id -> :class:`Reference`, from the one example table
+#: (:mod:`frictionlaws.validation.law_examples`).
 REFERENCES: dict[str, Reference] = {law_id: ex.reference for law_id, ex in EXAMPLES.items()}
 
 

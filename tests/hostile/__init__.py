@@ -288,7 +288,7 @@ def check_outcome(res: Outcome, *, snapshot: Snapshot | None = None, json_out: b
 def check_api(call: Callable[[], Any], *, snapshot: Snapshot | None = None,
               timeout: float = TIME_LIMIT, allowed: Iterable[Path] = ()) -> Any:
     """Run an API call: it returns, or raises InputError/FitError; nothing else, no hang."""
-    from frictionlaws.errors import FitError, InputError
+    from frictionlaws.base.errors import FitError, InputError
 
     result: Any = None
     failed = False
@@ -482,7 +482,7 @@ _VALUES = st.one_of(
 
 
 def _good_values(law_id: str) -> dict[str, float]:
-    from frictionlaws.registry import get_law
+    from frictionlaws.law.registry import get_law
 
     law = get_law(law_id)
     if law.presets:

@@ -2,7 +2,7 @@
 
 Sources: Persson, J. Chem. Phys. 115 (2001) 3840; Persson et al., J. Phys.:
 Condens. Matter 17 (2005) R1.  The fast implementation is checked against an
-independent one (frictionlaws.law_examples._persson: G and mu as an ODE
+independent one (frictionlaws.validation.law_examples._persson: G and mu as an ODE
 in ln q with adaptive steps, angular integrals by quadrature of the Prony sum).
 """
 
@@ -18,8 +18,7 @@ import pytest
 from scipy.integrate import trapezoid
 
 import frictionlaws as fl
-from frictionlaws.errors import InputError
-from frictionlaws.law_examples import _persson
+from frictionlaws.base.errors import InputError
 from frictionlaws.persson import (
     Material,
     SelfAffine,
@@ -35,6 +34,7 @@ from frictionlaws.persson import (
     psd_from_profile_csv,
     tread_compound,
 )
+from frictionlaws.validation.law_examples import _persson
 
 
 def rubber(C1=8.86, C2=101.6, T_ref=293.15):
@@ -164,7 +164,7 @@ def test_default_material_from_the_packaged_dma():
 
 
 def test_material_from_csv_with_units(tmp_path):
-    d = fl.mastercurve.load_dma_example()
+    d = fl.viscoelastic.mastercurve.load_dma_example()
     keep = np.isin(d["set"], np.arange(8, 14))
     lines = ["f [Hz],E_stor [MPa],E_loss [MPa],T [degC]"]
     for f, s, l_, T in zip(d["f"][keep], d["E_stor"][keep], d["E_loss"][keep], d["T"][keep]):

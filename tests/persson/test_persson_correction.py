@@ -14,8 +14,7 @@ import numpy as np
 import pytest
 
 import frictionlaws as fl
-from frictionlaws.errors import InputError
-from frictionlaws.law_examples import _persson
+from frictionlaws.base.errors import InputError
 from frictionlaws.persson import (
     SelfAffine,
     asphalt_like,
@@ -23,6 +22,7 @@ from frictionlaws.persson import (
     friction,
     tread_compound,
 )
+from frictionlaws.validation.law_examples import _persson
 
 SURF = asphalt_like(1e6)
 V = np.logspace(-8, 4, 49)

@@ -18,7 +18,7 @@ from scipy.integrate import quad
 from scipy.special import erf
 
 import frictionlaws as fl
-from frictionlaws.errors import DomainError, InputError
+from frictionlaws.base.errors import DomainError, InputError
 from frictionlaws.persson import (
     asphalt_like,
     check_conditions,
@@ -190,7 +190,7 @@ def test_contact_ratio_refuses_a_non_finite_wavenumber(q):
 def test_sliding_that_excites_only_unmeasured_frequencies_is_warned():
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.persson import default_material
 
     mat = default_material()  # measured sweeps: a finite band of reduced frequencies

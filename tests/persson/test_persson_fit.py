@@ -38,7 +38,7 @@ def test_fixed_roughness_scale_and_data_outside_the_domain():
     res = fl.fit("persson", d, fix={"h_rms": TRUE["h_rms"]})
     assert res.values["q1"] == pytest.approx(TRUE["q1"], rel=0.1)
     d["T"][3] = 233.15  # below the compound's range
-    with pytest.raises(fl.errors.InputError, match=r"rows 4\b.*T -30..70 degC"):
+    with pytest.raises(fl.InputError, match=r"rows 4\b.*T -30..70 degC"):
         fl.fit("persson", d)
     res = fl.fit("persson", d, on_invalid="drop")
     assert res.residual.size == 47

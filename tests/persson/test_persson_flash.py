@@ -25,7 +25,7 @@ import numpy as np
 import pytest
 
 import frictionlaws as fl
-from frictionlaws.errors import DomainError, ExtrapolationWarning
+from frictionlaws.base.errors import DomainError, ExtrapolationWarning
 from frictionlaws.persson import (
     TREAD_THERMAL,
     Flash,

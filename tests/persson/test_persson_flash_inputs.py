@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.persson import Flash, asphalt_like, flash_figures, friction, tread_compound
 from frictionlaws.persson.flash import CLOSURES, CONTACT_TEMPERATURES
 

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import ExtrapolationWarning
+from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.io import datasets_dir
 from frictionlaws.persson import (
     TREAD_THERMAL,

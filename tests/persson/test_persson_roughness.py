@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import frictionlaws as fl
-from frictionlaws.errors import FitError, InputError
+from frictionlaws.base.errors import FitError, InputError
 from frictionlaws.persson import (
     RoughnessWarning,
     SelfAffine,

@@ -16,7 +16,7 @@ import frictionlaws as fl
 from frictionlaws.io import datasets_dir
 from frictionlaws.persson import asphalt_like, friction, havriliak_negami, tread_compound
 from frictionlaws.persson.material import TREAD_FILE
-from frictionlaws.temperature import WLF_PRESETS
+from frictionlaws.viscoelastic.temperature import WLF_PRESETS
 
 V = np.logspace(-8, 4, 100)
 

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
-from frictionlaws.errors import InputError
 from frictionlaws.tyre.data import (
     detect_format,
     load_raw_run,
@@ -177,7 +177,8 @@ def test_units_that_cannot_be_right_are_refused(tiny, tmp_path: Path, change, ma
     assert exc.value.file == str(path)
 
 
-def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path) -> None:
+def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path,
+                                                        capsys) -> None:
     sae = _edited(tiny, tmp_path / "sae.txt")
     with pytest.raises(InputError, match="sign_convention='sae'") as exc:
         load_raw_run(sae, sign_convention="iso")
@@ -186,8 +187,9 @@ def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path) ->
     with pytest.raises(InputError, match="sign_convention='iso'"):
         load_raw_run(iso)
     flipped = _edited(tiny, tmp_path / "fy_flipped.txt", negate=("FY",))
-    with pytest.raises(InputError, match="sign of the slip angle"):
-        prepare_run(load_raw_run(flipped))
+    assert main(["tyre", "prepare", str(flipped), "-o", str(tmp_path / "f.csv")]) == 2
+    assert "Fy has the sign of the slip angle" in capsys.readouterr().err
+    assert not (tmp_path / "f.csv").exists()
 
 
 def _lines(raw: Path) -> list[str]:
@@ -300,7 +302,7 @@ def test_a_raw_run_fitted_reproduces_the_noise_free_truth(tmp_path: Path) -> Non
     file within 1 % of the peak for Fx0, Fy0, 2 % combined and 3 % for Mz."""
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre import fit_mf
     from frictionlaws.tyre.synthetic_rig import moved_tyre, truth_errors
 

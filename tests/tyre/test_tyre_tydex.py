@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictionlaws.errors import InputError
+from frictionlaws.base.errors import InputError
 from frictionlaws.tyre.data import (
     load_tydex,
     read_tydex,
@@ -262,7 +262,7 @@ def test_a_tir_fitted_from_a_written_tydex_file_equals_the_one_from_its_csv(tmp_
                                                                              ) -> None:
     import warnings
 
-    from frictionlaws.errors import ExtrapolationWarning
+    from frictionlaws.base.errors import ExtrapolationWarning
     from frictionlaws.tyre import fit_mf
     from frictionlaws.tyre.tir import format_tir
 

@@ -9,8 +9,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ...errors import InputError
-from ...sanitize import html_text, markdown_text
+from ...base.errors import InputError
+from ...base.sanitize import html_text, markdown_text
 from ..residuals import ALPHA
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -319,10 +319,10 @@ def write_report(cmp: ComparisonRecord, directory: str | Path, jobs: int = 1) ->
 
     Notes
     -----
-    The files are written by the output guard (:func:`frictionlaws.outputs.atomic_dir`):
+    The files are written by the output guard (:func:`frictionlaws.base.outputs.atomic_dir`):
     all of them or none, and never over a file read in this process.
     """
-    from ...outputs import atomic_dir
+    from ...base.outputs import atomic_dir
 
     if isinstance(jobs, bool) or not isinstance(jobs, int) or not (jobs >= 1 or jobs == -1):
         raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "

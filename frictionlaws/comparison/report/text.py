@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ...base.units import to_display
 from ...law import VARIABLES
-from ...units import to_display
 from ..extrapolation import fmt_value
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -76,7 +76,7 @@ def _num(x: Any, fmt: str = ".3g") -> str:
 
 
 def _disp(var: str, x: Any) -> Any:
-    """SI -> display unit (MPa, degC), by :func:`~frictionlaws.units.to_display`."""
+    """SI -> display unit (MPa, degC), by :func:`~frictionlaws.base.units.to_display`."""
     return to_display(x, var)
 
 

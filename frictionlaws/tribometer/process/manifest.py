@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ...errors import InputError
+from ...base.errors import InputError
 from ..records import split_header
 from ..rig import Rig
 
@@ -102,7 +102,7 @@ def manifest_from_rows(rows: Sequence[Mapping[str, Any]], rig: Rig, *,
 
 def _number(text: str) -> float:
     """A manifest cell as a number: the one number parser (a decimal comma allowed)."""
-    from ...numbers import parse_number
+    from ...base.numbers import parse_number
 
     return parse_number(text, decimal_comma="," in text)
 
@@ -163,7 +163,7 @@ def _locate_columns(headers: list[str], src: str
 
 def _load_factor(unit: str | None, header: str, rig: Rig, src: str) -> tuple[float, bool]:
     """Newtons per unit of the load column, and whether the column holds masses."""
-    from ...units import parse_unit, unit_registry
+    from ...base.units import parse_unit, unit_registry
 
     if not unit:
         raise InputError("the load column has no unit; write 'load [kg]' for dead weights or "
@@ -178,7 +178,7 @@ def _load_factor(unit: str | None, header: str, rig: Rig, src: str) -> tuple[flo
 def _window_factors(found: dict[str, int], units: dict[str, str | None],
                     headers: list[str], src: str) -> dict[str, float]:
     """Seconds per unit of the window columns present."""
-    from ...units import parse_unit, unit_registry
+    from ...base.units import parse_unit, unit_registry
 
     out: dict[str, float] = {}
     for key in ("window_start", "window_end"):

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 from ..records import Record
 from ..rig import RPM, Rig, RigError, check_cutoff
 from ..signal import NoWindow, Window, auto_cutoff, find_window, lowpass, speed_segment

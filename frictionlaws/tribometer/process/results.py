@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 from ..rig import RPM, Rig
 from .conditions import ConditionResult
 from .reduce import RecordResult
@@ -236,7 +236,7 @@ class ProcessedCampaign:
             condition: statistics, whether it is in the dataset, its records and
             notes), ``records`` (one dict per record: status, reason, mu, window,
             filter, speeds) and ``notes``.  Missing numbers are NaN (written as
-            ``null`` by :func:`frictionlaws.jsonio.dumps`).
+            ``null`` by :func:`frictionlaws.base.jsonio.dumps`).
         """
         return {
             "manifest": self.source, "rig": self.rig.source, "min_repeats": self.min_repeats,
@@ -295,7 +295,7 @@ def _csv_text(frame: Any, comments: list[str]) -> str:
     import csv
     import io
 
-    from ...sanitize import comment_lines, csv_cell
+    from ...base.sanitize import comment_lines, csv_cell
 
     buf = io.StringIO()
     for line in comment_lines(comments):
@@ -331,7 +331,7 @@ def write_tables(tables: Sequence[tuple[str | os.PathLike[str], str]]) -> list[P
     """
     import contextlib
 
-    from ...outputs import atomic_write
+    from ...base.outputs import atomic_write
 
     paths = [Path(p) for p, _ in tables]
     for out in paths:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ...errors import InputError
+from ...base.errors import InputError
 from ...parallel import local_workers
 from ..records import Record, read_record
 from ..rig import Rig
@@ -156,7 +156,7 @@ def process_campaign(
         (at least 2: a standard deviation needs two).
     scheduler : str, optional
         A Dask scheduler address: the records are processed on that cluster (see
-        :func:`frictionlaws.campaign.iter_parallel`; the record files must be
+        :func:`frictionlaws.fitting.campaign.iter_parallel`; the record files must be
         readable by its workers).
 
     Returns
@@ -191,7 +191,7 @@ def process_many(
     Every manifest is read and checked before any record is processed.  The
     records of all manifests are then processed as one stream of work, serially,
     on local processes (``jobs``) or on a Dask cluster (``scheduler``), the way
-    :func:`frictionlaws.campaign.fit_many` runs many datasets; each manifest's
+    :func:`frictionlaws.fitting.campaign.fit_many` runs many datasets; each manifest's
     conditions and outlier rule are then computed from its own records only, so
     each result equals :func:`process_campaign` of that manifest alone.
 

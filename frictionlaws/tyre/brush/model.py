@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import DomainError, ExtrapolationWarning, InputError
+from ...base.errors import DomainError, ExtrapolationWarning, InputError
 from ...law import VARIABLES, Law
 from .result import CorneringResult
 from .tyre import (
@@ -64,7 +64,7 @@ class BrushModel:
     ----------
     law : str, Law, BoundLaw, FitResult or callable
         A registered law (id or :class:`~frictionlaws.law.Law`) with
-        ``params``/``preset``; a :class:`~frictionlaws.bound.BoundLaw` or a fit
+        ``params``/``preset``; a :class:`~frictionlaws.law.bound.BoundLaw` or a fit
         result (its law and values; its fitted data range is used for
         extrapolation warnings); or a plain
         function ``mu(p, v)`` of pressure [Pa] and sliding speed [m/s].
@@ -102,7 +102,7 @@ class BrushModel:
             if params is not None or preset is not None:
                 raise InputError("give either a bound law (or fit result) or params/preset, "
                                  "not both")
-            from ...bound import as_bound
+            from ...law.bound import as_bound
 
             bound = as_bound(law)
             self.fitted_ranges = dict(bound.fitted_ranges)
@@ -125,7 +125,7 @@ class BrushModel:
     def _use_law(self, law: str | Law, params: Mapping[str, float] | None,
                  preset: str | None) -> None:
         """Take a registered law of p and/or v, with its parameter values, as the limit."""
-        from ...registry import get_law
+        from ...law.registry import get_law
 
         self.law = get_law(law)
         extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 
 __all__ = ["DEFAULT_ANGLES_DEG", "PRESSURE_SHAPES", "CONTACT_MODELS", "SLIDING_SPEEDS",
            "ORIGIN_STEP", "BISECTION_STEPS", "NEWTON_SWEEPS", "TIP_STEPS", "SWEEP_TOL",

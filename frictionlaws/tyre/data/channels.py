@@ -3,7 +3,7 @@ runs, and the unit spellings rigs write.
 
 One table per fact:
 
-* :data:`KINDS`: the quantity kind (:data:`frictionlaws.units.QUANTITIES`) of every quantity a
+* :data:`KINDS`: the quantity kind (:data:`frictionlaws.base.units.QUANTITIES`) of every quantity a
   tyre test file holds (``fz``, ``kappa``, ``alpha``, ... and the rig's own: time, speed,
   wheel speed, radii, temperatures);
 * :data:`TYDEX_CHANNELS`: TYDEX 1.3 channel names (W axes) and the quantity each gives;
@@ -22,12 +22,19 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 
 __all__ = ["KINDS", "TYDEX_CHANNELS", "TYDEX_OTHER_AXES", "RAW_CHANNELS", "MEANINGS",
-           "unit_text", "convert", "read_lines", "MAX_LINE_CHARS"]
+           "unit_text", "convert", "read_lines", "MAX_LINE_CHARS", "MAX_CORNERING_COEFFICIENT",
+           "MAX_SLIP_COEFFICIENT"]
 
-#: Quantity -> kind of :func:`frictionlaws.units.to_si` (the SI unit follows from it).
+#: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40); the same
+#: bound as the fit's check of its data.
+MAX_CORNERING_COEFFICIENT = 60.0
+#: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
+MAX_SLIP_COEFFICIENT = 150.0
+
+#: Quantity -> kind of :func:`frictionlaws.base.units.to_si` (the SI unit follows from it).
 KINDS: dict[str, str] = {
     "fz": "F_N", "kappa": "s", "alpha": "angle", "gamma": "angle", "pressure": "p",
     "fx": "F_N", "fy": "F_N", "mz": "torque", "mx": "torque", "my": "torque",
@@ -136,7 +143,7 @@ def convert(values: Any, unit: str, quantity: str, *, file: str | None = None,
         An unknown unit, one of another dimension, an angle without its unit or in a unit
         that is no angle (``%``, ``-``).
     """
-    from ...units import parse_unit, to_si, unit_registry
+    from ...base.units import parse_unit, to_si, unit_registry
 
     kind = KINDS[quantity]
     text = unit_text(unit, kind)
@@ -184,10 +191,10 @@ def read_lines(path: str | Path, what: str) -> tuple[list[str], list[str]]:
     InputError
         A missing, unreadable, binary or over-long file, or an over-long line.
     """
+    from ...base.limits import read_input
+    from ...base.outputs import check_input_file
+    from ...base.sanitize import split_lines
     from ...io import decode_text
-    from ...limits import read_input
-    from ...outputs import check_input_file
-    from ...sanitize import split_lines
 
     source = str(path)
     check_input_file(path, what)

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 from .table import TyreData, join
 
 __all__ = ["FORMATS", "DEFAULT_AXES", "detect_format", "read_tyre_file", "read_tyre_files",
@@ -72,7 +72,7 @@ def detect_format(path: str | Path) -> str:
     -------
     str
     """
-    from ...outputs import check_input_file
+    from ...base.outputs import check_input_file
     from .raw_run import raw_layout
     from .tydex import is_tydex
 

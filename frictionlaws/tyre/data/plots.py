@@ -129,8 +129,8 @@ def write_plots(prepared: PreparedRun, directory: str | Path) -> list[Path]:
     """
     import matplotlib.pyplot as plt
 
+    from ...base.outputs import atomic_write
     from ...io import output_dir
-    from ...outputs import atomic_write
 
     out = output_dir(directory, "plot directory")
     written = []

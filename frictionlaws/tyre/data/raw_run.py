@@ -25,8 +25,8 @@ rolling).  Without ``SL`` kappa is computed from ``N``, ``RE`` and ``V`` (``omeg
 
 Units are those of the units row, through the rig spellings of
 :func:`~frictionlaws.tyre.data.channels.unit_text` (``kph``, ``N-m``, ``none``, ``lb``,
-``ft-lb``, ``psi``, ``in``, ``deg C``...) and :func:`frictionlaws.units.to_si`.  Every number
-read goes through :func:`frictionlaws.numbers.parse_number`.  Refused, naming the file, line
+``ft-lb``, ``psi``, ``in``, ``deg C``...) and :func:`frictionlaws.base.units.to_si`.  Every number
+read goes through :func:`frictionlaws.base.numbers.parse_number`.  Refused, naming the file, line
 and channel: no names and units rows, two channels of one name, a channel used without a
 unit, a row with another number of cells, a number that is not one, a load in SAE axes
 declared ISO (or the reverse), slip angles or cambers beyond what a tyre sees (degrees under
@@ -43,8 +43,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import Argument, InputError
-from ...numbers import parse_number
+from ...base.errors import Argument, InputError
+from ...base.numbers import parse_number
 from .channels import KINDS, MEANINGS, RAW_CHANNELS, convert, read_lines
 from .table import check_sign_convention, to_iso_axes
 
@@ -332,7 +332,7 @@ def _refuse_unit(run: RawRun, q: str, message: str, where: np.ndarray) -> None:
 def _check_units(run: RawRun) -> None:
     """Slips, forces and moments against what tyres do (the bounds of a fit's checks): a unit
     that is wrong by a factor would otherwise shrink or blow up the sweeps."""
-    from .._fit_mf_checks import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
+    from .channels import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
 
     q = run.quantities
     fz = q["fz"]

@@ -23,8 +23,8 @@
    apart** (the direction is kept as a column): one row per bin with two or more samples.
 
 Everything dropped is counted by reason (samples and seconds) and reported; the rows keep
-their sweep (``sweep``), direction (+1 up, -1 down), sample count and time.  The data are
-then checked as a fit checks them (units, signs, curves).
+their sweep (``sweep``), direction (+1 up, -1 down), sample count and time.  A fit checks
+them as it checks every data (units, signs, curves); so does ``tyre prepare``.
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import InputError
+from ...base.errors import InputError
 from .raw_run import RawRun
 from .table import TyreData
 
@@ -680,7 +680,7 @@ def _dropped_text(w: _Work) -> str:
 
 
 def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
-                lag: bool = True, check: bool = True) -> PreparedRun:
+                lag: bool = True) -> PreparedRun:
     """Turn a raw rig run into steady sweeps (module documentation).
 
     Parameters
@@ -694,8 +694,6 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
         Subtract the force channels' readings while lifted (default True).
     lag : bool
         Find each sweep's force lag and take it out (default True).
-    check : bool
-        Check the rows as a Magic Formula fit does (units, signs, curves; default True).
 
     Returns
     -------
@@ -704,7 +702,7 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
     Raises
     ------
     InputError
-        No sweep found, or rows a fit would refuse (naming the file, line and column).
+        No sweep found (naming the file and what was dropped).
     """
     q = dict(run.quantities)
     w = _Work(run, q, _rate(run), np.zeros(len(run), dtype=np.int8), lag=lag)
@@ -725,10 +723,6 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
                            notes, w.rate, w.lags, w.offsets)
     prepared.data.notes.append("prepared from a raw rig run: "
                                + "; ".join(prepared.summary()[1:]))
-    if check:
-        from .._fit_mf_checks import check_plausible
-
-        check_plausible(prepared.data, float(np.median(prepared.data.fz)))
     return prepared
 
 

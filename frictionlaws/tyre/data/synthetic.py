@@ -100,7 +100,7 @@ class SyntheticRun:
 
     def write(self, path: str | Path, delimiter: str = "\t") -> Path:
         """Write :meth:`text` to ``path`` (atomically, checked as an output)."""
-        from ...outputs import atomic_write, check_outputs
+        from ...base.outputs import atomic_write, check_outputs
 
         check_outputs([path])
         with atomic_write(path) as fh:
@@ -300,7 +300,7 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
     -------
     TyreData
     """
-    from ...errors import InputError
+    from ...base.errors import InputError
 
     if kind not in ("lateral", "longitudinal", "combined"):
         raise InputError(f"kind must be lateral, longitudinal or combined, got {kind!r}")

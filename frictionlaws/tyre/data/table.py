@@ -15,7 +15,7 @@ slip ratio on the effective rolling radius, the Magic Formula's kappa) is given,
 notes say which was read.  The columns ``tyre prepare`` writes beside (``sweep``, a label
 per sweep; ``direction``, +1 up and -1 down; ``samples``; ``time``) are kept with the rows.
 The file is read by the one table reader (:func:`frictionlaws.io.read_table`) and converted
-with :func:`frictionlaws.units.to_si`.
+with :func:`frictionlaws.base.units.to_si`.
 Columns of other names are not used, and the notes say which.  A pressure column with
 blank cells among values is refused (a blank would be taken as the nominal pressure).
 :func:`write_tyre_csv` writes such a file; :func:`join` joins the data of several files.
@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import Argument, InputError
+from ...base.errors import Argument, InputError
 from .channels import KINDS, convert
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS", "to_iso_axes",
@@ -50,7 +50,7 @@ __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS", "to_iso_
 
 SIGN_CONVENTIONS = ("iso", "sae")
 
-#: Column -> (quantity kind for :func:`frictionlaws.units.to_si`, accepted names).
+#: Column -> (quantity kind for :func:`frictionlaws.base.units.to_si`, accepted names).
 COLUMNS: dict[str, tuple[str, tuple[str, ...]]] = {
     "fz": (KINDS["fz"], ("fz", "load", "normal_load")),
     "kappa": (KINDS["kappa"], ("kappa", "sl", "sr", "slip_ratio", "longitudinal_slip")),
@@ -447,8 +447,8 @@ def tyre_csv_text(data: TyreData, comments: Sequence[str] = ()) -> str:
     -------
     str
     """
-    from ...sanitize import comment_lines
-    from ...units import from_si
+    from ...base.sanitize import comment_lines
+    from ...base.units import from_si
 
     cols = [c for c in COLUMNS if c in ("fz", "kappa", "alpha", "gamma")
             or np.isfinite(getattr(data, c)).any()]
@@ -479,7 +479,7 @@ def write_tyre_csv(data: TyreData, path: str | Path, comments: Sequence[str] = (
     -------
     Path
     """
-    from ...outputs import atomic_write, check_outputs
+    from ...base.outputs import atomic_write, check_outputs
 
     check_outputs([path], inputs=list(data.files) or [data.source])
     text = tyre_csv_text(data, comments)

@@ -18,6 +18,6 @@ from .common import (
     THESIS_STEEL_ROWS,
     builtin_law_ids,
 )
-from .thesis import TABLE_6_2
+from .thesis_tables import TABLE_6_2
 
 __all__ = ["CASES", "THESIS_STEEL_ROWS", "builtin_law_ids", "LAWS_MD", "THESIS", "TABLE_6_2"]

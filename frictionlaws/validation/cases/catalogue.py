@@ -21,7 +21,7 @@ from .laws import (
     _case_slip_peaks,
 )
 from .temperature import _case_wlf_pyvisco, _case_wlf_sets
-from .thesis import _case_mf52, _case_rig_units, _case_tyre, _thesis_poly_case
+from .thesis_tables import _case_mf52, _case_rig_units, _case_tyre, _thesis_poly_case
 
 __all__ = ["CASES"]
 
@@ -85,8 +85,8 @@ CASES: tuple[Case, ...] = (
     Case("wlf-fit-pyvisco", "WLF fitted to the pyvisco DMA shift factors",
          "NREL pyvisco example data (BSD-3-Clause): freq_user_master__shift_factors.csv, 21 "
          "shift factors -50..100 degC (datasets/dma-pyvisco)",
-         "frictionlaws.mastercurve.fit_wlf vs an independent scipy least-squares fit of the "
-         "WLF equation written here (C1, C2, rms to 1e-4 relative)", _case_wlf_pyvisco),
+         "frictionlaws.viscoelastic.mastercurve.fit_wlf vs an independent scipy least-squares "
+         "fit of the WLF equation written here (C1, C2, rms to 1e-4 relative)", _case_wlf_pyvisco),
     Case("thesis-poly2-steel", "Thesis Eq. 5-1 (Table 5-1, steel) on the 19 measured rows",
          THESIS + ", Eq. 5-1, Table 5-1, Figure 5-16a",
          "law evaluation = exact rational hand computation of the printed coefficients "

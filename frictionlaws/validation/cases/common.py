@@ -46,7 +46,7 @@ def builtin_law_ids() -> list[str]:
     or when the suite knows it (it has a reference implementation); laws added
     by plugins through the entry-point group are neither.
     """
-    from ...registry import list_laws
+    from ...law.registry import list_laws
 
     return [law.id for law in list_laws()
             if law.id in REFERENCES
@@ -54,7 +54,7 @@ def builtin_law_ids() -> list[str]:
 
 
 def _plugin_law_ids() -> list[str]:
-    from ...registry import list_laws
+    from ...law.registry import list_laws
 
     builtin = set(builtin_law_ids())
     return [law.id for law in list_laws() if law.id not in builtin]
@@ -97,7 +97,7 @@ def _forward_slope(f: Callable[[float], Any], h: float) -> float:
 
 
 def _refuses(law: Any, **kw: Any) -> bool:
-    from ...errors import DomainError
+    from ...base.errors import DomainError
 
     try:
         law(**kw)

@@ -55,7 +55,7 @@ def _parse_radioss(text: str) -> tuple[int, dict[str, float]]:
 
 
 def _case_abaqus(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     law = get_law("exponential-decay")
     (v,) = _fe_grid()
@@ -89,7 +89,7 @@ def _case_abaqus(run: CaseRun) -> None:
 
 
 def _case_lsdyna(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     law = get_law("exponential-decay")
     (v,) = _fe_grid()
@@ -120,7 +120,7 @@ def _case_lsdyna(run: CaseRun) -> None:
 
 
 def _case_radioss(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     law = get_law("quadratic-pv")
     run.require("alias 'radioss-ifric1' and 'dorsch' resolve to quadratic-pv",

@@ -38,13 +38,13 @@ __all__ = []
 
 
 def _case_reference(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     builtin = builtin_law_ids()
     missing = [i for i in builtin if i not in REFERENCES]
     stale = [i for i in REFERENCES if i not in builtin]
     run.require("every built-in law has a reference implementation (an entry in "
-                "frictionlaws/law_examples.py)", not missing,
+                "frictionlaws/validation/law_examples.py)", not missing,
                 "none missing", ", ".join(missing) or "none missing")
     run.require("every reference implementation names a registered law", not stale,
                 "none stale", ", ".join(stale) or "none stale")
@@ -75,7 +75,7 @@ def _case_reference(run: CaseRun) -> None:
 
 
 def _case_documented_values(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     exact = Tol(rel=1e-12, why="typed from the source")
     for law_id in builtin_law_ids():
@@ -99,7 +99,7 @@ def _case_documented_values(run: CaseRun) -> None:
 
 
 def _case_burckhardt(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     law = get_law("burckhardt")
     # laws.md, Burckhardt row: derived peaks (s*, mu*) and mu(1) for asphalt dry, as printed.
@@ -149,7 +149,7 @@ def _case_burckhardt(run: CaseRun) -> None:
 def _case_pacejka(run: CaseRun) -> None:
     from scipy.optimize import brentq
 
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     law = get_law("pacejka")
     printed = {"dry": ("0.180", "1.00"), "wet": ("0.088", "0.82"), "snow": ("0.31", "0.30"),
@@ -182,7 +182,7 @@ def _case_pacejka(run: CaseRun) -> None:
 
 
 def _case_slip_peaks(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     sq = get_law("burckhardt-sqrt")
     for c1, c2 in ((2.5, 2.5), (1.0, 0.9)):
@@ -216,7 +216,7 @@ def _case_slip_peaks(run: CaseRun) -> None:
 
 
 def _case_sliding_identities(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     th = get_law("thirion")
     run.compare("thirion: mu(p -> 0) = 1/a", 1 / 0.3, th(p=1e-6, a=0.3, b=3e-6), Tol(rel=1e-9))
@@ -284,7 +284,7 @@ def _case_sliding_identities(run: CaseRun) -> None:
 
 def _case_identifiability(run: CaseRun) -> None:
     from ...fitting import fit
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     rng = np.random.default_rng(20240611)
     p = np.geomspace(2e4, 1e6, 40)
@@ -315,7 +315,7 @@ def _case_identifiability(run: CaseRun) -> None:
 
 
 def _case_recovery(run: CaseRun) -> None:
-    from ...registry import get_law
+    from ...law.registry import get_law
 
     builtin = builtin_law_ids()
     missing = [i for i in builtin if i not in RECOVERY_SETUPS]

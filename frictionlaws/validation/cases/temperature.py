@@ -11,7 +11,7 @@ __all__ = []
 
 
 def _case_wlf_sets(run: CaseRun) -> None:
-    from ...temperature import WLF_PRESETS, resolve_wlf, wlf_convert, wlf_log_aT
+    from ...viscoelastic.temperature import WLF_PRESETS, resolve_wlf, wlf_convert, wlf_log_aT
 
     T_g = 223.15
     g, u = WLF_PRESETS["grosch"], WLF_PRESETS["universal"]
@@ -62,8 +62,8 @@ def _read_pyvisco_shifts() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _case_wlf_pyvisco(run: CaseRun) -> None:
-    from ..._lsq import least_squares_solve
-    from ...mastercurve import fit_wlf, load_dma_upstream_shifts
+    from ...fitting.lsq import least_squares_solve
+    from ...viscoelastic.mastercurve import fit_wlf, load_dma_upstream_shifts
 
     T, la = _read_pyvisco_shifts()
     up = load_dma_upstream_shifts()
