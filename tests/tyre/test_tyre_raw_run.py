@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
@@ -319,3 +321,27 @@ def test_a_raw_run_fitted_reproduces_the_noise_free_truth(tmp_path: Path) -> Non
     assert e["Fx0"] < 0.01 and e["Fy0"] < 0.01, e
     assert e["Fx"] < 0.02 and e["Fy"] < 0.02, e
     assert e["Mz"] < 0.03, e
+
+
+BAD_TOKENS = ["1_000", "\uff11\uff12", "nan", "inf", "1e999", "1,5", "0x10", "--1", "", "1.2.3",
+              "\u0661\u0662"]
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                  HealthCheck.function_scoped_fixture])
+@given(row=st.integers(3, 299), channel=st.sampled_from(["ET", "SA", "IA", "P", "FX", "FY",
+                                                         "FZ", "MZ", "SL", "TSTC"]),
+       token=st.sampled_from(BAD_TOKENS))
+def test_any_bad_number_in_a_used_channel_is_refused_with_its_line(tiny, tmp_path: Path, row,
+                                                                   channel, token) -> None:
+    lines = tiny.text().splitlines()[:300]
+    names = lines[1].split("\t")
+    cells = lines[row].split("\t")
+    cells[names.index(channel)] = token
+    lines[row] = "\t".join(cells)
+    path = tmp_path / "bad.dat"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(InputError) as exc:
+        load_raw_run(path)
+    assert exc.value.file == str(path) and exc.value.row == row + 1
+    assert exc.value.column == channel

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from frictionlaws.base.errors import InputError
 from frictionlaws.tyre.data import (
@@ -276,3 +278,37 @@ def test_a_tir_fitted_from_a_written_tydex_file_equals_the_one_from_its_csv(tmp_
         fits = [fit_mf(read(p)) for read, p in ((read_tydex, tdx), (read_tyre_data, csv))]
     assert format_tir(fits[0].property_file) == format_tir(fits[1].property_file)
     assert fits[0].values == fits[1].values
+
+
+BAD_TOKENS = ["1_000", "\uff11\uff12", "nan", "inf", "1e999", "1,5", "0x10", "--1", "1.2.3",
+              "\u0661\u0662", "NOTAVAILABLE"]
+TEXT = tydex_text(_sweeps(n=5))
+
+
+@settings(max_examples=40, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(row=st.integers(0, 39), column=st.integers(0, 6), token=st.sampled_from(BAD_TOKENS))
+def test_any_bad_number_is_refused_with_its_line_and_channel(tmp_path: Path, row, column,
+                                                             token) -> None:
+    lines = TEXT.splitlines()
+    first = lines.index("**MEASURDATA") + 1
+    cells = lines[first + row].split()
+    cells[column] = token
+    lines[first + row] = " ".join(cells)
+    path = _write(tmp_path / "bad.tdx", "\n".join(lines))
+    with pytest.raises(InputError) as exc:
+        read_tydex(path)
+    assert exc.value.file == str(path) and exc.value.row == first + row + 1
+    assert exc.value.column == ["FZW", "LONGSLIP", "SLIPANGL", "INCLANGL", "INFLPRES", "FYW",
+                                "MZW"][column]
+
+
+def test_a_property_files_evaluation_is_written_for_other_tools(tmp_path: Path) -> None:
+    grid = sweep_data(TRUTH, "combined", loads=(0.8,), cambers_deg=(0.0,), n=5, noise=0.0,
+                      jitter=False)
+    back = read_tydex(write_tydex(grid, tmp_path / "eval.tdx", measid="MF 6.1 example"))
+    out = TRUTH.steady_state(back.kappa, back.alpha, back.fz, back.gamma,
+                             pressure=back.pressure)
+    np.testing.assert_allclose(back.fx, out["Fx"], rtol=1e-12)
+    np.testing.assert_allclose(back.mz, out["Mz"], rtol=1e-12)
+    assert np.ptp(np.degrees(back.alpha)) == pytest.approx(16.0)

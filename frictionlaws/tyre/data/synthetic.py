@@ -276,8 +276,9 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
                pressures: Sequence[float] = (0.85, 1.1), n: int = 31,
                alpha_max_deg: float = 12.0, kappa_max: float = 0.25,
                combined_deg: Sequence[float] = (-8.0, -4.0, 4.0, 8.0),
-               noise: float = 0.008, seed: int = 11) -> TyreData:
-    """Noisy sweeps of ``truth`` of one kind, in SI and ISO-W axes (a TYDEX file's rows).
+               noise: float = 0.008, jitter: bool = True, seed: int = 11) -> TyreData:
+    """Sweeps of ``truth`` of one kind, in SI and ISO-W axes (a TYDEX file's rows): noisy
+    measurements, or (``noise=0, jitter=False``) the property file's evaluation on the grid.
 
     Parameters
     ----------
@@ -294,6 +295,9 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
     combined_deg : sequence of float
     noise : float
         Noise of the forces and moment, a share of each load's largest magnitude.
+    jitter : bool
+        Jitter the recorded slips (5e-4 in slip ratio, 0.03 deg) and the load (0.5 %) as a
+        rig's are (default True).
     seed : int
 
     Returns
@@ -311,7 +315,7 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
         for p in p_nom * np.asarray(pressures):
             for g in np.radians(cambers_deg):
                 blocks.extend(_sweeps(kind, fz, p, g, n, alpha_max_deg, kappa_max,
-                                      combined_deg, rng))
+                                      combined_deg, rng, 1.0 if jitter else 0.0))
     fz, kappa, alpha, gamma, pressure = (np.concatenate([b[i] for b in blocks])
                                          for i in range(5))
     out = truth.steady_state(kappa, alpha, fz, gamma, pressure=pressure)
@@ -327,19 +331,17 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
 
 
 def _sweeps(kind: str, fz: float, p: float, g: float, n: int, alpha_max_deg: float,
-            kappa_max: float, combined_deg: Sequence[float], rng: np.random.Generator
-            ) -> list[tuple[np.ndarray, ...]]:
+            kappa_max: float, combined_deg: Sequence[float], rng: np.random.Generator,
+            jitter: float) -> list[tuple[np.ndarray, ...]]:
     """The (fz, kappa, alpha, gamma, p) arrays of the sweeps at one condition."""
     up_down = np.concatenate([np.linspace(-1, 1, n), np.linspace(1, -1, n)])
     m = up_down.size
-    load = fz * (1 + rng.normal(0, 0.005, m))
+    load = fz * (1 + jitter * rng.normal(0, 0.005, m))
+    dk, da = (jitter * rng.normal(0, s, m) for s in (5e-4, 0.03))
     if kind == "lateral":
-        return [(load, rng.normal(0, 5e-4, m),
-                 np.radians(alpha_max_deg * up_down + rng.normal(0, 0.03, m)),
-                 np.full(m, g), np.full(m, p))]
+        return [(load, dk, np.radians(alpha_max_deg * up_down + da), np.full(m, g),
+                 np.full(m, p))]
     if kind == "longitudinal":
-        return [(load, kappa_max * up_down + rng.normal(0, 5e-4, m),
-                 np.radians(rng.normal(0, 0.03, m)), np.full(m, g), np.full(m, p))]
-    return [(load, 0.8 * kappa_max * up_down + rng.normal(0, 5e-4, m),
-             np.radians(deg + rng.normal(0, 0.03, m)), np.full(m, g), np.full(m, p))
-            for deg in combined_deg]
+        return [(load, kappa_max * up_down + dk, np.radians(da), np.full(m, g), np.full(m, p))]
+    return [(load, 0.8 * kappa_max * up_down + dk, np.radians(deg + da), np.full(m, g),
+             np.full(m, p)) for deg in combined_deg]
