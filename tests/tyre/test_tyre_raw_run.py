@@ -345,3 +345,26 @@ def test_any_bad_number_in_a_used_channel_is_refused_with_its_line(tiny, tmp_pat
         load_raw_run(path)
     assert exc.value.file == str(path) and exc.value.row == row + 1
     assert exc.value.column == channel
+
+
+@pytest.mark.parametrize("change", [dict(first_sign=1.0), dict(dwell_s=2.0),
+                                    dict(first_sign=1.0, dwell_s=1.0, rate=100.0)])
+def test_other_rig_designs_are_cut_alike(change) -> None:
+    """Sweeps that start upwards, or hold at their turns, or a faster rate: every sweep is
+    found, the holds at the turns dropped as dwells without cutting a sweep in two."""
+    import dataclasses
+    import tempfile
+
+    spec = dataclasses.replace(TINY, **change)
+    with tempfile.TemporaryDirectory() as tmp:
+        p = prepare_run(load_raw_run(synthetic_raw_run(TRUTH, spec).write(Path(tmp) / "r.dat")))
+    assert [s.kind for s in p.segments if s.kept] == ["lateral", "longitudinal",
+                                                      "longitudinal"] * 2
+    d = p.data
+    out = TRUTH.steady_state(d.kappa, d.alpha, d.fz, d.gamma, pressure=d.pressure,
+                             vx=spec.speed_kph / 3.6)
+    for k, name in (("fx", "Fx"), ("fy", "Fy"), ("mz", "Mz")):
+        r = getattr(d, k) - out[name]
+        assert np.sqrt(np.mean(r ** 2)) < 0.01 * np.abs(out[name]).max(), k
+    if change.get("dwell_s"):
+        assert p.dropped()["dwell"][1] > 4 * 2 * change["dwell_s"]

@@ -435,31 +435,84 @@ def _holds(w: _Work, x: np.ndarray, width: float, tol: float) -> np.ndarray:
 
 
 def _sweeps_of(w: _Work, a: int, b: int, cond: dict[str, float], rows: list) -> None:
-    """The slip-ratio sweeps on held slip angles and the slip-angle sweeps between."""
+    """The slip-ratio sweeps on held slip angles and the slip-angle sweeps between (a hold
+    without a slip-ratio sweep at the end of a slip-angle sweep, a dwell at its turn, is
+    dropped without cutting the sweep in two)."""
     idx = np.arange(a, b)[w.status[a:b] == 0]
     if idx.size == 0:
         return
     alpha, kappa = w.q["alpha"][idx], w.q["kappa"][idx]
     held = _holds(w, alpha, _ALPHA_BIN, _ALPHA_TOL)
-    for s, e in _runs(held):
+    between: list[np.ndarray] = []  # positions of the stretch of slip-angle sweep being built
+    for s, e in sorted(_runs(held) + _runs(~held)):
+        if not held[s]:
+            between.append(np.arange(s, e))
+            continue
         level = float(np.median(alpha[s:e]))
-        still = _holds(w, kappa[s:e], _KAPPA_BIN, _KAPPA_TOL)
-        for c, d in _runs(still):
-            w.drop(idx[s + c], idx[s + d - 1] + 1, "dwell", alpha=level, **cond)
-        for c, d in _runs(~still):
-            sub = idx[s + c:s + d]
-            if _span(kappa[s + c:s + d]) >= KAPPA_SWEEP:
-                _sweep(w, sub, "longitudinal", cond, level, rows)
-            else:
-                w.drop(sub[0], sub[-1] + 1, "dwell", alpha=level, **cond)
-    for s, e in _runs(~held):
-        sub = idx[s:e]
-        if _span(alpha[s:e]) >= ALPHA_SWEEP and _span(kappa[s:e]) < KAPPA_SWEEP:
-            _sweep(w, sub, "lateral", cond, math.nan, rows)
-        elif _span(alpha[s:e]) < ALPHA_SWEEP and _span(kappa[s:e]) < KAPPA_SWEEP:
-            w.drop(sub[0], sub[-1] + 1, "dwell", **cond)
+        if _span(kappa[s:e]) >= KAPPA_SWEEP:
+            _lateral(w, idx, between, cond, rows)
+            between = []
+            _longitudinal(w, idx[s:e], kappa[s:e], level, cond, rows)
+        elif between and _at_turn(alpha, between[-1], level, ALPHA_SWEEP, _ALPHA_TOL):
+            w.drop(idx[s], idx[e - 1] + 1, "dwell", alpha=level, **cond)
         else:
-            w.drop(sub[0], sub[-1] + 1, "transition", **cond)
+            _lateral(w, idx, between, cond, rows)
+            between = []
+            w.drop(idx[s], idx[e - 1] + 1, "dwell", alpha=level, **cond)
+    _lateral(w, idx, between, cond, rows)
+
+
+def _at_turn(x: np.ndarray, before: np.ndarray, level: float, span: float, tol: float
+             ) -> bool:
+    """True when a hold of ``x`` at ``level`` is where ``x``, sweeping over the positions
+    ``before`` (by ``span`` or more), turned."""
+    lo, hi = float(np.min(x[before])), float(np.max(x[before]))
+    return hi - lo >= span and min(abs(level - lo), abs(level - hi)) <= 2 * tol
+
+
+def _longitudinal(w: _Work, sub: np.ndarray, kappa: np.ndarray, level: float,
+                  cond: dict[str, float], rows: list) -> None:
+    """The slip-ratio sweeps of one held slip angle; its dwells dropped (one at a turn of
+    the sweep does not cut it in two)."""
+    still = _holds(w, kappa, _KAPPA_BIN, _KAPPA_TOL)
+    group: list[np.ndarray] = []
+    for c, d in sorted(_runs(still) + _runs(~still)):
+        if not still[c]:
+            group.append(np.arange(c, d))
+            continue
+        held = float(np.median(kappa[c:d]))
+        if not (group and _at_turn(kappa, group[-1], held, KAPPA_SWEEP, _KAPPA_TOL)):
+            _kappa_sweep(w, sub, kappa, group, level, cond, rows)
+            group = []
+        w.drop(sub[c], sub[d - 1] + 1, "dwell", alpha=level, **cond)
+    _kappa_sweep(w, sub, kappa, group, level, cond, rows)
+
+
+def _kappa_sweep(w: _Work, sub: np.ndarray, kappa: np.ndarray, group: list[np.ndarray],
+                 level: float, cond: dict[str, float], rows: list) -> None:
+    if not group:
+        return
+    at = np.concatenate(group)
+    if _span(kappa[at]) >= KAPPA_SWEEP:
+        _sweep(w, sub[at], "longitudinal", cond, level, rows)
+    else:
+        w.drop(sub[at[0]], sub[at[-1]] + 1, "dwell", alpha=level, **cond)
+
+
+def _lateral(w: _Work, idx: np.ndarray, pieces: list[np.ndarray], cond: dict[str, float],
+             rows: list) -> None:
+    """A stretch of slip-angle sweep (its pieces joined across dwells at its turns)."""
+    if not pieces:
+        return
+    at = np.concatenate(pieces)
+    sub = idx[at]
+    alpha, kappa = w.q["alpha"][sub], w.q["kappa"][sub]
+    if _span(alpha) >= ALPHA_SWEEP and _span(kappa) < KAPPA_SWEEP:
+        _sweep(w, sub, "lateral", cond, math.nan, rows)
+    elif _span(alpha) < ALPHA_SWEEP and _span(kappa) < KAPPA_SWEEP:
+        w.drop(sub[0], sub[-1] + 1, "dwell", **cond)
+    else:
+        w.drop(sub[0], sub[-1] + 1, "transition", **cond)
 
 
 def _directions(x: np.ndarray, size: int) -> np.ndarray:

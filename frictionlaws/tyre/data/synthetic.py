@@ -73,6 +73,9 @@ class RawRunSpec:
     warmup_s: float = 40.0
     speed_kph: float = 40.0
     seed: int = 7
+    #: The sign of the first half of every sweep (-1: down first) and a hold at its ends [s].
+    first_sign: float = -1.0
+    dwell_s: float = 0.0
 
 
 @dataclass
@@ -124,12 +127,16 @@ class _Timeline:
         self.parts.append(part)
         self.now.update({k: float(part[k][-1]) for k in self.now})
 
-    def sweep(self, name: str, top: float, speed: float, cycles: int, phase: str) -> None:
-        """0 -> -top -> +top -> 0 (``cycles`` times) at ``speed`` per second."""
+    def sweep(self, name: str, top: float, speed: float, cycles: int, phase: str,
+              first: float = -1.0, dwell: float = 0.0) -> None:
+        """0 -> ``first`` top -> -``first`` top -> 0 (``cycles`` times) at ``speed`` per
+        second, holding ``dwell`` seconds at each end."""
         start = self.now[name]
         for _ in range(cycles):
-            for end in (start - top, start + top, start):
+            for end in (start + first * top, start - first * top, start):
                 self.add(abs(end - self.now[name]) / speed, phase, **{name: end})
+                if dwell > 0 and end != start:
+                    self.add(dwell, phase)
 
     def arrays(self) -> dict[str, np.ndarray]:
         return {k: np.concatenate([p[k] for p in self.parts]) for k in self.parts[0]}
@@ -140,14 +147,15 @@ def _condition(tl: _Timeline, spec: RawRunSpec, fz: float) -> None:
     tl.add(2.0, "step", fz=fz)
     tl.add(1.5, "hold")
     tl.sweep("alpha", math.radians(spec.alpha_max_deg), math.radians(spec.alpha_rate_deg),
-             spec.cycles, "lateral")
+             spec.cycles, "lateral", spec.first_sign, spec.dwell_s)
     for deg in (0.0, *spec.combined_deg):
         a = math.radians(deg)
         tl.add(max(0.5, abs(a - tl.now["alpha"]) / math.radians(spec.alpha_rate_deg)), "step",
                alpha=a)
         tl.add(1.5, "hold")
         top = spec.kappa_max if deg == 0 else spec.combined_kappa_max
-        tl.sweep("kappa", top, spec.kappa_rate, 1, "longitudinal")
+        tl.sweep("kappa", top, spec.kappa_rate, 1, "longitudinal", spec.first_sign,
+                 spec.dwell_s)
         tl.add(1.0, "hold")
     tl.add(max(0.5, abs(tl.now["alpha"]) / math.radians(spec.alpha_rate_deg)), "step",
            alpha=0.0)
