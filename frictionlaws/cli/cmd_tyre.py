@@ -139,22 +139,26 @@ def _add_prepare(tsub: argparse._SubParsersAction) -> None:
 def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f = tsub.add_parser(
         "fit-mf", help="fit a Magic Formula property file to tyre test data",
-        description="Fit the Magic Formula to tyre test data (a tidy CSV: 'Fz [N]', "
-        "'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', 'Fx [N]', 'Fy [N]', "
-        "'Mz [N m]') in stages: pure-slip Fx0 and Fy0, the combined-slip weighting "
-        "functions, the aligning moment Mz0 and combined Mz; write a .tir property file. "
-        "Coefficients the data cannot determine keep the template's value (listed); data "
-        "whose slips, angles or loads look like another unit than declared are refused.")
-    f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
+        description="Fit the Magic Formula to tyre test data (one or several files: a tidy "
+        "CSV with 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', "
+        "'Fx [N]', 'Fy [N]', 'Mz [N m]'; TYDEX files; raw rig runs, cut into steady sweeps "
+        "as 'tyre prepare' does) in stages: pure-slip Fx0 and Fy0, the combined-slip "
+        "weighting functions, the aligning moment Mz0 and combined Mz; write a .tir property "
+        "file. Coefficients the data cannot determine keep the template's value (listed); "
+        "data whose slips, angles or loads look like another unit than declared are refused.")
+    f.add_argument("data", metavar="DATA", nargs="+",
+                   help="tyre test data: CSV tables, TYDEX files (.tdx) or raw rig runs, told "
+                        "apart by their content, fitted together ('-': standard input, once)")
     f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
                    help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
                         "(MF 5.2 / PAC2002)")
     f.add_argument("--template", metavar="FILE", help="property file giving FNOMIN, the "
                    "nominal pressure, the other sections and undetermined coefficients "
                    "(default: the packaged example of the version)")
-    f.add_argument("--sign-convention", choices=("iso", "sae"), default="iso",
-                   help="axes of the data: iso (ISO-W, as property files; default) or sae "
-                        "(Fz, Fy and alpha negated to ISO)")
+    f.add_argument("--sign-convention", choices=("iso", "sae"), default=None,
+                   help="axes of the data: iso (ISO-W, as property files) or sae (Fz, Fy, Mz "
+                        "and alpha negated to ISO); default: each format's, iso for CSV and "
+                        "TYDEX, sae for raw rig runs")
     f.add_argument("--uncertainty", choices=("asymptotic", "sweeps"), default="asymptotic",
                    help="standard errors: asymptotic (from the Jacobian; default) or sweeps "
                         "(bootstrap of whole sweeps found in the row order, honest when a "
@@ -554,7 +558,9 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
 
         refuse_unused(args, ("boot", "boot_jobs", "seed"),
                       f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
-    inputs = [args.data] + ([args.template] if args.template else [])
+    if args.data.count("-") > 1:
+        raise UsageError("standard input ('-') can be given once among the DATA files")
+    inputs = list(args.data) + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
@@ -563,16 +569,23 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         check_figure_path(args.plot)
     from frictionlaws.base.errors import FitError
 
-    from ._common import data_source, shown_source
+    from ._common import data_sources, shown_source
 
-    with data_source(args.data) as data:
+    with data_sources(args.data) as data:
         try:
             res = fit_mf(data, fittyp=args.fittyp, template=args.template,
                          sign_convention=args.sign_convention, uncertainty=args.uncertainty,
                          resamples=args.boot, seed=args.seed, jobs=args.boot_jobs)
         except FitError as exc:  # name standard input, not its private copy
-            raise FitError(str(exc).replace(data, shown_source(data))) from None
-    res.data.source = shown_source(res.data.source)  # the provenance the file states
+            text = str(exc)
+            for path in data:
+                text = text.replace(path, shown_source(path))
+            raise FitError(text) from None
+        for path in data:  # the provenance the file states names what the user gave
+            shown = shown_source(path)
+            res.notes = [n.replace(path, shown) for n in res.notes]
+            res.warnings = [n.replace(path, shown) for n in res.warnings]
+        res.data.source = " + ".join(shown_source(p) for p in data)
     res.write(args.output)
     if args.plot:
         res.plot(args.plot)

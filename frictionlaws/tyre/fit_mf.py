@@ -734,17 +734,17 @@ def _model_from_template(tpl: PropertyFile, data: TyreData, version: str, notes:
     return dict(tpl_coeffs), p_nom, p_fit, mf
 
 
-def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
+def fit_mf(data: TyreData | str | Path | Sequence[str | Path], *, fittyp: int = 61,
            template: str | Path | PropertyFile | None = None,
-           sign_convention: str = "iso", uncertainty: str = "asymptotic",
+           sign_convention: str | None = None, uncertainty: str = "asymptotic",
            resamples: int = 100, seed: int = 0, jobs: int = 1,
            sweeps: Sequence[Any] | np.ndarray | None = None) -> MFFit:
     """Fit the Magic Formula to tyre test data, stage by stage (module docstring).
 
     Parameters
     ----------
-    data : TyreData, str or Path
-        The measurements, or a tidy CSV file (:func:`~frictionlaws.tyre.tyre_data.read_tyre_data`).
+    data : TyreData, str, Path or sequence of them
+        The measurements, or files of any tyre test format (:mod:`frictionlaws.tyre.data`).
     fittyp : {5, 6, 21, 61, 62}
         FITTYP of the file written: 5, 6 or 21 for MF 5.2 / PAC2002, 61 for MF 6.1,
         62 for MF 6.2.
@@ -752,8 +752,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         Property file providing FNOMIN, the nominal pressure, the other sections
         and the values of coefficients the data cannot determine (default: the
         packaged example of the version).
-    sign_convention : {"iso", "sae"}
-        Axes of the measurement when ``data`` is a file.
+    sign_convention : {"iso", "sae"}, optional
+        Axes of the files (default: each format's; SAE for raw rig runs).
     uncertainty : {"asymptotic", "sweeps"}
         How the standard errors are made.  ``"asymptotic"`` (the default, no extra
         cost): from the Jacobian of each stage, ``s^2 (J^T J)^-1``, which assumes
@@ -766,8 +766,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         For ``uncertainty="sweeps"``: resamples (default 100), their seed (default 0)
         and worker processes (default 1; :func:`frictionlaws.parallel.run_parallel`).
     sweeps : array-like, optional
-        For ``uncertainty="sweeps"``: a sweep label per row; default: found from the
-        row order (:func:`~frictionlaws.tyre._fit_mf_bootstrap.find_sweeps`).
+        For ``uncertainty="sweeps"``: a sweep label per row; default: the data's own
+        (``data.extra``), else from the row order (``_fit_mf_bootstrap.find_sweeps``).
 
     Returns
     -------
@@ -815,10 +815,11 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     return fitted
 
 
-def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str,
-                    uncertainty: str, boot: dict[str, Any]) -> TyreData:
-    """The data (read when a file), after the options are checked (before any fit)."""
-    from .tyre_data import read_tyre_data
+def _checked_inputs(data: TyreData | str | Path | Sequence[str | Path], fittyp: int,
+                    sign_convention: str | None, uncertainty: str, boot: dict[str, Any]
+                    ) -> TyreData:
+    """The data (read when files), after the options are checked (before any fit)."""
+    from .data.formats import read_tyre_files
 
     if uncertainty not in UNCERTAINTIES:
         raise InputError(f"uncertainty {uncertainty!r} is not known; expected one of "
@@ -827,7 +828,10 @@ def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: s
         raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
                          f"{', '.join(str(k) for k in FITTYPS)}")
     if not isinstance(data, TyreData):
-        data = read_tyre_data(data, sign_convention=sign_convention)
+        files = [data] if isinstance(data, (str, Path)) else list(data)
+        data, _ = read_tyre_files(files, sign_convention=sign_convention)
+    if boot["sweeps"] is None and "sweep" in data.extra:
+        boot["sweeps"] = data.extra["sweep"]
     if uncertainty == "sweeps":
         from ._fit_mf_bootstrap import check_options
 

@@ -11,7 +11,8 @@
    level; samples between levels are **transitions**, the first :data:`SETTLE_S` s of a
    condition **settling**, a condition shorter than :data:`MIN_CONDITION_S` s **short**;
    conditions at the start that begin before the tread is warm (its temperature within
-   :data:`WARM_MARGIN_K` of its running value) or that the run returns to later are the
+   :data:`WARM_MARGIN_K` of its running value, :func:`_warm_from`) or that the run returns
+   to later are the
    **warm-up** (so are the first ``warmup`` seconds, when given);
 3. finds the **sweeps** in each condition: slip-angle levels held for :data:`MIN_HOLD_S` s
    or more carry slip-ratio sweeps (pure at zero slip angle, combined elsewhere); a hold
@@ -42,7 +43,7 @@ from .table import TyreData
 __all__ = ["Segment", "PreparedRun", "prepare_run", "REASONS", "LIFT_SHARE", "SMOOTH_S",
            "MIN_LEVEL_S", "SETTLE_S", "MIN_CONDITION_S", "MIN_HOLD_S", "BINS_PER_SWEEP",
            "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE", "FORCE_WEIGHT",
-           "WARM_MARGIN_K",
+           "WARM_MARGIN_K", "WARM_SMOOTH_S",
            "KAPPA_SWEEP", "ALPHA_SWEEP"]
 
 #: A sample is lifted when its load is below this share of the run's 95th-percentile load.
@@ -51,7 +52,9 @@ LIFT_SHARE = 0.1
 #: run's 95th-percentile load (off the road, not touching it).
 OFF_ROAD_SHARE = 0.02
 #: The tread is warm within this of its running temperature [K].
-WARM_MARGIN_K = 5.0
+WARM_MARGIN_K = 10.0
+#: The median filter of the tread temperature for the warm-up [s].
+WARM_SMOOTH_S = 10.0
 #: The median filter of load, camber, pressure and slip angle [s].
 SMOOTH_S = 1.0
 #: A level of load, camber or pressure is held this long in all or more [s].
@@ -396,18 +399,19 @@ def _kept_conditions(w: _Work, pieces: list, levels: dict[str, np.ndarray]
 
 def _warm_from(w: _Work) -> int:
     """The first sample at which the tread is warm: its temperature (median-filtered over
-    :data:`SMOOTH_S` s) within :data:`WARM_MARGIN_K` of the median over the run's second
+    :data:`WARM_SMOOTH_S` s, the heating of each sweep smoothed out) within
+    :data:`WARM_MARGIN_K` of its running value, the 5th percentile over the run's second
     half (0 without a tread temperature channel, with a note)."""
     if "temperature" not in w.q:
         w.notes.append("no tread temperature channel (TSTC): the warm-up is taken as the "
                        "conditions at the start that the run returns to later")
         return 0
-    t = _smooth(w.q["temperature"], w.samples(SMOOTH_S))
+    t = _smooth(w.q["temperature"], w.samples(WARM_SMOOTH_S))
     loaded = w.status != REASONS.index("lift")
     half = np.arange(t.size) >= t.size // 2
     if not (loaded & half).any():
         return 0
-    running = float(np.median(t[loaded & half]))
+    running = float(np.percentile(t[loaded & half], 5))
     warm = loaded & (t >= running - WARM_MARGIN_K)
     first = int(np.argmax(warm)) if warm.any() else 0
     if first:
