@@ -102,7 +102,7 @@ for ax, (name, xlabel, unit) in zip(axes, (("Fy", "slip angle [deg]", "N"),
     ax.grid(alpha=0.3)
 axes[0].legend(title="load (dashed: truth)", fontsize="small")
 plt.show()
-# sphinx_gallery_thumbnail_number = 2
+# sphinx_gallery_thumbnail_number = 1
 
 # %%
 # What the numbers say
