@@ -97,13 +97,18 @@ def test_the_levels_lags_and_offsets_are_found(prepared) -> None:
         assert np.all(np.abs(prepared.offsets[k] - truth) < max(scale, 0.2 * abs(start[j])))
 
 
-def test_the_rows_follow_the_noise_free_truth(prepared) -> None:
-    d = prepared.data
+def _follow_the_truth(d, spec: RawRunSpec) -> None:
+    """The rows' forces and moment within 1 % RMS of the noise-free truth's peak."""
     out = TRUTH.steady_state(d.kappa, d.alpha, d.fz, d.gamma, pressure=d.pressure,
-                             vx=SPEC.speed_kph / 3.6)
+                             vx=spec.speed_kph / 3.6)
     for k, name in (("fx", "Fx"), ("fy", "Fy"), ("mz", "Mz")):
         r = getattr(d, k) - out[name]
         assert np.sqrt(np.mean(r ** 2)) < 0.01 * np.abs(out[name]).max(), k
+
+
+def test_the_rows_follow_the_noise_free_truth(prepared) -> None:
+    d = prepared.data
+    _follow_the_truth(d, SPEC)
     up, down = d.extra["direction"] > 0, d.extra["direction"] < 0
     assert 0.4 < up.mean() < 0.6 and up.sum() + down.sum() == len(d)
     assert np.all(d.extra["samples"] >= 3) and set(d.extra) >= {"sweep", "time"}
@@ -360,11 +365,6 @@ def test_other_rig_designs_are_cut_alike(change) -> None:
         p = prepare_run(load_raw_run(synthetic_raw_run(TRUTH, spec).write(Path(tmp) / "r.dat")))
     assert [s.kind for s in p.segments if s.kept] == ["lateral", "longitudinal",
                                                       "longitudinal"] * 2
-    d = p.data
-    out = TRUTH.steady_state(d.kappa, d.alpha, d.fz, d.gamma, pressure=d.pressure,
-                             vx=spec.speed_kph / 3.6)
-    for k, name in (("fx", "Fx"), ("fy", "Fy"), ("mz", "Mz")):
-        r = getattr(d, k) - out[name]
-        assert np.sqrt(np.mean(r ** 2)) < 0.01 * np.abs(out[name]).max(), k
+    _follow_the_truth(p.data, spec)
     if change.get("dwell_s"):
         assert p.dropped()["dwell"][1] > 4 * 2 * change["dwell_s"]

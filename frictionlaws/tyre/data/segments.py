@@ -80,7 +80,7 @@ ALPHA_SWEEP = math.radians(2.0)
 #: The longest force lag behind the slip taken [s].
 MAX_LAG_S = 0.5
 #: The window of the time derivative of the forces for the lag [s].
-DERIVATIVE_S = 0.06
+DERIVATIVE_S = 0.04
 #: Gaps between two pieces of one condition merged when shorter than this [s].
 _MERGE_GAP_S = 2.0
 #: Load levels: bin width (share of the reference load) and tolerance (share of the level).
