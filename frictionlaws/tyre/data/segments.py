@@ -66,7 +66,7 @@ MIN_CONDITION_S = 3.0
 #: A slip angle held this long carries slip-ratio sweeps [s].
 MIN_HOLD_S = 1.0
 #: Blocks per pass of a sweep over its range (averages of consecutive samples).
-BINS_PER_SWEEP = 30
+BINS_PER_SWEEP = 40
 #: The fewest samples a block averages (fewer, at the end of a direction: dropped).
 MIN_BLOCK = 3
 #: The weight of each force and moment against the slip in the length along a sweep that
@@ -426,9 +426,19 @@ def _span(x: np.ndarray) -> float:
     return float(np.percentile(x, 98) - np.percentile(x, 2)) if x.size else 0.0
 
 
+def _noise(x: np.ndarray) -> float:
+    """The noise of a signal per sample, from its second differences (a ramp has none)."""
+    if x.size < 3:
+        return 0.0
+    return float(1.4826 * np.median(np.abs(np.diff(x, 2))) / math.sqrt(6.0))
+
+
 def _holds(w: _Work, x: np.ndarray, width: float, tol: float) -> np.ndarray:
-    """Samples where ``x`` is held at a level for :data:`MIN_HOLD_S` or more."""
-    smooth = _smooth(x, w.samples(0.5))
+    """Samples where ``x`` is held at a level for :data:`MIN_HOLD_S` or more, within four
+    times its noise of the level (at most ``tol``: a hold must not reach into the ramps
+    beside it; the signal median-filtered over 5 samples)."""
+    tol = float(np.clip(4 * _noise(x), 0.1 * tol, tol))
+    smooth = _smooth(x, 5)
     _, lab = _levels(smooth, np.ones(x.size, bool), width, lambda lv: tol,
                      w.samples(MIN_HOLD_S))
     held = lab >= 0
@@ -577,13 +587,18 @@ def _range(f: np.ndarray) -> float:
 def _moving(w: _Work, sub: np.ndarray, x: np.ndarray, level: float,
             cond: dict[str, float]) -> np.ndarray:
     """``sub`` without the still samples at its ends (a slip below a fifth of the sweep's
-    median speed there: a dwell, dropped as such)."""
-    speed = np.abs(np.gradient(_smooth(x, w.samples(0.3))))
-    moving = speed > 0.2 * float(np.median(speed))
-    if not moving.any():
+    median speed there, its slope over 0.1 s: a dwell, dropped as such)."""
+    from scipy.signal import savgol_filter
+
+    size = max(5, w.samples(0.1) | 1)
+    speed = (np.abs(savgol_filter(x, size, 1, deriv=1)) if x.size > size
+             else np.abs(np.gradient(x)))
+    steady = [(a, b) for a, b in _runs(speed > 0.2 * float(np.median(speed)))
+              if b - a >= size]  # moving for 0.1 s or more, not a noisy sample
+    if not steady:
         w.drop(sub[0], sub[-1] + 1, "dwell", alpha=level, **cond)
         return sub[:0]
-    first, last = int(np.argmax(moving)), int(moving.size - np.argmax(moving[::-1]))
+    first, last = steady[0][0], steady[-1][1]
     if first:
         w.drop(sub[0], sub[first], "dwell", alpha=level, **cond)
     if last < sub.size:
