@@ -196,7 +196,7 @@ def _tir_with(changes: dict[str, str]) -> str:
                                                   r"-1e\+06 <= value <= 1e\+06"),
     ("LKX", "5e6", "SCALING_COEFFICIENTS", r"LKX = 5e\+06 is impossible"),
     ("FNOMIN", "0", "VERTICAL", r"FNOMIN = 0 is impossible"),
-    ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = 'nan' is text, expected a number"),
+    ("PCX1", "nan", "LONGITUDINAL_COEFFICIENTS", r"PCX1 = nan is not a number a property file"),
     ("ALPMAX", "15", "SLIP_ANGLE_RANGE", r"ALPMAX = 15 is impossible: expected -1\.571 <= "
                                          r"value <= 1\.571 rad .*; degrees where the file's "
                                          "angles are radians\\?"),

@@ -51,7 +51,7 @@ def unit_text(unit: str | None) -> str:
     return unit if unit else DIMENSIONLESS
 
 
-_TOKEN = re.compile(r"\s*(\*\*|[A-Za-z_]+|\d+(?:\.\d+)?|[-+*/^()])")
+_TOKEN = re.compile(r"\s*(\*\*|[A-Za-z_]+|[0-9]+(?:\.[0-9]+)?|[-+*/^()])")
 
 
 def _pascal_power(unit: str) -> float:

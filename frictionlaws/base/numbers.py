@@ -15,16 +15,26 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["parse_number", "is_number", "NUMBER_HELP"]
+__all__ = ["parse_number", "parse_integer", "is_number", "looks_numeric", "NUMBER_HELP",
+           "INTEGER_HELP"]
 
 _POINT = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z", re.ASCII)
 _COMMA = re.compile(r"[+-]?(?:[0-9]+(?:,[0-9]*)?|,[0-9]+)(?:[eE][+-]?[0-9]+)?\Z", re.ASCII)
+#: Fortran's exponent letter ``D`` too (``1.5D-03``: ADAMS property files).
+_FORTRAN = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eEdD][+-]?[0-9]+)?\Z",
+                      re.ASCII)
+_INTEGER = re.compile(r"[+-]?[0-9]+\Z", re.ASCII)
+#: Spellings Python's float() reads that no file format here allows (non-finite words).
+_NON_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)\Z", re.IGNORECASE)
 
 #: What a number looks like, for error messages.
 NUMBER_HELP = "a plain decimal number such as 0.25, -3 or 1.5e-6"
+#: What a whole number looks like, for error messages.
+INTEGER_HELP = "a whole number written with the digits 0-9, such as 3 or -1"
 
 
-def parse_number(text: str, *, decimal_comma: bool = False, finite: bool = True) -> float:
+def parse_number(text: str, *, decimal_comma: bool = False, finite: bool = True,
+                 fortran: bool = False) -> float:
     """Parse one number written as text.
 
     Parameters
@@ -35,6 +45,9 @@ def parse_number(text: str, *, decimal_comma: bool = False, finite: bool = True)
         Read ``,`` as the decimal separator (and refuse ``.``).
     finite : bool
         Refuse results that overflow to infinity (e.g. ``1e999``).
+    fortran : bool
+        Also read Fortran's exponent letter ``D`` (``1.5D-03``), as ADAMS property
+        files write it.
 
     Returns
     -------
@@ -49,11 +62,13 @@ def parse_number(text: str, *, decimal_comma: bool = False, finite: bool = True)
     if not isinstance(text, str):
         raise ValueError(f"expected text, got {type(text).__name__}")
     s = text.strip()
-    pattern = _COMMA if decimal_comma else _POINT
+    pattern = _COMMA if decimal_comma else _FORTRAN if fortran else _POINT
     if not pattern.match(s):
         sep = "decimal comma" if decimal_comma else "decimal point"
         raise ValueError(f"'{text.strip()}' is not a number (expected {NUMBER_HELP}, "
                          f"with a {sep})")
+    if fortran:
+        s = s.replace("d", "e").replace("D", "E")
     value = float(s.replace(",", ".")) if decimal_comma else float(s)
     if finite and not math.isfinite(value):
         raise ValueError(f"'{s}' overflows (the magnitude is beyond 1.8e308)")
@@ -67,3 +82,54 @@ def is_number(text: str, *, decimal_comma: bool = False) -> bool:
     except ValueError:
         return False
     return True
+
+
+def parse_integer(text: str, *, lo: int | None = None, hi: int | None = None) -> int:
+    """Parse one whole number written as text (the digits 0-9 and an optional sign).
+
+    Python's ``int()`` also reads ``1_000``, full-width and other non-ASCII digits and
+    surrounding white space inside a value; this reads what a user means by a count.
+
+    Parameters
+    ----------
+    text : str
+        The text; leading and trailing white space is ignored.
+    lo, hi : int, optional
+        The smallest and largest value accepted.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        Saying what was expected.
+    """
+    if not isinstance(text, str):
+        raise ValueError(f"expected text, got {type(text).__name__}")
+    s = text.strip()
+    if len(s) > 40 or not _INTEGER.match(s):
+        raise ValueError(f"'{s[:40]}' is not {INTEGER_HELP}")
+    value = int(s)
+    if (lo is not None and value < lo) or (hi is not None and value > hi):
+        bounds = (f"from {lo} to {hi}" if lo is not None and hi is not None else
+                  f">= {lo}" if lo is not None else f"<= {hi}")
+        raise ValueError(f"{value} is out of range: expected a whole number {bounds}")
+    return value
+
+
+def looks_numeric(text: str) -> bool:
+    """True for text a lenient reader (Python's ``float``) might take for a number but
+    :func:`parse_number` refuses to be one: a non-finite word (``nan``, ``inf``), or text
+    that starts like a number (a sign, a point or any digit, non-ASCII ones included).
+
+    Readers use it to refuse such text where a number belongs, instead of keeping it as a
+    word.
+    """
+    s = str(text).strip()
+    if _NON_FINITE.match(s):
+        return True
+    body = s.lstrip("+-\u2212")
+    return bool(body) and (body[0].isdigit() or body[0] == "." or
+                           (body[0] == "," and body[1:2].isdigit()))

@@ -52,6 +52,7 @@ from .errors import InputError
 __all__ = [
     "check_input_file",
     "check_outputs",
+    "check_unique_names",
     "protect_input",
     "is_protected",
     "atomic_write",
@@ -79,6 +80,7 @@ def check_input_file(path: PathLike, what: str = "input file") -> Path:
     write of this process replaces it.
     """
     p = Path(path)
+    _refuse_nul(p, what)
     try:
         st = p.stat()
     except FileNotFoundError:
@@ -94,6 +96,13 @@ def check_input_file(path: PathLike, what: str = "input file") -> Path:
         raise InputError(f"the {what} is not readable", file=str(p))
     _register(p, st)
     return p
+
+
+def _refuse_nul(path: Path, what: str) -> None:
+    """A name holding a NUL character names no file (the system refuses it)."""
+    if "\x00" in str(path):
+        raise InputError(f"the {what} name holds a NUL character; no file has such a name",
+                         file=str(path).replace("\x00", "\\0"))
 
 
 def _same_file(a: Path, b: Path) -> bool:
@@ -182,6 +191,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
             raise InputError(f"the {what} names a directory (it ends with a slash); give a "
                              "file name", file=str(raw))
         out = Path(raw)
+        _refuse_nul(out, what)
         for src in ins:
             if _same_file(out, src):
                 raise InputError(f"the {what} is also an input; it would be overwritten "
@@ -195,6 +205,7 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         if raw is None:
             continue
         out = Path(raw)
+        _refuse_nul(out, "output directory")
         for src in ins:
             if _same_file(out, src):
                 raise InputError("the output directory is also an input", file=str(out))
@@ -202,6 +213,38 @@ def check_outputs(files: Iterable[PathLike | None] = (), *,
         _check_dir_target(out, "output directory")
     for src in ins:
         protect_input(src)
+
+
+def check_unique_names(named: Iterable[tuple[str, str]], *, what: str,
+                       file: str | None = None) -> None:
+    """Refuse outputs of one call whose file names coincide, before any work.
+
+    A command or call that derives a file name per input (a group, a record, a
+    manifest) would otherwise let a later file silently replace an earlier one.  Names
+    that differ only in case coincide too (one file on macOS and Windows).
+
+    Parameters
+    ----------
+    named : iterable of (str, str)
+        (what the output is made from, for the message; the file name it gets).
+    what : str
+        What the outputs are (``"plots"``), for the message.
+    file : str, optional
+        The input that names them (a manifest, a dataset), for the message.
+
+    Raises
+    ------
+    InputError
+        Naming both sources and the name they share.
+    """
+    seen: dict[str, str] = {}
+    for label, name in named:
+        key = os.path.normcase(str(name)).casefold()
+        if key in seen:
+            raise InputError(f"two {what} would be written as '{name}' ({seen[key]} and "
+                             f"{label}; names may not differ only in case): rename one, "
+                             "nothing was written", file=file)
+        seen[key] = label
 
 
 #: Inputs read or named in this process (real paths): never replaced.

@@ -646,10 +646,10 @@ def conversion_note(unit: str, quantity: str, column: str | None = None) -> str 
     )
 
 
-_NUMBER_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
+_NUMBER_START = re.compile(r"^\s*[-+]?([0-9]|\.[0-9])")
 #: The number written before the unit (checked by the one number parser: no ``4_0``, no
 #: ``4,0``, no full-width digits, no overflow).
-_NUMBER_TOKEN = re.compile(r"^\s*([-+]?[\d_.,]*(?:[eE][-+]?[\d_]+)?)")
+_NUMBER_TOKEN = re.compile(r"^\s*([-+]?[0-9_.,]*(?:[eE][-+]?[0-9_]+)?)", re.ASCII)
 
 
 def parse_quantity(

@@ -389,7 +389,7 @@ def _value_options(parser: argparse.ArgumentParser) -> set[str]:
     return out
 
 
-_NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d)")
+_NEGATIVE_VALUE = re.compile(r"^-([0-9]|\.[0-9])")
 
 
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
@@ -525,6 +525,11 @@ def _suggest_options(message: str, parser: argparse.ArgumentParser, argv: Sequen
 
 
 def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace | int:
+    nul = next((t for t in argv if "\x00" in t), None)
+    if nul is not None:  # no shell passes one; no file name or value holds one
+        shown = _one_line(nul.replace("\x00", "\\0"))[:80]
+        print(f"error: the argument '{shown}' holds a NUL character", file=sys.stderr)
+        return 2
     argv = _hoist_global_flags(parser, argv)
     empty = _empty_value(parser, argv)
     if empty is not None:

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ._common import add_progress_option, progress_value
+from ._common import SCHEDULER_TRUST, add_progress_option, progress_value
 
 __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names",
            "campaign_progress"]
@@ -41,7 +41,7 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True,
     g.add_argument("--jobs", type=_jobs, default=1, metavar="N", help=jobs_help)
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run the datasets on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
-                        "(default: $FRICTIONLAWS_SCHEDULER; needs the 'dask' extra)")
+                        f"(or tls:// with Dask's TLS settings). {SCHEDULER_TRUST}")
     g.add_argument("--out", metavar="FILE", default=None,
                    help="write the campaign's tidy table to FILE (.csv, .jsonl or .json)")
     add_progress_option(g)
@@ -66,8 +66,10 @@ def campaign_progress(args: argparse.Namespace) -> bool:
 
 
 def _jobs(text: str) -> int:
-    try:
-        value = int(text)
+    from frictionlaws.base.numbers import parse_integer
+
+    try:  # the one number parser: no 1_0, no non-ASCII digits
+        value = parse_integer(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
     if value != -1 and not 1 <= value <= 1024:

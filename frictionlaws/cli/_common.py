@@ -35,11 +35,13 @@ from typing import Any
 
 __all__ = [
     "UsageError",
+    "SCHEDULER_TRUST",
     "MergeAssignments",
     "MergeNames",
     "non_negative_int",
     "positive_int",
     "bounded_int",
+    "bounded_number",
     "SEED_MAX",
     "add_data_options",
     "add_fit_options",
@@ -108,6 +110,12 @@ def report_text(report: str, args: argparse.Namespace) -> str:
                      else line for line in report.split("\n"))
 
 
+#: The trust a ``--scheduler`` asks for, said in its help (``docs/user-guide/security.rst``).
+SCHEDULER_TRUST = ("The scheduler and its workers are trusted with code execution here (Dask "
+                   "exchanges pickles): only this option connects, $FRICTIONLAWS_SCHEDULER "
+                   "is not read. Needs the 'dask' extra.")
+
+
 class UsageError(Exception):
     """Bad command-line usage (a malformed, conflicting or inapplicable option)."""
 
@@ -127,16 +135,54 @@ def bounded_int(lo: int | None = None, hi: int | None = None) -> Callable[[str],
         allowed = "a whole number"
 
     def convert(text: str) -> int:
-        s = str(text).strip()
-        body = s[1:] if s[:1] in "+-" else s
-        if not body.isascii() or not body.isdigit():
-            raise argparse.ArgumentTypeError(f"'{text}' is not {allowed}")
-        value = int(s)
+        from frictionlaws.base.numbers import parse_integer
+
+        try:  # the one number parser: no 1_0, no non-ASCII digits
+            value = parse_integer(str(text))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"'{text}' is not {allowed}") from None
         if (lo is not None and value < lo) or (hi is not None and value > hi):
             raise argparse.ArgumentTypeError(f"{value} is out of range: expected {allowed}")
         return value
 
     convert.__name__ = "integer"
+    return convert
+
+
+def bounded_number(lo: float | None = None, hi: float | None = None, *,
+                   lo_open: bool = False) -> Callable[[str], float]:
+    """An argparse ``type=`` accepting finite numbers (the one number parser) in a range.
+
+    Parameters
+    ----------
+    lo, hi : float, optional
+        The bounds (either end open).
+    lo_open : bool
+        Exclude ``lo`` itself (``> lo`` rather than ``>= lo``).
+
+    Returns
+    -------
+    callable
+        Text -> float, raising :class:`argparse.ArgumentTypeError` naming the value.
+    """
+    low = "" if lo is None else f"{'>' if lo_open else '>='} {lo:g}"
+    high = "" if hi is None else f"<= {hi:g}"
+    allowed = " and ".join(x for x in (low, high) if x) or "any finite value"
+
+    def convert(text: str) -> float:
+        from frictionlaws.base.numbers import parse_number
+
+        try:
+            value = parse_number(str(text))
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+        if ((lo is not None and (value <= lo if lo_open else value < lo))
+                or (hi is not None and value > hi)):
+            raise argparse.ArgumentTypeError(f"'{str(text).strip()}' is out of range: "
+                                             f"expected a number {allowed}")
+        return value
+
+    convert.__name__ = "number"
     return convert
 
 

@@ -17,6 +17,7 @@ from ._common import (
     add_law_source_options,
     bound_from_args,
     bounded_int,
+    bounded_number,
     data_options,
     fit_kwargs,
     parse_assignments,
@@ -130,7 +131,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="point spacing per variable (default log when MAX/MIN >= 100)")
     p.add_argument("--units", default="SI", metavar="SYSTEM",
                    help="unit system of the file: {systems}[,VAR=UNIT]")
-    p.add_argument("--tol", type=float, help="largest interpolation error in mu (adaptive grid)")
+    p.add_argument("--tol", type=bounded_number(0.0, lo_open=True), metavar="TOL",
+                   help="largest interpolation error in mu (adaptive grid; a number > 0)")
     p.add_argument("--max-rows", type=bounded_int(1, 10_000_000), default=200_000, metavar="N",
                    help="largest table allowed (default 200000; 1..10000000)")
     p.add_argument("-o", "--output", required=True, metavar="FILE",
@@ -167,8 +169,10 @@ def _options(args: argparse.Namespace) -> dict:
     opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
             "radioss_id": args.radioss_id}
     if args.lsdyna_contact:
-        try:
-            ids = [int(x) for x in args.lsdyna_contact.split(",")]
+        from frictionlaws.base.numbers import parse_integer
+
+        try:  # the one number parser: no 1_0, no non-ASCII digits
+            ids = [parse_integer(x) for x in args.lsdyna_contact.split(",")]
         except ValueError:
             ids = []
         if len(ids) not in (2, 4):
@@ -254,9 +258,10 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     when all succeeded, each atomically, none over an input.
     """
     from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs, write_text_atomic
+    from frictionlaws.base.outputs import check_outputs, check_unique_names, write_text_atomic
     from frictionlaws.fe_export import export
-    from frictionlaws.fitting.campaign import fit_groups, key_text
+    from frictionlaws.fitting.campaign import check_grouping, fit_groups, group_keys, key_text
+    from frictionlaws.io import load_dataset
 
     from ._campaign import split_names
     from ._common import data_source
@@ -265,18 +270,21 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
         raise UsageError("--by writes one file per group: give -o FILE, not -o -")
     options = fit_kwargs(args)
     load = {k: options.pop(k) for k in ("mapping", "units", "area")}
+    by = check_grouping(split_names(args.by), [law])
+    out = Path(args.output)
     with data_source(args.fit) as source:
-        groups = fit_groups(law, source, split_names(args.by), load_options=load, **options)
+        dataset = load_dataset(source, **load)
+    keys = [key for key, _ in group_keys(dataset, list(by))]
+    paths = [_group_path(out, key) for key in keys]
+    # one file per group, each its own name, checked before any fit
+    check_unique_names([(f"group {key_text(k)}", p.name) for k, p in zip(keys, paths)],
+                       what="groups' files", file=args.fit)
+    check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
+    groups = fit_groups(law, dataset, by, **options)
     failed = [key_text(k) for k, r in groups if not r.success]
     if failed:
         raise InputError(f"the fit did not converge for {', '.join(failed)}; nothing exported",
                          file=args.fit)
-    out = Path(args.output)
-    paths = [_group_path(out, key) for key, _ in groups]
-    if len({str(p).casefold() for p in paths}) < len(paths):  # one file on macOS, Windows
-        raise InputError("two groups give the same file name (or names differing only in "
-                         "case); group by other columns", file=args.fit)
-    check_outputs(paths, inputs=[args.fit] if Path(args.fit).exists() else [])
     results = []
     for (key, fitted), path in zip(groups, paths, strict=True):
         m = fitted.metrics

@@ -18,7 +18,13 @@ from pathlib import Path
 from typing import Any
 
 from ._campaign import _jobs
-from ._common import add_json_option, add_progress_option, bounded_int, progress_value
+from ._common import (
+    SCHEDULER_TRUST,
+    add_json_option,
+    add_progress_option,
+    bounded_int,
+    progress_value,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -56,8 +62,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                         "serial; 1..1024; never more than the cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="process the records on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
-                        "(default: $FRICTIONLAWS_SCHEDULER; the record files must be "
-                        "readable by its workers; needs the 'dask' extra)")
+                        "(or tls:// with Dask's TLS settings; the record files must be "
+                        f"readable by its workers). {SCHEDULER_TRUST}")
     p.add_argument("--min-repeats", type=bounded_int(2, 10_000), default=2, metavar="N",
                    help="conditions with fewer usable records are not written (default 2)")
     add_progress_option(p)

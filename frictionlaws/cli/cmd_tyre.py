@@ -30,6 +30,7 @@ from ._common import (
     boot_jobs_count,
     bound_from_args,
     bounded_int,
+    bounded_number,
     parse_values,
 )
 
@@ -98,7 +99,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="vertical load, in --load-unit (default kN)")
     r.add_argument("--load-unit", default="kN", metavar="UNIT", help="unit of --load")
     r.add_argument("--side", choices=("braking", "driving"), default="braking")
-    r.add_argument("--slip-max", type=float, default=1.0, help="largest slip ratio (<= 1)")
+    r.add_argument("--slip-max", type=bounded_number(0.0, 1.0, lo_open=True), default=1.0,
+                   metavar="SLIP", help="largest slip ratio (0 < SLIP <= 1, default 1)")
     r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
                    help="number of slip points (3..100000, default 201)")
     _mf_options(r)
@@ -149,7 +151,7 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("data", metavar="DATA", nargs="+",
                    help="tyre test data: CSV tables, TYDEX files (.tdx) or raw rig runs, told "
                         "apart by their content, fitted together ('-': standard input, once)")
-    f.add_argument("--fittyp", type=int, choices=(5, 6, 21, 61, 62), default=61,
+    f.add_argument("--fittyp", type=bounded_int(), choices=(5, 6, 21, 61, 62), default=61,
                    help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
                         "(MF 5.2 / PAC2002)")
     f.add_argument("--template", metavar="FILE", help="property file giving FNOMIN, the "
@@ -368,12 +370,13 @@ def run(args: argparse.Namespace) -> int:
 
 def _angles(text: str) -> list[float]:
     from frictionlaws.base.errors import InputError
+    from frictionlaws.base.numbers import parse_number
 
-    try:
-        return [float(a) for a in text.split(",") if a.strip()]
-    except ValueError:
+    try:  # the one number parser: no 1_0, no non-ASCII digits, finite
+        return [parse_number(a) for a in text.split(",") if a.strip()]
+    except ValueError as exc:
         raise InputError(f"--angles '{text}': expected numbers in degrees, "
-                         "e.g. 1,2,3") from None
+                         f"e.g. 1,2,3 ({exc})") from None
 
 
 def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:

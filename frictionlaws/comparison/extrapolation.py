@@ -407,10 +407,14 @@ def _holdout_fraction(k: str, v: Any) -> float:
     if k not in VARIABLES:
         raise InputError(f"unknown variable '{k}' (known: {', '.join(VARIABLES)})",
                          option="holdout")
-    try:
-        f = float(v)
+    from ..base.numbers import parse_number
+
+    try:  # text through the one number parser (no 0_3, no non-ASCII digits, no nan)
+        f = parse_number(v) if isinstance(v, str) else float(v)
     except (TypeError, ValueError):
         raise InputError(f"'{k}={v}' is not a number", option="holdout") from None
+    if not math.isfinite(f):
+        raise InputError(f"'{k}={v}' is not a finite number", option="holdout")
     if f != 0 and not 0 < f < 1:
         raise InputError(f"the fraction for {k} must be between 0 and 1 "
                          f"(exclusive), not {f:g}", option="holdout")

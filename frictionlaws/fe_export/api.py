@@ -313,11 +313,14 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
     lo, hi = (_range_bound(var, x, text, system) for x in parts[:2])
     n = None
     if len(parts) == 3:
+        from ..base.numbers import parse_integer
+
         count = parts[2].strip()
-        if not (count.isascii() and count.isdigit() and len(count) <= 9):  # no 1_0, no １０
+        try:  # the one number parser: no 1_0, no non-ASCII digits
+            n = parse_integer(count, lo=0, hi=999_999_999)
+        except ValueError:
             raise InputError(f"'{text}': N must be a whole number of points, got "
-                             f"'{count[:20]}'", option=f"box.{var}")
-        n = int(count)
+                             f"'{count[:20]}'", option=f"box.{var}") from None
     _check_range(var, lo, hi)
     return AxisSpec(var, lo, hi, n, spacing)
 

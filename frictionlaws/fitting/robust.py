@@ -33,6 +33,7 @@ import numpy as np
 
 from ..base.errors import InputError
 from ..parallel import batches, local_workers, starmap_local
+from .resampling import MIN_DETERMINED, ZERO_SPREAD, no_spread
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
            "check_uncertainty_options", "condition_ids", "sandwich_cov",
@@ -49,11 +50,8 @@ NARROW_RATIO = 1.5
 STRUCTURE_ALPHA = 0.05
 #: Largest number of bootstrap replicates.
 MAX_BOOT = 100_000
-#: Fewest determined replicates from which a bootstrap error is given.
-MIN_DETERMINED = 10
-#: Relative spread of the replicates at or below which they do not spread at all
-#: (rounding of identical refits): no error can be read from them.
-ZERO_SPREAD = 1e-9
+# MIN_DETERMINED and ZERO_SPREAD: the one rule of every resampling
+# (frictionlaws.fitting.resampling), named here too.
 
 
 def check_uncertainty_options(uncertainty: Any, n_boot: Any, n_jobs: Any,
@@ -470,8 +468,7 @@ def intervals(samples: np.ndarray, hat: np.ndarray, jack: np.ndarray, *,
     for j in range(m):
         s = samples[:, j]
         s = s[np.isfinite(s)]
-        if s.size < MIN_DETERMINED or np.ptp(s) <= ZERO_SPREAD * max(
-                float(np.max(np.abs(s))), np.finfo(float).tiny):
+        if no_spread(s):  # the one rule of every resampling: undetermined, not 0
             continue
         se[j] = float(np.std(s, ddof=1))
         qs = np.array([alpha, 1.0 - alpha])

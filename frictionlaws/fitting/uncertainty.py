@@ -166,8 +166,8 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                      derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
                      warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
     """Condition-resampling bootstrap errors and intervals, parameters and derived alike."""
+    from .resampling import cannot_vary, withheld_message
     from .robust import (
-        MIN_DETERMINED,
         Refit,
         bootstrap,
         condition_ids,
@@ -183,7 +183,7 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                   RANK_TOL, full_rank)
     groups = condition_ids(inp.fd.arrays, _condition_vars(inp.fd), inp.fd.conditions)
     n_cond = int(np.unique(groups).size)
-    if n_cond <= full_rank:
+    if n_cond <= full_rank or cannot_vary([n_cond], unit="test condition"):
         return _bootstrap_refused(inp, estimates, derived, warn_msgs, opts, n_cond)
     theta = np.array([inp.values[k] for k in inp.vary])
     boot = bootstrap(refit, theta, groups, n_boot=opts["n_boot"], seed=opts["seed"],
@@ -191,10 +191,7 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     se, ci, used = intervals(boot.samples, theta, boot.jackknife, kind=opts["interval"])
     withheld = _set_errors(inp, estimates, se, ci)
     if withheld:
-        warn_msgs.append(f"the bootstrap cannot determine the standard error of "
-                         f"{', '.join(withheld)}: fewer than {MIN_DETERMINED} resamples "
-                         "determine it, or they do not spread at all; it is withheld "
-                         "(not zero)")
+        warn_msgs.append(withheld_message("the bootstrap", withheld))
     ok = np.all(np.isfinite(boot.samples), axis=1)
     if ok.sum() > len(inp.vary) and not inp.non_id:
         _set_corr(inp.vary, np.cov(boot.samples[ok].T).reshape(len(inp.vary), -1), corr)
@@ -228,15 +225,19 @@ def _bootstrap_refused(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     Each resample of so few conditions either cannot determine the parameters or
     repeats the full fit, so its spread would read as an error of zero.
     """
+    from .resampling import cannot_vary
+
     for k in inp.vary:
         estimates[k] = replace(estimates[k], stderr=None, ci95=None)
     for k in derived:
         derived[k] = {**derived[k], "stderr": None, "ci95": None}
-    warn_msgs.append(f"the bootstrap needs more test conditions than the parameters they "
-                     f"determine ({n_cond} condition{'s' if n_cond != 1 else ''}, "
-                     f"{len(inp.vary)} parameters): its standard "
-                     "errors are undetermined and withheld (the asymptotic ones are kept "
-                     "in uncertainty.asymptotic_stderr)")
+    reason = cannot_vary([n_cond], unit="test condition")
+    why = (f"it cannot vary ({reason})" if reason else
+           f"it needs more test conditions than the parameters they determine ({n_cond} "
+           f"conditions, {len(inp.vary)} parameters)")
+    warn_msgs.append(f"the bootstrap gives no standard errors: {why}; they are undetermined "
+                     "and withheld, not zero (the asymptotic ones are kept in "
+                     "uncertainty.asymptotic_stderr)")
     return {"n_boot": opts["n_boot"], "seed": opts["seed"], "interval": None,
             "conditions": n_cond, "failed": None}
 

@@ -273,7 +273,7 @@ def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
     hint = (f" (it contains {others[0]}: does this row use another delimiter "
             f"than the header's {_DELIMITER_NAMES.get(table.delimiter or '')}?)"
             if others and table.delimiter else "")
-    if table.delimiter == "," and re.fullmatch(r"[-+]?\d+,\d+", text):
+    if table.delimiter == "," and re.fullmatch(r"[-+]?[0-9]+,[0-9]+", text):
         hint = " (a decimal comma needs ';' or tab as the delimiter)"
     return InputError(
         f"non-numeric value '{_shown(text)}'{_where(table, i)}; expected "
@@ -283,10 +283,10 @@ def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
     )
 
 
-_THOUSANDS = re.compile(r"[-+]?\d{1,3}(\.\d{3})+")
+_THOUSANDS = re.compile(r"[-+]?[0-9]{1,3}(\.[0-9]{3})+")
 
 
-_COMMA_DECIMAL = re.compile(r"\d,\d")
+_COMMA_DECIMAL = re.compile(r"[0-9],[0-9]")
 
 
 def _uses_decimal_commas(table: _Table) -> bool:

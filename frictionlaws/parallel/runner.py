@@ -59,8 +59,21 @@ def batches(items: Iterable[Any], size: int) -> Iterator[list[Any]]:
         yield batch
 
 
-#: Environment variable naming a Dask scheduler address when none is given.
+#: An environment variable that once named a Dask scheduler: it is never read to connect
+#: (a scheduler runs code here; only an address given explicitly connects), and a run
+#: that finds it set warns so.
 SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
+
+
+def _unread_environment() -> None:
+    """Warn when :data:`SCHEDULER_ENV` is set: it does not connect by itself."""
+    if os.environ.get(SCHEDULER_ENV):
+        import warnings
+
+        warnings.warn(f"the environment variable {SCHEDULER_ENV} is set but is not read: a "
+                      "Dask scheduler is trusted with code execution, so it is connected "
+                      "to only when its address is given explicitly; the work runs here",
+                      UserWarning, stacklevel=3)
 
 
 def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int = 1,
@@ -86,9 +99,11 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         1: serial; N > 1: N local worker processes (joblib's loky backend);
         -1: one per core.
     scheduler : str, optional
-        A Dask scheduler address (``tcp://host:8786``); the work goes to that
-        cluster as Dask futures.  Default: the environment
-        variable :data:`SCHEDULER_ENV`, if set.
+        A Dask scheduler address (``tcp://host:8786`` or ``tls://host:8786``); the work
+        goes to that cluster as Dask futures.  Connecting trusts the scheduler and its
+        workers with code execution in this process (Dask exchanges pickles): only an
+        address given here connects, never an environment variable
+        (:func:`frictionlaws.parallel._network.connect_scheduler`).
     progress : bool
         Show a progress bar (tqdm) on stderr, counting finished items.
     total : int, optional
@@ -102,7 +117,8 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         come, so nothing but the current results is held.
     """
     check_jobs(jobs)
-    scheduler = scheduler or os.environ.get(SCHEDULER_ENV) or None
+    if scheduler is None:
+        _unread_environment()
     if total is None and isinstance(items, Sized):
         total = len(items)
     if scheduler is not None:

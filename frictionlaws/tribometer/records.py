@@ -258,7 +258,12 @@ def _refuse_duplicate_headers(text: str, delimiter: str, src: str) -> None:
     """pandas renames a repeated header ('torque [N m].1'): refuse it instead."""
     line = next((ln for ln in split_lines(text) if ln.strip() and not ln.startswith("#")), "")
     seen: set[str] = set()
-    for cell in next(csv.reader([line], delimiter=delimiter)) if line else []:
+    try:  # every error of the csv module is the file's (a cell over its field limit...)
+        cells = next(csv.reader([line], delimiter=delimiter)) if line else []
+    except csv.Error as exc:
+        raise InputError(f"the header line cannot be read as CSV ({exc})", file=src,
+                         row=split_lines(text).index(line) + 1) from None
+    for cell in cells:
         name = cell.strip()
         if name in seen:
             raise InputError("duplicate column (two columns have the same header); keep one",

@@ -395,13 +395,17 @@ def make_campaign(
     -------
     CampaignTruth
     """
+    from ..base.outputs import check_unique_names
+
     rig = rig or synthetic_rig()
     root = Path(directory)
+    specs = _record_specs(conditions, rig, seed, record_kwargs)
+    check_unique_names([(f"condition '{c.name}'", name) for c, _, _, name in specs],
+                       what="records")  # one file per record, before any is written
     (root / "records").mkdir(parents=True, exist_ok=True)
     rig_file = root / "rig.toml"
     rig_file.write_text("# synthetic rig (frictionlaws.tribometer.synthetic)\n" + rig.to_toml(),
                         encoding="utf-8")
-    specs = _record_specs(conditions, rig, seed, record_kwargs)
     tasks = [(str(root / "records" / name), spec, rseed, rig, name)
              for _, spec, rseed, name in specs]
     from ..parallel import run_parallel

@@ -36,12 +36,13 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError
+from ..fitting.resampling import check_can_vary, spread_errors, withheld_message
 from ..parallel import check_jobs, run_parallel
 from . import _fit_mf_stages as stages_
 from ._fit_mf_peak import FittingModel
 
 __all__ = ["find_sweeps", "sweep_bootstrap", "check_options", "SWEEP_JUMP", "DEFAULT_RESAMPLES",
-           "MIN_MEDIAN_SWEEP"]
+           "MIN_MEDIAN_SWEEP", "check_can_resample", "STRATA"]
 
 #: A step of (kappa, alpha), each as a share of its measured range, larger than this
 #: starts a new sweep.
@@ -109,6 +110,31 @@ def _turns(k: np.ndarray, a: np.ndarray, offset: int) -> list[int]:
     return []
 
 
+#: What a stratum of the sweep bootstrap is, for messages.
+STRATA = "kind of sweep x load level"
+
+
+def check_can_resample(data: Any, sweeps: Any = None) -> list[list[np.ndarray]]:
+    """The strata of the sweep bootstrap, refused when its resamples cannot vary.
+
+    Each resample draws within every stratum: with one sweep in each (the usual rig
+    layout of one sweep per load), every resample is the data itself (the one rule of
+    :mod:`frictionlaws.fitting.resampling`).
+
+    Raises
+    ------
+    InputError
+        Saying why, before any fit is run.
+    """
+    labels = find_sweeps(data) if sweeps is None else _given(sweeps, len(data))
+    strata = _strata(data, labels)
+    check_can_vary([len(s) for s in strata], unit="sweep", method="the sweep bootstrap",
+                   strata=STRATA, source=data.source,
+                   remedy="repeat sweeps of a kind at a load level, or use the asymptotic "
+                          "standard errors")
+    return strata
+
+
 def _strata(data: Any, labels: np.ndarray) -> list[list[np.ndarray]]:
     """The rows of each sweep, grouped by (kind, load level) (module notes, step 2)."""
     level = stages_.load_levels(data.fz)
@@ -170,7 +196,8 @@ def _resample(item: tuple[_Task, np.random.SeedSequence]) -> dict[str, float] | 
 def sweep_bootstrap(model: FittingModel, data: Any, groups: dict[str, list[str]],
                     p_nom: float | None, bounds: dict[str, tuple[float, float]], *,
                     resamples: int = DEFAULT_RESAMPLES, seed: int = 0, jobs: int = 1,
-                    sweeps: Any = None) -> tuple[dict[str, float], str]:
+                    sweeps: Any = None, warnings_out: list[str] | None = None
+                    ) -> tuple[dict[str, float], str]:
     """Standard errors of the coefficients in ``groups`` by the sweep bootstrap.
 
     Parameters
@@ -194,6 +221,9 @@ def sweep_bootstrap(model: FittingModel, data: Any, groups: dict[str, list[str]]
         Worker processes (:func:`frictionlaws.parallel.run_parallel`).
     sweeps : array-like, optional
         A sweep label per row (default: :func:`find_sweeps`).
+    warnings_out : list of str, optional
+        Receives the warning naming coefficients whose resampled values do not spread
+        (their standard error is NaN: undetermined, not zero).
 
     Returns
     -------
@@ -203,8 +233,7 @@ def sweep_bootstrap(model: FittingModel, data: Any, groups: dict[str, list[str]]
         How they were made, for the report and the file's header.
     """
     check_options(resamples, jobs, sweeps, len(data))
-    labels = find_sweeps(data) if sweeps is None else _given(sweeps, len(data))
-    strata = _strata(data, labels)
+    strata = check_can_resample(data, sweeps)
     task = _Task(model, data, strata, groups, p_nom, bounds)
     seeds = np.random.SeedSequence(seed).spawn(int(resamples))
     results = [r for r in run_parallel(_resample, [(task, s) for s in seeds], jobs=jobs)
@@ -214,10 +243,13 @@ def sweep_bootstrap(model: FittingModel, data: Any, groups: dict[str, list[str]]
                          f"{resamples} resamples: too few sweeps per stratum to refit")
     names = [k for g in groups.values() for k in g]
     values = np.array([[r[k] for k in names] for r in results])
-    se = values.std(axis=0, ddof=1)
-    n_sweeps = int(np.unique(labels).size)
+    se = spread_errors(values)  # NaN where the resamples do not spread: not 0
+    withheld = [k for k, e in zip(names, se) if not math.isfinite(e)]
+    if withheld and warnings_out is not None:
+        warnings_out.append(withheld_message("the sweep bootstrap", withheld))
+    n_sweeps = sum(len(s) for s in strata)
     method = (f"sweep bootstrap: {len(results)} resamples (seed {seed}) of {n_sweeps} "
-              f"whole sweeps within {len(strata)} strata (kind of sweep x load level), "
+              f"whole sweeps within {len(strata)} strata ({STRATA}), "
               "final stages refitted from the point estimate; standard error = standard "
               "deviation of the resampled values")
     if len(results) < resamples:

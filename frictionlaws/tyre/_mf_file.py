@@ -11,6 +11,7 @@ import math
 from pathlib import Path
 
 from ..base.errors import InputError
+from ..base.numbers import is_number, parse_number
 from .mf_coefficients import COEFFICIENT_SECTIONS, STRUCTURE_SECTIONS
 from .tir import PropertyFile
 
@@ -21,8 +22,8 @@ __all__ = ["version_of", "file_pressures", "file_limits", "peak_cause", "EXAMPLE
 def version_of(pf: PropertyFile) -> tuple[str, str]:
     """(version, how it was decided) from FITTYP / PROPERTY_FILE_FORMAT / the coefficients."""
     fittyp = pf.get("MODEL", "FITTYP")
-    if isinstance(fittyp, str) and fittyp.strip().isdigit():
-        fittyp = float(fittyp)  # quoted ('61' or "61"): the same version number
+    if isinstance(fittyp, str) and is_number(fittyp):
+        fittyp = parse_number(fittyp)  # quoted ('61' or "61"): the same version number
     fmt = (pf.text("MODEL", "PROPERTY_FILE_FORMAT", "") or "").upper()
     if fittyp is not None:
         known = {61: "6.1", 62: "6.2", 5: "5.2", 6: "5.2", 21: "5.2"}

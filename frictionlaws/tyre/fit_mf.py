@@ -805,7 +805,8 @@ def fit_mf(data: TyreData | str | Path | Sequence[str | Path], *, fittyp: int = 
     asymptotic = dict(stderr)
     method = UNCERTAINTIES["asymptotic"]
     if uncertainty == "sweeps":
-        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, boot)
+        stderr, method = _bootstrap(mf, data, values, stderr, p_fit, {**boot,
+                                                                      "warnings_out": warns})
     fitted = _finish(pf, version, values, stderr, undetermined, errors, stages, data,
                      t0, notes)
     fitted.uncertainty, fitted.stderr_asymptotic = method, asymptotic
@@ -833,9 +834,10 @@ def _checked_inputs(data: TyreData | str | Path | Sequence[str | Path], fittyp: 
     if boot["sweeps"] is None and "sweep" in data.extra:
         boot["sweeps"] = data.extra["sweep"]
     if uncertainty == "sweeps":
-        from ._fit_mf_bootstrap import check_options
+        from ._fit_mf_bootstrap import check_can_resample, check_options
 
         check_options(boot["resamples"], boot["jobs"], boot["sweeps"], len(data))
+        check_can_resample(data, boot["sweeps"])  # resamples that cannot vary: refused
     return data
 
 

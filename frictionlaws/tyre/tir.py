@@ -40,6 +40,7 @@ from pathlib import Path
 from typing import Any
 
 from ..base.errors import InputError
+from ..base.numbers import NUMBER_HELP, looks_numeric, parse_number
 from ..base.sanitize import ascii_line, split_lines, tir_string
 from .mf_coefficients import DECLARED, STRUCTURE_SECTIONS, outside_fit, section_keys
 
@@ -57,10 +58,8 @@ _SECTION = re.compile(r"^\[\s*([A-Za-z0-9_]+)\s*\]\s*(?:\$.*)?$")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _KEY = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_HEADER = re.compile(r"^\{(.*)\}\s*(?:\$.*)?$")
-#: Linear time: ``\d+\.?\d*`` (an optional point between two digit runs) backtracks
-#: quadratically on a long run of digits that is not a number.
-_NUMBER = re.compile(r"^[-+]?(\d+(?:\.\d*)?|\.\d+)([eEdD][-+]?\d+)?$")
-_DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eEdD][-+]?\d+)?$")
+#: A number with a decimal comma (refused, naming the fix); ASCII digits only.
+_DECIMAL_COMMA = re.compile(r"^[-+]?[0-9]*,[0-9]+([eEdD][-+]?[0-9]+)?$", re.ASCII)
 
 #: The SI symbols of the declarations' units and the file's ``[UNITS]`` entry each is
 #: converted from (a unit per radian is per radian in every file: angles must be radians).
@@ -69,7 +68,7 @@ _UNIT_KINDS = {"N": "force", "m": "length", "s": "time", "kg": "mass", "Pa": "pr
 
 def _unit_kind(unit: str) -> str | None:
     """The kind of a declared SI unit (``"N/m"`` -> ``"force/length"``), None if none."""
-    kind = re.sub(r"/rad(\*\*\d)?|\brad(\*\*\d)?\b", "", unit)
+    kind = re.sub(r"/rad(\*\*[0-9])?|\brad(\*\*[0-9])?\b", "", unit)
     kind = re.sub(r"\b(N|m|s|kg|Pa)\b", lambda m: _UNIT_KINDS[m.group(1)], kind)
     return kind if re.search(r"force|length|time|mass|pressure", kind) else None
 
@@ -457,8 +456,11 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
             raise InputError(f"{key}: unexpected text after the string: {raw[end + 1:]!r}",
                              file=source, row=lineno)
         return raw[1:end]
-    if _NUMBER.match(raw):
-        value = float(raw.replace("d", "e").replace("D", "E"))
+    try:  # the one number parser (Fortran's D exponent too): no 1_0, no non-ASCII digits
+        value = parse_number(raw, fortran=True, finite=False)
+    except ValueError:
+        pass
+    else:
         if not math.isfinite(value):
             raise InputError(f"{key} = {raw} is not finite", file=source, row=lineno)
         return value
@@ -467,6 +469,10 @@ def _parse_value(raw: str, source: str, lineno: int, key: str) -> Value:
                          "(property files use a decimal point)", file=source, row=lineno)
     if " " in raw or "\t" in raw:
         raise InputError(f"{key} = {raw!r}: expected one number or a quoted string",
+                         file=source, row=lineno)
+    if looks_numeric(raw):  # nan, inf, 1_000, non-ASCII digits: no number, and no word
+        raise InputError(f"{key} = {ascii_line(raw)[:40]} is not a number a property file "
+                         f"holds (expected {NUMBER_HELP}, with the digits 0-9)",
                          file=source, row=lineno)
     return raw  # a bare word (e.g. TRUE): kept as text
 
@@ -541,7 +547,8 @@ class _TirReader:
             raise InputError(
                 f"[{current}] {key} is given twice (lines {self.lines[(current, key)]} and "
                 f"{lineno}); remove one", file=self.source, row=lineno)
-        self.sections[current][key] = _parse_value(value_text, self.source, lineno, key)
+        self.sections[current][key] = _parse_value(value_text, self.source, lineno,
+                                                     f"[{current}] {key}")
         self.lines[(current, key)] = lineno
         if comment:
             self.comments[(current, key)] = comment
@@ -550,8 +557,8 @@ class _TirReader:
     def _table_row(self, current: str, table: tuple[list[str], list[list[float]]],
                    line: str, lineno: int) -> None:
         body, _ = _strip_comment(line)
-        try:
-            row = [float(p.replace("d", "e").replace("D", "E")) for p in body.split()]
+        try:  # the one number parser: finite, the digits 0-9, Fortran's D exponent too
+            row = [parse_number(p, fortran=True) for p in body.split()]
         except ValueError:
             raise InputError(f"[{current}] table row is not numeric: {line!r}",
                              file=self.source, row=lineno) from None

@@ -28,7 +28,16 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from hostile import MF52_TIR, NASTY_NUMBERS, Snapshot, check_outcome, hostile, run_cli, time_limit
+from hostile import (
+    MF52_TIR,
+    NASTY_NUMBERS,
+    Snapshot,
+    check_outcome,
+    hostile,
+    run_cli,
+    tcp_peer,
+    time_limit,
+)
 from hypothesis import example, given
 from hypothesis import strategies as st
 
@@ -633,29 +642,7 @@ def test_a_long_message_is_cleaned_in_linear_time(word: str, n: int) -> None:
 @pytest.fixture
 def silent_peer() -> Iterator[str]:
     """A TCP server on 127.0.0.1 that accepts and never says a word."""
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(8)
-    held: list[socket.socket] = []
-    stop = threading.Event()
-
-    def accept() -> None:
-        server.settimeout(0.2)
-        while not stop.is_set():
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                continue
-            held.append(conn)
-
-    thread = threading.Thread(target=accept, daemon=True)
-    thread.start()
-    yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
-    stop.set()
-    thread.join(2)
-    for conn in held:
-        conn.close()
-    server.close()
+    yield from tcp_peer([])
 
 
 @pytest.mark.slow

@@ -325,7 +325,7 @@ def test_export_by_refuses_group_file_names_that_differ_only_in_case(pair, seed,
     res = run_cli(["export", "--law", "thirion", "--fit", str(data), "--by", "surface",
                    "--format", "abaqus", "--p", "0.1MPa:0.6MPa:4", "-o", str(tmp / "deck.inp")])
     check_outcome(res, snapshot=snap)
-    assert res.code == 2 and "differing only in case" in res.err
+    assert res.code == 2 and "differ only in case" in res.err
     assert sorted(p.name for p in tmp.iterdir()) == ["g.csv"]
 
 

@@ -29,7 +29,9 @@ import math
 import os
 import re
 import signal
+import socket
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
@@ -60,6 +62,7 @@ __all__ = [
     "MF52_JSON",
     "RIG_TOML",
     "UNWRITABLE",
+    "tcp_peer",
 ]
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -567,3 +570,44 @@ def rig_bytes(draw: Any) -> bytes:
     if draw(st.integers(0, 6)) == 0:
         return text.encode("utf-16")
     return text.encode("utf-8")
+
+
+# ------------------------------------------------------------------------ peers
+
+
+def tcp_peer(replies: list[bytes]) -> Iterator[str]:
+    """A TCP peer on 127.0.0.1 that sends ``replies`` in turn on every connection, one
+    after each message it reads (the first at once); with none it accepts and never
+    says a word.  A generator: the address, then the peer is shut down."""
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+    stop = threading.Event()
+    held: list[socket.socket] = []
+
+    def serve() -> None:
+        server.settimeout(0.1)
+        while not stop.is_set():
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                continue
+            held.append(conn)
+            try:
+                for reply in replies:
+                    conn.sendall(reply)
+                    conn.settimeout(2.0)
+                    conn.recv(65536)
+            except OSError:
+                pass
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    try:
+        yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    finally:
+        stop.set()
+        thread.join(2)
+        for conn in held:
+            conn.close()
+        server.close()

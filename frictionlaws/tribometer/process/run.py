@@ -83,11 +83,11 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ...parallel import SCHEDULER_ENV, check_jobs, iter_parallel
+    from ...parallel import check_jobs, iter_parallel
 
     jobs = _job_count(jobs)
     check_jobs(jobs)
-    remote = bool(scheduler or os.environ.get(SCHEDULER_ENV))
+    remote = scheduler is not None  # only an address given connects, never the environment
     workers = local_workers(jobs)
     if not remote and len(work) < 2 * workers:  # too few records to be worth a pool
         jobs = 1
@@ -234,6 +234,8 @@ def process_many(
     names = manifest_names(manifests)
     read = [read_manifest(m, rig) for m in manifests]
     dirs = _plot_dirs(plots, names, plot_dirs)
+    for m, (entries, _), d in zip(manifests, read, dirs, strict=True):
+        _refuse_plot_clash(entries, d, os.fspath(m))
     work = [(e, d) for (entries, _), d in zip(read, dirs, strict=True) for e in entries]
     results = iter(_run_files(work, rig, jobs, scheduler, progress))
     camps = []
@@ -346,8 +348,26 @@ def process_records(
         entries, notes = manifest_from_rows(rows, rig)
     entries = [replace(e, path="") for e in entries]
     plots_dir = _plots_dir(plots)
+    _refuse_plot_clash(entries, plots_dir, "<memory>")
     results = _run_memory(entries, rig, records, progress, plots_dir)
     return _campaign(results, rig, "<memory>", notes, min_repeats, plots_dir)
+
+
+#: The summary plot of a campaign, beside the records' plots.
+_SUMMARY_PLOT = "conditions.png"
+
+
+def _refuse_plot_clash(entries: Sequence[ManifestEntry], plots_dir: str | None,
+                       source: str) -> None:
+    """Each record's plot, and the summary, get a file name of their own (before any work)."""
+    if plots_dir is None:
+        return
+    from ...base.outputs import check_unique_names
+    from ..plots import plot_name
+
+    check_unique_names([("the summary plot", _SUMMARY_PLOT)]
+                       + [(f"row {e.row} ('{e.file}')", plot_name(e.file)) for e in entries],
+                       what="plots", file=source)
 
 
 def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
@@ -362,7 +382,7 @@ def _summary_plot(camp: ProcessedCampaign, plots_dir: str) -> None:
     from ..plots import plot_conditions
 
     try:
-        plot_conditions(Path(plots_dir) / "conditions.png", camp)
+        plot_conditions(Path(plots_dir) / _SUMMARY_PLOT, camp)
     except Exception as exc:  # noqa: BLE001 - report, do not lose the processing
         camp.notes.append(f"summary plot failed: {type(exc).__name__}: {exc}")
 
