@@ -587,14 +587,15 @@ def _range(f: np.ndarray) -> float:
 def _moving(w: _Work, sub: np.ndarray, x: np.ndarray, level: float,
             cond: dict[str, float]) -> np.ndarray:
     """``sub`` without the still samples at its ends (a slip below a fifth of the sweep's
-    median speed there, its slope over 0.1 s: a dwell, dropped as such)."""
+    median speed there, its slope over 0.1 s, for 3 samples or more: a dwell, dropped as
+    such)."""
     from scipy.signal import savgol_filter
 
     size = max(5, w.samples(0.1) | 1)
     speed = (np.abs(savgol_filter(x, size, 1, deriv=1)) if x.size > size
              else np.abs(np.gradient(x)))
     steady = [(a, b) for a, b in _runs(speed > 0.2 * float(np.median(speed)))
-              if b - a >= size]  # moving for 0.1 s or more, not a noisy sample
+              if b - a >= 3]  # moving for 3 samples or more: not one noisy sample
     if not steady:
         w.drop(sub[0], sub[-1] + 1, "dwell", alpha=level, **cond)
         return sub[:0]
