@@ -9,7 +9,7 @@ each sliding state is the one the node-by-node march picks; its own node-by-node
 (scan + regula falsi), which decides when the sweeps do not settle, is timed as well.
 Printed: CPU milliseconds per load of each, the ratios, the target (<= 5 ms
 per load) and the largest relative difference of the forces against the baseline.
-``tests/test_tyre_brush_march.py`` checks the agreement.
+``tests/tyre/test_tyre_brush_march.py`` checks the agreement.
 
 Run: ``python benchmarks/bench_brush.py [--loads N] [--repeat R]``.
 """

@@ -28,8 +28,8 @@ from scipy.optimize import least_squares
 
 from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
-from frictionlaws.tyre._fit_mf_peak import FittingModel
-from frictionlaws.tyre._fit_mf_stages import CombinedData, predict_fx, predict_fy, predict_mz
+from frictionlaws.tyre.mf.fit.peak import FittingModel
+from frictionlaws.tyre.mf.fit.stages import CombinedData, predict_fx, predict_fy, predict_mz
 from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data, truth_errors
 
 

@@ -94,6 +94,6 @@ plt.show()
 # What the numbers say
 # --------------------
 # The fitted file reproduces the noise-free truth within the percentages in the panel titles
-# (peak-normalised, pure slip, these loads); ``tests/test_tyre_fit_mf_stages.py`` holds the
+# (peak-normalised, pure slip, these loads); ``tests/tyre/test_tyre_fit_mf_stages.py`` holds the
 # same comparison at every load, camber and pressure, combined slip included.
 print({k: f"{100 * v:.2f} %" for k, v in worst.items()})

@@ -6,7 +6,9 @@ Sub-commands:
   (preset, explicit values, a saved fit, or a fit run on the spot);
 * ``thesis``: the thesis' comparison (constant mu against laws fitted to
   ``thesis-steel``) beside its Table 6-2;
-* ``mf``: summary of a Magic Formula property file (.tir or JSON);
+* ``mf``: summary of a Magic Formula property file (.tir or JSON), or every steady-state
+  output at the conditions given (``--kappa``, ``--alpha``, ...: the library's table of
+  inputs, :data:`frictionlaws.tyre.mf.inputs.INPUTS`);
 * ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
   F_x0/F_z curve at one load;
 * ``fit-mf``: fit a Magic Formula property file to tyre test data;
@@ -77,13 +79,17 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     t.add_argument("--json", action="store_true", help="print one JSON object")
 
     m = tsub.add_parser(
-        "mf", help="summary of a Magic Formula property file",
+        "mf", help="summary or steady state of a Magic Formula property file",
         description="Read a Magic Formula property file (ADAMS .tir or JSON) and print its "
-        "version, nominal load, peak friction coefficients and slip stiffnesses.")
+        "version, nominal load, peak friction coefficients and slip stiffnesses; with "
+        "--kappa, --alpha, --gamma, --pressure, --vx (or --outputs, --saturate) every "
+        "steady-state output (forces, moments, radii, stiffnesses...) for each combination "
+        "of the values given.")
     m.add_argument("file", metavar="FILE", help=".tir or .json property file, or a packaged "
                    "example (MagicFormula52, MagicFormula61, MagicFormula62)")
     _load_options(m, default=None)
     _mf_options(m)
+    _steady_state_options(m)
     m.add_argument("--coefficients", action="store_true",
                    help="list the coefficients the version evaluates instead: value (or the "
                         "default taken), SI unit and meaning, from their declarations")
@@ -198,9 +204,48 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
                         "(default) or the published ones")
 
 
+#: The options of the steady state besides the inputs' (``--loads`` gives the load).
+_STEADY_STATE_EXTRA = ("saturate", "outputs")
+#: At most this many rows (combinations of the values given) are evaluated.
+MAX_STEADY_ROWS = 100_000
+
+
+def _steady_state_options(p: argparse.ArgumentParser) -> None:
+    """One option per input of the steady state (the library's table, read without numpy),
+    the load being ``--loads``; ``--saturate`` and ``--outputs``."""
+    from frictionlaws.tyre.mf.inputs import INPUTS
+
+    g = p.add_argument_group(
+        "steady state at given conditions",
+        "with any of these, every steady-state output (or those of --outputs) is printed "
+        "for each combination of the values given (the load: --loads, default FNOMIN)")
+    for name, inp in INPUTS.items():
+        if name == "fz":
+            continue
+        g.add_argument(f"--{name.replace('_', '-')}", metavar="MIN:MAX:N|A,B,C",
+                       help=f"{inp.meaning}: a list or a range {RANGE_HELP}; bare numbers "
+                            f"in {inp.display} (default {inp.default})")
+    g.add_argument("--saturate", action="store_true",
+                   help="clamp the inputs at the file's ranges as MFeval's limit checks do "
+                        "(default: evaluate as given, warning outside them)")
+    g.add_argument("--outputs", metavar="NAME,...",
+                   help="the outputs to print (default: every output the file gives; the "
+                        "names are listed in the tyre page of the guide)")
+
+
+def _steady_state_dests() -> list[str]:
+    from frictionlaws.tyre.mf.inputs import INPUTS
+
+    return [n for n in INPUTS if n != "fz"] + list(_STEADY_STATE_EXTRA)
+
+
+def _steady_state_given(args: argparse.Namespace) -> bool:
+    return any(getattr(args, d, None) not in (None, False) for d in _steady_state_dests())
+
+
 def _mf_file(args: argparse.Namespace) -> Any:
     """The property file read with the Magic Formula conventions chosen (``-``: stdin)."""
-    from frictionlaws.tyre.magic_formula import MagicFormula
+    from frictionlaws.tyre.mf.model import MagicFormula
 
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
@@ -457,10 +502,13 @@ def _run_mf(args: argparse.Namespace) -> int:
     from ._common import refuse_unused
 
     if args.coefficients:  # before reading the file: the listing evaluates no load
-        refuse_unused(args, ("loads", "load_unit"), "with --coefficients")
+        refuse_unused(args, ("loads", "load_unit", *_steady_state_dests()),
+                      "with --coefficients")
     mf = _mf_file(args)
     if args.coefficients:
         return _print_coefficients(mf, args.json)
+    if _steady_state_given(args):
+        return _print_steady_state(mf, args)
     loads = (parse_loads(args.loads, args.load_unit) if args.loads
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
@@ -498,11 +546,84 @@ def _run_mf(args: argparse.Namespace) -> int:
     return 0
 
 
+def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """Every combination of the input values given (SI), one row each, as flat arrays."""
+    import itertools
+
+    import numpy as np
+
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.tyre.mf.inputs import INPUTS
+
+    given: dict[str, Any] = {}
+    for name, inp in INPUTS.items():
+        if name == "fz":
+            given[name] = (parse_loads(args.loads, args.load_unit) if args.loads
+                           else np.array([mf.fnomin]))
+            continue
+        text = getattr(args, name)
+        if text is not None:
+            flag = f"--{name.replace('_', '-')}"
+            given[name] = np.asarray(parse_values(text, inp.quantity, option=flag,
+                                                  unit=inp.display), dtype=float)
+    n = int(np.prod([v.size for v in given.values()]))
+    if n > MAX_STEADY_ROWS:
+        raise InputError(f"{n} combinations of the values given: at most {MAX_STEADY_ROWS} "
+                         "rows are evaluated at once")
+    rows = list(itertools.product(*given.values()))
+    grid = {k: np.array([r[i] for r in rows], dtype=float) for i, k in enumerate(given)}
+    return {**{k: None for k in INPUTS}, "kappa": 0.0, "alpha": 0.0, "gamma": 0.0, **grid}
+
+
+def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
+    """``tyre mf FILE --kappa ...``: every output of the library's table, per row."""
+    from frictionlaws.base import jsonio
+    from frictionlaws.base.errors import InputError
+    from frictionlaws.tyre.mf.outputs import OUTPUTS, evaluate
+
+    names = None
+    if args.outputs is not None:
+        names = [x.strip() for x in args.outputs.split(",") if x.strip()]
+        unknown = [x for x in names if x not in OUTPUTS]
+        if unknown or not names:
+            raise InputError(f"--outputs {args.outputs!r}: unknown output "
+                             f"{', '.join(unknown) or '(none given)'}; the outputs are "
+                             f"{', '.join(OUTPUTS)}")
+    grid = _steady_state_grid(mf, args)
+    res = evaluate(mf, grid["kappa"], grid["alpha"], grid["fz"], grid["gamma"],
+                   grid["pressure"], grid["vx"], saturate=args.saturate, names=names)
+    if args.json:
+        from ._common import shown_source
+
+        out = {"name": mf.name, "source": shown_source(mf.source), "version": mf.version,
+               **res.to_dict(), "notes": list(mf.notes)}
+        print(jsonio.dumps(out))
+        return 0
+    print(f"{mf.name}: Magic Formula {mf.version}, FNOMIN {mf.fnomin:g} N; steady state "
+          "(SI; 'clamped' names an input clamped on the row, whose outputs are at the "
+          "clamped value)")
+    for n in mf.notes:
+        print(f"note: {n}")
+    _print_rows(res.to_dict())
+    return 0  # the warnings reach stderr once, as every command's do
+
+
+def _print_rows(table: dict[str, Any]) -> None:
+    """The rows of a steady state as an aligned text table, units in the header."""
+    cols = [*table["inputs"], *table["outputs"]]
+    units = {**table["inputs"], **table["outputs"]}
+    head = [f"{c} [{units[c]['unit']}]" for c in cols] + ["clamped"]
+    cells = [[f"{r[c]:.6g}" for c in cols] + [",".join(r["clamped"]) or "-"]
+             for r in table["rows"]]
+    width = [max(len(h), *(len(row[i]) for row in cells)) for i, h in enumerate(head)]
+    print("  ".join(h.rjust(w) for h, w in zip(head, width)))
+    for row in cells:
+        print("  ".join(x.rjust(w) for x, w in zip(row, width)))
+
+
 def _print_coefficients(mf: Any, as_json: bool) -> int:
     """``tyre mf --coefficients``: the file's values beside their declarations."""
-    from frictionlaws.tyre.mf_coefficients import listing
-
-    rows = listing(mf.version, mf.coefficients, {**mf.structure, "FNOMIN": mf.fnomin})
+    rows = mf.coefficient_listing()
     if as_json:
         print(json.dumps({"name": mf.name, "version": mf.version, "coefficients": rows},
                          indent=2))
@@ -554,7 +675,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
     from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre.fit_mf import check_tir_path, fit_mf
+    from frictionlaws.tyre.mf.fit import check_tir_path, fit_mf
 
     if args.uncertainty != "sweeps":
         from ._common import refuse_unused
@@ -567,7 +688,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-        from frictionlaws.tyre._fit_mf_plot import check_figure_path
+        from frictionlaws.tyre.mf.fit.plot import check_figure_path
 
         check_figure_path(args.plot)
     from frictionlaws.base.errors import FitError
@@ -607,9 +728,9 @@ def _run_prepare(args: argparse.Namespace) -> int:
 
     from frictionlaws.base.errors import InputError
     from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre._fit_mf_checks import check_plausible
     from frictionlaws.tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
     from frictionlaws.tyre.data.tydex import write_tydex
+    from frictionlaws.tyre.mf.fit.checks import check_plausible
 
     from ._common import data_source, shown_source
 

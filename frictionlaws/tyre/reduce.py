@@ -32,7 +32,9 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import ExtrapolationWarning, InputError
-from .magic_formula import MagicFormula
+from ..fitting import fit as run_fit
+from ..law.registry import get_law
+from .mf.model import MagicFormula
 
 __all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve"]
 
@@ -170,8 +172,6 @@ def reduce_mf(mf: MagicFormula | str, law: str = "pacejka", *, fz: float,
         For a law that is not a slip law or needs other variables, a bad load,
         slip range, point count or side, or an unreadable property file.
     """
-    from ..fitting import fit as run_fit
-
     mf = _as_mf(mf)
     the_law = _slip_law(law)
     fz = _check_request(n, slip_max, fz)
@@ -212,8 +212,6 @@ def _as_mf(mf: MagicFormula | str) -> MagicFormula:
 
 def _slip_law(law: str) -> Any:
     """The registered law ``law``, refused unless it is a slip law of ``s`` (and ``v``)."""
-    from ..law.registry import get_law
-
     the_law = get_law(law)
     if the_law.family != "slip":
         raise InputError(f"law '{the_law.id}' is a {the_law.family} law; a Magic Formula "

@@ -4,8 +4,8 @@
 pressures and cambers it sweeps the slip ratio and the slip angle up and down and runs a
 combined-slip grid; the recorded slips jitter, the load drifts and every force and moment
 carries noise.  :func:`moved_tyre` makes a tyre unlike a template by moving its
-coefficients.  ``tests/test_tyre_fit_mf_stages.py`` and ``benchmarks/bench_fit_mf.py``
-fit :func:`~frictionlaws.tyre.fit_mf.fit_mf` to such data and compare the result with the
+coefficients.  ``tests/tyre/test_tyre_fit_mf_stages.py`` and ``benchmarks/bench_fit_mf.py``
+fit :func:`~frictionlaws.tyre.mf.fit.fit_mf` to such data and compare the result with the
 noise-free truth.
 """
 
@@ -15,8 +15,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from .magic_formula import MagicFormula
-from .tyre_data import TyreData
+from .data.table import TyreData
+from .mf.model import MagicFormula
 
 __all__ = ["rig_data", "moved_tyre", "truth_errors", "MOVED"]
 

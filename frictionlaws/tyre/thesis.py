@@ -24,6 +24,8 @@ from typing import Any
 
 import numpy as np
 
+from ..base.errors import InputError
+from ..fitting import fit
 from .brush import DEFAULT_ANGLES_DEG, BrushModel, BrushTyre, CorneringResult
 
 __all__ = ["TABLE_6_2", "THESIS_LOADS_KN", "ThesisComparison", "thesis_comparison",
@@ -180,8 +182,6 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
         the fit results, the loads [kN], angles [deg] and tyre, ready to be set
         beside Table 6-2 of the thesis (cornering stiffness in kN/deg).
     """
-    from ..fitting import fit
-
     tyre = tyre or BrushTyre()
     loads = np.asarray(loads_kN, dtype=float) * 1000.0
     results: dict[str, CorneringResult] = {}
@@ -195,8 +195,6 @@ def thesis_comparison(*, laws: Sequence[str] = ("thirion",), dataset: Any = "the
         result = fit(law, dataset)
         label = f"{result.law.id} ({name})"
         if label in fits:  # one column per law: a second would replace the first unseen
-            from ..base.errors import InputError
-
             raise InputError(f"laws: '{law}' is law '{result.law.id}', given twice")
         fits[label] = result
         results[label] = BrushModel(result, tyre=tyre).cornering(loads, angles_deg)

@@ -191,7 +191,7 @@ def test_the_list_of_readers_reaches_every_module_that_reads_a_file(
         finally:
             sys.setprofile(None)
     missing = _byte_readers() - reached
-    assert "frictionlaws.tyre.tir" in _byte_readers()
+    assert "frictionlaws.tyre.mf.tir" in _byte_readers()
     assert not missing, f"modules that read files but no entry of READERS reaches: {missing}"
 
 
@@ -280,7 +280,7 @@ TEXT = {"NAME", "LAW", "LAW,...", "A,B,...", "COL=NAME,...", "COL=UNIT,...", "SE
         "COLUMN[,COLUMN]", "NAME[,NAME]", "UNIT", "SYSTEM", "VAR=lin|log,...", "ADDRESS",
         "SHELL", "law", "family", "weights", "uncertainty", "boot_interval", "progress",
         "format", "sign_convention", "slip_angle", "friction_scaling", "loads_above_fzmax",
-        "equations", "side", "case", "pressure_shape"}
+        "equations", "side", "case", "pressure_shape", "outputs"}
 #: Files read, and files or folders written, by destination.
 INPUTS = {"params", "fit", "data", "template", "rig", "manifest", "file", "name", "raw"}
 OUTPUTS = {"out", "save", "plot", "output", "records_out"}

@@ -116,7 +116,7 @@ def test_a_shared_fit_has_no_resampling_and_refuses_one() -> None:
 def _sweeps(per: int):
     """Pure-slip sweeps of a rig at two loads, up and down (``per=2``) or up only (1)."""
     from frictionlaws.tyre import MagicFormula
-    from frictionlaws.tyre._fit_mf_bootstrap import find_sweeps
+    from frictionlaws.tyre.mf.fit.bootstrap import find_sweeps
     from frictionlaws.tyre.synthetic_rig import rig_data
 
     data = rig_data(MagicFormula.from_file("MagicFormula61"), n=9, loads=(0.5, 1.0),
@@ -141,7 +141,7 @@ def test_one_sweep_per_load_is_refused_before_any_fit_naming_the_reason(
 
 
 def test_two_sweeps_per_load_are_resampled(tmp_path: Path) -> None:
-    from frictionlaws.tyre._fit_mf_bootstrap import check_can_resample
+    from frictionlaws.tyre.mf.fit.bootstrap import check_can_resample
 
     assert [len(s) for s in check_can_resample(_sweeps(per=2))] == [2, 2, 2, 2]
 

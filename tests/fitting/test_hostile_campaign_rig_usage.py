@@ -227,7 +227,7 @@ def test_data_that_stop_before_the_peak_give_a_plausible_tyre_and_a_warning(
     import numpy as np
 
     from frictionlaws.tyre import MagicFormula
-    from frictionlaws.tyre._fit_mf_peak import PEAK_MU
+    from frictionlaws.tyre.mf.fit.peak import PEAK_MU
 
     data = _below_the_peak_csv(tmp_path / "forces.csv")
     out = tmp_path / "fitted.tir"
@@ -256,7 +256,7 @@ def test_data_that_stop_before_the_peak_give_a_plausible_tyre_and_a_warning(
 def test_the_peak_penalty_is_zero_inside_the_physical_range_only(mu: float, fz: float) -> None:
     import numpy as np
 
-    from frictionlaws.tyre._fit_mf_peak import PEAK_MU, peak_penalty
+    from frictionlaws.tyre.mf.fit.peak import PEAK_MU, peak_penalty
 
     pen = float(peak_penalty(np.array([mu]), np.array([fz]))[0])
     assert np.isfinite(pen) and pen >= 0

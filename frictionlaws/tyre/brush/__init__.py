@@ -52,7 +52,7 @@ rejected: a bristle only knows its pressure and sliding speed.
 Sign convention: forces have the sign of the slip (``Fy`` has the sign of
 ``alpha``, ``Fx`` of ``kappa``), as in Pacejka's brush-model chapter, so the
 cornering stiffness is positive.  (ISO/TYDEX property files give the
-opposite sign for Fy; see :mod:`frictionlaws.tyre.magic_formula`.)
+opposite sign for Fy; see :mod:`frictionlaws.tyre.mf.model`.)
 
 Contact length and pressure
 ---------------------------

@@ -10,22 +10,25 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from scipy.linalg.lapack import dtbtrs
 
 from ...base.errors import DomainError, ExtrapolationWarning, InputError
 from ...law import VARIABLES, Law
+from ...law.bound import as_bound
+from ...law.registry import get_law
 from .result import CorneringResult
 from .tyre import (
-    _LOCAL_VARIABLES,
-    _SCAN,
     BISECTION_STEPS,
     DEFAULT_ANGLES_DEG,
+    LOCAL_VARIABLES,
     NEWTON_SWEEPS,
     ORIGIN_STEP,
     SLIDING_SPEEDS,
+    SLIP_SCAN,
     SWEEP_TOL,
     TIP_STEPS,
     BrushTyre,
-    _positive_load,
+    positive_load,
 )
 
 __all__ = ["BrushModel"]
@@ -102,8 +105,6 @@ class BrushModel:
             if params is not None or preset is not None:
                 raise InputError("give either a bound law (or fit result) or params/preset, "
                                  "not both")
-            from ...law.bound import as_bound
-
             bound = as_bound(law)
             self.fitted_ranges = dict(bound.fitted_ranges)
             params = bound.values
@@ -125,10 +126,8 @@ class BrushModel:
     def _use_law(self, law: str | Law, params: Mapping[str, float] | None,
                  preset: str | None) -> None:
         """Take a registered law of p and/or v, with its parameter values, as the limit."""
-        from ...law.registry import get_law
-
         self.law = get_law(law)
-        extra = [v for v in self.law.variables if v not in _LOCAL_VARIABLES]
+        extra = [v for v in self.law.variables if v not in LOCAL_VARIABLES]
         if extra or self.law.family != "sliding":
             what = ", ".join(f"{v} ({VARIABLES[v].meaning})" for v in extra)
             raise DomainError(
@@ -308,8 +307,6 @@ class BrushModel:
         None when it does not converge or when :meth:`_local_state_ok` rejects the
         result, so that the node-by-node march decides.
         """
-        from scipy.linalg.lapack import dtbtrs
-
         n_slips, n = d.size, p.size - 1
         pk = np.tile(p[1:], n_slips)  # flat over (slip, node)
         ls = np.tile(l_static[1:], n_slips)
@@ -382,7 +379,7 @@ class BrushModel:
                         rate: np.ndarray, c: float) -> bool:
         """Whether the sweeps' sliding states are those the node-by-node march picks.
 
-        That march takes the first point of the log grid :data:`_SCAN` of
+        That march takes the first point of the log grid :data:`SLIP_SCAN` of
         ``x = (a - q)/a`` where the limit holds and the root between it and the point
         before; the state at ``x = speed/(rate a)`` must lie in that interval (it always
         does when the limit does not fall with speed: the root is then unique), and mu
@@ -390,11 +387,11 @@ class BrushModel:
         """
         if a.size == 0:
             return True
-        lim = self._limit(pk[:, None], (rate * a)[:, None] * _SCAN[None, :], c, check=False)
-        below = (a[:, None] * (1.0 - _SCAN[None, :])) <= lim
+        lim = self._limit(pk[:, None], (rate * a)[:, None] * SLIP_SCAN[None, :], c, check=False)
+        below = (a[:, None] * (1.0 - SLIP_SCAN[None, :])) <= lim
         first = np.argmax(below, axis=1)
-        upper = _SCAN[first]
-        lower = np.where(first > 0, _SCAN[np.maximum(first - 1, 0)], 0.0)
+        upper = SLIP_SCAN[first]
+        lower = np.where(first > 0, SLIP_SCAN[np.maximum(first - 1, 0)], 0.0)
         x = speed / (rate * a)
         mu = np.asarray(self.mu(pk, speed), float)
         return bool(np.all(below[np.arange(a.size), first]) and np.all(x <= upper * (1 + 1e-9))
@@ -440,9 +437,9 @@ class BrushModel:
         never leaving the bracket) to :data:`BISECTION_STEPS` halvings of the bracket;
         the returned x is the end of the final bracket where the limit holds.
         """
-        x = _SCAN[None, :]
+        x = SLIP_SCAN[None, :]
         lim = np.broadcast_to(self._limit(pk, (vrs * qs / ds)[:, None] * x, c, check=False),
-                              (qs.size, _SCAN.size))
+                              (qs.size, SLIP_SCAN.size))
         below = (qs[:, None] * (1.0 - x)) <= lim
         first = np.argmax(below, axis=1)
         rows = np.arange(qs.size)
@@ -454,10 +451,10 @@ class BrushModel:
                 f"p = {pk / 1e6:.4g} MPa: the law falls with sliding speed there "
                 "(velocity weakening) or turns negative, so the local-speed steady "
                 "state does not exist; use sliding_speed='slip'")
-        hi = _SCAN[first]
+        hi = SLIP_SCAN[first]
         g_hi = qs * (1.0 - hi) - lim[rows, first]
         prev = np.maximum(first - 1, 0)
-        lo = np.where(first > 0, _SCAN[prev], 0.0)
+        lo = np.where(first > 0, SLIP_SCAN[prev], 0.0)
         g_lo = np.where(first > 0, qs * (1.0 - lo) - lim[rows, prev], qs - l_static)
         return self._illinois(pk, qs, vrs, ds, c, (lo, hi, g_lo, g_hi))
 
@@ -522,7 +519,7 @@ class BrushModel:
         DomainError
             When the law gives no usable friction limit inside the patch.
         """
-        fz = _positive_load(fz)
+        fz = positive_load(fz)
         alpha = np.asarray(alpha, dtype=float)
         if not np.all(np.isfinite(alpha)) or np.any(np.abs(alpha) >= math.pi / 2):
             raise InputError("slip angles must be finite and strictly between -90 and 90 "
@@ -562,7 +559,7 @@ class BrushModel:
         DomainError
             When the law gives no usable friction limit inside the patch.
         """
-        fz = _positive_load(fz)
+        fz = positive_load(fz)
         kappa = np.asarray(kappa, dtype=float)
         if not np.all(np.isfinite(kappa)):
             raise InputError("slip ratios must be finite")
@@ -613,7 +610,7 @@ class BrushModel:
         InputError
             For a bad load, ``kappa <= -1`` or an unknown ``direction``.
         """
-        fz = _positive_load(fz)
+        fz = positive_load(fz)
         if direction == "y":
             sigma, c, vr = abs(math.tan(slip)), self.tyre.c_py, self.tyre.speed
         elif direction == "x":
@@ -659,7 +656,7 @@ class BrushModel:
         if loads.size == 0:
             raise InputError("no loads given")
         for fz in loads:
-            _positive_load(fz)
+            positive_load(fz)
         angles = np.atleast_1d(np.asarray(angles_deg, dtype=float))
         if angles.size == 0 or np.any(~np.isfinite(angles)) or np.any(angles <= 0) or np.any(
                 angles >= 90):

@@ -15,7 +15,8 @@ from ...base.errors import InputError
 
 __all__ = ["DEFAULT_ANGLES_DEG", "PRESSURE_SHAPES", "CONTACT_MODELS", "SLIDING_SPEEDS",
            "ORIGIN_STEP", "BISECTION_STEPS", "NEWTON_SWEEPS", "TIP_STEPS", "SWEEP_TOL",
-           "DEFAULT_C_PY", "TYRE_LIMITS", "BrushTyre"]
+           "DEFAULT_C_PY", "TYRE_LIMITS", "BrushTyre", "SLIP_SCAN", "LOCAL_VARIABLES",
+           "positive_load"]
 
 
 #: The slip angles of the thesis' FE cornering runs [deg].
@@ -52,17 +53,17 @@ SWEEP_TOL = 1e-13
 
 
 #: Scan grid of x = (q_a - q)/q_a for the slowest sliding solution (sliding_speed="local").
-_SCAN = np.geomspace(1e-9, 1.0, 60)
+SLIP_SCAN = np.geomspace(1e-9, 1.0, 60)
 
 
 #: Allowed variables of a law used as the local friction limit.
-_LOCAL_VARIABLES = ("p", "v")
+LOCAL_VARIABLES = ("p", "v")
 
 
 #: Lateral tread stiffness per unit length of patch of the default tyre [N/m^2].
 #: Chosen so that, with constant mu = 0.9 and the default patch, the secant
 #: cornering stiffness over 1-3 deg at 4 kN equals the thesis' FE value
-#: (Table 6-2: 0.890 kN/deg); see tests/test_tyre_brush.py.
+#: (Table 6-2: 0.890 kN/deg); see tests/tyre/test_tyre_brush.py.
 DEFAULT_C_PY = 8.49e6
 
 
@@ -169,7 +170,7 @@ class BrushTyre:
             gives a non-positive length, or when ``"sqrt"`` or ``"deflection"``
             gives a longer than the tyre radius.
         """
-        fz = _positive_load(fz)
+        fz = positive_load(fz)
         if callable(self.contact):
             a = float(self.contact(fz))
             if not (math.isfinite(a) and a > 0):
@@ -213,7 +214,7 @@ class BrushTyre:
         InputError
             For a bad load or a pressure shape function that is not usable.
         """
-        fz = _positive_load(fz)
+        fz = positive_load(fz)
         n = nodes or self.nodes
         a = self.half_length(fz)
         s = np.linspace(0.0, 2 * a, n + 1)
@@ -246,7 +247,7 @@ class BrushTyre:
         float
             Mean contact pressure [Pa].
         """
-        return _positive_load(fz) / (2 * self.half_length(fz) * self.width)
+        return positive_load(fz) / (2 * self.half_length(fz) * self.width)
 
     def describe(self) -> dict[str, Any]:
         """Return the tyre's parameters as a JSON-able dict.
@@ -268,7 +269,8 @@ class BrushTyre:
         return out
 
 
-def _positive_load(fz: Any) -> float:
+def positive_load(fz: Any) -> float:
+    """The vertical load ``fz`` [N] as a float, refused unless a positive finite number."""
     try:
         value = float(fz)
     except (TypeError, ValueError):

@@ -1,7 +1,7 @@
 """Tyre test data as it comes: tidy CSV tables, TYDEX files and raw rig runs.
 
 Every reader gives :class:`TyreData` (SI units, ISO-W axes), which
-:func:`frictionlaws.tyre.fit_mf` fits:
+:func:`frictionlaws.tyre.mf.fit.staged.fit_mf` fits:
 
 * :func:`read_tyre_data`: a tidy CSV table with units in its headers
   (:mod:`~frictionlaws.tyre.data.table`; :func:`write_tyre_csv` writes one);

@@ -23,6 +23,11 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import InputError
+from ...base.limits import read_input
+from ...base.outputs import check_input_file
+from ...base.sanitize import split_lines
+from ...base.units import parse_unit, to_si, unit_registry
+from ...io import decode_text
 
 __all__ = ["KINDS", "TYDEX_CHANNELS", "TYDEX_OTHER_AXES", "RAW_CHANNELS", "MEANINGS",
            "unit_text", "convert", "read_lines", "MAX_LINE_CHARS", "MAX_CORNERING_COEFFICIENT",
@@ -143,8 +148,6 @@ def convert(values: Any, unit: str, quantity: str, *, file: str | None = None,
         An unknown unit, one of another dimension, an angle without its unit or in a unit
         that is no angle (``%``, ``-``).
     """
-    from ...base.units import parse_unit, to_si, unit_registry
-
     kind = KINDS[quantity]
     text = unit_text(unit, kind)
     try:
@@ -191,11 +194,6 @@ def read_lines(path: str | Path, what: str) -> tuple[list[str], list[str]]:
     InputError
         A missing, unreadable, binary or over-long file, or an over-long line.
     """
-    from ...base.limits import read_input
-    from ...base.outputs import check_input_file
-    from ...base.sanitize import split_lines
-    from ...io import decode_text
-
     source = str(path)
     check_input_file(path, what)
     text, note = decode_text(read_input(path, what, source), source, what)

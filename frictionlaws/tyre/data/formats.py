@@ -27,7 +27,11 @@ from pathlib import Path
 import numpy as np
 
 from ...base.errors import InputError
-from .table import TyreData, join
+from ...base.outputs import check_input_file
+from .raw_run import load_raw_run, raw_layout
+from .segments import prepare_run
+from .table import TyreData, join, read_tyre_data
+from .tydex import is_tydex, read_tydex
 
 __all__ = ["FORMATS", "DEFAULT_AXES", "detect_format", "read_tyre_file", "read_tyre_files",
            "ReadFile", "MAX_FILES", "LOAD_RATIO", "PRESSURE_RATIO", "ANGLE_RATIO"]
@@ -72,10 +76,6 @@ def detect_format(path: str | Path) -> str:
     -------
     str
     """
-    from ...base.outputs import check_input_file
-    from .raw_run import raw_layout
-    from .tydex import is_tydex
-
     check_input_file(path, "tyre data file")
     try:
         with open(path, "rb") as fh:
@@ -111,11 +111,6 @@ def read_tyre_file(path: str | Path, *, sign_convention: str | None = None,
     -------
     ReadFile
     """
-    from .raw_run import load_raw_run
-    from .segments import prepare_run
-    from .table import read_tyre_data
-    from .tydex import read_tydex
-
     kind = format or detect_format(path)
     if kind not in FORMATS:
         raise InputError(f"format {kind!r} is not known; expected one of "

@@ -15,6 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from ...base.outputs import atomic_write
+from ...io import output_dir
 from .segments import REASONS, PreparedRun
 
 __all__ = ["plot_segments", "plot_sweeps", "write_plots", "PLOT_FILES", "MAX_PLOTTED"]
@@ -129,8 +131,6 @@ def write_plots(prepared: PreparedRun, directory: str | Path) -> list[Path]:
     """
     import matplotlib.pyplot as plt
 
-    from ...base.outputs import atomic_write
-    from ...io import output_dir
 
     out = output_dir(directory, "plot directory")
     written = []

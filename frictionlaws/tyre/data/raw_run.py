@@ -45,7 +45,15 @@ import numpy as np
 
 from ...base.errors import Argument, InputError
 from ...base.numbers import parse_number
-from .channels import KINDS, MEANINGS, RAW_CHANNELS, convert, read_lines
+from .channels import (
+    KINDS,
+    MAX_CORNERING_COEFFICIENT,
+    MAX_SLIP_COEFFICIENT,
+    MEANINGS,
+    RAW_CHANNELS,
+    convert,
+    read_lines,
+)
 from .table import check_sign_convention, to_iso_axes
 
 __all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS"]
@@ -332,8 +340,6 @@ def _refuse_unit(run: RawRun, q: str, message: str, where: np.ndarray) -> None:
 def _check_units(run: RawRun) -> None:
     """Slips, forces and moments against what tyres do (the bounds of a fit's checks): a unit
     that is wrong by a factor would otherwise shrink or blow up the sweeps."""
-    from .channels import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
-
     q = run.quantities
     fz = q["fz"]
     loaded = fz > 0.1 * np.percentile(fz, 95)

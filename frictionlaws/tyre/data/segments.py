@@ -35,6 +35,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from scipy.ndimage import median_filter
+from scipy.signal import savgol_filter
 
 from ...base.errors import InputError
 from .raw_run import RawRun
@@ -213,7 +215,6 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 def _smooth(x: np.ndarray, size: int) -> np.ndarray:
-    from scipy.ndimage import median_filter
 
     if size < 3 or not np.all(np.isfinite(x)):
         return x.copy()
@@ -589,8 +590,6 @@ def _moving(w: _Work, sub: np.ndarray, x: np.ndarray, level: float,
     """``sub`` without the still samples at its ends (a slip below a fifth of the sweep's
     median speed there, its slope over 0.1 s, for 3 samples or more: a dwell, dropped as
     such)."""
-    from scipy.signal import savgol_filter
-
     size = max(5, w.samples(0.1) | 1)
     speed = (np.abs(savgol_filter(x, size, 1, deriv=1)) if x.size > size
              else np.abs(np.gradient(x)))
@@ -801,8 +800,6 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
 
 def _rates(w: _Work) -> None:
     """d/dt of Fx, Fy, Mz: Savitzky-Golay (quadratic) over :data:`DERIVATIVE_S` s."""
-    from scipy.signal import savgol_filter
-
     size = max(3, w.samples(DERIVATIVE_S) | 1)
     for k in ("fx", "fy", "mz"):
         if k in w.q:

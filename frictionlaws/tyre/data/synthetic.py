@@ -25,8 +25,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from scipy.signal import lfilter
 
-from ..magic_formula import MagicFormula
+from ...base.errors import InputError
+from ...base.outputs import atomic_write, check_outputs
+from ..mf.model import MagicFormula
 from .table import TyreData
 
 __all__ = ["RawRunSpec", "SyntheticRun", "synthetic_raw_run", "sweep_data", "COLD_GRIP",
@@ -103,8 +106,6 @@ class SyntheticRun:
 
     def write(self, path: str | Path, delimiter: str = "\t") -> Path:
         """Write :meth:`text` to ``path`` (atomically, checked as an output)."""
-        from ...base.outputs import atomic_write, check_outputs
-
         check_outputs([path])
         with atomic_write(path) as fh:
             fh.write(self.text(delimiter))
@@ -185,8 +186,6 @@ def _timeline(truth: MagicFormula, spec: RawRunSpec) -> dict[str, np.ndarray]:
 def _lagged(x: np.ndarray, lag: float, rate: float) -> np.ndarray:
     """``x`` through a first-order lag of time constant ``lag`` [s]: tau dy/dt + y = x,
     solved exactly for ``x`` linear between samples."""
-    from scipy.signal import lfilter
-
     if lag <= 0:
         return x
     a = math.exp(-1.0 / (lag * rate))
@@ -312,8 +311,6 @@ def sweep_data(truth: MagicFormula, kind: str, *, loads: Sequence[float] = (0.4,
     -------
     TyreData
     """
-    from ...base.errors import InputError
-
     if kind not in ("lateral", "longitudinal", "combined"):
         raise InputError(f"kind must be lateral, longitudinal or combined, got {kind!r}")
     rng = np.random.default_rng(seed)

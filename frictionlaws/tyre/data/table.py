@@ -42,6 +42,10 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import Argument, InputError
+from ...base.outputs import atomic_write, check_outputs
+from ...base.sanitize import comment_lines
+from ...base.units import from_si
+from ...io import _to_float, read_table, split_header
 from .channels import KINDS, convert
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS", "to_iso_axes",
@@ -227,7 +231,6 @@ _LOADED_SLIP = "sr"
 
 def _column_index(headers: list[str], source: str, notes: list[str]
                   ) -> dict[str, tuple[int, str | None]]:
-    from ...io import split_header
 
     found: dict[str, tuple[int, str | None]] = {}
     loaded: tuple[int, str | None] | None = None
@@ -271,8 +274,6 @@ def _loaded_slip(found: dict[str, tuple[int, str | None]], loaded: tuple[int, st
 
 def _cells(table: Any, j: int) -> np.ndarray:
     """The numbers of column ``j`` (NaN for a blank), refusing text with its row."""
-    from ...io import _to_float
-
     values = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
         v = _to_float(cell, table.decimal_comma)
@@ -304,8 +305,6 @@ EXTRA_COLUMNS = {"sweep": "a label per sweep", "direction": "+1 up, -1 down",
 
 def _extra_columns(table: Any) -> dict[str, np.ndarray]:
     """The :data:`EXTRA_COLUMNS` of the file (``time`` in SI), each complete."""
-    from ...io import split_header
-
     out: dict[str, np.ndarray] = {}
     for j, h in enumerate(table.headers):
         name, unit = split_header(h)
@@ -342,8 +341,6 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     InputError
         Naming the file, column and row of what cannot be used.
     """
-    from ...io import read_table, split_header
-
     check_sign_convention(sign_convention)
     source = str(path)
     table = read_table(path, header_hint="'Fz [N],kappa [-],alpha [deg],Fx [N],Fy [N]'",
@@ -447,9 +444,6 @@ def tyre_csv_text(data: TyreData, comments: Sequence[str] = ()) -> str:
     -------
     str
     """
-    from ...base.sanitize import comment_lines
-    from ...base.units import from_si
-
     cols = [c for c in COLUMNS if c in ("fz", "kappa", "alpha", "gamma")
             or np.isfinite(getattr(data, c)).any()]
     header = [f"{_CSV_NAMES[c]} [{CSV_UNITS[c]}]" for c in cols]
@@ -479,8 +473,6 @@ def write_tyre_csv(data: TyreData, path: str | Path, comments: Sequence[str] = (
     -------
     Path
     """
-    from ...base.outputs import atomic_write, check_outputs
-
     check_outputs([path], inputs=list(data.files) or [data.source])
     text = tyre_csv_text(data, comments)
     with atomic_write(path) as fh:

@@ -46,9 +46,21 @@ from pathlib import Path
 
 import numpy as np
 
+from ... import __version__
 from ...base.errors import InputError
 from ...base.numbers import parse_number
-from .channels import KINDS, MEANINGS, TYDEX_CHANNELS, TYDEX_OTHER_AXES, convert, read_lines
+from ...base.outputs import atomic_write, check_outputs
+from ...base.sanitize import ascii_line
+from ...base.units import from_si
+from .channels import (
+    KINDS,
+    MEANINGS,
+    TYDEX_CHANNELS,
+    TYDEX_OTHER_AXES,
+    convert,
+    read_lines,
+    unit_text,
+)
 from .table import COLUMNS, TyreData, check_sign_convention, to_iso_axes
 
 __all__ = ["TydexChannel", "TydexConstant", "TydexFile", "load_tydex", "read_tydex",
@@ -460,14 +472,11 @@ def read_tydex(path: str | Path, *, sign_convention: str = "iso") -> TyreData:
 
 def _comment(text: str) -> str:
     """A comment line that cannot open a section: one ASCII line, not starting with ``*``."""
-    from ...base.sanitize import ascii_line
-
     line = ascii_line(text).rstrip()
     return f"- {line}" if line.lstrip().startswith(("*", "!")) else line
 
 
 def _line(name: str, description: str, unit: str, value: str) -> str:
-    from ...base.sanitize import ascii_line
 
     return (f"{name:<10}{ascii_line(description)[:29]:<30}{ascii_line(unit)[:9]:<10}"
             f"{value}").rstrip()
@@ -500,9 +509,6 @@ def tydex_text(data: TyreData, *, measid: str | None = None, comments: Sequence[
     -------
     str
     """
-    from ... import __version__
-    from ...base.units import from_si
-
     units = {**TYDEX_UNITS, **(units or {})}
     factors = dict(factors or {})
     for q, f in factors.items():
@@ -536,7 +542,6 @@ def tydex_text(data: TyreData, *, measid: str | None = None, comments: Sequence[
 
 
 def _grammar(unit: str, q: str) -> str:
-    from .channels import unit_text
 
     return unit_text(unit, KINDS[q])
 
@@ -560,8 +565,6 @@ def write_tydex(data: TyreData, path: str | Path, **options: object) -> Path:
     -------
     Path
     """
-    from ...base.outputs import atomic_write, check_outputs
-
     check_outputs([path], inputs=list(data.files) or [data.source])
     text = tydex_text(data, **options)  # type: ignore[arg-type]
     with atomic_write(path) as fh:

@@ -1,0 +1,282 @@
+"""One tyre's Magic Formula parameters, checked once: the view the equations read.
+
+:class:`MFParameters` takes the coefficients, the nominal load, the version and the
+conventions of one tyre (from a property file, or given in code), checks them once (a
+value outside its declared bounds, an unknown version or convention, a pressure that is
+not a positive number of Pa, a structure entry outside its bounds) and then holds what
+the equations need: the checked coefficients read through a
+:class:`~frictionlaws.tyre.mf.coefficients.CoefficientView` (``p.c.PCX1``), the nominal
+load F'z0 = FNOMIN LFZO, the friction scaling LMU', the file's structure (radii,
+stiffnesses, speeds: :meth:`MFParameters.need`) and validity ranges.  It also checks the
+inputs of an evaluation (:meth:`MFParameters.check`, :meth:`MFParameters.warn_range`,
+:meth:`MFParameters.dpi`) and the peak friction the equations compute
+(:meth:`MFParameters.check_peak`).
+
+:class:`~frictionlaws.tyre.mf.model.MagicFormula` is one; the equations
+(:mod:`~frictionlaws.tyre.mf.equations`, :mod:`~frictionlaws.tyre.mf.moments`,
+:mod:`~frictionlaws.tyre.mf.vertical`) are plain functions of it.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ...base.errors import ExtrapolationWarning, InputError
+from ...law import MU_MAX
+from .coefficients import CoefficientView, check_values, checked_coefficients, unused_terms
+
+__all__ = ["MFParameters", "MF_VERSIONS", "SLIP_ANGLE_INPUTS", "FRICTION_SCALINGS",
+           "LOADS_ABOVE_FZMAX", "EQUATIONS", "A_MU", "CONVENTIONS", "check_conventions",
+           "POSITIVE_STRUCTURE", "peak_cause"]
+
+MF_VERSIONS = ("5.2", "6.1", "6.2")
+#: Degressive friction-scaling constant A_mu of MF 6.1.
+A_MU = 10.0
+
+#: How the slip angle enters the lateral curve: ``tan_alpha`` (the book's alpha*,
+#: MFeval useMode +20 "include alpha_star") or ``alpha`` (MFeval "revoke alpha_star",
+#: several PAC2002 codes).
+SLIP_ANGLE_INPUTS = ("tan_alpha", "alpha")
+#: Friction scaling of MF 6.x: ``linear`` (LMU' = LMU, i.e. A = 1: MFeval 4.0) or
+#: ``degressive`` (LMU' = A LMU / (1 + (A - 1) LMU), A = 10: Pacejka 2012, eq. 4.E8).
+FRICTION_SCALINGS = ("linear", "degressive")
+#: Loads above ``FZMAX``: ``extrapolate`` (the equations at the given load, with a
+#: warning) or ``clamp`` (evaluated at FZMAX, as MFeval's limit checks do).
+LOADS_ABOVE_FZMAX = ("extrapolate", "clamp")
+#: Where MFeval 4.0 departs from the published equations: ``mfeval`` (its forms, which
+#: its authors matched to TNO's evaluator) or ``published`` (the book and the MF-Tyre
+#: 5.2 manual).  See :mod:`frictionlaws.tyre.mf.model`.
+EQUATIONS = ("mfeval", "published")
+#: The conventions, each an option of the model: name -> its values (default first).
+CONVENTIONS: dict[str, tuple[str, ...]] = {
+    "slip_angle": SLIP_ANGLE_INPUTS, "friction_scaling": FRICTION_SCALINGS,
+    "loads_above_fzmax": LOADS_ABOVE_FZMAX, "equations": EQUATIONS}
+#: Structure entries that are lengths or speeds of a real tyre: positive.
+POSITIVE_STRUCTURE = frozenset({"UNLOADED_RADIUS", "LONGVL", "WIDTH"})
+
+
+def check_conventions(version: str, source: str, **conventions: str) -> None:
+    """Refuse an unknown version or convention, naming the allowed values."""
+    if version not in MF_VERSIONS:
+        raise InputError(f"unknown Magic Formula version {version!r}; expected one of "
+                         f"{', '.join(MF_VERSIONS)}", file=source)
+    for what, value in conventions.items():
+        allowed = CONVENTIONS[what]
+        if value not in allowed:
+            raise InputError(f"{what} must be one of {', '.join(allowed)}, got {value!r}",
+                             file=source)
+
+
+def _positive_or_none(value: float | None, what: str, source: str) -> float | None:
+    """A pressure [Pa]: None, or a positive finite number."""
+    if value is None:
+        return None
+    x = float(value)
+    if not (math.isfinite(x) and x > 0):
+        raise InputError(f"{what} must be a positive number of Pa, got {x:g}", file=source)
+    return x
+
+
+def peak_cause(limits: Mapping[str, tuple[float, float]], fz: float, gamma: float,
+               pressure: float | None) -> str:
+    """The likely cause of a peak friction that is none: the input outside the file's
+    validity range (load, then camber, then pressure), else the coefficients."""
+    def outside(name: str, x: float) -> tuple[float, float] | None:
+        lim = limits.get(name)
+        return lim if lim is not None and not lim[0] <= x <= lim[1] else None
+
+    lim = outside("fz", fz)
+    if lim is not None:
+        return (f"the load F_z = {fz:g} N lies outside the file's FZMIN..FZMAX "
+                f"{lim[0]:g}..{lim[1]:g} N: too far an extrapolation (check the load "
+                "and its unit)")
+    lim = outside("gamma", gamma)
+    if lim is not None or abs(gamma) > 0.5:
+        shown = f" {lim[0]:g}..{lim[1]:g} rad" if lim is not None else ""
+        return (f"the camber {gamma:g} rad ({math.degrees(gamma):.4g} deg) lies outside "
+                f"the file's range{shown}: degrees passed as radians?")
+    if pressure is not None and outside("pressure", pressure) is not None:
+        return "check the inflation pressure against the file's range"
+    return "check the PD*/LMU* coefficients and the inflation pressure"
+
+
+class MFParameters:
+    """The checked parameters of one tyre's Magic Formula (see the module notes).
+
+    The parameters are those of :class:`~frictionlaws.tyre.mf.model.MagicFormula`, which
+    documents them.
+    """
+
+    def __init__(self, coefficients: Mapping[str, float], *, fnomin: float,
+                 version: str = "5.2", pressure: float | None = None,
+                 nominal_pressure: float | None = None,
+                 limits: Mapping[str, tuple[float, float]] | None = None,
+                 name: str = "", source: str = "<memory>",
+                 notes: list[str] | None = None, slip_angle: str = "tan_alpha",
+                 friction_scaling: str = "linear",
+                 loads_above_fzmax: str = "extrapolate", equations: str = "mfeval",
+                 structure: Mapping[str, float] | None = None) -> None:
+        check_conventions(version, source, slip_angle=slip_angle,
+                          friction_scaling=friction_scaling,
+                          loads_above_fzmax=loads_above_fzmax, equations=equations)
+        self.equations = equations
+        self.slip_angle = slip_angle
+        self.friction_scaling = friction_scaling
+        self.loads_above_fzmax = loads_above_fzmax
+        self.coefficients, read = checked_coefficients(coefficients, fnomin, source)
+        self.fnomin = float(fnomin)
+        self.version = version
+        self.pressure = _positive_or_none(pressure, "the inflation pressure", source)
+        self.nominal_pressure = _positive_or_none(nominal_pressure,
+                                                  "the nominal inflation pressure", source)
+        self.limits = dict(limits or {})
+        self.structure = {k.upper(): float(v) for k, v in (structure or {}).items()}
+        check_values(self.structure, source)
+        self.name = name
+        self.source = source
+        self.notes = list(notes or [])
+        self.notes += [n for n in read + unused_terms(version, self.coefficients,
+                                                       self.nominal_pressure is not None)
+                       if n not in self.notes]
+        if self.pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self.no_pressure_terms(), UserWarning, stacklevel=2)
+        if self.c.LFZO <= 0:
+            raise InputError("LFZO must be positive", file=source)
+        self.six = version.startswith("6")
+        if loads_above_fzmax == "clamp" and "fz" not in self.limits:
+            self.notes.append("loads_above_fzmax = clamp, but the file gives no FZMAX: "
+                              "loads are not clamped")
+
+    @property
+    def c(self) -> CoefficientView:
+        """The coefficients by attribute (``p.c.PCX1``): given, else the declared default."""
+        return CoefficientView(self.coefficients)
+
+    @property
+    def fz0(self) -> float:
+        """The nominal load the coefficients refer to, F'z0 = FNOMIN LFZO [N]."""
+        return self.fnomin * self.c.LFZO
+
+    @property
+    def lmux(self) -> float:
+        """The friction scaling factor LMUX."""
+        return self.c.LMUX
+
+    @property
+    def lmuy(self) -> float:
+        """The friction scaling factor LMUY."""
+        return self.c.LMUY
+
+    @property
+    def lmux_prime(self) -> float:
+        """LMU'x, the friction scaling of the vertical shifts (``friction_scaling``)."""
+        return self._prime(self.lmux)
+
+    @property
+    def lmuy_prime(self) -> float:
+        """LMU'y, the friction scaling of the vertical shifts (``friction_scaling``)."""
+        return self._prime(self.lmuy)
+
+    def _prime(self, lmu: float) -> float:
+        a_mu = A_MU if self.friction_scaling == "degressive" else 1.0
+        return a_mu * lmu / (1 + (a_mu - 1) * lmu) if self.six else lmu
+
+    def need(self, key: str, default: float | None = None) -> float:
+        """A structure entry of the file (SI), or ``default``.
+
+        Raises
+        ------
+        InputError
+            When the file lacks it and there is no default, or a radius, width or speed
+            is not positive (a zero radius gives zero moments).
+        """
+        if key in self.structure:
+            value = self.structure[key]
+            if key in POSITIVE_STRUCTURE and not value > 0:
+                raise InputError(f"{key} = {value:g} (SI) must be positive for the moments "
+                                 "and radii", file=self.source)
+            return value
+        if default is None:
+            raise InputError(f"the property file has no {key}, needed for the moments and "
+                             "radii", file=self.source)
+        return default
+
+    # ------------------------------------------------------ evaluation inputs
+    def no_pressure_terms(self) -> str:
+        """Why a pressure does not change this model's outputs (the warning's text)."""
+        return (f"{self.name or 'Magic Formula'}: the property file has no nominal pressure "
+                "(NOMPRES / IP_NOM), so its pressure terms are not evaluated (dpi = 0): the "
+                "pressure given is not used")
+
+    def dpi(self, pressure: Any) -> Any:
+        """Relative pressure increment dpi (a float, or an array for a pressure per row).
+
+        ``None`` takes the model's pressure; a pressure given to a model without a
+        nominal pressure warns (it cannot change the outputs).
+        """
+        p = self.pressure if pressure is None else np.asarray(pressure, dtype=float)
+        if pressure is not None and self.nominal_pressure is None:
+            warnings.warn(self.no_pressure_terms(), UserWarning, stacklevel=4)
+        if p is None or self.nominal_pressure is None:
+            return 0.0
+        if not (np.isfinite(p) & (np.asarray(p) > 0)).all():
+            bad = np.flatnonzero(~(np.isfinite(p) & (np.asarray(p) > 0)).ravel())[:5].tolist()
+            raise InputError("inflation pressure must be positive and finite [Pa]; bad values "
+                             f"at flat indices {bad}")
+        dpi = (p - self.nominal_pressure) / self.nominal_pressure
+        return float(dpi) if np.ndim(dpi) == 0 else dpi
+
+    def check(self, what: str, x: Any, positive: bool = False) -> Any:
+        """``x`` as a float array, refused when not finite (or, ``positive``, not > 0)."""
+        x = np.asarray(x, dtype=float)
+        ok = (x > 0).all() if positive else np.isfinite(x).all()
+        if not ok:
+            bad = ~(x > 0) if positive else ~np.isfinite(x)
+            idx = np.flatnonzero(bad.ravel())[:5].tolist()
+            need = "positive finite loads [N]" if positive else "finite values"
+            raise InputError(f"{what} must hold {need}; bad values at flat indices {idx}")
+        if positive and not np.isfinite(x).all():
+            raise InputError(f"{what} must be finite")
+        return x
+
+    def warn_range(self, name: str, x: Any) -> None:
+        """Warn (:class:`~frictionlaws.base.errors.ExtrapolationWarning`) when ``x`` leaves the
+        file's validity range of ``name`` (``fz``, ``kappa``, ``alpha``, ``gamma``,
+        ``pressure``)."""
+        lim = self.limits.get(name)
+        if lim is None or np.size(x) == 0:  # empty: no point to check, empty results
+            return
+        lo, hi = lim
+        xmin, xmax = float(np.min(x)), float(np.max(x))
+        if xmin < lo - 1e-12 * abs(lo) or xmax > hi + 1e-12 * abs(hi):
+            warnings.warn(
+                f"{self.name or 'Magic Formula'}: {name} from {xmin:g} to {xmax:g} lies "
+                f"outside the property file's range {lo:g}..{hi:g} (SI): extrapolation",
+                ExtrapolationWarning, stacklevel=3)
+
+    def check_peak(self, name: str, mu: Any, fz: Any, dpi: Any, gamma: Any = 0.0) -> None:
+        """Refuse a peak friction that is no friction coefficient (<= 0 or > MU_MAX).
+
+        Called by the equations with every peak friction they compute; a model being
+        fitted records it instead (:class:`~frictionlaws.tyre.mf.fit.peak.FittingModel`).
+        """
+        bad = ~((np.asarray(mu) > 0) & (np.asarray(mu) <= MU_MAX))
+        if not np.any(bad):
+            return
+        shape = np.shape(mu) or (1,)
+        i = int(np.flatnonzero(np.broadcast_to(bad, shape).ravel())[0])
+        mu_i = float(np.ravel(mu)[i] if np.ndim(mu) else mu)
+        fz_i, dpi_i, g_i = (float(np.ravel(np.broadcast_to(x, shape))[i])
+                            for x in (fz, dpi, gamma))
+        p = self.nominal_pressure * (1 + dpi_i) if self.nominal_pressure else None
+        at = (f"F_z = {fz_i:g} N" + (f", camber {g_i:g} rad" if g_i else "")
+              + (f", inflation {p / 1e6:.4g} MPa" if p else ""))
+        raise InputError(
+            f"{self.name or 'Magic Formula'}: the peak friction {name} = {mu_i:.4g} at {at} "
+            f"is not a friction coefficient (expected 0 < {name} <= {MU_MAX:g}); "
+            + peak_cause(self.limits, fz_i, g_i, p), file=self.source)

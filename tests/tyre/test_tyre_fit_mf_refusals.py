@@ -1,0 +1,175 @@
+"""Tyre test data that cannot give the coefficients asked for are refused before any fit."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from frictionlaws.base.errors import InputError
+from frictionlaws.cli import main
+from frictionlaws.tyre import MagicFormula, TyreData, read_tyre_data
+from frictionlaws.tyre.mf.fit.checks import check_plausible
+from frictionlaws.tyre.synthetic_rig import rig_data
+
+HEADERS = ("Fz [N]", "kappa [-]", "alpha [deg]", "gamma [deg]", "pressure [kPa]", "Fx [N]",
+           "Fy [N]", "Mz [N m]")
+TRUTH = MagicFormula.from_file("MagicFormula61")
+
+
+def _small() -> TyreData:
+    return rig_data(TRUTH, n=7, loads=(0.7, 1.3), pressures=(1.0,), cambers_deg=(0.0,))
+
+
+def _write(path: Path, data: TyreData, headers=HEADERS) -> Path:
+    """``data`` as a CSV file under ``headers`` (degrees, kPa; NaN as a blank cell)."""
+    cols = [data.fz, data.kappa, np.degrees(data.alpha), np.degrees(data.gamma),
+            data.pressure / 1e3, data.fx, data.fy, data.mz]
+    lines = [",".join(headers)] + [
+        ",".join("" if math.isnan(v) else repr(float(v)) for v in row) for row in zip(*cols)]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _refused(capsys, csv: Path, target: Path, *options: str) -> str:
+    """The one error line of ``tyre fit-mf`` (exit 2, nothing written)."""
+    code = main(["tyre", "fit-mf", str(csv), "-o", str(target), *options])
+    out, err = capsys.readouterr()
+    assert code == 2 and not out and len(err.strip().splitlines()) == 1, err
+    assert not target.exists()
+    return err
+
+
+@pytest.mark.parametrize(("header", "column", "expected"), [
+    ("slipratio [-]", 1, ["Fx given", "no slip-ratio column", "slipratio [-]", "sr"]),
+    ("alpha_deg", 2, ["Fy and Mz given", "no slip-angle column", "alpha_deg", "slip_angle"]),
+])
+def test_a_force_without_its_slip_column_is_refused_naming_the_unused_column(
+        capsys, tmp_path: Path, header: str, column: int, expected: list[str]) -> None:
+    headers = list(HEADERS)
+    headers[column] = header
+    csv = _write(tmp_path / "renamed.csv", _small(), headers)
+    err = _refused(capsys, csv, tmp_path / "out.tir")
+    assert all(text in err for text in expected), err
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(which=st.sampled_from(["kappa", "alpha"]), value=st.floats(-0.2, 0.2))
+def test_a_constant_slip_is_refused_for_its_force(which: str, value: float) -> None:
+    data = _small()
+    setattr(data, which, np.full(len(data), value))
+    force = "Fx given" if which == "kappa" else "Fy and Mz given"
+    with pytest.raises(InputError, match=f"{force} but {which} is .* on every row "
+                                         "\\(the column is constant\\)"):
+        check_plausible(data, TRUTH.fnomin)
+
+
+def test_the_usual_rig_names_are_read(tmp_path: Path) -> None:
+    headers = ("FZ [N]", "SR [-]", "SA [deg]", "IA [deg]", "P [kPa]", "FX [N]", "FY [N]",
+               "MZ [N m]")
+    data = read_tyre_data(_write(tmp_path / "ttc.csv", _small(), headers))
+    assert not data.unused and not data.missing and np.ptp(data.kappa) > 0.4
+    check_plausible(data, TRUTH.fnomin, TRUTH.nominal_pressure, 0.3943)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(share=st.floats(0.0, 1.0), seed=st.integers(0, 2**16))
+def test_fy_with_the_sign_of_alpha_on_most_rows_is_refused(share: float, seed: int) -> None:
+    data = _small()
+    wide = np.flatnonzero((np.abs(data.alpha) > math.radians(2.0)) & (np.abs(data.kappa) <= 0.01))
+    flip = np.random.default_rng(seed).permutation(wide)[:round(share * wide.size)]
+    data.fy[flip] = -data.fy[flip]
+    if share > 0.8:
+        with pytest.raises(InputError, match="sign of the slip angle.*sign_convention='sae'"):
+            check_plausible(data, TRUTH.fnomin)
+    elif 2 * flip.size > wide.size:  # as many flipped as not: no sign, perhaps no curve
+        with pytest.raises(InputError, match="sign of the slip angle|carries no curve"):
+            check_plausible(data, TRUTH.fnomin)
+    elif share < 0.2:
+        check_plausible(data, TRUTH.fnomin)
+
+
+def test_the_sign_advice_names_the_other_convention(capsys, tmp_path: Path) -> None:
+    data = _small()
+    data.fy, data.mz = -data.fy, -data.mz
+    err = _refused(capsys, _write(tmp_path / "flipped.csv", data), tmp_path / "o.tir")
+    assert "Fy has the sign of the slip angle" in err and "--sign-convention sae" in err
+    sae = _small()
+    sae.fz, sae.alpha = -sae.fz, -sae.alpha  # SAE axes, but Fy and Mz left as in ISO
+    err = _refused(capsys, _write(tmp_path / "half.csv", sae), tmp_path / "o.tir",
+                   "--sign-convention", "sae")
+    assert "after the conversion from SAE" in err and "--sign-convention iso" in err
+    err = _refused(capsys, _write(tmp_path / "iso.csv", _small()), tmp_path / "o.tir",
+                   "--sign-convention", "sae")
+    assert "ISO-W axes already" in err and "--sign-convention iso" in err
+    assert "give --sign-convention sae" not in err
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(rows=st.sets(st.integers(0, 55), min_size=1, max_size=20))
+def test_blank_pressures_among_values_are_refused(tmp_path_factory, rows: set[int]) -> None:
+    data = _small()
+    data.pressure[sorted(rows)] = np.nan
+    csv = _write(tmp_path_factory.mktemp("p") / "blanks.csv", data)
+    with pytest.raises(InputError, match=f"{len(rows)} blank pressure cell") as err:
+        read_tyre_data(csv)
+    assert err.value.column == "pressure [kPa]"
+    assert f"rows {min(rows) + 2}" in str(err.value)
+
+
+def test_a_pressure_column_blank_on_every_row_is_not_measured(tmp_path: Path) -> None:
+    data = _small()
+    data.pressure[:] = np.nan
+    read_tyre_data(_write(tmp_path / "none.csv", data))
+
+
+@pytest.mark.parametrize("force", ["fx", "fy"])
+@pytest.mark.parametrize("kind", ["zero", "noise"])
+def test_forces_without_a_curve_are_refused_as_such(force: str, kind: str) -> None:
+    data = _small()
+    rng = np.random.default_rng(1)
+    finite = np.isfinite(getattr(data, force))
+    values = 0.0 if kind == "zero" else 0.03 * data.fz * rng.standard_normal(len(data))
+    getattr(data, force)[finite] = np.broadcast_to(values, data.fz.shape)[finite]
+    with pytest.raises(InputError, match="carries no curve") as err:
+        check_plausible(data, TRUTH.fnomin)
+    assert "percent" not in str(err.value) and err.value.column == force.capitalize()
+
+
+def test_a_braking_sweep_to_lock_up_has_a_curve() -> None:
+    kappa = -np.linspace(0.005, 1.0, 200)  # rises to mu 1.2 at 0.1, falls to 0.75 of it
+    mu = np.where(-kappa < 0.1, -12.0 * kappa, 1.2 - 0.5 * (-kappa - 0.1))
+    noise = 1 + 0.01 * np.random.default_rng(0).standard_normal(kappa.size)
+    check_plausible(TyreData.from_arrays(fz=4000.0, kappa=kappa, fx=-mu * 4000.0 * noise),
+                    4000.0)
+
+
+def test_a_camber_of_90_degrees_is_impossible_not_a_unit(capsys, tmp_path: Path) -> None:
+    data = _small()
+    data.gamma[3] = math.pi / 2
+    err = _refused(capsys, _write(tmp_path / "c90.csv", data), tmp_path / "o.tir")
+    assert "camber 90 deg is impossible" in err and "[rad] header" not in err
+
+
+def test_without_mz_or_combined_rows_the_report_says_so_and_shows_no_combined_errors(
+        ) -> None:
+    import warnings
+
+    from frictionlaws.base.errors import ExtrapolationWarning
+    from frictionlaws.tyre import fit_mf
+
+    data = rig_data(TRUTH, n=7, loads=(0.7, 1.3), pressures=(1.0,), cambers_deg=(0.0,),
+                    combined=False)
+    data.mz[:] = np.nan
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        res = fit_mf(data, fittyp=61)
+    assert set(res.errors) == {"x", "y"}
+    report = res.report()
+    assert "combined slip" not in report
+    assert "aligning-moment coefficients (Q*Z*, SSZ*): the template's (no Mz column)" in report
+    assert not any(k.startswith(("QBZ", "QDZ", "SSZ")) for k in res.values)
