@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import math
 import re
-import time
 
 import numpy as np
 import pytest
@@ -79,15 +78,12 @@ def test_fast_agrees_with_adaptive_reference():
         assert friction(mat, SURF, v, T, p) == pytest.approx(ref, rel=1e-4)
 
 
-def test_100_velocities_fast():
+def test_100_velocities_at_once():
+    # the time is benchmarks/bench_persson.py's to measure, against a baseline
     mat = rubber()
     v = np.logspace(-8, 3, 100)
-    friction(mat, SURF, v, 293.15, 2e5)
-    t0 = time.perf_counter()
     mu = friction(mat, SURF, v, 293.15, 2e5)
-    dt = time.perf_counter() - t0
-    print(f"mu(v) on 100 velocities: {dt * 1e3:.1f} ms")
-    assert mu.shape == (100,) and np.all(np.isfinite(mu)) and dt < 3.0
+    assert mu.shape == (100,) and np.all(np.isfinite(mu))
 
 
 # ------------------------------------------------------------------------ limiting cases

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import time
 import warnings
 from pathlib import Path
 
@@ -109,13 +108,11 @@ def test_undetermined_coefficients_are_named_and_kept(tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
-def test_ten_thousand_points_fit_quickly() -> None:
+def test_ten_thousand_points_fit() -> None:
+    # its time is measured by benchmarks/bench_fit_mf.py against a baseline, not here
     _, data, _ = synthetic("MagicFormula62", n_slip=111)
     assert len(data) == 9990
-    t0 = time.perf_counter()
     res = fit_mf(data, fittyp=62, template="MagicFormula62")
-    seconds = time.perf_counter() - t0
-    assert seconds < 20, seconds
     assert res.errors["x"]["rmse"] < 0.01 * res.errors["x"]["peak"]
 
 
