@@ -1,4 +1,5 @@
-"""Benchmark of the start-up of ``frictionlaws fit --law thirion thesis-steel``.
+"""Benchmark of the start-up of ``frictionlaws fit --law thirion thesis-steel`` and of
+``frictionlaws --help``.
 
 Baseline, measured in the same run: ``python -c "import lmfit"`` (target: the
 whole fit command, start to finish, in <= 1.0x that time).  The two commands run as
@@ -11,9 +12,11 @@ Then, from one more run of the fit command under ``python -X importtime``, which
 numpy, scipy.optimize, pandas, pint, sympy, matplotlib, lmfit and scipy.stats it loads
 and their cumulative import time.
 
-With ``--tree DIR`` a third command runs in the same rounds: the same fit with the
+With ``--tree DIR`` the fit and ``--help`` also run, in the same rounds, with the
 ``frictionlaws`` package of another source tree (e.g. a checkout of the code before a
-change), so that the gain is measured in the same run too.
+change) and with this tree's, both launched the same way (``python -c``, the tree first on
+``sys.path``), so that the change is measured in the same run: printed are each one's
+best and median and the median of the paired ratios (this tree / the other).
 
 Run: ``python benchmarks/bench_startup.py [--rounds N] [--tree DIR]`` (default 7 rounds).
 """
@@ -34,7 +37,10 @@ from pathlib import Path
 WATCHED = ("numpy", "scipy.optimize", "pandas", "pint", "sympy", "matplotlib", "lmfit",
            "scipy.stats")
 FIT_ARGS = ("fit", "--law", "thirion", "thesis-steel")
+HELP_ARGS = ("--help",)
 TARGET = 1.0
+#: This source tree (the one the benchmark belongs to).
+REPO = Path(__file__).resolve().parents[1]
 
 _REPORT_MODULES = (
     "import json, sys\n"
@@ -65,11 +71,11 @@ def wall(cmd: list[str], cwd: Path, out: Path) -> float:
     return elapsed
 
 
-def tree_command(tree: Path) -> list[str]:
-    """The fit command run with the ``frictionlaws`` package of the source tree ``tree``."""
+def tree_command(tree: Path, args: tuple[str, ...] = FIT_ARGS) -> list[str]:
+    """The command ``frictionlaws ARGS`` run with the package of the source tree ``tree``."""
     code = (f"import sys; sys.path.insert(0, {str(tree)!r}); import frictionlaws; "
             f"assert frictionlaws.__file__.startswith({str(tree)!r}), frictionlaws.__file__; "
-            f"from frictionlaws.cli import main; sys.exit(main({list(FIT_ARGS)!r}))")
+            f"from frictionlaws.cli import main; sys.exit(main({list(args)!r}))")
     return [sys.executable, "-c", code]
 
 
@@ -104,6 +110,20 @@ def imports(tmp: Path) -> dict[str, float | None]:
     return {name: cumulative.get(name, 0.0) if name in loaded else None for name in WATCHED}
 
 
+def _print_trees(times: dict[str, list[float]], tree: Path) -> None:
+    """This tree against ``tree``, per command: best, median, median of paired ratios."""
+    print(f"this tree ({REPO}) against {tree}, both run as python -c (wall seconds):")
+    for name in ("help", "fit"):
+        this, other = times[f"this {name}"], times[f"tree {name}"]
+        paired = [t / o for t, o in zip(this, other, strict=True)]
+        label = " ".join(("frictionlaws", *(HELP_ARGS if name == "help" else FIT_ARGS)))
+        print(f"  {label}")
+        print(f"    this tree : best {min(this):.3f} s   median {statistics.median(this):.3f} s")
+        print(f"    other tree: best {min(other):.3f} s   median {statistics.median(other):.3f} s")
+        print(f"    this / other: median of paired {statistics.median(paired):.2f}x "
+              f"(range {min(paired):.2f}..{max(paired):.2f})")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=7, help="timed runs of each command")
@@ -111,7 +131,9 @@ def main() -> None:
     args = ap.parse_args()
     commands = {"fit": fit_command(), "lmfit": [sys.executable, "-c", "import lmfit"]}
     if args.tree is not None:
-        commands["tree"] = tree_command(args.tree.resolve())
+        for name, argv in (("fit", FIT_ARGS), ("help", HELP_ARGS)):
+            commands[f"this {name}"] = tree_command(REPO, argv)
+            commands[f"tree {name}"] = tree_command(args.tree.resolve(), argv)
     with tempfile.TemporaryDirectory() as name:
         tmp = Path(name)
         times = alternate(args.rounds, tmp, commands)
@@ -128,14 +150,8 @@ def main() -> None:
           f"(range {min(paired):.2f}..{max(paired):.2f})")
     verdict = "met" if statistics.median(paired) <= TARGET else "NOT met"
     print(f"  target: <= {TARGET:.1f}x  -> {verdict} (median of paired ratios)")
-    if "tree" in times:
-        tree = times["tree"]
-        ratios = [t / b for t, b in zip(tree, bases, strict=True)]
-        gain = [t / f for t, f in zip(tree, fits, strict=True)]
-        print(f"  fit with {args.tree}: best {min(tree):.3f} s   median "
-              f"{statistics.median(tree):.3f} s   / import lmfit: median of paired "
-              f"{statistics.median(ratios):.2f}x   its time / this tree's: median of paired "
-              f"{statistics.median(gain):.2f}x")
+    if args.tree is not None:
+        _print_trees(times, args.tree)
     print("modules loaded by the fit command (cumulative import time, -X importtime):")
     for mod, secs in loaded.items():
         state = "not loaded" if secs is None else f"loaded ({secs * 1e3:.0f} ms)"

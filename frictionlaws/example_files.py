@@ -33,6 +33,8 @@ import numpy as np
 
 from .base.errors import InputError
 from .base.outputs import atomic_dir
+from .tribometer.synthetic import ConditionSpec, make_campaign
+from .tyre import MagicFormula
 
 __all__ = ["EXAMPLE_FILES", "write_example_files"]
 
@@ -116,8 +118,6 @@ def _sliding_tables(rng: np.random.Generator) -> dict[str, str]:
 
 def _tyre_table(rng: np.random.Generator) -> str:
     """Pure-slip Fx and Fy of the packaged MagicFormula61 tyre with 1 % noise."""
-    from .tyre import MagicFormula
-
     mf = MagicFormula.from_file("MagicFormula61")
     p0 = mf.nominal_pressure or 2.6e5
     kappa = np.linspace(-0.3, 0.3, 21)
@@ -146,8 +146,6 @@ def _tyre_table(rng: np.random.Generator) -> str:
 
 def _campaign(folder: Path, seed: int) -> None:
     """A raw tribometer campaign: two surfaces x three loads x three records of 12 s."""
-    from .tribometer.synthetic import ConditionSpec, make_campaign
-
     conditions = [ConditionSpec(f"{surface} {load:g} kg", surface, load,
                                 round(1.0 / (a + b * load * 9.8 / 314.16), 3), repeats=3)
                   for surface, (a, b) in (("steel", _SURFACES["steel"]),

@@ -4,7 +4,11 @@
 * none above cyclomatic complexity 15 (ruff's C901);
 * every module declares ``__all__``;
 * the ``py.typed`` marker is installed with the package;
-* no import circle among the package's modules at import time.
+* no import circle among the package's modules, counting every import (deferred,
+  type-only, and ``from . import`` of a package as an import of that package);
+* the package is rooms: at most six loose modules at its top, no private name imported
+  from another room, imports at the top of the file (at most 15 % of the in-package ones
+  inside functions, third-party ones there only from a short list of heavy libraries).
 
 ``KNOWN_PENDING`` lists, narrowly, what other work in progress still has to bring
 under these rules; each entry must still be a violation (a fixed entry makes the
@@ -39,6 +43,10 @@ KNOWN_PENDING: dict[str, frozenset[str]] = {
     "length": frozenset(),
     "complexity": frozenset(),
     "all": frozenset(),  # modules without __all__
+    # private names imported from another room ("importer -> module.name")
+    "private": frozenset(),
+    # imports inside functions of modules neither of the package nor heavy ("module: name")
+    "deferred": frozenset(),
 }
 
 
@@ -202,8 +210,8 @@ def _import_time_nodes(body: list[ast.stmt]) -> Iterator[ast.stmt]:
 
 
 def _package_of(module: str) -> str:
-    path = MODULES[module]
-    return module if path.name == "__init__.py" else module.rpartition(".")[0]
+    path = MODULES.get(module)  # a module of a test's own source is no package
+    return module if path is not None and path.name == "__init__.py" else module.rpartition(".")[0]
 
 
 def _targets(module: str, node: ast.stmt) -> set[str]:
@@ -367,29 +375,33 @@ def test_dataset_columns_come_from_the_variable_list():
 
 
 def test_export_formats_and_unit_systems_have_one_list():
-    """The CLI's --format choices, its help and the docs read the library's tables."""
+    """The CLI's --format choices, its format flags, its help and the docs read the
+    library's tables (``fe_export.formats``, ``fe_export.systems``)."""
     from frictionlaws.cli import build_parser, cmd_export
-    from frictionlaws.fe_export.api import FORMATS
+    from frictionlaws.fe_export.formats import FORMATS, OPTIONS
     from frictionlaws.fe_export.systems import SYSTEMS
     from frictionlaws.law import VARIABLES
 
     assert cmd_export._BOX == tuple(VARIABLES)
-    assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
-        getattr(e, "value", None) for e in n.elts}
-        for n in ast.walk(TREES["frictionlaws.cli.cmd_export"]))
+    for mod in ("frictionlaws.cli.cmd_export", "frictionlaws.fe_export.api"):
+        assert not any(isinstance(n, ast.Tuple) and {"csv", "abaqus"} <= {
+            getattr(e, "value", None) for e in n.elts} for n in ast.walk(TREES[mod]))
+        assert not {"lsdyna_ssid", "ansys_mat", "radioss_id"} & {
+            n.value for n in ast.walk(TREES[mod]) if isinstance(n, ast.Constant)}
     sub = next(a for a in build_parser()._actions
                if isinstance(a, argparse._SubParsersAction))
     export = sub.choices["export"]
     fmt = next(a for a in export._actions if "--format" in a.option_strings)
     assert list(fmt.choices) == list(FORMATS)
+    assert {a.dest for a in export._actions} >= set(OPTIONS)
     text = export.format_help()
-    for name, (_, what, _needs_box) in FORMATS.items():
-        assert f"  {name} " in text and what in text
+    for name, entry in FORMATS.items():
+        assert f"  {name} " in text and entry.line in text
     for name in SYSTEMS:
         assert name in text.split("unit systems:")[1]
     guide = (REPO / "docs" / "user-guide" / "export.rst").read_text(encoding="utf-8")
     table = guide.split("Formats\n-------")[1].split("\nUnits\n")[0]
-    assert set(re.findall(r"``([a-z-]+)``", table.split("what is written")[1])) == set(FORMATS)
+    assert ".. include:: ../generated/export-formats.rst" in table  # written from FORMATS
     units = guide.split("\nUnits\n-----")[1].split("\n\n")[1]
     assert set(re.findall(r"``([A-Za-z-]+)`` \([^)`]*,", units)) == set(SYSTEMS)
 
@@ -443,24 +455,46 @@ def test_the_law_list_check_sees_a_list():
 
 # ------------------------------------------------- circles counting every import
 
-#: The circles left when deferred and type-only imports count too: none.  No new one may
-#: appear (a class whose methods hand work to a module that imports the class is one).
+#: The circles left when every import counts: none.  No new one may appear (a class whose
+#: methods hand work to a module that imports the class is one).
 KNOWN_FACADE_CIRCLES: list[list[str]] = []
+
+
+def _source_of(module: str, node: ast.ImportFrom) -> str:
+    """The module a ``from X import ...`` statement imports from (resolved)."""
+    if not node.level:
+        return node.module or ""
+    base = _package_of(module)
+    for _ in range(node.level - 1):
+        base = base.rpartition(".")[0]
+    return f"{base}.{node.module}" if node.module else base
+
+
+def _every_target(module: str, node: ast.stmt) -> set[str]:
+    """:func:`_targets`, and the package itself for ``from <package> import ...`` read plainly:
+    ``from . import x`` inside a package imports that package, even when it is a parent."""
+    out = _targets(module, node)
+    if isinstance(node, ast.ImportFrom):
+        source = _source_of(module, node)
+        if source in MODULES and source != module:
+            out.add(source)
+    return out
 
 
 def full_import_graph() -> dict[str, set[str]]:
     """Module -> the package modules any of its import statements names (deferred and
-    type-only ones included)."""
-    return {mod: set().union(set(), *[_targets(mod, n) for n in ast.walk(tree)
+    type-only ones included, ``from . import`` as an import of the package)."""
+    return {mod: set().union(set(), *[_every_target(mod, n) for n in ast.walk(tree)
                                       if isinstance(n, (ast.Import, ast.ImportFrom))])
             for mod, tree in TREES.items()}
 
 
 def test_no_new_circle_counting_deferred_and_type_only_imports():
     graph = full_import_graph()
-    # deferred and type-only imports are seen
-    assert "frictionlaws.comparison.report" in graph["frictionlaws.comparison.results"]
-    assert "frictionlaws.comparison.record" in graph["frictionlaws.comparison.report.text"]
+    # deferred, type-only and package imports are seen
+    assert "frictionlaws.comparison" in graph["frictionlaws.fitting.campaign"]
+    assert "frictionlaws.law.bound" in graph["frictionlaws.fitting.result"]
+    assert "frictionlaws.law" in graph["frictionlaws.law.registry"]  # from . import Law
     circles = _cycles(graph)
     assert len(circles) <= 1
     assert [c for c in circles if c not in KNOWN_FACADE_CIRCLES] == []
@@ -505,3 +539,181 @@ def test_least_squares_and_lmfit_are_called_in_one_module():
                           "model")))):
                 offenders.append(f"{mod}:{node.lineno} {ast.unparse(node.func)}")
     assert offenders == []
+
+
+def test_from_dot_import_counts_as_an_import_of_the_package():
+    node = ast.parse("from . import FAMILIES, Law").body[0]
+    assert "frictionlaws.law" in _every_target("frictionlaws.law.registry", node)
+    assert "frictionlaws.law" not in _targets("frictionlaws.law.registry", node)  # a parent
+    sub = ast.parse("from . import core").body[0]
+    assert _every_target("frictionlaws.law.registry", sub) == {"frictionlaws.law",
+                                                               "frictionlaws.law.core"}
+
+
+# -------------------------------------------------------------------------- rooms
+
+#: Loose modules allowed at the package's top, besides ``__init__`` and ``__main__``.
+MAX_LOOSE_MODULES = 6
+
+
+def room_of(module: str) -> str:
+    """The room of a module: the sub-package of frictionlaws it lies in, or, for a loose
+    module, the module itself; ``""`` for the package's own ``__init__``."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def test_at_most_six_loose_modules():
+    loose = sorted(p.name for p in PACKAGE.glob("*.py")
+                   if p.stem not in ("__init__", "__main__"))
+    assert len(loose) <= MAX_LOOSE_MODULES, loose
+    assert room_of("frictionlaws.fitting.lsq") == "fitting"
+    assert room_of("frictionlaws.caches") == "caches" and room_of("frictionlaws") == ""
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def private_names_across_rooms(trees: dict[str, ast.Module],
+                               modules: set[str]) -> set[str]:
+    """``importer -> module.name`` for each private name (or module) an importer takes from
+    another room: imported by name, or read as an attribute of a module it imported."""
+    found = set()
+    for mod, tree in trees.items():
+        aliases: dict[str, str] = {}  # local name -> the module it is bound to
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            source = _source_of(mod, node)
+            for alias in node.names:
+                full = f"{source}.{alias.name}"
+                name = full if full in modules else source
+                if full in modules:
+                    aliases[alias.asname or alias.name] = full
+                if room_of(name) in ("", room_of(mod)) or not source.startswith("frictionlaws"):
+                    continue
+                if any(_private(part) for part in full.split(".")[1:]):
+                    found.add(f"{mod} -> {full}")
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                    and node.value.id in aliases and _private(node.attr)
+                    and room_of(aliases[node.value.id]) not in ("", room_of(mod))):
+                found.add(f"{mod} -> {aliases[node.value.id]}.{node.attr}")
+    return found
+
+
+def test_no_private_name_crosses_a_room():
+    """What a room uses of another is public (in ``__all__``, documented there)."""
+    _check("private", private_names_across_rooms(TREES, set(MODULES)))
+
+
+def test_the_private_name_check_sees_names_modules_and_attributes():
+    # frictionlaws.tyre.sample: a module, not a package (no such file in the package)
+    modules = {"frictionlaws.io", "frictionlaws.io.reading", "frictionlaws.tyre",
+               "frictionlaws.tyre.sample", "frictionlaws.tyre._plot", "frictionlaws.io._cells"}
+    trees = {"frictionlaws.tyre.sample": ast.parse(
+        "from ..io import _Table, read_table\n"
+        "from ..io import reading\n"
+        "from . import _plot\n"  # the same room: allowed
+        "def f():\n    from ..io._cells import parse\n    return reading._split(1)\n")}
+    assert private_names_across_rooms(trees, modules) == {
+        "frictionlaws.tyre.sample -> frictionlaws.io._Table",
+        "frictionlaws.tyre.sample -> frictionlaws.io._cells.parse",
+        "frictionlaws.tyre.sample -> frictionlaws.io.reading._split"}
+
+
+#: Third-party libraries that may be imported inside a function: start-up
+#: (``frictionlaws --help``, ``fit`` on a packaged dataset: benchmarks/bench_startup.py)
+#: must not load them, or only a command that needs them does (numpy: ``--help`` loads
+#: none, and base.errors is on its path).
+DEFERRED_LIBRARIES = frozenset({
+    "numpy", "scipy", "pandas", "matplotlib", "sympy", "lmfit", "pint", "xarray", "dask",
+    "distributed", "joblib", "tqdm", "mpmath", "shtab",
+})
+#: The largest share of the package's own import statements that sit inside functions.
+MAX_DEFERRED_SHARE = 0.15
+
+
+def _in_function(tree: ast.Module) -> Iterator[tuple[ast.stmt, bool]]:
+    """Each import statement of ``tree`` and whether it sits inside a function."""
+    def walk(node: ast.AST, inside: bool) -> Iterator[tuple[ast.stmt, bool]]:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.Import, ast.ImportFrom)):
+                yield child, inside
+            yield from walk(child, inside or isinstance(
+                child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
+
+    yield from walk(tree, False)
+
+
+def _imported(module: str, node: ast.stmt) -> list[str]:
+    if isinstance(node, ast.Import):
+        return [a.name for a in node.names]
+    assert isinstance(node, ast.ImportFrom)
+    return [_source_of(module, node)]
+
+
+def deferred_imports(trees: dict[str, ast.Module]) -> tuple[int, int, set[str]]:
+    """In-package import statements, those inside functions, and the other imports inside
+    functions that are not of :data:`DEFERRED_LIBRARIES` (``"module: name"``)."""
+    total = deferred = 0
+    others = set()
+    for mod, tree in trees.items():
+        for node, inside in _in_function(tree):
+            names = _imported(mod, node)
+            if any(n.split(".")[0] == "frictionlaws" for n in names):
+                total += 1
+                deferred += inside
+            elif inside:
+                others |= {f"{mod}: {n}" for n in names
+                           if n.split(".")[0] not in DEFERRED_LIBRARIES}
+    return total, deferred, others
+
+
+def test_imports_sit_at_the_top_of_the_file():
+    """The dependency graph reads from the top of each file: at most 15 % of the package's
+    own import statements inside functions (where start-up needs one deferred), and no
+    other import there except of the heavy libraries start-up must not load."""
+    total, deferred, others = deferred_imports(TREES)
+    assert total > 400
+    assert deferred / total <= MAX_DEFERRED_SHARE, f"{deferred} of {total} inside functions"
+    _check("deferred", others)
+
+
+def test_the_deferred_import_count_sees_functions_and_methods():
+    trees = {"frictionlaws.io.reading": ast.parse(
+        "import csv\nfrom ..base.errors import InputError\n"
+        "if True:\n    from . import columns\n"
+        "def f():\n    import numpy\n    import json\n    from .columns import x\n"
+        "class C:\n    def m(self):\n        from frictionlaws.base import units\n")}
+    assert deferred_imports(trees) == (4, 2, {"frictionlaws.io.reading: json"})
+
+
+def test_one_public_class_per_name():
+    """No two modules define a public class of the same name (``Comparison`` was two)."""
+    seen: dict[str, list[str]] = {}
+    for mod, tree in TREES.items():
+        for node in tree.body:
+            if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
+                seen.setdefault(node.name, []).append(mod)
+    assert {k: v for k, v in seen.items() if len(v) > 1} == {}
+
+
+#: The smallest share of the test files that sit in a folder named after a room.
+MIN_TESTS_IN_ROOMS = 0.80
+
+
+def test_tests_are_laid_out_like_the_package():
+    """``tests/<room>/`` for each room's tests (the package's sub-packages); the project's
+    own checks (code rules, docs, packaging) stay at the top.  Basenames are unique
+    across the tree (pytest imports each test module by its name)."""
+    tests = Path(__file__).resolve().parent
+    files = sorted(tests.rglob("test_*.py"))
+    rooms = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()}
+    folders = {p.parent.name for p in files if p.parent != tests}
+    assert folders <= rooms, f"test folders that are no room: {sorted(folders - rooms)}"
+    in_rooms = [p for p in files if p.parent != tests]
+    assert len(in_rooms) / len(files) >= MIN_TESTS_IN_ROOMS, (len(in_rooms), len(files))
+    names = [p.name for p in files]
+    assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})

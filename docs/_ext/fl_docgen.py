@@ -755,6 +755,28 @@ def _options_block(program: str, parser: argparse.ArgumentParser) -> list[str]:
     return lines
 
 
+def export_formats_table() -> str:
+    """The docs' table of export formats, from the library's one table of them."""
+    from frictionlaws.fe_export.formats import FORMATS
+
+    def options(fmt: Any) -> str:
+        return "; ".join(f"``{o.name}``: {escape(o.meaning)}, {o.lo}..{o.hi}, default "
+                         f"{o.default}" for o in fmt.options)
+
+    return _list_table(("format", "what is written", "options"),
+                       ((f"``{name}``", f.description + ("" if f.needs_box
+                                                         else " (no ranges needed)"),
+                         options(f)) for name, f in FORMATS.items()), (18, 56, 26))
+
+
+def write_export_formats(path: str | Path) -> list[str]:
+    """Write the table of export formats to ``path``; return the formats listed."""
+    from frictionlaws.fe_export.formats import FORMATS
+
+    _write_if_changed(Path(path), export_formats_table())
+    return list(FORMATS)
+
+
 def write_cli_reference(path: str | Path) -> list[str]:
     """Write the CLI reference to ``path``; return the command names documented."""
     from frictionlaws.cli import build_parser
@@ -1011,6 +1033,7 @@ def _generate(app: Any) -> None:
     if missing:
         raise ExtensionError(f"law catalogue is missing registered law(s): {', '.join(missing)}")
     commands = write_cli_reference(gen / "cli.rst")
+    write_export_formats(gen / "export-formats.rst")
     from fl_mf_coefficients import write_mf_coefficients
 
     write_mf_coefficients(gen / "mf-coefficients.rst")

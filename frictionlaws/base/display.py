@@ -27,6 +27,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from .errors import InputError
+from .units import QUANTITIES, display_unit, to_display
 
 __all__ = ["DIMENSIONLESS", "UNITS_CHOICES", "check_units", "unit_text", "display_param_unit",
            "group_label", "parameter_table"]
@@ -124,8 +125,6 @@ def display_param_unit(unit: str | None) -> tuple[str, float]:
         The unit shown and ``factor`` with ``value_shown = factor * value_si``
         (``("1/MPa", 1e6)`` for ``"1/Pa"``; ``(unit, 1.0)`` when nothing changes).
     """
-    from .units import QUANTITIES, display_unit
-
     if not unit or not _PASCAL.search(unit):
         return unit_text(unit), 1.0
     scale = QUANTITIES["p"].display_si[0]  # 1 MPa = 1e6 Pa
@@ -138,8 +137,6 @@ def group_label(key: Mapping[str, Any]) -> str:
     Variables (p, v, T, F_N...) are converted from SI to their display unit; other
     columns (``surface``) are written as they are.
     """
-    from .units import QUANTITIES, display_unit, to_display
-
     parts = []
     for col, value in key.items():
         if col in QUANTITIES and isinstance(value, int | float) and not isinstance(value, bool):

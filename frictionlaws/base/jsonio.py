@@ -18,6 +18,8 @@ from typing import Any
 
 import numpy as np
 
+from .limits import check_nesting, nesting_error
+
 __all__ = ["to_jsonable", "dumps", "loads", "bound_to_json", "bound_from_json"]
 
 
@@ -130,8 +132,6 @@ def loads(text: str) -> Any:
         ``json.JSONDecodeError`` (with line and column), a duplicate key or constant, or
         nesting too deep for the parser.
     """
-    from .limits import check_nesting, nesting_error
-
     try:
         doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant,
                          parse_float=_finite_float, parse_int=_bounded_int)

@@ -50,6 +50,7 @@ from typing import IO, Any
 from .errors import InputError
 
 __all__ = [
+    "check_figure_path",
     "check_input_file",
     "check_outputs",
     "check_unique_names",
@@ -434,3 +435,35 @@ def atomic_dir(path: PathLike) -> Iterator[Path]:
                 _WRITTEN.add(_key(dest))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+def check_figure_path(path: str | Path) -> str:
+    """The figure format of ``path`` (its suffix), refused when matplotlib cannot write it.
+
+    Called before any work, so that a figure that cannot be drawn leaves no other
+    output behind.
+
+    Parameters
+    ----------
+    path : str or Path
+        The figure file; no suffix means PNG.
+
+    Returns
+    -------
+    str
+        The format (``"png"``, ``"pdf"``, ``"svg"``...).
+
+    Raises
+    ------
+    InputError
+        When matplotlib has no writer for the suffix (naming those it has).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fmt = Path(path).suffix.lstrip(".").lower() or "png"
+    known = FigureCanvasAgg(Figure()).get_supported_filetypes()
+    if fmt not in known:
+        raise InputError(f"a figure cannot be written as '.{fmt}'; use one of "
+                         f"{', '.join('.' + k for k in sorted(known))}", file=str(path))
+    return fmt

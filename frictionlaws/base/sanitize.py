@@ -33,6 +33,8 @@ import unicodedata
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from .numbers import is_number
+
 __all__ = ["split_lines", "one_line", "ascii_line", "comment_lines", "csv_cell",
            "csv_cell_text", "csv_row", "frame_csv", "markdown_text", "html_text", "tir_string"]
 
@@ -120,8 +122,6 @@ def comment_lines(lines: Iterable[object], prefix: str = "# ") -> list[str]:
 
 def _formula_like(text: str) -> bool:
     """True when a spreadsheet would read ``text`` as a formula (not a plain number)."""
-    from .numbers import is_number
-
     head = text.lstrip()
     return head.startswith(_FORMULA_START) and len(head) > 1 and not is_number(text)
 

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError
+from .numbers import parse_number
 
 __all__ = [
     "QUANTITIES",
@@ -738,8 +739,6 @@ def _split_quantity(raw: str, label: str, file: str | None, column: str | None
     evaluate ``2**9**9 m``; the number is parsed here (refusing what
     :func:`~frictionlaws.base.numbers.parse_number` refuses) and the rest by the unit grammar.
     """
-    from .numbers import parse_number
-
     m = _NUMBER_TOKEN.match(raw)
     token = m.group(1) if m else ""
     try:

@@ -1,9 +1,11 @@
 """The ``frictionlaws`` command line.
 
 The CLI is thin: each sub-command lives in its own module ``cmd_<name>.py``
-that defines ``add_parser(subparsers)`` and ``run(args) -> int`` and imports
-heavy libraries only inside ``run``.  :func:`main` parses, dispatches and keeps
-the output clean:
+that defines ``add_parser(subparsers)`` and ``run(args) -> int`` (the commands and
+their ``--help`` lines: :data:`~frictionlaws.cli.commands.COMMANDS`).  :func:`main`
+builds the parser of the command it is given only, so that a command module imports
+what its command needs at its top and ``frictionlaws --help`` loads none of them.  It
+parses, dispatches and keeps the output clean:
 
 * bad input or usage -> exit 2 and one line on stderr (``error: ...``), naming
   the file, column, row or option concerned; an unreadable or unwritable user
@@ -30,35 +32,28 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import io
+import json
 import re
 import signal
 import sys
 import threading
+import traceback
 import warnings
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
 from importlib import import_module
 from typing import Any
 
-from ._common import WARNING_WIDTH, UsageError
-from ._common import short_warning as _short
+from .. import __version__
+from ..base.errors import FitError, InputError, bounded_message
+from ._messages import WARNING_WIDTH, UsageError
+from ._messages import short_warning as _short
+from .commands import COMMANDS
 
 __all__ = ["COMMANDS", "UsageError", "build_parser", "main", "entry", "OPTION_FLAGS",
            "command_names", "WARNING_WIDTH"]
 
-#: Sub-command modules, in the order ``--help`` lists them.
-COMMANDS = (
-    "laws",
-    "show",
-    "fit",
-    "compare",
-    "datasets",
-    "tyre",
-    "process",
-    "validate",
-    "export",
-    "examples",
-)
 
 #: Library argument (``InputError.option``) -> the flag that sets it.  A command
 #: may override entries with ``set_defaults(_option_flags={...})``.
@@ -132,8 +127,6 @@ _INVALID_CHOICE = re.compile(r"invalid choice: '(.*?)' \(choose from (.*)\)$", r
 
 def _did_you_mean(word: str, candidates: Sequence[str]) -> str:
     """``"; did you mean 'fit'?"`` for the closest candidates (difflib), or ``""``."""
-    import difflib
-
     close = difflib.get_close_matches(word, list(candidates), n=2, cutoff=0.6)
     return f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
 
@@ -155,10 +148,21 @@ class _ParseError(UsageError):
         self.usage = usage
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser with every sub-command (used by the docs' CLI reference)."""
-    from frictionlaws import __version__
+def build_parser(commands: Collection[str] | None = None) -> argparse.ArgumentParser:
+    """The argument parser, with the arguments of ``commands`` (default: every command).
 
+    Parameters
+    ----------
+    commands : collection of str, optional
+        The sub-commands whose module is imported and whose arguments are added; the
+        others are listed with their ``--help`` line only.  None: every one (the docs'
+        CLI reference, shell completion).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser.
+    """
     parser = _Parser(
         prog="frictionlaws",
         description="Friction laws for rubber and tyres: list, fit, compare, export.",
@@ -176,12 +180,29 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--print-completion", choices=_SHELLS, metavar="SHELL",
                         help="print a shell completion script (bash, zsh or tcsh) and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for name in COMMANDS:
+    for name, line in COMMANDS.items():
+        if commands is not None and name not in commands:
+            sub.add_parser(name, help=line)
+            continue
         module = import_module(f"frictionlaws.cli.cmd_{name.replace('-', '_')}")
         p = module.add_parser(sub)
         p.set_defaults(_run=module.run, _parser=p)
         _mark_nested(p)
     return parser
+
+
+def _command_of(argv: Sequence[str]) -> list[str] | None:
+    """The sub-command ``argv`` runs, as :func:`build_parser` takes it: ``[name]``, ``[]``
+    for none (or an unknown one: the names alone let argparse suggest the closest), None
+    for every command (a shell completion script describes them all)."""
+    for token in argv:  # before the command come global flags, none of which takes a value
+        if token == "--":
+            return []
+        if token == "--print-completion" or token.startswith("--print-completion="):
+            return None
+        if not token.startswith("-"):
+            return [token] if token in COMMANDS else []
+    return []
 
 
 def _mark_nested(p: argparse.ArgumentParser) -> None:
@@ -198,8 +219,6 @@ def _mark_nested(p: argparse.ArgumentParser) -> None:
 
 def _one_line(text: str) -> str:
     """A message on one line, at most :data:`~frictionlaws.base.limits.MAX_MESSAGE_CHARS` long."""
-    from frictionlaws.base.errors import bounded_message
-
     return bounded_message(" ".join(str(text).split()))
 
 
@@ -327,9 +346,7 @@ def _quiet_stderr(quiet: bool) -> Iterator[None]:
 
 def _strictly(text: str) -> str:
     """``text`` as strict JSON: ``NaN``/``Infinity`` become ``null``; other text unchanged."""
-    import json
-
-    from frictionlaws.base.jsonio import dumps
+    from ..base.jsonio import dumps  # numpy: loaded by the command that wrote JSON already
 
     def refuse(name: str) -> Any:
         raise ValueError(name)
@@ -560,8 +577,8 @@ def _completion(parser: argparse.ArgumentParser, shell: str) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
-    parser = build_parser()
     argv_list = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(_command_of(argv_list))
     args = _parse(parser, argv_list)
     if isinstance(args, int):
         return args
@@ -626,18 +643,12 @@ def _dispatch(args: argparse.Namespace) -> int:
         message, code = _failure(exc, args)
         _fail(message, code)
         if code == 3 and getattr(args, "debug", False):
-            import traceback
-
             traceback.print_exc(file=sys.stderr)
         return code
 
 
 def _failure(exc: Exception, args: argparse.Namespace) -> tuple[str, int]:
     """The one-line message and exit code of a failed command."""
-    import json
-
-    from frictionlaws.base.errors import FitError, InputError
-
     if isinstance(exc, (InputError, UsageError)):
         return _input_message(exc, args), 2
     if isinstance(exc, FitError):

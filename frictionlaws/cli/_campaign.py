@@ -8,7 +8,23 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ._common import SCHEDULER_TRUST, add_progress_option, progress_value
+from ..base import jsonio
+from ..base.display import group_label, parameter_table
+from ..base.errors import InputError
+from ..base.numbers import parse_integer
+from ..base.outputs import check_outputs, write_text_atomic
+from ..base.sanitize import frame_csv
+from ..fitting.campaign import UnreadableDatasets, check_grouping, doubts, fit_many
+from ..fitting.shared import fit_shared
+from . import flag_label
+from ._common import (
+    SCHEDULER_TRUST,
+    add_progress_option,
+    data_sources,
+    progress_value,
+    refuse_unused,
+    shown_source,
+)
 
 __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names",
            "campaign_progress"]
@@ -66,8 +82,6 @@ def campaign_progress(args: argparse.Namespace) -> bool:
 
 
 def _jobs(text: str) -> int:
-    from frictionlaws.base.numbers import parse_integer
-
     try:  # the one number parser: no 1_0, no non-ASCII digits
         value = parse_integer(text)
     except ValueError:
@@ -95,8 +109,6 @@ def split_names(items: list[str]) -> list[str]:
     InputError
         When a name is given twice.
     """
-    from frictionlaws.base.errors import InputError
-
     out: list[str] = []
     for chunk in items:
         for name in (s.strip() for s in chunk.split(",")):
@@ -115,8 +127,6 @@ def refuse_campaign_options(args: argparse.Namespace, spread: tuple[str, ...] = 
     ``spread`` names those that spread only a campaign's work (a command that spreads
     one dataset's work over ``--jobs`` leaves it out).
     """
-    from ._common import refuse_unused
-
     refuse_unused(args, (*spread, "scheduler"),
                   "with one dataset and no --by (they spread several datasets or groups)")
 
@@ -134,8 +144,6 @@ def wants_campaign(args: argparse.Namespace) -> bool:
     bool
         True for several datasets, a directory, ``--by`` or ``--shared``.
     """
-    from frictionlaws.base.errors import InputError
-
     data = args.data if isinstance(args.data, list) else [args.data]
     if data.count("-") > 1:
         raise InputError("'-' (standard input) is given more than once; it can be read once")
@@ -147,8 +155,6 @@ def _check_out(args: argparse.Namespace) -> None:
     """``--out`` is checked before any work: suffix, not an input, writable."""
     if not args.out:
         return
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs
 
     if Path(args.out).suffix.lower() not in (".csv", ".jsonl", ".json"):
         raise InputError("--out takes a .csv, .jsonl or .json file", file=args.out)
@@ -157,8 +163,6 @@ def _check_out(args: argparse.Namespace) -> None:
 
 
 def _refuse_without_by(args: argparse.Namespace) -> None:
-    from frictionlaws.base.errors import InputError
-
     if getattr(args, "shared", []) and not args.by:
         raise InputError("--shared needs --by (the groups that share the parameters)")
 
@@ -180,8 +184,6 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
     int
         The exit status: 0, or 1 when a fit failed.
     """
-    from ._common import data_sources
-
     given = args.data
     with data_sources(given if isinstance(given, list) else [given]) as paths:
         args.data = paths if isinstance(given, list) else paths[0]
@@ -192,8 +194,6 @@ def run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> in
 
 
 def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> int:
-    from frictionlaws.fitting.campaign import check_grouping
-
     _refuse_without_by(args)
     _check_out(args)
     by = list(check_grouping(split_names(args.by), [args.law]))
@@ -207,8 +207,6 @@ def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> i
     if args.out and stream is None:
         camp.save(args.out)
     if getattr(args, "json", False):
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(camp.to_dict() if camp.records else
                            {"output": str(camp.path), "fits": len(camp),
                             "errors": camp.errors}))
@@ -224,9 +222,6 @@ def _run_fit_campaign(args: argparse.Namespace, fit_kwargs: dict[str, Any]) -> i
 
 def _by_table(camp: Any) -> str:
     """Each law's fits as one table: a row per dataset and group, parameters in display units."""
-    from frictionlaws.base.display import group_label, parameter_table
-    from frictionlaws.fitting.campaign import doubts
-
     several = len({rec["dataset"] for rec in camp.records}) > 1
     blocks = []
     for law in dict.fromkeys(rec["law"] for rec in camp.records):
@@ -250,12 +245,6 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
              load: dict[str, Any], fit_kwargs: dict[str, Any]) -> Any:
     """:func:`~frictionlaws.fitting.campaign.fit_many`; a campaign with unreadable datasets is
     refused with one ``error:`` line per dataset, the last one summing up (exit 2)."""
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.fitting.campaign import UnreadableDatasets, fit_many
-
-    from . import flag_label
-    from ._common import shown_source
-
     data = args.data if isinstance(args.data, list) else [args.data]
     try:
         return fit_many(args.law, args.data, by=by, jobs=args.jobs, scheduler=args.scheduler,
@@ -274,8 +263,6 @@ def _fit_all(args: argparse.Namespace, by: list[str], stream: str | None,
 
 def _refuse_if_only_input_errors(camp: Any) -> None:
     """Every dataset failed to load or group: bad input (exit 2), not failed fits."""
-    from frictionlaws.base.errors import InputError
-
     errors = camp.errors
     if errors and len(errors) == len(camp) and all(r.get("input_error") for r in errors):
         raise InputError(errors[0]["error"])
@@ -283,33 +270,23 @@ def _refuse_if_only_input_errors(camp: Any) -> None:
 
 def _run_shared(args: argparse.Namespace, by: list[str], shared: list[str],
                 fit_kwargs: dict[str, Any], load: dict[str, Any]) -> int:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.fitting.shared import fit_shared
-
     data = args.data if isinstance(args.data, list) else [args.data]
     if len(data) != 1:
         raise InputError("a shared-parameter fit takes one dataset (its groups share)")
     if fit_kwargs.get("uncertainty", "asymptotic") != "asymptotic":
         raise InputError("--uncertainty is not used with --shared (the shared fit reports "
                          "asymptotic errors); remove it")
-    from ._common import refuse_unused
 
     refuse_unused(args, ("jobs", "scheduler"),
                   "with --shared (a shared fit is one least-squares problem, not spread)")
     res = fit_shared(args.law, data[0], by, shared, fix=fit_kwargs.get("fix"),
                      weights=fit_kwargs.get("weights", "auto"), load_options=load)
     if args.out:
-        from frictionlaws.base import jsonio
-        from frictionlaws.base.outputs import check_outputs, write_text_atomic
-        from frictionlaws.base.sanitize import frame_csv
-
         check_outputs([args.out], inputs=data)
         text = (frame_csv(res.to_frame()) if Path(args.out).suffix.lower() == ".csv"
                 else jsonio.dumps(res.to_dict()) + "\n")
         write_text_atomic(args.out, text)
     if getattr(args, "json", False):
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(res.to_dict()))
     else:
         print(res.report())

@@ -33,6 +33,17 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from ..base.errors import InputError
+from ..base.jsonio import dumps
+from ..base.limits import read_stream
+from ..base.numbers import parse_integer, parse_number
+from ..base.outputs import check_input_file
+from ..base.units import parse_quantity, to_si
+from ..fitting import fit, load_result
+from ..law.bound import Source, bound_from_result, freeze
+from ..law.registry import get_law
+from ._messages import WARNING_WIDTH, UsageError, short_warning
+
 __all__ = [
     "UsageError",
     "SCHEDULER_TRUST",
@@ -86,21 +97,6 @@ RANGE_HELP = ("MIN:MAX[:N]: bounds as numbers in the default unit or with their 
               "(e.g. 0.01MPa:0.5MPa:20), N points with both ends included")
 
 
-#: Length of a warning line without ``--verbose`` (the whole text with it).
-WARNING_WIDTH = 220
-
-
-def short_warning(text: str) -> str:
-    """A long warning cut at a clause boundary, pointing to ``-v`` for the rest."""
-    if len(text) <= WARNING_WIDTH:
-        return text
-    head = text[:WARNING_WIDTH]
-    cut = head.rfind("; ")  # the end of a sentence-like clause first, then a shorter one
-    if cut <= WARNING_WIDTH // 2:
-        cut = max(head.rfind(": "), head.rfind(", "))
-    return (head[:cut] if cut > WARNING_WIDTH // 2 else head).rstrip() + " ... (-v: in full)"
-
-
 def report_text(report: str, args: argparse.Namespace) -> str:
     """A result's report for the terminal: its ``warning:`` lines short unless ``--verbose``."""
     if getattr(args, "verbose", False):
@@ -114,10 +110,6 @@ def report_text(report: str, args: argparse.Namespace) -> str:
 SCHEDULER_TRUST = ("The scheduler and its workers are trusted with code execution here (Dask "
                    "exchanges pickles): only this option connects, $FRICTIONLAWS_SCHEDULER "
                    "is not read. Needs the 'dask' extra.")
-
-
-class UsageError(Exception):
-    """Bad command-line usage (a malformed, conflicting or inapplicable option)."""
 
 
 # ------------------------------------------------------------------- integer types
@@ -135,8 +127,6 @@ def bounded_int(lo: int | None = None, hi: int | None = None) -> Callable[[str],
         allowed = "a whole number"
 
     def convert(text: str) -> int:
-        from frictionlaws.base.numbers import parse_integer
-
         try:  # the one number parser: no 1_0, no non-ASCII digits
             value = parse_integer(str(text))
         except ValueError:
@@ -170,8 +160,6 @@ def bounded_number(lo: float | None = None, hi: float | None = None, *,
     allowed = " and ".join(x for x in (low, high) if x) or "any finite value"
 
     def convert(text: str) -> float:
-        from frictionlaws.base.numbers import parse_number
-
         try:
             value = parse_number(str(text))
         except ValueError as exc:
@@ -410,8 +398,6 @@ def parse_assignments(items: Sequence[str] | str | None, what: str) -> dict[str,
 
 def parse_floats(items: Sequence[str] | str | None, what: str) -> dict[str, float]:
     """Merge ``n=0.333,...`` pieces into finite floats (the strict number parser)."""
-    from frictionlaws.base.numbers import parse_number
-
     out = {}
     for k, v in parse_assignments(items, what).items():
         try:
@@ -467,8 +453,6 @@ def fit_kwargs(args: argparse.Namespace) -> dict[str, Any]:
 
 def run_fit(args: argparse.Namespace, law: str, data: str) -> Any:
     """Fit ``law`` to ``data`` with the command's options (``-`` reads stdin)."""
-    from frictionlaws.fitting import fit
-
     with data_source(data) as source:
         return fit(law, source, **fit_kwargs(args))
 
@@ -516,8 +500,6 @@ def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
     InputError
         A law that does not match the file, an unknown preset, a bad value...
     """
-    from frictionlaws.law.bound import bound_from_result, freeze
-
     fit_data = getattr(args, "fit", None)
     if not fit_data and hasattr(args, "fix"):
         refuse_unused(args, (*FIT_OPTIONS, *data_options(args)), "without --fit")
@@ -538,11 +520,6 @@ def bound_from_args(args: argparse.Namespace, law: str | None) -> Any:
 
 
 def _bound_from_file(path: str, law: str | None) -> Any:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.fitting import load_result
-    from frictionlaws.law.bound import Source, bound_from_result
-    from frictionlaws.law.registry import get_law
-
     with data_source(path, "stdin.json") as real:  # '-': the file from standard input
         result = load_result(real)
     shown = "<stdin>" if path == STDIN else path
@@ -617,10 +594,6 @@ class RangeSpec:
 
 def _bound(text: str, quantity: str, option: str, whole: str,
            unit: str | Callable[[float], float] | None) -> float:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.numbers import parse_number
-    from frictionlaws.base.units import parse_quantity, to_si
-
     s = text.strip()
     if not s:
         raise UsageError(f"{option} '{whole}': empty bound; expected {RANGE_HELP}")
@@ -749,7 +722,6 @@ def data_source(data: str, name: str | Callable[[bytes], str] = "stdin.csv"
     """
     if data != STDIN:
         if os.path.lexists(data):  # a path, not a packaged name: refuse FIFOs, directories
-            from frictionlaws.base.outputs import check_input_file
 
             check_input_file(data, "data file")
         yield data
@@ -758,8 +730,6 @@ def data_source(data: str, name: str | Callable[[bytes], str] = "stdin.csv"
         raise UsageError("DATA '-' reads standard input, which is a terminal here; pipe a "
                          "table in (e.g. 'cat runs.csv | frictionlaws fit - ...') or give "
                          "a file name")
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.limits import read_stream
 
     raw = read_stream(sys.stdin)  # bounded in size
 
@@ -795,6 +765,4 @@ def shown_source(path: str) -> str:
 
 def print_json(obj: Any) -> None:
     """Print ``obj`` as strict JSON on stdout (null for non-finite numbers)."""
-    from frictionlaws.base.jsonio import dumps
-
     print(dumps(obj))

@@ -6,6 +6,14 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..base import jsonio
+from ..base.errors import InputError
+from ..base.numbers import parse_number
+from ..base.outputs import atomic_dir, check_outputs, write_text_atomic
+from ..base.sanitize import frame_csv
+from ..comparison import compare
+from ..comparison.results import mark_undetermined
+from ..fitting.campaign import compare_many
 from ._campaign import (
     add_campaign_options,
     campaign_progress,
@@ -18,15 +26,19 @@ from ._common import (
     add_fit_options,
     bounded_int,
     data_kwargs,
+    data_source,
+    data_sources,
     progress_value,
+    shown_source,
 )
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "compare", help="compare laws on one dataset (fit, CV, extrapolation, report)",
+        "compare", help=COMMANDS["compare"],
         description="Fit every applicable law (or the ones given) to a dataset and rank them "
         "by k-fold cross-validated RMSE. Per law: k, R^2, adjusted R^2, RMSE, MAE, max "
         "|residual|, AIC, AICc, BIC, Akaike weights (among laws fitted to the same rows), CV "
@@ -91,8 +103,6 @@ def _max_rows(text: str) -> int | str:
 
 def _mu_max(text: str) -> float:
     """``--mu-max``: a finite number > 0 (the one number parser: no 'inf', no overflow)."""
-    from frictionlaws.base.numbers import parse_number
-
     try:
         value = parse_number(text)
     except ValueError as exc:
@@ -117,9 +127,6 @@ def _rows_option(args: argparse.Namespace) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs
-
     inputs = [d for d in args.data if Path(d).exists()]
     check_outputs([args.out], dirs=[args.report], inputs=inputs)
     if wants_campaign(args):
@@ -135,11 +142,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_one(args: argparse.Namespace, data: str) -> int:
-    from frictionlaws.base.outputs import atomic_dir
-    from frictionlaws.comparison import compare
-
-    from ._common import data_source
-
     with data_source(data) as source:
         cmp = compare(args.laws, source, **_options(args),
                       progress=progress_value(args), jobs=args.jobs,
@@ -163,13 +165,6 @@ def _run_one(args: argparse.Namespace, data: str) -> int:
 
 
 def _run_many(args: argparse.Namespace) -> int:
-    from frictionlaws.base import jsonio
-    from frictionlaws.base.outputs import write_text_atomic
-    from frictionlaws.comparison.results import mark_undetermined
-    from frictionlaws.fitting.campaign import compare_many
-
-    from ._common import data_sources, shown_source
-
     laws = split_names([args.laws]) if args.laws else None
     load = {k: v for k, v in data_kwargs(args).items() if v is not None}
     with data_sources(args.data) as paths:
@@ -180,8 +175,6 @@ def _run_many(args: argparse.Namespace) -> int:
                              **_options(args))
     shown = mark_undetermined(frame)  # undetermined scores as n/d in text and CSV
     if args.out:
-        from frictionlaws.base.sanitize import frame_csv
-
         text = (frame_csv(shown, float_format="%.10g")
                 if args.out.lower().endswith(".csv")
                 else jsonio.dumps(frame.to_dict("records")) + "\n")

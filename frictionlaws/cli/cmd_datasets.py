@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import argparse
 
+from ..base import jsonio
+from ..base.errors import InputError
+from ..io import list_datasets, load_dataset
 from ._common import add_data_options, data_source
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "datasets", help="list packaged datasets, or describe one or a CSV file",
+        "datasets", help=COMMANDS["datasets"],
         description="Without NAME: list the datasets shipped with frictionlaws (their names "
         "work wherever a data file is accepted). With NAME (a packaged name or a CSV path): "
         "load it as 'fit' would and print its rows, the range of each column in display "
@@ -24,13 +28,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base import jsonio
-    from frictionlaws.io import list_datasets, load_dataset
-
     if args.name is None:
         if args.map or args.units or args.area:
-            from frictionlaws.base.errors import InputError
-
             raise InputError("--map, --units and --area need a dataset NAME or file")
         items = list_datasets()
         if args.json:

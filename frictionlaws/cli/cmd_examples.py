@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import argparse
 
+from ..example_files import write_example_files
 from ._common import SEED_MAX, bounded_int
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "examples", help="write the example files the README and the guide use",
+        "examples", help=COMMANDS["examples"],
         description="Write the example files of the README's 'A first look' and of the "
                     "getting-started guide into DIR (synthetic tables, tyre data and a raw "
                     "tribometer campaign; EXAMPLES.txt describes them). Existing files are "
@@ -24,8 +26,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.example_files import write_example_files
-
     for path in write_example_files(args.directory, seed=args.seed):
         print(f"wrote {path}{'/' if path.is_dir() else ''}")
     return 0

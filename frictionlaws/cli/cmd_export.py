@@ -3,11 +3,22 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..base.errors import InputError
+from ..base.outputs import check_outputs, check_unique_names, write_text_atomic
+from ..fe_export import export
+from ..fe_export.formats import FORMATS, OPTIONS, formats_taking
+from ..fe_export.fortran import check_source_name
+from ..fe_export.systems import SYSTEMS, unit_system
+from ..fitting.campaign import check_grouping, fit_groups, group_keys, key_text
+from ..io import load_dataset
+from ..law import VARIABLES
+from ._campaign import split_names
 from ._common import (
     FIT_OPTIONS,
     UsageError,
@@ -19,12 +30,14 @@ from ._common import (
     bounded_int,
     bounded_number,
     data_options,
+    data_source,
     fit_kwargs,
     parse_assignments,
     print_json,
     range_option,
     refuse_unused,
 )
+from .commands import COMMANDS
 
 _EPILOG = """\
 ranges: {box} take MIN:MAX or MIN:MAX:N.  Bare numbers are in the
@@ -44,38 +57,10 @@ formats:
 """
 
 
-class _Formats:
-    """The export formats, read from the library's one table when first needed.
-
-    Building the parser imports no numpy: the table (``fe_export.api.FORMATS``) is read
-    only when ``--format`` is checked or the help is shown.
-    """
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(_formats())
-
-    def __contains__(self, name: object) -> bool:
-        return name in _formats()
-
-
-def _formats() -> dict[str, tuple[Any, str, bool]]:
-    from frictionlaws.fe_export.api import FORMATS
-
-    return FORMATS
-
-
-def _systems() -> dict[str, dict[str, str]]:
-    from frictionlaws.fe_export.systems import SYSTEMS
-
-    return SYSTEMS
-
-
 def _system_list(with_units: bool) -> str:
     """``SI (Pa, m/s, K, N), mm-N-s (...)`` or ``SI (default), mm-N-s, ...``."""
-    from frictionlaws.law import VARIABLES
-
     out = []
-    for i, (name, units) in enumerate(_systems().items()):
+    for i, (name, units) in enumerate(SYSTEMS.items()):
         shown = [units[v] for v in VARIABLES if units.get(v)]
         out.append(f"{name} ({', '.join(shown)})" if with_units
                    else f"{name} (default)" if i == 0 else name)
@@ -83,10 +68,9 @@ def _system_list(with_units: bool) -> str:
 
 
 def _format_lines() -> str:
-    table = _formats()
-    width = max(map(len, table))
-    return "\n".join(f"  {name:<{width}}  {text}" + ("" if needs_box else "; no ranges needed")
-                      for name, (_, text, needs_box) in table.items())
+    width = max(map(len, FORMATS))
+    return "\n".join(f"  {name:<{width}}  {f.line}" + ("" if f.needs_box else "; no ranges needed")
+                      for name, f in FORMATS.items())
 
 
 class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
@@ -107,22 +91,20 @@ class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
 
 __all__ = ["add_parser", "run"]
 
-#: The variables a box may give ranges of (one flag each: --p, --v, ...): the law
-#: variables.  The flags are made when the parser is built, which imports no numpy, so
-#: this is not read from ``law.VARIABLES``; tests/test_code_rules.py checks the two agree.
-_BOX = ("p", "v", "T", "F_N", "s")
+#: The variables a box may give ranges of (one flag each: --p, --v, ...): the law variables.
+_BOX = tuple(VARIABLES)
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "export", help="export a law to Abaqus, LS-DYNA, Ansys, Radioss, tables or Fortran",
+        "export", help=COMMANDS["export"],
         description="Write a friction law in a finite-element code's own input (or a grid, or "
         "an Abaqus user subroutine), in the model's units, with a header stating the law, "
         "parameters, units, box, the maximum interpolation error and where it occurs.",
         epilog=_EPILOG, formatter_class=_HelpFormatter)
     p.add_argument("--law", help="law id or alias (may be omitted with --params)")
     add_law_source_options(p)
-    p.add_argument("--format", required=True, choices=_Formats(), metavar="FORMAT",
+    p.add_argument("--format", required=True, choices=list(FORMATS), metavar="FORMAT",
                    help="output format: %(choices)s")
     for var in _BOX:
         p.add_argument(f"--{var}", metavar="MIN:MAX[:N]", dest=f"range_{var}",
@@ -144,44 +126,30 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="fit and export each group separately, one file per group named "
                         "FILE's stem + _VALUE (e.g. -o deck.inp --by surface: deck_steel.inp)")
     add_fit_options(g)
-    _solver_options(p)
+    _format_options(p)
     # library arguments named by this command's flags (--units is the unit system here)
     p.set_defaults(_option_flags={"units": "--data-units"})
     return p
 
 
-def _solver_options(p: argparse.ArgumentParser) -> None:
-    s = p.add_argument_group("solver options")
-    s.add_argument("--lsdyna-contact", metavar="SSID,MSID[,SSTYP,MSTYP]",
-                   help="LS-DYNA contact card 1 ids (default 1,2,3,3: part ids 1 and 2)")
-    s.add_argument("--lsdyna-table-id", type=bounded_int(1, 99_999_999), default=1000,
-                   metavar="ID",
-                   help="LS-DYNA *DEFINE_TABLE id (curves follow: ID+1, ...)")
-    s.add_argument("--ansys-mat", type=bounded_int(1, 99_999_999), default=1, metavar="MAT",
-                   help="Ansys material id")
-    s.add_argument("--radioss-id", type=bounded_int(1, 99_999_999), default=1, metavar="ID",
-                   help="Radioss /FRICTION id")
+def _flag(option: str) -> str:
+    """The flag of a format option: ``ansys_mat`` -> ``--ansys-mat``."""
+    return "--" + option.replace("_", "-")
 
 
-def _options(args: argparse.Namespace) -> dict:
-    from frictionlaws.base.errors import InputError
+def _format_options(p: argparse.ArgumentParser) -> None:
+    """One flag per option of the library's table of formats (``fe_export.formats``)."""
+    g = p.add_argument_group("format options (each for the formats named)")
+    for opt in OPTIONS.values():
+        g.add_argument(_flag(opt.name), dest=opt.name, type=bounded_int(opt.lo, opt.hi),
+                       metavar=opt.metavar,
+                       help=f"{opt.meaning} ({', '.join(formats_taking(opt.name))}; "
+                            f"{opt.lo}..{opt.hi}, default {opt.default})")
 
-    opts = {"lsdyna_table_id": args.lsdyna_table_id, "ansys_mat": args.ansys_mat,
-            "radioss_id": args.radioss_id}
-    if args.lsdyna_contact:
-        from frictionlaws.base.numbers import parse_integer
 
-        try:  # the one number parser: no 1_0, no non-ASCII digits
-            ids = [parse_integer(x) for x in args.lsdyna_contact.split(",")]
-        except ValueError:
-            ids = []
-        if len(ids) not in (2, 4):
-            raise InputError(f"--lsdyna-contact '{args.lsdyna_contact}': expected "
-                             "SSID,MSID or SSID,MSID,SSTYP,MSTYP (integers)")
-        opts.update(lsdyna_ssid=ids[0], lsdyna_msid=ids[1])
-        if len(ids) == 4:
-            opts.update(lsdyna_sstyp=ids[2], lsdyna_mstyp=ids[3])
-    return opts
+def _options(args: argparse.Namespace) -> dict[str, int]:
+    """The format options given (the library adds the defaults of the others)."""
+    return {name: value for name in OPTIONS if (value := getattr(args, name)) is not None}
 
 
 def _box(args: argparse.Namespace, system: Any) -> tuple[dict, dict[str, str]]:
@@ -216,12 +184,12 @@ def _check_args(args: argparse.Namespace) -> None:
                          "file: give -o FILE")
     if not args.fit:
         refuse_unused(args, (*FIT_OPTIONS, *data_options(args), "by"), "without --fit")
+    taken = {o.name for o in FORMATS[args.format].options}
+    refuse_unused(args, [name for name in OPTIONS if name not in taken],
+                  f"with --format {args.format}")
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.fe_export import export
-    from frictionlaws.fe_export.systems import unit_system
-
     _check_args(args)
     system = unit_system(args.units)
     box, spacing = _box(args, system)
@@ -257,15 +225,6 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
     Every group is fitted and exported in memory first; the files are written only
     when all succeeded, each atomically, none over an input.
     """
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs, check_unique_names, write_text_atomic
-    from frictionlaws.fe_export import export
-    from frictionlaws.fitting.campaign import check_grouping, fit_groups, group_keys, key_text
-    from frictionlaws.io import load_dataset
-
-    from ._campaign import split_names
-    from ._common import data_source
-
     if args.output == "-":
         raise UsageError("--by writes one file per group: give -o FILE, not -o -")
     options = fit_kwargs(args)
@@ -306,8 +265,6 @@ def _export_groups(args: argparse.Namespace, law: str, box: dict, spacing: dict[
 
 def _group_path(out: Path, key: dict) -> Path:
     """``deck.inp`` and {surface: steel} -> ``deck_steel.inp`` (file-name safe)."""
-    import re
-
     tag = "_".join(re.sub(r"[^A-Za-z0-9.+-]+", "-", str(v)).strip("-") or "none"
                    for v in key.values())
     return out.with_name(f"{out.stem}_{tag}{out.suffix}")
@@ -317,10 +274,8 @@ def _check_files(args: argparse.Namespace) -> None:
     """The output is checked before any work: not an input, a writable file."""
     if args.output == "-":
         return
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.fe_export.fortran import FORTRAN_FORMATS, check_source_name
 
-    if args.format in FORTRAN_FORMATS:
+    if FORMATS[args.format].source_code:
         check_source_name(args.output)
     inputs = [x for x in (args.params, args.fit) if x and Path(x).exists()]
     check_outputs([args.output], inputs=inputs)

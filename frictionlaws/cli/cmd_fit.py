@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
+from ..base.errors import InputError
+from ..base.outputs import check_outputs
 from ._campaign import (
     add_campaign_options,
     refuse_campaign_options,
@@ -11,13 +14,14 @@ from ._campaign import (
     wants_campaign,
 )
 from ._common import add_data_options, add_fit_options, fit_kwargs, report_text, run_fit
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "fit", help="fit a law to a dataset",
+        "fit", help=COMMANDS["fit"],
         description="Fit a friction law to a dataset (CSV file, packaged dataset name or '-' "
         "for standard input) and print parameters with standard errors, 95 % confidence "
         "intervals and units, goodness of fit and warnings. Several files or a directory, "
@@ -38,8 +42,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-
     if wants_campaign(args):
         if args.save:
             raise InputError("--save writes one fit; for several datasets or groups use --out")
@@ -52,10 +54,6 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--save needs a file name ('-' is not one here; --json prints the "
                          "result on stdout)")
     if args.save:
-        from pathlib import Path
-
-        from frictionlaws.base.outputs import check_outputs
-
         check_outputs([args.save], inputs=[data] if Path(data).exists() else [])
     result = run_fit(args, args.law, data)
     if args.save:

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import argparse
 
+from ..law.registry import list_laws
 from ._common import add_json_option, print_json
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    p = sub.add_parser("laws", help="list the registered friction laws",
+    p = sub.add_parser("laws", help=COMMANDS["laws"],
                        description="List the registered friction laws.")
     p.add_argument("--family", choices=("sliding", "slip"), help="only this family")
     add_json_option(p)
@@ -18,8 +20,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.law.registry import list_laws
-
     laws = list_laws(args.family)
     if args.json:
         print_json([{"id": law.id, "title": law.title, "family": law.family,

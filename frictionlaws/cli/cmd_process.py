@@ -13,10 +13,18 @@ checked before any work and written together at the end: all of them or none.
 from __future__ import annotations
 
 import argparse
+import os
+from contextlib import nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..base import jsonio
+from ..base.errors import InputError
+from ..base.outputs import atomic_dir, check_dir_move, check_outputs
+from ..io import output_dir
+from ..tribometer.process import manifest_names, process_many, read_manifest, write_tables
+from ..tribometer.rig import load_rig
 from ._campaign import _jobs
 from ._common import (
     SCHEDULER_TRUST,
@@ -25,13 +33,14 @@ from ._common import (
     bounded_int,
     progress_value,
 )
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "process", help="process raw tribometer records into a dataset",
+        "process", help=COMMANDS["process"],
         description="Process the raw torque records listed in manifest CSVs (file, "
         "load [kg] or load [N], surface, optional condition, mode, window_start [s], "
         "window_end [s], direction) with a rig description (TOML): filter, subtract the "
@@ -82,8 +91,6 @@ class _Target:
 
 def _plan(args: argparse.Namespace, names: list[str]) -> tuple[list[_Target], Path | None]:
     """The output files of every manifest, and the output directory (None: -o is a file)."""
-    from frictionlaws.base.errors import InputError
-
     if str(args.output).strip() == "-":
         raise InputError("-o -: process writes a dataset file (or a directory of them), not "
                          "standard output; --json prints the results on standard output")
@@ -108,10 +115,6 @@ def _plan(args: argparse.Namespace, names: list[str]) -> tuple[list[_Target], Pa
 
 def _refuse_collisions(targets: list[_Target]) -> None:
     """Two outputs with one name (also differing in case only) name both manifests."""
-    import os
-
-    from frictionlaws.base.errors import InputError
-
     seen: dict[str, tuple[str, str]] = {}
     for t in targets:
         for role, path in (("dataset", t.dataset), ("per-record table", t.records)):
@@ -128,9 +131,6 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
                        out_dir: Path | None, rig: Any) -> None:
     """Every output checked before any work: no input among them (manifests, the rig and
     every record the manifests list, resolved as the processing resolves them)."""
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tribometer.process import read_manifest
-
     _refuse_collisions(targets)
     records = [e.path for m in args.manifest for e in read_manifest(m, rig)[0] if e.path]
     inputs = [*args.manifest, args.rig, *records]
@@ -142,15 +142,7 @@ def _check_before_work(args: argparse.Namespace, targets: list[_Target],
 
 
 def run(args: argparse.Namespace) -> int:
-    from contextlib import nullcontext
-
-    from frictionlaws.base.outputs import atomic_dir, check_dir_move
-    from frictionlaws.tribometer.process import manifest_names, process_many
-    from frictionlaws.tribometer.rig import load_rig
-
     if "-" in args.manifest:
-        from frictionlaws.base.errors import InputError
-
         raise InputError("MANIFEST '-': a manifest names its record files relative to its "
                          "own folder, which standard input does not have; give the "
                          "manifest's path")
@@ -178,8 +170,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _refuse_empty(args: argparse.Namespace, empty: list[str]) -> None:
-    from frictionlaws.base.errors import InputError
-
     where = f"manifests {', '.join(empty)}: " if len(empty) > 1 else ""
     raise InputError(
         f"{where}no condition has {args.min_repeats} or more usable records: no dataset "
@@ -189,16 +179,11 @@ def _refuse_empty(args: argparse.Namespace, empty: list[str]) -> None:
 
 def _write(targets: list[_Target], camps: list[Any], out_dir: Path | None) -> None:
     """Write every dataset and per-record table together; on failure, none of them."""
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tribometer.process import write_tables
-
     created = out_dir is not None and not out_dir.exists()
     if not created:
         check_outputs([p for t in targets for p in (t.dataset, t.records)],
                       inputs=[f for c in camps for f in c.record_files()])
     if out_dir is not None:
-        from frictionlaws.io import output_dir
-
         output_dir(out_dir)
     tables = [(p, text) for t, c in zip(targets, camps, strict=True)
               for p, text in ((t.records, c.records_text()), (t.dataset, c.dataset_text()))]
@@ -206,9 +191,7 @@ def _write(targets: list[_Target], camps: list[Any], out_dir: Path | None) -> No
         write_tables(tables)
     except BaseException:
         if created and out_dir is not None:
-            import contextlib
-
-            with contextlib.suppress(OSError):
+            with suppress(OSError):
                 out_dir.rmdir()  # only when still empty
         raise
 
@@ -217,8 +200,6 @@ def _report(args: argparse.Namespace, targets: list[_Target], camps: list[Any], 
             written: bool) -> None:
     """The summaries as text, or (``--json``) one strict JSON document."""
     if args.json:
-        from frictionlaws.base import jsonio
-
         docs = []
         for t, c in zip(targets, camps, strict=True):
             outputs = ({"dataset": str(t.dataset), "records": str(t.records),

@@ -6,13 +6,16 @@ import argparse
 import re
 from typing import Any
 
+from ..law import EVIDENCE_TAGS, VARIABLES
+from ..law.registry import get_law
 from ._common import add_json_option, add_law_source_options, bound_from_args, print_json
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "describe", "describe_bound"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    p = sub.add_parser("show", help="show a law: formula, parameters, presets, evidence",
+    p = sub.add_parser("show", help=COMMANDS["show"],
                        description="Show a law's formula, parameters with units and bounds, "
                        "settings, presets, domain, derived quantities, references and "
                        "evidence tag.  With --preset, --set or --params, also the law bound "
@@ -39,8 +42,6 @@ def _header(law: Any) -> list[str]:
 
 def _declared_values(law: Any) -> list[str]:
     """Parameters, settings, floors and presets."""
-    from frictionlaws.law import VARIABLES
-
     out = ["parameters:"]
     for p in law.params:
         lo, hi = p.bounds
@@ -59,8 +60,6 @@ def _declared_values(law: Any) -> list[str]:
 
 
 def _domain_and_derived(law: Any) -> list[str]:
-    from frictionlaws.law import VARIABLES
-
     if law.domain:
         out = ["domain: " + ", ".join(f"{k} {lo:g}..{hi:g} {VARIABLES[k].unit}"
                                       for k, (lo, hi) in law.domain.items())]
@@ -86,8 +85,6 @@ def _preset_value(law: Any, name: str) -> str:
 
 
 def _references(law: Any) -> list[str]:
-    from frictionlaws.law import EVIDENCE_TAGS
-
     out = [f"notes: {law.notes}"] if law.notes else []
     out.append("references:")
     out += [f"  - {r}" for r in law.references]
@@ -100,8 +97,6 @@ def _references(law: Any) -> list[str]:
 
 def describe(law_name: str) -> str:
     """The text ``show`` prints for a law."""
-    from frictionlaws.law.registry import get_law
-
     law = get_law(law_name)
     return "\n".join([*_header(law), *_declared_values(law), *_domain_and_derived(law),
                       *_references(law)])
@@ -109,8 +104,6 @@ def describe(law_name: str) -> str:
 
 def describe_bound(bound: Any) -> str:
     """The lines ``show`` adds for a law bound to values (``--preset/--set/--params``)."""
-    from frictionlaws.law import VARIABLES
-
     law = bound.law
     units = {p.name: p.unit for p in law.params} | {s.name: s.unit for s in law.settings}
     out = [f"bound values (from {bound.source.describe()}; SI):"]
@@ -138,8 +131,6 @@ def _bound(args: argparse.Namespace) -> Any:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.law.registry import get_law
-
     bound = _bound(args)
     if args.json:
         law = get_law(args.law)
@@ -157,8 +148,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _variable_text(law: Any, v: str) -> str:
     """One variable for ``show``: unit, this law's meaning, when it may be left out."""
-    from frictionlaws.law import VARIABLES
-
     text = f"{v} [{VARIABLES[v].unit or '-'}] ({law.meaning(v)}"
     if v in law.optional_variables:
         pname, neutral = law.optional_variables[v]

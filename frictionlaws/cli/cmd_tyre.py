@@ -18,10 +18,29 @@ Sub-commands:
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import sys
+import warnings
 from typing import Any
 
+import numpy as np
+
+from ..base import jsonio
+from ..base.errors import ExtrapolationWarning, FitError, InputError
+from ..base.numbers import parse_number
+from ..base.outputs import check_figure_path, check_outputs
+from ..base.units import parse_quantity, to_si
+from ..tyre.brush import BrushModel, BrushTyre
+from ..tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
+from ..tyre.data.tydex import write_tydex
+from ..tyre.mf.fit import check_tir_path, fit_mf
+from ..tyre.mf.fit.checks import check_plausible
+from ..tyre.mf.inputs import INPUTS
+from ..tyre.mf.model import MagicFormula
+from ..tyre.mf.outputs import OUTPUTS, evaluate
+from ..tyre.reduce import reduce_mf
+from ..tyre.thesis import thesis_comparison
 from ._common import (
     RANGE_HELP,
     SEED_MAX,
@@ -33,8 +52,13 @@ from ._common import (
     bound_from_args,
     bounded_int,
     bounded_number,
+    data_source,
+    data_sources,
     parse_values,
+    refuse_unused,
+    shown_source,
 )
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "parse_loads"]
 
@@ -43,7 +67,7 @@ _MAX_LOADS = 1000
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "tyre", help="use friction laws inside tyre models (brush model, Magic Formula)",
+        "tyre", help=COMMANDS["tyre"],
         description="Friction laws inside tyre models: brush-model cornering stiffness with "
         "any sliding law, the thesis' comparison, Magic Formula property files (.tir/JSON) "
         "and their reduction to simple slip laws.")
@@ -213,8 +237,6 @@ MAX_STEADY_ROWS = 100_000
 def _steady_state_options(p: argparse.ArgumentParser) -> None:
     """One option per input of the steady state (the library's table, read without numpy),
     the load being ``--loads``; ``--saturate`` and ``--outputs``."""
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     g = p.add_argument_group(
         "steady state at given conditions",
         "with any of these, every steady-state output (or those of --outputs) is printed "
@@ -234,8 +256,6 @@ def _steady_state_options(p: argparse.ArgumentParser) -> None:
 
 
 def _steady_state_dests() -> list[str]:
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     return [n for n in INPUTS if n != "fz"] + list(_STEADY_STATE_EXTRA)
 
 
@@ -245,8 +265,6 @@ def _steady_state_given(args: argparse.Namespace) -> bool:
 
 def _mf_file(args: argparse.Namespace) -> Any:
     """The property file read with the Magic Formula conventions chosen (``-``: stdin)."""
-    from frictionlaws.tyre.mf.model import MagicFormula
-
     return MagicFormula.from_file(args.file, slip_angle=args.slip_angle,
                                   friction_scaling=args.friction_scaling,
                                   loads_above_fzmax=args.loads_above_fzmax,
@@ -255,8 +273,6 @@ def _mf_file(args: argparse.Namespace) -> Any:
 
 def _on_property_file(run: Any, args: argparse.Namespace) -> int:
     """Run a command on its property FILE; ``-`` reads it from standard input."""
-    from ._common import data_source
-
     given = args.file
     with data_source(given, _property_name) as path:
         args.file = path
@@ -305,11 +321,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
     ``START:STOP:STEP`` form is recognised by a third number that is not a count
     and refused with its translation.
     """
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import to_si
-
     try:
         to_si(1.0, unit, "F_N")
     except InputError as exc:
@@ -325,8 +336,6 @@ def parse_loads(text: str, unit: str, flag: str = "--loads") -> Any:
 def _refuse_step_form(text: str, flag: str) -> None:
     """``START:STOP:STEP`` (the form before the grammar was one): refused when the third
     number cannot be a count, flagged when it reads both ways."""
-    from frictionlaws.base.numbers import parse_number
-
     parts = str(text or "").split(":")
     if len(parts) != 3:
         return
@@ -347,8 +356,6 @@ def _refuse_step_form(text: str, flag: str) -> None:
 
 
 def _quantity(text: str | None, kind: str, what: str) -> float | None:
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     return parse_quantity(text, kind, what=what)
@@ -356,9 +363,6 @@ def _quantity(text: str | None, kind: str, what: str) -> float | None:
 
 def _stiffness(text: str | None) -> float | None:
     """A stiffness per unit length [N/m^2] such as '8.49e6 N/m^2' or '8.49 N/mm^2'."""
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.units import parse_quantity
-
     if text is None:
         return None
     value = parse_quantity(text, "stiffness_per_length", what="--c-py")
@@ -368,8 +372,6 @@ def _stiffness(text: str | None) -> float | None:
 
 
 def _tyre(args: argparse.Namespace) -> Any:
-    from frictionlaws.tyre.brush import BrushTyre
-
     kw: dict[str, Any] = {}
     for opt, key, kind in (("width", "width", "length"),
                            ("half_length", "half_length_ref", "length"),
@@ -394,8 +396,6 @@ def _warn(messages: list[str]) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-
     cmd = getattr(args, "tyre_command", None)
     if cmd == "cornering":
         return _run_cornering(args)
@@ -414,9 +414,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _angles(text: str) -> list[float]:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.numbers import parse_number
-
     try:  # the one number parser: no 1_0, no non-ASCII digits, finite
         return [parse_number(a) for a in text.split(",") if a.strip()]
     except ValueError as exc:
@@ -439,11 +436,6 @@ def _source_notes(args: argparse.Namespace, bound: Any) -> list[str]:
 
 
 def _run_cornering(args: argparse.Namespace) -> int:
-    import warnings
-
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.brush import BrushModel
-
     loads = parse_loads(args.loads, args.load_unit)
     angles = _angles(args.angles)
     tyre = _tyre(args)
@@ -469,15 +461,8 @@ def _run_cornering(args: argparse.Namespace) -> int:
 
 
 def _run_thesis(args: argparse.Namespace) -> int:
-    import warnings
-
-    from frictionlaws.base.errors import ExtrapolationWarning
-    from frictionlaws.tyre.thesis import thesis_comparison
-
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     if not laws:
-        from frictionlaws.base.errors import InputError
-
         raise InputError("--laws is empty; give law ids, e.g. thirion,savkoor")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
@@ -497,10 +482,6 @@ def _run_thesis(args: argparse.Namespace) -> int:
 
 
 def _run_mf(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from ._common import refuse_unused
-
     if args.coefficients:  # before reading the file: the listing evaluates no load
         refuse_unused(args, ("loads", "load_unit", *_steady_state_dests()),
                       "with --coefficients")
@@ -513,8 +494,6 @@ def _run_mf(args: argparse.Namespace) -> int:
              else np.array([0.5, 1.0, 1.5]) * mf.fnomin)
     summary = mf.summary(loads)
     if "source" in summary:
-        from ._common import shown_source
-
         summary["source"] = shown_source(summary["source"])
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -548,13 +527,6 @@ def _run_mf(args: argparse.Namespace) -> int:
 
 def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
     """Every combination of the input values given (SI), one row each, as flat arrays."""
-    import itertools
-
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.mf.inputs import INPUTS
-
     given: dict[str, Any] = {}
     for name, inp in INPUTS.items():
         if name == "fz":
@@ -577,10 +549,6 @@ def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
 
 def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
     """``tyre mf FILE --kappa ...``: every output of the library's table, per row."""
-    from frictionlaws.base import jsonio
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.mf.outputs import OUTPUTS, evaluate
-
     names = None
     if args.outputs is not None:
         names = [x.strip() for x in args.outputs.split(",") if x.strip()]
@@ -593,8 +561,6 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
     res = evaluate(mf, grid["kappa"], grid["alpha"], grid["fz"], grid["gamma"],
                    grid["pressure"], grid["vx"], saturate=args.saturate, names=names)
     if args.json:
-        from ._common import shown_source
-
         out = {"name": mf.name, "source": shown_source(mf.source), "version": mf.version,
                **res.to_dict(), "notes": list(mf.notes)}
         print(jsonio.dumps(out))
@@ -642,15 +608,10 @@ def _print_coefficients(mf: Any, as_json: bool) -> int:
 
 
 def _run_reduce(args: argparse.Namespace) -> int:
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.tyre.reduce import reduce_mf
-
     loads = parse_loads(args.load, args.load_unit, "--load")
     if loads.size != 1:
         raise InputError("--load takes one load")
     if args.save:
-        from frictionlaws.base.outputs import check_outputs
-
         check_outputs([args.save], inputs=[args.file])
     mf = _mf_file(args)
     red = reduce_mf(mf, args.law, fz=float(loads[0]), side=args.side,
@@ -663,8 +624,6 @@ def _run_reduce(args: argparse.Namespace) -> int:
     if args.save:
         red.fit.save(args.save)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(red.to_dict()))
     else:
         print(red.report())
@@ -674,12 +633,7 @@ def _run_reduce(args: argparse.Namespace) -> int:
 
 
 def _run_fit_mf(args: argparse.Namespace) -> int:
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre.mf.fit import check_tir_path, fit_mf
-
     if args.uncertainty != "sweeps":
-        from ._common import refuse_unused
-
         refuse_unused(args, ("boot", "boot_jobs", "seed"),
                       f"with --uncertainty {args.uncertainty} (for --uncertainty sweeps only)")
     if args.data.count("-") > 1:
@@ -688,12 +642,7 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-        from frictionlaws.tyre.mf.fit.plot import check_figure_path
-
         check_figure_path(args.plot)
-    from frictionlaws.base.errors import FitError
-
-    from ._common import data_sources, shown_source
 
     with data_sources(args.data) as data:
         try:
@@ -714,8 +663,6 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     if args.plot:
         res.plot(args.plot)
     if args.json:
-        from frictionlaws.base import jsonio
-
         print(jsonio.dumps(res.to_dict()))
         return 0
     print(res.report())
@@ -724,16 +671,6 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
 
 
 def _run_prepare(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from frictionlaws.base.errors import InputError
-    from frictionlaws.base.outputs import check_outputs
-    from frictionlaws.tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
-    from frictionlaws.tyre.data.tydex import write_tydex
-    from frictionlaws.tyre.mf.fit.checks import check_plausible
-
-    from ._common import data_source, shown_source
-
     suffix = args.output.lower().rsplit(".", 1)[-1] if "." in args.output else ""
     if suffix not in ("csv", "tdx"):
         raise InputError("the sweeps are written as a tidy CSV (.csv) or a TYDEX file (.tdx): "
@@ -754,8 +691,6 @@ def _run_prepare(args: argparse.Namespace) -> int:
             write_tydex(prepared.data, args.output, comments=provenance)
         plots = write_plots(prepared, args.plots) if args.plots else []
     if args.json:
-        from frictionlaws.base import jsonio
-
         out = prepared.to_dict()
         out["written"] = [args.output, *map(str, plots)]
         print(jsonio.dumps(out))

@@ -5,14 +5,17 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..validation import list_cases, run_validation
+from ..validation.core import select_cases
 from ._common import add_json_option, parse_names, print_json
+from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p = sub.add_parser(
-        "validate", help="run the validation suite against published values",
+        "validate", help=COMMANDS["validate"],
         description="Run the validation suite: the library against figures from the source "
         "thesis and the law catalogue, the FE manuals' friction formulas, independent "
         "reference implementations of every law, a parameter-recovery study and the "
@@ -28,9 +31,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
-    from frictionlaws.validation import list_cases, run_validation
-    from frictionlaws.validation.core import select_cases
-
     names = parse_names(args.case, "--case")  # '' or a repeated name: exit 2
     cases = select_cases(list_cases(), names or None)  # unknown names: exit 2
     if args.list:

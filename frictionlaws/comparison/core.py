@@ -64,7 +64,7 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import DomainError, FitError, InputError
-from ..fitting import FitData, as_fit_data, fit, invalid_rows
+from ..fitting import DEFAULT_METHOD, FitData, as_fit_data, check_fit_options, fit, invalid_rows
 from ..law import VARIABLES, Law
 from ..law.registry import get_law, list_laws
 from ..parallel import local_workers, starmap_local
@@ -602,9 +602,7 @@ def _compare(fd: FitData, laws: Any, family: str | None, folds: Any, holdout: An
              starts: int | None, mu_limits: Sequence[float], progress: bool | None,
              jobs: Any, max_rows: Any = MAX_ROWS) -> Comparison:
     """:func:`compare` on data already read."""
-    from ..fitting import check_fit_options
-
-    check_fit_options("least_squares", starts, seed, "error")  # the fit's rule for both
+    check_fit_options(DEFAULT_METHOD, starts, seed, "error")  # the fit's rule for both
     limit = _check_max_rows(max_rows)
     n_data = fd.n
     fd, sub_note = subsample(fd, limit, seed)

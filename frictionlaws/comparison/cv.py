@@ -42,7 +42,7 @@ import numpy as np
 
 from ..base.errors import FitError, InputError
 from ..fitting import RANK_TOL, FitData, FitResult, fit
-from ..fitting.diagnosis import _jacobian
+from ..fitting.lsq import central_jacobian
 from ..law import Law
 
 __all__ = ["kfold_assignment", "CVResult", "cross_validate", "error_text", "refit",
@@ -270,7 +270,7 @@ def undetermined_rows(law: Law, res: FitResult, train: FitData,
                                             (n_tr + n_test,)))
 
     scales = np.array([law.param(k).default if k in law.param_names else 0.0 for k in names])
-    jac = _jacobian(model, np.array([base[k] for k in names], float), scales)
+    jac = central_jacobian(model, np.array([base[k] for k in names], float), scales)
     if not np.all(np.isfinite(jac)):
         out[:] = True
         return out

@@ -60,6 +60,7 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import DomainError, InputError
+from ..base.numbers import parse_number
 from ..base.units import display_unit, to_display
 from ..fitting import FitData, FitResult
 from ..law import VARIABLES, Law
@@ -407,7 +408,6 @@ def _holdout_fraction(k: str, v: Any) -> float:
     if k not in VARIABLES:
         raise InputError(f"unknown variable '{k}' (known: {', '.join(VARIABLES)})",
                          option="holdout")
-    from ..base.numbers import parse_number
 
     try:  # text through the one number parser (no 0_3, no non-ASCII digits, no nan)
         f = parse_number(v) if isinstance(v, str) else float(v)

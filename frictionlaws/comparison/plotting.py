@@ -20,19 +20,18 @@ from typing import Any
 
 import numpy as np
 
+from ..base.display import unit_text
+from ..base.errors import InputError
+from ..base.units import QUANTITIES, display_unit, to_display
+
 __all__ = ["plot_fit_grid", "plot_comparison"]
 
 
 def _axis_label(name: str) -> str:
-    from ..base.display import unit_text
-    from ..base.units import QUANTITIES, display_unit
-
     return f"{name} [{unit_text(display_unit(name)) if name in QUANTITIES else '-'}]"
 
 
 def _shown(values: Any, name: str) -> np.ndarray:
-    from ..base.units import QUANTITIES, to_display
-
     arr = np.asarray(values, dtype=float)
     return to_display(arr, name) if name in QUANTITIES else arr
 
@@ -99,8 +98,6 @@ def plot_fit_grid(results: Mapping[str, Any], data: Any, *, x: str = "p",
     """
     import matplotlib.pyplot as plt
 
-    from ..base.errors import InputError
-
     arrays = data.arrays() if hasattr(data, "arrays") else data
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     if not results:
@@ -155,8 +152,6 @@ def plot_comparison(comparison: Any, *, ax: Any = None, log: bool = True) -> Any
         hatched bars mark laws the plausibility scan flags.
     """
     import matplotlib.pyplot as plt
-
-    from ..base.errors import InputError
 
     results = list(comparison.results)
     if not results:

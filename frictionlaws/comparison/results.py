@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..law.interop import table_html
+from .plotting import plot_comparison
 from .record import (
     COMPARISON_FORMAT,
     COMPARISON_VERSION,
@@ -20,6 +22,7 @@ from .record import (
     LawComparison,
     mark_undetermined,
 )
+from .report import format_table, write_report
 
 __all__ = ["Comparison", "LawComparison", "COMPARISON_FORMAT", "COMPARISON_VERSION",
            "FRAME_COLUMNS", "mark_undetermined"]
@@ -35,8 +38,6 @@ class Comparison(ComparisonRecord):
     """
 
     def _repr_html_(self) -> str:
-        from ..fitting.views import table_html
-
         rows = mark_undetermined(self.to_frame()).to_dict("records")
         return table_html(rows, caption=f"laws compared on {self.data.name} "
                                         f"({self.data.n} rows), best first; n/d: "
@@ -44,8 +45,6 @@ class Comparison(ComparisonRecord):
 
     def table(self) -> str:
         """The ranked console table with the flags, skipped and failed laws."""
-        from .report import format_table
-
         return format_table(self)
 
     def __str__(self) -> str:
@@ -60,8 +59,6 @@ class Comparison(ComparisonRecord):
         -------
         matplotlib.figure.Figure
         """
-        from .plotting import plot_comparison
-
         return plot_comparison(self, **kw)
 
     def write_report(self, directory: str | Path, *, jobs: int = 1) -> dict[str, Path]:
@@ -79,6 +76,4 @@ class Comparison(ComparisonRecord):
         dict of str to Path
             Name -> path of each file written.
         """
-        from .report import write_report
-
         return write_report(self, directory, jobs)

@@ -1,7 +1,8 @@
 """Export a law to finite-element codes: tables, keyword cards and user subroutines.
 
 :func:`export` writes a law, with its parameters, in the model's unit system,
-to one of :data:`FORMATS`:
+to one of :data:`FORMATS`, the one table of formats (:mod:`.formats`: each a writer and
+its entry, read by the API, the command line and the docs):
 
 * tables the solver interpolates (``csv``, ``json``, ``abaqus`` ``*FRICTION``,
   ``lsdyna`` ``*DEFINE_TABLE``, ``ansys`` ``TB,FRIC``), on grids whose
@@ -20,9 +21,11 @@ The function is also ``frictionlaws.export``; this package is named
 ``fe_export`` so that the two never shadow each other.
 """
 
-from .api import FORMATS, ExportResult, export, make_specs, parse_range
+from .api import ExportResult, export, make_specs, parse_range
+from .formats import FORMATS, OPTIONS, ExportFormat, FormatOption
 from .grid import AxisSpec, Grid, GridError
 from .systems import SYSTEMS, UnitSystem, unit_system
 
-__all__ = ["export", "ExportResult", "FORMATS", "AxisSpec", "Grid", "GridError",
-           "UnitSystem", "unit_system", "SYSTEMS", "parse_range", "make_specs"]
+__all__ = ["export", "ExportResult", "FORMATS", "OPTIONS", "ExportFormat", "FormatOption",
+           "AxisSpec", "Grid", "GridError", "UnitSystem", "unit_system", "SYSTEMS",
+           "parse_range", "make_specs"]

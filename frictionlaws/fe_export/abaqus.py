@@ -1,4 +1,4 @@
-"""Abaqus keyword exports: the ``*FRICTION`` table and ``EXPONENTIAL DECAY``.
+"""Abaqus exports: the ``*FRICTION`` table, ``EXPONENTIAL DECAY``, and the user subroutines.
 
 Table (``abaqus``): data lines ``mu, slip rate, contact pressure,
 temperature, field 1, ...`` (eight values per line, continuation lines after
@@ -24,10 +24,11 @@ import numpy as np
 
 from ..base.errors import Argument, InputError
 from .exact import exp_decay_form
-from .fortran import FIELD_VARIABLES
+from .fortran import FIELD_VARIABLES, fortran_source, input_deck, routine_name
 from .job import Job, Written, commented, model_axes, tabulated
 
-__all__ = ["write_abaqus", "write_abaqus_decay", "table_columns", "OUTSIDE_ABAQUS"]
+__all__ = ["write_abaqus", "write_abaqus_decay", "write_abaqus_subroutine", "table_columns",
+           "OUTSIDE_ABAQUS"]
 
 OUTSIDE_ABAQUS = ("Abaqus interpolates linearly between the table rows and holds the end "
                   "values outside the table (no extrapolation)")
@@ -123,3 +124,79 @@ def write_abaqus_decay(job: Job) -> Written:
     lines += ["*FRICTION, EXPONENTIAL DECAY", f"{form.mu_s!r}, {form.mu_k!r}, {d_c!r}"]
     return Written("\n".join(lines) + "\n", exact=True, summary=body[-3:],
                    details={"mu_s": form.mu_s, "mu_k": form.mu_k, "d_c": d_c})
+
+
+def write_abaqus_subroutine(job: Job) -> Written:
+    """A Fortran user subroutine of Abaqus that evaluates the law itself: ``FRIC_COEF``,
+    ``VFRIC_COEF`` or ``VFRIC`` by the job's format, with the input-deck lines it needs."""
+    fmt = job.fmt
+    law = job.law
+    fields = [v for v in law.variables if v in FIELD_VARIABLES]
+    u = job.units
+    names = {"abaqus-fric-coef": "FRIC_COEF (Abaqus/Standard)",
+             "abaqus-vfric-coef": "VFRIC_COEF (Abaqus/Explicit, general contact)",
+             "abaqus-vfric": "VFRIC (Abaqus/Explicit, contact pairs)"}
+    body = [f"routine: {names[fmt]}, calling {routine_name(law)} (the law, SI, "
+            "implicit none)"]
+    if fmt == "abaqus-fric-coef":
+        body += [
+            "interface of Abaqus 2017 and later: fCoef(nBlock,2), fCoefDeriv(nBlock,20,2), "
+            "slipData(nBlock,6) with the slip-rate magnitude in slipData(k,1); check it "
+            "against your release (older releases pass fCoef(nBlock), "
+            "fCoefDeriv(nBlock,3), slipRate(nBlock), as VFRIC_COEF does)",
+            "out: fCoef(k,1) = mu; fCoefDeriv(k,1..3,1) = d mu/d slip rate "
+            f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
+            f"temperature [1/{u.label('T')}], slots 4..20 0; isotropic friction: "
+            "fCoef(k,2) and fCoefDeriv(k,:,2) are left alone, as the manual asks",
+        ]
+    elif fmt == "abaqus-vfric-coef":
+        body += [
+            "out: fCoef(k) = mu; fCoefDeriv(k,1..3) = d mu/d slip rate "
+            f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
+            f"temperature [1/{u.label('T')}]",
+        ]
+    else:
+        body += [
+            "out: fTangential(1,k) = -min(mu * |fNormal|, fStickForce) (opposing slip), "
+            "other directions 0",
+            "in: slip rate = |dSlipFric(:,k)| / dTimPrev; p = |fNormal(k)| / "
+            "areaSlv(jConSlvid(k)); T = tempSlv(k)"
+            + ("; F_N = |fNormal(k)|, the nodal normal force, which is not a "
+               "tribometer's normal load: check the law's meaning" if "F_N" in
+               law.variables else ""),
+        ]
+    fld = [v for v in fields if not (fmt == "abaqus-vfric" and v == "F_N")]
+    for i, v in enumerate(fld):
+        src = (f"preDefSlv(k,{i + 1})" if fmt == "abaqus-vfric"
+               else f"fieldAvg(k,{i + 1})")
+        body.append(f"field variable {i + 1} = {v} ({law.meaning(v)}) "
+                    f"[{u.label(v)}], read from {src}; the analysis stops if it is "
+                    "missing")
+    if "T" in law.variables:
+        body.append("the law needs the temperature: the analysis stops if none is "
+                    "defined")
+    body += [
+        "inputs are converted from the model's units to SI, the law is evaluated in SI "
+        "with its floors, and the derivatives are scaled back to the model's units",
+        "every local is declared (the include's implicit typing would make names "
+        "starting i..n INTEGER); in Abaqus/Explicit the real arguments take the "
+        "include's precision",
+        "use: abaqus job=<job> user=<this file>",
+    ]
+    deck, deck_notes = input_deck(law, fmt)
+    instructions = [
+        "input deck: Abaqus calls this routine only when the surface interaction says "
+        "so; without *FRICTION, USER=... it silently uses other friction. Keyword lines, "
+        "in this order (<...>: yours):", *(f"  {line}" for line in deck),
+        *(f"deck: {note}" for note in deck_notes)]
+    body += instructions
+    if job.specs:
+        job.domain_warnings()
+        body += job.box_lines()
+    head = job.header(f"Abaqus user subroutine {names[fmt]}", body,
+                      "the subroutine evaluates the law itself at any input (check the "
+                      "law's domain)")
+    text = fortran_source(law, job.values, fmt, job.units, head)
+    return Written(text, exact=True, summary=body[:1] + instructions,
+                   details={"routine": routine_name(law), "input_deck": deck,
+                            "input_deck_notes": deck_notes})

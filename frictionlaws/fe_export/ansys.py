@@ -38,7 +38,7 @@ def write_ansys(job: Job) -> Written:
     grid, err, how = job.make_grid(names, "ansys")
     mu = tabulated(job, grid)
     axes = model_axes(job, grid)
-    mat = int(job.options.get("ansys_mat", 1))
+    mat = job.options["ansys_mat"]
     summary = [*job.box_lines(grid), *job.error_lines(err, how)]
     body = [*summary,
             "fields: " + (", ".join(f"{_FIELD[n]} = {n} [{job.units.label(n)}]"

@@ -3,180 +3,70 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from ..base.errors import Argument, InputError
+from ..base.numbers import parse_integer, parse_number
+from ..base.outputs import check_outputs, write_text_atomic
+from ..base.units import parse_quantity, si_magnitude
 from ..law import VARIABLES, Law
-from .fortran import FORTRAN_FORMATS, check_source_name
+from ..law.bound import BoundLaw, as_bound, freeze
+from .formats import FORMATS, OPTIONS, formats_taking
+from .fortran import check_source_name
 from .grid import MAX_ROWS, AxisSpec, Grid
 from .job import Job, Written
 from .systems import UnitSystem, unit_system
 
-if TYPE_CHECKING:
-    from ..law.bound import BoundLaw
-
-__all__ = ["export", "ExportResult", "FORMATS", "parse_range", "make_specs"]
+__all__ = ["export", "ExportResult", "FORMATS", "OPTIONS", "check_options", "parse_range",
+           "make_specs"]
 
 
-def _fortran(fmt: str) -> Callable[[Job], Written]:
-    def write(job: Job) -> Written:
-        from .fortran import FIELD_VARIABLES, fortran_source, input_deck, routine_name
-
-        law = job.law
-        fields = [v for v in law.variables if v in FIELD_VARIABLES]
-        u = job.units
-        names = {"abaqus-fric-coef": "FRIC_COEF (Abaqus/Standard)",
-                 "abaqus-vfric-coef": "VFRIC_COEF (Abaqus/Explicit, general contact)",
-                 "abaqus-vfric": "VFRIC (Abaqus/Explicit, contact pairs)"}
-        body = [f"routine: {names[fmt]}, calling {routine_name(law)} (the law, SI, "
-                "implicit none)"]
-        if fmt == "abaqus-fric-coef":
-            body += [
-                "interface of Abaqus 2017 and later: fCoef(nBlock,2), fCoefDeriv(nBlock,20,2), "
-                "slipData(nBlock,6) with the slip-rate magnitude in slipData(k,1); check it "
-                "against your release (older releases pass fCoef(nBlock), "
-                "fCoefDeriv(nBlock,3), slipRate(nBlock), as VFRIC_COEF does)",
-                "out: fCoef(k,1) = mu; fCoefDeriv(k,1..3,1) = d mu/d slip rate "
-                f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
-                f"temperature [1/{u.label('T')}], slots 4..20 0; isotropic friction: "
-                "fCoef(k,2) and fCoefDeriv(k,:,2) are left alone, as the manual asks",
-            ]
-        elif fmt == "abaqus-vfric-coef":
-            body += [
-                "out: fCoef(k) = mu; fCoefDeriv(k,1..3) = d mu/d slip rate "
-                f"[1/({u.label('v')})], d mu/d pressure [1/{u.label('p')}], d mu/d "
-                f"temperature [1/{u.label('T')}]",
-            ]
-        else:
-            body += [
-                "out: fTangential(1,k) = -min(mu * |fNormal|, fStickForce) (opposing slip), "
-                "other directions 0",
-                "in: slip rate = |dSlipFric(:,k)| / dTimPrev; p = |fNormal(k)| / "
-                "areaSlv(jConSlvid(k)); T = tempSlv(k)"
-                + ("; F_N = |fNormal(k)|, the nodal normal force, which is not a "
-                   "tribometer's normal load: check the law's meaning" if "F_N" in
-                   law.variables else ""),
-            ]
-        fld = [v for v in fields if not (fmt == "abaqus-vfric" and v == "F_N")]
-        for i, v in enumerate(fld):
-            src = (f"preDefSlv(k,{i + 1})" if fmt == "abaqus-vfric"
-                   else f"fieldAvg(k,{i + 1})")
-            body.append(f"field variable {i + 1} = {v} ({law.meaning(v)}) "
-                        f"[{u.label(v)}], read from {src}; the analysis stops if it is "
-                        "missing")
-        if "T" in law.variables:
-            body.append("the law needs the temperature: the analysis stops if none is "
-                        "defined")
-        body += [
-            "inputs are converted from the model's units to SI, the law is evaluated in SI "
-            "with its floors, and the derivatives are scaled back to the model's units",
-            "every local is declared (the include's implicit typing would make names "
-            "starting i..n INTEGER); in Abaqus/Explicit the real arguments take the "
-            "include's precision",
-            "use: abaqus job=<job> user=<this file>",
-        ]
-        deck, deck_notes = input_deck(law, fmt)
-        instructions = [
-            "input deck: Abaqus calls this routine only when the surface interaction says "
-            "so; without *FRICTION, USER=... it silently uses other friction. Keyword lines, "
-            "in this order (<...>: yours):", *(f"  {line}" for line in deck),
-            *(f"deck: {note}" for note in deck_notes)]
-        body += instructions
-        if job.specs:
-            job.domain_warnings()
-            body += job.box_lines()
-        head = job.header(f"Abaqus user subroutine {names[fmt]}", body,
-                          "the subroutine evaluates the law itself at any input (check the "
-                          "law's domain)")
-        text = fortran_source(law, job.values, fmt, job.units, head)
-        return Written(text, exact=True, summary=body[:1] + instructions,
-                       details={"routine": routine_name(law), "input_deck": deck,
-                                "input_deck_notes": deck_notes})
-
-    return write
-
-
-def _lazy(module: str, name: str) -> Callable[[Job], Written]:
-    def write(job: Job) -> Written:
-        from importlib import import_module
-
-        return getattr(import_module(f"frictionlaws.fe_export.{module}"), name)(job)
-
-    return write
-
-
-#: Format name -> (writer, one-line description, needs a box).
-#: Format options and the whole numbers each may take: ids are positive and fit the
-#: solvers' 10-column integer fields; LS-DYNA surface types are 0..9.
-OPTIONS: dict[str, tuple[int, int]] = {
-    "lsdyna_ssid": (1, 99_999_999), "lsdyna_msid": (1, 99_999_999),
-    "lsdyna_sstyp": (0, 9), "lsdyna_mstyp": (0, 9), "lsdyna_table_id": (1, 99_999_999),
-    "ansys_mat": (1, 99_999_999), "radioss_id": (1, 99_999_999),
-}
-
-
-def check_options(options: Mapping[str, Any] | None) -> dict[str, int]:
-    """Check format options: known names, whole numbers in their ranges (:data:`OPTIONS`).
+def check_options(options: Mapping[str, Any] | None, format: str | None = None
+                  ) -> dict[str, int]:
+    """Check format options against :data:`OPTIONS`, with the defaults of those not given.
 
     Parameters
     ----------
     options : mapping or None
         Option name -> value.
+    format : str, optional
+        The format written: an option it does not take is refused, never ignored.
 
     Returns
     -------
     dict
-        The options as ints.
+        Every option of ``format`` (all of them without one) as ints, the given ones and
+        the defaults of the others.
 
     Raises
     ------
     InputError
-        An unknown name, or a value that is not a whole number in its range.
+        An unknown name, one the format does not take, or a value that is not a whole
+        number in its range.
     """
-    out = {}
+    taken = {o.name for o in FORMATS[format].options} if format in FORMATS else set(OPTIONS)
+    out = {name: OPTIONS[name].default for name in taken}
     for name, value in (options or {}).items():
         if name not in OPTIONS:
             raise InputError(f"unknown export option '{name}'; options: {', '.join(OPTIONS)}",
                              option="options")
-        lo, hi = OPTIONS[name]
+        if name not in taken:
+            raise InputError(f"export option {name} does not apply to format {format} "
+                             f"(it is an option of {', '.join(formats_taking(name))})",
+                             option="options")
+        opt = OPTIONS[name]
         ok = (not isinstance(value, bool) and isinstance(value, (int, np.integer))
-              and lo <= value <= hi)
+              and opt.lo <= value <= opt.hi)
         if not ok:
-            raise InputError(f"export option {name} must be a whole number from {lo} to {hi}, "
-                             f"got {value!r}", option="options")
+            raise InputError(f"export option {name} must be a whole number from {opt.lo} to "
+                             f"{opt.hi}, got {value!r}", option="options")
         out[name] = int(value)
     return out
-
-
-#: Table formats that write a formula card instead when the law has the solver's form
-#: (LS-DYNA FS/FD/DC, Radioss Ifric 1/4): the law is checked where the solver evaluates it.
-_FORMULA_CARDS = ("lsdyna", "radioss")
-
-FORMATS: dict[str, tuple[Callable[[Job], Written], str, bool]] = {
-    "csv": (_lazy("tables", "write_csv"), "grid of mu, CSV with units in the header", True),
-    "json": (_lazy("tables", "write_json"), "grid of mu, JSON with units", True),
-    "abaqus": (_lazy("abaqus", "write_abaqus"),
-               "Abaqus *FRICTION table (mu, slip rate, pressure, temperature, fields)", True),
-    "abaqus-decay": (_lazy("abaqus", "write_abaqus_decay"),
-                     "Abaqus *FRICTION, EXPONENTIAL DECAY (exact laws only)", False),
-    "lsdyna": (_lazy("lsdyna", "write_lsdyna"),
-               "LS-DYNA FS/FD/DC card when exact, else FS=2 *DEFINE_TABLE", True),
-    "ansys": (_lazy("ansys", "write_ansys"), "Ansys TB,FRIC with TBFIELD NPRES/SLRV/TEMP",
-              True),
-    "radioss": (_lazy("radioss", "write_radioss"),
-                "OpenRadioss /FRICTION Ifric 1/4, exact or fitted over the box", True),
-    "abaqus-fric-coef": (_fortran("abaqus-fric-coef"),
-                         "Fortran FRIC_COEF (Abaqus/Standard), mu and derivatives", False),
-    "abaqus-vfric-coef": (_fortran("abaqus-vfric-coef"),
-                          "Fortran VFRIC_COEF (Abaqus/Explicit), mu and derivatives", False),
-    "abaqus-vfric": (_fortran("abaqus-vfric"),
-                     "Fortran VFRIC (Abaqus/Explicit contact pairs), friction force", False),
-}
 
 
 @dataclass
@@ -271,9 +161,6 @@ _RANGE_EXAMPLES = {"p": "0.01:0.5:20 (in the unit system) or 10kPa:0.5MPa:20",
 
 def _range_bound(var: str, s: str, text: str, system: UnitSystem) -> float:
     """One bound of a range: a number in the unit system or a quantity with its unit."""
-    from ..base.numbers import parse_number
-    from ..base.units import parse_quantity
-
     s = s.strip()
     if not s:
         raise InputError(f"'{text}': empty bound; expected MIN:MAX[:N], e.g. "
@@ -313,8 +200,6 @@ def parse_range(var: str, text: str, units: UnitSystem | str | None = None,
     lo, hi = (_range_bound(var, x, text, system) for x in parts[:2])
     n = None
     if len(parts) == 3:
-        from ..base.numbers import parse_integer
-
         count = parts[2].strip()
         try:  # the one number parser: no 1_0, no non-ASCII digits
             n = parse_integer(count, lo=0, hi=999_999_999)
@@ -336,8 +221,6 @@ def _check_spacing(spacing: Mapping[str, str]) -> None:
 
 def _axis(var: str, spec: Any, units: UnitSystem, spacing: str) -> AxisSpec:
     """One entry of a box: an AxisSpec, ``"MIN:MAX[:N]"`` text or ``(min, max[, n])``."""
-    from ..base.units import parse_quantity, si_magnitude
-
     if isinstance(spec, AxisSpec):
         return spec
     if isinstance(spec, str):
@@ -379,8 +262,6 @@ def make_specs(box: Mapping[str, Any] | None, units: UnitSystem,
 
 def _bound(law: Law | BoundLaw | str | None, params: Any, preset: str | None) -> BoundLaw:
     """The law and its values: a BoundLaw given as ``law`` or ``params``, or bound here."""
-    from ..law.bound import BoundLaw, as_bound, freeze
-
     if isinstance(law, BoundLaw):
         if params is not None or preset is not None:
             raise InputError("a bound law carries its values: give no params or preset with "
@@ -416,7 +297,7 @@ def _job(bound: BoundLaw, format: str, specs: dict[str, AxisSpec], system: UnitS
                          "range", option=f"box.{unused[0]}")
     job = Job(law=law_obj, values=dict(bound.values), fmt=format, units=system, specs=specs,
               tol=tol, max_rows=int(max_rows), source=source or bound.source.describe(),
-              fit=bound, options=check_options(options))
+              fit=bound, options=check_options(options, format))
     job.warnings += [f"fit: {w}" for w in bound.notes]
     if not bound.converged:
         job.warnings.append("fit: the optimiser did not converge")
@@ -435,9 +316,7 @@ def _check_path(path: str | Path | None, bound: BoundLaw, fmt: str) -> None:
     A Fortran format's file must also have a name compilers read as fixed form.
     """
     if path is not None and str(path) != "-":
-        from ..base.outputs import check_outputs
-
-        if fmt in FORTRAN_FORMATS:
+        if FORMATS[fmt].source_code:
             check_source_name(str(path))
 
         check_outputs([path], inputs=_inputs_of(bound), what="export file")
@@ -450,7 +329,6 @@ def _write(path: str | Path | None, text: str, inputs: list[str]) -> str | None:
     """
     if path is None or str(path) == "-":
         return None
-    from ..base.outputs import check_outputs, write_text_atomic
 
     p = Path(path)
     check_outputs([p], inputs=inputs, what="export file")
@@ -482,7 +360,8 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         :func:`~frictionlaws.fitting.load_result`); missing values come from
         ``preset`` or the defaults of optional parameters.
     format : str
-        One of :data:`FORMATS` (``csv``, ``abaqus``, ``lsdyna``, ``radioss``...).
+        One of :data:`~frictionlaws.fe_export.formats.FORMATS` (``csv``, ``abaqus``,
+        ``lsdyna``, ``radioss``...).
     box : mapping, optional
         Variable -> ``(min, max)`` or ``(min, max, n)`` in SI (numbers) or as
         quantity strings (``("10 kPa", "0.5 MPa", 20)``), or ``"MIN:MAX[:N]"``
@@ -511,7 +390,8 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
         How the parameters were obtained (written in the header; default: the
         bound law's :class:`~frictionlaws.law.bound.Source`).
     options : mapping, optional
-        Format options (ids of the solver's cards), see :data:`OPTIONS`.
+        Format options (ids of the solver's cards) of ``format``, see
+        :data:`~frictionlaws.fe_export.formats.OPTIONS`; the others take their defaults.
 
     Returns
     -------
@@ -532,20 +412,20 @@ def export(law: Law | BoundLaw | str | None, params: Any = None, format: str = "
     system = unit_system(units)
     job = _job(bound, format, make_specs(box, system, spacing), system, tol=tol,
                max_rows=max_rows, source=source, options=options)
-    written = FORMATS[format][0](_checked(job, format))
+    written = FORMATS[format].writer(_checked(job, format))
     return _result(job, written, _write(path, written.text, _inputs_of(bound)))
 
 
 def _checked(job: Job, format: str) -> Job:
     """The job after the checks of its box that come before any writing, with warnings."""
-    needs_box = FORMATS[format][2]
-    job.check_corners(needs_box)
-    if needs_box:
+    entry = FORMATS[format]
+    job.check_corners(entry.needs_box)
+    if entry.needs_box:
         job.domain_warnings()
-    if not needs_box or format in _FORMULA_CARDS:
+    if not entry.needs_box or entry.formula_card:
         # tables check their own box while the grid is built
-        job.check_formula_box(code=format in FORTRAN_FORMATS)
-    if format in FORTRAN_FORMATS:
+        job.check_formula_box(code=entry.source_code)
+    if entry.source_code:
         job.floor_warnings()
     return job
 

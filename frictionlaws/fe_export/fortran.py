@@ -38,12 +38,15 @@ Variables other than p, v and T (the slip ratio ``s``, the normal load
 
 from __future__ import annotations
 
+import math
 import re
+import textwrap
 import zlib
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 from ..base.errors import InputError
+from ..base.sanitize import ascii_line
 from ..law import VARIABLES, Law
 
 __all__ = ["FORTRAN_FORMATS", "fortran_source", "routine_name", "FIELD_VARIABLES",
@@ -74,8 +77,6 @@ _ARG = {"p": "xp", "v": "xv", "T": "xt", "F_N": "xfn", "s": "xs"}
 
 def _real(value: float) -> str:
     """A REAL*8 literal that round-trips the double ``value`` exactly."""
-    import math
-
     if not math.isfinite(value):
         raise InputError(f"cannot write the non-finite number {value!r} into Fortran")
     text = repr(float(value))
@@ -156,10 +157,6 @@ def _comment(lines: Sequence[str], width: int = 72) -> list[str]:
 
     Every line goes through :func:`~frictionlaws.base.sanitize.ascii_line` first.
     """
-    import textwrap
-
-    from ..base.sanitize import ascii_line
-
     out = []
     for line in map(ascii_line, lines):
         if not line:

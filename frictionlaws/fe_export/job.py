@@ -10,6 +10,7 @@ things the same way.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import textwrap
 from collections.abc import Callable, Mapping, Sequence
@@ -18,9 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from ..base.errors import Argument, InputError
+from .. import __version__
+from ..base.errors import Argument, DomainError, InputError
+from ..base.sanitize import ascii_line
 from ..law import MU_MAX, VARIABLES, Law
-from .grid import AxisSpec, Grid, GridError, make_grid
+from .grid import AxisSpec, Grid, GridError, make_grid, tabulate
 from .systems import UnitSystem
 
 #: Points at which the law is checked in the box before export (spread over the axes).
@@ -91,7 +94,7 @@ class Job:
         The :class:`~frictionlaws.law.bound.BoundLaw` the values came from (standard
         errors, fixed parameters, fitted ranges).
     options : dict
-        Format-specific options.
+        The format's options, checked, with their defaults (:mod:`.formats`).
     warnings : list of str
         Warnings collected on the way (written in the header and returned).
     """
@@ -206,10 +209,6 @@ class Job:
         DomainError
             Naming the box and what the law says there.
         """
-        import itertools
-
-        from ..base.errors import DomainError
-
         names = list(self.variables)
         if not names or (needs_box and any(v not in self.specs for v in names)):
             return
@@ -237,8 +236,6 @@ class Job:
         two differ by more than the export's tolerance (or the law has no limit there),
         the export says so, with both numbers, at the corners of the box.
         """
-        import itertools
-
         tol = self.tol if self.tol is not None else 1e-3
         names = list(self.variables)
         ends = [(self.specs[v].lo, self.specs[v].hi) if v in self.specs
@@ -388,8 +385,6 @@ class Job:
 
     def header(self, title: str, body: Sequence[str], outside: str | None) -> list[str]:
         """The header lines every exported file starts with."""
-        from .. import __version__
-
         law = self.law
         try:
             formula = law.pretty()
@@ -418,8 +413,6 @@ def commented(lines: Sequence[str], prefix: str, width: int = 78) -> list[str]:
     Every line goes through :func:`~frictionlaws.base.sanitize.ascii_line` first: a name or
     source with a line break or a control character stays inside its comment.
     """
-    from ..base.sanitize import ascii_line
-
     out = []
     for line in map(ascii_line, lines):
         if not line:
@@ -441,8 +434,6 @@ def model_axes(job: Job, grid: Grid) -> list[np.ndarray]:
 
 def tabulated(job: Job, grid: Grid) -> np.ndarray:
     """mu on the grid (SI evaluation)."""
-    from .grid import tabulate
-
     return tabulate(job.func, grid.names, grid.points)
 
 

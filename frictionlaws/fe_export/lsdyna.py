@@ -57,12 +57,11 @@ def _int10(i: int) -> str:
 
 
 def _contact_cards(job: Job, fs: float, fd: float, dc: float) -> list[str]:
-    opt = job.options
-    ssid, msid = int(opt.get("lsdyna_ssid", 1)), int(opt.get("lsdyna_msid", 2))
-    sstyp, mstyp = int(opt.get("lsdyna_sstyp", 3)), int(opt.get("lsdyna_mstyp", 3))
-    kind = str(opt.get("lsdyna_contact", "AUTOMATIC_SURFACE_TO_SURFACE")).upper()
+    opt = job.options  # checked, with the defaults of fe_export.formats
+    ssid, msid = opt["lsdyna_ssid"], opt["lsdyna_msid"]
+    sstyp, mstyp = opt["lsdyna_sstyp"], opt["lsdyna_mstyp"]
     return [
-        f"*CONTACT_{kind}",
+        "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE",
         "$#    SSID      MSID     SSTYP     MSTYP    SBOXID    MBOXID       SPR       MPR",
         "".join(_int10(i) for i in (ssid, msid, sstyp, mstyp, 0, 0, 0, 0)),
         "$#      FS        FD        DC        VC       VDC    PENCHK        BT        DT",
@@ -75,9 +74,9 @@ def _contact_cards(job: Job, fs: float, fd: float, dc: float) -> list[str]:
 
 def _contact_note(job: Job) -> str:
     opt = job.options
-    return (f"contact card 1 uses SSID={opt.get('lsdyna_ssid', 1)}, "
-            f"MSID={opt.get('lsdyna_msid', 2)} (SSTYP/MSTYP={opt.get('lsdyna_sstyp', 3)}/"
-            f"{opt.get('lsdyna_mstyp', 3)}): set them to your surfaces "
+    return (f"contact card 1 uses SSID={opt['lsdyna_ssid']}, MSID={opt['lsdyna_msid']} "
+            f"(SSTYP/MSTYP={opt['lsdyna_sstyp']}/{opt['lsdyna_mstyp']}): set them to your "
+            "surfaces "
             "(API options lsdyna_ssid, lsdyna_msid, lsdyna_sstyp, lsdyna_mstyp); only card 2 "
             "carries the friction law")
 
@@ -174,7 +173,7 @@ def _write_table(job: Job) -> Written:
     names = [v for v in ("p", "v") if v in job.variables]
     grid, err, how = job.make_grid(names, "lsdyna")
     p_g, v_g, mu = _table_values(job, grid)
-    tbid = int(job.options.get("lsdyna_table_id", 1000))
+    tbid = job.options["lsdyna_table_id"]
     summary = [*job.box_lines(grid), *job.error_lines(err, how)]
     body = [
         *summary,

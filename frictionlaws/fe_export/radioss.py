@@ -111,7 +111,7 @@ def _approx_error(diff, grid: Grid) -> GridError:
 
 
 def _card(job: Job, ifric: int, c: dict[str, float], title: str) -> list[str]:
-    fid = int(job.options.get("radioss_id", 1))
+    fid = job.options["radioss_id"]
     full = {k: c.get(k, 0.0) for k in _KEYS}
     return [
         f"/FRICTION/{fid}",

@@ -22,8 +22,10 @@ import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from ..base.errors import InputError
-from ..base.units import QUANTITIES
+from ..base.units import QUANTITIES, canonical_unit, to_si
 from ..law import VARIABLES
 
 if TYPE_CHECKING:
@@ -71,8 +73,6 @@ class UnitSystem:
 
     def affine(self, var: str) -> tuple[float, float]:
         """``(scale, offset)`` with ``x_si = scale * x_model + offset``."""
-        from ..base.units import to_si
-
         unit = self.units[var]
         zero = float(to_si(0.0, unit, var))
         one = float(to_si(1.0, unit, var))
@@ -80,15 +80,11 @@ class UnitSystem:
 
     def to_model(self, var: str, x_si: ArrayLike) -> np.ndarray:
         """Convert SI values of ``var`` to this system's unit."""
-        import numpy as np
-
         scale, offset = self.affine(var)
         return (np.asarray(x_si, dtype=float) - offset) / scale
 
     def to_si(self, var: str, x_model: ArrayLike) -> np.ndarray:
         """Convert values of ``var`` in this system's unit to SI."""
-        import numpy as np
-
         scale, offset = self.affine(var)
         return np.asarray(x_model, dtype=float) * scale + offset
 
@@ -118,8 +114,6 @@ def unit_system(spec: str | UnitSystem | None) -> UnitSystem:
     InputError
         For an unknown system name, variable or unit (with the accepted ones).
     """
-    from ..base.units import canonical_unit
-
     if isinstance(spec, UnitSystem):
         return spec
     text = "SI" if spec is None or not str(spec).strip() else str(spec).strip()

@@ -43,6 +43,11 @@ from .diagnosis import (
     RANK_TOL,
     WEAK_TOL,
 )
+from .methods import (
+    DEFAULT_METHOD,
+    FIT_METHODS,
+    FitMethod,
+)
 from .result import (
     RESULT_FORMAT,
     RESULT_VERSION,
@@ -59,4 +64,5 @@ from .search import (
 __all__ = ["fit", "FitResult", "ParamEstimate", "load_result", "FitData", "as_fit_data",
            "check_fit_options", "invalid_rows", "RESULT_FORMAT", "RESULT_VERSION",
            "GROUP_COLUMNS", "CONDITION_COLUMN", "refuse_pooled_groups", "MU_DATA_MAX",
-           "ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL", "RANK_TOL", "WEAK_TOL"]
+           "ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL", "RANK_TOL", "WEAK_TOL",
+           "FIT_METHODS", "FitMethod", "DEFAULT_METHOD"]

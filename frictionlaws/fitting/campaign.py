@@ -19,6 +19,7 @@ to a file).
 
 from __future__ import annotations
 
+import csv
 import gc
 import itertools
 import math
@@ -30,7 +31,14 @@ from typing import Any
 
 import numpy as np
 
+from ..base import jsonio
 from ..base.errors import Argument, FitError, InputError
+from ..base.jsonio import to_jsonable
+from ..base.outputs import atomic_write, check_outputs, write_text_atomic
+from ..base.sanitize import csv_row, frame_csv
+from ..io import MISSING_TOKENS, Dataset, column_for, load_dataset
+from ..law import VARIABLES
+from ..law.registry import get_law
 from ..parallel import (
     DASK_WORKER_CONFIG,
     MAX_BATCH,
@@ -39,6 +47,7 @@ from ..parallel import (
     iter_parallel,
     run_parallel,
 )
+from . import fit
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
            "run_parallel", "group_subset",
@@ -111,8 +120,6 @@ def check_grouping(by: Sequence[str], laws: Sequence[str] = ()) -> tuple[str, ..
     InputError
         A column given twice, empty, or naming a measured quantity.
     """
-    from ..law.registry import get_law
-
     columns = (by,) if isinstance(by, str) else tuple(by)
     used = {v: get_law(law).id for law in laws for v in get_law(law).variables}
     seen: set[str] = set()
@@ -223,8 +230,6 @@ def _refuse_empty_keys(dataset: Any, by: Sequence[str]) -> None:
     An empty cell is no group: fitting its rows as a group of their own (or with
     another) would give a result that belongs to no condition.
     """
-    from ..io import MISSING_TOKENS
-
     frame = dataset.frame
     for col in by:
         lost = (getattr(dataset, "dropped", None) or {}).get(col)
@@ -272,9 +277,6 @@ def fit_groups(law: str, data: Any, by: Sequence[str], *,
         The group key (column -> value) and its fit, in the order the groups
         first appear in the data.
     """
-    from ..io import Dataset, load_dataset
-    from . import fit
-
     check_grouping(by, [law])
     dataset = data if isinstance(data, Dataset) else load_dataset(data, **(load_options or {}))
     out = []
@@ -321,8 +323,6 @@ def key_text(key: Mapping[str, Any]) -> str:
     str
         E.g. ``surface=steel, T=293.15 K``.
     """
-    from ..law import VARIABLES
-
     parts = []
     for col, value in key.items():
         unit = VARIABLES[col].unit if col in VARIABLES else ""
@@ -403,8 +403,6 @@ def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
 
 def _own_name(source: Any) -> str:
     """The name :func:`~frictionlaws.io.load_dataset` gives a source, without loading it."""
-    from ..io import Dataset
-
     if isinstance(source, (str, os.PathLike)):
         return Path(source).stem if Path(source).is_file() else os.fspath(source)
     if isinstance(source, Dataset):
@@ -418,8 +416,6 @@ def _read_problem(job: _Job) -> InputError | None:
     The error is rebuilt as a plain :class:`InputError` (message parts and location),
     so that it travels between processes whatever its class.
     """
-    from ..io import load_dataset
-
     try:
         group_keys(load_dataset(job.source, **job.load_options), job.by)
     except InputError as exc:
@@ -445,9 +441,6 @@ def _refuse_unreadable(work: Sequence[_Job], **parallel: Any) -> None:
 
 def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
     """Load one dataset, split it into groups, fit every law to every group."""
-    from ..io import load_dataset
-    from . import fit
-
     try:
         ds = load_dataset(job.source, **job.load_options)
         groups = group_keys(ds, job.by)
@@ -483,8 +476,6 @@ _KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derive
 
 def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
     """The parts of a fit's dict a campaign table needs, as plain JSON-able values."""
-    from ..base.jsonio import to_jsonable
-
     return to_jsonable({k: doc[k] for k in _KEEP if k in doc})
 
 
@@ -563,16 +554,12 @@ class Campaign:
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
-        from ..base import jsonio
-        from ..base.outputs import write_text_atomic
-
         target = Path(path)
         if target.suffix.lower() == ".json":
             return write_text_atomic(target, jsonio.dumps(self.to_dict()) + "\n")
         if target.suffix.lower() != ".csv":
             raise InputError("campaign results are written as .csv or .json",
                              file=str(target))
-        from ..base.sanitize import frame_csv
 
         return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
 
@@ -631,10 +618,8 @@ _GC_EVERY = 50
 
 def _refuse_missing_group_column(dataset: Any, col: str) -> None:
     """Name why a ``by`` column is not there: read under its dataset name, or not read."""
-    from ..io.columns import _ALIAS_LOOKUP, _norm
-
     columns = ", ".join(map(str, dataset.frame.columns))
-    canon = _ALIAS_LOOKUP.get(_norm(col))
+    canon = column_for(col)
     if canon is not None and canon != col and canon in dataset.frame.columns:
         raise InputError(f"no column {col} to group by: a column '{col}' is read as the "
                          f"dataset column '{canon}'; group by {canon} (columns read: "
@@ -659,8 +644,6 @@ def group_column(name: str) -> str:
     str
         ``name``, followed by ``[unit]`` (SI) when it is a law variable.
     """
-    from ..law import VARIABLES
-
     unit = VARIABLES[name].unit if name in VARIABLES else ""
     return f"{name} [{unit}]" if unit else name
 
@@ -705,12 +688,6 @@ def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]
 def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, ...],
             laws: tuple[str, ...]) -> Campaign:
     """Write records as they come (CSV tidy rows or JSON Lines); keep only the failures."""
-    import csv
-
-    from ..base import jsonio
-    from ..base.outputs import atomic_write
-    from ..base.sanitize import csv_row
-
     count, failed = 0, []
     as_csv = output.suffix.lower() == ".csv"
     with atomic_write(output, newline="") as fh:
@@ -779,8 +756,6 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
         A grouping column that is a measured quantity (:func:`check_grouping`), no
         law, or an output that cannot be written.
     """
-    from ..law.registry import get_law
-
     law_ids = tuple(get_law(law).id for law in ([laws] if isinstance(laws, str) else laws))
     if not law_ids:
         raise InputError("no law given")
@@ -803,7 +778,6 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
 def _check_output(output: Any, sources: Sequence[Any]) -> Path | None:
     if output is None:
         return None
-    from ..base.outputs import check_outputs
 
     target = Path(output)
     if target.suffix.lower() not in (".csv", ".jsonl"):
@@ -826,8 +800,7 @@ class _CompareJob:
 
 def _compare_dataset(job: _CompareJob) -> list[dict[str, Any]]:
     """Load one dataset and compare the laws on each of its groups (plain records)."""
-    from ..comparison import compare
-    from ..io import load_dataset
+    from ..comparison import compare  # the comparisons: not on the path of a plain fit
 
     try:
         ds = load_dataset(job.source, **job.load_options)

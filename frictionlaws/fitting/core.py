@@ -23,7 +23,9 @@ from .diagnosis import (
     _status,
     _withhold_doubtful,
 )
+from .methods import DEFAULT_METHOD
 from .result import FitResult, ParamEstimate, _provenance
+from .robust import check_uncertainty_options
 from .search import _global_stage, _multistart, _polish, _Search, _Setup, _setup
 from .uncertainty import _ErrorInputs, _robust_errors
 
@@ -36,7 +38,7 @@ def fit(
     weights: Any = "auto", starts: int | None = None, seed: int = 0,
     on_invalid: str = "error", mapping: Mapping[str, str] | None = None,
     units: Mapping[str, str] | None = None, area: Any = None,
-    method: str = "least_squares", uncertainty: str = "asymptotic", n_boot: int = 1000,
+    method: str = DEFAULT_METHOD, uncertainty: str = "asymptotic", n_boot: int = 1000,
     n_jobs: int = 1, interval: str = "bca", global_stage: str = "auto", lean: bool = False,
 ) -> FitResult:
     """Fit ``law`` to ``data`` (bounded least squares, several starts).
@@ -66,7 +68,7 @@ def fit(
     mapping, units, area : optional
         Column mapping, column units and contact area for :func:`~frictionlaws.io.load_dataset`.
     method : str
-        ``"least_squares"`` (default: bounded trust region) or another lmfit minimiser.
+        One of :data:`~frictionlaws.fitting.methods.FIT_METHODS` (default: trust region).
     uncertainty : {"asymptotic", "sandwich", "bootstrap"}
         Standard errors from the fit's covariance, the HC3 sandwich (uneven scatter), or
         a bootstrap over whole conditions (a law that misses a trend); see
@@ -116,8 +118,6 @@ def _check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any,
                        uncertainty: Any, n_boot: Any, n_jobs: Any, interval: Any,
                        global_stage: Any, lean: Any) -> None:
     """Every keyword option of :func:`fit`, refused with a clear InputError when wrong."""
-    from .robust import check_uncertainty_options
-
     check_fit_options(method, starts, seed, on_invalid)
     check_uncertainty_options(uncertainty, n_boot, n_jobs, interval)
     if global_stage not in ("auto", "on", "off"):

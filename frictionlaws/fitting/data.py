@@ -10,9 +10,11 @@ from typing import Any
 
 import numpy as np
 
-from ..base.errors import Argument, InputError
-from ..base.units import si_magnitude
+from ..base.errors import Argument, GroupingError, InputError
+from ..base.units import si_magnitude, to_display
+from ..io import load_dataset
 from ..law import VARIABLES, Law
+from .methods import fit_method
 
 __all__ = ["FitData", "as_fit_data", "GROUP_COLUMNS", "CONDITION_COLUMN", "refuse_pooled_groups",
            "MU_DATA_MAX", "check_fit_options", "invalid_rows"]
@@ -67,8 +69,6 @@ def as_fit_data(data: Any, *, mapping: Mapping[str, str] | None = None,
     elif isinstance(data, Mapping) and "mu" in data:
         fd = _arrays_fit_data(data)
     else:
-        from ..io import load_dataset
-
         ds = load_dataset(data, mapping=mapping, units=units, area=area)
         refuse_pooled_groups(ds)
         fd = FitData(ds.arrays(), ds.name, ds.source, ds.weights(), list(ds.notes))
@@ -109,8 +109,6 @@ _ARRAY_LIMITS = {"mu": (0.0, True), "p": (0.0, True), "F_N": (0.0, True), "T": (
 
 def refuse_pooled_groups(dataset: Any) -> None:
     """Raise :class:`~frictionlaws.base.errors.GroupingError` when a grouping column varies."""
-    from ..base.errors import GroupingError
-
     names = getattr(dataset, "column_names", None)
     if names is None:
         return
@@ -221,8 +219,7 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
     Parameters
     ----------
     method : str
-        The lmfit method; one of ``least_squares``, ``leastsq``, ``nelder``, ``lbfgsb``,
-        ``powell``, ``trust-constr``.
+        One of :data:`~frictionlaws.fitting.methods.FIT_METHODS`.
     starts : int or None
         Number of extra starting points, a whole number 0..1000 (None: the default).
     seed : int
@@ -236,9 +233,7 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
         Naming the option (``method``, ``starts``, ``seed``, ``on_invalid``) and the value
         refused.
     """
-    if method not in _METHODS:
-        raise InputError(f"method must be one of {', '.join(_METHODS)}, not {method!r}",
-                         option="method")
+    fit_method(method)
     if starts is not None and (isinstance(starts, bool) or not isinstance(starts, (int, np.integer))
                                or not 0 <= starts <= 1000):
         raise InputError(f"starts must be a whole number 0..1000, not {starts!r}",
@@ -250,9 +245,6 @@ def check_fit_options(method: Any, starts: Any, seed: Any, on_invalid: Any) -> N
     if on_invalid not in ("error", "drop"):
         raise InputError(f"on_invalid must be 'error' or 'drop', not {on_invalid!r}")
 
-
-#: lmfit methods a fit may use (bounded, deterministic).
-_METHODS = ("least_squares", "leastsq", "nelder", "lbfgsb", "powell", "trust-constr")
 
 
 def _check_fix(law: Law, fix: Mapping[str, Any], setting_names: list[str]) -> dict[str, float]:
@@ -377,7 +369,6 @@ def _fmt_range(k: str, lo: float, hi: float) -> str:
     var = VARIABLES.get(k)
     if var is None:
         return f"{k} {lo:g}..{hi:g}"
-    from ..base.units import to_display
 
     shown = to_display([lo, hi], k)
     return f"{k} {shown[0]:.4g}..{shown[1]:.4g} {var.display_unit or '-'}"

@@ -3,9 +3,9 @@
 Each law's formula, called with the sympy namespace, is differentiated with respect
 to every parameter and setting; the derivatives share their common subexpressions
 (:func:`sympy.cse`) and are written out as plain numpy code in
-``frictionlaws/laws/_jacobians.py`` by :func:`write_module`
-(``python -m frictionlaws.fitting.derivatives``).  Fits and the identifiability analysis then
-use that code without importing sympy.
+``frictionlaws/fitting/_jacobians.py`` by :func:`write_module` (run by
+``python -m frictionlaws.caches``, with the other caches derived from the laws).  Fits and
+the identifiability analysis then use that code without importing sympy.
 
 A generated entry is used only while it still describes the law: the module stores the
 law's :func:`~frictionlaws.law.formula_check` (its symbols and mu at two points, the check
@@ -13,36 +13,37 @@ the cached formula text uses too), and :func:`jacobian_function` compares it wit
 law's formula now.  A law changed since the module was written, a law
 registered by a plugin, or a law whose formula sympy cannot differentiate (Persson's
 numerical integral) gets ``None``, and the fit falls back to finite differences.
-``tests/fitting/test_derivatives.py`` checks that the module is current for every built-in law
-and compares every analytic Jacobian with a numerical one.
+``tests/fitting/test_derivatives.py`` checks that the module is current for every built-in
+law (:func:`module_current`) and compares every analytic Jacobian with a numerical one.
 """
 
 from __future__ import annotations
 
 import functools
+import re
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..law import NUMPY, Law, formula_check, formula_matches
+from ..law import NUMPY, Law, evaluation, formula_check, formula_matches
 
-__all__ = ["jacobian_function", "model_jacobian", "generate_source", "write_module",
-           "MODULE_PATH"]
+__all__ = ["jacobian_function", "model_jacobian", "generate_source", "module_current",
+           "write_module", "MODULE_PATH"]
 
 #: Where the generated derivative code lives.
-MODULE_PATH = Path(__file__).parents[1] / "laws" / "_jacobians.py"
+MODULE_PATH = Path(__file__).parent / "_jacobians.py"
 
 
 @functools.cache
 def _table() -> dict[str, tuple[dict[str, Any], Callable[..., Any]]]:
     try:
-        from ..laws import _jacobians
+        from ._jacobians import JACOBIANS
     except ImportError:  # pragma: no cover - the module ships with the package
         return {}
     table: dict[str, tuple[dict[str, Any], Callable[..., Any]]] = dict(
-        _jacobians.JACOBIANS)  # type: ignore[arg-type]
+        JACOBIANS)  # type: ignore[arg-type]
     return table
 
 
@@ -98,11 +99,9 @@ def model_jacobian(func: Callable[..., Any], prepared: Mapping[str, np.ndarray],
         d mu / d name, column by column (NaN or infinity where the derivative is not
         finite, e.g. d(x**c)/dc at x = 0).
     """
-    from ..law import evaluation
-
     jac = np.empty((n, len(names)), order="F")
-    block = evaluation._BLOCK  # the rows per block of the law's own large evaluations
-    step = block if n >= evaluation._BLOCKED_FROM else max(n, 1)
+    block = evaluation.BLOCK_ROWS  # the rows per block of the law's own large evaluations
+    step = block if n >= evaluation.BLOCKED_FROM else max(n, 1)
     for start in range(0, n, step):  # blocks keep the formula's temporaries small
         part = {k: v[start:start + step] if np.ndim(v) else v for k, v in prepared.items()}
         with np.errstate(all="ignore"):
@@ -149,7 +148,7 @@ def _entry_source(law: Law) -> str | None:
 
 
 def generate_source(laws: list[Law]) -> str:
-    """The text of ``frictionlaws/laws/_jacobians.py`` for ``laws``.
+    """The text of ``frictionlaws/fitting/_jacobians.py`` for ``laws``.
 
     It defines ``JACOBIANS``.
 
@@ -166,9 +165,8 @@ def generate_source(laws: list[Law]) -> str:
     """
     head = ['"""Analytic Jacobians of the built-in laws: GENERATED, do not edit.',
             "",
-            "Written by ``python -m frictionlaws.fitting.derivatives`` from each law's",
-            "symbolic form (sympy, common subexpressions shared); see",
-            ":mod:`frictionlaws.fitting.derivatives`.",
+            "Written by ``python -m frictionlaws.caches`` from each law's symbolic form",
+            "(sympy, common subexpressions shared); see :mod:`frictionlaws.fitting.derivatives`.",
             '"""', "", "# ruff: noqa", "# mypy: ignore-errors", "",
             "import numpy", "", '__all__ = ["JACOBIANS"]', "", ""]
     body, table = [], []
@@ -186,27 +184,58 @@ def generate_source(laws: list[Law]) -> str:
             + "\n".join(table) + "\n}\n")
 
 
-def write_module(path: Path | None = None) -> Path:
-    """Write the generated module for every registered built-in law.
+#: A float literal of the generated code.
+_FLOAT = re.compile(r"-?[0-9]+\.[0-9]+(?:e[-+]?[0-9]+)?")
+
+
+def _floats_rounded(text: str) -> str:
+    """``text`` with every float literal at 9 significant digits."""
+    return _FLOAT.sub(lambda m: f"{float(m.group()):.9g}", text)
+
+
+def module_current(laws: list[Law], path: Path | None = None) -> bool:
+    """True when the generated module holds what :func:`generate_source` gives ``laws`` now.
+
+    The code must match to the letter; the check values the module embeds (mu at two
+    points, computed by numpy) to 9 significant digits, since their last digit varies
+    with numpy.
 
     Parameters
     ----------
+    laws : list of Law
+        The laws the module is for (the built-in ones).
     path : Path, optional
-        Where to write (default :data:`MODULE_PATH`).
+        The module (default :data:`MODULE_PATH`).
+
+    Returns
+    -------
+    bool
+        True when current.
+    """
+    try:
+        stored = Path(path or MODULE_PATH).read_text(encoding="utf-8")
+    except OSError:
+        return False
+    return _floats_rounded(stored) == _floats_rounded(generate_source(laws))
+
+
+def write_module(laws: list[Law], path: Path | None = None) -> Path:
+    """Write the generated module for ``laws``.
+
+    Parameters
+    ----------
+    laws : list of Law
+        The laws to derive (the built-in ones).
+    path : Path, optional
+        Where to write (default :data:`MODULE_PATH`, which the fits then read).
 
     Returns
     -------
     Path
         The file written.
     """
-    from ..law.registry import list_laws
-
-    target = MODULE_PATH if path is None else Path(path)
-    target.write_text(generate_source(list(list_laws())), encoding="utf-8")
+    target = Path(path or MODULE_PATH)
+    target.write_text(generate_source(laws), encoding="utf-8")
     _table.cache_clear()
     _CHECKED.clear()
     return target
-
-
-if __name__ == "__main__":
-    print(write_module())

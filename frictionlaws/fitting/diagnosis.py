@@ -12,9 +12,11 @@ from typing import Any
 import numpy as np
 
 from ..law import Law
+from ..law.evaluation import BLOCK_ROWS, BLOCKED_FROM
 from .data import FitData, _fmt_range
 from .lsq import central_jacobian as _jacobian
 from .result import ParamEstimate, _numpy_ns
+from .robust import ZERO_SPREAD
 from .search import _Search, _Setup
 
 __all__ = ["RANK_TOL", "WEAK_TOL"]
@@ -37,14 +39,12 @@ def _unit_columns_r(jac: np.ndarray, cols: list[int], norms: np.ndarray) -> np.n
     built block by block (``R = qr([R; J_block])``), so a fit on millions of rows needs no
     scaled copy of the Jacobian nor an n-row U of its SVD.
     """
-    from ..law.evaluation import _BLOCK, _BLOCKED_FROM
-
     n = jac.shape[0]
-    if n < _BLOCKED_FROM:
+    if n < BLOCKED_FROM:
         return jac[:, cols] / norms
     r = np.zeros((0, len(cols)))
-    for start in range(0, n, _BLOCK):
-        block = jac[start:start + _BLOCK, cols] / norms
+    for start in range(0, n, BLOCK_ROWS):
+        block = jac[start:start + BLOCK_ROWS, cols] / norms
         if not np.all(np.isfinite(block)):
             return block
         r = np.asarray(np.linalg.qr(np.vstack([r, block]), mode="r"))
@@ -284,8 +284,6 @@ def _withhold_doubtful(law: Law, diag: _Diagnosis, estimates: dict[str, ParamEst
     data, identical resamples), so it is withheld with a warning; a derived quantity
     has no error when a parameter it depends on has none.
     """
-    from .robust import ZERO_SPREAD
-
     def nil(se: float | None, value: float) -> bool:
         return se is not None and se <= ZERO_SPREAD * abs(value)
 

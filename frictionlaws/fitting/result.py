@@ -23,7 +23,20 @@ from ..law.registry import get_law
 if TYPE_CHECKING:
     from ..law.bound import BoundLaw
 
+import sys
+from importlib.metadata import PackageNotFoundError, version
+
+from .. import __version__
+from ..base import jsonio
+from ..base.display import display_param_unit
+from ..base.jsonio import dumps
+from ..base.limits import read_input
+from ..base.outputs import check_input_file, check_outputs, write_text_atomic
+from ..law import NUMPY
+from ..law.bound import bound_from_result, outside_ranges
 from .data import FitData, _fmt_range
+from .robust import UNCERTAINTY_METHODS
+from .views import model_result, params_frame, plot_result, result_html
 
 __all__ = ["RESULT_FORMAT", "RESULT_VERSION", "ParamEstimate", "FitResult", "load_result"]
 
@@ -133,7 +146,6 @@ class FitResult:
             return self.local_fit
         if self.fit_data is None:
             return None
-        from .views import model_result
 
         return model_result(self)
 
@@ -152,8 +164,6 @@ class FitResult:
     @property
     def bound(self) -> BoundLaw:
         """The law bound to the fitted values, with the fitted data's ranges."""
-        from ..law.bound import bound_from_result
-
         return bound_from_result(self)
 
     def predict(self, *, warn: bool = True, **variables: Any) -> Any:
@@ -195,8 +205,6 @@ class FitResult:
         list of str
             One message per variable with values outside its fitted range.
         """
-        from ..law.bound import outside_ranges
-
         return outside_ranges(self.law, self.data.get("ranges", {}), variables)
 
     def to_dict(self) -> dict[str, Any]:
@@ -263,8 +271,6 @@ class FitResult:
         pandas.DataFrame
             Value, stderr, CI, unit and fixed flag per parameter.
         """
-        from .views import params_frame
-
         return params_frame(self, units)
 
     def plot(self, data: Any = None, *, units: str = "display", **kw: Any) -> Any:
@@ -286,13 +292,9 @@ class FitResult:
         matplotlib.figure.Figure
             The figure.
         """
-        from .views import plot_result
-
         return plot_result(self, data, units=units, **kw)
 
     def _repr_html_(self) -> str:
-        from .views import result_html
-
         return result_html(self)
 
     def __repr__(self) -> str:
@@ -316,8 +318,6 @@ class FitResult:
         str
             The JSON text.
         """
-        from ..base.jsonio import dumps
-
         return dumps(self.to_dict(), indent=indent)
 
     def save(self, path: str | Path) -> Path:
@@ -333,8 +333,6 @@ class FitResult:
         Path
             The file written.
         """
-        from ..base.outputs import check_outputs, write_text_atomic
-
         source = self.data.get("source") if isinstance(self.data, Mapping) else None
         check_outputs([path], inputs=[source] if source else [])
         return write_text_atomic(path, self.to_json() + "\n")
@@ -406,8 +404,6 @@ class FitResult:
 def _display_line(params: Mapping[str, ParamEstimate],
                   derived: Mapping[str, Mapping[str, Any]]) -> str:
     """The values with pressures in MPa (``b = 4.72 +/- 0.381 1/MPa``), or ``""`` if none."""
-    from ..base.display import display_param_unit
-
     items: list[tuple[str, Any, Any, Any]] = [
         (k, e.value, e.stderr, e.unit) for k, e in params.items() if not e.fixed]
     items += [(k, d.get("value"), d.get("stderr"), d.get("unit")) for k, d in derived.items()]
@@ -442,8 +438,6 @@ def _g(x: float | None) -> str:
 
 
 def _numpy_ns() -> Any:
-    from ..law import NUMPY
-
     return NUMPY
 
 
@@ -454,9 +448,6 @@ def _versions() -> tuple[tuple[str, str], ...]:
     A package already imported gives its ``__version__``; only the others are looked
     up in the installed metadata (a scan of the environment).
     """
-    import sys
-    from importlib.metadata import PackageNotFoundError, version
-
     def ver(pkg: str) -> str:
         loaded = getattr(sys.modules.get(pkg), "__version__", None)
         if isinstance(loaded, str):
@@ -465,8 +456,6 @@ def _versions() -> tuple[tuple[str, str], ...]:
             return version(pkg)
         except PackageNotFoundError:
             return "unknown"
-
-    from .. import __version__
 
     return (("frictionlaws", __version__), ("scipy", ver("scipy")),
             ("numpy", ver("numpy")))
@@ -499,10 +488,6 @@ def load_result(path: str | Path) -> FitResult:
     InputError
         Naming the file and the offending key.
     """
-    from ..base import jsonio
-    from ..base.limits import read_input
-    from ..base.outputs import check_input_file
-
     path = check_input_file(path, "params file")
     raw = read_input(path, "params file")  # bounded in size
     try:
@@ -546,8 +531,6 @@ def load_result(path: str | Path) -> FitResult:
 
 def _loaded_uncertainty(doc: Mapping[str, Any], file: str) -> dict[str, Any]:
     """The saved ``uncertainty`` record; its method must be a known one."""
-    from .robust import UNCERTAINTY_METHODS
-
     info = _obj(doc, "uncertainty")
     method = info.get("method")
     if info and method not in UNCERTAINTY_METHODS:

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..base.errors import InputError
 from ..parallel import batches, local_workers, starmap_local
+from .lsq import least_squares_solve
 from .resampling import MIN_DETERMINED, ZERO_SPREAD, no_spread
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
@@ -277,8 +278,6 @@ class Refit:
         (a resample of too few distinct conditions: its refit would stay where it
         started and show a spread of zero).
         """
-        from .lsq import least_squares_solve
-
         w = 1.0 if self.w is None else self.w[rows]
         y = self.y[rows]
         x = {k: v[rows] for k, v in self.x.items()}

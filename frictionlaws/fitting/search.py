@@ -15,8 +15,10 @@ import numpy as np
 
 from ..base.errors import InputError
 from ..base.units import si_magnitude
-from ..law import VARIABLES, Law
+from ..law import VARIABLES, Law, Setting
 from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_fit_data
+from .derivatives import jacobian_function, model_jacobian
+from .methods import fit_method
 
 __all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
 
@@ -303,7 +305,6 @@ def _model_law(law: Law, settings: Mapping[str, float], freed: tuple[str, ...]) 
     """The law with settings fixed to non-default values (they flow through its closure)."""
     if settings == {k: v for k, v in law.setting_values.items() if k not in freed}:
         return law
-    from ..law import Setting
 
     return replace(law, settings=tuple(
         Setting(s.name, settings.get(s.name, s.value), s.unit, s.meaning, s.bounds)
@@ -325,7 +326,7 @@ class _Search:
     def __post_init__(self) -> None:
         s = self.setup
         self.max_nfev = 300 * (len(s.vary_names) + 1)
-        if self.method != "least_squares":  # lmfit's other minimisers
+        if fit_method(self.method).lmfit_model:
             import lmfit
 
             indep = s.law.variables or ("_shape",)
@@ -338,15 +339,12 @@ class _Search:
         self.held = {k: v for k, v in s.model_law.setting_values.items() if k not in s.names}
         self.jac_func = None
         if s.y.size >= ANALYTIC_FROM:
-            from .derivatives import jacobian_function
-
             self.jac_func = jacobian_function(s.law)
 
     def jacobian(self, values: Mapping[str, float], names: list[str]) -> np.ndarray | None:
         """The analytic Jacobian of the model by ``names`` at ``values`` (None: none)."""
         if self.jac_func is None:
             return None
-        from .derivatives import model_jacobian
 
         return model_jacobian(self.jac_func, self.prepared, {**self.held, **values}, names,
                               self.setup.y.size)
@@ -393,24 +391,9 @@ class _Search:
 
     def _local(self, start: Mapping[str, float], pinned: tuple[str, ...], tol: float = 1e-8
                ) -> Any:
-        """One local solve: the lean trust region, or lmfit's minimiser when asked."""
-        s = self.setup
-        if self.method != "least_squares":
-            from .lsq import lmfit_fit
-
-            return lmfit_fit(self.model, s.y, self.params(start, pinned), weights=s.w,
-                             method=self.method, max_nfev=self.max_nfev, **self.kwargs)
-        from .lsq import solve
-
-        values = self.start_values(start, pinned)
-        vary = [k for k in s.names if k not in s.fix and k not in pinned]
-        jac = None
-        if self.jac_func is not None:
-            def jac(v: Mapping[str, float]) -> np.ndarray:
-                out = self.jacobian(v, vary)
-                assert out is not None
-                return out
-        return solve(self.evaluate, s.y, s.w, values, vary, s.bounds, self.max_nfev, jac, tol)
+        """One local solve, by the fit method's entry
+        (:data:`~frictionlaws.fitting.methods.FIT_METHODS`)."""
+        return fit_method(self.method).solve(self, start, pinned, tol)
 
     def evaluate(self, values: Mapping[str, float]) -> Any:
         """The model (the law with the fit's settings) at ``values`` on the data."""
@@ -454,7 +437,7 @@ def _polish(search: _Search) -> None:
     comparison give the same scores under every supported numpy and scipy.
     """
     best = search.best
-    if best is None or search.method != "least_squares":
+    if best is None or not fit_method(search.method).polished:
         return
     start = {k: float(best.params[k].value) for k in search.setup.names}
     res = search.solve_from(start, search.best_pinned, POLISH_TOL)

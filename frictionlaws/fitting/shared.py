@@ -22,7 +22,15 @@ from typing import Any
 
 import numpy as np
 
+from ..base.display import group_label, parameter_table
 from ..base.errors import FitError, InputError
+from ..io import load_dataset
+from ..law.registry import get_law
+from . import fit
+from .campaign import group_column, group_keys, group_subset, key_text, tidy_columns
+from .diagnosis import _identifiability
+from .lsq import least_squares_solve
+from .robust import ZERO_SPREAD
 
 __all__ = ["SharedFit", "fit_shared"]
 
@@ -84,8 +92,6 @@ class SharedFit:
         """
         import pandas as pd
 
-        from .campaign import group_column, tidy_columns
-
         rows = []
         for g in self.groups:
             key = {group_column(c): v for c, v in g["key"].items()}
@@ -99,8 +105,6 @@ class SharedFit:
 
     def report(self) -> str:
         """Plain-text report: the per-group parameter table (display units), the comparison."""
-        from ..base.display import group_label, parameter_table
-
         lines = [f"{self.law}: shared {', '.join(self.shared)} across "
                  f"{len(self.groups)} groups of {', '.join(self.by)} (one global fit)"]
         lines.append(parameter_table(
@@ -181,11 +185,6 @@ def fit_shared(law: Any, data: Any, by: str | Sequence[str], shared: Sequence[st
     -------
     SharedFit
     """
-    from ..io import load_dataset
-    from ..law.registry import get_law
-    from . import fit
-    from .campaign import group_keys, group_subset
-
     law = get_law(law)
     ds = load_dataset(data, **dict(load_options or {}))
     columns = (by,) if isinstance(by, str) else tuple(by)
@@ -238,8 +237,6 @@ def _start(problem: _Problem, separate: list[Any]) -> np.ndarray:
 
 def _solve(problem: _Problem, by: tuple[str, ...],
            groups: list[tuple[dict[str, Any], np.ndarray]], separate: list[Any]) -> SharedFit:
-    from .lsq import least_squares_solve
-
     lo, hi = problem.bounds()
     x0 = np.clip(_start(problem, separate), lo, hi)
     sol = least_squares_solve(problem.residual, x0, bounds=(lo, hi), x_scale="jac",
@@ -257,8 +254,6 @@ def _solve(problem: _Problem, by: tuple[str, ...],
 
 def _labels(problem: _Problem, groups: list[tuple[dict[str, Any], np.ndarray]]) -> list[str]:
     """A name per entry of the stacked parameter vector: ``b`` shared, ``a[steel]`` own."""
-    from .campaign import key_text
-
     return problem.shared + [f"{k}[{key_text(key)}]" for key, _ in groups for k in problem.own]
 
 
@@ -271,9 +266,6 @@ def _stderr(jac: np.ndarray, rss: float, n: int, labels: list[str], theta: np.nd
     Jacobian; a pseudo-inverse would give them a number), none that come out as zero
     to rounding.
     """
-    from .diagnosis import _identifiability
-    from .robust import ZERO_SPREAD
-
     k = jac.shape[1]
     dof = n - k
     if dof <= 0:

@@ -14,7 +14,19 @@ import numpy as np
 from ..law import Law
 from .data import FitData, _condition_vars
 from .diagnosis import RANK_TOL, _clip_interval, _derived
+from .resampling import cannot_vary, withheld_message
 from .result import ParamEstimate, _numpy_ns
+from .robust import (
+    NARROW_RATIO,
+    Refit,
+    bootstrap,
+    condition_ids,
+    derived_samples,
+    intervals,
+    rank,
+    residual_structure,
+    sandwich_cov,
+)
 
 __all__ = []
 
@@ -49,8 +61,6 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     ``estimates``, ``derived``, ``corr`` and ``warn_msgs`` are updated in place; the
     returned record says which method was used (kept by :meth:`FitResult.to_dict`).
     """
-    from .robust import residual_structure
-
     method = opts["method"]
     info: dict[str, Any] = {"method": method}
     asym = {k: estimates[k].stderr for k in inp.vary if k in estimates}
@@ -90,8 +100,6 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
 def _warn_if_narrow(method: str, asym: Mapping[str, float | None],
                     estimates: Mapping[str, ParamEstimate], warn_msgs: list[str]) -> None:
     """Warn when a robust method's errors exceed the asymptotic ones by > NARROW_RATIO."""
-    from .robust import NARROW_RATIO
-
     if method == "asymptotic":
         return
     ratios = {k: se / a for k, a in asym.items()
@@ -140,8 +148,6 @@ def _apply_sandwich(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
 
     False (the asymptotic errors stay) when the sandwich cannot be computed.
     """
-    from .robust import sandwich_cov
-
     cov = sandwich_cov(inp.jac, inp.weighted_resid)
     if cov is None:
         warn_msgs.append("the sandwich covariance could not be computed (singular Jacobian); "
@@ -166,16 +172,6 @@ def _apply_bootstrap(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
                      derived: dict[str, dict[str, Any]], corr: dict[str, dict[str, float]],
                      warn_msgs: list[str], opts: dict[str, Any]) -> dict[str, Any]:
     """Condition-resampling bootstrap errors and intervals, parameters and derived alike."""
-    from .resampling import cannot_vary, withheld_message
-    from .robust import (
-        Refit,
-        bootstrap,
-        condition_ids,
-        derived_samples,
-        intervals,
-        rank,
-    )
-
     lower = np.array([inp.bounds[k][0] for k in inp.vary], float)
     upper = np.array([inp.bounds[k][1] for k in inp.vary], float)
     full_rank = rank(inp.jac, RANK_TOL)
@@ -225,8 +221,6 @@ def _bootstrap_refused(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     Each resample of so few conditions either cannot determine the parameters or
     repeats the full fit, so its spread would read as an error of zero.
     """
-    from .resampling import cannot_vary
-
     for k in inp.vary:
         estimates[k] = replace(estimates[k], stderr=None, ci95=None)
     for k in derived:

@@ -1,19 +1,18 @@
-"""Interoperability with lmfit, pandas, xarray and Jupyter.
+"""The views of a fit result: lmfit, pandas, Jupyter and a figure.
 
-* :func:`lmfit_model`: a law as an :class:`lmfit.Model` whose independent variables are
-  the law's variables and whose parameter hints carry the declared defaults and bounds
-  (settings become fixed parameters), so ``model.make_params()`` is ready to fit.
-* :func:`params_frame`: the parameters of a fit result as a tidy :class:`pandas.DataFrame`.
-* :func:`evaluate_labelled`: evaluation on :class:`xarray.DataArray` inputs that keeps
-  their named dimensions and coordinates (through :func:`xarray.apply_ufunc`).
-* :func:`law_html`, :func:`result_html`, :func:`table_html`: the HTML Jupyter shows for
-  laws, fit results and comparisons (``_repr_html_``).
-* :func:`plot_result`: data, fitted curve, confidence band and residuals of a fit.
+* :func:`model_result`: the fit as lmfit's :class:`~lmfit.model.ModelResult`, refitted
+  by lmfit from the fitted values (the same optimum).
+* :func:`params_frame`: the parameters as a tidy :class:`pandas.DataFrame`, in display
+  units (:mod:`frictionlaws.base.display`) or SI.
+* :func:`result_html`: the HTML Jupyter shows for a fit result (``_repr_html_``).
+* :func:`plot_result`: data, fitted curve, 95 % confidence band
+  (:func:`confidence_band`) and residuals.
 
-The functions of a law alone (:func:`lmfit_model`, :func:`law_html`,
-:func:`evaluate_labelled`) live in the law package (:mod:`frictionlaws.law.interop`,
-:mod:`frictionlaws.law.evaluation`), as the law hands work to them; they are named here
-with the others.  Heavy libraries are imported inside the functions that need them.
+A law's own integrations (its lmfit model, its HTML, evaluation on
+:class:`xarray.DataArray` inputs) are in the law room (:mod:`frictionlaws.law.interop`,
+:mod:`frictionlaws.law.evaluation`); a dataset's HTML beside the dataset
+(:func:`frictionlaws.io.dataset_html`).  Heavy libraries are imported inside the
+functions that need them.
 """
 
 from __future__ import annotations
@@ -25,21 +24,15 @@ from typing import Any
 
 import numpy as np
 
-from ..law.evaluation import evaluate_labelled, is_labelled
-from ..law.interop import law_html, lmfit_model, table_html
+from ..base.display import check_units, display_param_unit, unit_text
+from ..base.errors import InputError
+from ..base.units import QUANTITIES, to_display
+from ..law import VARIABLES
+from ..law.interop import lmfit_model, table_html
+from .lsq import central_jacobian as _jacobian
+from .lsq import lmfit_fit
 
-__all__ = [
-    "lmfit_model",
-    "model_result",
-    "params_frame",
-    "is_labelled",
-    "evaluate_labelled",
-    "law_html",
-    "result_html",
-    "table_html",
-    "plot_result",
-    "confidence_band",
-]
+__all__ = ["model_result", "params_frame", "result_html", "plot_result", "confidence_band"]
 
 
 # ------------------------------------------------------------------------ lmfit
@@ -61,8 +54,6 @@ def model_result(result: Any) -> Any:
     lmfit.model.ModelResult
         lmfit's result for the same fit.
     """
-    from ..base.errors import InputError
-
     fd = getattr(result, "fit_data", None)
     if fd is None:
         raise InputError("this result does not hold the data it was fitted to (a result "
@@ -75,7 +66,6 @@ def model_result(result: Any) -> Any:
     for name, value in result.settings.items():
         if name in params and name not in result.params:
             params[name].set(value=value, vary=False)
-    from .lsq import lmfit_fit
 
     y = fd.arrays["mu"]
     xs = {k: fd.arrays[k] for k in law.variables} or {"x": y}
@@ -93,8 +83,6 @@ def params_frame(result: Any, units: str = "display") -> Any:
     :mod:`frictionlaws.base.display`); dimensionless is ``-``.
     """
     import pandas as pd
-
-    from ..base.display import check_units, display_param_unit, unit_text
 
     check_units(units)
     rows = []
@@ -155,9 +143,6 @@ def plot_result(result: Any, data: Any = None, *, x: str | None = None, ax: Any 
     -------
     matplotlib.figure.Figure
     """
-    from ..base.display import check_units
-    from ..base.errors import InputError
-
     check_units(units)
     arrays = _arrays_of(data if data is not None else getattr(result, "fit_data", None))
     if arrays is None or "mu" not in arrays:
@@ -219,8 +204,6 @@ def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.nd
     grows until it stands above round-off, so a parameter sitting at 0 (a bound) keeps
     its true slope instead of a step of 1e-18 that leaves none.
     """
-    from .lsq import central_jacobian as _jacobian
-
     base = result.values
     shape = np.broadcast_shapes(*(np.shape(v) for v in variables.values()))
     law = result.law
@@ -237,8 +220,6 @@ def _slope(result: Any, variables: Mapping[str, np.ndarray], name: str) -> np.nd
 
 def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str) -> Any:
     import matplotlib.pyplot as plt
-
-    from ..base.units import QUANTITIES, to_display
 
     if ax is None:
         _, ax = plt.subplots(2, 1, figsize=(6, 5), sharex=True,
@@ -268,9 +249,6 @@ def _draw(result: Any, arrays: Mapping[str, Any], name: str, ax: Any, units: str
 
 
 def _unit(name: str, display: bool = False) -> str:
-    from ..base.display import unit_text
-    from ..law import VARIABLES
-
     var = VARIABLES.get(name)
     if var is None:
         return unit_text(None)

@@ -29,13 +29,20 @@ Every problem with the user's input raises :class:`~frictionlaws.base.errors.Inp
 naming the file, the column and the row (the line number a text editor or
 spreadsheet shows; the header of a file without comments is row 1).  Rows are
 never dropped silently: each drop is written to :attr:`Dataset.notes`.
+
+The other rooms read their own tables (a rig's records and manifests, a tyre's test data,
+a material's sweeps) with this room's one reader and rules: :func:`read_table` (the
+encoding, delimiter and lines of a file, as a :class:`Table`), :func:`detect_delimiter`,
+:func:`split_header` (``"p [MPa]"`` -> name and unit), :func:`column_for` (a name through
+the aliases), :func:`to_float` and :func:`column_numbers` (the numbers of a cell and of a
+column, refused with file, column and row).
 """
 
 from __future__ import annotations
 
 from .building import (
-    _column_numbers,
-    _to_float,
+    column_numbers,
+    to_float,
 )
 from .columns import (
     ALIASES,
@@ -44,11 +51,13 @@ from .columns import (
     TEXT_COLUMNS,
     VARIABLE_COLUMNS,
     canonical_name,
+    column_for,
     parse_mapping,
     parse_units,
 )
 from .dataset import (
     Dataset,
+    dataset_html,
 )
 from .packaged import (
     datasets_dir,
@@ -56,10 +65,9 @@ from .packaged import (
     load_dataset,
 )
 from .reading import (
-    _detect_delimiter,
-    _split_header,
-    _Table,
+    Table,
     decode_text,
+    detect_delimiter,
     output_dir,
     read_table,
     refuse_nul,
@@ -68,6 +76,6 @@ from .reading import (
 
 __all__ = ["CANONICAL", "VARIABLE_COLUMNS", "ALIASES", "Dataset", "load_dataset", "list_datasets",
            "datasets_dir", "output_dir", "parse_mapping", "parse_units", "canonical_name",
-           "TEXT_COLUMNS", "MISSING_TOKENS", "_Table", "refuse_nul", "decode_text",
-           "_detect_delimiter", "read_table", "split_header", "_split_header", "_to_float",
-           "_column_numbers"]
+           "column_for", "TEXT_COLUMNS", "MISSING_TOKENS", "Table", "refuse_nul",
+           "decode_text", "detect_delimiter", "read_table", "split_header", "to_float",
+           "column_numbers", "dataset_html"]

@@ -19,19 +19,19 @@ from ..base.sanitize import csv_cell_text
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from ..base.numbers import parse_number
 from .columns import (
-    _ALIAS_LOOKUP,
     _DIMENSIONLESS,
     CANONICAL,
     MISSING_TOKENS,
     TEXT_COLUMNS,
-    _norm,
     canonical_name,
+    column_for,
     parse_mapping,
 )
-from .reading import _DELIMITER_NAMES, _DELIMITERS, _split_header, _Table
+from .reading import _DELIMITER_NAMES, _DELIMITERS, Table, split_header
 
-__all__ = []
+__all__ = ["to_float", "column_numbers"]
 
 
 def _match_column(wanted: str, headers: list[str], names: list[str]) -> int | None:
@@ -47,14 +47,23 @@ def _match_column(wanted: str, headers: list[str], names: list[str]) -> int | No
     return None
 
 
-def _resolve_name(name: str) -> str | None:
-    if name in CANONICAL:
-        return name
-    return _ALIAS_LOOKUP.get(_norm(name))
+def to_float(cell: Any, decimal_comma: bool) -> float | None:
+    """The number in a cell: the one reading of a cell the tables of every room share.
 
+    Parameters
+    ----------
+    cell : object
+        A cell as read (text) or given (a number).
+    decimal_comma : bool
+        True when the file writes decimal commas (``1,5`` is 1.5).
 
-def _to_float(cell: Any, decimal_comma: bool) -> float | None:
-    """A float, ``nan`` for a missing value, or None when not a number."""
+    Returns
+    -------
+    float or None
+        The number, ``nan`` for a missing value (:data:`~frictionlaws.io.MISSING_TOKENS`),
+        ``inf`` for a written infinity (refused by the callers, with its row), None when
+        the cell is not a number (:func:`frictionlaws.base.numbers.parse_number` decides).
+    """
     if cell is None or (not isinstance(cell, str) and _is_missing(cell)):
         return math.nan
     if isinstance(cell, (bool, np.bool_)):
@@ -64,7 +73,6 @@ def _to_float(cell: Any, decimal_comma: bool) -> float | None:
     text = str(cell).strip()
     if text.lower() in MISSING_TOKENS:
         return math.nan
-    from ..base.numbers import parse_number
 
     if text.lower().lstrip("+-") in ("inf", "infinity"):
         return math.inf  # reported as "not finite" with its row
@@ -90,15 +98,15 @@ def _is_missing(cell: Any) -> bool:
     return isinstance(cell, (float, np.floating)) and math.isnan(cell)
 
 
-def _row_label(table: _Table, i: int) -> int | None:
+def _row_label(table: Table, i: int) -> int | None:
     return table.rows[i] if table.from_file else None
 
 
-def _where(table: _Table, i: int) -> str:
+def _where(table: Table, i: int) -> str:
     return "" if table.from_file else f" (DataFrame row position {i})"
 
 
-def _check_headers(table: _Table) -> None:
+def _check_headers(table: Table) -> None:
     """Refuse unnamed columns that hold data and duplicate headers."""
     src = table.source
     seen: dict[str, int] = {}
@@ -121,7 +129,7 @@ def _listed(headers: Sequence[str]) -> str:
     return ", ".join(h for h in headers if h) or "none"
 
 
-def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] | None,
+def _assign_columns(table: Table, names: list[str], mapping: Mapping[str, str] | None,
                     notes: list[str]) -> tuple[dict[str, int], set[str]]:
     """Canonical name -> column index (the mapping first, then recognised names)."""
     src, headers = table.source, table.headers
@@ -143,7 +151,7 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
     for j, nm in enumerate(names):
         if j in assigned.values() or not headers[j]:
             continue
-        found = _resolve_name(nm)
+        found = column_for(nm)
         if found is None:
             ignored.append(headers[j])
         elif found in explicit:
@@ -167,7 +175,7 @@ def _assign_columns(table: _Table, names: list[str], mapping: Mapping[str, str] 
     return assigned, explicit
 
 
-def _no_mu(table: _Table) -> None:
+def _no_mu(table: Table) -> None:
     headers = table.headers
     if len([h for h in headers if h]) == 1 and table.from_file:
         only = headers[0]
@@ -185,7 +193,7 @@ def _no_mu(table: _Table) -> None:
     )
 
 
-def _extra_units(table: _Table, names: list[str], assigned: Mapping[str, int],
+def _extra_units(table: Table, names: list[str], assigned: Mapping[str, int],
                  units: Mapping[str, str] | None) -> dict[str, str]:
     """Units given outside the header, by canonical name (checked against the columns)."""
     src, headers = table.source, table.headers
@@ -215,14 +223,14 @@ def _extra_units(table: _Table, names: list[str], assigned: Mapping[str, int],
     return extra
 
 
-def _column_units(table: _Table, names: list[str], assigned: Mapping[str, int],
+def _column_units(table: Table, names: list[str], assigned: Mapping[str, int],
                   units: Mapping[str, str] | None) -> dict[str, str]:
     """The checked unit of every assigned column (header or ``units``, given once)."""
     src, headers = table.source, table.headers
     extra = _extra_units(table, names, assigned, units)
     unit_of: dict[str, str] = {}
     for canon, j in assigned.items():
-        header_unit = _split_header(headers[j])[1]
+        header_unit = split_header(headers[j])[1]
         given = extra.get(canon)
         if header_unit is not None and given is not None and header_unit != given:
             raise InputError(
@@ -263,7 +271,7 @@ def _overflows(text: str) -> bool:
         return False
 
 
-def _not_a_number(table: _Table, cell: Any, i: int, column: str) -> InputError:
+def _not_a_number(table: Table, cell: Any, i: int, column: str) -> InputError:
     text = str(cell).strip()
     if _overflows(text):
         return InputError(f"value '{_shown(text)}'{_where(table, i)} overflows a double "
@@ -289,17 +297,35 @@ _THOUSANDS = re.compile(r"[-+]?[0-9]{1,3}(\.[0-9]{3})+")
 _COMMA_DECIMAL = re.compile(r"[0-9],[0-9]")
 
 
-def _uses_decimal_commas(table: _Table) -> bool:
+def _uses_decimal_commas(table: Table) -> bool:
     """True when the file writes decimal commas somewhere (not only its delimiter)."""
     return table.decimal_comma and any(
         isinstance(c, str) and _COMMA_DECIMAL.search(c) for col in table.columns for c in col)
 
 
-def _column_numbers(table: _Table, j: int, commas: bool = False) -> np.ndarray:
-    """The numbers of column ``j`` (NaN where empty); text and infinities refused.
+def column_numbers(table: Table, j: int, commas: bool = False) -> np.ndarray:
+    """The numbers of column ``j`` of a table (NaN where empty); text and infinities refused.
 
-    With ``commas`` (the file writes decimal commas), ``1.200`` is ambiguous (a
-    thousands separator or a decimal point) and refused.
+    Parameters
+    ----------
+    table : Table
+        The table read.
+    j : int
+        The column's index.
+    commas : bool
+        True when the file writes decimal commas: ``1.200`` is then ambiguous (a thousands
+        separator or a decimal point) and refused.
+
+    Returns
+    -------
+    numpy.ndarray
+        One float per data row.
+
+    Raises
+    ------
+    InputError
+        A cell that is not a number, is not finite or is ambiguous, naming the file, the
+        column and the row.
     """
     col = table.headers[j]
     out = np.empty(len(table.rows))
@@ -311,7 +337,7 @@ def _column_numbers(table: _Table, j: int, commas: bool = False) -> np.ndarray:
                 f"or a decimal point ({cell.strip().replace('.', ',')})? Write it without "
                 "the point, or with a decimal comma", file=table.source, column=col,
                 row=_row_label(table, i))
-        x = _to_float(cell, table.decimal_comma)
+        x = to_float(cell, table.decimal_comma)
         if x is None:
             raise _not_a_number(table, cell, i, col)
         if math.isinf(x):
@@ -321,14 +347,14 @@ def _column_numbers(table: _Table, j: int, commas: bool = False) -> np.ndarray:
     return out
 
 
-def _numbers(table: _Table, assigned: Mapping[str, int], explicit: set[str],
+def _numbers(table: Table, assigned: Mapping[str, int], explicit: set[str],
              unit_of: dict[str, str], notes: list[str]) -> dict[str, np.ndarray]:
     """Numeric columns as written; an empty optional column is ignored with a note."""
     values: dict[str, np.ndarray] = {}
     commas = _uses_decimal_commas(table)
     for canon in [c for c in CANONICAL if c in assigned and c not in TEXT_COLUMNS]:
         col = table.headers[assigned[canon]]
-        out = _column_numbers(table, assigned[canon], commas)
+        out = column_numbers(table, assigned[canon], commas)
         if np.isnan(out).all():
             if canon == "mu" or canon in explicit:
                 raise InputError(f"column is empty (every cell is empty or NaN); "
@@ -351,7 +377,7 @@ _PHYSICAL: dict[str, tuple[Callable[[np.ndarray], np.ndarray], str]] = {
 }
 
 
-def _first_bad(table: _Table, j: int, bad: np.ndarray, message: str) -> None:
+def _first_bad(table: Table, j: int, bad: np.ndarray, message: str) -> None:
     """Raise naming the first of the rows ``bad`` (indices), if any."""
     if bad.size:
         i = int(bad[0])
@@ -362,7 +388,7 @@ def _first_bad(table: _Table, j: int, bad: np.ndarray, message: str) -> None:
                          row=_row_label(table, i))
 
 
-def _to_si_checked(table: _Table, assigned: Mapping[str, int],
+def _to_si_checked(table: Table, assigned: Mapping[str, int],
                    values: Mapping[str, np.ndarray], unit_of: Mapping[str, str],
                    notes: list[str]) -> dict[str, np.ndarray]:
     """Physical checks, then SI conversion (overflow and absolute zero refused)."""
@@ -389,7 +415,7 @@ def _to_si_checked(table: _Table, assigned: Mapping[str, int],
     return si
 
 
-def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
+def _rows_to_keep(table: Table, assigned: Mapping[str, int],
                   si: Mapping[str, np.ndarray], notes: list[str],
                   dropped: dict[str, list[str]]) -> np.ndarray:
     """Rows without a missing value; every dropped row is named in a note.
@@ -421,7 +447,7 @@ def _rows_to_keep(table: _Table, assigned: Mapping[str, int],
     return keep
 
 
-def _kept_columns(table: _Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
+def _kept_columns(table: Table, assigned: Mapping[str, int], si: Mapping[str, np.ndarray],
                   keep: np.ndarray) -> dict[str, np.ndarray]:
     """The kept rows in SI, canonical column order, the text columns as text."""
     columns = {c: si[c][keep] for c in CANONICAL if c in si}

@@ -19,7 +19,7 @@ if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
 
 
 __all__ = ["VARIABLE_COLUMNS", "CANONICAL", "TEXT_COLUMNS", "ALIASES", "MISSING_TOKENS",
-           "canonical_name", "parse_mapping", "parse_units"]
+           "canonical_name", "column_for", "parse_mapping", "parse_units"]
 
 
 #: The canonical columns that are independent variables of a law
@@ -83,6 +83,27 @@ for _canon, _names in ALIASES.items():
 
 
 _CANON_KEYS = {c.lower(): c for c in CANONICAL}
+
+
+def column_for(name: str) -> str | None:
+    """The dataset column a header name is read as: itself, or through :data:`ALIASES`.
+
+    Case, spaces, ``_`` and ``-`` do not matter, and the micro sign reads as the Greek mu
+    (``"Coefficient of friction"`` and ``"COF"`` -> ``"mu"``).
+
+    Parameters
+    ----------
+    name : str
+        A column's name (its header without the unit).
+
+    Returns
+    -------
+    str or None
+        One of :data:`CANONICAL`, or None when the name is no dataset column.
+    """
+    if name in CANONICAL:
+        return name
+    return _ALIAS_LOOKUP.get(_norm(name))
 
 
 def canonical_name(key: str, *, what: str = "name", option: str | None = None) -> str:

@@ -20,6 +20,9 @@ from ..base.sanitize import comment_lines, csv_cell, split_lines
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from ..base.display import unit_text
+from ..base.outputs import atomic_write
+from ..law.interop import table_html
 from .building import (
     _assign_columns,
     _check_headers,
@@ -33,7 +36,7 @@ from .building import (
     _to_si_checked,
 )
 from .columns import CANONICAL, TEXT_COLUMNS, VARIABLE_COLUMNS, parse_mapping, parse_units
-from .reading import _split_header, _Table, _table_from_frame
+from .reading import Table, _table_from_frame, split_header
 
 __all__ = ["Dataset", "dataset_html"]
 
@@ -441,7 +444,6 @@ class Dataset:
             unit = _units.display_unit(c)
             vals = _units.from_si(self.column(c, float), unit, c)
             columns.append([format(float(x), ".15g") for x in vals])
-        from ..base.outputs import atomic_write  # never over a file read in this process
 
         with atomic_write(path, newline="") as fh:
             if self.provenance:
@@ -454,13 +456,13 @@ class Dataset:
         return path
 
 
-def _build(table: _Table, name: str, mapping: Mapping[str, str] | None,
+def _build(table: Table, name: str, mapping: Mapping[str, str] | None,
            units: Mapping[str, str] | None, area: str | float | None,
            provenance: str | None) -> Dataset:
     """The dataset of a table's raw cells: every check of the input layer, in order."""
     notes = list(table.notes)
     _check_headers(table)
-    names = [_split_header(h)[0] for h in table.headers]
+    names = [split_header(h)[0] for h in table.headers]
     assigned, explicit = _assign_columns(table, names, mapping, notes)
     unit_of = _column_units(table, names, assigned, units)
     values = _numbers(table, assigned, explicit, unit_of, notes)
@@ -488,9 +490,6 @@ def _written_unit(unit: str, column: str) -> str:
 
 def dataset_html(dataset: Any, head: int = 5) -> str:
     """HTML for a dataset: name, source, each column's range in display units, first rows."""
-    from ..base.display import unit_text
-    from ..law.interop import table_html
-
     rows = []
     for col in dataset.column_names:
         if col not in _units.QUANTITIES:

@@ -17,10 +17,12 @@ from ..base.sanitize import split_lines
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
+from importlib import resources
+
 from .building import _is_frame
 from .columns import parse_mapping, parse_units
 from .dataset import Dataset, _build
-from .reading import _Table, _table_from_frame, read_table
+from .reading import Table, _table_from_frame, read_table
 
 __all__ = ["datasets_dir", "list_datasets", "load_dataset"]
 
@@ -35,8 +37,6 @@ def datasets_dir() -> Any:
     source checkout (tests run from the clone) they are the top-level
     ``datasets/`` folder beside the package.
     """
-    from importlib import resources
-
     try:
         return resources.files("frictionlaws._datasets")
     except ModuleNotFoundError:  # a source checkout not (re)installed
@@ -154,7 +154,7 @@ def load_dataset(
     return _build(table, name, mapping, units, area, prov)
 
 
-def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, str]:
+def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[Table, str]:
     """A DataFrame or a dict of columns as a table, and the dataset's name."""
     if _is_frame(data):
         return _table_from_frame(data, "<DataFrame>"), "dataframe"
@@ -169,7 +169,7 @@ def _table_in_memory(data: pd.DataFrame | Mapping[str, Any]) -> tuple[_Table, st
     return table, "data"
 
 
-def _table_on_disk(text: str) -> tuple[_Table, str]:
+def _table_on_disk(text: str) -> tuple[Table, str]:
     """A CSV file or a packaged dataset (``NAME`` or ``packaged:NAME``), and its name."""
     path = Path(text)
     if not path.exists() and text.startswith(_PACKAGED_PREFIX):

@@ -12,13 +12,16 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..base.errors import InputError
+from ..base.limits import read_input
+from ..base.outputs import check_input_file
 from ..base.sanitize import split_lines
 
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
 
-__all__ = ["refuse_nul", "decode_text", "read_table", "split_header", "output_dir"]
+__all__ = ["Table", "refuse_nul", "decode_text", "detect_delimiter", "read_table",
+           "split_header", "output_dir"]
 
 
 _DELIMITERS = (";", "\t", ",")
@@ -34,8 +37,34 @@ _SPREADSHEET_ERROR = re.compile(
 
 # --------------------------------------------------------------------------- reading text
 @dataclass
-class _Table:
-    """Raw cells of a table, before columns are resolved."""
+class Table:
+    """Raw cells of a table, before columns are resolved: what :func:`read_table` returns.
+
+    Other rooms read their own tables through it (a rig's records, a tyre's test data, a
+    material's sweeps) and take its numbers with :func:`~frictionlaws.io.column_numbers`.
+
+    Attributes
+    ----------
+    headers : list of str
+        The header cells, as written.
+    columns : list of list
+        The cells of each column (text from a file; numbers from arrays or a DataFrame).
+    rows : list of int
+        The source row of each data row (the line a text editor shows).
+    source : str
+        The file (or what the table came from), named in errors.
+    comments, notes : list of str
+        The file's comment lines; what reading it noted (an encoding, a delimiter).
+    decimal_comma : bool
+        True when the file writes decimal commas.
+    from_file : bool
+        False for a table made from arrays or a DataFrame.
+    delimiter : str or None
+        The cell delimiter of a file.
+    si_by_default : bool
+        True for a dict of arrays (the API's SI arrays): a column without a unit is in
+        SI; a file and a DataFrame must state every unit (one rule for both).
+    """
 
     headers: list[str]
     columns: list[list[Any]]
@@ -46,8 +75,6 @@ class _Table:
     decimal_comma: bool = False
     from_file: bool = True
     delimiter: str | None = None
-    #: A dict of arrays (the API's SI arrays): a column without a unit is in SI.  A file
-    #: and a DataFrame must state every unit (one rule for both).
     si_by_default: bool = False
 
 
@@ -106,7 +133,19 @@ def decode_text(raw: bytes, source: str, what: str = "CSV file") -> tuple[str, s
     raise InputError("cannot decode the file as text", file=source)  # pragma: no cover
 
 
-def _detect_delimiter(header_line: str) -> str | None:
+def detect_delimiter(header_line: str) -> str | None:
+    """The delimiter of a header line: the first of ``;``, tab and ``,`` it holds.
+
+    Parameters
+    ----------
+    header_line : str
+        The header line of a table.
+
+    Returns
+    -------
+    str or None
+        The delimiter, or None for a single column.
+    """
     for d in _DELIMITERS:
         if d in header_line:
             return d
@@ -115,7 +154,7 @@ def _detect_delimiter(header_line: str) -> str | None:
 
 def read_table(path: str | os.PathLike[str], *, source: str | None = None,
                raw: bytes | None = None, header_hint: str = "'mu,p [MPa],v [m/s]'",
-               what: str = "data file") -> _Table:
+               what: str = "data file") -> Table:
     """Read a CSV file into raw cells: the one table reader (datasets, manifests).
 
     Detects ``;``, tab or ``,`` delimiters from the header line, decimal commas
@@ -154,14 +193,12 @@ def _read_bytes(p: Path, source: str, what: str) -> bytes:
             else f"{what} not found", file=source)
     if p.is_dir():
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
-    from ..base.limits import read_input
-    from ..base.outputs import check_input_file
 
     check_input_file(p, what)  # a FIFO or device would block or never end
     return read_input(p, what, source)  # bounded in size
 
 
-def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
+def _scan_lines(lines: list[str], source: str, header_hint: str) -> Table:
     """Header, comments and data rows of the decoded lines (see :func:`read_table`)."""
     comments: list[str] = []
     header: list[str] | None = None
@@ -178,7 +215,7 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
         if not stripped:
             continue
         if header is None:
-            delimiter = _detect_delimiter(line)
+            delimiter = detect_delimiter(line)
             header = _split(line, delimiter, source, number)
             header_row = number
             continue
@@ -199,7 +236,7 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> _Table:
                          file=source)
     headers = [h.strip() for h in header]
     columns = _rectangular(data, rows, headers, delimiter, source)
-    return _Table(headers, columns, rows, source, comments, [], delimiter in (";", "\t"),
+    return Table(headers, columns, rows, source, comments, [], delimiter in (";", "\t"),
                   True, delimiter)
 
 
@@ -243,13 +280,13 @@ def _split(line: str, delimiter: str | None, source: str, row: int) -> list[str]
         raise InputError(hint, file=source, row=row) from None
 
 
-def _table_from_frame(df: pd.DataFrame, source: str) -> _Table:
+def _table_from_frame(df: pd.DataFrame, source: str) -> Table:
     headers = [str(c) for c in df.columns]
     columns = [df.iloc[:, j].tolist() for j in range(df.shape[1])]
     rows = list(range(1, len(df) + 1))
     if not len(df):
         raise InputError("the DataFrame has no rows", file=source)
-    return _Table(headers, columns, rows, source, from_file=False)
+    return Table(headers, columns, rows, source, from_file=False)
 
 
 # --------------------------------------------------------------------------- building
@@ -281,9 +318,6 @@ def split_header(h: str, *, brackets_in_name: bool = True) -> tuple[str, str | N
     if not brackets_in_name and ("[" in name or "]" in name):
         return h.strip(), None
     return name.strip(), s[opening + 1:-1].strip()
-
-
-_split_header = split_header
 
 
 # --------------------------------------------------------------------------- packaged

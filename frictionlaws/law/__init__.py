@@ -47,7 +47,14 @@ from .declaration import (
 )
 from .domain import LIMIT_RTOL, ZERO_PROBES
 from .namespace import NUMPY, sympy_namespace
-from .text import FORMULA_TEXT_FILE, formula_check, formula_matches, formula_text_entries
+from .text import (
+    FORMULA_TEXT_FILE,
+    formula_check,
+    formula_matches,
+    formula_text_entries,
+    formula_texts_current,
+    write_formula_texts,
+)
 
 __all__ = [
     "VARIABLES",
@@ -70,5 +77,7 @@ __all__ = [
     "formula_check",
     "formula_matches",
     "formula_text_entries",
+    "formula_texts_current",
+    "write_formula_texts",
     "set_lookup",
 ]

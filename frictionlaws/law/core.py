@@ -146,7 +146,7 @@ class Law(LawEvaluation, LawText):
     def lmfit_model(self, values: Mapping[str, float] | None = None) -> Any:
         """Return the law as an :class:`lmfit.Model`.
 
-        See :func:`frictionlaws.fitting.views.lmfit_model`.
+        See :func:`frictionlaws.law.interop.lmfit_model`.
 
         Parameters
         ----------

@@ -19,13 +19,14 @@ from .declaration import VARIABLES
 from .domain import LawDomain, _all_finite, _first
 from .namespace import NUMPY
 
-__all__ = ["LawEvaluation", "is_labelled", "evaluate_labelled"]
+__all__ = ["LawEvaluation", "is_labelled", "evaluate_labelled", "BLOCK_ROWS", "BLOCKED_FROM"]
 
-#: Values per block of a large checked evaluation (:meth:`LawEvaluation.evaluate_checked`):
-#: a few arrays of this many doubles stay in the processor's cache.
-_BLOCK = 1 << 16
+#: Values per block of a large evaluation (:meth:`LawEvaluation.evaluate_checked`): a few
+#: arrays of this many doubles stay in the processor's cache.  A fit's identifiability
+#: analysis builds the R factor of a large Jacobian in blocks of the same size.
+BLOCK_ROWS = 1 << 16
 #: Size from which a checked evaluation goes block by block.
-_BLOCKED_FROM = 4 * _BLOCK
+BLOCKED_FROM = 4 * BLOCK_ROWS
 
 
 def _is_series(x: Any) -> bool:
@@ -82,8 +83,8 @@ class LawEvaluation(LawDomain):
                           n: int) -> np.ndarray:
         """The formula on prepared variables (:meth:`prepare_variables`), as ``n`` values.
 
-        No checks (the fitting loop's evaluation).  From :data:`_BLOCKED_FROM` values on,
-        the formula runs on blocks of :data:`_BLOCK` rows, so its temporaries stay that
+        No checks (the fitting loop's evaluation).  From :data:`BLOCKED_FROM` values on,
+        the formula runs on blocks of :data:`BLOCK_ROWS` rows, so its temporaries stay that
         size; the numbers are the same as in one call (the formulas act element by element).
 
         Parameters
@@ -102,14 +103,14 @@ class LawEvaluation(LawDomain):
             gives them).
         """
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            if n < _BLOCKED_FROM:
+            if n < BLOCKED_FROM:
                 out = np.asarray(self.formula(NUMPY, **prepared, **params), float)
                 return out if out.shape == (n,) else np.broadcast_to(out, (n,)).copy()
             out = np.empty(n)
-            for start in range(0, n, _BLOCK):
-                part = {k: v[start:start + _BLOCK] if np.ndim(v) else v
+            for start in range(0, n, BLOCK_ROWS):
+                part = {k: v[start:start + BLOCK_ROWS] if np.ndim(v) else v
                         for k, v in prepared.items()}
-                out[start:start + _BLOCK] = self.formula(NUMPY, **part, **params)
+                out[start:start + BLOCK_ROWS] = self.formula(NUMPY, **part, **params)
         return out
 
     def __call__(self, **kwargs: Any) -> Any:
@@ -187,8 +188,8 @@ class LawEvaluation(LawDomain):
                          ) -> np.ndarray | None:
         """A large checked call, evaluated and checked block by block; None when not apt.
 
-        For plain float arrays of one shape, at least :data:`_BLOCKED_FROM` values, the
-        variables and mu of each block of :data:`_BLOCK` values are checked while the
+        For plain float arrays of one shape, at least :data:`BLOCKED_FROM` values, the
+        variables and mu of each block of :data:`BLOCK_ROWS` values are checked while the
         block is in the processor's cache, so the checks cost almost nothing.  Any block
         that fails a check returns None: the whole-array path then names the value.
         """
@@ -203,16 +204,16 @@ class LawEvaluation(LawDomain):
                    and a.shape == shape for a in arrays):
             return None
         size = int(np.prod(shape))
-        if size < _BLOCKED_FROM:
+        if size < BLOCKED_FROM:
             return None
         flat = {k: a.reshape(-1) for k, a in zip(names, arrays)}
         out = np.empty(size)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            for start in range(0, size, _BLOCK):
-                part = {k: a[start:start + _BLOCK] for k, a in flat.items()}
+            for start in range(0, size, BLOCK_ROWS):
+                part = {k: a[start:start + BLOCK_ROWS] for k, a in flat.items()}
                 if not all(self._variable_ok(k, a) for k, a in part.items()):
                     return None
-                block = out[start:start + _BLOCK]
+                block = out[start:start + BLOCK_ROWS]
                 block[...] = self.formula(NUMPY, **self.prepare_variables(part), **params)
                 if not self._mu_ok(block):
                     return None

@@ -18,7 +18,8 @@ from importlib import metadata
 from ..base.errors import UnknownLawError
 from . import FAMILIES, Law, set_lookup
 
-__all__ = ["Registry", "REGISTRY", "register", "get_law", "list_laws", "ENTRY_POINT_GROUP"]
+__all__ = ["Registry", "REGISTRY", "register", "get_law", "list_laws", "builtin_laws",
+           "ENTRY_POINT_GROUP"]
 
 ENTRY_POINT_GROUP = "frictionlaws.laws"
 
@@ -216,3 +217,21 @@ def list_laws(family: str | None = None) -> list[Law]:
     """
     _ensure_loaded()
     return REGISTRY.list(family)
+
+
+def builtin_laws(family: str | None = None) -> list[Law]:
+    """The registered laws frictionlaws declares itself (:mod:`frictionlaws.laws`).
+
+    Parameters
+    ----------
+    family : {"sliding", "slip"}, optional
+        Only the laws of this family; None for all.
+
+    Returns
+    -------
+    list of Law
+        :func:`list_laws` without the laws plugins added (a law is built in when its
+        formula is defined inside the package).
+    """
+    return [law for law in list_laws(family)
+            if getattr(law.formula, "__module__", "").startswith("frictionlaws.")]

@@ -21,7 +21,7 @@ from .namespace import NUMPY, sympy_namespace
 from .parameters import LawDeclaration
 
 __all__ = ["LawText", "FORMULA_TEXT_FILE", "formula_check", "formula_matches",
-           "formula_text_entries"]
+           "formula_text_entries", "formula_texts_current", "write_formula_texts"]
 
 
 class LawText(LawDeclaration):
@@ -214,3 +214,56 @@ def formula_text_entries(laws: Iterable[LawText]) -> dict[str, Any]:
         if check is not None:
             out[law.id] = {"text": law.rendered_text(), **check}
     return {"format": 1, "laws": out}
+
+
+def _formula_text_json(laws: Iterable[LawText]) -> str:
+    return json.dumps(formula_text_entries(laws), indent=1, sort_keys=True) + "\n"
+
+
+def formula_texts_current(laws: Iterable[LawText], path: Path | None = None) -> bool:
+    """True when the formula-text cache holds what ``laws`` render to now.
+
+    Parameters
+    ----------
+    laws : iterable of Law
+        The laws the cache is for (the built-in ones).
+    path : Path, optional
+        The cache file (default :data:`FORMULA_TEXT_FILE`).
+
+    Returns
+    -------
+    bool
+        The same laws, each with the same text, symbols and check values (the values to
+        the tolerance of :func:`formula_matches`: their last digit varies with numpy).
+    """
+    laws = list(laws)
+    try:
+        stored = json.loads(Path(path or FORMULA_TEXT_FILE).read_text(encoding="utf-8"))["laws"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return False
+    fresh = formula_text_entries(laws)["laws"]
+    by_id = {law.id: law for law in laws}
+    return (isinstance(stored, dict) and stored.keys() == fresh.keys()
+            and all(isinstance(stored[k], dict) and stored[k].get("text") == fresh[k]["text"]
+                    and formula_matches(by_id[k], stored[k]) for k in fresh))
+
+
+def write_formula_texts(laws: Iterable[LawText], path: Path | None = None) -> Path:
+    """Write the formula-text cache for ``laws`` (rendered with sympy).
+
+    Parameters
+    ----------
+    laws : iterable of Law
+        The laws to cache (the built-in ones).
+    path : Path, optional
+        Where to write (default :data:`FORMULA_TEXT_FILE`, which the laws then read).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    target = Path(path or FORMULA_TEXT_FILE)
+    target.write_text(_formula_text_json(laws), encoding="utf-8")
+    _formula_texts.cache_clear()
+    return target

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from ..law import Law, Param, Setting
@@ -53,8 +54,6 @@ _REFERENCES = (
 def _numeric(material: Material | None, thermal: Flash | None, p: Any, v: Any, T: Any,
              q1: Any, q0: Any, H: Any, h_rms: Any, gamma: Any, heat_fraction: Any) -> Any:
     # imported here: registering the law (every get_law) must not load the theory
-    from dataclasses import replace
-
     from ..persson.flash import TREAD_THERMAL
     from ..persson.material import tread_compound
     from ..persson.surface import SelfAffine

@@ -16,8 +16,10 @@ from typing import Any
 
 import numpy as np
 
+from ..fitting.derivatives import jacobian_function, model_jacobian
+from ..fitting.lsq import solve
 from ..law import NUMPY, Derived, Law, Param
-from ..law.registry import register
+from ..law.registry import get_law, register
 from ._guess import linear_guess, linear_lstsq, subsample
 
 __all__ = ["pacejka_peak", "BURCKHARDT_ROADS", "PACEJKA_SURFACES"]
@@ -97,8 +99,6 @@ def _pacejka_peak(B: float, C: float, D: float, E: float, S_h: float, S_v: float
 def _pacejka_jacobian(law: Law, s: np.ndarray) -> Any:
     """d mu / d(B, C, D, E) at S_h = S_v = 0, from the law's generated derivatives
     (None when there are none: the solver then differences)."""
-    from ..fitting.derivatives import jacobian_function, model_jacobian
-
     func = jacobian_function(law)
     if func is None:
         return None
@@ -155,9 +155,6 @@ def _pacejka_guess(d):
     (MINPACK with the law's derivatives while inside the bounds) and the best result
     is returned; all on at most 200 rows.
     """
-    from ..fitting.lsq import solve
-    from ..law.registry import get_law
-
     d = _subsample(d, 200)
     s, mu = d["s"], d["mu"]
     cells = _pacejka_grid(s, mu, _REFINED)

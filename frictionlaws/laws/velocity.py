@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ..base.errors import InputError
 from ..law import NUMPY, P_MIN, V_MIN, Derived, Law, Param, Setting
 from ..law.registry import register
 from ..viscoelastic.temperature import WLF_PRESETS, WLFLaw, wlf_formula, wlf_settings
@@ -269,8 +270,6 @@ def nackenhorst_from_thesis(c1: float, c2: float, c3: float, c4: float, c5: floa
         ``{"A", "n", "b0", "b1", "b2"}`` for law ``nackenhorst``.
     """
     if c2 <= 0 or c5 <= 0 or c7 <= 0:
-        from ..base.errors import InputError
-
         raise InputError("c2, c5 and c7 are scales and must be positive")
     return {
         "A": float(c1 * (p_ref / c2) ** c3),

@@ -13,6 +13,7 @@ from __future__ import annotations
 import importlib
 import itertools
 import os
+import warnings
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence, Sized
 from typing import Any
@@ -68,8 +69,6 @@ SCHEDULER_ENV = "FRICTIONLAWS_SCHEDULER"
 def _unread_environment() -> None:
     """Warn when :data:`SCHEDULER_ENV` is set: it does not connect by itself."""
     if os.environ.get(SCHEDULER_ENV):
-        import warnings
-
         warnings.warn(f"the environment variable {SCHEDULER_ENV} is set but is not read: a "
                       "Dask scheduler is trusted with code execution, so it is connected "
                       "to only when its address is given explicitly; the work runs here",
@@ -236,7 +235,7 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
 
 def _dask_client(address: str) -> Any:
     """A Dask client connected to ``address`` within one deadline; InputError naming why not."""
-    from ._network import connect_scheduler
+    from ._network import connect_scheduler  # asyncio and ssl: only with a Dask scheduler
 
     return connect_scheduler(address)
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..base.errors import InputError
 from ..base.units import to_si
-from ..io import _split_header, _to_float, read_table
+from ..io import read_table, split_header, to_float
 
 __all__ = ["read_columns"]
 
@@ -39,7 +39,7 @@ def read_columns(path: str | os.PathLike[str], wanted: Mapping[str, tuple[str, s
     """
     table = read_table(path)
     src = table.source
-    names = [_split_header(h) for h in table.headers]
+    names = [split_header(h) for h in table.headers]
     units = dict(units or {})
     out: dict[str, np.ndarray] = {}
     for key, (column, kind) in wanted.items():
@@ -55,7 +55,7 @@ def read_columns(path: str | os.PathLike[str], wanted: Mapping[str, tuple[str, s
                              f"'{column} [unit]'", file=src, column=column)
         values = []
         for i, cell in enumerate(table.columns[j]):
-            x = _to_float(cell, table.decimal_comma)
+            x = to_float(cell, table.decimal_comma)
             if x is None or math.isnan(x) or not math.isfinite(x):
                 raise InputError(f"expected a finite number, got {cell!r}", file=src,
                                  column=column, row=table.rows[i])

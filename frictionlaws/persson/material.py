@@ -22,6 +22,7 @@ fixed grid of relaxation times).
 from __future__ import annotations
 
 import functools
+import json
 import math
 import os
 from collections.abc import Mapping
@@ -366,8 +367,6 @@ def _value(spec: Mapping[str, Any], key: str, file: str) -> float:
 
 @functools.lru_cache(maxsize=1)
 def _tread_spec() -> dict[str, Any]:
-    import json
-
     from ..io import datasets_dir
 
     text = (datasets_dir() / TREAD_FILE).read_text(encoding="utf-8")

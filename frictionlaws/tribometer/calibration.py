@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError
-from ..base.units import parse_quantity, unit_registry
+from ..base.units import parse_quantity, parse_unit, unit_registry
 from .records import Record, read_record
 from .rig import RPM, Rig
 
@@ -160,8 +160,6 @@ def system_error_from_weights(
 def _weights_si(masses: Sequence[float] | np.ndarray, readings: Sequence[float] | np.ndarray,
                 mass_unit: str, torque_unit: str) -> tuple[np.ndarray, np.ndarray]:
     """Checked hanging masses [kg] and torque readings [N m] of a hanging-weight test."""
-    from ..base.units import parse_unit
-
     m = np.asarray(masses, dtype=float).ravel()
     r = np.asarray(readings, dtype=float).ravel()
     if m.size != r.size:

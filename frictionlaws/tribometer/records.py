@@ -49,10 +49,11 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError
+from ..base.limits import read_input
 from ..base.outputs import atomic_write, check_input_file
 from ..base.sanitize import split_lines
 from ..base.units import QUANTITIES, canonical_unit, parse_unit, parse_unit_text, unit_registry
-from ..io import _detect_delimiter, decode_text
+from ..io import Table, column_numbers, decode_text, detect_delimiter
 from ..io import split_header as _split_header
 
 __all__ = ["Record", "read_record", "split_header", "angular_unit_factor", "COLUMNS"]
@@ -323,7 +324,6 @@ def _record_text(p: Path, src: str) -> str:
         raise InputError("record file not found", file=src)
     if p.is_dir():
         raise InputError("is a directory; expected a record CSV file", file=src)
-    from ..base.limits import read_input
 
     check_input_file(p, "record file")
     raw = read_input(p, "record file", src)  # bounded in size
@@ -346,7 +346,7 @@ class _Layout:
         """The delimiter of the header line (as for datasets) and whether commas are decimal."""
         header = next((ln for ln in split_lines(text)
                        if ln.strip() and not ln.lstrip().startswith("#")), "")
-        delimiter = _detect_delimiter(header) or ","
+        delimiter = detect_delimiter(header) or ","
         body = text[text.find(header) + len(header):]
         return cls(delimiter, delimiter in (";", "\t") and "," in body)
 
@@ -404,11 +404,10 @@ def _column_values(col: Any, layout: _Layout, header: str, src: str,
     """A column as floats (NaN where empty): the datasets' number rule, messages and all."""
     if col.dtype.kind in "fiu":
         return np.asarray(col.to_numpy(dtype=float))
-    from ..io import _column_numbers, _Table  # the one number parser and its messages
 
-    table = _Table([header], [col.astype(str).tolist()], rows.all(len(col)), src,
+    table = Table([header], [col.astype(str).tolist()], rows.all(len(col)), src,
                    decimal_comma=layout.decimal_comma, delimiter=layout.delimiter)
-    return _column_numbers(table, 0, commas=layout.decimal_comma)
+    return column_numbers(table, 0, commas=layout.decimal_comma)
 
 
 class _RowNumbers:

@@ -60,10 +60,17 @@ from typing import Any
 
 import numpy as np
 
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10: the same parser, published as tomli
+    import tomli as tomllib
+
 from ..base.errors import InputError
 from ..base.limits import check_nesting, nesting_error, read_input
+from ..base.numbers import parse_number
 from ..base.outputs import check_input_file
 from ..base.units import parse_quantity
+from .records import angular_unit_factor
 
 __all__ = [
     "FilterSettings",
@@ -454,11 +461,6 @@ def load_rig(path: str | os.PathLike[str]) -> Rig:
         For a missing or malformed file, an unknown key, a value without a unit
         or with the wrong dimension, or an inconsistent internal-torque table.
     """
-    if sys.version_info >= (3, 11):
-        import tomllib
-    else:  # Python 3.10: the same parser, published as tomli
-        import tomli as tomllib
-
     if not isinstance(path, (str, os.PathLike)):
         raise InputError(f"load_rig takes the path of a TOML file, got {type(path).__name__}"
                          " (build a rig from a mapping with rig_from_dict)")
@@ -666,14 +668,12 @@ def _outlier_settings(ot: Mapping[str, Any], src: str) -> OutlierSettings:
 def _angular(table: Mapping[str, Any], key: str, src: str, prefix: str, default: float) -> float:
     if key not in table:
         return default
-    from .records import angular_unit_factor
 
     raw = table[key]
     if not isinstance(raw, str):
         raise InputError(f"'{prefix}{key}' must be a string with a unit, e.g. \"10 rpm\"",
                          file=src)
     parts = raw.strip().split(None, 1)
-    from ..base.numbers import parse_number
 
     try:
         number = parse_number(parts[0])  # the one number parser (no 1_0, no overflow)

@@ -39,6 +39,8 @@ from typing import Any
 
 import numpy as np
 
+from ..base.outputs import check_unique_names
+from ..parallel import run_parallel
 from .records import Record, write_record
 from .rig import RPM, Rig
 
@@ -395,8 +397,6 @@ def make_campaign(
     -------
     CampaignTruth
     """
-    from ..base.outputs import check_unique_names
-
     rig = rig or synthetic_rig()
     root = Path(directory)
     specs = _record_specs(conditions, rig, seed, record_kwargs)
@@ -408,7 +408,6 @@ def make_campaign(
                         encoding="utf-8")
     tasks = [(str(root / "records" / name), spec, rseed, rig, name)
              for _, spec, rseed, name in specs]
-    from ..parallel import run_parallel
 
     run_parallel(_write_one, tasks, jobs=jobs if len(tasks) > 8 else 1)
     lines = ["file,load [kg],surface,condition,mode"]

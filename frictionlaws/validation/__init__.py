@@ -21,9 +21,15 @@ their human-readable catalogue.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Iterable
 
+from ..base.errors import ExtrapolationWarning
+from .cases import CASES
+from .cases.common import _plugin_law_ids
 from .core import Case, CaseResult, CaseRun, Check, Tol, ValidationReport, run_cases, select_cases
+from .recovery import RECOVERY_SETUPS
+from .reference import REFERENCES
 
 __all__ = ["Case", "CaseResult", "CaseRun", "Check", "Tol", "ValidationReport",
            "list_cases", "run_validation", "REFERENCES", "RECOVERY_SETUPS"]
@@ -31,20 +37,14 @@ __all__ = ["Case", "CaseResult", "CaseRun", "Check", "Tol", "ValidationReport",
 
 def __getattr__(name: str):  # lazy: the tables import numpy
     if name == "REFERENCES":
-        from .reference import REFERENCES
-
         return REFERENCES
     if name == "RECOVERY_SETUPS":
-        from .recovery import RECOVERY_SETUPS
-
         return RECOVERY_SETUPS
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def list_cases() -> list[Case]:
     """All validation cases, in the order they run."""
-    from .cases import CASES
-
     return list(CASES)
 
 
@@ -69,16 +69,11 @@ def run_validation(names: Iterable[str] | None = None, *,
     InputError
         When a name matches no case.
     """
-    import warnings
-
-    from ..base.errors import ExtrapolationWarning
-
     cases = select_cases(list_cases(), list(names) if names else None)
     with warnings.catch_warnings():
         # the cases evaluate laws outside their domains on purpose (limits, poles)
         warnings.simplefilter("ignore", ExtrapolationWarning)
         report = run_cases(cases, progress=progress)
-    from .cases.common import _plugin_law_ids
 
     plugins = _plugin_law_ids()
     if plugins:

@@ -25,6 +25,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import __version__
 from ..base.errors import InputError
 
 __all__ = ["Tol", "Check", "CaseRun", "Case", "CaseResult", "ValidationReport",
@@ -266,8 +267,6 @@ class ValidationReport:
                 f"{self.n_failed} failed ({self.seconds:.1f} s)")
 
     def to_dict(self) -> dict[str, Any]:
-        from .. import __version__
-
         return {"format": "frictionlaws-validation", "version": 1,
                 "frictionlaws": __version__, "passed": self.passed,
                 "n_cases": len(self.results), "n_failed": self.n_failed,

@@ -27,6 +27,7 @@ file when an entry is missing.
 
 from __future__ import annotations
 
+import math as _m
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import SimpleNamespace
@@ -277,9 +278,6 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, m
     correction S(q) = gamma + (1 - gamma) P^2 (Persson 2006) multiplies P in the mu
     integrand; isothermal only (a heat fraction other than 0 is refused).
     """
-    import math as _m
-
-    import numpy as _np
     from scipy.integrate import quad, solve_ivp
 
     if material is None:
@@ -290,25 +288,25 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, m
         raise ValueError("the reference is isothermal (heat_fraction = 0)")
     p, v, T, q1, mu_a, q0, H, h_rms, gamma = (float(x) for x in (p, v, T, q1, mu_a, q0, H,
                                                                  h_rms, gamma))
-    Ei, tau, Einf = _np.asarray(material.E_i), _np.asarray(material.tau), material.E_inf
+    Ei, tau, Einf = np.asarray(material.E_i), np.asarray(material.tau), material.E_inf
     aT = 10.0 ** float(material.shift(T))
     C0 = H * h_rms**2 / (_m.pi * q0**2)
     e = (1.0 - material.nu**2) * p
 
     def E(w):
         x = w * tau
-        return Einf + complex(_np.sum(Ei * 1j * x / (1 + 1j * x)))
+        return Einf + complex(np.sum(Ei * 1j * x / (1 + 1j * x)))
 
-    x, w = _np.polynomial.legendre.leggauss(16)
-    edges = (_m.pi / 2) * 10.0 ** -_np.arange(13.0)
-    psi = _np.concatenate([(a + b) / 2 + (a - b) / 2 * x for a, b in zip(edges, edges[1:])])
-    wt = _np.concatenate([(a - b) / 2 * w for a, b in zip(edges, edges[1:])])
-    cphi = _np.sin(psi)
+    x, w = np.polynomial.legendre.leggauss(16)
+    edges = (_m.pi / 2) * 10.0 ** -np.arange(13.0)
+    psi = np.concatenate([(a + b) / 2 + (a - b) / 2 * x for a, b in zip(edges, edges[1:])])
+    wt = np.concatenate([(a - b) / 2 * w for a, b in zip(edges, edges[1:])])
+    cphi = np.sin(psi)
 
     def ang_fixed(q):
         xx = (q * abs(v) * aT * cphi)[:, None] * tau
-        Ev = Einf + _np.sum(Ei * 1j * xx / (1 + 1j * xx), axis=1)
-        return 4 * float(_np.sum(wt * cphi * Ev.imag)), 4 * float(_np.sum(wt * abs(Ev) ** 2))
+        Ev = Einf + np.sum(Ei * 1j * xx / (1 + 1j * xx), axis=1)
+        return 4 * float(np.sum(wt * cphi * Ev.imag)), 4 * float(np.sum(wt * abs(Ev) ** 2))
 
     def ang(q):
         if M is _m:
@@ -337,6 +335,8 @@ def _persson(M, p, v, T, q1, mu_a, q0, H, h_rms, gamma=1.0, heat_fraction=0.0, m
 
 def _persson_baseline(x: Mapping[str, Any], q: Mapping[str, float]) -> Any:
     """The theory called directly on numpy arrays (the benchmark measures the law's wrapper)."""
+    # imported here: the example table imports nothing of the library at its top, so
+    # that its reference forms stay independent of what they check
     from frictionlaws.persson import SelfAffine, friction, tread_compound
 
     surf = SelfAffine.from_rms(q["q0"], q["H"], q["h_rms"], q["q1"])

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..fitting import fit
 from .law_examples import EXAMPLES
 from .reference import REFERENCES, evaluate_reference
 
@@ -136,8 +137,6 @@ def recover_law(law: Any, setup: RecoverySetup, *, noise_levels: Sequence[float]
     -------
     list of FitOutcome
     """
-    from ..fitting import fit
-
     ref = REFERENCES[law.id]
     settings = dict(law.setting_values)
     truth = {**settings, **setup.params, **setup.fix}

@@ -23,6 +23,7 @@ the validation suite fails when a built-in law has no entry there.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from itertools import product
 
@@ -59,8 +60,6 @@ def evaluate_reference(ref: Reference, variables: Mapping[str, float],
                        params: Mapping[str, float], *, precise: bool = True) -> float:
     """The reference value at one point: mpmath with 40 digits, or plain :mod:`math`."""
     if not precise:
-        import math
-
         return float(ref.func(math, **variables, **params))
     import mpmath
 

@@ -34,6 +34,9 @@ from typing import Any
 import numpy as np
 
 from ..base.errors import InputError
+from ..base.units import to_si
+from ..fitting.lsq import lmfit_fit
+from ..io import datasets_dir
 from ..law import NUMPY
 from .temperature import wlf_formula
 
@@ -256,8 +259,6 @@ def fit_wlf(T: Any, log_aT: Any, T_ref: float, *, stderr: Any = None) -> WLFFit:
     and C2 treat them as independent and are therefore approximate.
     """
     import lmfit
-
-    from ..fitting.lsq import lmfit_fit
 
     T = np.asarray(T, float)
     y = np.asarray(log_aT, float)
@@ -622,8 +623,6 @@ def _chain_shifts(curves: list[Curve], ref: int, *, degree: int, max_extrapolati
 
 
 def _dma_path(name: str) -> Any:
-    from ..io import datasets_dir
-
     return datasets_dir() / "dma-pyvisco" / name
 
 
@@ -653,8 +652,6 @@ def load_dma_example() -> dict[str, np.ndarray]:
         ``f`` [Hz], ``E_stor`` and ``E_loss`` [Pa], ``T`` [K], ``set`` (sweep
         number): 21 temperatures from -50 to 100 degC, 10 frequencies each.
     """
-    from ..base.units import to_si
-
     names, units, data = _read_two_header_csv("freq_user_raw.csv")
     kinds = {"f": "frequency", "E_stor": "p", "E_loss": "p", "T": "T"}
     out: dict[str, np.ndarray] = {}
@@ -669,8 +666,6 @@ def load_dma_example() -> dict[str, np.ndarray]:
 
 def load_dma_upstream_shifts() -> dict[str, np.ndarray]:
     """The shift factors shipped beside the DMA sweeps: ``T`` [K] and ``log_aT``."""
-    from ..base.units import to_si
-
     names, units, data = _read_two_header_csv("freq_user_master__shift_factors.csv")
     iT, ia = names.index("T"), names.index("log_aT")
     return {"T": to_si(data[:, iT], _unit(units[iT]), "T",

@@ -212,7 +212,9 @@ def test_solver_ids_outside_their_fields_are_refused(tmp_path, capsys, flag, val
 
 @pytest.mark.parametrize("options,message", [({"ansys_mat": 1.5}, "whole number"),
                                              ({"bogus": 1}, "unknown export option"),
-                                             ({"lsdyna_table_id": "abc"}, "whole number")])
+                                             ({"ansys_mat": "abc"}, "whole number"),
+                                             ({"lsdyna_table_id": 5},
+                                              "does not apply to format ansys")])
 def test_api_export_options_are_checked(options, message):
     from frictionlaws.base.errors import InputError
     from frictionlaws.fe_export import export

@@ -12,7 +12,7 @@ from scipy.optimize import least_squares
 import frictionlaws as fl
 from frictionlaws.fitting import diagnosis as fit_diagnosis
 from frictionlaws.fitting import lsq as _lsq
-from frictionlaws.law.evaluation import _BLOCKED_FROM
+from frictionlaws.law.evaluation import BLOCKED_FROM
 from frictionlaws.validation.law_examples import EXAMPLES
 
 
@@ -26,7 +26,7 @@ def _direct(jac, names):
 @pytest.mark.parametrize("coupling", [0.0, 1e-3, 1e-7])
 def test_blockwise_r_keeps_the_singular_values_and_the_verdict(coupling):
     rng = np.random.default_rng(1)
-    n = _BLOCKED_FROM + 12_345  # several blocks and a short last one
+    n = BLOCKED_FROM + 12_345  # several blocks and a short last one
     a = rng.standard_normal(n)
     jac = np.column_stack([a, rng.standard_normal(n), a + coupling * rng.standard_normal(n)])
     jac *= np.array([1e-3, 1.0, 1e4])  # columns of very different size

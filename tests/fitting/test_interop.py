@@ -11,11 +11,13 @@ import pytest
 import frictionlaws as fl
 from frictionlaws.base.errors import InputError
 from frictionlaws.fitting import views as interop
+from frictionlaws.law import evaluation
+from frictionlaws.law import interop as law_interop
 
 
 def test_lmfit_model_carries_bounds_and_fits_like_the_library():
     law = fl.get_law("thirion")
-    model = interop.lmfit_model(law)
+    model = law_interop.lmfit_model(law)
     params = model.make_params()
     assert model.independent_vars == ["p"]
     assert params["a"].min == law.param("a").bounds[0]
@@ -33,17 +35,17 @@ def test_lmfit_model_carries_bounds_and_fits_like_the_library():
 
 
 def test_lmfit_model_holds_settings_fixed_and_handles_a_constant_law():
-    model = interop.lmfit_model(fl.get_law("savkoor"))
+    model = law_interop.lmfit_model(fl.get_law("savkoor"))
     params = model.make_params()
     assert params["p_ref"].vary is False and params["p_ref"].value == 1e5
-    coulomb = interop.lmfit_model(fl.get_law("coulomb"), values={"mu0": 0.4})
+    coulomb = law_interop.lmfit_model(fl.get_law("coulomb"), values={"mu0": 0.4})
     out = coulomb.eval(coulomb.make_params(), x=np.zeros(3))
     assert out.shape == (3,) and np.all(out == 0.4)
 
 
 def test_lmfit_model_refuses_start_values_outside_bounds():
     with pytest.raises(InputError, match="outside its bounds"):
-        interop.lmfit_model(fl.get_law("thirion"), values={"a": -1.0})
+        law_interop.lmfit_model(fl.get_law("thirion"), values={"a": -1.0})
 
 
 def test_params_frame_has_units_and_intervals():
@@ -61,7 +63,7 @@ def test_xarray_inputs_keep_their_dimensions():
     p = xr.DataArray([5e4, 1e5, 2e5], dims="p", coords={"p": [5e4, 1e5, 2e5]})
     v = xr.DataArray(np.geomspace(1e-4, 1, 5), dims="v")
     params = law.resolve(preset=None, values=law.defaults)
-    out = interop.evaluate_labelled(law, {"p": p, "v": v}, params)
+    out = evaluation.evaluate_labelled(law, {"p": p, "v": v}, params)
     assert out.dims == ("p", "v") and out.shape == (3, 5)
     assert out.name == "mu" and out.attrs["units"] == "1"
     plain = law.evaluate({"p": p.values[:, None], "v": v.values[None, :]}, params)
@@ -70,7 +72,7 @@ def test_xarray_inputs_keep_their_dimensions():
 
 def test_html_reprs_name_the_parameters():
     law = fl.get_law("thirion")
-    text = interop.law_html(law)
+    text = law_interop.law_html(law)
     assert "<table>" in text and "1/Pa" in text and "thirion" in text
     res = fl.fit(law, "thesis-steel")
     text = interop.result_html(res)

@@ -2,8 +2,8 @@
 
 ``Law.pretty()`` reads a built-in law's text from the cache, so that printing a fit
 report does not load sympy; the cache is only used while the law computes the numbers
-it recorded.  Run ``python tests/law/test_formula_text.py`` to rewrite the cache after
-changing a formula (this test then passes again); never edit the file by hand.
+it recorded.  Run ``python -m frictionlaws.caches`` to rewrite the cache after changing a
+formula (this test then passes again); never edit the file by hand.
 """
 
 from __future__ import annotations
@@ -13,47 +13,52 @@ import subprocess
 import sys
 from dataclasses import replace
 
-import pytest
-
 import frictionlaws as fl
+from frictionlaws.caches import COMMAND
 from frictionlaws.law import text as law_module
+from frictionlaws.law.registry import builtin_laws
 from frictionlaws.law.text import (
     _CHECK_RTOL,
     FORMULA_TEXT_FILE,
     formula_check,
     formula_text_entries,
+    formula_texts_current,
+    write_formula_texts,
 )
-
-
-def _builtin_laws() -> list[fl.Law]:
-    return [law for law in fl.list_laws() if law.formula.__module__.startswith("frictionlaws.")]
 
 
 def test_cache_is_current() -> None:
     """The cache holds sympy's rendering of every built-in law, with its check values."""
-    fresh = json.loads(json.dumps(formula_text_entries(_builtin_laws())))
-    stored = json.loads(FORMULA_TEXT_FILE.read_text(encoding="utf-8"))
-    stale = ("frictionlaws/law/formula_text.json is out of date: run "
-             "python tests/law/test_formula_text.py")
-    assert stored.keys() == fresh.keys() and stored["laws"].keys() == fresh["laws"].keys(), stale
-    for law_id, entry in fresh["laws"].items():
-        # Text and symbols to the letter; the check values (numpy's mu at two points)
-        # within the tolerance the library itself applies, since their last digit
-        # differs between numpy versions.
-        old = stored["laws"][law_id]
-        assert (old["text"], old["symbols"]) == (entry["text"], entry["symbols"]), stale
-        assert old["mu"] == pytest.approx(entry["mu"], rel=_CHECK_RTOL, abs=0), stale
+    assert formula_texts_current(builtin_laws()), (
+        f"frictionlaws/law/formula_text.json is out of date: run {COMMAND}")
+
+
+def test_the_currency_check_sees_a_changed_text_and_a_changed_value(tmp_path) -> None:
+    """A copy with one text changed, or one check value off by more than the tolerance
+    numpy's last digit needs, is stale; rewritten, it is current again."""
+    laws = builtin_laws()
+    doc = formula_text_entries(laws)
+    copy = tmp_path / "formula_text.json"
+    entry = doc["laws"]["thirion"]
+    for changed in ({**entry, "text": entry["text"] + " "},
+                    {**entry, "mu": [entry["mu"][0] * (1 + 100 * _CHECK_RTOL), entry["mu"][1]]}):
+        copy.write_text(json.dumps({**doc, "laws": {**doc["laws"], "thirion": changed}}))
+        assert not formula_texts_current(laws, copy)
+    near = {**entry, "mu": [entry["mu"][0] * (1 + _CHECK_RTOL / 10), entry["mu"][1]]}
+    copy.write_text(json.dumps({**doc, "laws": {**doc["laws"], "thirion": near}}))
+    assert formula_texts_current(laws, copy)
+    assert write_formula_texts(laws, copy) == copy and formula_texts_current(laws, copy)
 
 
 def test_every_builtin_law_is_cached() -> None:
     """Each built-in law has a finite check (a cache entry), persson aside or not."""
     stored = json.loads(FORMULA_TEXT_FILE.read_text(encoding="utf-8"))["laws"]
-    missing = [law.id for law in _builtin_laws() if law.id not in stored]
+    missing = [law.id for law in builtin_laws() if law.id not in stored]
     assert missing in ([], ["persson"]), missing
 
 
 def test_pretty_is_the_rendering() -> None:
-    for law in _builtin_laws():
+    for law in builtin_laws():
         assert law.pretty() == law.rendered_text(), law.id
 
 
@@ -84,13 +89,3 @@ def test_pretty_without_sympy() -> None:
             "assert 'sympy' not in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
 
-
-def _write() -> None:
-    doc = formula_text_entries(_builtin_laws())
-    FORMULA_TEXT_FILE.write_text(json.dumps(doc, indent=1, sort_keys=True) + "\n",
-                                 encoding="utf-8")
-    print(f"wrote {FORMULA_TEXT_FILE} ({len(doc['laws'])} laws)")
-
-
-if __name__ == "__main__":
-    _write()

@@ -55,9 +55,9 @@ def test_law_call_refuses_negative_mu_and_a_strict_domain():
     with pytest.raises(DomainError, match="negative mu"):
         poly3(p=0.25e6, v=2.77, preset="steel")
     # a negative mu in a late block of a large call: named at its index in the array
-    from frictionlaws.law.evaluation import _BLOCKED_FROM
+    from frictionlaws.law.evaluation import BLOCKED_FROM
 
-    p, v = np.full(_BLOCKED_FROM + 9, 0.1e6), np.full(_BLOCKED_FROM + 9, 1.0)
+    p, v = np.full(BLOCKED_FROM + 9, 0.1e6), np.full(BLOCKED_FROM + 9, 1.0)
     p[-3], v[-3] = 0.25e6, 2.77
     with pytest.raises(DomainError, match=f"negative mu .* at index {p.size - 3}"):
         poly3(p=p, v=v, preset="steel")
@@ -164,8 +164,8 @@ def test_large_checked_call_is_evaluated_in_blocks_with_the_same_result(
     from 256 values here, so that a slow law is quick to test.)"""
     import frictionlaws.law.evaluation as law_module
 
-    monkeypatch.setattr(law_module, "_BLOCK", 64)
-    monkeypatch.setattr(law_module, "_BLOCKED_FROM", 256)
+    monkeypatch.setattr(law_module, "BLOCK_ROWS", 64)
+    monkeypatch.setattr(law_module, "BLOCKED_FROM", 256)
     law = get_law(law_id)
     case = case_for(law)
     n = 256 + 37

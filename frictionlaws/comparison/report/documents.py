@@ -16,6 +16,7 @@ from ..residuals import ALPHA
 if TYPE_CHECKING:  # pragma: no cover
     from ..record import ComparisonRecord
 
+from ...base.outputs import atomic_dir
 from .figures import Figure, _flagged, _test_p, make_figures
 from .text import UNDETERMINED, _legend, _num, _ranges_text, _score, _yes
 
@@ -322,8 +323,6 @@ def write_report(cmp: ComparisonRecord, directory: str | Path, jobs: int = 1) ->
     The files are written by the output guard (:func:`frictionlaws.base.outputs.atomic_dir`):
     all of them or none, and never over a file read in this process.
     """
-    from ...base.outputs import atomic_dir
-
     if isinstance(jobs, bool) or not isinstance(jobs, int) or not (jobs >= 1 or jobs == -1):
         raise InputError(f"jobs must be a whole number >= 1, or -1 for one per core, not "
                          f"{jobs!r}", option="jobs")

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..outliers import MIN_POOL, pooled_outliers
 from ..rig import RPM, Rig
 from .reduce import RecordResult
 
@@ -179,8 +180,6 @@ def _grubbs_condition(usable: list[RecordResult], alpha: float, label: str
 def _pooled_conditions(groups: list[tuple[str, list[RecordResult]]], alpha: float
                        ) -> tuple[dict[str, list[RecordResult]], str] | None:
     """The pooled rule over the campaign; None when the scatter cannot be pooled."""
-    from ..outliers import pooled_outliers
-
     res = pooled_outliers([[r.mu for r in recs] for _, recs in groups], alpha)
     if not res.pooled:
         return None
@@ -234,8 +233,6 @@ def _outlier_decisions(groups: list[tuple[str, list[RecordResult]]], rig: Rig
 
 
 def _min_pool() -> int:
-    from ..outliers import MIN_POOL
-
     return MIN_POOL
 
 

@@ -12,6 +12,9 @@ from pathlib import Path
 from typing import Any
 
 from ...base.errors import InputError
+from ...base.numbers import parse_number
+from ...base.units import parse_unit, unit_registry
+from ...io import read_table
 from ..records import split_header
 from ..rig import Rig
 
@@ -79,8 +82,6 @@ def read_manifest(path: str | os.PathLike[str], rig: Rig) -> tuple[list[Manifest
 
 def _read_table(src: str) -> tuple[list[str], list[list[str]], list[int]]:
     """Cells of the manifest (the one table reader): headers, columns, row numbers."""
-    from ...io import read_table
-
     table = read_table(src, header_hint="'file,load [kg],surface'", what="manifest file")
     return table.headers, table.columns, table.rows
 
@@ -102,8 +103,6 @@ def manifest_from_rows(rows: Sequence[Mapping[str, Any]], rig: Rig, *,
 
 def _number(text: str) -> float:
     """A manifest cell as a number: the one number parser (a decimal comma allowed)."""
-    from ...base.numbers import parse_number
-
     return parse_number(text, decimal_comma="," in text)
 
 
@@ -163,8 +162,6 @@ def _locate_columns(headers: list[str], src: str
 
 def _load_factor(unit: str | None, header: str, rig: Rig, src: str) -> tuple[float, bool]:
     """Newtons per unit of the load column, and whether the column holds masses."""
-    from ...base.units import parse_unit, unit_registry
-
     if not unit:
         raise InputError("the load column has no unit; write 'load [kg]' for dead weights or "
                          "'load [N]' for a force", file=src, column=header)
@@ -178,8 +175,6 @@ def _load_factor(unit: str | None, header: str, rig: Rig, src: str) -> tuple[flo
 def _window_factors(found: dict[str, int], units: dict[str, str | None],
                     headers: list[str], src: str) -> dict[str, float]:
     """Seconds per unit of the window columns present."""
-    from ...base.units import parse_unit, unit_registry
-
     out: dict[str, float] = {}
     for key in ("window_start", "window_end"):
         if key not in found:

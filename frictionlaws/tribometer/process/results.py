@@ -4,6 +4,9 @@ units, the dataset CSV with its provenance, JSON, and :func:`write_tables`.
 
 from __future__ import annotations
 
+import contextlib
+import csv
+import io
 import math
 import os
 from collections.abc import Sequence
@@ -14,6 +17,9 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import InputError
+from ...base.outputs import atomic_write
+from ...base.sanitize import comment_lines, csv_cell
+from ...io import load_dataset
 from ..rig import RPM, Rig
 from .conditions import ConditionResult
 from .reduce import RecordResult
@@ -88,8 +94,6 @@ class ProcessedCampaign:
 
     def dataset(self) -> Any:
         """The dataset as a :class:`frictionlaws.io.Dataset` (SI), ready for ``fit``."""
-        from ...io import load_dataset
-
         f = self.dataset_frame()
         if f.empty:
             raise InputError("no condition has enough usable records for a dataset",
@@ -292,11 +296,6 @@ def _fmt(value: Any) -> str:
 
 
 def _csv_text(frame: Any, comments: list[str]) -> str:
-    import csv
-    import io
-
-    from ...base.sanitize import comment_lines, csv_cell
-
     buf = io.StringIO()
     for line in comment_lines(comments):
         buf.write(line + "\n")
@@ -329,10 +328,6 @@ def write_tables(tables: Sequence[tuple[str | os.PathLike[str], str]]) -> list[P
         When a directory is missing, or a target is an input or a directory;
         nothing is written then.
     """
-    import contextlib
-
-    from ...base.outputs import atomic_write
-
     paths = [Path(p) for p, _ in tables]
     for out in paths:
         if str(out.parent) and not out.parent.exists():

@@ -12,9 +12,12 @@ from pathlib import Path
 from typing import Any
 
 from ...base.errors import InputError
-from ...parallel import local_workers
+from ...base.outputs import check_unique_names
+from ...io import output_dir
+from ...parallel import check_jobs, iter_parallel, local_workers
+from ..plots import plot_conditions, plot_name, plot_record
 from ..records import Record, read_record
-from ..rig import Rig
+from ..rig import Rig, load_rig
 from .conditions import summarise
 from .manifest import ManifestEntry, manifest_from_rows, read_manifest
 from .reduce import RecordResult, _base_result, process_record
@@ -56,7 +59,6 @@ def _handle(entry: ManifestEntry, rig: Rig, plots: str | None,
     if plots is None:
         return process_record(rec, entry, rig)  # type: ignore[return-value]
     res, sig = process_record(rec, entry, rig, keep_signals=True)  # type: ignore[misc]
-    from ..plots import plot_record
 
     try:
         plot_record(Path(plots), res, rec, sig)
@@ -83,8 +85,6 @@ def _run_files(work: list[tuple[ManifestEntry, str | None]], rig: Rig, jobs: int
 
     The results are in the order of ``work`` and do not depend on how the work ran.
     """
-    from ...parallel import check_jobs, iter_parallel
-
     jobs = _job_count(jobs)
     check_jobs(jobs)
     remote = scheduler is not None  # only an address given connects, never the environment
@@ -227,8 +227,6 @@ def process_many(
         nothing is processed then.
     """
     if not isinstance(rig, Rig):
-        from ..rig import load_rig
-
         rig = load_rig(rig)
     _check_min_repeats(min_repeats)
     names = manifest_names(manifests)
@@ -363,8 +361,6 @@ def _refuse_plot_clash(entries: Sequence[ManifestEntry], plots_dir: str | None,
     """Each record's plot, and the summary, get a file name of their own (before any work)."""
     if plots_dir is None:
         return
-    from ...base.outputs import check_unique_names
-    from ..plots import plot_name
 
     check_unique_names([("the summary plot", _SUMMARY_PLOT)]
                        + [(f"row {e.row} ('{e.file}')", plot_name(e.file)) for e in entries],
@@ -374,14 +370,11 @@ def _refuse_plot_clash(entries: Sequence[ManifestEntry], plots_dir: str | None,
 def _plots_dir(plots: str | os.PathLike[str] | None) -> str | None:
     if plots is None:
         return None
-    from ...io import output_dir
 
     return str(output_dir(os.fspath(plots), "plots directory"))
 
 
 def _summary_plot(camp: ProcessedCampaign, plots_dir: str) -> None:
-    from ..plots import plot_conditions
-
     try:
         plot_conditions(Path(plots_dir) / _SUMMARY_PLOT, camp)
     except Exception as exc:  # noqa: BLE001 - report, do not lose the processing

@@ -45,7 +45,7 @@ from ...base.errors import Argument, InputError
 from ...base.outputs import atomic_write, check_outputs
 from ...base.sanitize import comment_lines
 from ...base.units import from_si
-from ...io import _to_float, read_table, split_header
+from ...io import read_table, split_header, to_float
 from .channels import KINDS, convert
 
 __all__ = ["TyreData", "read_tyre_data", "SIGN_CONVENTIONS", "COLUMNS", "to_iso_axes",
@@ -276,7 +276,7 @@ def _cells(table: Any, j: int) -> np.ndarray:
     """The numbers of column ``j`` (NaN for a blank), refusing text with its row."""
     values = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
-        v = _to_float(cell, table.decimal_comma)
+        v = to_float(cell, table.decimal_comma)
         if v is None:
             raise InputError(f"'{cell}' is not a number", file=table.source,
                              column=table.headers[j], row=table.rows[i])

@@ -16,7 +16,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from ...base.errors import InputError
-from ...fitting.views import is_labelled
+from ...law.evaluation import is_labelled
 
 __all__ = ["labelled", "is_labelled", "refuse_plain"]
 

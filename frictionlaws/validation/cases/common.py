@@ -9,6 +9,9 @@ from typing import Any
 
 import numpy as np
 
+from ...base.errors import DomainError
+from ...law import VARIABLES
+from ...law.registry import list_laws
 from ..reference import (
     REFERENCES,
 )
@@ -46,16 +49,12 @@ def builtin_law_ids() -> list[str]:
     or when the suite knows it (it has a reference implementation); laws added
     by plugins through the entry-point group are neither.
     """
-    from ...law.registry import list_laws
-
     return [law.id for law in list_laws()
             if law.id in REFERENCES
             or getattr(law.formula, "__module__", "").startswith("frictionlaws.")]
 
 
 def _plugin_law_ids() -> list[str]:
-    from ...law.registry import list_laws
-
     builtin = set(builtin_law_ids())
     return [law.id for law in list_laws() if law.id not in builtin]
 
@@ -97,8 +96,6 @@ def _forward_slope(f: Callable[[float], Any], h: float) -> float:
 
 
 def _refuses(law: Any, **kw: Any) -> bool:
-    from ...base.errors import DomainError
-
     try:
         law(**kw)
     except DomainError:
@@ -109,8 +106,6 @@ def _refuses(law: Any, **kw: Any) -> bool:
 def _raw(law: Any) -> Callable[..., Any]:
     """The law's formula without the checks of ``law(...)``: these cases verify identities
     of the published forms, also where those forms give mu < 0 (which ``law(...)`` refuses)."""
-    from ...law import VARIABLES
-
     def evaluate(preset: str | None = None, **kw: Any) -> Any:
         variables = {k: v for k, v in kw.items() if k in VARIABLES}
         params = {k: v for k, v in kw.items() if k not in VARIABLES}

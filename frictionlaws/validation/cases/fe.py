@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 
+from ...fe_export import export
+from ...law.registry import get_law
 from ..core import CaseRun, Tol
 
 __all__ = []
@@ -55,8 +57,6 @@ def _parse_radioss(text: str) -> tuple[int, dict[str, float]]:
 
 
 def _case_abaqus(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     law = get_law("exponential-decay")
     (v,) = _fe_grid()
     # Abaqus *FRICTION, EXPONENTIAL DECAY: data line mu_s, mu_k, d_c;
@@ -73,7 +73,6 @@ def _case_abaqus(run: CaseRun) -> None:
     run.compare("mu as slip rate -> inf = mu_k", 0.8,
                 law(v=1e4, mu_s=1.2, mu_d=0.8, v_c=0.5, delta=1.0), Tol(abs=1e-15))
     # the exported card, read back as Abaqus reads it (mm-N-s: slip rate in mm/s)
-    from ...fe_export import export
 
     for units, scale in (("SI", 1.0), ("mm-N-s", 1000.0)):
         for mu_s, mu_d, v_c in ((1.2, 0.8, 0.5), (0.45, 0.7, 0.03)):
@@ -89,8 +88,6 @@ def _case_abaqus(run: CaseRun) -> None:
 
 
 def _case_lsdyna(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     law = get_law("exponential-decay")
     (v,) = _fe_grid()
     # LS-DYNA *CONTACT card 2: mu = FD + (FS - FD) exp(-DC |v_rel|)
@@ -102,7 +99,6 @@ def _case_lsdyna(run: CaseRun) -> None:
                     1e-13)
     run.require("delta = 1 is the default (the manuals' law without a shape exponent)",
                 law.param("delta").default == 1.0, "1", law.param("delta").default)
-    from ...fe_export import export
 
     for units, scale in (("SI", 1.0), ("mm-N-s", 1000.0)):
         for mu_s, mu_d, v_c in ((1.2, 0.8, 0.5), (0.45, 0.7, 0.03)):
@@ -120,8 +116,6 @@ def _case_lsdyna(run: CaseRun) -> None:
 
 
 def _case_radioss(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     law = get_law("quadratic-pv")
     run.require("alias 'radioss-ifric1' and 'dorsch' resolve to quadratic-pv",
                 get_law("radioss-ifric1") is law and get_law("dorsch") is law, "yes",
@@ -142,7 +136,6 @@ def _case_radioss(run: CaseRun) -> None:
         run.at_most(f"Fric={fric:g}, C1..C5 = {c1:g}, {c2:g}, {c3:g}, {c4:g}, {c5:g}: "
                     f"max rel. |law - Ifric 1| over {P.size} (p, v)",
                     float(np.max(np.abs(ours - radioss) / scale)), 1e-12)
-    from ...fe_export import export
 
     c = {"c0": 0.9, "c1": -1.5e-6, "c2": 0.08, "c3": 2e-7, "c4": 8e-13, "c5": -0.015}
     for units, sp, sv in (("SI", 1.0, 1.0), ("mm-N-s", 1e-6, 1e3)):

@@ -8,6 +8,9 @@ import math
 
 import numpy as np
 
+from ...fitting import fit
+from ...law.registry import get_law
+from ...laws.velocity import nackenhorst_from_thesis
 from ..core import CaseRun, Tol
 from ..recovery import (
     COVERAGE_MIN,
@@ -38,8 +41,6 @@ __all__ = []
 
 
 def _case_reference(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     builtin = builtin_law_ids()
     missing = [i for i in builtin if i not in REFERENCES]
     stale = [i for i in REFERENCES if i not in builtin]
@@ -75,8 +76,6 @@ def _case_reference(run: CaseRun) -> None:
 
 
 def _case_documented_values(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     exact = Tol(rel=1e-12, why="typed from the source")
     for law_id in builtin_law_ids():
         ref = REFERENCES.get(law_id)
@@ -99,8 +98,6 @@ def _case_documented_values(run: CaseRun) -> None:
 
 
 def _case_burckhardt(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     law = get_law("burckhardt")
     # laws.md, Burckhardt row: derived peaks (s*, mu*) and mu(1) for asphalt dry, as printed.
     printed = {
@@ -149,8 +146,6 @@ def _case_burckhardt(run: CaseRun) -> None:
 def _case_pacejka(run: CaseRun) -> None:
     from scipy.optimize import brentq
 
-    from ...law.registry import get_law
-
     law = get_law("pacejka")
     printed = {"dry": ("0.180", "1.00"), "wet": ("0.088", "0.82"), "snow": ("0.31", "0.30"),
                "ice": ("0.39", "0.10")}
@@ -182,8 +177,6 @@ def _case_pacejka(run: CaseRun) -> None:
 
 
 def _case_slip_peaks(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     sq = get_law("burckhardt-sqrt")
     for c1, c2 in ((2.5, 2.5), (1.0, 0.9)):
         s_num, mu_num = _argmax(_along(sq, "s", c1=c1, c2=c2), 0.0, 1.0)
@@ -216,8 +209,6 @@ def _case_slip_peaks(run: CaseRun) -> None:
 
 
 def _case_sliding_identities(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     th = get_law("thirion")
     run.compare("thirion: mu(p -> 0) = 1/a", 1 / 0.3, th(p=1e-6, a=0.3, b=3e-6), Tol(rel=1e-9))
     run.compare("thirion: shear stress mu p -> 1/b at high p", 1 / 3e-6,
@@ -270,7 +261,6 @@ def _case_sliding_identities(run: CaseRun) -> None:
                 Tol(rel=1e-12))
     run.compare("park: mu(p0, v_m, T_ref) = mu_m", 1.2,
                 pk(p=pk.setting_values["p0"], v=0.01, T=T_ref, **kp), Tol(abs=1e-12))
-    from ...laws.velocity import nackenhorst_from_thesis
 
     c = {"c1": 0.3, "c2": 8e4, "c3": -0.4, "c4": 0.05, "c5": 2.0, "c6": 0.03, "c7": 0.1}
     mapped = nackenhorst_from_thesis(*c.values())
@@ -283,9 +273,6 @@ def _case_sliding_identities(run: CaseRun) -> None:
 
 
 def _case_identifiability(run: CaseRun) -> None:
-    from ...fitting import fit
-    from ...law.registry import get_law
-
     rng = np.random.default_rng(20240611)
     p = np.geomspace(2e4, 1e6, 40)
     mu = get_law("denny")(p=p, a=2.0, b=15.0) * (1 + 0.01 * rng.standard_normal(p.size))
@@ -304,7 +291,6 @@ def _case_identifiability(run: CaseRun) -> None:
                 "terms named", {"c1", "c2"} <= named and len(named & {"c4", "c5", "c6", "c7"})
                 >= 2, "c1, c2 and >= 2 of c4..c7 named", ", ".join(sorted(named)) or "none")
     mapped = {k: truth[k] for k in ("c1", "c2", "c3", "c4", "c5", "c6", "c7")}
-    from ...laws.velocity import nackenhorst_from_thesis
 
     five = {**nackenhorst_from_thesis(*mapped.values()), "b2": -0.002}
     mu5 = _raw(get_law("nackenhorst"))(p=P, v=V, **five) + 0.005 * rng.standard_normal(P.size)
@@ -315,8 +301,6 @@ def _case_identifiability(run: CaseRun) -> None:
 
 
 def _case_recovery(run: CaseRun) -> None:
-    from ...law.registry import get_law
-
     builtin = builtin_law_ids()
     missing = [i for i in builtin if i not in RECOVERY_SETUPS]
     run.require("every built-in law has a recovery setup", not missing, "none missing",

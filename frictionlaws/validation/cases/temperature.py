@@ -5,14 +5,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...fitting.lsq import least_squares_solve
+from ...io import datasets_dir
+from ...viscoelastic.mastercurve import fit_wlf, load_dma_upstream_shifts
+from ...viscoelastic.temperature import WLF_PRESETS, resolve_wlf, wlf_convert, wlf_log_aT
 from ..core import CaseRun, Tol
 
 __all__ = []
 
 
 def _case_wlf_sets(run: CaseRun) -> None:
-    from ...viscoelastic.temperature import WLF_PRESETS, resolve_wlf, wlf_convert, wlf_log_aT
-
     T_g = 223.15
     g, u = WLF_PRESETS["grosch"], WLF_PRESETS["universal"]
     run.compare("Grosch C1 (thesis Eq. 2-4)", 8.86, g.C1, Tol(rel=1e-12))
@@ -49,8 +51,6 @@ def _case_wlf_sets(run: CaseRun) -> None:
 
 def _read_pyvisco_shifts() -> tuple[np.ndarray, np.ndarray]:
     """The upstream shift factors, parsed here independently (T in degC -> K)."""
-    from ...io import datasets_dir
-
     path = datasets_dir() / "dma-pyvisco" / "freq_user_master__shift_factors.csv"
     lines = [ln for ln in path.read_text(encoding="utf-8-sig").splitlines() if ln.strip()]
     names = [x.strip() for x in lines[0].split(",")]
@@ -62,9 +62,6 @@ def _read_pyvisco_shifts() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _case_wlf_pyvisco(run: CaseRun) -> None:
-    from ...fitting.lsq import least_squares_solve
-    from ...viscoelastic.mastercurve import fit_wlf, load_dma_upstream_shifts
-
     T, la = _read_pyvisco_shifts()
     up = load_dma_upstream_shifts()
     same = np.allclose(np.sort(up["T"]), np.sort(T), rtol=0, atol=1e-9) and np.allclose(

@@ -4,12 +4,18 @@ models against its Table 6-2 and the Magic Formula book.
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable
 from fractions import Fraction
 
 import numpy as np
 
+from ...base.units import parse_quantity, to_si
+from ...io import datasets_dir, load_dataset
+from ...law.registry import get_law
+from ...tyre import TABLE_6_2 as LIB_TABLE
+from ...tyre import MagicFormula, thesis_comparison
 from ..core import CaseRun, Tol
 from ..reference import (
     TABLE_5_1,
@@ -34,9 +40,6 @@ def _thesis_poly_case(degree: int) -> Callable[[CaseRun], None]:
     published_r2 = {2: 85.58, 3: 86.64}[degree]
 
     def func(run: CaseRun) -> None:
-        from ...io import load_dataset
-        from ...law.registry import get_law
-
         law = get_law(f"thesis-poly{degree}")
         ds = load_dataset("thesis-steel")
         a = ds.arrays()
@@ -101,9 +104,6 @@ def _thesis_poly_case(degree: int) -> Callable[[CaseRun], None]:
 
 
 def _case_rig_units(run: CaseRun) -> None:
-    from ...base.units import parse_quantity, to_si
-    from ...io import load_dataset
-
     run.compare("1 kg dead weight -> normal load (g = 9.8 m/s^2, thesis)", 9.8,
                 float(to_si(1.0, "kg", "F_N")), Tol(rel=1e-12), unit="N")
     area = parse_quantity("314.16 mm^2", "area")
@@ -159,9 +159,6 @@ def _brush_closed_form(mu: float, fz: float, c: float, a: float, angles_deg) -> 
 
 
 def _case_tyre(run: CaseRun) -> None:
-    from ...tyre import TABLE_6_2 as LIB_TABLE
-    from ...tyre import thesis_comparison
-
     same = all(tuple(LIB_TABLE["columns"].get(k, ())) == v for k, v in TABLE_6_2.items())
     run.require("library's copy of Table 6-2 = thesis-data.md", same, "identical",
                 "identical" if same else "different")
@@ -224,11 +221,6 @@ def _fx0_pacejka2006(c: dict[str, float], fz0: float, kappa: float, fz: float) -
 
 
 def _case_mf52(run: CaseRun) -> None:
-    import json
-
-    from ...io import datasets_dir
-    from ...tyre import MagicFormula
-
     name = "MagicFormula52_Parameters.json"
     raw = json.loads((datasets_dir() / "mf-examples" / name).read_text(
         encoding="utf-8"))

@@ -9,43 +9,10 @@ from typing import Any
 
 import numpy as np
 
-from ....base.errors import InputError
-from ....base.outputs import atomic_write, check_outputs
+from ....base.outputs import atomic_write, check_figure_path, check_outputs
 from .rows import select_direction
 
-__all__ = ["plot_fit", "check_figure_path"]
-
-
-def check_figure_path(path: str | Path) -> str:
-    """The figure format of ``path`` (its suffix), refused when matplotlib cannot write it.
-
-    Called before any work, so that a figure that cannot be drawn leaves no other
-    output behind.
-
-    Parameters
-    ----------
-    path : str or Path
-        The figure file; no suffix means PNG.
-
-    Returns
-    -------
-    str
-        The format (``"png"``, ``"pdf"``, ``"svg"``...).
-
-    Raises
-    ------
-    InputError
-        When matplotlib has no writer for the suffix (naming those it has).
-    """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fmt = Path(path).suffix.lstrip(".").lower() or "png"
-    known = FigureCanvasAgg(Figure()).get_supported_filetypes()
-    if fmt not in known:
-        raise InputError(f"a figure cannot be written as '.{fmt}'; use one of "
-                         f"{', '.join('.' + k for k in sorted(known))}", file=str(path))
-    return fmt
+__all__ = ["plot_fit"]
 
 
 def plot_fit(result: Any, path: str | Path) -> Path:

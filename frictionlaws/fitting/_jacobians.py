@@ -1,8 +1,7 @@
 """Analytic Jacobians of the built-in laws: GENERATED, do not edit.
 
-Written by ``python -m frictionlaws.fitting.derivatives`` from each law's
-symbolic form (sympy, common subexpressions shared); see
-:mod:`frictionlaws.fitting.derivatives`.
+Written by ``python -m frictionlaws.caches`` from each law's symbolic form
+(sympy, common subexpressions shared); see :mod:`frictionlaws.fitting.derivatives`.
 """
 
 # ruff: noqa
