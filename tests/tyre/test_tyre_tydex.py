@@ -129,7 +129,9 @@ HOSTILE = [
     ([_ch("FZW", "m"), *LAT[1:]], LAT_ROWS, "FZW", "force"),
     ([_ch("FZW", "N"), _ch("SLIPANGL", "rad"), _ch("FYW", "N")], LAT_ROWS, "alpha",
      "beyond 90 degrees"),
-    (LAT, [*LAT_ROWS[:2], "4000 0", *LAT_ROWS[3:]], None, "2 values on this row"),
+    (LAT, [*LAT_ROWS[:2], "4000 0", *LAT_ROWS[3:]], "FYW",
+     "2 values on this row.*no value of FYW"),
+    (LAT, [*LAT_ROWS[:2], "4000 0 1 2", *LAT_ROWS[3:]], "FYW", "a value past FYW"),
     (LAT, [*LAT_ROWS[:2], "4000 \uff10 0", *LAT_ROWS[3:]], "SLIPANGL", "is not a number"),
     (LAT, [*LAT_ROWS[:2], "4000 1_0 0", *LAT_ROWS[3:]], "SLIPANGL", "is not a number"),
     (LAT, [*LAT_ROWS[:2], "4000 nan 0", *LAT_ROWS[3:]], "SLIPANGL", "is not a number"),
@@ -155,6 +157,44 @@ def test_broken_files_are_refused_naming_file_line_and_channel(tmp_path: Path, c
     text = path.read_text().splitlines()
     if exc.value.row is not None:
         assert 1 <= exc.value.row <= len(text)
+
+
+CLI_REFUSALS = {  # what the issue names: truncated, unknown, duplicate, no unit, no factor
+    "truncated": (_file(LAT, LAT_ROWS[:3], end=False), None, 13, "truncated"),
+    "truncated row": (_file(LAT, [*LAT_ROWS[:2], "4000 -2"]), "FYW", 13, "no value of FYW"),
+    "unknown": (_file([LAT[0], _ch("SLIPANG", "deg"), LAT[2]], LAT_ROWS), "SLIPANG", 8,
+                "unknown channel SLIPANG"),
+    "duplicate": (_file([*LAT, _ch("FYW", "N")], [r + " 1" for r in LAT_ROWS]), "FYW", 10,
+                  "FYW is given twice"),
+    "no unit": (_file([_ch("FZW", ""), *LAT[1:]], LAT_ROWS), "FZW", 7, "has no unit"),
+    "no factor": (_file([_ch("FZW", "N", ""), *LAT[1:]], LAT_ROWS), "FZW", 7,
+                  "no conversion factor"),
+}
+
+
+@pytest.mark.parametrize("case", list(CLI_REFUSALS))
+def test_the_cli_refuses_a_broken_file_in_one_line_naming_file_line_and_channel(
+        tmp_path: Path, capsys, case: str) -> None:
+    from frictionlaws.cli import main
+
+    text, channel, line, match = CLI_REFUSALS[case]
+    path = _write(tmp_path / "broken.tdx", text.rstrip("\n"))
+    assert main(["tyre", "fit-mf", str(path), "-o", str(tmp_path / "never.tir")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and match in err, err
+    assert "broken.tdx" in err and f"row {line}" in err, err
+    assert channel is None or f"column '{channel}'" in err, err
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_prepare_says_a_tydex_file_is_no_raw_run(tmp_path: Path, capsys) -> None:
+    from frictionlaws.cli import main
+
+    path = write_tydex(_sweeps(n=3), tmp_path / "lateral.tdx")
+    assert main(["tyre", "prepare", str(path), "-o", str(tmp_path / "never.csv")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "a TYDEX file" in err and "fit-mf" in err, err
+    assert list(tmp_path.iterdir()) == [path]
 
 
 def test_every_truncation_is_refused_or_whole(tmp_path: Path) -> None:

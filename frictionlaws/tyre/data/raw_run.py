@@ -55,6 +55,7 @@ from .channels import (
     read_lines,
 )
 from .table import check_sign_convention, to_iso_axes
+from .tydex import is_tydex
 
 __all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS"]
 
@@ -220,6 +221,10 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     source = str(path)
     lines, notes = read_lines(path, "raw rig run")
     layout = raw_layout(lines)
+    if layout is None and is_tydex(lines):
+        raise InputError("a TYDEX file (it opens with **HEADER), not a raw rig run: its rows "
+                         "are steady measurements, which fit-mf reads as they are",
+                         file=source)
     if layout is None:
         raise InputError("no row of channel names (FZ with SA, SL, FX, FY ...) followed by a "
                          "row of units in the first lines: not a raw rig run", file=source)

@@ -385,8 +385,13 @@ def _data(rows: list[tuple[int, str]], channels: list[TydexChannel], source: str
     for i, (number, line) in enumerate(rows):
         tokens = line.split()
         if len(tokens) != len(channels):
+            short = len(tokens) < len(channels)
             raise InputError(f"{len(tokens)} values on this row, {len(channels)} channels "
-                             "declared (a truncated or broken row?)", file=source, row=number)
+                             "declared (a truncated or broken row?): "
+                             + (f"no value of {channels[len(tokens)].name}" if short
+                                else f"a value past {channels[-1].name}, the last channel"),
+                             file=source, row=number,
+                             column=channels[min(len(tokens), len(channels) - 1)].name)
         for j, token in enumerate(tokens):
             if token.upper() == _NOT_AVAILABLE:
                 values[i, j] = math.nan
