@@ -110,7 +110,7 @@ def test_percent_slips_and_factors(tmp_path: Path) -> None:
     assert d.kappa == pytest.approx([-0.1, 0, 0.1]) and d.fx == pytest.approx([-3e4, 0, 3e4])
 
 
-HOSTILE = [
+BROKEN_FILES = [
     ([_ch("FZW", "N", "0"), *LAT[1:]], LAT_ROWS, "FZW", "conversion factor of 0"),
     ([_ch("FZW", ""), *LAT[1:]], LAT_ROWS, "FZW", "has no unit"),
     ([_ch("FZW", "N", ""), *LAT[1:]], LAT_ROWS, "FZW", "no conversion factor"),
@@ -145,7 +145,7 @@ HOSTILE = [
 ]
 
 
-@pytest.mark.parametrize("channels,rows,column,match", HOSTILE)
+@pytest.mark.parametrize("channels,rows,column,match", BROKEN_FILES)
 def test_broken_files_are_refused_naming_file_line_and_channel(tmp_path: Path, channels, rows,
                                                                 column, match) -> None:
     path = tmp_path / "bad.tdx"
