@@ -12,10 +12,13 @@ It checks (and exits 1 otherwise) that every run gives the serial table exactly,
 that the peak memory of the calling process (tracemalloc), with the results streamed
 to a CSV file, does not grow with the number of datasets (less than
 ``FLAT_BYTES_PER_DATASET`` per extra dataset: the list of file names), serially and
-on Dask.  The peak with the results held in memory (on Dask, where the caller does
-no fitting) is printed for contrast.
+on Dask; serially the caller is the worker and holds one chunk of datasets
+(:data:`frictionlaws.parallel.MAX_CHUNK`) at a time, so the small run has the
+datasets of a chunk (the default ``--datasets`` is two chunks).  The peak with the
+results held in memory (on Dask, where the caller does no fitting) is printed for
+contrast.
 
-Run: ``python benchmarks/bench_campaign.py [--datasets 1000] [--rounds 1] [--no-dask]
+Run: ``python benchmarks/bench_campaign.py [--datasets 1024] [--rounds 1] [--no-dask]
 [--no-timing] [--no-memory]``.
 """
 
@@ -38,6 +41,7 @@ import psutil
 
 import frictionlaws as fl
 from frictionlaws.fitting.campaign import DASK_WORKER_CONFIG, fit_many
+from frictionlaws.parallel import MAX_CHUNK
 
 LAWS = ("thirion", "coulomb", "quadratic-pv")
 #: Growth of the caller's peak memory per extra dataset still called flat: the sorted
@@ -173,7 +177,7 @@ def memory_checks(folder: Path, small: Path, tmp: Path, counts: tuple[int, int],
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--datasets", type=int, default=1000)
+    ap.add_argument("--datasets", type=int, default=2 * MAX_CHUNK)
     ap.add_argument("--rounds", type=int, default=1,
                     help="repeat the timed runs (shows the noise of a shared machine)")
     ap.add_argument("--no-dask", action="store_true")
@@ -182,7 +186,8 @@ def main() -> int:
     ap.add_argument("--no-memory", action="store_true",
                     help="only the timed runs")
     args = ap.parse_args()
-    n_small = max(args.datasets // 10, 10)
+    # a worker holds one chunk of datasets (MAX_CHUNK): serially, flat means beyond that
+    n_small = min(MAX_CHUNK, args.datasets // 2)
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)
         folder, small = tmp / "all", tmp / "small"

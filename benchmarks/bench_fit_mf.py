@@ -15,6 +15,12 @@ Printed: wall time of each, and each result's largest error against the noise-fr
 |M_z|) at every load, camber and pressure.
 
 Run: ``python benchmarks/bench_fit_mf.py [--n 68] [--seed 3]`` (n = 68 gives 9,960 rows).
+
+``--corpus N`` instead fits the rig data (31 points per sweep) of ``N`` tyres drawn at
+random (:func:`~frictionlaws.tyre.synthetic_rig.random_tyre`: the MF 6.1, 6.2 and 5.2
+examples in turn with their coefficients moved by up to 20 %, FNOMIN 3-9 kN, nominal
+pressure 180-320 kPa), each as its own version from the default template, and prints each
+tyre's largest errors against its truth and the largest over the corpus.
 """
 
 from __future__ import annotations
@@ -28,9 +34,10 @@ from scipy.optimize import least_squares
 
 from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
+from frictionlaws.tyre.mf.fit import FITTYPS
 from frictionlaws.tyre.mf.fit.peak import FittingModel
 from frictionlaws.tyre.mf.fit.stages import CombinedData, predict_fx, predict_fy, predict_mz
-from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data, truth_errors
+from frictionlaws.tyre.synthetic_rig import moved_tyre, random_tyre, rig_data, truth_errors
 
 
 def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, float, int]:
@@ -60,12 +67,42 @@ def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, f
                         structure=tpl.structure), seconds, int(r.nfev)
 
 
+_QUANTITIES = ("Fx0", "Fy0", "Fx", "Fy", "Mz")
+
+
+def corpus(count: int) -> None:
+    """Fit the rig data of ``count`` random tyres; print each one's and the largest errors."""
+    fittyp = {v: k for k, v in FITTYPS.items() if k in (6, 61, 62)}
+    print(f"{'tyre':>4} {'MF':>4} {'FNOMIN':>7} {'p_nom':>7}{'seconds':>9}"
+          + "".join(f"{k:>8}" for k in _QUANTITIES))
+    worst = dict.fromkeys(_QUANTITIES, 0.0)
+    for seed in range(count):
+        truth = random_tyre(seed)
+        data = rig_data(truth, seed=100 + seed)
+        t0 = time.perf_counter()
+        res = fit_mf(data, fittyp=fittyp[truth.version])
+        seconds = time.perf_counter() - t0
+        e = truth_errors(truth, res.model)
+        worst = {k: max(worst[k], e[k]) for k in _QUANTITIES}
+        print(f"{seed:>4} {truth.version:>4} {truth.fnomin:>7.0f} "
+              f"{(truth.nominal_pressure or 0) / 1e3:>7.0f}{seconds:>9.1f}"
+              + "".join(f"{100 * e[k]:>7.2f}%" for k in _QUANTITIES), flush=True)
+    print(f"{'worst':>37}" + "".join(f"{100 * worst[k]:>7.2f}%" for k in _QUANTITIES))
+    print("errors: largest against the noise-free truth over the data's loads, pressures "
+          "and cambers, share of the curve's peak (Mz: of the peak |Mz|); p_nom in kPa")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=68, help="points per pure-slip sweep")
     parser.add_argument("--seed", type=int, default=3)
+    parser.add_argument("--corpus", type=int, default=0,
+                        help="fit this many random tyres instead (accuracy over a corpus)")
     args = parser.parse_args()
     warnings.simplefilter("ignore", ExtrapolationWarning)
+    if args.corpus:
+        corpus(args.corpus)
+        return
     truth = moved_tyre()
     data = rig_data(truth, n=args.n, seed=args.seed)
     print(f"rows: {len(data)} (Fx, Fy and Mz on every row)")

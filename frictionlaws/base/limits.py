@@ -60,12 +60,29 @@ def read_input(path: str | os.PathLike[str], what: str = "input file",
             size = os.fstat(fh.fileno()).st_size
             if size > MAX_INPUT_BYTES:
                 raise _too_large(what, src, size)
-            data = fh.read(MAX_INPUT_BYTES + 1)
+            data = _read_all(fh, size)
     except OSError as exc:
         raise InputError(f"cannot read the {what} ({exc.strerror})", file=src) from None
     if len(data) > MAX_INPUT_BYTES:
         raise _too_large(what, src)
     return data
+
+
+def _read_all(fh: IO[bytes], size: int) -> bytes:
+    """The bytes of ``fh`` up to one beyond the limit: the size it stated, then any more
+    (a file that grew, or one whose size the system does not know) in bounded chunks."""
+    data = fh.read(size + 1)
+    if len(data) <= size:
+        return data
+    parts = [data]
+    total = len(data)
+    while total <= MAX_INPUT_BYTES:
+        chunk = fh.read(min(1 << 20, MAX_INPUT_BYTES + 1 - total))
+        if not chunk:
+            break
+        parts.append(chunk)
+        total += len(chunk)
+    return b"".join(parts)
 
 
 def read_stream(stream: IO[Any], what: str = "standard input",

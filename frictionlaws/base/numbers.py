@@ -14,9 +14,12 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 
-__all__ = ["parse_number", "parse_integer", "is_number", "looks_numeric", "NUMBER_HELP",
-           "INTEGER_HELP"]
+import numpy as np
+
+__all__ = ["parse_number", "parse_numbers", "parse_integer", "is_number",
+           "looks_numeric", "NUMBER_HELP", "INTEGER_HELP"]
 
 _POINT = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z", re.ASCII)
 _COMMA = re.compile(r"[+-]?(?:[0-9]+(?:,[0-9]*)?|,[0-9]+)(?:[eE][+-]?[0-9]+)?\Z", re.ASCII)
@@ -26,6 +29,11 @@ _FORTRAN = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eEdD][+-]?[0-9]
 _INTEGER = re.compile(r"[+-]?[0-9]+\Z", re.ASCII)
 #: Spellings Python's float() reads that no file format here allows (non-finite words).
 _NON_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)\Z", re.IGNORECASE)
+
+#: One cell that :data:`_POINT` or :data:`_COMMA` reads (the comma form has no point), or
+#: an empty one, with spaces or tabs around.
+_POINT_CELL = re.compile(r"[ \t]*(?:(?:" + _POINT.pattern[:-2] + r")[ \t]*)?\Z", re.ASCII)
+_COMMA_CELL = re.compile(r"[ \t]*(?:(?:" + _COMMA.pattern[:-2] + r")[ \t]*)?\Z", re.ASCII)
 
 #: What a number looks like, for error messages.
 NUMBER_HELP = "a plain decimal number such as 0.25, -3 or 1.5e-6"
@@ -82,6 +90,39 @@ def is_number(text: str, *, decimal_comma: bool = False) -> bool:
     except ValueError:
         return False
     return True
+
+
+def parse_numbers(cells: Sequence[str], *, decimal_comma: bool = False) -> np.ndarray | None:
+    """Parse a column of cells at once, each as :func:`parse_number` reads it.
+
+    For the common column (every cell a plain number or empty, with at most spaces or
+    tabs around it) a pattern check and a conversion per cell replace the checks and
+    messages of :func:`parse_number`.  Anything else (another missing-value token, a cell
+    :func:`parse_number` refuses, a number that overflows, a decimal point in a file
+    of decimal commas) gives None, and the caller reads the column cell by cell with
+    its messages.
+
+    Parameters
+    ----------
+    cells : sequence of str
+        The cells.
+    decimal_comma : bool
+        The file writes decimal commas: every number must then be written with ``,``
+        or without a separator.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The numbers, NaN for an empty cell; None as said above.
+    """
+    if not all(map((_COMMA_CELL if decimal_comma else _POINT_CELL).match, cells)):
+        return None
+    if decimal_comma:
+        cells = [c.replace(",", ".") for c in cells]
+    values = np.array([float(c) if c.strip(" \t") else math.nan for c in cells], float)
+    if np.isinf(values).any():
+        return None
+    return values
 
 
 def parse_integer(text: str, *, lo: int | None = None, hi: int | None = None) -> int:

@@ -132,6 +132,7 @@ QUANTITIES: dict[str, Quantity] = {
     "acceleration": Quantity("m/s**2", "an acceleration", ("m/s^2",), "m/s^2", "9.8 m/s^2"),
     "stiffness_per_length": Quantity("N/m**2", "a force per length per length",
                                      ("N/m^2", "N/mm^2"), "N/m^2", "8.49e6 N/m^2"),
+    "curvature": Quantity("1/m", "a path curvature", ("1/m", "1/km"), "1/m", "0.5 1/m"),
 }
 
 # Names of common dimensions, for "unit 'm' is a length, expected a pressure":
@@ -312,6 +313,7 @@ def _unit_product(tokens: list[str], i: int, depth: int
     return factors, i
 
 
+@functools.lru_cache(maxsize=256)
 def parse_unit_text(text: str) -> UnitText:
     """Read a unit text with the one unit grammar (no arithmetic, bounded powers).
 

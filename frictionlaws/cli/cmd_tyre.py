@@ -106,9 +106,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "mf", help="summary or steady state of a Magic Formula property file",
         description="Read a Magic Formula property file (ADAMS .tir or JSON) and print its "
         "version, nominal load, peak friction coefficients and slip stiffnesses; with "
-        "--kappa, --alpha, --gamma, --pressure, --vx (or --outputs, --saturate) every "
-        "steady-state output (forces, moments, radii, stiffnesses...) for each combination "
-        "of the values given.")
+        "--kappa, --alpha, --gamma, --pressure, --vx, --phit, --omega (or --outputs, "
+        "--saturate, --turn-slip, --no-limit-checks) every steady-state output (forces, "
+        "moments, radii, stiffnesses...) for each combination of the values given.")
     m.add_argument("file", metavar="FILE", help=".tir or .json property file, or a packaged "
                    "example (MagicFormula52, MagicFormula61, MagicFormula62)")
     _load_options(m, default=None)
@@ -229,7 +229,7 @@ def _mf_options(p: argparse.ArgumentParser) -> None:
 
 
 #: The options of the steady state besides the inputs' (``--loads`` gives the load).
-_STEADY_STATE_EXTRA = ("saturate", "outputs")
+_STEADY_STATE_EXTRA = ("saturate", "turn_slip", "no_limit_checks", "outputs")
 #: At most this many rows (combinations of the values given) are evaluated.
 MAX_STEADY_ROWS = 100_000
 
@@ -250,6 +250,14 @@ def _steady_state_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--saturate", action="store_true",
                    help="clamp the inputs at the file's ranges as MFeval's limit checks do "
                         "(default: evaluate as given, warning outside them)")
+    g.add_argument("--turn-slip", action="store_true",
+                   help="evaluate MF-Tyre's turn-slip model (MFeval's useModes x2), the path "
+                        "curvature given by --phit (default: without it; --phit other "
+                        "than 0 needs it)")
+    g.add_argument("--no-limit-checks", action="store_true",
+                   help="evaluate as MFeval's useModes 2xx: E not capped at 1, no low-speed "
+                        "reductions, M_x and M_y reduced below FZMIN (default: the limit "
+                        "checks)")
     g.add_argument("--outputs", metavar="NAME,...",
                    help="the outputs to print (default: every output the file gives; the "
                         "names are listed in the tyre page of the guide)")
@@ -559,7 +567,9 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
                              f"{', '.join(OUTPUTS)}")
     grid = _steady_state_grid(mf, args)
     res = evaluate(mf, grid["kappa"], grid["alpha"], grid["fz"], grid["gamma"],
-                   grid["pressure"], grid["vx"], saturate=args.saturate, names=names)
+                   grid["pressure"], grid["vx"], saturate=args.saturate, names=names,
+                   phit=0.0 if grid["phit"] is None else grid["phit"], omega=grid["omega"],
+                   turn_slip=args.turn_slip, limit_checks=not args.no_limit_checks)
     if args.json:
         out = {"name": mf.name, "source": shown_source(mf.source), "version": mf.version,
                **res.to_dict(), "notes": list(mf.notes)}

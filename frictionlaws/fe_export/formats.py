@@ -27,6 +27,7 @@ from .abaqus import write_abaqus, write_abaqus_decay, write_abaqus_subroutine
 from .ansys import write_ansys
 from .job import Job, Written
 from .lsdyna import write_lsdyna
+from .opensees import write_opensees
 from .radioss import write_radioss
 from .tables import write_csv, write_json
 
@@ -152,6 +153,14 @@ FORMATS: dict[str, ExportFormat] = {f.name: f for f in (
                  "Fortran user subroutine ``VFRIC`` (Abaqus/Explicit, contact pairs) that "
                  "evaluates the law itself and returns the friction force",
                  needs_box=False, source_code=True),
+    ExportFormat("opensees", write_opensees,
+                 "OpenSees frictionModel VelDependent/Coulomb (exact laws only)",
+                 "OpenSees ``frictionModel VelDependent`` (μ_slow, μ_fast, transition rate) "
+                 "when the law is exactly exponential decay in the velocity, ``Coulomb`` "
+                 "when μ is constant; Tcl, for the friction bearing elements",
+                 needs_box=False,
+                 options=(FormatOption("opensees_tag", *_ID, 1,
+                                       "OpenSees friction model tag"),)),
 )}
 
 class _Options(Mapping[str, FormatOption]):

@@ -11,7 +11,11 @@ On :data:`ANALYTIC_FROM` rows or more the solver and the
 identifiability analysis use each law's analytic Jacobian, derived once from its
 symbolic form (:mod:`frictionlaws.fitting.derivatives`).  The deterministic starts are
 scored by their chi^2 and refined best first; the search stops when a second start
-reproduces the best chi^2.
+reproduces the best chi^2.  A fit of fewer than :data:`~frictionlaws.fitting.batch.
+POLISH_ROWS` rows is then continued to the optimum itself with the analytic Jacobian
+(:func:`frictionlaws.fitting.batch.polish`), so its values do not depend on the
+solver's path; :mod:`frictionlaws.fitting.stacked` fits many datasets of one law at
+once to the same numbers.
 
 Identifiability is checked on the Jacobian at the optimum: its columns are
 scaled to unit length and decomposed (SVD).  A relative singular value below

@@ -6,23 +6,22 @@ repeated over weeks.  :func:`fit_many` fits one or more laws to every group
 :class:`Campaign` of plain result records, as a tidy :class:`pandas.DataFrame`
 (:meth:`Campaign.to_frame`), CSV or JSON.
 
-The unit of work is one dataset: a worker loads it, splits it into groups, fits
-every law to every group and returns plain dictionaries (never laws or lmfit
-objects), so the work runs unchanged serially, on local processes
-(``jobs=N``, joblib) or on a Dask cluster (``scheduler="tcp://host:8786"``,
-Dask futures; needs the ``dask`` extra).  Both parallel back ends send datasets in
-batches (:func:`batch_size`) with a bounded window of batches in flight.  Datasets
-are loaded inside the workers, so the memory of the calling process grows with the
-number of results held, not with the data (and not at all when they are streamed
-to a file).
+The unit of work is a chunk of datasets (:func:`~frictionlaws.parallel.iter_chunks`):
+a worker loads them, splits them into groups, fits every law to every group (the
+small groups of a law together, in stacks: :mod:`frictionlaws.fitting.stacked`) and
+returns the chunk's plain records as one block (never laws or lmfit objects), so the
+work runs unchanged serially, on local processes (``jobs=N``, joblib) or on a Dask
+cluster (``scheduler="tcp://host:8786"``, Dask futures; needs the ``dask`` extra),
+with a bounded window of chunks in flight; the calling process only schedules the
+chunks and keeps their blocks.  Datasets are loaded inside the workers, so the memory
+of the calling process grows with the number of results held, not with the data (and
+not at all when they are streamed to a file).
 """
 
 from __future__ import annotations
 
-import csv
-import gc
-import itertools
-import math
+import collections
+import functools
 import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -31,23 +30,32 @@ from typing import Any
 
 import numpy as np
 
-from ..base import jsonio
 from ..base.errors import Argument, FitError, InputError
 from ..base.jsonio import to_jsonable
-from ..base.outputs import atomic_write, check_outputs, write_text_atomic
-from ..base.sanitize import csv_row, frame_csv
+from ..base.outputs import check_outputs
 from ..io import MISSING_TOKENS, Dataset, column_for, load_dataset
-from ..law import VARIABLES
 from ..law.registry import get_law
 from ..parallel import (
     DASK_WORKER_CONFIG,
     MAX_BATCH,
     SCHEDULER_ENV,
     batch_size,
+    iter_chunks,
     iter_parallel,
     run_parallel,
 )
-from . import fit
+from . import as_fit_data, fit
+from .batch import POLISH_ROWS
+from .campaign_results import (
+    Block,
+    Campaign,
+    doubts,
+    group_column,
+    key_text,
+    stream_blocks,
+    tidy_columns,
+)
+from .stacked import stack_fits, stackable
 
 __all__ = ["Campaign", "doubts", "fit_many", "compare_many", "group_keys", "iter_datasets",
            "run_parallel", "group_subset",
@@ -65,7 +73,7 @@ MIN_ROWS_PER_GROUP = 2
 
 
 class UnreadableDatasets(InputError):
-    """Some datasets of a campaign cannot be read (or grouped): nothing is fitted.
+    """Some datasets of a campaign cannot be read (or grouped): the campaign gives no results.
 
     Parameters
     ----------
@@ -79,7 +87,7 @@ class UnreadableDatasets(InputError):
         self.problems = list(problems)
         self.total = total
         super().__init__(f"{len(self.problems)} of {total} datasets of the campaign cannot "
-                         "be read or grouped, so nothing was fitted: "
+                         "be read or grouped, so it gives no results: "
                          + "; ".join(str(p) for p in self.problems))
 
     def summary(self) -> str:
@@ -91,7 +99,7 @@ class UnreadableDatasets(InputError):
             E.g. ``1 of 2 datasets of the campaign cannot be read or grouped; ...``.
         """
         return (f"{len(self.problems)} of {self.total} datasets of the campaign cannot be "
-                "read or grouped; nothing was fitted (fix or remove each file named)")
+                "read or grouped; it gives no results (fix or remove each file named)")
 
 
 def check_grouping(by: Sequence[str], laws: Sequence[str] = ()) -> tuple[str, ...]:
@@ -160,10 +168,16 @@ def iter_datasets(sources: Any) -> list[Any]:
     """
     if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Iterable):
         sources = [sources]
+    if len(sources) == 1 and isinstance(sources[0], (str, os.PathLike)) \
+            and os.path.isdir(sources[0]):
+        listed = _csv_files(os.fspath(sources[0]))
+        if not listed:
+            raise InputError("the directory holds no *.csv dataset", file=str(sources[0]))
+        return listed
     out: list[Any] = []
     for item in sources:
-        if isinstance(item, (str, os.PathLike)) and Path(item).is_dir():
-            files = sorted(Path(item).glob("*.csv"))
+        if isinstance(item, (str, os.PathLike)) and os.path.isdir(item):
+            files = _csv_files(os.fspath(item))
             if not files:
                 raise InputError("the directory holds no *.csv dataset", file=str(item))
             out.extend(files)
@@ -171,6 +185,44 @@ def iter_datasets(sources: Any) -> list[Any]:
             out.append(item)
     if not out:
         raise InputError("no datasets given")
+    return out
+
+
+class _ListedFile(str):
+    """A file found in a directory listing (a path as text), with its real path and stem."""
+
+    key: str | None = None
+    stem: str = ""
+
+
+class _Listing(list[str]):
+    """The files of one directory listing, none a link: distinct files of distinct stems."""
+
+
+def _csv_files(folder: str) -> list[str]:
+    """The ``*.csv`` entries of ``folder`` sorted by name, files with their real path.
+
+    One directory listing: the real path of a plain file is the directory's own joined
+    with its name, so only links are resolved one by one.  Without links (and other
+    entries than files) the listing is a :class:`_Listing` of plain paths: its files are
+    distinct and so are their stems (each name is its stem and ``.csv``).
+    """
+    csv = ".csv"
+    with os.scandir(folder) as entries:
+        found = sorted((e.name, e.is_file(follow_symlinks=False)) for e in entries
+                       if os.path.normcase(e.name).endswith(csv))
+    prefix = os.path.join(folder, "")
+    if all(is_file for _, is_file in found):
+        return _Listing(prefix + name for name, _ in found)
+    real = os.path.join(os.path.realpath(folder), "")
+    out: list[str] = []
+    for name, plain in found:
+        path = _ListedFile(prefix + name)
+        if plain or os.path.isfile(path):
+            path.key = real + name if plain else os.path.realpath(path)
+            dot = name.rfind(".")  # the stem as pathlib writes it
+            path.stem = name[:dot] if 0 < dot < len(name) - 1 else name
+        out.append(path)
     return out
 
 
@@ -197,9 +249,9 @@ def group_keys(dataset: Any, by: Sequence[str]) -> list[tuple[dict[str, Any], np
         (:data:`NEVER_GROUPING`), is not in the dataset (naming the columns it has), or
         leaves fewer than :data:`MIN_ROWS_PER_GROUP` rows a group on average.
     """
-    frame = dataset.frame
     if not by:
-        return [({}, np.ones(len(frame), dtype=bool))]
+        return [({}, np.ones(len(dataset), dtype=bool))]
+    frame = dataset.frame
     check_grouping(by)
     missing = [c for c in by if c not in frame.columns]
     if missing:
@@ -310,27 +362,6 @@ def group_subset(dataset: Any, key: Mapping[str, Any], mask: np.ndarray) -> Any:
     return subset
 
 
-def key_text(key: Mapping[str, Any]) -> str:
-    """Write a group key as text, variables with their SI unit.
-
-    Parameters
-    ----------
-    key : mapping
-        Column -> value.
-
-    Returns
-    -------
-    str
-        E.g. ``surface=steel, T=293.15 K``.
-    """
-    parts = []
-    for col, value in key.items():
-        unit = VARIABLES[col].unit if col in VARIABLES else ""
-        text = f"{value:g}" if isinstance(value, float) else str(value)
-        parts.append(f"{col}={text}{' ' + unit if unit else ''}")
-    return ", ".join(parts)
-
-
 def _plain(x: Any) -> Any:
     if isinstance(x, (np.floating, float)):
         return float(x)
@@ -353,6 +384,8 @@ class _Job:
     label: str | None = None
     #: How to show the source in records and messages (None: its path).
     shown: str | None = None
+    #: Only read the dataset (another one cannot be read: the campaign gives no results).
+    check_only: bool = False
 
 
 def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
@@ -378,18 +411,22 @@ def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
     InputError
         When one file is given twice.
     """
+    if isinstance(sources, _Listing):
+        return [None] * len(sources)
     seen: dict[str, int] = {}
+    names = []
     for i, src in enumerate(sources):
-        if isinstance(src, (str, os.PathLike)) and Path(src).is_file():
-            key = str(Path(src).resolve())
+        key = _file_key(src)
+        if key is not None:
             if key in seen:
                 raise InputError(f"the same file is given twice (datasets {seen[key] + 1} and "
                                  f"{i + 1}); give each dataset once", file=str(src))
             seen[key] = i
-    names = [_own_name(src) for src in sources]
+        names.append(_own_name(src, key is not None))
+    counts = collections.Counter(names)
     labels: list[str | None] = []
     for i, (src, name) in enumerate(zip(sources, names)):
-        if names.count(name) == 1:
+        if counts[name] == 1:
             labels.append(None)
         elif isinstance(src, (str, os.PathLike)):
             labels.append(os.fspath(src))
@@ -401,65 +438,128 @@ def dataset_labels(sources: Sequence[Any]) -> list[str | None]:
     return labels
 
 
-def _own_name(source: Any) -> str:
+def _file_key(source: Any) -> str | None:
+    """The real path of a file source (None for anything else): one file, one key."""
+    if isinstance(source, _ListedFile):
+        return source.key
+    if isinstance(source, (str, os.PathLike)) and os.path.isfile(source):
+        return os.path.realpath(source)
+    return None
+
+
+def _own_name(source: Any, is_file: bool) -> str:
     """The name :func:`~frictionlaws.io.load_dataset` gives a source, without loading it."""
+    if isinstance(source, _ListedFile) and is_file:
+        return source.stem
     if isinstance(source, (str, os.PathLike)):
-        return Path(source).stem if Path(source).is_file() else os.fspath(source)
+        return Path(source).stem if is_file else os.fspath(source)
     if isinstance(source, Dataset):
         return str(source.name)
     return "data" if isinstance(source, Mapping) else "dataframe"
 
 
-def _read_problem(job: _Job) -> InputError | None:
-    """Load one dataset and split it into groups: None, or why that cannot be done.
+def _plain_error(exc: InputError) -> InputError:
+    """An input error rebuilt as a plain :class:`InputError` (message parts and location),
+    so that it travels between processes whatever its class."""
+    return InputError(exc.parts, file=exc.file, column=exc.column, row=exc.row,
+                      option=exc.option)
 
-    The error is rebuilt as a plain :class:`InputError` (message parts and location),
-    so that it travels between processes whatever its class.
+
+@dataclass(frozen=True)
+class _Settings:
+    """What every dataset of a campaign is read and fitted with (sent once per chunk)."""
+
+    laws: tuple[str, ...]
+    by: tuple[str, ...]
+    fit_options: Mapping[str, Any]
+    load_options: Mapping[str, Any]
+
+    def job(self, item: tuple[Any, str | None, str | None, bool]) -> _Job:
+        """One dataset's job from its item ``(source, label, shown, check_only)``."""
+        return _Job(item[0], self.laws, self.by, self.fit_options, self.load_options,
+                    item[1], item[2], item[3])
+
+
+def _fit_chunk(settings: _Settings, items: Sequence[tuple[Any, str | None, str | None, bool]]
+               ) -> Block:
+    """Read a chunk of datasets, split them into groups and fit every law to every group.
+
+    Groups of fewer than :data:`~frictionlaws.fitting.batch.POLISH_ROWS` rows wait, and
+    are fitted law by law in stacks (:func:`~frictionlaws.fitting.stacked.fit_stacked`)
+    once the chunk is read; a larger group is fitted at once (and its data let go).  A
+    member a stack hands back, and every fit when the options are not those of a stacked
+    fit, is made by :func:`~frictionlaws.fitting.fit`.  A dataset that cannot be read or
+    grouped makes the chunk a list of such problems, without fits (the campaign is
+    refused).
     """
-    try:
-        group_keys(load_dataset(job.source, **job.load_options), job.by)
-    except InputError as exc:
-        return InputError(exc.parts, file=exc.file, column=exc.column, row=exc.row,
-                          option=exc.option)
-    return None
-
-
-def _refuse_unreadable(work: Sequence[_Job], **parallel: Any) -> None:
-    """Read every dataset of a campaign before any fit; refuse it naming each bad one.
-
-    A campaign half done is worse than none: the fits of the readable datasets would
-    look complete.  So every dataset is read (and grouped) first, in parallel as the
-    fits are, and an :class:`UnreadableDatasets` lists all that cannot be.
-    """
-    problems = [p for p in iter_parallel(_read_problem, work, total=len(work), **parallel)
-                if p is not None]
-    if len(work) == 1 and problems:
-        raise problems[0]  # one dataset: its own error says it all
-    if problems:
-        raise UnreadableDatasets(problems, len(work))
-
-
-def _fit_dataset(job: _Job) -> list[dict[str, Any]]:
-    """Load one dataset, split it into groups, fit every law to every group."""
-    try:
-        ds = load_dataset(job.source, **job.load_options)
-        groups = group_keys(ds, job.by)
-    except InputError as exc:  # the input itself: marked, so a front end can say so
-        return [{"dataset": job.shown or str(job.source), "group": {}, "law": law,
-                 "error": _shown_error(exc, job), "input_error": True} for law in job.laws]
-    records = []
-    for (key, mask), law in itertools.product(groups, job.laws):
-        record: dict[str, Any] = {"dataset": job.label or ds.name,
-                                  "source": job.shown or str(ds.source),
-                                  "group": key, "law": law, "rows": int(mask.sum())}
+    problems: list[InputError] = []
+    heads: list[tuple[Any, ...]] = []
+    parts: list[Any] = []
+    waiting = _Waiting(stackable(settings.fit_options))
+    for job in map(settings.job, items):
         try:
-            res = fit(law, group_subset(ds, key, mask), **job.fit_options)
-        except (InputError, FitError) as exc:
-            record["error"] = _shown_error(exc, job)
-        else:
-            record["result"] = _compact(res.to_dict())
-        records.append(record)
-    return records
+            ds = load_dataset(job.source, **job.load_options)
+            groups = group_keys(ds, job.by)
+        except InputError as exc:
+            problems.append(_plain_error(exc))
+            continue
+        if job.check_only or problems:
+            continue
+        name, source = job.label or ds.name, job.shown or str(ds.source)
+        for key, mask in groups:
+            subset = group_subset(ds, key, mask)
+            fd = waiting.data(subset, job)
+            rows = int(mask.sum())
+            for law in job.laws:
+                heads.append((name, source, key, law, rows))
+                parts.append(_fit_one(law, subset, job) if fd is None else None)
+                if fd is not None:
+                    waiting.add(law, fd, len(parts) - 1, subset, job)
+    if problems:
+        return Block(problems=problems)
+    return Block(heads, parts, waiting.fit(parts))
+
+
+@dataclass
+class _Waiting:
+    """The groups of a chunk waiting to be fitted in stacks, law by law."""
+
+    on: bool
+    members: dict[str, list[tuple[Any, int, Any, _Job]]] = field(default_factory=dict)
+
+    def data(self, subset: Any, job: _Job) -> Any:
+        """The fit data of a group to stack (None: fit it at once)."""
+        if not self.on or len(subset) >= POLISH_ROWS:
+            return None
+        try:
+            return as_fit_data(subset, weights=job.fit_options.get("weights", "auto"))
+        except InputError:  # the one-fit path says why, as it would alone
+            return None
+
+    def add(self, law: str, fd: Any, at: int, subset: Any, job: _Job) -> None:
+        self.members.setdefault(law, []).append((fd, at, subset, job))
+
+    def fit(self, parts: list[Any]) -> list[Any]:
+        """Fit every stack, its members' parts pointing into its columns; the members
+        handed back are fitted one by one.  The stacks' results (one per law)."""
+        tables: list[Any] = []
+        for law, members in self.members.items():
+            seed = members[0][3].fit_options.get("seed", 0)
+            fits = stack_fits(get_law(law), [m[0] for m in members], seed)
+            for j, (_, at, subset, job) in enumerate(members):
+                row = int(fits.row[j])
+                parts[at] = (len(tables), row) if row >= 0 else _fit_one(law, subset, job)
+            tables.append(fits)
+        return tables
+
+
+def _fit_one(law: str, data: Any, job: _Job) -> dict[str, Any]:
+    """One fit of ``law`` to ``data``: ``{"result": ...}`` or ``{"error": ...}``."""
+    try:
+        res = fit(law, data, **job.fit_options)
+    except (InputError, FitError) as exc:
+        return {"error": _shown_error(exc, job)}
+    return {"result": _compact(res.to_dict())}
 
 
 def _shown_error(exc: Exception, job: Any) -> str:
@@ -470,150 +570,13 @@ def _shown_error(exc: Exception, job: Any) -> str:
 
 
 #: What a campaign record keeps of a fit (the full result stays with single fits).
-_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "derived",
+_KEEP = ("params", "metrics", "success", "warnings", "non_identifiable", "notes", "derived",
          "uncertainty")
 
 
 def _compact(doc: Mapping[str, Any]) -> dict[str, Any]:
     """The parts of a fit's dict a campaign table needs, as plain JSON-able values."""
     return to_jsonable({k: doc[k] for k in _KEEP if k in doc})
-
-
-# ------------------------------------------------------------------ results
-@dataclass
-class Campaign:
-    """The results of :func:`fit_many`: one plain record per (dataset, group, law).
-
-    Each record has ``dataset``, ``source``, ``group`` (column -> value), ``law``,
-    ``rows`` and either ``result`` (the fit's parameters, metrics, derived values,
-    warnings and convergence, as in :meth:`FitResult.to_dict`) or ``error`` (why that
-    fit could not be made).
-
-    Parameters
-    ----------
-    records : list of dict
-        The records held in memory (empty when they were streamed to ``path``).
-    by : tuple of str
-        The grouping columns.
-    laws : tuple of str
-        The law ids fitted.
-    notes : list of str
-        Remarks on the campaign as a whole.
-    path : Path, optional
-        The file the records were streamed to.
-    count : int
-        Number of records (also when streamed).
-    failed : list of dict
-        The failed records of a streamed campaign.
-    """
-
-    records: list[dict[str, Any]]
-    by: tuple[str, ...] = ()
-    laws: tuple[str, ...] = ()
-    notes: list[str] = field(default_factory=list)
-    path: Path | None = None
-    count: int = 0
-    failed: list[dict[str, Any]] = field(default_factory=list)
-
-    def __len__(self) -> int:
-        return len(self.records) or self.count
-
-    @property
-    def errors(self) -> list[dict[str, Any]]:
-        """Records whose fit failed, with the reason."""
-        return [r for r in self.records if "error" in r] or list(self.failed)
-
-    def rows(self) -> Iterator[dict[str, Any]]:
-        """Tidy rows: one per (dataset, group, law, parameter), metrics repeated."""
-        for rec in self.records:
-            yield from _tidy(rec, self.by)
-
-    def to_frame(self) -> Any:
-        """The tidy rows as a :class:`pandas.DataFrame` (units in the ``unit`` column).
-
-        For a campaign streamed to a CSV file (``fit_many(..., output=...)``) the
-        frame is read back from that file.
-        """
-        import pandas as pd
-
-        if self.path is not None and not self.records:
-            if self.path.suffix.lower() == ".csv":
-                return pd.read_csv(self.path, keep_default_na=False, na_values=[""])
-            raise InputError("a campaign streamed to JSON Lines is read with "
-                             "pandas.read_json(path, lines=True)", file=str(self.path))
-        frame = pd.DataFrame(list(self.rows()), columns=tidy_columns(self.by))
-        for col in frame.columns:
-            if frame[col].dtype == object:  # None -> NaN, as read back from a CSV
-                frame[col] = frame[col].where(frame[col].notna(), np.nan)
-        return frame
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-able: the records, the grouping columns, laws and notes."""
-        return {"by": list(self.by), "laws": list(self.laws), "records": self.records,
-                "notes": list(self.notes)}
-
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write CSV (the tidy frame) or JSON (the records), by the file's suffix, atomically."""
-        target = Path(path)
-        if target.suffix.lower() == ".json":
-            return write_text_atomic(target, jsonio.dumps(self.to_dict()) + "\n")
-        if target.suffix.lower() != ".csv":
-            raise InputError("campaign results are written as .csv or .json",
-                             file=str(target))
-
-        return write_text_atomic(target, frame_csv(self.to_frame(), float_format="%.10g"))
-
-    def summary(self) -> str:
-        """One line per record: dataset, group, law, R^2, RMSE or the error."""
-        lines = []
-        for rec in self.records:
-            group = key_text(rec["group"])
-            head = f"{rec['dataset']}{' [' + group + ']' if group else ''} {rec['law']}"
-            if "error" in rec:
-                lines.append(f"{head}: error: {rec['error']}")
-                continue
-            m = rec["result"]["metrics"]
-            doubt = doubts(rec["result"])
-            lines.append(f"{head}: R^2 = {_fmt(m.get('r2'))}, RMSE = {_fmt(m.get('rmse'))}, "
-                         f"n = {m.get('n')}{'; ' + doubt if doubt else ''}")
-        return "\n".join(lines)
-
-
-def doubts(result: Mapping[str, Any]) -> str:
-    """A fit's doubts in words: undetermined parameters, withheld errors, warnings.
-
-    Parameters
-    ----------
-    result : mapping
-        A record's ``result`` (:meth:`FitResult.to_dict`).
-
-    Returns
-    -------
-    str
-        E.g. ``cannot determine a, b; 1 warning (listed in the JSON output)``; empty when
-        the fit has no doubts.
-    """
-    parts = []
-    undetermined = result.get("non_identifiable") or []
-    if undetermined:
-        parts.append(f"cannot determine {', '.join(undetermined)}")
-    withheld = [k for k, e in (result.get("params") or {}).items()
-                if not e.get("fixed") and e.get("stderr") is None and k not in undetermined]
-    if withheld:
-        parts.append(f"no standard error for {', '.join(withheld)}")
-    n = len(result.get("warnings") or [])
-    if n:
-        parts.append(f"{n} warning{'s' if n > 1 else ''} (listed in the JSON output)")
-    return "; ".join(parts)
-
-
-def _fmt(x: Any) -> str:
-    return "-" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.4g}"
-
-
-_METRICS = ("r2", "rmse", "aic", "bic", "n")
-#: Datasets between two garbage collections while streaming (keeps memory flat).
-_GC_EVERY = 50
 
 
 def _refuse_missing_group_column(dataset: Any, col: str) -> None:
@@ -631,89 +594,17 @@ def _refuse_missing_group_column(dataset: Any, col: str) -> None:
                      file=str(dataset.source), option="by")
 
 
-def group_column(name: str) -> str:
-    """Name the tidy table's column of grouping column ``name``.
-
-    Parameters
-    ----------
-    name : str
-        A grouping column.
-
-    Returns
-    -------
-    str
-        ``name``, followed by ``[unit]`` (SI) when it is a law variable.
-    """
-    unit = VARIABLES[name].unit if name in VARIABLES else ""
-    return f"{name} [{unit}]" if unit else name
-
-
-def tidy_columns(by: Sequence[str]) -> list[str]:
-    """List the columns of a campaign's tidy table (the CSV header).
-
-    Parameters
-    ----------
-    by : sequence of str
-        The grouping columns.
-
-    Returns
-    -------
-    list of str
-        The header, grouping columns with their units.
-    """
-    return ["dataset", *(group_column(c) for c in by), "law", "rows", "param", "value",
-            "stderr", "ci95_low", "ci95_high", "uncertainty", "unit", "fixed", "converged",
-            *_METRICS,
-            "warnings", "error"]
-
-
-def _tidy(rec: Mapping[str, Any], by: Sequence[str]) -> Iterator[dict[str, Any]]:
-    base = {"dataset": rec["dataset"], **{group_column(c): rec["group"].get(c) for c in by},
-            "law": rec["law"], "rows": rec.get("rows")}
-    if "error" in rec:
-        yield {**base, "error": rec["error"]}
-        return
-    res = rec["result"]
-    metrics = {k: res["metrics"].get(k) for k in _METRICS}
-    for name, est in res["params"].items():
-        ci = est.get("ci95") or (None, None)
-        yield {**base, "param": name, "value": est["value"], "stderr": est["stderr"],
-               "ci95_low": ci[0], "ci95_high": ci[1],
-               "uncertainty": (res.get("uncertainty") or {}).get("method"),
-               "unit": est["unit"] or "-",
-               "fixed": est["fixed"], "converged": res["success"], **metrics,
-               "warnings": len(res["warnings"]), "error": None}
-
-
-def _stream(parts: Iterable[list[dict[str, Any]]], output: Path, by: tuple[str, ...],
-            laws: tuple[str, ...]) -> Campaign:
-    """Write records as they come (CSV tidy rows or JSON Lines); keep only the failures."""
-    count, failed = 0, []
-    as_csv = output.suffix.lower() == ".csv"
-    with atomic_write(output, newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=tidy_columns(by)) if as_csv else None
-        if writer is not None:
-            writer.writeheader()
-        for i, part in enumerate(parts, 1):
-            if i % _GC_EVERY == 0:
-                gc.collect()  # lmfit leaves reference cycles: free them as we go
-            for rec in part:
-                count += 1
-                if "error" in rec:
-                    failed.append(rec)
-                if writer is not None:
-                    writer.writerows(csv_row(jsonio.to_jsonable(row)) for row in _tidy(rec, by))
-                else:
-                    fh.write(jsonio.dumps(rec, indent=None) + "\n")
-    return Campaign([], by, laws, path=output, count=count, failed=failed)
-
-
 def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str] = (),
              jobs: int = 1, scheduler: str | None = None, progress: bool = False,
              output: str | os.PathLike[str] | None = None,
              load_options: Mapping[str, Any] | None = None,
              source_names: Mapping[str, str] | None = None, **fit_options: Any) -> Campaign:
     """Fit each law to each group of each dataset.
+
+    The datasets go to the workers in chunks (:func:`~frictionlaws.parallel.iter_chunks`);
+    a worker reads its chunk and fits each law to the chunk's small groups together
+    (:func:`~frictionlaws.fitting.stacked.fit_stacked`), each with the numbers and
+    warnings one :func:`~frictionlaws.fitting.fit` gives it, and the rest one by one.
 
     Parameters
     ----------
@@ -724,11 +615,11 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     by : str or sequence of str
         Grouping columns (e.g. ``"surface"``); each group is fitted on its own.
     jobs : int
-        Local worker processes (1: serial; -1: one per core); see :func:`iter_parallel`.
+        Local worker processes (1: serial; -1: one per core); see :func:`iter_chunks`.
     scheduler : str, optional
-        A Dask scheduler address; see :func:`iter_parallel`.
+        A Dask scheduler address; see :func:`iter_chunks`.
     progress : bool
-        Show a progress bar on stderr.
+        Show a progress bar on stderr (counting datasets).
     output : path, optional
         Stream the results to this ``.csv`` (tidy rows) or ``.jsonl`` (one record a
         line) file as they are done, instead of holding them: the memory then stays
@@ -750,8 +641,8 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     Raises
     ------
     UnreadableDatasets
-        When any dataset cannot be read or grouped: every dataset is read before
-        the first fit, and all that cannot be are named (nothing is fitted).
+        When any dataset cannot be read or grouped: all that cannot be are named, and
+        no result is given (once one is found, the chunks still to go are only read).
     InputError
         A grouping column that is a measured quantity (:func:`check_grouping`), no
         law, or an output that cannot be written.
@@ -763,22 +654,49 @@ def fit_many(laws: str | Sequence[str], datasets: Any, *, by: str | Sequence[str
     sources = iter_datasets(datasets)
     target = _check_output(output, sources)
     names = dict(source_names or {})
-    jobs_ = [_Job(src, law_ids, columns, dict(fit_options), dict(load_options or {}), label,
-                  names.get(os.fspath(src)) if isinstance(src, (str, os.PathLike)) else None)
-             for src, label in zip(sources, dataset_labels(sources))]
-    _refuse_unreadable(jobs_, jobs=jobs, scheduler=scheduler)
-    parts = iter_parallel(_fit_dataset, jobs_, jobs=jobs, scheduler=scheduler,
-                          progress=progress, total=len(sources))
+    settings = _Settings(law_ids, columns, dict(fit_options), dict(load_options or {}))
+    work = [(str(src) if isinstance(src, _ListedFile) else src, label,
+             names.get(os.fspath(src)) if names and isinstance(src, (str, os.PathLike))
+             else None) for src, label in zip(sources, dataset_labels(sources))]
+    refusal = _Refusal(len(work))
+    blocks = refusal.watch(iter_chunks(
+        functools.partial(_fit_chunk, settings),
+        ((*item, bool(refusal.problems)) for item in work),
+        jobs=jobs, scheduler=scheduler, progress=progress, total=len(work)))
     if target is not None:
-        return _stream(parts, target, columns, law_ids)
-    records = [rec for part in parts for rec in part]
-    return Campaign(records, columns, law_ids, count=len(records))
+        return stream_blocks(blocks, target, columns, law_ids)
+    return Campaign(by=columns, laws=law_ids, blocks=list(blocks))
+
+
+@dataclass
+class _Refusal:
+    """The datasets of a campaign that cannot be read, as the chunks report them.
+
+    A campaign half done is worse than none: the fits of the readable datasets would
+    look complete.  Every dataset is read (and grouped) in its chunk; once one cannot
+    be, the chunks still to be sent only read theirs, and at the end an
+    :class:`UnreadableDatasets` lists every one that cannot be read (for a single
+    dataset, its own error).
+    """
+
+    total: int
+    problems: list[InputError] = field(default_factory=list)
+
+    def watch(self, blocks: Iterable[Block]) -> Iterator[Block]:
+        """The blocks while every dataset reads; then the refusal."""
+        for block in blocks:
+            self.problems.extend(block.problems)
+            if not self.problems:
+                yield block
+        if self.total == 1 and self.problems:
+            raise self.problems[0]  # one dataset: its own error says it all
+        if self.problems:
+            raise UnreadableDatasets(self.problems, self.total)
 
 
 def _check_output(output: Any, sources: Sequence[Any]) -> Path | None:
     if output is None:
         return None
-
     target = Path(output)
     if target.suffix.lower() not in (".csv", ".jsonl"):
         raise InputError("streamed campaign results are written as .csv or .jsonl",

@@ -12,6 +12,7 @@ import numpy as np
 from ..base.errors import FitError, InputError
 from ..law import Law
 from ..law.registry import get_law
+from .batch import polish
 from .data import check_fit_options
 from .diagnosis import (
     _correlation,
@@ -104,8 +105,7 @@ def fit(
     search = _Search(setup, method)
     _multistart(search, starts, seed)
     setup.notes.extend(_global_stage(search, global_stage, seed))
-    if lean:
-        _polish(search)
+    (_polish if lean else polish)(search)  # to the optimum itself (a stack's too)
     if search.best is None:
         errors = search.errors
         raise FitError(f"law '{law.id}' could not be fitted to '{setup.fd.name}': no start "

@@ -19,7 +19,7 @@ from .result import ParamEstimate, _numpy_ns
 from .robust import ZERO_SPREAD
 from .search import _Search, _Setup
 
-__all__ = ["RANK_TOL", "WEAK_TOL"]
+__all__ = ["RANK_TOL", "WEAK_TOL", "weak_warning", "metric_table", "derived_columns"]
 
 
 #: Relative singular value below which a parameter direction is not identifiable.
@@ -66,17 +66,29 @@ def _identifiability(jac: np.ndarray, names: list[str]) -> tuple[list[str], list
         s = np.concatenate([s, np.zeros(jn.shape[1] - jn.shape[0])])
         vt = np.linalg.svd(np.vstack([jn, np.zeros((jn.shape[1] - jn.shape[0], jn.shape[1]))]))[2]
     rel = s / s[0] if s[0] > 0 else np.zeros_like(s)
+    non_id, weak = _directions(rel, vt, [names[j] for j in ok], dead)
+    order = {n: i for i, n in enumerate(names)}
+    return (sorted(non_id, key=order.__getitem__), sorted(weak, key=order.__getitem__),
+            float(rel[-1]) if rel.size else 0.0)
+
+
+def _directions(rel: np.ndarray, vt: np.ndarray, names: list[str], dead: list[str]
+                ) -> tuple[set[str], set[str]]:
+    """The parameters the data cannot determine and those poorly determined.
+
+    ``rel`` are the relative singular values of the unit-column Jacobian and ``vt`` its
+    right singular vectors (rows), over the parameters ``names``; a direction below
+    :data:`WEAK_TOL` (:data:`RANK_TOL`) involves every parameter whose component is
+    above a tenth of its largest.  ``dead`` (columns of zeros) are undetermined too.
+    """
     non_id: set[str] = set(dead)
     weak: set[str] = set()
     for i, r in enumerate(rel):
         if r < WEAK_TOL:
             comp = np.abs(vt[i])
-            involved = {names[ok[j]] for j in np.flatnonzero(comp > 0.1 * comp.max())}
+            involved = {names[j] for j in np.flatnonzero(comp > 0.1 * comp.max())}
             (non_id if r < RANK_TOL else weak).update(involved)
-    weak -= non_id
-    order = {n: i for i, n in enumerate(names)}
-    return (sorted(non_id, key=order.__getitem__), sorted(weak, key=order.__getitem__),
-            float(rel[-1]) if rel.size else 0.0)
+    return non_id, weak - non_id
 
 
 @dataclass
@@ -123,9 +135,13 @@ def _diagnose(setup: _Setup, search: _Search, warn_msgs: list[str]) -> _Diagnosi
             "errors are withheld. Hold some of them fixed (argument fix) or use an "
             "identifiable form.")
     if weak:
-        warn_msgs.append(f"{', '.join(weak)} poorly determined by the data (strongly "
-                         "correlated; wide intervals)")
+        warn_msgs.append(weak_warning(weak))
     return _Diagnosis(vary, values, full_values, jac, non_id)
+
+
+def weak_warning(weak: Sequence[str]) -> str:
+    """The warning of parameters the data determine poorly (in the law's order)."""
+    return f"{', '.join(weak)} poorly determined by the data (strongly correlated; wide intervals)"
 
 
 def _estimates(setup: _Setup, search: _Search, diag: _Diagnosis, tval: float, dof: int,
@@ -196,25 +212,52 @@ def _correlation(best: Any) -> dict[str, dict[str, float]]:
 def _metrics(y: np.ndarray, best: Any, k: int, weighted: bool, warn_msgs: list[str]
              ) -> dict[str, Any]:
     """Goodness of fit: unweighted residuals for R^2/RMSE; lmfit's AIC/BIC."""
-    n, dof = y.size, y.size - k
-    resid = y - np.asarray(best.best_fit, float)
-    ss_res = float(np.sum(resid**2))
-    ss_tot = float(np.sum((y - y.mean()) ** 2))
-    flat = ss_tot <= n * (1e-12 * float(np.max(np.abs(y)))) ** 2  # mu constant to round-off
-    r2 = math.nan if flat else 1.0 - ss_res / ss_tot
-    if flat:
+    table = metric_table(y[None, :], np.asarray(best.best_fit, float)[None, :], k,
+                         *(np.array([float(getattr(best, a))])
+                           for a in ("aic", "bic", "chisqr", "redchi")))
+    if table.pop("flat")[0]:
         warn_msgs.append("mu takes one value in these data: R^2 is undefined (there is "
                          "no variation to explain); judge the fit by its RMSE")
-    adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else float("nan")
-    aic = float(best.aic)
-    aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else float("inf")
-    return {
-        "r2": r2, "adj_r2": adj, "rmse": math.sqrt(ss_res / n),
-        "mae": float(np.mean(np.abs(resid))), "max_abs_residual": float(np.max(np.abs(resid))),
-        "aic": aic, "aicc": aicc, "bic": float(best.bic), "chisqr": float(best.chisqr),
-        "redchi": float(best.redchi) if dof > 0 else float("nan"), "n": int(n), "k": int(k),
-        "weighted": weighted,
-    }
+    out: dict[str, Any] = {key: float(v[0]) for key, v in table.items()}
+    out.update(n=int(y.size), k=int(k), weighted=weighted)
+    return out
+
+
+def metric_table(y: np.ndarray, fitted: np.ndarray, k: int, aic: np.ndarray,
+                 bic: np.ndarray, chisqr: np.ndarray, redchi: np.ndarray
+                 ) -> dict[str, np.ndarray]:
+    """Goodness of fit of fits on equally many rows, one row of ``y`` and ``fitted`` each.
+
+    Parameters
+    ----------
+    y, fitted : numpy.ndarray
+        The data and the fitted law, ``(B, n)``.
+    k : int
+        The fitted parameters.
+    aic, bic, chisqr, redchi : numpy.ndarray
+        The solver's statistics, ``(B,)``.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``r2`` (NaN where mu is constant to rounding, flagged in ``flat``), ``adj_r2``,
+        ``rmse``, ``mae``, ``max_abs_residual``, ``aic``, ``aicc``, ``bic``, ``chisqr``,
+        ``redchi`` (NaN without degrees of freedom), each ``(B,)``.
+    """
+    n = y.shape[1]
+    resid = y - fitted
+    ss_res = np.sum(resid**2, axis=1)
+    ss_tot = np.sum((y - y.mean(axis=1, keepdims=True)) ** 2, axis=1)
+    flat = ss_tot <= n * (1e-12 * np.max(np.abs(y), axis=1)) ** 2  # mu constant to round-off
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r2 = np.where(flat, math.nan, 1.0 - ss_res / ss_tot)
+    adj = 1.0 - (1.0 - r2) * (n - 1) / (n - k) if n - k > 0 else np.full_like(r2, math.nan)
+    aicc = aic + 2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.full_like(aic, math.inf)
+    return {"r2": r2, "adj_r2": adj, "rmse": np.sqrt(ss_res / n),
+            "mae": np.mean(np.abs(resid), axis=1),
+            "max_abs_residual": np.max(np.abs(resid), axis=1),
+            "aic": aic, "aicc": aicc, "bic": bic, "chisqr": chisqr,
+            "redchi": redchi if n - k > 0 else np.full_like(redchi, math.nan), "flat": flat}
 
 
 def _status(best: Any, r2: float, warn_msgs: list[str]) -> tuple[bool, str]:
@@ -252,28 +295,76 @@ def _derived(law: Law, values: dict[str, float], names: list[str], cov: np.ndarr
     out: dict[str, dict[str, Any]] = {}
     if not law.derived:
         return out
-    names = list(names) if cov is not None else []
+    errors = cov is not None and not non_id
+    columns = derived_columns(law, {k: np.array([v]) for k, v in values.items()},
+                              list(names) if errors else [],
+                              None if cov is None or not errors else np.asarray(cov)[None])
     for d in law.derived:
-        def f(theta: np.ndarray, d=d) -> float:
-            vals = dict(values)
-            vals.update(dict(zip(names, theta)))
-            return d.value(vals, _numpy_ns())
-        value = f(np.array([values[k] for k in names])) if names else d.value(
-            values, _numpy_ns())
-        se = None
-        if cov is not None and not non_id and math.isfinite(value):
-            theta = np.array([values[k] for k in names])
-            g = np.empty(theta.size)
-            for j in range(theta.size):
-                h = 1e-6 * max(abs(theta[j]), 1e-10)
-                tp, tm = theta.copy(), theta.copy()
-                tp[j] += h
-                tm[j] -= h
-                g[j] = (f(tp) - f(tm)) / (2 * h)
-            var = float(g @ cov @ g)
-            se = math.sqrt(var) if var >= 0 and math.isfinite(var) else None
-        out[d.name] = {"value": value, "stderr": se, "unit": d.unit, "meaning": d.meaning}
+        value, se = columns[d.name]
+        out[d.name] = {"value": float(value[0]),
+                       "stderr": float(se[0]) if math.isfinite(se[0]) else None,
+                       "unit": d.unit, "meaning": d.meaning}
     return out
+
+
+def derived_columns(law: Law, values: Mapping[str, np.ndarray], names: list[str],
+                    cov: np.ndarray | None) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """A law's derived quantities of ``B`` fits, with their delta-method standard errors.
+
+    Parameters
+    ----------
+    law : Law
+        The law.
+    values : mapping
+        Every parameter and setting, ``(B,)`` arrays.
+    names : list of str
+        The parameters ``cov`` is of (empty: no errors).
+    cov : numpy.ndarray or None
+        ``(B, k, k)`` covariances of ``names``.
+
+    Returns
+    -------
+    dict
+        Derived name -> ``(value, stderr)``, ``(B,)`` arrays; the error is NaN where
+        there is none (no covariance, a value that is not finite, a negative variance).
+    """
+    size = len(next(iter(values.values())))
+    theta = np.stack([np.asarray(values[k], float) for k in names], axis=-1) if names \
+        else np.zeros((size, 0))
+    out = {}
+    for d in law.derived:
+        def f(th: np.ndarray, d: Any = d) -> np.ndarray:
+            vals = dict(values)
+            vals.update({k: th[:, j] for j, k in enumerate(names)})
+            return _derived_value(d, vals, size)
+        value = f(theta)
+        se = np.full(size, math.nan)
+        if cov is not None and names:
+            g = np.empty_like(theta)
+            for j in range(theta.shape[1]):
+                h = 1e-6 * np.maximum(np.abs(theta[:, j]), 1e-10)
+                tp, tm = theta.copy(), theta.copy()
+                tp[:, j] += h
+                tm[:, j] -= h
+                g[:, j] = (f(tp) - f(tm)) / (2 * h)
+            var = np.einsum("bi,bij,bj->b", g, cov, g)
+            with np.errstate(invalid="ignore"):
+                se = np.where((var >= 0) & np.isfinite(var) & np.isfinite(value),
+                              np.sqrt(np.abs(var)), math.nan)
+        out[d.name] = (value, se)
+    return out
+
+
+def _derived_value(d: Any, values: Mapping[str, Any], size: int) -> np.ndarray:
+    """One derived quantity of ``size`` fits (row by row where its formula takes numbers)."""
+    with np.errstate(all="ignore"):  # 1/b at b = 0: infinite, reported without an error
+        try:
+            return np.broadcast_to(np.asarray(d.func(_numpy_ns(), **values), float),
+                                   (size,)).copy()
+        except (TypeError, ValueError, ArithmeticError):
+            return np.array([float(d.value({k: v[i] if np.ndim(v) else v
+                                            for k, v in values.items()}, _numpy_ns()))
+                             for i in range(size)])
 
 
 def _withhold_doubtful(law: Law, diag: _Diagnosis, estimates: dict[str, ParamEstimate],

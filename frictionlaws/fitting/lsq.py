@@ -23,7 +23,6 @@ refits the law with lmfit from the library's optimum.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -31,7 +30,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["LocalFit", "Estimate", "solve", "central_jacobian", "least_squares_solve",
-           "lmfit_fit"]
+           "lmfit_fit", "fit_statistics", "scaled_covariance"]
 
 #: The message of a model that returned NaN or infinity (lmfit's wording, shortened).
 NAN_MESSAGE = ("The model function generated NaN values and the fit aborted! Please check "
@@ -273,11 +272,8 @@ def _finish(res: _Residual, theta: np.ndarray, jac: np.ndarray | None, success: 
         resid *= res.w
     theta = np.minimum(np.maximum(np.atleast_1d(theta), res.lo), res.hi)
     ndata, nvary = resid.size, len(res.names)
-    chisqr = float((resid ** 2).sum())
+    chisqr, redchi, aic, bic = fit_statistics(float((resid ** 2).sum()), ndata, nvary)
     del resid
-    redchi = chisqr / max(1, ndata - nvary)
-    chisqr = max(chisqr, 1e-250 * ndata)
-    neg2ll = ndata * math.log(chisqr / ndata)
     covar = _covariance(jac, redchi)
     params = {k: Estimate(v) for k, v in res.held.items()}
     for i, k in enumerate(res.names):
@@ -287,20 +283,67 @@ def _finish(res: _Residual, theta: np.ndarray, jac: np.ndarray | None, success: 
         for k in res.held:
             params[k].stderr = 0.0
     return LocalFit(params=params, var_names=list(res.names), covar=covar,
-                    best_fit=model, chisqr=chisqr, redchi=redchi,
-                    aic=neg2ll + 2 * nvary, bic=neg2ll + math.log(ndata) * nvary,
+                    best_fit=model, chisqr=chisqr, redchi=redchi, aic=aic, bic=bic,
                     success=success, message=message, nfev=nfev)
 
 
+def fit_statistics(chisqr: Any, ndata: Any, nvary: Any) -> tuple[Any, Any, Any, Any]:
+    """lmfit's chi-square (floored), reduced chi-square, AIC and BIC of a solve.
+
+    Numbers or arrays (one entry per fit), so that single fits and batches
+    (:mod:`frictionlaws.fitting.batch`) report the same statistics.
+
+    Parameters
+    ----------
+    chisqr : float or numpy.ndarray
+        Sum of the squared weighted residuals.
+    ndata, nvary : int or numpy.ndarray
+        Rows and varied parameters.
+
+    Returns
+    -------
+    tuple
+        ``(chisqr, redchi, aic, bic)``; ``chisqr`` floored at ``1e-250 * ndata``.
+    """
+    redchi = chisqr / np.maximum(1, ndata - nvary)
+    chisqr = np.maximum(chisqr, 1e-250 * ndata)
+    neg2ll = ndata * np.log(chisqr / ndata)
+    return chisqr, redchi, neg2ll + 2 * nvary, neg2ll + np.log(ndata) * nvary
+
+
 def _covariance(jac: np.ndarray | None, redchi: float) -> np.ndarray | None:
-    """``inv(J^T J)`` times the reduced chi-square; None when singular or not computed."""
+    """``inv(J^T J)`` times the reduced chi-square; None when singular or not computed.
+
+    Computed with the Jacobian's columns scaled to unit length (:func:`scaled_covariance`),
+    as the batches of :mod:`frictionlaws.fitting.batch` are.
+    """
     if jac is None:
         return None
+    cov = scaled_covariance(np.asarray(jac, float))
+    return None if cov is None else cov * redchi
+
+
+def scaled_covariance(jac: np.ndarray) -> np.ndarray | None:
+    """``inv(J' J)`` of Jacobians ``(..., n, k)``, computed with unit-length columns.
+
+    Parameters
+    ----------
+    jac : numpy.ndarray
+        The Jacobians of the weighted residuals (one, or a stack of them).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        ``(..., k, k)``; None when some ``J' J`` is singular.
+    """
+    d = np.sqrt(np.einsum("...nk,...nk->...k", jac, jac))
+    d = np.where(d > 0, d, 1.0)
+    unit = jac / d[..., None, :]
     try:
-        cov = np.linalg.inv(np.matmul(jac.T, jac))
+        inv = np.linalg.inv(np.matmul(np.swapaxes(unit, -1, -2), unit))
     except np.linalg.LinAlgError:
         return None
-    return cov * redchi
+    return np.asarray(inv / (d[..., :, None] * d[..., None, :]))
 
 
 def central_jacobian(func: Callable[[np.ndarray], np.ndarray], x: np.ndarray,

@@ -38,8 +38,8 @@ from .resampling import MIN_DETERMINED, ZERO_SPREAD, no_spread
 
 __all__ = ["UNCERTAINTY_METHODS", "INTERVALS", "NARROW_RATIO", "STRUCTURE_ALPHA",
            "check_uncertainty_options", "condition_ids", "sandwich_cov",
-           "residual_structure", "Refit", "BootstrapResult", "bootstrap", "intervals",
-           "rank", "MIN_DETERMINED", "ZERO_SPREAD"]
+           "residual_structure", "residual_structures", "Refit", "BootstrapResult",
+           "bootstrap", "intervals", "rank", "MIN_DETERMINED", "ZERO_SPREAD"]
 
 #: Uncertainty methods of a fit.
 UNCERTAINTY_METHODS = ("asymptotic", "sandwich", "bootstrap")
@@ -169,33 +169,116 @@ class Structure:
 def _runs_p(e: np.ndarray) -> tuple[float, float]:
     """Number of sign runs and its one-sided p (too few runs) by the normal approximation."""
     s = np.sign(e)
-    s = s[s != 0]
-    n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
-    if n1 == 0 or n2 == 0:
-        return math.nan, math.nan
-    runs = 1 + int(np.sum(s[1:] != s[:-1]))
+    runs, p = _runs_rows(s[s != 0][None, :])
+    return float(runs[0]), float(p[0])
+
+
+def _runs_rows(s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_runs_p` of sign rows ``s`` (``(B, m)``, no zeros): runs and p, NaN where
+    a row has one sign only (p also where the variance vanishes)."""
+    n1, n2 = np.sum(s > 0, axis=1).astype(float), np.sum(s < 0, axis=1).astype(float)
+    runs = 1.0 + np.sum(s[:, 1:] != s[:, :-1], axis=1)
     n = n1 + n2
-    mean = 2.0 * n1 * n2 / n + 1.0
-    var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
-    if var <= 0:
-        return float(runs), math.nan
-    return float(runs), _norm_cdf((runs - mean) / math.sqrt(var))
+    one_sign = (n1 == 0) | (n2 == 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean = 2.0 * n1 * n2 / n + 1.0
+        var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n**2 * (n - 1))
+        z = (runs - mean) / np.sqrt(np.where(var > 0, var, 1.0))
+    p = _norm_cdf(z)
+    return (np.where(one_sign, math.nan, runs),
+            np.where(one_sign | ~(var > 0), math.nan, p))
 
 
 def _lag1_p(e: np.ndarray) -> tuple[float, float]:
     """Lag-1 autocorrelation and its one-sided p (positive correlation) under independence."""
-    d = e - e.mean()
-    den = float(np.sum(d**2))
-    if den <= 0:
-        return math.nan, math.nan
-    r1 = float(np.sum(d[1:] * d[:-1]) / den)
-    n = e.size
-    return r1, _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
+    r1, p = _lag1_rows(np.asarray(e, float)[None, :])
+    return float(r1[0]), float(p[0])
 
 
-def _norm_cdf(z: float) -> float:
-    """Standard normal distribution function (math.erfc: no SciPy call on the fit path)."""
-    return 0.5 * math.erfc(-z / math.sqrt(2.0))
+def _lag1_rows(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_lag1_p` of rows ``e`` (``(B, n)``): NaN where a row does not vary."""
+    d = e - e.mean(axis=1, keepdims=True)
+    den = np.sum(d**2, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r1 = np.sum(d[:, 1:] * d[:, :-1], axis=1) / den
+    n = e.shape[1]
+    p = _norm_cdf(-(r1 + 1.0 / n) * math.sqrt(n))
+    return np.where(den > 0, r1, math.nan), np.where(den > 0, p, math.nan)
+
+
+def residual_structures(resid: np.ndarray, arrays: Mapping[str, np.ndarray],
+                        variables: Sequence[str]) -> list[Structure | None]:
+    """:func:`residual_structure` of ``B`` fits on equally many rows at once.
+
+    Parameters
+    ----------
+    resid : numpy.ndarray
+        The weighted residuals, ``(B, n)``.
+    arrays : mapping
+        Each variable's values, ``(B, n)``.
+    variables : sequence of str
+        The variables to order the rows by (those that vary in a row's fit).
+
+    Returns
+    -------
+    list
+        One :class:`Structure` (or None) per row, as :func:`residual_structure` gives it.
+    """
+    out: list[Structure | None] = [None] * len(resid)
+    names = [v for v in variables if v in arrays]
+    if resid.shape[1] < 8 or not names:
+        return out
+    varies = np.array([np.ptp(arrays[v], axis=1) > 0 for v in names]).reshape(len(names), -1)
+    fine = np.all(np.isfinite(resid), axis=1)
+    for pattern in {tuple(col) for col in varies.T}:
+        present = [v for v, on in zip(names, pattern) if on]
+        rows = np.flatnonzero(fine & np.all(varies.T == pattern, axis=1))
+        if not present or not rows.size:
+            continue
+        tests: list[tuple[str, str, np.ndarray, np.ndarray]] = []
+        for var in present:
+            others = [arrays[o][rows] for o in reversed(present) if o != var]
+            order = np.lexsort([*others, arrays[var][rows]], axis=-1)
+            tests += _tests(np.take_along_axis(resid[rows], order, axis=1), var)
+        _strongest(tests, rows, out)
+    return out
+
+
+def _tests(e: np.ndarray, var: str) -> list[tuple[str, str, np.ndarray, np.ndarray]]:
+    """The runs and lag-1 tests of ordered residual rows ``e``: (var, test, statistic, p)."""
+    signs = np.sign(e)
+    plain = np.all(signs != 0, axis=1)
+    runs, p_runs = np.full(len(e), math.nan), np.full(len(e), math.nan)
+    runs[plain], p_runs[plain] = _runs_rows(signs[plain])
+    for i in np.flatnonzero(~plain):  # a residual of exactly 0: its sign is left out
+        runs[i], p_runs[i] = _runs_p(e[i])
+    r1, p_lag = _lag1_rows(e)
+    return [(var, "runs", runs, p_runs), (var, "lag1", r1, p_lag)]
+
+
+def _strongest(tests: list[tuple[str, str, np.ndarray, np.ndarray]], rows: np.ndarray,
+               out: list[Structure | None]) -> None:
+    """Each row's smallest p (ties by variable and test name, as :func:`min` of the
+    tuples ``(p, variable, test, statistic)``), and the number of tests made."""
+    p = np.column_stack([t[3] for t in tests])
+    stat = np.column_stack([t[2] for t in tests])
+    made = np.isfinite(p)
+    rank = np.argsort(np.argsort([f"{v}\x00{t}" for v, t, _, _ in tests]))
+    order = np.lexsort((np.broadcast_to(rank, p.shape), np.where(made, p, np.inf)), axis=-1)
+    best = order[:, 0]
+    for i, row in enumerate(rows):
+        count = int(made[i].sum())
+        if count:
+            var, test = tests[best[i]][:2]
+            out[row] = Structure(var, test, float(stat[i, best[i]]), float(p[i, best[i]]),
+                                 count)
+
+
+def _norm_cdf(z: Any) -> Any:
+    """Standard normal distribution function (array-capable)."""
+    from scipy.special import ndtr
+
+    return ndtr(z)
 
 
 def _order_by(key: np.ndarray, others: list[np.ndarray]) -> np.ndarray:

@@ -20,14 +20,15 @@ from .data import FitData, _check_data_for_law, _check_fix, _neutral_fixes, as_f
 from .derivatives import jacobian_function, model_jacobian
 from .methods import fit_method
 
-__all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL"]
+__all__ = ["ANALYTIC_FROM", "SCOUT_ROWS", "POLISH_TOL", "RANDOM_STARTS"]
 
 
-#: Rows from which a fit uses the laws' analytic Jacobians (and MINPACK first).  Below,
-#: fits have few rows per parameter and are often ill-conditioned, so that the solver's
-#: path decides between near-equal optima: there the trust region with finite
-#: differences keeps the path of the results pinned by tests/test_pinned_*.py (the
-#: thesis data have 19 rows, the synthetic pins 80), and a fit costs little anyway.
+#: Rows from which a fit's search uses the laws' analytic Jacobians (and MINPACK first).
+#: Below, fits have few rows per parameter and are often ill-conditioned, so that the
+#: search's path decides between near-equal minima: there the trust region with finite
+#: differences chooses the minimum the results pinned by tests/test_pinned_*.py come from
+#: (the thesis data have 19 rows, the synthetic pins 80); the best fit is then continued
+#: to that minimum itself with the analytic Jacobian (:func:`.batch.polish`).
 ANALYTIC_FROM = 100
 
 
@@ -422,6 +423,10 @@ class _Search:
             self.best, self.best_pinned = res, pinned
 
 
+#: Random starts tried when the deterministic ones disagree (or all fail).
+RANDOM_STARTS = 6
+
+
 #: Tolerances of the polish of a lean fit (:func:`_polish`).
 POLISH_TOL = 1e-13
 
@@ -475,7 +480,7 @@ def _multistart(search: _Search, starts: int | None, seed: int) -> None:
     forced = starts is not None and int(starts) > 0
     if not s.law.linear and (disagree or search.best is None or forced):
         rng = np.random.default_rng(seed)
-        n_random = 6 if starts is None else int(starts)
+        n_random = RANDOM_STARTS if starts is None else int(starts)
         for start in _random_starts(s.law, s.guess, s.vary_names, n_random, rng):
             search.run(start)
 

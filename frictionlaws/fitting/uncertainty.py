@@ -28,7 +28,7 @@ from .robust import (
     sandwich_cov,
 )
 
-__all__ = []
+__all__ = ["structure_record", "structure_warning"]
 
 
 @dataclass
@@ -66,10 +66,7 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     asym = {k: estimates[k].stderr for k in inp.vary if k in estimates}
     structure = residual_structure(inp.weighted_resid, inp.fd.arrays, _condition_vars(inp.fd))
     if structure is not None:
-        info["residual_structure"] = {"variable": structure.variable, "test": structure.test,
-                                      "statistic": structure.statistic,
-                                      "p_value": structure.p_value,
-                                      "n_tests": structure.n_tests}
+        info["residual_structure"] = structure_record(structure)
     if not math.isfinite(inp.tval):  # as many parameters as rows: no method has errors
         if method != "asymptotic":
             warn_msgs.append(f"{method} standard errors need more rows than fitted "
@@ -88,13 +85,25 @@ def _robust_errors(inp: _ErrorInputs, estimates: dict[str, ParamEstimate],
     else:
         info.update(_apply_bootstrap(inp, estimates, derived, corr, warn_msgs, opts))
     if info["method"] != "bootstrap" and structure is not None and structure.significant:
-        warn_msgs.append(
-            f"{structure.describe()}: the law misses a trend, so the {info['method']} "
-            "standard errors are likely too narrow; the bootstrap method (uncertainty "
-            "'bootstrap'), which resamples whole conditions, gives honest ones")
+        warn_msgs.append(structure_warning(structure, info["method"]))
     _warn_if_narrow(info["method"], asym, estimates, warn_msgs)
     info["asymptotic_stderr"] = asym
     return info
+
+
+def structure_record(structure: Any) -> dict[str, Any]:
+    """What a result keeps of the residual structure found (:class:`~frictionlaws.
+    uncertainty.Structure`)."""
+    return {"variable": structure.variable, "test": structure.test,
+            "statistic": structure.statistic, "p_value": structure.p_value,
+            "n_tests": structure.n_tests}
+
+
+def structure_warning(structure: Any, method: str) -> str:
+    """The warning of significant residual structure under the ``method`` errors."""
+    return (f"{structure.describe()}: the law misses a trend, so the {method} "
+            "standard errors are likely too narrow; the bootstrap method (uncertainty "
+            "'bootstrap'), which resamples whole conditions, gives honest ones")
 
 
 def _warn_if_narrow(method: str, asym: Mapping[str, float | None],

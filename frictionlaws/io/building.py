@@ -19,7 +19,7 @@ from ..base.sanitize import csv_cell_text
 if TYPE_CHECKING:  # pandas is imported where a DataFrame is made or asked for
     import pandas as pd
 
-from ..base.numbers import parse_number
+from ..base.numbers import parse_number, parse_numbers
 from .columns import (
     _DIMENSIONLESS,
     CANONICAL,
@@ -328,6 +328,10 @@ def column_numbers(table: Table, j: int, commas: bool = False) -> np.ndarray:
         column and the row.
     """
     col = table.headers[j]
+    if table.from_file:  # every cell a plain number or empty: the column at once
+        fast = parse_numbers(table.columns[j], decimal_comma=commas)
+        if fast is not None:
+            return fast
     out = np.empty(len(table.rows))
     for i, cell in enumerate(table.columns[j]):
         if commas and isinstance(cell, str) and _THOUSANDS.fullmatch(cell.strip()):
@@ -377,9 +381,10 @@ _PHYSICAL: dict[str, tuple[Callable[[np.ndarray], np.ndarray], str]] = {
 }
 
 
-def _first_bad(table: Table, j: int, bad: np.ndarray, message: str) -> None:
-    """Raise naming the first of the rows ``bad`` (indices), if any."""
-    if bad.size:
+def _first_bad(table: Table, j: int, mask: np.ndarray, message: str) -> None:
+    """Raise naming the first of the rows where ``mask`` is True, if any."""
+    if mask.any():
+        bad = np.flatnonzero(mask)
         i = int(bad[0])
         raise InputError(message.format(cell=table.columns[j][i], where=_where(table, i),
                                         more=f" ({bad.size} such rows)" if bad.size > 1
@@ -398,10 +403,10 @@ def _to_si_checked(table: Table, assigned: Mapping[str, int],
         if canon in _PHYSICAL:
             bad_fn, msg = _PHYSICAL[canon]
             with np.errstate(invalid="ignore"):
-                bad = np.flatnonzero(bad_fn(arr) & ~np.isnan(arr))
+                bad = bad_fn(arr) & ~np.isnan(arr)
             _first_bad(table, j, bad, "value {cell}{where} is not allowed: " + msg + "{more}")
         si[canon] = _units.to_si(arr, unit, canon, column=table.headers[j], file=table.source)
-        _first_bad(table, j, np.flatnonzero(np.isinf(si[canon])),
+        _first_bad(table, j, np.isinf(si[canon]),
                    "value {cell} " + unit + "{where} overflows when converted to SI: "
                    "not a measured value")
         note = _units.conversion_note(unit, canon, column=table.headers[j])
@@ -409,7 +414,7 @@ def _to_si_checked(table: Table, assigned: Mapping[str, int],
             notes.append(note)
         if canon == "T":
             with np.errstate(invalid="ignore"):
-                bad = np.flatnonzero(si[canon] < 0)
+                bad = si[canon] < 0
             _first_bad(table, j, bad, "temperature {cell} " + unit + "{where} is below "
                        "absolute zero (is the unit right?)")
     return si
@@ -424,7 +429,10 @@ def _rows_to_keep(table: Table, assigned: Mapping[str, int],
     """
     keep = np.ones(len(table.rows), dtype=bool)
     for canon in [c for c in CANONICAL if c in si]:
-        nan_rows = np.flatnonzero(np.isnan(si[canon]) & keep)
+        missing = np.isnan(si[canon])
+        if not missing.any():
+            continue
+        nan_rows = np.flatnonzero(missing & keep)
         if not nan_rows.size:
             continue
         keep[nan_rows] = False

@@ -5,8 +5,10 @@ the file, column and row of anything refused.
 from __future__ import annotations
 
 import csv
+import errno
 import os
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -33,6 +35,11 @@ _DELIMITER_NAMES = {";": "';'", "\t": "tab", ",": "','"}
 # A data row may start with a spreadsheet error value; it is data, not a comment.
 _SPREADSHEET_ERROR = re.compile(
     r"^[\"']?#(N/A|VALUE!|DIV/0!|REF!|NUM!|NAME\?|NULL!)", re.IGNORECASE)
+
+
+#: The control bytes that mark binary content (all below 32 but tab, line feed, form
+#: feed and carriage return).
+_CONTROLS = bytes(b for b in range(32) if b not in (9, 10, 12, 13))
 
 
 # --------------------------------------------------------------------------- reading text
@@ -113,7 +120,7 @@ def decode_text(raw: bytes, source: str, what: str = "CSV file") -> tuple[str, s
                 raise InputError(f"starts with a {codec.upper()} byte-order mark but does not "
                                  f"decode as {codec.upper()}", file=source) from None
     head = raw[:8192]
-    controls = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
+    controls = len(head) - len(head.translate(None, _CONTROLS))
     if b"\x00" in head or controls > max(2, len(head) // 20):
         raise InputError(
             f"is not a text {what} (binary content, e.g. a spreadsheet or an image); "
@@ -186,12 +193,17 @@ def read_table(path: str | os.PathLike[str], *, source: str | None = None,
 
 
 def _read_bytes(p: Path, source: str, what: str) -> bytes:
-    if not p.exists():
-        raise InputError(
-            "file not found; expected a CSV file or the name of a packaged dataset"
-            if what == "data file"
-            else f"{what} not found", file=source)
-    if p.is_dir():
+    try:
+        mode: int | None = os.stat(p).st_mode
+    except OSError as exc:  # not there: named here; anything else: by check_input_file
+        if exc.errno not in (errno.ENOENT, errno.ENOTDIR, errno.EBADF, errno.ELOOP):
+            mode = None
+        else:
+            raise InputError(
+                "file not found; expected a CSV file or the name of a packaged dataset"
+                if what == "data file"
+                else f"{what} not found", file=source) from None
+    if mode is not None and stat.S_ISDIR(mode):
         raise InputError(f"is a directory; expected a {what} (CSV)", file=source)
 
     check_input_file(p, what)  # a FIFO or device would block or never end
@@ -207,6 +219,9 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> Table:
     data: list[list[str]] = []
     rows: list[int] = []
     for number, line in enumerate(lines, start=1):
+        if header is not None and delimiter is not None and _plain_rows(
+                lines, number - 1, delimiter, data, rows):
+            break  # the rest: plain rows, split at once
         stripped = line.strip()
         if stripped.startswith("#") and not (header is not None
                                              and _SPREADSHEET_ERROR.match(stripped)):
@@ -240,6 +255,25 @@ def _scan_lines(lines: list[str], source: str, header_hint: str) -> Table:
                   True, delimiter)
 
 
+def _plain_rows(lines: list[str], start: int, delimiter: str, data: list[list[str]],
+                rows: list[int]) -> bool:
+    """The data rows from line ``start`` (0-based) on, when none is quoted or a comment.
+
+    Then every non-blank line is a row, split at the delimiter (as the csv module
+    splits an unquoted line, spaces after a delimiter skipped), and True is returned;
+    otherwise nothing is read and False is returned (the lines go one by one).
+    """
+    rest = lines[start:]
+    if any('"' in line or "#" in line for line in rest):
+        return False
+    for number, line in enumerate(rest, start=start + 1):
+        if line and not line.isspace():
+            cells = line.split(delimiter)
+            data.append([cell.lstrip(" ") for cell in cells] if " " in line else cells)
+            rows.append(number)
+    return True
+
+
 def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],
                  delimiter: str | None, source: str) -> list[list[str]]:
     """Columns of the rows, each padded or checked to the header's width."""
@@ -270,6 +304,8 @@ def _rectangular(data: list[list[str]], rows: list[int], headers: list[str],
 def _split(line: str, delimiter: str | None, source: str, row: int) -> list[str]:
     if delimiter is None:
         return [line.strip()]
+    if '"' not in line and line:  # no quoting: the cells csv reads, leading spaces skipped
+        return [cell.lstrip(" ") for cell in line.split(delimiter)]
     try:
         return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True,
                                strict=True))

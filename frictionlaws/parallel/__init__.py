@@ -9,10 +9,13 @@ from __future__ import annotations
 from .runner import (
     DASK_WORKER_CONFIG,
     MAX_BATCH,
+    MAX_CHUNK,
     SCHEDULER_ENV,
     batch_size,
     batches,
     check_jobs,
+    chunk_size,
+    iter_chunks,
     iter_parallel,
     local_workers,
     run_parallel,
@@ -20,4 +23,5 @@ from .runner import (
 )
 
 __all__ = ["local_workers", "batches", "iter_parallel", "run_parallel", "batch_size",
-           "check_jobs", "starmap_local", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH"]
+           "check_jobs", "starmap_local", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
+           "iter_chunks", "chunk_size", "MAX_CHUNK"]

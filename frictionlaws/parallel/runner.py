@@ -23,7 +23,8 @@ import numpy as np
 from ..base.errors import InputError
 
 __all__ = ["local_workers", "batches", "iter_parallel", "run_parallel", "batch_size",
-           "check_jobs", "starmap_local", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH"]
+           "check_jobs", "starmap_local", "SCHEDULER_ENV", "DASK_WORKER_CONFIG", "MAX_BATCH",
+           "iter_chunks", "chunk_size", "MAX_CHUNK"]
 
 
 def local_workers(jobs: int, tasks: int | None = None) -> int:
@@ -115,11 +116,7 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
         The results, in the order of ``items``; the caller may consume them as they
         come, so nothing but the current results is held.
     """
-    check_jobs(jobs)
-    if scheduler is None:
-        _unread_environment()
-    if total is None and isinstance(items, Sized):
-        total = len(items)
+    total = _checked(jobs, scheduler, items, total)
     if scheduler is not None:
         results: Iterable[Any] = _on_dask(func, items, scheduler, total)
     elif jobs == 1:
@@ -127,6 +124,70 @@ def iter_parallel(func: Callable[[Any], Any], items: Iterable[Any], *, jobs: int
     else:
         results = _on_joblib(func, items, jobs, total)
     yield from _progress(results, progress, total)
+
+
+def iter_chunks(func: Callable[[list[Any]], Any], items: Iterable[Any], *, jobs: int = 1,
+                scheduler: str | None = None, progress: bool = False,
+                total: int | None = None) -> Iterator[Any]:
+    """Apply ``func`` to consecutive chunks of ``items``: serially, on local processes or Dask.
+
+    For work that is cheaper done for many items at once (a campaign's datasets, fitted
+    law by law in stacks): each task is one chunk (a list of :func:`chunk_size` items)
+    and ``func`` returns one result for the whole chunk.  The calling process only cuts
+    the chunks, schedules them and takes their results; on the joblib and Dask back ends
+    alike a bounded window of chunks is in flight (a few per worker), so neither the
+    caller's memory nor the scheduler's queue grows with the number of items.  The
+    results are the same however the work ran, as long as ``func`` gives the same
+    result for each item whatever chunk it is in.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level function (picklable) of a list of items.
+    items : iterable
+        The items; read lazily, a window of chunks at a time (so an item made when it
+        is taken can depend on the results taken before).
+    jobs, scheduler : optional
+        As for :func:`iter_parallel`.
+    progress : bool
+        Show a progress bar (tqdm) on stderr, counting the items of finished chunks.
+    total : int, optional
+        Number of items (default ``len(items)`` when it has one), for the chunk size
+        and the progress bar.
+
+    Yields
+    ------
+    object
+        ``func(chunk)`` for each chunk, in the order of ``items``.
+    """
+    total = _checked(jobs, scheduler, items, total)
+    if scheduler is not None:
+        results: Iterable[tuple[int, Any]] = _on_dask(func, items, scheduler, total, True)
+    elif jobs == 1:
+        results = ((len(chunk), func(chunk)) for chunk in batches(items, chunk_size(total, 1)))
+    else:
+        results = _on_loky(func, items, jobs, total)
+    if not progress:
+        yield from (result for _, result in results)
+        return
+    bar = importlib.import_module("tqdm").tqdm(total=total, unit="dataset", leave=False)
+    try:
+        for count, result in results:
+            bar.update(count)
+            yield result
+    finally:
+        bar.close()
+
+
+def _checked(jobs: Any, scheduler: str | None, items: Iterable[Any], total: int | None
+             ) -> int | None:
+    """The job count checked, the unread environment named; the number of items."""
+    check_jobs(jobs)
+    if scheduler is None:
+        _unread_environment()
+    if total is None and isinstance(items, Sized):
+        total = len(items)
+    return total
 
 
 def run_parallel(func: Callable[[Any], Any], items: Iterable[Any], **kw: Any) -> list[Any]:
@@ -173,6 +234,41 @@ DASK_WORKER_CONFIG: dict[str, Any] = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "500ms",
 }
+
+
+#: Largest number of items in one chunk of :func:`iter_chunks` (a campaign's datasets,
+#: fitted in stacks: a few hundred make numpy's loops worth their set-up).
+MAX_CHUNK = 512
+
+
+#: Chunks per worker :func:`iter_chunks` cuts the items into at least (balance at the end).
+_CHUNKS_PER_WORKER = 4
+
+
+def chunk_size(total: int | None, workers: int) -> int:
+    """Choose the number of items per chunk for ``total`` items on ``workers`` workers.
+
+    As many as fit :data:`MAX_CHUNK`, and at least four chunks per worker (all workers
+    stay busy to the end); serially (one worker) chunks of :data:`MAX_CHUNK`.
+
+    Parameters
+    ----------
+    total : int or None
+        Number of items; ``None`` or 0 when not known.
+    workers : int
+        Worker processes (or threads) the chunks are spread over.
+
+    Returns
+    -------
+    int
+        Items per chunk, from 1 to :data:`MAX_CHUNK` (64 when ``total`` is not known
+        and there are several workers).
+    """
+    if workers <= 1:
+        return MAX_CHUNK
+    if not total or total <= 0:
+        return 64
+    return max(1, min(MAX_CHUNK, total // (_CHUNKS_PER_WORKER * workers)))
 
 
 def batch_size(total: int | None, workers: int) -> int:
@@ -233,6 +329,31 @@ def _on_joblib(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
         yield from part
 
 
+def _on_loky(func: Callable[[Any], Any], items: Iterable[Any], jobs: int,
+             total: int | None) -> Iterator[tuple[int, Any]]:
+    """``func`` over chunks of ``items`` on ``jobs`` local processes: ``(items, result)``
+    of each chunk, in order.
+
+    One task a chunk, on the process pool of joblib's loky back end (the pool every
+    ``jobs`` caller shares, its workers' thread limits set as joblib sets them); a window
+    of :data:`_WINDOW` chunks per worker in flight.
+    """
+    joblib = importlib.import_module("joblib")  # untyped library: Any
+
+    workers = local_workers(jobs, total)
+    counts: deque[int] = deque()
+
+    def tasks() -> Iterator[Any]:
+        for batch in batches(items, chunk_size(total, workers)):
+            counts.append(len(batch))
+            yield joblib.delayed(func)(batch)
+
+    parallel = joblib.Parallel(n_jobs=workers, batch_size=1, pre_dispatch=_WINDOW * workers,
+                               return_as="generator")
+    for result in parallel(tasks()):
+        yield counts.popleft(), result
+
+
 def _dask_client(address: str) -> Any:
     """A Dask client connected to ``address`` within one deadline; InputError naming why not."""
     from ._network import connect_scheduler  # asyncio and ssl: only with a Dask scheduler
@@ -241,23 +362,36 @@ def _dask_client(address: str) -> Any:
 
 
 def _on_dask(func: Callable[[Any], Any], items: Iterable[Any], address: str,
-             total: int | None) -> Iterator[Any]:
+             total: int | None, chunked: bool = False) -> Iterator[Any]:
     """``func`` over ``items`` on the Dask cluster at ``address``, results in order.
 
     Batches of items are submitted as futures (no joblib layer), sized by the
     cluster's worker threads; a window of :data:`_WINDOW` batches per thread is in
-    flight and each is released as soon as its results are taken.
+    flight and each is released as soon as its results are taken.  ``chunked`` as
+    for :func:`_on_joblib`.
     """
     with _dask_client(address) as client:
         threads = sum(client.nthreads().values()) or 1
-        size = batch_size(total, threads)
-        window: deque[Any] = deque()
+        size = chunk_size(total, threads) if chunked else batch_size(total, threads)
+        window: deque[tuple[int, Any]] = deque()
         for batch in batches(items, size):
-            window.append(client.submit(_run_batch, func, batch, pure=False))
+            future = (client.submit(func, batch, pure=False) if chunked
+                      else client.submit(_run_batch, func, batch, pure=False))
+            window.append((len(batch), future))
             if len(window) >= _WINDOW * threads:
-                yield from window.popleft().result()
+                yield from _taken(window.popleft(), chunked)
         while window:
-            yield from window.popleft().result()
+            yield from _taken(window.popleft(), chunked)
+
+
+def _taken(entry: tuple[int, Any], chunked: bool) -> Iterator[Any]:
+    """The result of one Dask future (released as it is taken)."""
+    count, future = entry
+    result = future.result()
+    if chunked:
+        yield count, result
+    else:
+        yield from result
 
 
 def starmap_local(func: Callable[..., Any], calls: Iterable[tuple[Any, ...]],

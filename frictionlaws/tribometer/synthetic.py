@@ -30,6 +30,7 @@ something real to cover.
 
 from __future__ import annotations
 
+import csv
 import math
 import os
 from collections.abc import Sequence
@@ -410,12 +411,13 @@ def make_campaign(
              for _, spec, rseed, name in specs]
 
     run_parallel(_write_one, tasks, jobs=jobs if len(tasks) > 8 else 1)
-    lines = ["file,load [kg],surface,condition,mode"]
-    for c, _, _, name in specs:
-        lines.append(f"records/{name},{c.load_kg:g},{c.surface},{c.name},{c.mode}")
+    rows = [["file", "load [kg]", "surface", "condition", "mode"]]
+    rows += [[f"records/{name}", f"{c.load_kg:g}", c.surface, c.name, c.mode]
+             for c, _, _, name in specs]
     truth = campaign_truth(root, conditions, rig=rig, seed=seed, record_kwargs=record_kwargs)
     assert truth.manifest is not None
-    truth.manifest.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with truth.manifest.open("w", encoding="utf-8", newline="") as out:
+        csv.writer(out, lineterminator="\n").writerows(rows)  # quotes a name with a comma
     return truth
 
 

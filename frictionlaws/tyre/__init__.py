@@ -13,7 +13,9 @@
 * :func:`reduce_mf`: fit a simple slip law (``pacejka``, ``burckhardt``) to a
   Magic Formula curve at one load;
 * :func:`fit_mf`: fit a Magic Formula property file to tyre test data
-  (:func:`read_tyre_data`) and write it as ``.tir``.
+  (:func:`read_tyre_data`) and write it as ``.tir``;
+* :func:`transient_slip`: the forces over time of a tyre whose slips relax over the
+  relaxation lengths (MF-Tyre's first-order transient model).
 
 Units are SI everywhere (N, m, Pa, m/s, rad).
 
@@ -38,6 +40,8 @@ _API = {
     "PropertyFile": "mf.property_file",
     "read_property_file": "mf.tir",
     "write_tir": "mf.tir",
+    "TransientSlip": "transient",
+    "transient_slip": "transient",
     "Reduction": "reduce",
     "reduce_mf": "reduce",
     "equivalent_pacejka": "reduce",

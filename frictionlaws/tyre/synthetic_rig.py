@@ -4,9 +4,10 @@
 pressures and cambers it sweeps the slip ratio and the slip angle up and down and runs a
 combined-slip grid; the recorded slips jitter, the load drifts and every force and moment
 carries noise.  :func:`moved_tyre` makes a tyre unlike a template by moving its
-coefficients.  ``tests/tyre/test_tyre_fit_mf_stages.py`` and ``benchmarks/bench_fit_mf.py``
-fit :func:`~frictionlaws.tyre.mf.fit.fit_mf` to such data and compare the result with the
-noise-free truth.
+coefficients, :func:`random_tyre` one drawn at random (for held-out checks).
+``tests/tyre/test_tyre_fit_mf_stages.py``, ``tests/tyre/test_tyre_fit_mf_held_out.py`` and
+``benchmarks/bench_fit_mf.py`` fit :func:`~frictionlaws.tyre.mf.fit.fit_mf` to such data
+and compare the result with the noise-free truth.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import numpy as np
 from .data.table import TyreData
 from .mf.model import MagicFormula
 
-__all__ = ["rig_data", "moved_tyre", "truth_errors", "MOVED"]
+__all__ = ["rig_data", "moved_tyre", "random_tyre", "truth_errors", "MOVED", "RANDOM_MOVED"]
 
 #: Coefficients of the packaged MF 6.1 example moved (multiplied) to make another tyre:
 #: peak, stiffness, shape, shifts, combined-slip and aligning coefficients, 5-50 %.
@@ -60,6 +61,34 @@ def moved_tyre(template: str = "MagicFormula61", factors: Mapping[str, float] = 
     return MagicFormula(c, fnomin=fnomin or base.fnomin, version=base.version, pressure=p,
                         nominal_pressure=p, limits=base.limits, structure=base.structure,
                         name=f"moved {base.name}")
+
+
+#: Coefficients :func:`random_tyre` moves: those of :data:`MOVED` and the load dependence
+#: of the peaks, stiffnesses, curvatures and shifts.
+RANDOM_MOVED = tuple(MOVED) + ("PDX2", "PKX2", "PKX3", "PEX2", "PHX1", "PVX1", "PVX2", "PKY4",
+                               "PEY2", "PHY2", "PVY2", "RBX2", "RBY2", "QBZ2", "QDZ2", "QDZ7")
+#: The packaged examples :func:`random_tyre` starts from, in turn.
+RANDOM_TEMPLATES = ("MagicFormula61", "MagicFormula62", "MagicFormula52")
+
+
+def random_tyre(seed: int, *, spread: float = 0.2, fnomin: tuple[float, float] = (3e3, 9e3),
+                pressure: tuple[float, float] = (1.8e5, 3.2e5)) -> MagicFormula:
+    """A tyre drawn at random for held-out checks of a fit.
+
+    The packaged example ``RANDOM_TEMPLATES[seed % 3]`` with each coefficient of
+    :data:`RANDOM_MOVED` it has multiplied by a factor uniform in ``1 +- spread``, the moment
+    arm's SSZ1 and SSZ2 uniform in -0.02..0.02, FNOMIN uniform in ``fnomin`` [N] and the
+    nominal pressure uniform in ``pressure`` [Pa] (seeded: the same seed, the same tyre).
+    """
+    rng = np.random.default_rng(seed)
+    template = RANDOM_TEMPLATES[seed % len(RANDOM_TEMPLATES)]
+    have = MagicFormula.from_file(template).coefficients
+    factors = {k: 1.0 + spread * float(rng.uniform(-1.0, 1.0)) for k in RANDOM_MOVED}
+    factors = {k: f for k, f in factors.items() if k in have}
+    set_to = {k: float(rng.uniform(-0.02, 0.02)) for k in ("SSZ1", "SSZ2")}
+    return moved_tyre(template, factors, set_to,
+                      fnomin=float(rng.uniform(*fnomin)),
+                      nominal_pressure=float(rng.uniform(*pressure)))
 
 
 def rig_data(truth: MagicFormula, *, n: int = 31, loads: Sequence[float] = (0.4, 0.7, 1.0,

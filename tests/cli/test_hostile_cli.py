@@ -34,6 +34,8 @@ from hostile import (
 from hypothesis import example, given
 from hypothesis import strategies as st
 
+from frictionlaws.fe_export.formats import FORMATS as EXPORT_FORMATS
+
 pytestmark = pytest.mark.hostile
 
 
@@ -363,8 +365,7 @@ def test_tyre_thesis_hostile_data(data: bytes, laws: str, json_out: bool) -> Non
 # -------------------------------------------------------------------------- export
 
 
-FORMATS = st.sampled_from(["csv", "json", "abaqus", "abaqus-decay", "lsdyna", "ansys",
-                           "radioss", "abaqus-fric-coef", "abaqus-vfric", "bogus"])
+FORMATS = st.sampled_from([*EXPORT_FORMATS, "bogus"])  # the one list of formats, and a wrong name
 RANGES = st.one_of(
     st.sampled_from(["0.01:0.5:5", "0.01:0.5", "10kPa:0.5MPa:4", "1e4:5e5:3", "0:2:3"]),
     st.sampled_from(["-1:2:3", "0:0:3", "0.5:0.01:3", "0.01:0.5:0", "0.01:0.5:1000000000",

@@ -114,7 +114,7 @@ def test_a_campaign_with_an_unreadable_dataset_names_each_and_fits_none(good: in
             for name, line in zip(names, lines):
                 assert name in line
             assert f"{len(bad)} of {total} datasets" in lines[-1]
-            assert "nothing was fitted" in lines[-1]
+            assert "gives no results" in lines[-1]
         assert not snap.check(failed=True)
 
 

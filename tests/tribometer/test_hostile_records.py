@@ -133,3 +133,16 @@ def test_process_uses_a_semicolon_record(tmp_path: Path) -> None:
     data = campaign.dataset()
     assert len(data) == 1
     assert abs(float(data.frame["mu"].iloc[0]) - 1.1) < 0.05
+
+
+def test_a_name_with_a_comma_keeps_the_manifest_columns(tmp_path: Path) -> None:
+    """A condition or surface name holding the separator is quoted, not split across columns."""
+    from frictionlaws.tribometer import load_rig, read_manifest
+    from frictionlaws.tribometer.synthetic import ConditionSpec, make_campaign
+
+    spec = ConditionSpec('steel, wet "A"', "sandpaper, 120", 3.0, 1.1, repeats=2)
+    truth = make_campaign(tmp_path, [spec], record_kwargs={"duration": 12.0, "fs": 100.0})
+    assert truth.manifest is not None and truth.rig_file is not None
+    entries, _ = read_manifest(truth.manifest, load_rig(truth.rig_file))
+    assert [(e.condition, e.surface, e.error) for e in entries] == \
+        [('steel, wet "A"', "sandpaper, 120", None)] * 2

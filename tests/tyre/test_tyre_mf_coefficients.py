@@ -348,11 +348,12 @@ def test_the_documentation_table_is_generated_from_every_declaration(tmp_path: P
     assert cells["FNOMIN"][3] == "10 .. 2e+06"
     assert cells["PKY4"][0] == "6.1, 6.2" and cells["PKY4"][2] == "2"
     assert cells["FNOMIN"][1] == "N" and cells["ALPMAX"][3] == "-1.571 .. 1.571"
-    assert "not evaluated" in cells["PDXP1"][5] and cells["LFZ0"][2] == "read as LFZO"
+    assert "turn slip" in cells["PDXP1"][5] and cells["LFZ0"][2] == "read as LFZO"
     assert "MF 5.2 fixes it at 2" in cells["PKY4"][5] and "MFeval" in cells["PKY4"][5]
     assert cells["PKY4"][6] == "Fy0" and cells["SSZ1"][6] == "Mz" and cells["LMX"][6] == "–"
     assert cells["QSX1"][7] == "Mx" and "Mz" in cells["QBZ1"][7] and "Fx" not in cells["QBZ1"][7]
-    assert cells["PDXP1"][7] == "–"  # turn slip: read by no output
+    assert "Fx" in cells["PDXP1"][7] and "Fy" not in cells["PDXP1"][7]  # zeta_1: F_x
+    assert "Mz" in cells["QDRP1"][7] and cells["QDRP2"][7] == "–"  # MFeval reads no QDRP2
 
 
 def test_cli_lists_a_files_coefficients_beside_their_declarations(tmp_path: Path,
@@ -370,7 +371,8 @@ def test_cli_lists_a_files_coefficients_beside_their_declarations(tmp_path: Path
     assert re.search(r"^  PCX1 +1\.5482  1 +shape factor C_x", out, re.M)
     assert re.search(r"^  FNOMIN +6752  N +nominal", out, re.M)
     assert re.search(r"^  PXY99 +1\.5 .*unknown: kept, not used", out, re.M)
-    assert "PTX1" not in out and "PDXP1" not in out  # MF 5.2 only; not evaluated
+    assert "PTX1" not in out  # MF 5.2 only
+    assert re.search(r"^  PDXP1 +0\.4  1 +turn slip: reduction of the F_x peak", out, re.M)
     assert main(["tyre", "mf", str(tmp_path / "t.json"), "--coefficients", "--json"]) == 0
     rows = {r["name"]: r for r in json.loads(capsys.readouterr().out)["coefficients"]}
     assert rows["PKY4"]["value"] == 2.0 and rows["PKY4"]["given"] is False

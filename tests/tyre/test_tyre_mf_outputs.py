@@ -140,11 +140,16 @@ def test_saturation_clamps_every_input_at_the_file_limits() -> None:
         mf.steady_state(0.0, hi_a + 0.3, mf.fnomin)
 
 
-def test_low_and_reverse_speeds_are_refused() -> None:
+def test_low_and_reverse_speeds_are_evaluated_low_ones_with_a_warning() -> None:
+    # (tests/tyre/test_tyre_mf_low_speed.py checks them; MFeval's in
+    # tests/tyre/test_tyre_mf_mfeval_beyond.py)
     mf = MagicFormula.from_file("MagicFormula61")
-    for vx in (0.0, 0.5, -10.0):
-        with pytest.raises(InputError, match="VXLOW"):
+    for vx in (0.0, 0.5):
+        with pytest.warns(UserWarning, match="VXLOW"):
             mf.steady_state(0.0, 0.02, mf.fnomin, vx=vx)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.isfinite(mf.steady_state(0.0, 0.02, mf.fnomin, vx=-10.0)["Fy"])
 
 
 def test_mz0_is_the_pure_slip_moment_and_mz_reduces_to_it_without_longitudinal_slip() -> None:
@@ -223,7 +228,7 @@ def test_rows_are_evaluated_alone_and_in_any_order(name: str, seed: int) -> None
         alone = mf.steady_state(k[i], a[i], fz[i], g[i], pressure=p[i])
     for key, v in out.items():
         v = np.asarray(v)
-        if v.shape != (n,):
+        if v.shape != (n,) or key == "instKya":  # a slope between neighbours, not a row's
             continue
         np.testing.assert_allclose(np.asarray(shuffled[key]), v[perm], rtol=1e-12, atol=0)
         np.testing.assert_allclose(np.asarray(alone[key]).ravel()[0], v[i], rtol=1e-8,

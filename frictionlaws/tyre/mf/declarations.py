@@ -281,8 +281,7 @@ _SCALING = _group("SCALING_COEFFICIENTS", ALL, "", 1.0, (
     ("LMX", "overturning moment M_x"),
     ("LVMX", "vertical shift of M_x (the QSX1 term)"),
     ("LMY", "rolling resistance moment M_y"),
-    ("LMP", "parking (turn-slip) moment; not evaluated (no turn slip)",
-     {"versions": V6, **_NOT_EVALUATED}),
+    ("LMP", "spin (parking) moment of turn slip M_zp,inf"),
     ("LMUV", "decay of friction with slip speed; not evaluated (no speed dependence of "
              "friction)", _NOT_EVALUATED),
     ("LIP", "inflation pressure, as some files carry it; not evaluated", _NOT_EVALUATED),
@@ -489,29 +488,32 @@ _ROLLING = _group("ROLLING_COEFFICIENTS", ALL, "", 0.0, (
     ("QSY8", "exponent of the pressure ratio in M_y", {"versions": V6}),
 ))
 
-_TS = "turn slip, not evaluated here: "
-_TURNSLIP = _group("TURNSLIP_COEFFICIENTS", V6, "", 0.0, (
-    ("PDXP1", _TS + "reduction of the F_x peak with spin"),
+_TS = "turn slip: "
+_TURNSLIP = _group("TURNSLIP_COEFFICIENTS", ALL, "", 0.0, (
+    ("PDXP1", _TS + "reduction of the F_x peak with spin (zeta_1)"),
     ("PDXP2", _TS + "change of that reduction with load"),
     ("PDXP3", _TS + "change of that reduction with slip ratio"),
-    ("PKYP1", _TS + "reduction of the cornering stiffness with spin"),
-    ("PDYP1", _TS + "reduction of the F_y peak with spin"),
+    ("PKYP1", _TS + "reduction of the cornering stiffness with spin (zeta_3)"),
+    ("PDYP1", _TS + "reduction of the F_y peak with spin (zeta_2)"),
     ("PDYP2", _TS + "change of that reduction with load"),
     ("PDYP3", _TS + "change of that reduction with slip angle"),
     ("PDYP4", _TS + "shape of that reduction against spin"),
-    ("PHYP1", _TS + "shape of the spin-induced shift of F_y"),
+    ("PHYP1", _TS + "shape C_Hyp of the spin-induced shift of F_y (turn slip needs it "
+              "not 0)"),
     ("PHYP2", _TS + "amplitude of that shift at the nominal load"),
     ("PHYP3", _TS + "change of that amplitude with load"),
-    ("PHYP4", _TS + "curvature of that shift"),
-    ("PECP1", _TS + "weight of camber as spin at the nominal load"),
-    ("PECP2", _TS + "change of that weight with load"),
-    ("QDTP1", _TS + "change of the pneumatic trail with spin"),
-    ("QCRP1", _TS + "residual spin torque at large spin, shape"),
-    ("QCRP2", _TS + "residual spin torque at large spin, change with speed"),
-    ("QBRP1", _TS + "slope of the spin torque"),
-    ("QDRP1", _TS + "peak of the spin torque"),
-    ("QDRP2", _TS + "change of the spin torque's peak"),
-), evaluated=False)
+    ("PHYP4", _TS + "curvature E_Hyp of that shift (<= 1 with the limit checks)"),
+    ("PECP1", _TS + "share eps_gamma of the camber not acting as spin, nominal load"),
+    ("PECP2", _TS + "change of that share with load"),
+    ("QDTP1", _TS + "reduction of the pneumatic trail with spin (zeta_5)"),
+    ("QCRP1", _TS + "spin moment at large spin M_zp,inf / (mu_y R0 F_z)"),
+    ("QCRP2", _TS + "growth of the spin moment at 90 deg slip with spin"),
+    ("QBRP1", _TS + "reduction of the residual torque's slope with spin (zeta_6)"),
+    ("QDRP1", _TS + "shape C_Drp of the spin moment, the parking moment (turn slip "
+              "needs it not 0)"),
+    ("QDRP2", _TS + "change of the spin moment's peak; not evaluated (MFeval 4.0 does "
+              "not read it either)", _NOT_EVALUATED),
+))
 
 _NOT_NEEDED = None  # no default: refused by the outputs that need it
 
@@ -576,7 +578,7 @@ _FILE = [
                  "vertical stiffness)", {"versions": V52}),
         ("Q_A2", "contact length: linear load term", {"versions": V52}),
     )),
-    *_group("STRUCTURAL", V6, "N/m", _NOT_NEEDED, (
+    *_group("STRUCTURAL", ALL, "N/m", _NOT_NEEDED, (
         ("LONGITUDINAL_STIFFNESS", "longitudinal carcass stiffness C_x at the nominal "
                                    "load and pressure", _POS),
         ("LATERAL_STIFFNESS", "lateral carcass stiffness C_y at the nominal load and "

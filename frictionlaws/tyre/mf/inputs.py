@@ -47,5 +47,10 @@ INPUTS: dict[str, Input] = {
     "fz": Input("N", "vertical load", "F_N", "kN", "FNOMIN"),
     "gamma": Input("rad", "inclination (camber) angle", "angle", "deg", "0"),
     "pressure": Input("Pa", "inflation pressure", "p", "kPa", "the file's INFLPRES / IP"),
-    "vx": Input("m/s", "forward speed", "v", "m/s", "the file's LONGVL"),
+    "vx": Input("m/s", "forward speed (negative: running backwards)", "v", "m/s",
+                "the file's LONGVL"),
+    "phit": Input("1/m", "turn slip: the curvature of the wheel's path (needs the turn-slip "
+                  "model)", "curvature", "1/m", "0"),
+    "omega": Input("rad/s", "wheel angular speed", "angular_velocity", "rad/s",
+                   "from the slip ratio and the effective rolling radius"),
 }

@@ -96,10 +96,14 @@ Conventions, each an option named after what it means (defaults first):
   g_y = gamma LGAY (MF-Tyre 5.2).  The moments' differences are listed in
   :mod:`frictionlaws.tyre.mf.outputs`.
 
-Simplifications, stated: no turn slip (all zeta = 1), no speed dependence of
-friction (LMUV ignored: the steady-state curves are for the file's measurement
-speed ``LONGVL``).  Absent coefficients are 0, absent scaling factors 1.  E is
-limited to <= 1 as the textbook requires.  Pressure terms are used whenever
+Turn slip (``turn_slip=True`` with the path curvature ``phit``), low speed, running
+backwards, a given wheel speed and MFeval's useModes 2xx are options of
+:meth:`MagicFormula.steady_state` (and ``phit``, ``turn_slip`` of the force and moment
+methods, at LONGVL): :mod:`~frictionlaws.tyre.mf.turn_slip`,
+:mod:`~frictionlaws.tyre.mf.conditions`.  Simplifications, stated: no speed dependence of
+friction (LMUV ignored: the steady-state curves are for the file's measurement speed
+``LONGVL``).  Absent coefficients are 0, absent scaling factors 1.  E is limited to <= 1
+as the textbook requires (unless ``limit_checks=False``).  Pressure terms are used whenever
 the file has them (PAC2002 files may carry PPX/PPY too) with the pressure
 from ``[OPERATING_CONDITIONS] INFLPRES`` (MF 6.x) or ``[TIRE_CONDITIONS] IP``
 (PAC2002), or the ``pressure=`` argument; a file with a nominal pressure but no
@@ -334,8 +338,19 @@ class MagicFormula(MFParameters):
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return lateral(self, fz, gamma, dpi)
 
-    @labelled(("kappa", "fz", "gamma"), ("F_x0", "N", "pure longitudinal force"))
-    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    def _turning(self, name: str, kappa: Any, alpha: Any, fz: Any, gamma: Any, pressure: Any,
+                 phit: Any, turn_slip: bool) -> Any | None:
+        """Output ``name`` of the steady state with turn slip (None without it: the caller's
+        own path); a turn slip without the model is refused there."""
+        if not turn_slip and not np.any(np.asarray(phit, dtype=float) != 0):
+            return None
+        out = self.steady_state(kappa, alpha, fz, gamma, pressure, phit=phit,
+                                turn_slip=turn_slip)[name]
+        return float(out) if np.ndim(out) == 0 else out
+
+    @labelled(("kappa", "fz", "gamma", "phit"), ("F_x0", "N", "pure longitudinal force"))
+    def fx0(self, kappa: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure longitudinal force F_x0 [N].
 
         Parameters
@@ -348,6 +363,8 @@ class MagicFormula(MFParameters):
             Inclination (camber) angle [rad].
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
@@ -355,14 +372,18 @@ class MagicFormula(MFParameters):
             F_x0 [N], broadcast over the inputs; a DataArray (named ``F_x0``, with
             the inputs' dimensions and coordinates) when an input is one.
         """
+        turned = self._turning("Fx", kappa, 0.0, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         kappa = self._kappa(kappa)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         k = longitudinal(self, fz, gamma, dpi)
         out = mf_curve(kappa + k.S_H, k.B, k.C, k.D, k.E_a, k.E_b, k.S_V)
         return float(out) if np.ndim(out) == 0 else out
 
-    @labelled(("alpha", "fz", "gamma"), ("F_y0", "N", "pure lateral force"))
-    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    @labelled(("alpha", "fz", "gamma", "phit"), ("F_y0", "N", "pure lateral force"))
+    def fy0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure lateral force F_y0 [N].
 
         The slip enters as tan(alpha) or alpha (the ``slip_angle`` convention, see
@@ -378,6 +399,8 @@ class MagicFormula(MFParameters):
             Inclination (camber) angle [rad].
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
@@ -385,6 +408,9 @@ class MagicFormula(MFParameters):
             F_y0 [N], broadcast over the inputs; a DataArray (named ``F_y0``, with
             the inputs' dimensions and coordinates) when an input is one.
         """
+        turned = self._turning("Fy", 0.0, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         alpha_s = self._alpha_star(alpha)
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         k = lateral(self, fz, gamma, dpi)
@@ -474,9 +500,9 @@ class MagicFormula(MFParameters):
         fz, gamma, dpi = self._inputs(fz, gamma, pressure)
         return weight_y(self, kappa, alpha_s, fz, gamma, lateral(self, fz, gamma, dpi).mu)
 
-    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_x", "N", "longitudinal force"))
+    @labelled(("kappa", "alpha", "fz", "gamma", "phit"), ("F_x", "N", "longitudinal force"))
     def fx(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Longitudinal force F_x = G_xa F_x0 [N] under combined slip.
 
         Parameters
@@ -490,19 +516,25 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row.
 
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
+
         Returns
         -------
         float, numpy.ndarray or xarray.DataArray
             F_x [N]; equal to :meth:`fx0` where ``alpha = 0``; a DataArray when an
             input is one.
         """
+        turned = self._turning("Fx", kappa, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         out = (np.asarray(self.weight_x(kappa, alpha, fz, gamma))
                * np.asarray(self.fx0(kappa, fz, gamma, pressure)))
         return float(out) if np.ndim(out) == 0 else out
 
-    @labelled(("kappa", "alpha", "fz", "gamma"), ("F_y", "N", "lateral force"))
+    @labelled(("kappa", "alpha", "fz", "gamma", "phit"), ("F_y", "N", "lateral force"))
     def fy(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Lateral force F_y = G_yk F_y0 + S_Vyk [N] under combined slip.
 
         Equal to :meth:`fy0` where ``kappa = 0``.
@@ -518,11 +550,17 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row.
 
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
+
         Returns
         -------
         float, numpy.ndarray or xarray.DataArray
             F_y [N]; a DataArray when an input is one.
         """
+        turned = self._turning("Fy", kappa, alpha, fz, gamma, pressure, phit, turn_slip)
+        if turned is not None:
+            return turned
         G, S_V = self.weight_y(kappa, alpha, fz, gamma, pressure)
         out = np.asarray(G) * np.asarray(self.fy0(alpha, fz, gamma, pressure)) + S_V
         return float(out) if np.ndim(out) == 0 else out
@@ -613,12 +651,14 @@ class MagicFormula(MFParameters):
         return float(K) if np.ndim(K) == 0 else K
 
     def steady_state(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-                     pressure: Any = None, vx: Any = None, saturate: bool = False
-                     ) -> dict[str, Any]:
+                     pressure: Any = None, vx: Any = None, saturate: bool = False, *,
+                     phit: Any = 0.0, omega: Any = None, turn_slip: bool = False,
+                     limit_checks: bool = True) -> dict[str, Any]:
         """Every steady-state output per row: forces, moments, radii, stiffnesses.
 
         See :func:`frictionlaws.tyre.mf.outputs.steady_state` (the outputs, their units
-        and equations, the camber convention of the moments).
+        and equations, the camber convention of the moments) and
+        :mod:`frictionlaws.tyre.mf.turn_slip` (turn slip).
 
         Parameters
         ----------
@@ -627,9 +667,17 @@ class MagicFormula(MFParameters):
         pressure : float or array-like, optional
             Inflation pressure [Pa], one or one per row (default: the file's).
         vx : float or array-like, optional
-            Forward speed [m/s] (default: the file's LONGVL).
+            Forward speed [m/s] (default: the file's LONGVL; negative: backwards).
         saturate : bool
             Clamp the inputs at the file's limits as MFeval does (default False).
+        phit : float or array-like
+            Turn slip, the path curvature [1/m] (default 0; with ``turn_slip``).
+        omega : float or array-like, optional
+            Wheel angular speed [rad/s] (default: from the slip ratio).
+        turn_slip : bool
+            MF-Tyre's turn-slip model (MFeval's useModes x2; default False).
+        limit_checks : bool
+            MFeval's limit checks (default True); False: its useModes 2xx.
 
         Returns
         -------
@@ -637,13 +685,14 @@ class MagicFormula(MFParameters):
             ``Fx``, ``Fy``, ``Mx``, ``My``, ``Mz``, ``Mz0``, ``t``, ``Mzr``, ``Re``, ``Rl``...
         """
         inputs = {"kappa": kappa, "alpha": alpha, "fz": fz, "gamma": gamma,
-                  "pressure": pressure, "vx": vx}
+                  "pressure": pressure, "vx": vx, "phit": phit, "omega": omega}
         if any(map(is_labelled, inputs.values())):
-            return labelled_steady_state(self, inputs, saturate)
-        return steady_state(self, kappa, alpha, fz, gamma, pressure, vx, saturate)
+            return labelled_steady_state(self, inputs, saturate, turn_slip, limit_checks)
+        return steady_state(self, kappa, alpha, fz, gamma, pressure, vx, saturate, phit=phit,
+                            omega=omega, turn_slip=turn_slip, limit_checks=limit_checks)
 
     def mz(self, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-           pressure: Any = None) -> Any:
+           pressure: Any = None, *, phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Aligning moment M_z [N m] under combined slip at the file's speed LONGVL.
 
         Parameters
@@ -652,16 +701,20 @@ class MagicFormula(MFParameters):
             Slip ratio [-], slip angle [rad], vertical load [N], camber [rad]; broadcast.
         pressure : float or array-like, optional
             Inflation pressure [Pa] (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
         float or numpy.ndarray
             M_z [N m]; equal to :meth:`mz0` plus ``s F_x`` where ``kappa = 0``.
         """
-        out = aligning_moment(self, kappa, alpha, fz, gamma, pressure)["Mz"]
+        out = aligning_moment(self, kappa, alpha, fz, gamma, pressure, phit=phit,
+                              turn_slip=turn_slip)["Mz"]
         return float(out) if np.ndim(out) == 0 else out
 
-    def mz0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None) -> Any:
+    def mz0(self, alpha: Any, fz: Any, gamma: Any = 0.0, pressure: Any = None, *,
+            phit: Any = 0.0, turn_slip: bool = False) -> Any:
         """Pure-slip aligning moment M_z0 [N m] (eq. 4.E31) at the file's speed LONGVL.
 
         Parameters
@@ -670,13 +723,16 @@ class MagicFormula(MFParameters):
             Slip angle [rad], vertical load [N], camber [rad]; broadcast.
         pressure : float or array-like, optional
             Inflation pressure [Pa] (default: the file's).
+        phit, turn_slip : array-like, bool
+            Turn slip [1/m] and its model, at the file's speed LONGVL (default 0, False).
 
         Returns
         -------
         float or numpy.ndarray
             M_z0 [N m].
         """
-        out = aligning_moment(self, 0.0, alpha, fz, gamma, pressure)["Mz0"]
+        out = aligning_moment(self, 0.0, alpha, fz, gamma, pressure, phit=phit,
+                              turn_slip=turn_slip)["Mz0"]
         return float(out) if np.ndim(out) == 0 else out
 
     def summary(self, loads: Any = None) -> dict[str, Any]:

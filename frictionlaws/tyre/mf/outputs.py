@@ -7,14 +7,16 @@ row and one function of an :class:`Evaluation` (the checked conditions, the tyre
 several outputs share, computed once when first needed).
 
 :func:`steady_state` evaluates, for one :class:`~frictionlaws.tyre.mf.model.MagicFormula`
-and per row of load, slips, camber, pressure and speed, the outputs MFeval's
-``fullSteadyState`` gives for steady rolling without turn slip: the combined-slip
+and per row of load, slips, camber, pressure, speed, turn slip and wheel speed, the
+outputs MFeval's ``fullSteadyState`` gives (turn slip: :mod:`.turn_slip`; low speed,
+running backwards and the limit checks: :mod:`.conditions`): the combined-slip
 forces, the aligning moment M_z with its pneumatic trail t and residual torque
 M_zr, the pure-slip aligning moment M_z0, the overturning moment M_x, the rolling
 resistance moment M_y, the effective rolling radius R_e, the loaded radius R_l and
 deflection rho, the vertical stiffness, the contact patch length 2a and width 2b,
 the longitudinal and lateral stiffnesses C_x, C_y and relaxation lengths sigma_x,
-sigma_y, the slip stiffnesses K_xk and K_ya and the peak friction coefficients.
+sigma_y, the slip stiffnesses K_xk and K_ya, the peak friction coefficients and instKya,
+the slope of F_y against the slip angle between neighbours along the last axis.
 
 Equations
 ---------
@@ -69,7 +71,13 @@ FZMAX, camber -3/0/3 degrees, three pressures per row, pure and combined slip an
 beyond the limits (``tests/tyre/data/mfeval``): the moments within 4e-12 of the peak moment,
 the forces within 3e-12 of the peak force; R_e and Omega within 3e-8 and 3e-6 (MFeval ends
 its R_e iteration when the first row of a batch converges); R_l and rho within 1e-6 m
-where MFeval's fminsearch for the MF 6.2 radius converged.  The MF 6.2 loaded radius here
+where MFeval's fminsearch for the MF 6.2 radius converged.  Past steady rolling (turn slip
+with phit -2..2 1/m, speeds -20..2 m/s through VXLOW, a given wheel speed, without limit
+checks: ``tests/tyre/data/mfeval/MF*_beyond_steady.csv.gz``, packaged files and turn-slip
+variants, useModes 111-222): every output within 5e-11 of its peak at MFeval's wheel
+speed; estimating the wheel speed, MFeval's omega lies up to 5e-5 of the peak from the
+fixed point (its early end of the iteration), which the turn slip's camber spin carries
+into F_y, t and M_z by up to 1.5e-6.  The MF 6.2 loaded radius here
 is the root of least deflection with R_l <= R_omega (NaN and a warning where none carries
 the load); MFeval 4.0 solves it from 0.3 m by fminsearch, for MF 5.2 files too, and stalls
 where the model carries no load.  MF 5.2's loaded radius here is the MF 6.1 closed form
@@ -82,8 +90,10 @@ Limits and speed
 ``saturate=True`` clamps slip ratio, slip angle, camber, pressure and load to the file's
 ranges as MFeval's limit checks do (the load to FZMAX in the forces and to at least
 FZMIN in M_z, the load below FZMIN reduced in M_x and M_y as MFeval does).  The speed
-``vx`` [m/s] defaults to the file's LONGVL; speeds at or below VXLOW (and backwards)
-are refused: MFeval's low-speed reductions are not reproduced.
+``vx`` [m/s] defaults to the file's LONGVL; at and below VXLOW MF-Tyre's low-speed
+reductions apply, with a warning, and a negative speed runs the tyre backwards
+(:mod:`~frictionlaws.tyre.mf.conditions`).  ``limit_checks=False`` evaluates as MFeval's
+useModes 2xx (no E capped at 1, no low-speed reductions).
 """
 
 
@@ -92,7 +102,7 @@ from __future__ import annotations
 import copy
 import warnings
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any, NamedTuple
 
@@ -102,19 +112,36 @@ from ...base.errors import InputError
 from .coefficients import RecordingValues
 from .conditions import Conditions
 from .equations import (
+    LateralSpin,
     MFCoefficients,
     lateral,
     longitudinal,
-    mf_curve,
     slip_variable,
     weight_x,
     weight_y,
 )
 from .inputs import INPUTS
 from .labelled import is_labelled, refuse_plain
-from .moments import Aligning, Forces, aligning, overturning, rolling
+from .moments import (
+    Aligning,
+    AligningSpin,
+    Forces,
+    ZeroCamber,
+    aligning,
+    overturning,
+    rolling,
+)
 from .notices import collected
 from .parameters import MFParameters
+from .turn_slip import (
+    Spin,
+    check_turn_slip,
+    residual_zetas,
+    spin,
+    zeta_trail,
+    zeta_x,
+    zeta_y,
+)
 from .vertical import carcass_stiffness, loaded_radius, patch, relaxation, rolling_radius
 
 __all__ = ["Output", "OUTPUTS", "Evaluation", "steady_state", "evaluate", "SteadyState",
@@ -142,37 +169,78 @@ class Evaluation:
         self.r = r
 
     @cached_property
+    def dfz(self) -> Any:
+        """The load increment dfz = (F_z - F'z0) / F'z0 at the evaluated loads."""
+        return (self.r.fz - self.p.fz0) / self.p.fz0
+
+    @cached_property
     def alpha_s(self) -> Any:
-        """The lateral slip variable (tan(alpha) or alpha)."""
-        return slip_variable(self.p, self.r.alpha)
+        """The lateral slip variable (tan(alpha) sgn(V_x), or alpha)."""
+        return slip_variable(self.p, self.r.alpha, self.r.vx)
+
+    @cached_property
+    def spin(self) -> Spin | None:
+        """The turn slip's spin (None without the turn-slip model)."""
+        p, r = self.p, self.r
+        if not r.turn_slip:
+            return None
+        return spin(p, r.phit, r.alpha, r.gamma, r.vx, self.rolling["omega"], self.dfz)
+
+    @cached_property
+    def turn_y(self) -> LateralSpin | None:
+        """What the turn slip does to the lateral curve (None without it)."""
+        s, r = self.spin, self.r
+        if s is None:
+            return None
+        zeta2, zeta3 = zeta_y(self.p, s, r.alpha, self.dfz)
+        return LateralSpin(s, r.vx, zeta2, zeta3, cap=r.limit_checks)
+
+    def _faded(self, k: MFCoefficients) -> MFCoefficients:
+        """The factors with the shifts faded at low speed (the limit checks)."""
+        fade = self.r.fade
+        return k if np.all(fade == 1) else replace(k, S_H=k.S_H * fade, S_V=k.S_V * fade)
+
+    def _turned(self, f: Any, lateral_force: bool = False) -> Any:
+        """A pure-slip force turned with the running direction (backwards: V_x < 0);
+        the lateral one only with alpha* = tan(alpha) sgn(V_x) (MFeval's alpha_star)."""
+        if lateral_force and self.p.slip_angle != "tan_alpha":
+            return f
+        return np.where(self.r.vx < 0, -f, f)
 
     @cached_property
     def longitudinal(self) -> MFCoefficients:
         """The pure-slip longitudinal factors at the evaluated loads."""
-        r = self.r
-        return longitudinal(self.p, r.fz, r.gamma, r.dpi)
+        r, s = self.r, self.spin
+        zeta = 1.0 if s is None else zeta_x(self.p, s, r.kappa, self.dfz)
+        return self._faded(longitudinal(self.p, r.fz, r.gamma, r.dpi, zeta))
 
     @cached_property
     def lateral(self) -> MFCoefficients:
         """The pure-slip lateral factors at the evaluated loads."""
         r = self.r
-        return lateral(self.p, r.fz, r.gamma, r.dpi)
+        return self._faded(lateral(self.p, r.fz, r.gamma, r.dpi, self.turn_y))
+
+    def pure_fy(self, lat: MFCoefficients) -> Any:
+        """F_y0 [N] of the factors ``lat`` at the evaluated slip angles."""
+        return self._turned(lat.curve(self.alpha_s, self.r.limit_checks), True)
 
     @cached_property
     def fx(self) -> Any:
         """The combined-slip longitudinal force F_x = G_xa F_x0 [N]."""
         p, r, lon = self.p, self.r, self.longitudinal
-        fx0 = mf_curve(r.kappa + lon.S_H, lon.B, lon.C, lon.D, lon.E_a, lon.E_b, lon.S_V)
-        return weight_x(p, r.kappa, self.alpha_s, r.fz, r.gamma) * fx0
+        fx0 = self._turned(lon.curve(r.kappa, r.limit_checks))
+        return weight_x(p, r.kappa, self.alpha_s, r.fz, r.gamma, r.limit_checks) * fx0
 
     @cached_property
     def fy(self) -> tuple[Any, Any, Any]:
         """(F_y, G_yk, S_Vyk): the combined-slip lateral force [N], its weighting and the
         slip-induced shift [N]."""
         p, r, lat, alpha_s = self.p, self.r, self.lateral, self.alpha_s
-        fy0 = mf_curve(alpha_s + lat.S_H, lat.B, lat.C, lat.D, lat.E_a, lat.E_b, lat.S_V)
-        G_yk, S_Vyk = weight_y(p, r.kappa, alpha_s, r.fz, r.gamma, lat.mu)
-        return G_yk * fy0 + S_Vyk, G_yk, S_Vyk
+        zeta2 = 1.0 if self.turn_y is None else self.turn_y.zeta2
+        G_yk, S_Vyk = weight_y(p, r.kappa, alpha_s, r.fz, r.gamma, lat.mu, r.limit_checks,
+                               zeta2)
+        S_Vyk = S_Vyk * r.fade
+        return G_yk * self.pure_fy(lat) + S_Vyk, G_yk, S_Vyk
 
     @cached_property
     def forces(self) -> Forces:
@@ -184,9 +252,51 @@ class Evaluation:
                       S_Vyk=S_Vyk)
 
     @cached_property
+    def zero_camber(self) -> ZeroCamber:
+        """The lateral force at zero camber the aligning moment takes."""
+        p, r = self.p, self.r
+        plain = self._faded(lateral(p, r.fz, 0.0, r.dpi))
+        turned = plain if self.turn_y is None else self._faded(
+            lateral(p, r.fz, 0.0, r.dpi, self.turn_y))
+        s_vyk = None
+        if p.version == "5.2" and p.equations == "mfeval":  # mu_y at zero camber
+            s_vyk = weight_y(p, r.kappa, self.alpha_s, r.fz, r.gamma, turned.mu,
+                             r.limit_checks)[1] * r.fade
+        return ZeroCamber(fy0=self.pure_fy(plain), fy0_turn=self.pure_fy(turned),
+                          s_vyk=s_vyk)
+
+    @cached_property
     def aligning(self) -> Aligning:
         """M_z0, M_z, the trail and the residual torque."""
-        return aligning(self.p, self.r, self.forces)
+        p, r, s = self.p, self.r, self.spin
+        turn = None
+        if s is not None and self.turn_y is not None:
+            f = self.forces
+            zeta6, zeta7, zeta8 = residual_zetas(p, s, r.fz_mz, self.dfz, r.gamma, f.lat.mu,
+                                                 f.G_yk)
+            turn = AligningSpin(zeta2=self.turn_y.zeta2, zeta5=zeta_trail(p, s),
+                                zeta6=zeta6, zeta7=zeta7, zeta8=zeta8)
+        return aligning(p, r, self.forces, self.zero_camber, turn)
+
+    @cached_property
+    def inst_kya(self) -> Any:
+        """instKya [N/rad]: the slope of F_y against the evaluated slip angle between
+        neighbouring points of the last axis that differ in the slip angle only (MFeval's
+        output 29, a forward difference along its rows, the last point taking the one
+        before); NaN where the angle does not change, where another input changes too,
+        and for a single point."""
+        r = self.r
+        shape = r.shape
+        if not shape or shape[-1] < 2:
+            return np.full(shape, np.nan)
+        da = np.diff(np.broadcast_to(r.alpha, shape), axis=-1)
+        dfy = np.diff(np.broadcast_to(self.fy[0], shape), axis=-1)
+        sweep = da != 0
+        for x in (r.kappa_in, r.fz_in, r.gamma, r.pressure, r.vx, r.phit_in, r.omega):
+            if x is not None and np.ndim(x):
+                sweep &= np.diff(np.broadcast_to(x, shape), axis=-1) == 0
+        slope = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
+        return np.concatenate([slope, slope[..., -1:]], axis=-1)
 
     @cached_property
     def rolling(self) -> dict[str, Any]:
@@ -255,6 +365,8 @@ OUTPUTS: dict[str, Output] = {
     "sigmax": Output("m", "longitudinal relaxation length",
                      lambda e: e.relaxation["sigmax"]),
     "sigmay": Output("m", "lateral relaxation length", lambda e: e.relaxation["sigmay"]),
+    "instKya": Output("N/rad", "slope of F_y against the slip angle between neighbours "
+                      "along the last axis (MFeval's instKya)", lambda e: e.inst_kya),
 }
 
 
@@ -316,16 +428,32 @@ class SteadyState:
         return out
 
 
+def _refuse_overflow(name: str, value: np.ndarray, r: Conditions) -> None:
+    """Refuse inputs that take an output past floating point (an infinity is no result:
+    the speed terms grow with the square of the speed or wheel speed)."""
+    bad = np.isinf(value)
+    if not bad.any():
+        return
+    i = int(np.flatnonzero(bad.ravel())[0])
+    at = {"vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
+    row = ", ".join(f"{k} = {float(np.broadcast_to(v, r.shape).ravel()[i]):g}"
+                    for k, v in at.items() if v is not None)
+    raise InputError(f"{name} is not finite at row {i} ({row}): the inputs there lie past "
+                     "what the Magic Formula's terms hold in floating point")
+
+
 def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
              pressure: Any = None, vx: Any = None, saturate: bool = False,
-             names: Any = None) -> SteadyState:
+             names: Any = None, *, phit: Any = 0.0, omega: Any = None,
+             turn_slip: bool = False, limit_checks: bool = True) -> SteadyState:
     """Every steady-state output per row, with the inputs, the clamped rows and the
     warnings (:class:`SteadyState`); the parameters are those of :func:`steady_state`.
 
     ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
     """
-    with collected() as warned:
-        r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate)
+    with collected() as warned, np.errstate(over="ignore", divide="ignore"):
+        r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
+                       turn_slip, limit_checks)
         e = Evaluation(mf, r)
         outputs: dict[str, np.ndarray] = {}
         for name in (OUTPUTS if names is None else names):
@@ -333,16 +461,19 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
             if value is not None:
                 outputs[name] = np.broadcast_to(np.asarray(value, dtype=float),
                                                 r.shape).copy()
+                _refuse_overflow(name, outputs[name], r)
     given = {"kappa": r.kappa_in, "alpha": alpha, "fz": r.fz_in, "gamma": gamma,
-             "pressure": r.pressure, "vx": r.vx}
+             "pressure": r.pressure, "vx": r.vx,
+             "phit": r.phit_in if turn_slip else None, "omega": r.omega}
     inputs = {k: np.broadcast_to(np.asarray(v, dtype=float), r.shape).copy()
               for k, v in given.items() if v is not None and k in INPUTS}
     return SteadyState(outputs, inputs, dict(r.clamped), warned)
 
 
 def steady_state(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-                 pressure: Any = None, vx: Any = None, saturate: bool = False
-                 ) -> dict[str, np.ndarray]:
+                 pressure: Any = None, vx: Any = None, saturate: bool = False, *,
+                 phit: Any = 0.0, omega: Any = None, turn_slip: bool = False,
+                 limit_checks: bool = True) -> dict[str, np.ndarray]:
     """Every steady-state output of the tyre per row (see :data:`OUTPUTS`).
 
     Parameters
@@ -354,10 +485,25 @@ def steady_state(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any =
     pressure : float or array-like, optional
         Inflation pressure [Pa], one or one per row (default: the file's).
     vx : float or array-like, optional
-        Forward speed [m/s] (default: the file's LONGVL); must exceed VXLOW.
+        Forward speed [m/s] (default: the file's LONGVL); negative: running backwards;
+        at and below VXLOW with MF-Tyre's low-speed reductions (the limit checks).
     saturate : bool
         Clamp the inputs at the file's limits as MFeval does (default False: evaluate
-        as given, warning outside the ranges).
+        as given, warning outside the ranges); needs ``limit_checks``.
+    phit : float or array-like
+        Turn slip, the curvature of the wheel's path [1/m] (default 0); other than 0
+        only with ``turn_slip``.
+    omega : float or array-like, optional
+        Wheel angular speed [rad/s] (MFeval's eighth input): sets the effective rolling
+        radius, the speed term of the vertical stiffness and the camber's spin; the slip
+        ratio stays the one given (default: the speed the slip ratio gives).
+    turn_slip : bool
+        Evaluate MF-Tyre's turn-slip model (MFeval's useModes x2; default False, which
+        gives the outputs without it exactly); needs the file's turn-slip coefficients.
+    limit_checks : bool
+        MFeval's limit checks (default True: E capped at 1, the low-speed reductions);
+        False evaluates as MFeval's useModes 2xx (see
+        :mod:`~frictionlaws.tyre.mf.conditions`).
 
     Returns
     -------
@@ -365,12 +511,13 @@ def steady_state(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any =
         One array per output of :data:`OUTPUTS`, shaped like the broadcast inputs
         (``Cx`` and ``Cy`` only when the file gives the carcass stiffnesses).
     """
-    return evaluate(mf, kappa, alpha, fz, gamma, pressure, vx, saturate).outputs
+    return evaluate(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit=phit,
+                    omega=omega, turn_slip=turn_slip, limit_checks=limit_checks).outputs
 
 
 def aligning_moment(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0,
-                    pressure: Any = None, vx: Any = None, saturate: bool = False
-                    ) -> dict[str, np.ndarray]:
+                    pressure: Any = None, vx: Any = None, saturate: bool = False, *,
+                    phit: Any = 0.0, turn_slip: bool = False) -> dict[str, np.ndarray]:
     """The aligning moment alone: ``Mz``, ``Mz0``, ``t``, ``Mzr`` (and the forces).
 
     Needs only UNLOADED_RADIUS and LONGVL of the file's structure; the parameters are
@@ -388,13 +535,18 @@ def aligning_moment(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: An
         Forward speed [m/s] (default: LONGVL).
     saturate : bool
         Clamp the inputs at the file's limits (default False).
+    phit : float or array-like
+        Turn slip [1/m] (with ``turn_slip``).
+    turn_slip : bool
+        Evaluate the turn-slip model (default False).
 
     Returns
     -------
     dict of str to numpy.ndarray
         ``Fx``, ``Fy`` [N], ``Mz``, ``Mz0``, ``Mzr`` [N m], ``t`` [m].
     """
-    r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate)
+    r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit,
+                   turn_slip=turn_slip)
     e = Evaluation(mf, r)
     f, m = e.forces, e.aligning
     out = {"Fx": f.Fx, "Fy": f.Fy, "Mz": m.Mz, "Mz0": m.Mz0, "t": m.t, "Mzr": m.Mzr}
@@ -436,9 +588,10 @@ def coefficient_users(mf: MFParameters) -> dict[str, tuple[str, ...]]:
     """Which outputs use each coefficient of ``mf``'s version, found by evaluating them.
 
     Each output of :data:`OUTPUTS` is evaluated alone (at combined slip, with camber and
-    the model's pressure) with a mapping that records the coefficients read; a
-    coefficient read through the nominal load F'z0 (LFZO) or the friction scaling (LMUX,
-    LMUY) counts for every output that reads those.
+    the model's pressure; without and, when the file has its coefficients, with turn
+    slip) with a mapping that records the coefficients read; a coefficient read through
+    the nominal load F'z0 (LFZO) or the friction scaling (LMUX, LMUY) counts for every
+    output that reads those.
 
     Parameters
     ----------
@@ -453,23 +606,34 @@ def coefficient_users(mf: MFParameters) -> dict[str, tuple[str, ...]]:
     """
     users: dict[str, list[str]] = {}
     model = copy.copy(mf)
+    modes: tuple[bool, ...] = (False,)
+    try:
+        check_turn_slip(mf)
+        modes = (False, True)
+    except InputError:  # no turn-slip coefficients: evaluated without turn slip only
+        pass
     for name, output in OUTPUTS.items():
-        model.coefficients = RecordingValues(mf.coefficients)
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                r = Conditions(model, 0.05, np.radians(3.0), mf.fnomin, np.radians(2.0),
-                               None, None, False)
-                output.value(Evaluation(model, r))
-        except InputError:  # the file cannot give this output (no radius, no stiffness)
-            continue
-        for coefficient in sorted(model.coefficients.read):
+        read: set[str] = set()
+        for turn_slip in modes:
+            model.coefficients = values = RecordingValues(mf.coefficients)
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    r = Conditions(model, 0.05, np.radians(3.0), mf.fnomin, np.radians(2.0),
+                                   None, None, False, 0.1 if turn_slip else 0.0,
+                                   turn_slip=turn_slip)
+                    values.read.clear()  # the check of the turn-slip coefficients
+                    output.value(Evaluation(model, r))
+            except InputError:  # the file cannot give this output (no radius, stiffness)
+                continue
+            read |= values.read
+        for coefficient in sorted(read):
             users.setdefault(coefficient, []).append(name)
     return {k: tuple(v) for k, v in users.items()}
 
 
-def labelled_steady_state(mf: MFParameters, inputs: Mapping[str, Any], saturate: bool
-                          ) -> Any:
+def labelled_steady_state(mf: MFParameters, inputs: Mapping[str, Any], saturate: bool,
+                          turn_slip: bool = False, limit_checks: bool = True) -> Any:
     """:func:`steady_state` of :class:`xarray.DataArray` inputs as an :class:`xarray.Dataset`.
 
     The inputs are aligned (inner join on shared coordinates) and broadcast by their
@@ -489,7 +653,9 @@ def labelled_steady_state(mf: MFParameters, inputs: Mapping[str, Any], saturate:
     values = dict(inputs)
     values.update({k: a.transpose(*dims).values for k, a in zip(named, wide)})
     res = evaluate(mf, values["kappa"], values["alpha"], values["fz"], values["gamma"],
-                   values["pressure"], values["vx"], saturate)
+                   values["pressure"], values["vx"], saturate, phit=values.get("phit", 0.0),
+                   omega=values.get("omega"), turn_slip=turn_slip,
+                   limit_checks=limit_checks)
     coords = wide[0].coords
     data = {k: (dims, v, {"units": OUTPUTS[k].unit, "long_name": OUTPUTS[k].meaning})
             for k, v in res.outputs.items()}

@@ -30,7 +30,7 @@ from ...base.errors import ExtrapolationWarning, InputError
 from ...law import MU_MAX
 from .coefficients import CoefficientView, check_values, checked_coefficients, unused_terms
 
-__all__ = ["MFParameters", "MF_VERSIONS", "SLIP_ANGLE_INPUTS", "FRICTION_SCALINGS",
+__all__ = ["MFParameters", "real_array", "MF_VERSIONS", "SLIP_ANGLE_INPUTS", "FRICTION_SCALINGS",
            "LOADS_ABOVE_FZMAX", "EQUATIONS", "A_MU", "CONVENTIONS", "check_conventions",
            "POSITIVE_STRUCTURE", "peak_cause"]
 
@@ -103,6 +103,24 @@ def peak_cause(limits: Mapping[str, tuple[float, float]], fz: float, gamma: floa
     if pressure is not None and outside("pressure", pressure) is not None:
         return "check the inflation pressure against the file's range"
     return "check the PD*/LMU* coefficients and the inflation pressure"
+
+
+
+def real_array(what: str, x: Any) -> np.ndarray:
+    """``x`` as an array of floats, refused when it is not real numbers.
+
+    Text (numbers spelled as text go through the one number parser at the edges, not
+    here), bytes, booleans and complex numbers raise
+    :class:`~frictionlaws.base.errors.InputError` naming ``what``, as does anything numpy
+    cannot read as floats.
+    """
+    try:
+        kind = "U" if isinstance(x, (str, bytes)) else np.asarray(x).dtype.kind
+        if kind not in "USbcV":
+            return np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise InputError(f"{what} must be real numbers: {err}") from None
+    raise InputError(f"{what} must be real numbers, got {type(x).__name__} {str(x)[:40]!r}")
 
 
 class MFParameters:
@@ -233,7 +251,7 @@ class MFParameters:
 
     def check(self, what: str, x: Any, positive: bool = False) -> Any:
         """``x`` as a float array, refused when not finite (or, ``positive``, not > 0)."""
-        x = np.asarray(x, dtype=float)
+        x = real_array(what, x)
         ok = (x > 0).all() if positive else np.isfinite(x).all()
         if not ok:
             bad = ~(x > 0) if positive else ~np.isfinite(x)

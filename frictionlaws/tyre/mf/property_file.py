@@ -387,10 +387,10 @@ def file_limits(pf: PropertyFile) -> dict[str, tuple[float, float]]:
 
 
 def file_coefficients(pf: PropertyFile) -> dict[str, float]:
-    """The numeric entries of the coefficient sections the evaluator reads (not turn slip);
-    the required ones are checked with the values
+    """The numeric entries of the coefficient sections the evaluator reads; the required
+    ones are checked with the values
     (:func:`~frictionlaws.tyre.mf.coefficients.checked_coefficients`)."""
-    return pf.coefficients(*(s for s in COEFFICIENT_SECTIONS if s != "TURNSLIP_COEFFICIENTS"))
+    return pf.coefficients(*COEFFICIENT_SECTIONS)
 
 
 def file_structure(pf: PropertyFile) -> dict[str, float]:

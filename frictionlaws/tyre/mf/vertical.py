@@ -25,7 +25,8 @@ __all__ = ["rolling_radius", "loaded_radius", "patch", "carcass_stiffness", "rel
 
 def rolling_radius(p: MFParameters, r: Conditions) -> dict[str, Any]:
     """R_e and the wheel speed omega (eqs. 1, 7 and 2.5), with the free radius R_omega at
-    that speed."""
+    that speed: at the wheel speed given (``r.omega``), else at the speed the slip ratio
+    gives, omega = (1 + kappa) V_x / R_e (a fixed point)."""
     R0, V0, fz0 = p.need("UNLOADED_RADIUS"), p.need("LONGVL"), p.fnomin
     cz0 = p.need("VERTICAL_STIFFNESS")
     s = p.structure
@@ -35,14 +36,18 @@ def rolling_radius(p: MFParameters, r: Conditions) -> dict[str, Any]:
     fz_u = r.fz_in
     deflect = (fz0 / cz) * (s.get("DREFF", 0.0) * np.arctan(s.get("BREFF", 0.0) * fz_u / fz0)
                             + s.get("FREFF", 0.0) * fz_u / fz0)
+
+    def free(omega: Any) -> Any:  # the free radius grown at wheel speed omega
+        return R0 * (q_re0 + q_v1 * (omega * R0 / V0) ** 2)
+
+    if r.omega is not None:
+        romega = free(r.omega)
+        return {"Re": romega - deflect, "omega": r.omega, "Romega": romega}
     re = np.full(r.shape, 0.965 * R0)
     for _ in range(30):  # fixed point of omega = (1 + kappa) vx / R_e; converges in < 10
-        omega = (r.kappa_in + 1.0) * r.vx / re
-        romega = R0 * (q_re0 + q_v1 * (omega * R0 / V0) ** 2)
-        re = romega - deflect
+        re = free((r.kappa_in + 1.0) * r.vx / re) - deflect
     omega = (r.kappa_in + 1.0) * r.vx / re
-    romega = R0 * (q_re0 + q_v1 * (omega * R0 / V0) ** 2)
-    return {"Re": re, "omega": omega, "Romega": romega}
+    return {"Re": re, "omega": omega, "Romega": free(omega)}
 
 
 def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: Any,
@@ -68,7 +73,13 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
              (-q_fz1 + np.sqrt(np.maximum(q_fz1**2 + 4 * q_fz2 * rhs, 0.0))) / (2 * q_fz2))
         rho = np.maximum(x * R0, 0.0)
         rl = np.maximum(romega - rho, 0.0)
-    return {"Rl": rl, "rho": rho, "Cz": fz_c / rho}
+    flat = ~(rho > 0)  # no deflection left (a wheel speed far past the model's): no C_z
+    if np.any(flat & np.isfinite(rho)):
+        warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(flat & np.isfinite(rho)))} "
+                      "row(s) have no deflection at their wheel speed (the free radius has "
+                      "grown past the load's): C_z is NaN there", ExtrapolationWarning,
+                      stacklevel=4)
+    return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho)}
 
 
 def fz_62(p: MFParameters, r: Conditions, rl: Any, omega: Any, romega: Any, fx: Any,

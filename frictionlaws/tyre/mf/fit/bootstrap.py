@@ -15,7 +15,9 @@ are too small.  The sweep bootstrap keeps each sweep whole:
    stratum, as many sweeps as it has, with replacement, so that every load and kind
    stays in the design;
 3. **refit from the point estimate**: on each resample the final stages (the
-   forces F_x, F_y with their pure and combined coefficients on every row, then
+   forces F_x, F_y with their pure and combined coefficients on every row, or on the
+   rows near pure slip without combined-slip rows (as the fit,
+   :func:`~frictionlaws.tyre.mf.fit.stages.together_rows`), then
    M_z with M_z0 and the SSZ terms) are refitted, starting at the fitted values,
    with the same free coefficients;
 4. the standard error of each coefficient is the standard deviation of its
@@ -48,6 +50,7 @@ from .stages import (
     predict_fy,
     predict_mz,
     solve,
+    together_rows,
 )
 
 __all__ = ["find_sweeps", "sweep_bootstrap", "check_options", "SWEEP_JUMP", "DEFAULT_RESAMPLES",
@@ -194,6 +197,8 @@ def _resample(item: tuple[_Task, np.random.SeedSequence]) -> dict[str, float] | 
             column, predict = _QUANTITY[name]
             d = CombinedData.select(data, getattr(data, column),
                                             np.ones(len(data), bool), task.p_nom)
+            if name != "z":  # the rows the point estimate's final stage fitted
+                d = d.rows(together_rows(d, name))
             solve(mf, names, d, predict, task.bounds)
             out.update({k: float(mf.coefficients[k]) for k in names})
     except (ArithmeticError, ValueError, np.linalg.LinAlgError):

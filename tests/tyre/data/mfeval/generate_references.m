@@ -91,7 +91,7 @@ function write_table(path, inlabels, labels, inputs, outputs)
 endfunction
 
 outdir = fileparts(mfilename('fullpath'));
-root = fullfile(outdir, '..', '..', '..');
+root = fullfile(outdir, '..', '..', '..', '..');
 names = {'52', '61', '62'};
 modes = [111, 121];
 outcols = [1 2 4 5 6 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 30];
