@@ -604,17 +604,18 @@ def test_no_private_name_crosses_a_room():
 
 
 def test_the_private_name_check_sees_names_modules_and_attributes():
+    # frictionlaws.tyre.sample: a module, not a package (no such file in the package)
     modules = {"frictionlaws.io", "frictionlaws.io.reading", "frictionlaws.tyre",
-               "frictionlaws.tyre.data", "frictionlaws.tyre._plot", "frictionlaws.io._cells"}
-    trees = {"frictionlaws.tyre.data": ast.parse(
+               "frictionlaws.tyre.sample", "frictionlaws.tyre._plot", "frictionlaws.io._cells"}
+    trees = {"frictionlaws.tyre.sample": ast.parse(
         "from ..io import _Table, read_table\n"
         "from ..io import reading\n"
         "from . import _plot\n"  # the same room: allowed
         "def f():\n    from ..io._cells import parse\n    return reading._split(1)\n")}
     assert private_names_across_rooms(trees, modules) == {
-        "frictionlaws.tyre.data -> frictionlaws.io._Table",
-        "frictionlaws.tyre.data -> frictionlaws.io._cells.parse",
-        "frictionlaws.tyre.data -> frictionlaws.io.reading._split"}
+        "frictionlaws.tyre.sample -> frictionlaws.io._Table",
+        "frictionlaws.tyre.sample -> frictionlaws.io._cells.parse",
+        "frictionlaws.tyre.sample -> frictionlaws.io.reading._split"}
 
 
 #: Third-party libraries that may be imported inside a function: start-up

@@ -11,7 +11,8 @@ Sub-commands:
   inputs, :data:`frictionlaws.tyre.mf.inputs.INPUTS`);
 * ``reduce``: fit a slip law (pacejka, burckhardt...) to a property file's
   F_x0/F_z curve at one load;
-* ``fit-mf``: fit a Magic Formula property file to tyre test data.
+* ``fit-mf``: fit a Magic Formula property file to tyre test data;
+* ``prepare``: turn a raw rig run into the steady sweeps fit-mf uses.
 """
 
 from __future__ import annotations
@@ -31,7 +32,10 @@ from ..base.numbers import parse_number
 from ..base.outputs import check_figure_path, check_outputs
 from ..base.units import parse_quantity, to_si
 from ..tyre.brush import BrushModel, BrushTyre
+from ..tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
+from ..tyre.data.tydex import write_tydex
 from ..tyre.mf.fit import check_tir_path, fit_mf
+from ..tyre.mf.fit.checks import check_plausible
 from ..tyre.mf.fit.staged import refuse_not_applied
 from ..tyre.mf.inputs import INPUTS
 from ..tyre.mf.model import MagicFormula
@@ -50,6 +54,7 @@ from ._common import (
     bounded_int,
     bounded_number,
     data_source,
+    data_sources,
     parse_values,
     refuse_unused,
     report_text,
@@ -136,19 +141,48 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    "(usable with --params)")
 
     _add_fit_mf(tsub)
+    _add_prepare(tsub)
     return p
+
+
+def _add_prepare(tsub: argparse._SubParsersAction) -> None:
+    r = tsub.add_parser(
+        "prepare", help="turn a raw rig run into the steady sweeps fit-mf uses",
+        description="Read a raw rig run (one row per sample under a row of channel names "
+        "such as ET, SA, SL, FX, FY, FZ, MZ and a row of their units, SAE axes), convert it "
+        "to SI and ISO-W axes and cut it into steady sweeps: lifts, transitions between "
+        "loads, cambers and pressures, the warm-up and one-way stretches are dropped and "
+        "counted, the force channels' zero offsets measured while lifted are subtracted, the "
+        "forces' lag behind the slip is found from the up and down halves of each sweep and "
+        "taken out, and each sweep is averaged in blocks, up and down apart. Writes what "
+        "fit-mf would use.")
+    r.add_argument("raw", metavar="RAW", help="raw rig run (text; '-' reads standard input)")
+    r.add_argument("-o", "--output", required=True, metavar="FILE",
+                   help="the sweeps written: FILE.csv (a tidy CSV, with sweep and direction "
+                        "columns) or FILE.tdx (TYDEX)")
+    r.add_argument("--plots", metavar="DIR", help="write segments.png (the run, kept and "
+                   "dropped) and sweeps.png (the rows kept) into DIR")
+    r.add_argument("--sign-convention", choices=("sae", "iso"), default="sae",
+                   help="axes of the run: sae (default, as the public test programmes "
+                        "publish) or iso (ISO-W)")
+    r.add_argument("--warm-up", metavar="TIME", help="drop the first TIME (e.g. '60 s') "
+                   "as warm-up, beside the conditions the run returns to later")
+    r.add_argument("--json", action="store_true", help="print one JSON object")
 
 
 def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f = tsub.add_parser(
         "fit-mf", help="fit a Magic Formula property file to tyre test data",
-        description="Fit the Magic Formula to tyre test data (a tidy CSV: 'Fz [N]', "
-        "'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', 'Fx [N]', 'Fy [N]', "
-        "'Mz [N m]') in stages: pure-slip Fx0 and Fy0, the combined-slip weighting "
-        "functions, the aligning moment Mz0 and combined Mz; write a .tir property file. "
-        "Coefficients the data cannot determine keep the template's value (listed); data "
-        "whose slips, angles or loads look like another unit than declared are refused.")
-    f.add_argument("data", metavar="DATA", help="tyre test data (CSV file)")
+        description="Fit the Magic Formula to tyre test data (one or several files: a tidy "
+        "CSV with 'Fz [N]', 'kappa [-]', 'alpha [deg]', 'gamma [deg]', 'pressure [kPa]', "
+        "'Fx [N]', 'Fy [N]', 'Mz [N m]'; TYDEX files; raw rig runs, cut into steady sweeps "
+        "as 'tyre prepare' does) in stages: pure-slip Fx0 and Fy0, the combined-slip "
+        "weighting functions, the aligning moment Mz0 and combined Mz; write a .tir property "
+        "file. Coefficients the data cannot determine keep the template's value (listed); "
+        "data whose slips, angles or loads look like another unit than declared are refused.")
+    f.add_argument("data", metavar="DATA", nargs="+",
+                   help="tyre test data: CSV tables, TYDEX files (.tdx) or raw rig runs, told "
+                        "apart by their content, fitted together ('-': standard input, once)")
     f.add_argument("--fittyp", type=bounded_int(), choices=(5, 6, 21, 61, 62), default=61,
                    help="FITTYP written: 61 (MF 6.1, default), 62 (MF 6.2), 5/6/21 "
                         "(MF 5.2 / PAC2002)")
@@ -156,8 +190,9 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
                    "nominal pressure, the other sections and undetermined coefficients "
                    "(default: the packaged example of the version)")
     f.add_argument("--sign-convention", choices=("iso", "sae"), default=None,
-                   help="axes of the data: iso (ISO-W, as property files; default) or sae "
-                        "(Fz, Fy and alpha negated to ISO)")
+                   help="axes of the data: iso (ISO-W, as property files) or sae (Fz, Fy, Mz "
+                        "and alpha negated to ISO); default: each format's, iso for CSV and "
+                        "TYDEX, sae for raw rig runs")
     f.add_argument("--uncertainty", choices=("asymptotic", "sweeps"), default="asymptotic",
                    help="standard errors: asymptotic (from the Jacobian; default) or sweeps "
                         "(bootstrap of whole sweeps found in the row order, honest when a "
@@ -393,8 +428,10 @@ def run(args: argparse.Namespace) -> int:
         return _on_property_file(_run_reduce, args)
     if cmd == "fit-mf":
         return _run_fit_mf(args)
+    if cmd == "prepare":
+        return _run_prepare(args)
     raise InputError("frictionlaws tyre: choose a sub-command: cornering, thesis, mf, reduce, "
-                     "fit-mf")
+                     "fit-mf, prepare")
 
 
 def _angles(text: str) -> list[float]:
@@ -627,21 +664,29 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
     refuse_not_applied(args.data, args.sign_convention, args.uncertainty,
                        {"resamples": args.boot, "jobs": args.boot_jobs, "seed": args.seed,
                         "sweeps": None})
-    inputs = [args.data] + ([args.template] if args.template else [])
+    if args.data.count("-") > 1:
+        raise UsageError("standard input ('-') can be given once among the DATA files")
+    inputs = list(args.data) + ([args.template] if args.template else [])
     check_outputs([args.output, args.plot], inputs=inputs)
     check_tir_path(args.output)
     if args.plot:  # before the fit: a figure that cannot be drawn leaves no .tir behind
-
         check_figure_path(args.plot)
 
-    with data_source(args.data) as data:
+    with data_sources(args.data) as data:
         try:
             res = fit_mf(data, fittyp=args.fittyp, template=args.template,
                          sign_convention=args.sign_convention, uncertainty=args.uncertainty,
                          resamples=args.boot, seed=args.seed, jobs=args.boot_jobs)
         except FitError as exc:  # name standard input, not its private copy
-            raise FitError(str(exc).replace(data, shown_source(data))) from None
-    res.data.source = shown_source(res.data.source)  # the provenance the file states
+            text = str(exc)
+            for path in data:
+                text = text.replace(path, shown_source(path))
+            raise FitError(text) from None
+        for path in data:  # the provenance the file states names what the user gave
+            shown = shown_source(path)
+            res.notes = [n.replace(path, shown) for n in res.notes]
+            res.warnings = [n.replace(path, shown) for n in res.warnings]
+        res.data.source = " + ".join(shown_source(p) for p in data)
     res.write(args.output)
     if args.plot:
         res.plot(args.plot)
@@ -650,4 +695,34 @@ def _run_fit_mf(args: argparse.Namespace) -> int:
         return 0
     print(_said_once(res.report(), res.warnings, args))
     print(f"written: {args.output}" + (f", {args.plot}" if args.plot else ""))
+    return 0
+
+
+def _run_prepare(args: argparse.Namespace) -> int:
+    suffix = args.output.lower().rsplit(".", 1)[-1] if "." in args.output else ""
+    if suffix not in ("csv", "tdx"):
+        raise InputError("the sweeps are written as a tidy CSV (.csv) or a TYDEX file (.tdx): "
+                         "give the output one of these suffixes", file=args.output)
+    warmup = _quantity(args.warm_up, "time", "--warm-up") or 0.0
+    check_outputs([args.output], dirs=[args.plots], inputs=[args.raw])
+    with data_source(args.raw, "stdin.txt") as path:
+        prepared = prepare_run(load_raw_run(path, sign_convention=args.sign_convention),
+                               warmup=warmup)
+        check_plausible(prepared.data, float(np.median(prepared.data.fz)))
+        shown = shown_source(path)
+        prepared.run.source = prepared.data.source = shown
+        provenance = [f"steady sweeps prepared by frictionlaws tyre prepare from {shown}",
+                      *prepared.summary()[1:], *(f"note: {n}" for n in prepared.notes)]
+        if suffix == "csv":
+            write_tyre_csv(prepared.data, args.output, provenance)
+        else:
+            write_tydex(prepared.data, args.output, comments=provenance)
+        plots = write_plots(prepared, args.plots) if args.plots else []
+    if args.json:
+        out = prepared.to_dict()
+        out["written"] = [args.output, *map(str, plots)]
+        print(jsonio.dumps(out))
+        return 0
+    print(prepared.report())
+    print("written: " + ", ".join([args.output, *map(str, plots)]))
     return 0

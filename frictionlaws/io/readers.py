@@ -33,6 +33,8 @@ FORMATS: dict[str, frozenset[str]] = {
     "tir": frozenset(),
     "json": frozenset(),
     "toml": frozenset({"underscore"}),
+    "tydex": frozenset(),
+    "raw": frozenset(),
 }
 
 
@@ -119,6 +121,30 @@ def _profile_example(root: Path) -> Path:
     return path
 
 
+def _tydex_example(root: Path) -> Path:
+    """Lateral sweeps of the packaged MF 6.1 example at two loads, as a TYDEX file."""
+    from ..tyre.data import write_tydex
+    from ..tyre.data.synthetic import sweep_data
+    from ..tyre.magic_formula import MagicFormula
+
+    data = sweep_data(MagicFormula.from_file("MagicFormula61"), "lateral", loads=(0.5, 1.0),
+                      cambers_deg=(0.0,), pressures=(1.0,), n=7)
+    return write_tydex(data, root / "lateral.tdx")
+
+
+def _raw_run_example(root: Path) -> Path:
+    """A short raw rig run of the packaged MF 6.1 example (tab separated, SAE axes)."""
+    from ..tyre.data.synthetic import RawRunSpec, synthetic_raw_run
+    from ..tyre.magic_formula import MagicFormula
+
+    spec = RawRunSpec(loads=(1.0,), cambers_deg=(0.0,), pressures=(1.0,), rate=20.0,
+                      combined_deg=(), cycles=1, warmup_s=5.0)
+    run = synthetic_raw_run(MagicFormula.from_file("MagicFormula61"), spec)
+    path = root / "run.dat"
+    path.write_text(run.text(title="a raw rig run (synthetic)"), encoding="utf-8")
+    return path
+
+
 def _rig() -> Any:
     from ..tribometer.synthetic import synthetic_rig
 
@@ -126,7 +152,8 @@ def _rig() -> Any:
 
 
 _MAKERS: dict[str, Callable[..., Any]] = {"params": _params_example,
-                                          "profile": _profile_example, "rig": _rig}
+                                          "profile": _profile_example, "rig": _rig,
+                                          "tydex": _tydex_example, "raw": _raw_run_example}
 
 
 def _made(value: Any) -> Any:
@@ -151,6 +178,8 @@ READERS: tuple[Reader, ...] = (
     Reader("fit result", "frictionlaws.fitting.result:load_result", "json", "make:params"),
     Reader("surface profile", "frictionlaws.persson.surface:psd_from_profile_csv", "csv",
            "make:profile"),
+    Reader("TYDEX file", "frictionlaws.tyre.data:read_tydex", "tydex", "make:tydex"),
+    Reader("raw rig run", "frictionlaws.tyre.data:load_raw_run", "raw", "make:raw"),
 )
 
 

@@ -16,8 +16,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from .data.table import TyreData
 from .mf.model import MagicFormula
-from .tyre_data import TyreData
 
 __all__ = ["rig_data", "moved_tyre", "random_tyre", "truth_errors", "MOVED", "RANDOM_MOVED"]
 

@@ -273,7 +273,7 @@ NUMERIC = {
     "AREA": "314 mm^2", "NAME=VALUE,...": "a=0.25", "MIN:MAX:N|A,B,C": "2:6.5:10",
     "DEG,...": "1,2,3", "LEN": "150 mm", "LOAD": "3 kN", "STIFF": "8.49e6 N/m^2",
     "SPEED": "10 m/s", "MIN:MAX[:N]": None, "FRACTION|VAR=F,...": "0.3",
-    "SSID,MSID[,SSTYP,MSTYP]": "10,2",
+    "SSID,MSID[,SSTYP,MSTYP]": "10,2", "TIME": "60 s",
 }
 #: Values that are text (names, units, choices of words, addresses), by metavar or dest.
 TEXT = {"NAME", "LAW", "LAW,...", "A,B,...", "COL=NAME,...", "COL=UNIT,...", "SETTING,...",
@@ -282,7 +282,7 @@ TEXT = {"NAME", "LAW", "LAW,...", "A,B,...", "COL=NAME,...", "COL=UNIT,...", "SE
         "format", "sign_convention", "slip_angle", "friction_scaling", "loads_above_fzmax",
         "equations", "side", "case", "pressure_shape", "outputs"}
 #: Files read, and files or folders written, by destination.
-INPUTS = {"params", "fit", "data", "template", "rig", "manifest", "file", "name"}
+INPUTS = {"params", "fit", "data", "template", "rig", "manifest", "file", "name", "raw"}
 OUTPUTS = {"out", "save", "plot", "output", "records_out"}
 OUTPUT_DIRS = {"report", "plots", "directory"}
 
@@ -372,6 +372,7 @@ def _bases(files: dict[str, Path]) -> dict[tuple[str, ...], list[str]]:
         ("tyre", "reduce"): ["tyre", "reduce", str(files["tir"]), "--load", "4kN"],
         ("tyre", "fit-mf"): ["tyre", "fit-mf", str(files["tyre"]), "-o",
                              str(out.with_suffix(".tir"))],
+        ("tyre", "prepare"): ["tyre", "prepare", str(files["raw"]), "-o", str(out)],
         ("process",): ["process", str(files["manifest"]), "--rig", str(files["rig"]), "-o",
                        str(out), "--jobs", "1"],
         ("validate",): ["validate", "--case", "nope"],
@@ -432,7 +433,7 @@ def files(tmp_path_factory: pytest.TempPathFactory, examples: dict[str, Path]
     shutil.copyfile(MF61, tir)
     return {"data": data, "loads": loads, "params": params, "out": root / "out" / "o.csv",
             "tyre": examples["tyre data"], "manifest": examples["manifest"],
-            "rig": examples["rig"], "tir": tir, "root": root}
+            "rig": examples["rig"], "tir": tir, "root": root, "raw": examples["raw rig run"]}
 
 
 def _argv_for(path: tuple[str, ...], dest: str, files: dict[str, Path]) -> list[str]:

@@ -327,7 +327,8 @@ def process_records(
     plots: str | os.PathLike[str] | None = None,
     min_repeats: int = 2,
 ) -> ProcessedCampaign:
-    """Process records held in memory (e.g. from :mod:`.synthetic`), one manifest row each.
+    """Process records held in memory (e.g. from :mod:`~frictionlaws.tribometer.synthetic`),
+    one manifest row each.
 
     ``manifest`` holds dicts with the manifest's columns (``file``,
     ``load [kg]``, ``surface``, ``condition``, ``mode``...) or ready

@@ -45,17 +45,14 @@ import math
 import numpy as np
 
 from ....base.errors import Argument, InputError
-from ...tyre_data import COLUMNS, TyreData
+from ...data.channels import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
+from ...data.table import COLUMNS, TyreData
 from .stages import ALPHA_PURE, KAPPA_PURE
 
 __all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
            "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
            "MIN_CURVE_CORRELATION"]
 
-#: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
-MAX_SLIP_COEFFICIENT = 150.0
-#: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40).
-MAX_CORNERING_COEFFICIENT = 60.0
 #: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
 #: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
 MIN_SLIP_SLOPE = 0.5

@@ -18,7 +18,7 @@ import numpy as np
 
 from ....base.errors import FitError
 from ....fitting.lsq import least_squares_solve
-from ...tyre_data import TyreData
+from ...data.table import TyreData
 from ..coefficients import default as declared_default
 from ..coefficients import fit_bounds, needs_met, stage_names
 from ..declarations import VERSIONS
@@ -28,7 +28,7 @@ from .peak import PEAK_MU, FittingModel, peak_penalty
 from .rows import Direction, levels
 
 __all__ = ["fit_direction", "direction_errors", "X_COEFFICIENTS", "Y_COEFFICIENTS",
-           "STAGE1_SHAPES", "STAGE1_TIE"]
+           "STAGE1_SHAPES", "STAGE1_TIE", "STAGE1_NEAR"]
 
 #: Coefficients fitted per version and direction (the declared stages ``Fx0``, ``Fy0``).
 X_COEFFICIENTS = {v: stage_names("Fx0", v) for v in VERSIONS}
@@ -60,7 +60,10 @@ def _stage1(d: Direction) -> list[list[dict[str, float]]]:
     ``x = slip + S_H`` and ``E = E_a - E_b sgn(x)``.  Fitted from each shape factor of
     :data:`STAGE1_SHAPES`; returns the sets of curves, the lowest cost first, of the ends
     within :data:`STAGE1_TIE` of it (the data do not tell them apart here: the later
-    stages choose).
+    stages choose), then the sets fitted with C held at each shape factor of
+    :data:`STAGE1_SHAPES` that no free end came near.  Stage 1 sees the reference rows
+    only, where each load's own curvature and shifts can trade against C and fit the
+    noise with a C far from the tyre's; the later stages see every row and keep the best.
     """
     sets = [(d.x()[sel], d.force[sel], float(np.mean(d.fz[sel])))
             for sel in (d.reference & (d.load_labels == i) for i in range(d.loads.size))
@@ -93,8 +96,13 @@ def _stage1(d: Direction) -> list[list[dict[str, float]]]:
     ends = sorted((least_squares_solve(resid, _with_shape(p0, c0), bounds=(lo, hi),
                                        x_scale="jac") for c0 in shapes),
                   key=lambda res: res.cost)
-    return [_curves(r.x, sets, both) for r in ends
-            if r.cost <= (1 + STAGE1_TIE) * ends[0].cost]
+    kept = [r for r in ends if r.cost <= (1 + STAGE1_TIE) * ends[0].cost]
+    for c0 in shapes:  # C held: the start of a valley the free ends may have left
+        if all(abs(r.x[0] - c0) > STAGE1_NEAR for r in kept):
+            held = ([c0 - 1e-9, *lo[1:]], [c0 + 1e-9, *hi[1:]])
+            kept.append(least_squares_solve(resid, _with_shape(p0, c0), bounds=held,
+                                            x_scale="jac"))
+    return [_curves(r.x, sets, both) for r in kept]
 
 
 def _curves(x: np.ndarray, sets: list[tuple[np.ndarray, np.ndarray, float]],
@@ -114,6 +122,9 @@ STAGE1_SHAPES = (1.4, 1.0)
 #: Stage-1 ends within this share of the lowest cost are each carried through the later
 #: pure-slip stages, which keep the better.
 STAGE1_TIE = 0.03
+#: A shape factor of :data:`STAGE1_SHAPES` no free stage-1 end came this near is carried
+#: through the later stages too, from curves fitted with C held at it.
+STAGE1_NEAR = 0.05
 
 
 def _with_shape(p0: list[float], c0: float) -> np.ndarray:

@@ -11,7 +11,7 @@ from typing import Any
 from .... import __version__
 from ....base.errors import InputError
 from ....base.outputs import atomic_write, check_outputs
-from ...tyre_data import TyreData
+from ...data.table import TyreData
 from ..model import MagicFormula
 from ..property_file import PropertyFile
 from ..tir import format_tir

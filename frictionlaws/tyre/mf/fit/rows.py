@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...tyre_data import TyreData
+from ...data.table import TyreData
 from .stages import ALPHA_PURE, KAPPA_PURE, level_scale
 
 __all__ = ["Direction", "levels", "select_direction"]

@@ -10,7 +10,7 @@ The staged fit: :func:`fit_mf` runs the stages (pure-slip forces,
 figure (:mod:`~frictionlaws.tyre.mf.fit.plot`).
 
 :func:`fit_mf` fits the coefficient groups of MF 5.2, 6.1 or 6.2 to measured forces
-and aligning moments (:class:`~frictionlaws.tyre.tyre_data.TyreData`) in stages: the
+and aligning moments (:class:`~frictionlaws.tyre.data.table.TyreData`) in stages: the
 pure-slip forces F_x0, F_y0 as below, then the combined-slip weighting functions, the
 forces refined together on every row, the aligning moment M_z0 and combined M_z
 (:mod:`frictionlaws.tyre.mf.fit.stages`).  The pure-slip forces are fitted in three
@@ -58,7 +58,8 @@ from typing import Any
 import numpy as np
 
 from ....base.errors import Argument, ExtrapolationWarning, FitError, InputError
-from ...tyre_data import TyreData, read_tyre_data
+from ...data.formats import read_tyre_files
+from ...data.table import TyreData
 from ..coefficients import fit_bounds
 from ..model import MagicFormula
 from ..notices import collected
@@ -82,7 +83,7 @@ BOOTSTRAP_OPTIONS: dict[str, Any] = {"resamples": DEFAULT_RESAMPLES, "jobs": 1, 
                                      "sweeps": None}
 
 
-def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
+def fit_mf(data: TyreData | str | Path | Sequence[str | Path], *, fittyp: int = 61,
            template: str | Path | PropertyFile | None = None,
            sign_convention: str | None = None, uncertainty: str = "asymptotic",
            resamples: int | None = None, seed: int | None = None, jobs: int | None = None,
@@ -91,9 +92,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
 
     Parameters
     ----------
-    data : TyreData, str or Path
-        The measurements, or a tidy CSV file
-        (:func:`~frictionlaws.tyre.tyre_data.read_tyre_data`).
+    data : TyreData, str, Path or sequence of them
+        The measurements, or files of any tyre test format (:mod:`frictionlaws.tyre.data`).
     fittyp : {5, 6, 21, 61, 62}
         FITTYP of the file written: 5, 6 or 21 for MF 5.2 / PAC2002, 61 for MF 6.1,
         62 for MF 6.2.
@@ -102,7 +102,8 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         and the values of coefficients the data cannot determine (default: the
         packaged example of the version).
     sign_convention : {"iso", "sae"}, optional
-        Axes of the measurement when ``data`` is a file (default ``"iso"``); refused with
+        Axes of the measurement when ``data`` are files (default: each format's; ISO for
+        CSV and TYDEX, SAE for raw rig runs); refused with
         :class:`~frictionlaws.tyre.tyre_data.TyreData`, which are in ISO axes already.
     uncertainty : {"asymptotic", "sweeps"}
         How the standard errors are made.  ``"asymptotic"`` (the default, no extra
@@ -116,10 +117,11 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
         For ``uncertainty="sweeps"``: resamples (default 100), their seed (default 0)
         and worker processes (default 1; :func:`frictionlaws.parallel.run_parallel`).
     sweeps : array-like, optional
-        For ``uncertainty="sweeps"``: a sweep label per row; default: found from the
-        row order (:func:`~frictionlaws.tyre.mf.fit.bootstrap.find_sweeps`).  These four
-        are refused with another ``uncertainty`` (:data:`BOOTSTRAP_OPTIONS`: an option
-        that does not apply is refused, on every path).
+        For ``uncertainty="sweeps"``: a sweep label per row; default: the data's own
+        (``data.extra``), else from the row order
+        (:func:`~frictionlaws.tyre.mf.fit.bootstrap.find_sweeps`).  These four are refused
+        with another ``uncertainty`` (:data:`BOOTSTRAP_OPTIONS`: an option that does not
+        apply is refused, on every path).
 
     Returns
     -------
@@ -139,7 +141,7 @@ def fit_mf(data: TyreData | str | Path, *, fittyp: int = 61,
     return fitted
 
 
-def _fitted(data: TyreData | str | Path, fittyp: int,
+def _fitted(data: TyreData | str | Path | Sequence[str | Path], fittyp: int,
             template: str | Path | PropertyFile | None, sign_convention: str | None,
             uncertainty: str, given: dict[str, Any]) -> MFFit:
     """:func:`fit_mf`'s work; its warnings are issued (:func:`fit_mf` collects them)."""
@@ -223,8 +225,8 @@ def _with_later(later: Any, undetermined: list[str], errors: dict, notes: list[s
                                                if k not in undetermined]
 
 
-def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: str | None,
-                    uncertainty: str, given: dict[str, Any]
+def _checked_inputs(data: TyreData | str | Path | Sequence[str | Path], fittyp: int,
+                    sign_convention: str | None, uncertainty: str, given: dict[str, Any]
                     ) -> tuple[TyreData, dict[str, Any]]:
     """The data (read when a file) and the bootstrap's options (``given``, with their
     defaults), after the options are checked (before any fit)."""
@@ -237,7 +239,10 @@ def _checked_inputs(data: TyreData | str | Path, fittyp: int, sign_convention: s
         raise InputError(f"FITTYP {fittyp!r} is not fitted here; expected one of "
                          f"{', '.join(str(k) for k in FITTYPS)}")
     if not isinstance(data, TyreData):
-        data = read_tyre_data(data, sign_convention=sign_convention or "iso")
+        files = [data] if isinstance(data, (str, Path)) else list(data)
+        data, _ = read_tyre_files(files, sign_convention=sign_convention)
+    if boot["sweeps"] is None and "sweep" in data.extra:
+        boot["sweeps"] = data.extra["sweep"]
     if uncertainty == "sweeps":
         check_options(boot["resamples"], boot["jobs"], boot["sweeps"], len(data))
         check_can_resample(data, boot["sweeps"])  # resamples that cannot vary: refused

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from ....base.errors import InputError
-from ...tyre_data import TyreData
+from ...data.table import TyreData
 from ..coefficients import section_of
 from ..property_file import FITTYP_VERSIONS, PropertyFile, file_structure, version_of
 from ..tir import EXAMPLES, open_property_file, read_packaged

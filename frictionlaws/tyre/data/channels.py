@@ -1,0 +1,205 @@
+"""The channels of tyre test files: what each quantity is, its names in TYDEX files and raw rig
+runs, and the unit spellings rigs write.
+
+One table per fact:
+
+* :data:`KINDS`: the quantity kind (:data:`frictionlaws.base.units.QUANTITIES`) of every quantity a
+  tyre test file holds (``fz``, ``kappa``, ``alpha``, ... and the rig's own: time, speed,
+  wheel speed, radii, temperatures);
+* :data:`TYDEX_CHANNELS`: TYDEX 1.3 channel names (W axes) and the quantity each gives;
+* :data:`RAW_CHANNELS`: the channel names of raw rig runs as public tyre test programmes
+  publish them (SAE axes) and the quantity each gives;
+* :func:`unit_text`: a rig's unit spelling (``N-m``, ``Nm``, ``kph``, ``1/min``, ``deg C``,
+  ``lb``, ``unitless``) in the unit grammar of :mod:`frictionlaws.units`;
+* :func:`convert`: values in a file's unit to SI, refusing a unit of another dimension;
+* :func:`read_lines`: the lines of a text file, bounded in size and line length.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ...base.errors import InputError
+from ...base.limits import read_input
+from ...base.outputs import check_input_file
+from ...base.sanitize import split_lines
+from ...base.units import parse_unit, to_si, unit_registry
+from ...io import decode_text
+
+__all__ = ["KINDS", "TYDEX_CHANNELS", "TYDEX_OTHER_AXES", "RAW_CHANNELS", "MEANINGS",
+           "unit_text", "convert", "read_lines", "MAX_LINE_CHARS", "MAX_CORNERING_COEFFICIENT",
+           "MAX_SLIP_COEFFICIENT"]
+
+#: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40); the same
+#: bound as the fit's check of its data.
+MAX_CORNERING_COEFFICIENT = 60.0
+#: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
+MAX_SLIP_COEFFICIENT = 150.0
+
+#: Quantity -> kind of :func:`frictionlaws.base.units.to_si` (the SI unit follows from it).
+KINDS: dict[str, str] = {
+    "fz": "F_N", "kappa": "s", "alpha": "angle", "gamma": "angle", "pressure": "p",
+    "fx": "F_N", "fy": "F_N", "mz": "torque", "mx": "torque", "my": "torque",
+    "time": "time", "speed": "v", "omega": "angular_velocity", "loaded_radius": "length",
+    "effective_radius": "length", "slip_ratio_loaded": "s", "temperature": "T",
+    "force_ratio": "s",
+}
+
+#: Quantity -> what it is (for notes and the guide).
+MEANINGS: dict[str, str] = {
+    "fz": "vertical load", "kappa": "slip ratio on the effective rolling radius (the Magic "
+    "Formula's kappa)", "alpha": "slip angle", "gamma": "inclination (camber) angle",
+    "pressure": "inflation pressure", "fx": "longitudinal force", "fy": "lateral force",
+    "mz": "aligning moment", "mx": "overturning moment", "my": "rolling resistance moment",
+    "time": "elapsed time", "speed": "road speed", "omega": "wheel speed",
+    "loaded_radius": "loaded radius", "effective_radius": "effective rolling radius",
+    "slip_ratio_loaded": "slip ratio on the loaded radius (the rig's control slip)",
+    "temperature": "temperature", "force_ratio": "force over load",
+}
+
+#: TYDEX 1.3 channel (and constant) names in W axes -> quantity (None: known, not used).
+TYDEX_CHANNELS: dict[str, str | None] = {
+    "FZW": "fz", "FX": "fx", "FXW": "fx", "FXH": "fx", "FYW": "fy", "MZW": "mz",
+    "MXW": "mx", "MYW": "my", "SLIPANGL": "alpha", "INCLANGL": "gamma", "LONGSLIP": "kappa",
+    "INFLPRES": "pressure", "RUNTIME": "time", "LONGVEL": "speed", "WHROTSPD": "omega",
+    "MEASNUMB": None, "NOMPRES": None, "FNOMIN": None, "LOADRADI": "loaded_radius",
+    "EFFROLRA": "effective_radius", "AMBITEMP": "temperature", "TRCKTEMP": "temperature",
+    "TYRETEMP": "temperature",
+}
+
+#: TYDEX force and moment channels in other axes than W (hub H, centre C), or without their
+#: axis (FY, FZ, MZ): refused, naming the W-axis channel to give.
+TYDEX_OTHER_AXES: dict[str, str] = {
+    **{f"{q}{ax}": f"{q}W" for q in ("FY", "FZ", "MX", "MY", "MZ") for ax in ("H", "C")},
+    "FXC": "FX", "FY": "FYW", "FZ": "FZW", "MX": "MXW", "MY": "MYW", "MZ": "MZW",
+}
+
+#: Raw rig-run channels as public tyre test programmes publish them (SAE axes) -> quantity
+#: (None: read and not used).
+RAW_CHANNELS: dict[str, str | None] = {
+    "ET": "time", "V": "speed", "N": "omega", "SA": "alpha", "IA": "gamma",
+    "RL": "loaded_radius", "RE": "effective_radius", "P": "pressure", "FX": "fx", "FY": "fy",
+    "FZ": "fz", "MX": None, "MZ": "mz", "NFX": None, "NFY": None, "RST": None, "TSTI": None,
+    "TSTC": "temperature", "TSTO": None, "AMBTMP": None, "SR": "slip_ratio_loaded",
+    "SL": "kappa",
+}
+
+#: Unit spellings of rigs and TYDEX files -> the unit grammar's, per quantity kind (keys in
+#: lower case).  ``Nm`` is a newton metre for a torque (the grammar reads it as nanometre);
+#: ``1/min`` is revolutions per minute for a wheel speed (the grammar: one radian per minute).
+_SPELLINGS: dict[str, dict[str, str]] = {
+    "torque": {"nm": "N*m", "n-m": "N*m", "n.m": "N*m", "knm": "kN*m", "kn-m": "kN*m",
+               "danm": "daN*m", "ft-lb": "ft*lbf", "lb-ft": "ft*lbf", "ft-lbf": "ft*lbf",
+               "in-lb": "in*lbf", "lb-in": "in*lbf"},
+    "F_N": {"lb": "lbf", "lbs": "lbf"},
+    "angular_velocity": {"1/min": "rpm", "u/min": "rpm", "rev/min": "rpm", "min^-1": "rpm"},
+    "T": {"deg c": "degC", "degc": "degC", "c": "degC", "°c": "degC", "deg f": "degF",
+          "f": "degF"},
+    "s": {"unitless": "-", "none": "-", "[-]": "-"},
+    "v": {"kph": "km/h", "kmh": "km/h"},
+}
+
+
+def unit_text(unit: str, kind: str) -> str:
+    """``unit`` in the unit grammar: a rig's spelling of ``kind`` translated, else unchanged.
+
+    Parameters
+    ----------
+    unit : str
+        The unit as the file writes it.
+    kind : str
+        The quantity kind (a value of :data:`KINDS`).
+
+    Returns
+    -------
+    str
+    """
+    text = unit.strip()
+    return _SPELLINGS.get(kind, {}).get(text.lower(), text)
+
+
+def convert(values: Any, unit: str, quantity: str, *, file: str | None = None,
+            column: str | None = None, row: int | None = None) -> np.ndarray:
+    """``values`` in the file's ``unit`` as SI values of ``quantity``.
+
+    Parameters
+    ----------
+    values : array-like
+        Numbers in ``unit``.
+    unit : str
+        The file's unit (a rig's spelling is translated by :func:`unit_text`).
+    quantity : str
+        A key of :data:`KINDS`.
+    file, column : str, optional
+        Named in messages.
+    row : int, optional
+        The line that declares the unit, named in messages.
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Raises
+    ------
+    InputError
+        An unknown unit, one of another dimension, an angle without its unit or in a unit
+        that is no angle (``%``, ``-``).
+    """
+    kind = KINDS[quantity]
+    text = unit_text(unit, kind)
+    try:
+        if kind == "angle":
+            if not text or text in ("-", "1"):
+                raise InputError(f"an angle needs its unit (deg or rad); '{column}' has none",
+                                 file=file, column=column, row=row)
+            parsed = parse_unit(text, kind, column=column, file=file)
+            root = unit_registry().get_root_units(parsed)[1]
+            if str(root) != "radian":
+                raise InputError(f"unit '{unit}' is not an angle (deg or rad)", file=file,
+                                 column=column, row=row)
+        return np.asarray(to_si(values, text, kind, column=column, file=file), dtype=float)
+    except InputError as exc:
+        if exc.row is None and row is not None:
+            raise InputError(exc.bare_message, file=file, column=column, row=row) from None
+        raise
+
+
+#: Longest line of a tyre test text file [characters] (TYDEX lines have 80; a raw run with
+#: a hundred channels some 2,000).
+MAX_LINE_CHARS = 100_000
+
+
+def read_lines(path: str | Path, what: str) -> tuple[list[str], list[str]]:
+    """The lines of a text input file (bounded in size and line length) and the reading notes.
+
+    Parameters
+    ----------
+    path : str or Path
+        A regular file.
+    what : str
+        What the file is, for messages ("TYDEX file", "raw rig run").
+
+    Returns
+    -------
+    lines : list of str
+        Split at ``\\n``, ``\\r\\n`` and ``\\r`` only.
+    notes : list of str
+        The encoding note, when the file is not UTF-8.
+
+    Raises
+    ------
+    InputError
+        A missing, unreadable, binary or over-long file, or an over-long line.
+    """
+    source = str(path)
+    check_input_file(path, what)
+    text, note = decode_text(read_input(path, what, source), source, what)
+    lines = split_lines(text)
+    for number, line in enumerate(lines, start=1):
+        if len(line) > MAX_LINE_CHARS:
+            raise InputError(f"line longer than {MAX_LINE_CHARS} characters", file=source,
+                             row=number)
+    return lines, [note] if note else []
