@@ -127,6 +127,32 @@ def test_a_pressure_column_blank_on_every_row_is_not_measured(tmp_path: Path) ->
     read_tyre_data(_write(tmp_path / "none.csv", data))
 
 
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(rows=st.sets(st.integers(0, 55), min_size=1, max_size=12), token=st.sampled_from(
+    ["", "nan", "NaN", "n/a", "null"]))
+def test_rows_without_any_force_are_named_in_a_note(tmp_path_factory, rows: set[int],
+                                                    token: str) -> None:
+    """A row whose forces are all missing (blank or a missing-value token) is not lost
+    silently: a note names it, and every other row is read."""
+    data = _small()
+    path = _write(tmp_path_factory.mktemp("f") / "gaps.csv", data)
+    lines = path.read_text().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("Fz")) + 1
+    head = lines[start - 1].split(",")
+    forces = [j for j, h in enumerate(head) if h.split(" ")[0] in ("Fx", "Fy", "Mz")]
+    for r in rows:
+        cells = lines[start + r].split(",")
+        for j in forces:
+            cells[j] = token
+        lines[start + r] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    read = read_tyre_data(path)
+    assert len(read) == len(data)
+    said = [n for n in read.notes if "no Fx, Fy or Mz value" in n]
+    assert len(said) == 1 and said[0].startswith(f"{len(rows)} row(s)")
+    assert str(min(rows) + start + 1) in said[0]
+
+
 @pytest.mark.parametrize("force", ["fx", "fy"])
 @pytest.mark.parametrize("kind", ["zero", "noise"])
 def test_forces_without_a_curve_are_refused_as_such(force: str, kind: str) -> None:
@@ -173,3 +199,27 @@ def test_without_mz_or_combined_rows_the_report_says_so_and_shows_no_combined_er
     assert "combined slip" not in report
     assert "aligning-moment coefficients (Q*Z*, SSZ*): the template's (no Mz column)" in report
     assert not any(k.startswith(("QBZ", "QDZ", "SSZ")) for k in res.values)
+
+
+@pytest.mark.parametrize("measured", [False, True])
+def test_the_written_pressure_range_is_the_data_s(measured: bool) -> None:
+    """PRESMIN/PRESMAX of a fitted file are the pressures the data cover: the measured ones,
+    or NOMPRES alone when no pressure was measured (never the template's range)."""
+    from frictionlaws.tyre.mf.fit.template import build_file, template_file
+
+    data = _small()
+    if not measured:
+        data.pressure[:] = np.nan
+    tpl = template_file(None, "6.1")
+    p_nom = tpl.si("OPERATING_CONDITIONS", "NOMPRES")
+    notes: list[str] = []
+    pf = build_file(tpl, 61, {}, p_nom, data, notes)
+    span = (pf.si("INFLATION_PRESSURE_RANGE", "PRESMIN"),
+            pf.si("INFLATION_PRESSURE_RANGE", "PRESMAX"))
+    if measured:
+        assert span == pytest.approx((data.pressure.min(), data.pressure.max()))
+    else:
+        assert span == pytest.approx((p_nom, p_nom))
+        assert any("PRESMIN = PRESMAX = NOMPRES" in n for n in notes)
+    assert span != (tpl.si("INFLATION_PRESSURE_RANGE", "PRESMIN"),
+                    tpl.si("INFLATION_PRESSURE_RANGE", "PRESMAX"))

@@ -225,6 +225,20 @@ def _check_blank_pressures(pressure: np.ndarray, table: Any, j: int) -> None:
                      file=table.source, column=table.headers[j], row=rows[0])
 
 
+def _no_force_rows(arrays: dict[str, np.ndarray], table: Any) -> str | None:
+    """The note naming rows whose Fx, Fy and Mz are all missing (blank or a missing-value
+    token such as ``nan``): such a row has nothing to fit and is left out, said so."""
+    none = ~(np.isfinite(arrays["fx"]) | np.isfinite(arrays["fy"]) | np.isfinite(arrays["mz"]))
+    if not none.any() or none.all():  # all: refused by TyreData.validate
+        return None
+    rows = [int(table.rows[i]) for i in np.flatnonzero(none)]
+    shown = ", ".join(map(str, rows[:10])) + (f" and {len(rows) - 10} more" if len(rows) > 10
+                                              else "")
+    which = "row" if len(rows) == 1 else "rows"
+    return (f"{len(rows)} row(s) with no Fx, Fy or Mz value (blank or a missing-value token "
+            f"such as 'nan'; {which} {shown}): nothing to fit there, left out")
+
+
 #: The rig's slip ratio on the loaded radius: read as kappa only without another kappa column.
 _LOADED_SLIP = "sr"
 
@@ -360,6 +374,7 @@ def read_tyre_data(path: str | Path, *, sign_convention: str = "iso") -> TyreDat
     if unused:
         notes.append(f"columns not used (not a tyre-data column): {', '.join(unused)}")
     notes.append(to_iso_axes(arrays, sign_convention))
+    notes.extend(filter(None, [_no_force_rows(arrays, table)]))
     missing = [c for c in ("kappa", "alpha", "gamma", "pressure") if c not in found]
     if missing:
         notes.append(f"no {', '.join(missing)} column: "

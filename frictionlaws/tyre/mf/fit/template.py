@@ -119,6 +119,13 @@ def build_file(t: PropertyFile, fittyp: int, values: dict[str, float],
     measured = data.pressure[np.isfinite(data.pressure)]
     if measured.size and FITTYP_VERSIONS[fittyp] != "5.2":
         ranges.append(("INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX", measured / f_p))
+    elif p_nom is not None and FITTYP_VERSIONS[fittyp] != "5.2":
+        # no pressure measured: the data are taken at NOMPRES, the only pressure they cover
+        ranges.append(("INFLATION_PRESSURE_RANGE", "PRESMIN", "PRESMAX",
+                       np.array([p_nom / f_p])))
+        notes.append(f"no pressure measured: the data are taken at NOMPRES {p_nom:g} Pa, "
+                     "so PRESMIN = PRESMAX = NOMPRES and another pressure is warned of as "
+                     "extrapolation (the pressure terms are the template's)")
     for sec, lo, hi, observed in ranges:
         entry = pf.sections.setdefault(sec, {})
         entry[lo], entry[hi] = float(np.min(observed)), float(np.max(observed))
