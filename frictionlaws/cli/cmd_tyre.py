@@ -593,8 +593,8 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
         print(jsonio.dumps(out))
         return 0
     print(f"{mf.name}: Magic Formula {mf.version}, FNOMIN {mf.fnomin:g} N; steady state "
-          "(SI; 'clamped' names an input clamped on the row, whose outputs are at the "
-          "clamped value)")
+          "(SI; 'clamped' names an input limited on the row: the warnings say which "
+          "outputs are at the limit)")
     for n in mf.notes:
         print(f"note: {n}")
     _print_rows(res.to_dict())

@@ -223,3 +223,17 @@ def test_the_written_pressure_range_is_the_data_s(measured: bool) -> None:
         assert any("PRESMIN = PRESMAX = NOMPRES" in n for n in notes)
     assert span != (tpl.si("INFLATION_PRESSURE_RANGE", "PRESMIN"),
                     tpl.si("INFLATION_PRESSURE_RANGE", "PRESMAX"))
+
+
+@pytest.mark.parametrize("broken", ["one force cell", "every load"])
+def test_a_force_far_above_its_load_names_the_column_at_fault(broken: str) -> None:
+    """One absurd force cell is named in its force column (by the load check or the curve
+    check before it); loads in the wrong unit on every row are named in the load column."""
+    data = _small()
+    if broken == "one force cell":
+        data.fx[int(np.flatnonzero(np.isfinite(data.fx))[3])] = 1e6  # 1000 times the load
+    else:
+        data.fz = data.fz / 1000.0  # kN given as N
+    with pytest.raises(InputError, match="times the load Fz|carries no curve") as err:
+        check_plausible(data, float(np.median(_small().fz)))
+    assert err.value.column == ("Fx" if broken == "one force cell" else "Fz")

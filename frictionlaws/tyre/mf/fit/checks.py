@@ -217,10 +217,13 @@ def _check_loads(data: TyreData, fnomin: float) -> None:
         ratio = np.where(np.isfinite(force), np.abs(force) / data.fz, 0.0)
         if ratio.max() > MAX_FORCE_RATIO:
             row = _row(data, ratio > MAX_FORCE_RATIO, ratio)
+            # most rows too high: the loads' unit; a few: those force cells
+            most = np.mean(ratio[np.isfinite(force)] > MAX_FORCE_RATIO) > 0.5
             raise InputError(
                 f"|{name}| is {ratio.max():.3g} times the load Fz on this row (a tyre's "
                 f"friction stays below 4): the loads look like kN given as N (or {name} in "
-                "another unit than its header says)", file=data.source, column="Fz", row=row)
+                "another unit than its header says)", file=data.source,
+                column="Fz" if most else name, row=row)
     median = float(np.median(data.fz))
     if not fnomin / 100 <= median <= 100 * fnomin:
         likely = "kN given as N" if median < fnomin else "N given as kN (or N*1000)"
