@@ -267,8 +267,10 @@ def test_repeated_rows_are_named_and_do_not_move_the_estimate() -> None:
     assert not any("repeat another row" in n for n in once.notes)
     assert any(f"{len(data)} of {2 * len(data)} rows repeat another row" in n
                for n in doubled.notes)
+    # the same optimum: apart by far less than the coefficient's own uncertainty (QBZ1's is
+    # about its value, and the solver's stopping point moves it by ~1e-4 between releases)
     for k in ("PDX1", "PKX1", "PDY1", "QBZ1"):
-        assert doubled.values[k] == pytest.approx(once.values[k], rel=1e-4, abs=1e-6)
+        assert abs(doubled.values[k] - once.values[k]) <= 0.01 * once.stderr[k], k
 
 
 def test_the_rig_sweeps_and_the_comparison_take_their_slip_ranges() -> None:
