@@ -94,7 +94,7 @@ class Job:
         The :class:`~frictionlaws.law.bound.BoundLaw` the values came from (standard
         errors, fixed parameters, fitted ranges).
     options : dict
-        The format's options, checked, with their defaults (:mod:`.formats`).
+        The format's options, checked, with their defaults (:mod:`frictionlaws.fe_export.formats`).
     warnings : list of str
         Warnings collected on the way (written in the header and returned).
     """
