@@ -8,8 +8,9 @@ several outputs share, computed once when first needed).
 
 :func:`steady_state` evaluates, for one :class:`~frictionlaws.tyre.mf.model.MagicFormula`
 and per row of load, slips, camber, pressure, speed, turn slip and wheel speed, the
-outputs MFeval's ``fullSteadyState`` gives (turn slip: :mod:`frictionlaws.tyre.mf.turn_slip`; low speed,
-running backwards and the limit checks: :mod:`frictionlaws.tyre.mf.conditions`): the combined-slip
+outputs MFeval's ``fullSteadyState`` gives (turn slip:
+:mod:`frictionlaws.tyre.mf.turn_slip`; low speed, running backwards and the limit checks:
+:mod:`frictionlaws.tyre.mf.conditions`): the combined-slip
 forces, the aligning moment M_z with its pneumatic trail t and residual torque
 M_zr, the pure-slip aligning moment M_z0, the overturning moment M_x, the rolling
 resistance moment M_y, the effective rolling radius R_e, the loaded radius R_l and
