@@ -134,6 +134,7 @@ from .moments import (
 )
 from .notices import collected
 from .parameters import MFParameters
+from .plausibility import check_wheel_speed
 from .turn_slip import (
     Spin,
     check_turn_slip,
@@ -283,9 +284,9 @@ class Evaluation:
     def inst_kya(self) -> Any:
         """instKya [N/rad]: the slope of F_y against the evaluated slip angle between
         neighbouring points of the last axis that differ in the slip angle only (MFeval's
-        output 29, a forward difference along its rows, the last point taking the one
-        before); NaN where the angle does not change, where another input changes too,
-        and for a single point."""
+        output 29, a forward difference along its rows; a point without such a neighbour
+        ahead takes the one behind, as MFeval's last point does); NaN for a point with
+        neither, with a warning when the slip angle changes along the axis."""
         r = self.r
         shape = r.shape
         if not shape or shape[-1] < 2:
@@ -296,13 +297,28 @@ class Evaluation:
         for x in (r.kappa_in, r.fz_in, r.gamma, r.pressure, r.vx, r.phit_in, r.omega):
             if x is not None and np.ndim(x):
                 sweep &= np.diff(np.broadcast_to(x, shape), axis=-1) == 0
-        slope = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
-        return np.concatenate([slope, slope[..., -1:]], axis=-1)
+        step = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
+        none = np.full((*shape[:-1], 1), np.nan)
+        ahead, behind = (np.concatenate(parts, axis=-1) for parts in ((step, none),
+                                                                       (none, step)))
+        slope = np.where(np.isnan(ahead), behind, ahead)
+        lone = np.isnan(slope)
+        if np.any(da != 0) and np.any(lone):
+            warnings.warn(f"{self.p.name or 'Magic Formula'}: instKya is NaN on "
+                          f"{int(lone.sum())} of {lone.size} row(s): no neighbour along the "
+                          "last axis differs from them in the slip angle alone (it is the "
+                          "slope of F_y between such neighbours; sweep the slip angle along "
+                          "the last axis, the other inputs held)", UserWarning, stacklevel=4)
+        return slope
 
     @cached_property
     def rolling(self) -> dict[str, Any]:
-        """R_e, omega and the free radius at that speed, R_omega."""
-        return rolling_radius(self.p, self.r)
+        """R_e, omega and the free radius at that speed, R_omega (warned where implausible:
+        :func:`~frictionlaws.tyre.mf.plausibility.check_wheel_speed`)."""
+        p, r = self.p, self.r
+        roll = rolling_radius(p, r)
+        check_wheel_speed(p, r.vx, r.kappa_in, r.omega, roll["omega"], roll["Re"])
+        return roll
 
     @cached_property
     def loaded(self) -> dict[str, Any]:
@@ -456,6 +472,8 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
                        turn_slip, limit_checks)
         e = Evaluation(mf, r)
+        if r.omega is not None and "UNLOADED_RADIUS" in mf.structure:
+            _ = e.rolling  # a wheel speed given is checked whatever the outputs asked for
         outputs: dict[str, np.ndarray] = {}
         for name in (OUTPUTS if names is None else names):
             value = OUTPUTS[name].value(e)

@@ -72,7 +72,8 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
         x = (rhs / q_fz1 if q_fz2 == 0 else
              (-q_fz1 + np.sqrt(np.maximum(q_fz1**2 + 4 * q_fz2 * rhs, 0.0))) / (2 * q_fz2))
         rho = np.maximum(x * R0, 0.0)
-        rl = np.maximum(romega - rho, 0.0)
+        rl = romega - rho
+    rl = _through(p, rl)
     flat = ~(rho > 0)  # no deflection left (a wheel speed far past the model's): no C_z
     if np.any(flat & np.isfinite(rho)):
         warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(flat & np.isfinite(rho)))} "
@@ -80,6 +81,19 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
                       "grown past the load's): C_z is NaN there", ExtrapolationWarning,
                       stacklevel=4)
     return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho)}
+
+
+def _through(p: MFParameters, rl: Any) -> Any:
+    """The loaded radius, NaN (with a warning) where the deflection reaches the free
+    radius: a radius of 0 or less is no loaded radius (the load is past the model's)."""
+    through = ~(rl > 0) & ~np.isnan(rl)
+    if not np.any(through):
+        return rl
+    warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(through))} row(s) deflect the "
+                  "tyre to its centre (the deflection reaches the free radius: the load is "
+                  "past the vertical model's): R_l is NaN there", ExtrapolationWarning,
+                  stacklevel=4)
+    return np.where(through, np.nan, rl)
 
 
 def fz_62(p: MFParameters, r: Conditions, rl: Any, omega: Any, romega: Any, fx: Any,
