@@ -445,14 +445,20 @@ class SteadyState:
         return out
 
 
-def _refuse_overflow(name: str, value: np.ndarray, r: Conditions) -> None:
-    """Refuse inputs that take an output past floating point (an infinity is no result:
-    the speed terms grow with the square of the speed or wheel speed)."""
-    bad = np.isinf(value)
+def _refuse_overflow(name: str, value: np.ndarray, e: Evaluation) -> None:
+    """Refuse inputs that take an output past floating point: an infinity, or a NaN but
+    where it is an answer said with a warning (instKya without a neighbour in the slip
+    angle alone; R_l, rho, C_z where no loaded radius carries the load), is no result (the
+    speed terms grow with the square of the speed or wheel speed, a slip ratio of 1e308
+    overflows the slip speed)."""
+    r = e.r
+    bad = np.isinf(value) if name == "instKya" else ~np.isfinite(value)
+    if name in ("Rl", "rho", "Cz"):
+        bad &= ~e.loaded["said"]
     if not bad.any():
         return
     i = int(np.flatnonzero(bad.ravel())[0])
-    at = {"vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
+    at = {"kappa": r.kappa_in, "vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
     row = ", ".join(f"{k} = {float(np.broadcast_to(v, r.shape).ravel()[i]):g}"
                     for k, v in at.items() if v is not None)
     raise InputError(f"{name} is not finite at row {i} ({row}): the inputs there lie past "
@@ -468,7 +474,8 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
 
     ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
     """
-    with collected(mf.not_applied) as warned, np.errstate(over="ignore", divide="ignore"):
+    with collected(mf.not_applied) as warned, np.errstate(over="ignore", divide="ignore",
+                                                           invalid="ignore"):
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
                        turn_slip, limit_checks)
         e = Evaluation(mf, r)
@@ -480,7 +487,7 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
             if value is not None:
                 outputs[name] = np.broadcast_to(np.asarray(value, dtype=float),
                                                 r.shape).copy()
-                _refuse_overflow(name, outputs[name], r)
+                _refuse_overflow(name, outputs[name], e)
     given = {"kappa": r.kappa_in, "alpha": alpha, "fz": r.fz_in, "gamma": gamma,
              "pressure": r.pressure, "vx": r.vx,
              "phit": r.phit_in if turn_slip else None, "omega": r.omega}

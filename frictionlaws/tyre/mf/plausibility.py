@@ -103,8 +103,8 @@ def check_wheel_speed(p: MFParameters, vx: Any, kappa: Any, omega_given: Any,
     rim = np.abs(omega) * r0
     fast = (rim > bound) & ~(np.abs(vx) > bound)
     if np.any(fast):
-        growth = p.structure.get("Q_V1", 0.0) * (float(np.max(rim[fast]))
-                                                 / p.need("LONGVL")) ** 2
+        growth = p.structure.get("Q_V1", 0.0) * np.square(np.max(rim[fast])
+                                                          / p.need("LONGVL"))
         warnings.warn(
             f"{_name(p)}: an implausible wheel speed on {int(np.sum(fast))} row(s), its "
             f"circumferential speed |omega| R0 up to {float(np.max(rim[fast])):g} m/s, above "
