@@ -67,7 +67,7 @@ def test_every_method_warns_once_of_an_input_beyond_the_file(method: str,
         warnings.simplefilter("always")
         f(**kw)
     texts = [str(w.message) for w in caught]
-    assert len(texts) == 1 and f"{beyond} from" in texts[0], texts
+    assert len(texts) == 1 and f"{beyond} of 1 of" in texts[0], texts
     assert caught[0].category is ExtrapolationWarning
 
 
@@ -165,10 +165,10 @@ def test_xarray_results_keep_the_warnings() -> None:
     kappa = xr.DataArray([0.05, 1.5], dims="k")
     with pytest.warns(ExtrapolationWarning):
         out = mf.fx0(kappa, 4000.0)
-    assert [w for w in out.attrs["warnings"] if "kappa from" in w]
+    assert [w for w in out.attrs["warnings"] if "kappa of" in w]
     with pytest.warns(ExtrapolationWarning):
         ds = mf.steady_state(kappa, 0.0, 4000.0)
-    assert [w for w in ds.attrs["warnings"] if "kappa from" in w]
+    assert [w for w in ds.attrs["warnings"] if "kappa of" in w]
 
 
 def _tiny_data() -> TyreData:
