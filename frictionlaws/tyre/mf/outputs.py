@@ -164,11 +164,15 @@ class Evaluation:
         The tyre (its coefficients read as ``e.p.c.PCX1``).
     r : Conditions
         The checked, broadcast inputs (``e.r.kappa``, ``e.r.fz``, ``e.r.dpi``...).
+    asked : frozenset of str
+        The outputs asked for by name (:func:`evaluate`'s ``names``): instKya warns of
+        its NaN only when asked for.
     """
 
-    def __init__(self, p: MFParameters, r: Conditions) -> None:
+    def __init__(self, p: MFParameters, r: Conditions, asked: Any = ()) -> None:
         self.p = p
         self.r = r
+        self.asked = frozenset(asked)  # the outputs asked for by name
 
     @cached_property
     def dfz(self) -> Any:
@@ -286,7 +290,8 @@ class Evaluation:
         neighbouring points of the last axis that differ in the slip angle only (MFeval's
         output 29, a forward difference along its rows; a point without such a neighbour
         ahead takes the one behind, as MFeval's last point does); NaN for a point with
-        neither, with a warning when the slip angle changes along the axis."""
+        neither, with a warning when it is asked for by name and the slip angle changes
+        along the axis (rows of measured data, all inputs changing, give NaN by design)."""
         r = self.r
         shape = r.shape
         if not shape or shape[-1] < 2:
@@ -303,7 +308,7 @@ class Evaluation:
                                                                        (none, step)))
         slope = np.where(np.isnan(ahead), behind, ahead)
         lone = np.isnan(slope)
-        if np.any(da != 0) and np.any(lone):
+        if "instKya" in self.asked and np.any(da != 0) and np.any(lone):
             warnings.warn(f"{self.p.name or 'Magic Formula'}: instKya is NaN on "
                           f"{int(lone.sum())} of {lone.size} row(s): no neighbour along the "
                           "last axis differs from them in the slip angle alone (it is the "
@@ -472,13 +477,14 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
     """Every steady-state output per row, with the inputs, the clamped rows and the
     warnings (:class:`SteadyState`); the parameters are those of :func:`steady_state`.
 
-    ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
+    ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives); an
+    instKya asked for by name warns where it is NaN though the slip angle changes.
     """
     with collected(mf.not_applied) as warned, np.errstate(over="ignore", divide="ignore",
                                                            invalid="ignore"):
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
                        turn_slip, limit_checks)
-        e = Evaluation(mf, r)
+        e = Evaluation(mf, r, names or ())
         if r.omega is not None and "UNLOADED_RADIUS" in mf.structure:
             _ = e.rolling  # a wheel speed given is checked whatever the outputs asked for
         outputs: dict[str, np.ndarray] = {}
