@@ -45,6 +45,7 @@ import numpy as np
 
 from ...base.errors import Argument, InputError
 from ...base.numbers import parse_number
+from ..mf.parameters import PLAUSIBLE_PRESSURE
 from .channels import (
     KINDS,
     MAX_CORNERING_COEFFICIENT,
@@ -58,7 +59,7 @@ from .table import check_sign_convention, to_iso_axes
 from .tydex import is_tydex
 
 __all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS", "MIN_RIG_LOAD",
-           "MIN_SWEPT_SLIP", "PLAUSIBLE_PRESSURE", "PLAUSIBLE_RATE", "GAP_STEPS",
+           "MIN_SWEPT_SLIP", "PLAUSIBLE_RATE", "GAP_STEPS",
            "REQUIRED_CHANNELS"]
 
 #: Most samples of a raw run read (a day at 50 Hz is 4.3 million).
@@ -205,8 +206,6 @@ MIN_RIG_LOAD = 100.0
 #: Slips whose largest magnitude stays below this (rad or slip ratio; 0.11 deg) are the
 #: rig's jitter about zero: too small to check a unit by.
 MIN_SWEPT_SLIP = 0.002
-#: Inflation pressures tyres run at [Pa] (gauge: a bicycle's lowest to an aircraft's).
-PLAUSIBLE_PRESSURE = (2e4, 2.5e6)
 #: Sampling rates a rig records a raw run at [Hz].
 PLAUSIBLE_RATE = (2.0, 5000.0)
 #: A step in time longer than this many sampling steps is a gap (noted).
