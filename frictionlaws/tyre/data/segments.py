@@ -39,7 +39,7 @@ from scipy.ndimage import median_filter
 from scipy.signal import savgol_filter
 
 from ...base.errors import InputError
-from .bins import BINS_PER_SWEEP, MAX_LAG_S, MIN_BLOCK, SweepBins, blocks
+from .bins import BINS_PER_SWEEP, MAX_LAG_S, MIN_BLOCK, SLIP_SMOOTH_S, SweepBins, blocks, smooth_passes
 from .raw_run import RawRun
 from .table import TyreData
 
@@ -550,6 +550,10 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
         w.drop(sub[0], sub[-1] + 1, "one-way", alpha=level, **cond)
         return
     forces = [k for k in ("fx", "fy", "mz") if k in w.q]
+    breaks = np.flatnonzero((np.diff(direction) != 0) | (np.diff(sub) != 1)) + 1
+    slips = {k: smooth_passes(w.q[k][sub], breaks, w.samples(SLIP_SMOOTH_S))
+             for k in ("alpha", "kappa")}
+    x = slips["alpha" if kind == "lateral" else "kappa"]
     shaping = _shaping(w, sub, kind)
     block, piece = blocks(x, direction, [w.rates[k][sub] / w.rate for k in shaping],
                            [_range(w.q[k][sub]) / FORCE_WEIGHT.get(k, 1.0) for k in shaping])
@@ -560,9 +564,11 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
     main = "fy" if kind == "lateral" else "fx"
     tau = b.lag(w.q[main][kept], w.rates[main][kept]) if w.lag else 0.0
     w.lags.append((kind, tau))
+    b = b.split_curved([w.q[k][kept] + tau * w.rates[k][kept] for k in shaping],
+                       [_range(w.q[k][sub]) / FORCE_WEIGHT.get(k, 1.0) for k in shaping])
     means: dict[str, np.ndarray] = {
-        k: b.mean(w.q[k][kept]) for k in ("fz", "kappa", "alpha", "gamma", "pressure", "time")
-        if k in w.q}
+        k: b.mean(w.q[k][kept]) for k in ("fz", "gamma", "pressure", "time") if k in w.q}
+    means.update({k: b.mean(v[~thin]) for k, v in slips.items()})
     for k in forces:
         means[k] = b.curvature(b.mean(w.q[k][kept] + tau * w.rates[k][kept]))
     first = np.full(b.counts.size, np.iinfo(np.int64).max)
