@@ -19,18 +19,22 @@ BINS_PER_SWEEP = 40
 MIN_BLOCK = 3
 #: The longest force lag behind the slip taken [s].
 MAX_LAG_S = 0.5
-#: A block whose mean the curvature of a force moves by more than this share of the force's
-#: range is halved (:meth:`SweepBins.split_curved`), at most :data:`SPLITS` times.
-CURVED_SHARE = 0.001
-SPLITS = 3
-#: The window of the local quadratic that smooths the recorded slips within each pass [s].
+#: The window of the local quadratic that smooths the recorded slips within each pass
+#: (:func:`smooth_passes`) [s].
 SLIP_SMOOTH_S = 0.5
 
 
 def smooth_passes(x: np.ndarray, breaks: np.ndarray, size: int) -> np.ndarray:
-    """``x`` smoothed by a local quadratic over ``size`` samples within each stretch between
-    ``breaks`` (a stretch shorter than ``size``: over its length; one of 3 samples or
-    fewer: as it is)."""
+    """The recorded slip ``x`` smoothed in time by a local quadratic over ``size`` samples
+    within each stretch between ``breaks`` (a pass of one direction, without gaps); the
+    first and last ``size // 2`` samples of a stretch, and a stretch of ``size`` samples or
+    fewer, as they are (the window would reach over the turn or the start of the sweep,
+    where the slip bends).
+
+    The slip a rig commands moves smoothly, its channel carries the sensor's noise: averaged
+    over a block of a few samples, that noise stays in the block's slip where a curve is
+    steep (the aligning moment's rise near zero slip angle: 0.03 deg of noise over 3 samples
+    moves a block by some 2 % of the peak M_z), and a fit of such rows flattens the peak."""
     out = np.asarray(x, dtype=float).copy()
     for p in np.split(np.arange(out.size), breaks):
         window = size | 1
@@ -46,7 +50,11 @@ def blocks(x: np.ndarray, direction: np.ndarray, steps: list[np.ndarray],
     direction): consecutive samples of one pass, each block :data:`MIN_BLOCK` samples or
     more and about 1 / :data:`BINS_PER_SWEEP` of a pass along the curves of the slip and
     the forces (each scaled by its range): short where a force changes fast (the steep rise,
-    a sharp aligning-moment peak), long where the curves are flat."""
+    a sharp aligning-moment peak), long where the curves are flat.  The first and the last
+    block of a pass are :data:`MIN_BLOCK` samples: there the measured forces still lag the
+    slip that has just started (their curve looks flat) and no neighbour on one side
+    corrects the block's curvature (:meth:`SweepBins.curvature`), while a sweep that
+    starts and ends at zero slip has its sharpest curve there."""
     span_x = float(np.ptp(x)) or 1.0
     arc2 = np.diff(x, prepend=x[0]) ** 2 / span_x ** 2
     for step, span in zip(steps, spans):
@@ -55,7 +63,9 @@ def blocks(x: np.ndarray, direction: np.ndarray, steps: list[np.ndarray],
     turns = np.flatnonzero(np.diff(direction) != 0) + 1
     passes = np.split(np.arange(x.size), turns)
     traversed = sum(float(np.ptp(x[p])) for p in passes) / span_x
-    length = float(arc.sum()) / max(traversed, 1.0) / BINS_PER_SWEEP
+    # about BINS_PER_SWEEP per traversal in all, the short blocks at the ends counted
+    length = float(arc.sum()) / max(BINS_PER_SWEEP * max(traversed, 1.0)
+                                    - 2 * len(passes), BINS_PER_SWEEP / 2)
     block = np.full(x.size, -1)
     piece = np.zeros(x.size, dtype=int)
     number = 0
@@ -116,17 +126,12 @@ class SweepBins:
             return 0.0
         return float(np.clip(-np.sum(gap * step) / denominator, 0.0, MAX_LAG_S))
 
-    def variance(self) -> np.ndarray:
-        """The spread of the slip within each block (its variance)."""
-        return np.maximum(self.mean(self.x * self.x) - self.xm * self.xm, 0.0)
-
-    def second(self, means: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """F'' at each block from its neighbouring blocks of the same pass (NaN at the ends
-        of a pass) and whether those neighbours are distinct (each as far from it as twice
-        its own spread of slip or farther)."""
-        sd = np.sqrt(self.variance())
-        out = np.full(means.size, np.nan)
-        apart = np.zeros(means.size, dtype=bool)
+    def curvature(self, means: np.ndarray) -> np.ndarray:
+        """Block means moved to the value at the block's mean slip: minus F'' var(x) / 2,
+        F'' from the neighbouring blocks of the same pass (the ends, and blocks closer to a
+        neighbour than twice their own spread of slip, left as they are)."""
+        var = np.maximum(self.mean(self.x * self.x) - self.xm * self.xm, 0.0)
+        out = means.copy()
         for k in np.unique(self.passes):
             idx = np.flatnonzero(self.passes == k)
             idx = idx[np.argsort(self.xm[idx])]
@@ -134,34 +139,10 @@ class SweepBins:
                 continue
             x0, x1, x2 = self.xm[idx[:-2]], self.xm[idx[1:-1]], self.xm[idx[2:]]
             y0, y1, y2 = means[idx[:-2]], means[idx[1:-1]], means[idx[2:]]
+            v = var[idx[1:-1]]
+            apart = np.minimum(x1 - x0, x2 - x1) >= 2 * np.sqrt(v)  # distinct neighbours
             with np.errstate(divide="ignore", invalid="ignore"):
-                out[idx[1:-1]] = 2 * ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0)
-            apart[idx[1:-1]] = np.minimum(x1 - x0, x2 - x1) >= 2 * sd[idx[1:-1]]
-        return out, apart
-
-    def curvature(self, means: np.ndarray) -> np.ndarray:
-        """Block means moved to the value at the block's mean slip: minus F'' var(x) / 2,
-        F'' from the neighbouring blocks of the same pass (the ends, and blocks closer to a
-        neighbour than twice their own spread of slip, left as they are)."""
-        second, apart = self.second(means)
-        ok = apart & np.isfinite(second)
-        return means - np.where(ok, second, 0.0) * self.variance() / 2
-
-    def split_curved(self, values: list[np.ndarray], spans: list[float]) -> SweepBins:
-        """These blocks with those halved (up to :data:`SPLITS` times) whose mean is moved by
-        the curvature of a force by more than :data:`CURVED_SHARE` of its range (F'' var / 2,
-        F'' from the neighbours, :meth:`second`), while :data:`MIN_BLOCK` samples or more
-        are left in each half: a block over a sharp peak is cut, not smoothed over."""
-        b = self
-        for _ in range(SPLITS):
-            moved = np.zeros(b.counts.size)
-            for v, span in zip(values, spans):
-                second, _ = b.second(b.mean(v))
-                moved = np.fmax(moved, np.abs(second) * b.variance() / (2 * span))
-            cut = (moved > CURVED_SHARE) & (b.counts >= 2 * MIN_BLOCK)
-            if not cut.any():
-                break
-            position = np.arange(b.x.size) - np.searchsorted(b.inverse, b.inverse)
-            late = cut[b.inverse] & (position >= b.counts[b.inverse] // 2)
-            b = SweepBins(2 * b.inverse + late, b.x, b.sign, b.piece)
-        return b
+                second = 2 * ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0)
+            ok = apart & np.isfinite(second)
+            out[idx[1:-1]] -= np.where(ok, second, 0.0) * v / 2
+        return out
