@@ -22,8 +22,10 @@
    **one-way** (a step of the slip angle between holds is one);
 4. averages each sweep's samples in blocks, about :data:`BINS_PER_SWEEP` per pass, **up
    and down apart** (the direction is kept as a column), the slips smoothed in time within
-   each pass first (:data:`SLIP_SMOOTH_S`, :func:`~frictionlaws.tyre.data.bins.smooth_passes`):
-   one row per block of :data:`MIN_BLOCK` or more samples.
+   each pass first (:data:`SLIP_SMOOTH_S`, :func:`~frictionlaws.tyre.data.bins.smooth_passes`),
+   a block over a sharp curve of the aligning moment cut
+   (:meth:`~frictionlaws.tyre.data.bins.SweepBins.split_curved`): one row per block of
+   :data:`MIN_BLOCK` or more samples.
 
 Everything dropped is counted by reason (samples and seconds) and reported; the rows keep
 their sweep (``sweep``), direction (+1 up, -1 down), sample count and time.  A fit checks
@@ -574,6 +576,9 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
     main = "fy" if kind == "lateral" else "fx"
     tau = b.lag(w.q[main][kept], w.rates[main][kept]) if w.lag else 0.0
     w.lags.append((kind, tau))
+    cut = [k for k in shaping if k == "mz"]  # the sharpest curve; the forces' correct well
+    b = b.split_curved([w.q[k][kept] + tau * w.rates[k][kept] for k in cut],
+                       [_range(w.q[k][sub]) for k in cut])
     means: dict[str, np.ndarray] = {
         k: b.mean(w.q[k][kept]) for k in ("fz", "gamma", "pressure", "time") if k in w.q}
     means.update({k: b.mean(v[~thin]) for k, v in slips.items()})
