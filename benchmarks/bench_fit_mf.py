@@ -16,11 +16,13 @@ Printed: wall time of each, and each result's largest error against the noise-fr
 
 Run: ``python benchmarks/bench_fit_mf.py [--n 68] [--seed 3]`` (n = 68 gives 9,960 rows).
 
-``--corpus N`` instead fits the rig data (31 points per sweep) of ``N`` tyres drawn at
-random (:func:`~frictionlaws.tyre.synthetic_rig.random_tyre`: the MF 6.1, 6.2 and 5.2
-examples in turn with their coefficients moved by up to 20 %, FNOMIN 3-9 kN, nominal
-pressure 180-320 kPa), each as its own version from the default template, and prints each
-tyre's largest errors against its truth and the largest over the corpus.
+``--seeds S ...`` fits the random tyres of those seeds, each measured with its own seed
+(the held-out test's convention). ``--corpus N`` instead fits the rig data (31 points per
+sweep) of ``N`` tyres drawn at random
+(:func:`~frictionlaws.tyre.synthetic_rig.random_tyre`: the MF 6.1, 6.2 and 5.2 examples in
+turn with their coefficients moved by up to 20 %, FNOMIN 3-9 kN, nominal pressure 180-320
+kPa), each as its own version from the default template, and prints each tyre's largest
+errors against its truth and the largest over the corpus.
 """
 
 from __future__ import annotations
@@ -70,15 +72,16 @@ def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, f
 _QUANTITIES = ("Fx0", "Fy0", "Fx", "Fy", "Mz")
 
 
-def corpus(count: int) -> None:
-    """Fit the rig data of ``count`` random tyres; print each one's and the largest errors."""
+def corpus(draws: list[tuple[int, int]]) -> None:
+    """Fit the rig data of random tyres, ``(tyre seed, noise seed)`` each; print each
+    one's and the largest errors."""
     fittyp = {v: k for k, v in FITTYPS.items() if k in (6, 61, 62)}
     print(f"{'tyre':>4} {'MF':>4} {'FNOMIN':>7} {'p_nom':>7}{'seconds':>9}"
           + "".join(f"{k:>8}" for k in _QUANTITIES))
     worst = dict.fromkeys(_QUANTITIES, 0.0)
-    for seed in range(count):
+    for seed, noise in draws:
         truth = random_tyre(seed)
-        data = rig_data(truth, seed=100 + seed)
+        data = rig_data(truth, seed=noise)
         t0 = time.perf_counter()
         res = fit_mf(data, fittyp=fittyp[truth.version])
         seconds = time.perf_counter() - t0
@@ -97,11 +100,16 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=68, help="points per pure-slip sweep")
     parser.add_argument("--seed", type=int, default=3)
     parser.add_argument("--corpus", type=int, default=0,
-                        help="fit this many random tyres instead (accuracy over a corpus)")
+                        help="fit this many random tyres instead (accuracy over a corpus): "
+                             "tyre seeds 0..N-1, noise seeds 100..")
+    parser.add_argument("--seeds", type=int, nargs="+", default=[], metavar="S",
+                        help="fit the random tyres of these seeds instead, each measured "
+                             "with its own seed as the noise seed (the held-out test's "
+                             "tyres: 1001 1002 1003)")
     args = parser.parse_args()
     warnings.simplefilter("ignore", ExtrapolationWarning)
-    if args.corpus:
-        corpus(args.corpus)
+    if args.corpus or args.seeds:
+        corpus([(s, s) for s in args.seeds] or [(s, 100 + s) for s in range(args.corpus)])
         return
     truth = moved_tyre()
     data = rig_data(truth, n=args.n, seed=args.seed)

@@ -28,10 +28,17 @@ from importlib import metadata, resources
 from pathlib import Path
 
 import pytest
+from source_tree import (
+    MODULES,
+    PACKAGE,
+    TREES,
+    cycles,
+    every_target,
+    full_import_graph,
+    source_of,
+    targets,
+)
 
-import frictionlaws
-
-PACKAGE = Path(frictionlaws.__file__).resolve().parent
 REPO = Path(__file__).resolve().parents[1]
 MAX_LINES = 80
 MAX_COMPLEXITY = 15
@@ -50,17 +57,6 @@ KNOWN_PENDING: dict[str, frozenset[str]] = {
 }
 
 
-def _modules() -> Iterator[tuple[str, Path]]:
-    """(dotted name, file) of every module of the package (``_datasets`` holds no code)."""
-    for path in sorted(PACKAGE.rglob("*.py")):
-        rel = path.relative_to(PACKAGE.parent).with_suffix("")
-        parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
-        yield ".".join(parts), path
-
-
-MODULES = dict(_modules())
-
-
 def _functions(tree: ast.Module, module: str) -> Iterator[tuple[str, ast.AST]]:
     """(qualified name, node) of every function and method, nested ones included."""
     def walk(node: ast.AST, prefix: str) -> Iterator[tuple[str, ast.AST]]:
@@ -74,14 +70,6 @@ def _functions(tree: ast.Module, module: str) -> Iterator[tuple[str, ast.AST]]:
                 yield from walk(child, prefix)
 
     yield from walk(tree, module)
-
-
-def _trees() -> dict[str, ast.Module]:
-    return {mod: ast.parse(path.read_text(encoding="utf-8"), str(path))
-            for mod, path in MODULES.items()}
-
-
-TREES = _trees()
 
 
 def _check(kind: str, found: set[str]) -> None:
@@ -209,87 +197,22 @@ def _import_time_nodes(body: list[ast.stmt]) -> Iterator[ast.stmt]:
             yield from _import_time_nodes(node.body)
 
 
-def _package_of(module: str) -> str:
-    path = MODULES.get(module)  # a module of a test's own source is no package
-    return module if path is not None and path.name == "__init__.py" else module.rpartition(".")[0]
-
-
-def _targets(module: str, node: ast.stmt) -> set[str]:
-    """Package modules an import statement executes (besides the importer's own parents)."""
-    names: set[str] = set()
-    if isinstance(node, ast.Import):
-        names = {a.name for a in node.names}
-    elif isinstance(node, ast.ImportFrom):
-        if node.level:
-            base = _package_of(module)
-            for _ in range(node.level - 1):
-                base = base.rpartition(".")[0]
-            target = f"{base}.{node.module}" if node.module else base
-        else:
-            target = node.module or ""
-        names = {target} | {f"{target}.{a.name}" for a in node.names}
-    out = set()
-    for name in names:
-        parts = name.split(".")
-        for i in range(1, len(parts) + 1):  # importing a.b.c runs a, a.b and a.b.c
-            out.add(".".join(parts[:i]))
-    parents = {".".join(module.split(".")[:i]) for i in range(1, module.count(".") + 1)}
-    if MODULES[module].name == "__init__.py":
-        parents.add(module)
-    return {t for t in out if t in MODULES and t not in parents}
-
-
 def import_graph() -> dict[str, set[str]]:
     """Module -> the package modules its import-time statements execute."""
-    return {mod: set().union(*[_targets(mod, n) for n in _import_time_nodes(tree.body)])
+    return {mod: set().union(*[targets(mod, n) for n in _import_time_nodes(tree.body)])
             for mod, tree in TREES.items()}
-
-
-def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
-    """Strongly connected components with more than one module (or a self-import)."""
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on: set[str] = set()
-    out: list[list[str]] = []
-
-    def visit(v: str) -> None:
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on.add(v)
-        for w in sorted(graph[v]):
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            comp = []
-            while True:
-                w = stack.pop()
-                on.discard(w)
-                comp.append(w)
-                if w == v:
-                    break
-            if len(comp) > 1 or v in graph[v]:
-                out.append(sorted(comp))
-
-    for v in sorted(graph):
-        if v not in index:
-            visit(v)
-    return out
 
 
 def test_no_import_circle():
     graph = import_graph()
     assert "frictionlaws.law.registry" in graph["frictionlaws.fitting.core"]  # sees imports
-    assert _cycles(graph) == []
+    assert cycles(graph) == []
 
 
 def test_the_circle_check_finds_circles():
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}, "e": {"e"}}
-    assert _cycles(graph) == [["a", "b", "c"], ["e"]]
-    assert _cycles({"a": {"b"}, "b": set()}) == []
+    assert cycles(graph) == [["a", "b", "c"], ["e"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []
 
 
 def test_imports_inside_functions_and_for_types_do_not_count():
@@ -298,7 +221,7 @@ def test_imports_inside_functions_and_for_types_do_not_count():
            "if TYPE_CHECKING:\n    from ..io import Dataset\n"
            "def f():\n    from ..comparison import compare\n")
     nodes = list(_import_time_nodes(ast.parse(src).body))
-    got = set().union(*[_targets("frictionlaws.fitting.core", n) for n in nodes])
+    got = set().union(*[targets("frictionlaws.fitting.core", n) for n in nodes])
     assert got == {"frictionlaws.law"}
 
 
@@ -455,34 +378,6 @@ def test_the_law_list_check_sees_a_list():
 
 # ------------------------------------------------- circles counting every import
 
-def _source_of(module: str, node: ast.ImportFrom) -> str:
-    """The module a ``from X import ...`` statement imports from (resolved)."""
-    if not node.level:
-        return node.module or ""
-    base = _package_of(module)
-    for _ in range(node.level - 1):
-        base = base.rpartition(".")[0]
-    return f"{base}.{node.module}" if node.module else base
-
-
-def _every_target(module: str, node: ast.stmt) -> set[str]:
-    """:func:`_targets`, and the package itself for ``from <package> import ...`` read plainly:
-    ``from . import x`` inside a package imports that package, even when it is a parent."""
-    out = _targets(module, node)
-    if isinstance(node, ast.ImportFrom):
-        source = _source_of(module, node)
-        if source in MODULES and source != module:
-            out.add(source)
-    return out
-
-
-def full_import_graph() -> dict[str, set[str]]:
-    """Module -> the package modules any of its import statements names (deferred and
-    type-only ones included, ``from . import`` as an import of the package)."""
-    return {mod: set().union(set(), *[_every_target(mod, n) for n in ast.walk(tree)
-                                      if isinstance(n, (ast.Import, ast.ImportFrom))])
-            for mod, tree in TREES.items()}
-
 
 def test_no_circle_counting_deferred_and_type_only_imports():
     """No circle even when every import statement counts: inside functions, under
@@ -493,7 +388,7 @@ def test_no_circle_counting_deferred_and_type_only_imports():
     assert "frictionlaws.comparison" in graph["frictionlaws.fitting.campaign"]
     assert "frictionlaws.law.bound" in graph["frictionlaws.fitting.result"]
     assert "frictionlaws.law" in graph["frictionlaws.law.registry"]  # from . import Law
-    assert _cycles(graph) == []
+    assert cycles(graph) == []
 
 
 def test_the_law_package_imports_only_the_layers_below_it():
@@ -538,10 +433,10 @@ def test_least_squares_and_lmfit_are_called_in_one_module():
 
 def test_from_dot_import_counts_as_an_import_of_the_package():
     node = ast.parse("from . import FAMILIES, Law").body[0]
-    assert "frictionlaws.law" in _every_target("frictionlaws.law.registry", node)
-    assert "frictionlaws.law" not in _targets("frictionlaws.law.registry", node)  # a parent
+    assert "frictionlaws.law" in every_target("frictionlaws.law.registry", node)
+    assert "frictionlaws.law" not in targets("frictionlaws.law.registry", node)  # a parent
     sub = ast.parse("from . import core").body[0]
-    assert _every_target("frictionlaws.law.registry", sub) == {"frictionlaws.law",
+    assert every_target("frictionlaws.law.registry", sub) == {"frictionlaws.law",
                                                                "frictionlaws.law.core"}
 
 
@@ -580,7 +475,7 @@ def private_names_across_rooms(trees: dict[str, ast.Module],
         for node in ast.walk(tree):
             if not isinstance(node, ast.ImportFrom):
                 continue
-            source = _source_of(mod, node)
+            source = source_of(mod, node)
             for alias in node.names:
                 full = f"{source}.{alias.name}"
                 name = full if full in modules else source
@@ -646,7 +541,7 @@ def _imported(module: str, node: ast.stmt) -> list[str]:
     if isinstance(node, ast.Import):
         return [a.name for a in node.names]
     assert isinstance(node, ast.ImportFrom)
-    return [_source_of(module, node)]
+    return [source_of(module, node)]
 
 
 def deferred_imports(trees: dict[str, ast.Module]) -> tuple[int, int, set[str]]:

@@ -11,7 +11,6 @@ from typing import Any
 from ..base import jsonio
 from ..base.display import group_label, parameter_table
 from ..base.errors import InputError
-from ..base.numbers import parse_integer
 from ..base.outputs import check_outputs, write_text_atomic
 from ..base.sanitize import frame_csv
 from ..fitting.campaign import UnreadableDatasets, check_grouping, doubts, fit_many
@@ -21,6 +20,7 @@ from ._common import (
     SCHEDULER_TRUST,
     add_progress_option,
     data_sources,
+    job_count,
     progress_value,
     refuse_unused,
     shown_source,
@@ -54,7 +54,7 @@ def add_campaign_options(p: argparse.ArgumentParser, *, shared: bool = True,
         g.add_argument("--shared", metavar="NAME[,NAME]", action="append", default=[],
                        help="with --by: one global fit in which these parameters are common "
                             "to all groups and the others per group, e.g. --shared b")
-    g.add_argument("--jobs", type=_jobs, default=1, metavar="N", help=jobs_help)
+    g.add_argument("--jobs", type=job_count, default=1, metavar="N", help=jobs_help)
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run the datasets on a Dask cluster, e.g. tcp://10.0.0.5:8786 "
                         f"(or tls:// with Dask's TLS settings). {SCHEDULER_TRUST}")
@@ -79,16 +79,6 @@ def campaign_progress(args: argparse.Namespace) -> bool:
     """
     value = progress_value(args)
     return sys.stderr.isatty() if value is None else value
-
-
-def _jobs(text: str) -> int:
-    try:  # the one number parser: no 1_0, no non-ASCII digits
-        value = parse_integer(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
-    if value != -1 and not 1 <= value <= 1024:
-        raise argparse.ArgumentTypeError(f"must be 1..1024 or -1, got {value}")
-    return value
 
 
 def split_names(items: list[str]) -> list[str]:

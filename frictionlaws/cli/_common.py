@@ -52,6 +52,8 @@ __all__ = [
     "non_negative_int",
     "positive_int",
     "bounded_int",
+    "job_count",
+    "JOBS_ALLOWED",
     "bounded_number",
     "SEED_MAX",
     "add_data_options",
@@ -299,7 +301,7 @@ def _fit_option_specs() -> dict[str, tuple[tuple[str, ...], dict[str, Any]]]:
             help="bootstrap replicates, 20 to 100000 (default 1000; with --uncertainty "
                  "bootstrap)")),
         "boot_jobs": (("--boot-jobs",), dict(
-            type=boot_jobs_count, default=1, metavar="N",
+            type=job_count, default=1, metavar="N",
             help="worker processes for the bootstrap refits (default 1; -1 = one per core; "
                  "with --uncertainty bootstrap)")),
         "boot_interval": (("--boot-interval",), dict(
@@ -326,15 +328,22 @@ def add_fit_options(p: argparse.ArgumentParser | Any, only: Sequence[str] | None
 BOOT_OPTIONS = ("boot", "boot_jobs", "boot_interval")
 
 
-def boot_jobs_count(text: str) -> int:
-    """``--boot-jobs``: -1 or 1..1024."""
-    s = str(text).strip()
-    if s == "-1":
-        return -1
-    return bounded_int(1, 1024)(s)
+#: What a worker count may be: the words of every ``--jobs`` option's message.
+JOBS_ALLOWED = "a whole number from 1 to 1024, or -1 for one per core"
 
 
-boot_jobs_count.__name__ = "integer"
+def job_count(text: str) -> int:
+    """``--jobs``, ``--boot-jobs``: 1..1024, or -1 for one per core."""
+    try:  # the one number parser: no 1_0, no non-ASCII digits
+        value = parse_integer(str(text).strip())
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{str(text)[:40]}' is not {JOBS_ALLOWED}") from None
+    if value != -1 and not 1 <= value <= 1024:
+        raise argparse.ArgumentTypeError(f"{value} is out of range: expected {JOBS_ALLOWED}")
+    return value
+
+
+job_count.__name__ = "integer"
 
 
 def add_progress_option(p: argparse.ArgumentParser | Any) -> None:

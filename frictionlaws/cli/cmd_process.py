@@ -25,12 +25,12 @@ from ..base.outputs import atomic_dir, check_dir_move, check_outputs
 from ..io import output_dir
 from ..tribometer.process import manifest_names, process_many, read_manifest, write_tables
 from ..tribometer.rig import load_rig
-from ._campaign import _jobs
 from ._common import (
     SCHEDULER_TRUST,
     add_json_option,
     add_progress_option,
     bounded_int,
+    job_count,
     progress_value,
 )
 from .commands import COMMANDS
@@ -66,7 +66,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    help="write diagnostic plots (raw, filtered, window) for every record "
                         "to DIR (several manifests: one subdirectory NAME each; created with "
                         "its parents if missing, and only when the datasets are written)")
-    p.add_argument("--jobs", type=_jobs, default=-1, metavar="N",
+    p.add_argument("--jobs", type=job_count, default=-1, metavar="N",
                    help="worker processes for the records (default -1: one per core; 1 = "
                         "serial; 1..1024; never more than the cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,

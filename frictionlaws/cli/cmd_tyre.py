@@ -49,12 +49,12 @@ from ._common import (
     add_data_options,
     add_fit_options,
     add_law_source_options,
-    boot_jobs_count,
     bound_from_args,
     bounded_int,
     bounded_number,
     data_source,
     data_sources,
+    job_count,
     parse_values,
     refuse_unused,
     report_text,
@@ -200,7 +200,7 @@ def _add_fit_mf(tsub: argparse._SubParsersAction) -> None:
     f.add_argument("--boot", type=bounded_int(20, 100_000), default=None, metavar="N",
                    help="sweep-bootstrap resamples, 20 to 100000 (default 100; with "
                         "--uncertainty sweeps)")
-    f.add_argument("--boot-jobs", type=boot_jobs_count, default=None, metavar="N",
+    f.add_argument("--boot-jobs", type=job_count, default=None, metavar="N",
                    help="worker processes for the bootstrap refits (default 1; -1 = one "
                         "per core; with --uncertainty sweeps)")
     f.add_argument("--seed", type=bounded_int(0, SEED_MAX), default=None, metavar="SEED",
@@ -567,8 +567,10 @@ def _steady_state_grid(mf: Any, args: argparse.Namespace) -> dict[str, Any]:
     if n > MAX_STEADY_ROWS:
         raise InputError(f"{n} combinations of the values given: at most {MAX_STEADY_ROWS} "
                          "rows are evaluated at once")
-    rows = list(itertools.product(*given.values()))
-    grid = {k: np.array([r[i] for r in rows], dtype=float) for i, k in enumerate(given)}
+    # the slip angle varies fastest: one sweep per combination of the others (instKya)
+    order = sorted(given, key=lambda k: k == "alpha")
+    rows = list(itertools.product(*(given[k] for k in order)))
+    grid = {k: np.array([r[i] for r in rows], dtype=float) for i, k in enumerate(order)}
     return {**{k: None for k in INPUTS}, "kappa": 0.0, "alpha": 0.0, "gamma": 0.0, **grid}
 
 

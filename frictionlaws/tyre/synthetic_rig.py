@@ -195,12 +195,16 @@ def truth_errors(truth: MagicFormula, fitted: MagicFormula, *,
     for fz in truth.fnomin * np.asarray(loads):
         for p in (truth.nominal_pressure or 2.6e5) * np.asarray(pressures):
             for g in np.radians(cambers_deg):
-                tx, ty = truth.fx0(k, fz, g, p), truth.fy0(a, fz, g, p)
-                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=p) for m in (truth, fitted))
-                t, f = (m.steady_state(K, A, fz, g, pressure=p) for m in (truth, fitted))
+                pt, pf = (p if m.nominal_pressure else None  # none: no pressure terms
+                          for m in (truth, fitted))
+                tx, ty = truth.fx0(k, fz, g, pt), truth.fy0(a, fz, g, pt)
+                t0, f0 = (m.steady_state(0.0, a, fz, g, pressure=q)
+                          for m, q in ((truth, pt), (fitted, pf)))
+                t, f = (m.steady_state(K, A, fz, g, pressure=q)
+                        for m, q in ((truth, pt), (fitted, pf)))
                 peak = np.abs(t0["Mz"]).max()
-                errs = {"Fx0": np.abs(fitted.fx0(k, fz, g, p) - tx).max() / np.abs(tx).max(),
-                        "Fy0": np.abs(fitted.fy0(a, fz, g, p) - ty).max() / np.abs(ty).max(),
+                errs = {"Fx0": np.abs(fitted.fx0(k, fz, g, pf) - tx).max() / np.abs(tx).max(),
+                        "Fy0": np.abs(fitted.fy0(a, fz, g, pf) - ty).max() / np.abs(ty).max(),
                         "Fx": np.abs(f["Fx"] - t["Fx"]).max() / np.abs(tx).max(),
                         "Fy": np.abs(f["Fy"] - t["Fy"]).max() / np.abs(ty).max(),
                         "Mz": max(np.abs(f0["Mz"] - t0["Mz"]).max(),

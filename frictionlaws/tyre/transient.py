@@ -51,13 +51,15 @@ one at the lagged slips.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..base.errors import InputError, broadcast_shape
 from .mf.model import MagicFormula
+from .mf.notices import collected
+from .mf.outputs import evaluate
 from .mf.parameters import real_array
 
 __all__ = ["TransientSlip", "transient_slip", "relax", "relax_source", "travelled",
@@ -95,6 +97,8 @@ class TransientSlip:
         Forces [N] and aligning moment [N m] at the lagged slips.
     Fx_steady, Fy_steady, Mz_steady : numpy.ndarray
         The steady-state values at the slips given (what the tyre tends to).
+    warnings : list of str
+        The warnings of the evaluation, once each (also issued as Python warnings, once).
     """
 
     t: np.ndarray
@@ -111,6 +115,7 @@ class TransientSlip:
     Fx_steady: np.ndarray
     Fy_steady: np.ndarray
     Mz_steady: np.ndarray
+    warnings: list[str] = field(default_factory=list)
 
     def as_dict(self) -> dict[str, np.ndarray]:
         """The histories by name (the keys of :data:`TRANSIENT_OUTPUTS`).
@@ -119,7 +124,7 @@ class TransientSlip:
         -------
         dict of str to numpy.ndarray
         """
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "warnings"}
 
 
 def _times(t: Any) -> np.ndarray:
@@ -350,13 +355,24 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
     if kappa is not None and omega is not None:
         raise InputError("transient_slip: give the slip ratio kappa or the wheel speed "
                          "omega, not both")
+    with collected(mf.not_applied) as warned:  # the three evaluations: each warning once
+        return _transient(mf, t, vx, fz, kappa, alpha, gamma, phit, omega, pressure,
+                          turn_slip, limit_checks, initial, warned)
+
+
+def _transient(mf: MagicFormula, t: Any, vx: Any, fz: Any, kappa: Any, alpha: Any,
+               gamma: Any, phit: Any, omega: Any, pressure: Any, turn_slip: bool,
+               limit_checks: bool, initial: Any, warned: list[str]) -> TransientSlip:
+    """:func:`transient_slip`, its warnings filled into ``warned`` when it returns."""
     t = _times(t)
     h = _histories(t, {"vx": vx, "fz": fz, "kappa": 0.0 if kappa is None else kappa,
                        "alpha": alpha, "gamma": gamma, "phit": phit, "omega": omega,
                        "pressure": pressure})
     opts: dict[str, Any] = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
                             "turn_slip": turn_slip, "limit_checks": limit_checks}
-    rest = mf.steady_state(0.0, 0.0, h["fz"], h["gamma"], omega=h.get("omega"), **opts)
+    forces = ("Fx", "Fy", "Mz")
+    rest = evaluate(mf, 0.0, 0.0, h["fz"], h["gamma"], names=("Re", "sigmax", "sigmay"),
+                    omega=h.get("omega"), **opts).outputs
     sx, sy = _relaxation_lengths(mf, rest)
     dist = travelled(t, h["vx"])
     lag_x = np.diff(dist) * _step_mean(1 / sx)
@@ -367,12 +383,12 @@ def transient_slip(mf: MagicFormula, t: Any, vx: Any, fz: Any, *, kappa: Any = N
     else:
         slip, kt = _wheel_speed_slip(t, h, rest["Re"], sx, lag_x, k0)
     at = relax(h["alpha"], np.diff(dist) * _step_mean(1 / sy), a0)
-    lagged = mf.steady_state(kt, at, h["fz"], h["gamma"], **opts)
+    lagged = evaluate(mf, kt, at, h["fz"], h["gamma"], names=forces, **opts).outputs
     known = np.isfinite(slip)
-    steady = mf.steady_state(np.where(known, slip, 0.0), h["alpha"], h["fz"], h["gamma"],
-                             **opts)
+    steady = evaluate(mf, np.where(known, slip, 0.0), h["alpha"], h["fz"], h["gamma"],
+                      names=forces, **opts).outputs
     return TransientSlip(t=t, distance=dist, kappa=slip, alpha=np.array(h["alpha"]),
                          kappa_t=kt, alpha_t=at, sigma_x=sx, sigma_y=sy, Fx=lagged["Fx"],
                          Fy=lagged["Fy"], Mz=lagged["Mz"],
                          **{f"{n}_steady": np.where(known, steady[n], np.nan)
-                            for n in ("Fx", "Fy", "Mz")})
+                            for n in forces}, warnings=warned)

@@ -128,3 +128,14 @@ def test_the_library_does_not_quote_cli_flags() -> None:
             if flag.search(line):
                 offenders.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
     assert not offenders, "\n".join(offenders)
+
+
+@pytest.mark.parametrize("argv", [
+    ["tyre", "fit-mf", "x.csv", "-o", "y.tir", "--boot-jobs", "0"],
+    ["fit", "x.csv", "--law", "coulomb", "--jobs", "0"],
+    ["process", "m.toml", "--jobs", "2000"]])
+def test_a_worker_count_out_of_range_says_what_minus_one_means(argv, capsys) -> None:
+    """Every worker-count option refuses alike, saying what -1 means (one parser)."""
+    assert main(argv) == 2
+    err = capsys.readouterr()[1]
+    assert "expected a whole number from 1 to 1024, or -1 for one per core" in err

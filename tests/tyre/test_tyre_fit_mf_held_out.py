@@ -9,14 +9,18 @@ version's default template.  The seeds were drawn once for this test, not tuned.
 
 from __future__ import annotations
 
+import math
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from frictionlaws.base.errors import ExtrapolationWarning
 from frictionlaws.tyre import MagicFormula, fit_mf
 from frictionlaws.tyre.mf.fit import FITTYPS
+from frictionlaws.tyre.mf.fit.pure import X_COEFFICIENTS, Y_COEFFICIENTS
+from frictionlaws.tyre.mf.fit.stages import ALPHA_PURE, KAPPA_PURE, level_scale
 from frictionlaws.tyre.synthetic_rig import random_tyre, rig_data, truth_errors
 
 #: Magic Formula version -> the FITTYP the tyre is fitted as.
@@ -27,12 +31,65 @@ SHARES = {"Fx0": 0.005, "Fy0": 0.005, "Fx": 0.01, "Fy": 0.01, "Mz": 0.02}
 #: Seeds of :func:`random_tyre` (seed % 3 picks the example: 1001 -> MF 5.2,
 #: 1002 -> MF 6.1, 1003 -> MF 6.2) and of the rig's noise.
 SEEDS = (1001, 1002, 1003)
-#: Shares of :data:`SHARES` a tyre's noise does not let any fit meet.  Seed 1001: F_y0
-#: ends 0.56 % off at 12 deg (the sweep's end, the lateral peak beyond it), 1.6 FNOMIN,
-#: camber -3 deg, while the fitted file fits the pure-slip rows better than the truth
-#: does (weighted sum of squares 0.1972 against 0.1984); another noise draw of an MF 5.2
-#: tyre (seed 1004) ends 0.34 %.
-NOISE_LIMITED = {1001: {"Fy0": 0.006}}
+#: Figures of :data:`SHARES` a tyre's noise does not let any fit meet: allowed over their
+#: share only while the error at the worst point is within :data:`NOISE_SD` standard
+#: deviations of the fit's own prediction there (:func:`_worst_in_sd`).  Seed 1001:
+#: F_y0 ends 0.565 % off at 12 deg (the sweep's end), 1.6 FNOMIN, camber -3 deg, 2.7 SD
+#: of the prediction (SD 0.21 % of peak there); the same tyre with five other noise draws
+#: (``rig_data(random_tyre(1001), seed=1..5)``) ends 0.19, 0.35, 0.46, 0.29, 0.27 %.
+NOISE_LIMITED = {1001: ("Fy0",)}
+#: How far (in standard deviations of the fitted curve) a noise-limited figure may be.
+NOISE_SD = 3.0
+
+
+def _worst_in_sd(truth: MagicFormula, fitted: MagicFormula, data: object, res: object,
+                 name: str) -> float:
+    """The error of the pure curve ``name`` ("Fx0" or "Fy0") at its worst point on the
+    grid of :func:`truth_errors`, in standard deviations of the fitted curve there: the
+    covariance ``s^2 (J^T J)^-1`` of the coefficients the fit determined, from the rows
+    near pure slip weighted as the fit weights them (each load's largest force)."""
+    x = name == "Fx0"
+    names = [k for k in (X_COEFFICIENTS if x else Y_COEFFICIENTS)[fitted.version]
+             if math.isfinite(res.stderr.get(k, math.inf))]  # type: ignore[attr-defined]
+    rows = (np.abs(data.alpha) <= ALPHA_PURE if x  # type: ignore[attr-defined]
+            else np.abs(data.kappa) <= KAPPA_PURE)  # type: ignore[attr-defined]
+    measured = (data.fx if x else data.fy)  # type: ignore[attr-defined]
+    scale = level_scale(data.fz, measured)[rows]  # type: ignore[attr-defined]
+    slip_rows = (data.kappa if x else data.alpha)[rows]  # type: ignore[attr-defined]
+    at = (data.fz[rows], data.gamma[rows], data.pressure[rows])  # type: ignore[attr-defined]
+    base = dict(fitted.coefficients)
+    p0 = np.array([base[k] for k in names])
+
+    def curve(values: np.ndarray, slip: np.ndarray, fz: object, g: object, p: object
+              ) -> np.ndarray:
+        fitted.coefficients.update(zip(names, values))
+        p = p if fitted.nominal_pressure else None  # MF 5.2: no pressure terms
+        out = (fitted.fx0 if x else fitted.fy0)(slip, fz, g, p)
+        fitted.coefficients.update(base)
+        return np.asarray(out)
+
+    def jacobian(*point: object) -> np.ndarray:
+        f0 = curve(p0, *point)  # type: ignore[arg-type]
+        steps = 1e-6 * np.maximum(1.0, np.abs(p0))
+        return np.array([(curve(p0 + h * e, *point) - f0) / h  # type: ignore[arg-type]
+                         for h, e in zip(steps, np.eye(p0.size))]).T
+
+    J = jacobian(slip_rows, *at) / scale[:, None]
+    r = (curve(p0, slip_rows, *at) - measured[rows]) / scale
+    cov = np.linalg.pinv(J.T @ J) * float(r @ r) / (r.size - p0.size)
+    grid = (np.linspace(-0.25, 0.25, 101) if x else np.radians(np.linspace(-12, 12, 97)))
+    worst = (0.0, 0.0)
+    for fz in truth.fnomin * np.array([0.4, 0.7, 1.0, 1.3, 1.6]):
+        for p in (truth.nominal_pressure or 2.6e5) * np.array([0.85, 1.1]):
+            for g in np.radians([-3.0, 0.0, 3.0]):
+                true = np.asarray((truth.fx0 if x else truth.fy0)(
+                    grid, fz, g, p if truth.nominal_pressure else None))
+                err = np.abs(curve(p0, grid, fz, g, p) - true)
+                i = int(np.argmax(err))
+                if err[i] / np.abs(true).max() > worst[0]:
+                    G = jacobian(grid[i:i + 1], fz, g, p)[0]
+                    worst = (err[i] / np.abs(true).max(), err[i] / math.sqrt(G @ cov @ G))
+    return worst[1]
 
 
 @pytest.mark.slow
@@ -47,8 +104,14 @@ def test_a_random_tyres_rig_data_are_recovered_within_the_stated_shares(
         fitted = MagicFormula.from_file(res.write(tmp_path / "fitted.tir"))
     assert fitted.version == truth.version
     worst = truth_errors(truth, fitted)
-    shares = {**SHARES, **NOISE_LIMITED.get(seed, {})}
-    assert all(worst[k] <= share for k, share in shares.items()), worst
+    over = {k: worst[k] for k, share in SHARES.items() if worst[k] > share}
+    assert set(over) <= set(NOISE_LIMITED.get(seed, ())), worst
+    for name in over:  # a miss the data's noise explains, and no more
+        assert _worst_in_sd(truth, fitted, data, res, name) <= NOISE_SD, (name, worst)
+        off = MagicFormula.from_file(tmp_path / "fitted.tir")  # a curve 2 % off is not
+        peak = "PDX1" if name == "Fx0" else "PDY1"
+        off.coefficients[peak] *= 1.02
+        assert _worst_in_sd(truth, off, data, res, name) > NOISE_SD, name
 
 
 def test_a_random_tyre_is_the_same_for_the_same_seed_and_moved_from_its_example() -> None:

@@ -33,9 +33,10 @@ def test_rig_data_of_another_tyre_are_recovered_within_the_stated_shares(
     res = fit_mf(data, fittyp=61, template="MagicFormula61")
     fitted = MagicFormula.from_file(res.write(tmp_path / "fitted.tir"))
     worst = truth_errors(truth, fitted)
-    assert worst["Fx0"] < 0.01 and worst["Fy0"] < 0.01, worst
-    assert worst["Fx"] < 0.02 and worst["Fy"] < 0.02, worst
-    assert worst["Mz"] < 0.03, worst
+    # the shares of the MF room's held-out line (measured 0.22, 0.32, 0.21, 0.39, 0.59 %)
+    assert worst["Fx0"] < 0.005 and worst["Fy0"] < 0.005, worst
+    assert worst["Fx"] < 0.01 and worst["Fy"] < 0.01, worst
+    assert worst["Mz"] < 0.02, worst
     # quadratic pressure terms need three pressures: named, at the template's value
     assert {"PPX2", "PPY4"} <= set(res.undetermined)
     for name in ("RBX1", "RBY1", "RVY1", "QBZ1", "QDZ1", "QDZ6", "SSZ1", "SSZ2", "PPZ1",

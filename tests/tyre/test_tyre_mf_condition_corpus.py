@@ -37,6 +37,7 @@ from frictionlaws.cli import main
 from frictionlaws.cli._messages import short_warning
 from frictionlaws.tyre.mf.model import MagicFormula
 from frictionlaws.tyre.mf.outputs import evaluate
+from frictionlaws.tyre.mf.plausibility import speed_bound
 from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
 
 xr = pytest.importorskip("xarray")
@@ -51,6 +52,7 @@ class Condition:
     inputs: dict[str, float] = field(default_factory=dict)
     model: dict[str, str] = field(default_factory=dict)
     saturate: bool = False
+    options: dict[str, Any] = field(default_factory=dict)  # of the evaluation
 
 
 #: The conditions tried, singly and in pairs (the CLI's units: deg, kN, kPa, m/s).
@@ -70,6 +72,10 @@ SINGLE: dict[str, Condition] = {
                             model={"friction_scaling": "degressive"}),
     "published": Condition(("--equations", "published"), model={"equations": "published"}),
     "saturate": Condition(("--saturate",), saturate=True),
+    "speed-implausible": Condition(("--vx", "1000"), {"vx": 1000.0}),
+    "omega-contradicts": Condition(("--omega", "500"), {"omega": 500.0}),
+    "standing-no-checks": Condition(("--vx", "0", "--no-limit-checks"), {"vx": 0.0},
+                                    options={"limit_checks": False}),
 }
 #: Pairs that ask one thing each (an input given twice is not a pair).
 PAIRS = {f"{a}+{b}": (a, b) for a, b in itertools.combinations(SINGLE, 2)
@@ -77,7 +83,8 @@ PAIRS = {f"{a}+{b}": (a, b) for a, b in itertools.combinations(SINGLE, 2)
          and not (SINGLE[a].cli[0] == SINGLE[b].cli[0])}
 FILES = ("MagicFormula52", "MagicFormula61", "MagicFormula62", "no-load-range")
 #: Where a condition's input is not given: the file's nominal state, one row.
-NOMINAL = {"kappa": 0.05, "alpha": 0.02, "gamma": 0.0, "pressure": None, "vx": None}
+NOMINAL = {"kappa": 0.05, "alpha": 0.02, "gamma": 0.0, "pressure": None, "vx": None,
+           "omega": None}
 
 
 def _combined(names: tuple[str, ...]) -> Condition:
@@ -85,7 +92,8 @@ def _combined(names: tuple[str, ...]) -> Condition:
     return Condition(tuple(a for c in parts for a in c.cli),
                      {k: v for c in parts for k, v in c.inputs.items()},
                      {k: v for c in parts for k, v in c.model.items()},
-                     any(c.saturate for c in parts))
+                     any(c.saturate for c in parts),
+                     {k: v for c in parts for k, v in c.options.items()})
 
 
 CASES = {**{n: (n,) for n in SINGLE}, **PAIRS}
@@ -117,7 +125,7 @@ def _api(file: str, c: Condition) -> Said:
             fz = c.inputs.get("fz", mf.fnomin)
             kw = {**NOMINAL, **{k: v for k, v in c.inputs.items() if k != "fz"}}
             res = evaluate(mf, kw["kappa"], kw["alpha"], fz, kw["gamma"], kw["pressure"],
-                           kw["vx"], c.saturate)
+                           kw["vx"], c.saturate, omega=kw["omega"], **c.options)
         except InputError:
             return Said(None)
     raised = list(dict.fromkeys(str(w.message) for w in caught))
@@ -133,7 +141,8 @@ def _xarray(file: str, c: Condition) -> Said:
             fz = c.inputs.get("fz", mf.fnomin)
             kw = {**NOMINAL, **{k: v for k, v in c.inputs.items() if k != "fz"}}
             ds = mf.steady_state(xr.DataArray([kw["kappa"]], dims="row"), kw["alpha"], fz,
-                                 kw["gamma"], kw["pressure"], kw["vx"], c.saturate)
+                                 kw["gamma"], kw["pressure"], kw["vx"], c.saturate,
+                                 omega=kw["omega"], **c.options)
         except InputError:
             return Said(None)
     rows = [sorted(ds.attrs["clamped"]) if flag else [] for flag in ds["clamped"].values]
@@ -180,9 +189,15 @@ def _short(said: Said) -> Said:
                 said.clamped)
 
 
+#: The plausibility conditions (speed, wheel speed, a standing wheel without the limit
+#: checks): their pairs are tried on one file (the rule is the same for every file).
+PLAUSIBILITY = {"speed-implausible", "omega-contradicts", "standing-no-checks"}
+
+
 @pytest.mark.parametrize(("case", "file"), [
     (case, file) for case in CASES for file in FILES
-    if case in SINGLE or file != "MagicFormula62"])  # 6.2's ranges are 6.1's
+    if case in SINGLE or (file != "MagicFormula62"  # 6.2's ranges are 6.1's
+                          and (file == "MagicFormula61" or not PLAUSIBILITY & set(CASES[case])))])
 def test_a_condition_is_said_alike_on_every_path_or_refused_alike(
         case: str, file: str, files: dict[str, str],
         capsys: pytest.CaptureFixture[str]) -> None:
@@ -198,14 +213,21 @@ def test_a_condition_is_said_alike_on_every_path_or_refused_alike(
 
 def _expected(path: str, c: Condition, api: Said) -> None:
     """The corpus is not vacuous: what the file's ranges and version call for is said."""
-    assert api.warnings is not None  # backwards and low speed are evaluated as MFeval does
+    checks = c.options.get("limit_checks", True)
+    if api.warnings is None:  # saturate needs the limit checks; the rest is evaluated
+        assert c.saturate and not checks
+        return
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mf = MagicFormula.from_file(path)
     said = " | ".join(api.warnings)
     vxlow = mf.structure.get("VXLOW", 0.0)
-    low_speed = abs(c.inputs.get("vx", mf.need("LONGVL"))) <= vxlow
+    vx = c.inputs.get("vx", mf.need("LONGVL"))
+    low_speed = abs(vx) <= vxlow
     assert ("VXLOW" in said) == low_speed, said
+    assert ("an implausible speed" in said) == (abs(vx) > speed_bound(mf)[0]), said
+    assert ("the wheel speed given contradicts" in said) == ("omega" in c.inputs), said
+    assert ("at a standing wheel" in said) == (vx == 0 and not checks), said
     for name, value in c.inputs.items():
         if low_speed and name in ("kappa", "alpha"):
             continue  # taken towards 0 with the speed: the range is checked after that
@@ -220,7 +242,7 @@ def _expected(path: str, c: Condition, api: Said) -> None:
         assert "loads_above_fzmax = 'clamp' is not applied" in said
     fz, (fzmin, fzmax) = c.inputs.get("fz", mf.fnomin), mf.limits.get("fz", (0.0, np.inf))
     load_clamped = (fz > fzmax and (c.saturate or c.model.get("loads_above_fzmax") == "clamp")
-                    or c.saturate and fz < fzmin)
+                    or (c.saturate or not checks) and fz < fzmin)  # M_x, M_y reduced
     assert ("fz" in api.clamped[0]) == load_clamped, (api.clamped, said)
 
 

@@ -67,7 +67,7 @@ def test_every_method_warns_once_of_an_input_beyond_the_file(method: str,
         warnings.simplefilter("always")
         f(**kw)
     texts = [str(w.message) for w in caught]
-    assert len(texts) == 1 and f"{beyond} from" in texts[0], texts
+    assert len(texts) == 1 and f"{beyond} of 1 of" in texts[0], texts
     assert caught[0].category is ExtrapolationWarning
 
 
@@ -88,11 +88,13 @@ def test_a_clamped_load_is_said_alike_by_every_method(method: str) -> None:
 
 def test_the_summary_json_keeps_the_extrapolation_the_text_warns_of(capsys) -> None:
     code, out, err = _run(capsys, "tyre", "mf", "MagicFormula61", "--loads", "4,25")
-    assert code == 0 and "warning:" in err and "to 25000 lies outside" in err
+    assert code == 0 and "warning:" in err
+    assert "range 0..18000 (SI), 1 above it, up to 25000" in err  # what lies outside
     code, out, err_json = _run(capsys, "tyre", "mf", "MagicFormula61", "--loads", "4,25",
                                "--json")
     doc = json.loads(out)
-    assert [w for w in doc["warnings"] if "to 25000 lies outside" in w]
+    assert [w for w in doc["warnings"]
+            if "fz of 1 of 2 value(s) lies outside" in w and "up to 25000" in w]
     assert doc["clamped"] == [False, False] and doc["loads_evaluated_N"] == [4000.0, 25000.0]
 
 
@@ -163,10 +165,10 @@ def test_xarray_results_keep_the_warnings() -> None:
     kappa = xr.DataArray([0.05, 1.5], dims="k")
     with pytest.warns(ExtrapolationWarning):
         out = mf.fx0(kappa, 4000.0)
-    assert [w for w in out.attrs["warnings"] if "kappa from" in w]
+    assert [w for w in out.attrs["warnings"] if "kappa of" in w]
     with pytest.warns(ExtrapolationWarning):
         ds = mf.steady_state(kappa, 0.0, 4000.0)
-    assert [w for w in ds.attrs["warnings"] if "kappa from" in w]
+    assert [w for w in ds.attrs["warnings"] if "kappa of" in w]
 
 
 def _tiny_data() -> TyreData:

@@ -42,9 +42,10 @@ def _cli(capsys: pytest.CaptureFixture[str], name: str, *extra: str) -> tuple[st
 
 
 def _grid() -> dict[str, np.ndarray]:
-    """The rows the CLI evaluates: every combination, in the order of the table's inputs."""
-    k, a, z, g = np.meshgrid(KAPPA, np.radians(ALPHA_DEG), np.array(LOADS_KN) * 1e3,
-                             np.radians(GAMMA_DEG), indexing="ij")
+    """The rows the CLI evaluates: every combination, in the order of the table's inputs
+    but for the slip angle, which varies fastest (a sweep per combination: instKya)."""
+    k, z, g, a = np.meshgrid(KAPPA, np.array(LOADS_KN) * 1e3, np.radians(GAMMA_DEG),
+                             np.radians(ALPHA_DEG), indexing="ij")
     return {"kappa": k.ravel(), "alpha": a.ravel(), "fz": z.ravel(), "gamma": g.ravel()}
 
 
@@ -144,7 +145,7 @@ def _mf_parser(parser: Any) -> Any:
 #: FZMAX, inputs clamped by ``saturate``.
 CONDITIONS: dict[str, dict[str, Any]] = {
     "extrapolated": {"cli": ["--kappa", "0.05,1.5"], "api": {"kappa": [0.05, 1.5]},
-                     "model": {}, "saturate": False, "warning": "kappa from",
+                     "model": {}, "saturate": False, "warning": "kappa of 1 of 2",
                      "clamped": {}},
     "clamped": {"cli": ["--loads", "4,25", "--loads-above-fzmax", "clamp"],
                 "api": {"fz": [4000.0, 25000.0]}, "model": {"loads_above_fzmax": "clamp"},

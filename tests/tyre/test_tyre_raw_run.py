@@ -173,6 +173,10 @@ def test_a_run_without_camber_or_with_one_load_says_so(tmp_path: Path) -> None:
     (dict(scale={"SL": 100.0}), "percent given as fractions"),
     (dict(units={"MZ": "N-m"}, scale={"MZ": 1000.0}), "N mm under N m"),
     (dict(units={"FZ": ""}), "FZ has no unit"),
+    (dict(units={"P": "MPa"}), "inflation pressure of 2.*e\\+05 kPa.*'MPa'"),  # kPa as MPa
+    (dict(units={"P": "Pa"}), "inflation pressure of 0.2.* kPa.*'Pa'"),
+    (dict(units={"P": "bar"}), "inflation pressure of 2.*e\\+04 kPa.*'bar'"),
+    (dict(scale={"P": 0.01}), "inflation pressure of 2.* kPa"),  # bar numbers under kPa
     (dict(units={"FX": "m"}), "force"),
     (dict(drop=("ET",)), "no ET channel"),
     (dict(drop=("FZ",)), "no row of channel names"),
@@ -237,6 +241,28 @@ def test_a_name_with_a_line_break_is_not_used_and_writes_no_line(tiny, tmp_path:
     assert main(["tyre", "prepare", str(path), "-o", str(out)]) == 0
     assert "\u2028" not in out.read_text()
     capsys.readouterr()
+
+
+def test_a_run_cut_short_is_refused_for_what_it_lacks(tiny, tmp_path: Path) -> None:
+    """Runs cut after any number of samples (drawn once): before the tyre is loaded the
+    refusal says so; later, what is missing (no sweep); never a unit or the axes, which
+    the samples kept do not bring into question."""
+    lines = _lines(tiny.write(tmp_path / "tiny.txt"))
+    fz = np.abs(tiny.channels["FZ"])
+    first_loaded = int(np.argmax(fz >= raw_module.MIN_RIG_LOAD))
+    cuts = sorted({1, 2, first_loaded, first_loaded + 1, first_loaded + 40,
+                   *np.random.default_rng(37).integers(3, fz.size, 12).tolist()})
+    for n in cuts:
+        path = tmp_path / f"cut{n}.txt"
+        path.write_text("\n".join(lines[:3 + n]) + "\n")
+        try:
+            prepare_run(load_raw_run(path))
+        except InputError as exc:
+            text = str(exc)
+            assert "sign_convention" not in text and "unit" not in text, (n, text)
+            if n <= first_loaded:
+                assert "no sample carries a load of 100 N" in text, (n, text)
+            assert exc.file == str(path)
 
 
 def test_a_run_without_sweeps_is_refused(tiny, tmp_path: Path) -> None:

@@ -18,82 +18,30 @@ from __future__ import annotations
 import ast
 import importlib
 from collections.abc import Iterator
-from pathlib import Path
 
-import frictionlaws
+from source_tree import MODULES, PACKAGE, TREES, cycles, full_import_graph, source_of
 
-PACKAGE = Path(frictionlaws.__file__).resolve().parent
 TYRE = PACKAGE / "tyre"
 #: Third-party modules whose import may be deferred (start-up time).
 DEFERRABLE = ("matplotlib", "sympy", "dask", "xarray")
 MAX_MF_LINES = 800
 
 
-def _modules(root: Path) -> dict[str, Path]:
-    out = {}
-    for path in sorted(root.rglob("*.py")):
-        rel = path.relative_to(PACKAGE.parent).with_suffix("")
-        parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
-        out[".".join(parts)] = path
-    return out
-
-
-MODULES = _modules(PACKAGE)
 TYRE_MODULES = {m: p for m, p in MODULES.items() if m.startswith("frictionlaws.tyre")}
-
-
-def _package(module: str) -> str:
-    return module if MODULES[module].name == "__init__.py" else module.rpartition(".")[0]
 
 
 def _imports(module: str) -> Iterator[tuple[ast.stmt, str, list[str], bool]]:
     """(node, imported module, names, at the top) for every import statement of ``module``;
     relative imports resolved."""
-    tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
+    tree = TREES[module]
     top = {id(n) for n in tree.body}
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             for alias in node.names:
                 yield node, alias.name, [], id(node) in top
         elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = _package(module)
-                for _ in range(node.level - 1):
-                    base = base.rpartition(".")[0]
-                target = f"{base}.{node.module}" if node.module else base
-            else:
-                target = node.module or ""
-            yield node, target, [a.name for a in node.names], id(node) in top
-
-
-def _edges(module: str) -> set[str]:
-    """The package modules ``module`` imports, every statement counted: ``from P import x``
-    is an edge to P (even a parent package: its ``__init__`` runs) and to P.x when that is
-    a module; ``from P.m import x`` an edge to P.m (and P.m.x)."""
-    out = set()
-    for _, target, names, _top in _imports(module):
-        if target in MODULES:
-            out.add(target)
-        out.update(f"{target}.{n}" for n in names if f"{target}.{n}" in MODULES)
-    out.discard(module)
-    return out
-
-
-def _reachable(graph: dict[str, set[str]], start: str) -> set[str]:
-    """The modules ``start`` imports, directly or through others."""
-    seen: set[str] = set()
-    todo = list(graph.get(start, ()))
-    while todo:
-        m = todo.pop()
-        if m not in seen:
-            seen.add(m)
-            todo.extend(graph.get(m, ()))
-    return seen
-
-
-def _in_circles(graph: dict[str, set[str]], modules: Iterator[str] | list[str]) -> list[str]:
-    """The modules of ``modules`` that import themselves through others."""
-    return sorted(m for m in modules if m in _reachable(graph, m))
+            yield (node, source_of(module, node), [a.name for a in node.names],
+                   id(node) in top)
 
 
 def test_the_magic_formula_is_a_room_of_modules_under_800_lines():
@@ -154,17 +102,14 @@ def test_imports_sit_at_the_top_except_the_heavy_third_party_ones():
 
 
 def test_no_import_circle_through_the_tyre_package():
-    graph = {m: _edges(m) for m in MODULES}
+    """Every import statement counts (deferred, type-only, ``from . import`` of a package:
+    its ``__init__`` runs); the graph and the circle search are the code rules'."""
+    graph = full_import_graph()
     assert "frictionlaws.tyre.mf.model" in graph["frictionlaws.tyre.reduce"]  # sees imports
     assert "frictionlaws.tyre.mf.fit.stages" in graph["frictionlaws.tyre.mf.fit.bootstrap"]
-    assert _in_circles(graph, list(TYRE_MODULES)) == []
-
-
-def test_the_circle_check_counts_from_dot_import_of_the_package():
-    graph = {"p": {"p.a"}, "p.a": {"p.b"}, "p.b": {"p"}, "q": {"p"}}  # p.b: "from . import"
-    assert _in_circles(graph, list(graph)) == ["p", "p.a", "p.b"]
-    edges = _edges("frictionlaws.tyre.mf.fit.bootstrap")  # parents are edges when named
-    assert "frictionlaws.tyre.mf.fit.stages" in edges
+    assert [c for c in cycles(graph) if any(m in TYRE_MODULES for m in c)] == []
+    assert cycles({"p": {"p.a"}, "p.a": {"p.b"}, "p.b": {"p"}, "q": {"p"}}) == [
+        ["p", "p.a", "p.b"]]  # p.b: "from . import"
 
 
 def test_the_import_paths_of_earlier_releases_give_the_same_objects():

@@ -57,7 +57,8 @@ from .channels import (
 from .table import check_sign_convention, to_iso_axes
 from .tydex import is_tydex
 
-__all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS"]
+__all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS", "MIN_RIG_LOAD",
+           "MIN_SWEPT_SLIP", "PLAUSIBLE_PRESSURE"]
 
 #: Most samples of a raw run read (a day at 50 Hz is 4.3 million).
 MAX_SAMPLES = 5_000_000
@@ -198,6 +199,15 @@ def _read_samples(lines: Sequence[str], start: int, names: list[str], wanted: li
     return values, np.asarray(rows) + 1
 
 
+#: The smallest load a rig holds a tyre at [N]: below it, the tyre is off the road.
+MIN_RIG_LOAD = 100.0
+#: Slips whose largest magnitude stays below this (rad or slip ratio; 0.11 deg) are the
+#: rig's jitter about zero: too small to check a unit by.
+MIN_SWEPT_SLIP = 0.002
+#: Inflation pressures tyres run at [Pa] (gauge: a bicycle's lowest to an aircraft's).
+PLAUSIBLE_PRESSURE = (2e4, 2.5e6)
+
+
 def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     """Read a raw rig run (module documentation) into SI and ISO-W axes.
 
@@ -309,7 +319,12 @@ def _kappa(run: RawRun) -> None:
 def _check_axes(run: RawRun) -> None:
     """Loads of the other sign than the axes declared: the other convention, said."""
     fz = run.quantities["fz"]
-    loaded = np.abs(fz) > 0.1 * np.percentile(np.abs(fz), 95)
+    loaded = np.abs(fz) > max(0.1 * np.percentile(np.abs(fz), 95), MIN_RIG_LOAD)
+    if not loaded.any():
+        raise InputError(f"no sample carries a load of {MIN_RIG_LOAD:g} N or more (the "
+                         f"largest |{run.channels['fz']}| is {np.max(np.abs(fz)):.3g} N): "
+                         "the tyre is lifted throughout, or the run was cut before it was "
+                         "loaded", file=run.source, column=run.channels["fz"])
     if np.mean(fz[loaded] < 0) > 0.5:
         other = "iso" if run.sign_convention == "sae" else "sae"
         said = ("SAE loads are negative in the file and were negated, so these were "
@@ -347,7 +362,7 @@ def _check_units(run: RawRun) -> None:
     that is wrong by a factor would otherwise shrink or blow up the sweeps."""
     q = run.quantities
     fz = q["fz"]
-    loaded = fz > 0.1 * np.percentile(fz, 95)
+    loaded = fz > max(0.1 * np.percentile(fz, 95), MIN_RIG_LOAD)
     if not loaded.any():
         raise InputError("no sample carries a load", file=run.source,
                          column=run.channels["fz"])
@@ -363,13 +378,29 @@ def _check_units(run: RawRun) -> None:
              "a slip coefficient of {c:.0f} (tyres have 10-40): the slip ratios look like "
              "fractions under a percent unit")):
         use = loaded & other & (np.abs(slip) > 1e-6)
-        if force in q and use.sum() > 10:
+        # slips within the jitter: the ratio would be the force offsets over a tiny slip
+        if force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP:
             ratio = float(np.percentile(np.abs(q[force][use] / fz[use]), 99.9))
             coef = ratio / float(np.max(np.abs(slip[use])))
             if coef > limit:
                 _refuse_unit(run, "alpha" if force == "fy" else "kappa", what.format(c=coef),
                              use)
     _check_loads_and_moments(run, loaded)
+    _check_pressure(run, loaded)
+
+
+def _check_pressure(run: RawRun, loaded: np.ndarray) -> None:
+    """An inflation pressure no tyre runs at: the unit is off by a factor (kPa under MPa,
+    bar under kPa, ...)."""
+    p = run.quantities.get("pressure")
+    if p is None or not np.isfinite(p[loaded]).any():
+        return
+    median = float(np.nanmedian(p[loaded]))
+    lo, hi = PLAUSIBLE_PRESSURE
+    if not lo <= median <= hi:
+        _refuse_unit(run, "pressure", f"a median inflation pressure of {median / 1e3:.4g} kPa "
+                     f"(tyres run at {lo / 1e3:g}-{hi / 1e3:g} kPa): the unit looks wrong by "
+                     "a factor", loaded & np.isfinite(p))
 
 
 def _check_loads_and_moments(run: RawRun, loaded: np.ndarray) -> None:

@@ -29,6 +29,7 @@ import numpy as np
 
 from ...base.errors import ExtrapolationWarning, InputError, broadcast_shape
 from .parameters import MFParameters, real_array
+from .plausibility import check_speed
 from .turn_slip import check_turn_slip
 
 __all__ = ["Conditions"]
@@ -94,6 +95,7 @@ class Conditions:
         self.vx = np.broadcast_to(given["vx"], shape)
         self.phit_in = np.broadcast_to(given["phit"], shape)
         self.omega = None if omega is None else np.broadcast_to(given["omega"], shape)
+        check_speed(p, self.vx)
         k, a = self._low_speed(p)
         clipped = self._limit(p, {"kappa": k, "alpha": a, "gamma": given["gamma"],
                                   "pressure": given["pressure"]}, saturate)
@@ -145,6 +147,7 @@ class Conditions:
         phit = self.phit_in
         if not self.limit_checks:
             self.fade, self.phit = np.ones(self.shape), phit
+            _warn_standing(p, v)
             if low.any():
                 warnings.warn(f"{p.name or 'Magic Formula'}: {int(low.sum())} row(s) at a speed "
                               f"|vx| <= VXLOW = {vxlow:g} m/s evaluated without the low-speed "
@@ -206,3 +209,16 @@ class Conditions:
         ratio = np.where(low, self.fz_in / max(fzmin, 1e-300), 1.0)
         self.fz_mx = np.where(low, self.fz * ratio**2, self.fz)
         self.fz_my = np.where(low, self.fz_in * ratio, self.fz_in)
+
+
+def _warn_standing(p: MFParameters, vx: Any) -> None:
+    """Warn of rows at a standing wheel without the limit checks, where the outputs jump."""
+    standing = vx == 0
+    if np.any(standing):
+        warnings.warn(f"{p.name or 'Magic Formula'}: {int(standing.sum())} row(s) at a standing "
+                      "wheel (vx = 0 exactly) without the limit checks: the running direction "
+                      "sgn(vx) is 0 there, so the lateral slip tan(alpha) sgn(vx) and the turn "
+                      "slip's side-force shift are 0 (as in MFeval 4.0) and the outputs jump "
+                      "from those at any speed however small (vx = +-1e-9 m/s); the limit "
+                      "checks' low-speed reductions take the slips to 0 continuously instead",
+                      UserWarning, stacklevel=5)

@@ -134,6 +134,7 @@ from .moments import (
 )
 from .notices import collected
 from .parameters import MFParameters
+from .plausibility import check_wheel_speed
 from .turn_slip import (
     Spin,
     check_turn_slip,
@@ -163,11 +164,15 @@ class Evaluation:
         The tyre (its coefficients read as ``e.p.c.PCX1``).
     r : Conditions
         The checked, broadcast inputs (``e.r.kappa``, ``e.r.fz``, ``e.r.dpi``...).
+    asked : frozenset of str
+        The outputs asked for by name (:func:`evaluate`'s ``names``): instKya warns of
+        its NaN only when asked for.
     """
 
-    def __init__(self, p: MFParameters, r: Conditions) -> None:
+    def __init__(self, p: MFParameters, r: Conditions, asked: Any = ()) -> None:
         self.p = p
         self.r = r
+        self.asked = frozenset(asked)  # the outputs asked for by name
 
     @cached_property
     def dfz(self) -> Any:
@@ -283,9 +288,10 @@ class Evaluation:
     def inst_kya(self) -> Any:
         """instKya [N/rad]: the slope of F_y against the evaluated slip angle between
         neighbouring points of the last axis that differ in the slip angle only (MFeval's
-        output 29, a forward difference along its rows, the last point taking the one
-        before); NaN where the angle does not change, where another input changes too,
-        and for a single point."""
+        output 29, a forward difference along its rows; a point without such a neighbour
+        ahead takes the one behind, as MFeval's last point does); NaN for a point with
+        neither, with a warning when it is asked for by name and the slip angle changes
+        along the axis (rows of measured data, all inputs changing, give NaN by design)."""
         r = self.r
         shape = r.shape
         if not shape or shape[-1] < 2:
@@ -296,13 +302,28 @@ class Evaluation:
         for x in (r.kappa_in, r.fz_in, r.gamma, r.pressure, r.vx, r.phit_in, r.omega):
             if x is not None and np.ndim(x):
                 sweep &= np.diff(np.broadcast_to(x, shape), axis=-1) == 0
-        slope = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
-        return np.concatenate([slope, slope[..., -1:]], axis=-1)
+        step = np.where(sweep, dfy / np.where(sweep, da, 1.0), np.nan)
+        none = np.full((*shape[:-1], 1), np.nan)
+        ahead, behind = (np.concatenate(parts, axis=-1) for parts in ((step, none),
+                                                                       (none, step)))
+        slope = np.where(np.isnan(ahead), behind, ahead)
+        lone = np.isnan(slope)
+        if "instKya" in self.asked and np.any(da != 0) and np.any(lone):
+            warnings.warn(f"{self.p.name or 'Magic Formula'}: instKya is NaN on "
+                          f"{int(lone.sum())} of {lone.size} row(s): no neighbour along the "
+                          "last axis differs from them in the slip angle alone (it is the "
+                          "slope of F_y between such neighbours; sweep the slip angle along "
+                          "the last axis, the other inputs held)", UserWarning, stacklevel=4)
+        return slope
 
     @cached_property
     def rolling(self) -> dict[str, Any]:
-        """R_e, omega and the free radius at that speed, R_omega."""
-        return rolling_radius(self.p, self.r)
+        """R_e, omega and the free radius at that speed, R_omega (warned where implausible:
+        :func:`~frictionlaws.tyre.mf.plausibility.check_wheel_speed`)."""
+        p, r = self.p, self.r
+        roll = rolling_radius(p, r)
+        check_wheel_speed(p, r.vx, r.kappa_in, r.omega, roll["omega"], roll["Re"])
+        return roll
 
     @cached_property
     def loaded(self) -> dict[str, Any]:
@@ -429,14 +450,20 @@ class SteadyState:
         return out
 
 
-def _refuse_overflow(name: str, value: np.ndarray, r: Conditions) -> None:
-    """Refuse inputs that take an output past floating point (an infinity is no result:
-    the speed terms grow with the square of the speed or wheel speed)."""
-    bad = np.isinf(value)
+def _refuse_overflow(name: str, value: np.ndarray, e: Evaluation) -> None:
+    """Refuse inputs that take an output past floating point: an infinity, or a NaN but
+    where it is an answer said with a warning (instKya without a neighbour in the slip
+    angle alone; R_l, rho, C_z where no loaded radius carries the load), is no result (the
+    speed terms grow with the square of the speed or wheel speed, a slip ratio of 1e308
+    overflows the slip speed)."""
+    r = e.r
+    bad = np.isinf(value) if name == "instKya" else ~np.isfinite(value)
+    if name in ("Rl", "rho", "Cz"):
+        bad &= ~e.loaded["said"]
     if not bad.any():
         return
     i = int(np.flatnonzero(bad.ravel())[0])
-    at = {"vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
+    at = {"kappa": r.kappa_in, "vx [m/s]": r.vx, "omega [rad/s]": r.omega, "fz [N]": r.fz_in}
     row = ", ".join(f"{k} = {float(np.broadcast_to(v, r.shape).ravel()[i]):g}"
                     for k, v in at.items() if v is not None)
     raise InputError(f"{name} is not finite at row {i} ({row}): the inputs there lie past "
@@ -450,19 +477,23 @@ def evaluate(mf: MFParameters, kappa: Any, alpha: Any, fz: Any, gamma: Any = 0.0
     """Every steady-state output per row, with the inputs, the clamped rows and the
     warnings (:class:`SteadyState`); the parameters are those of :func:`steady_state`.
 
-    ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives).
+    ``names`` chooses the outputs (default: all of :data:`OUTPUTS` the file gives); an
+    instKya asked for by name warns where it is NaN though the slip angle changes.
     """
-    with collected(mf.not_applied) as warned, np.errstate(over="ignore", divide="ignore"):
+    with collected(mf.not_applied) as warned, np.errstate(over="ignore", divide="ignore",
+                                                           invalid="ignore"):
         r = Conditions(mf, kappa, alpha, fz, gamma, pressure, vx, saturate, phit, omega,
                        turn_slip, limit_checks)
-        e = Evaluation(mf, r)
+        e = Evaluation(mf, r, names or ())
+        if r.omega is not None and "UNLOADED_RADIUS" in mf.structure:
+            _ = e.rolling  # a wheel speed given is checked whatever the outputs asked for
         outputs: dict[str, np.ndarray] = {}
         for name in (OUTPUTS if names is None else names):
             value = OUTPUTS[name].value(e)
             if value is not None:
                 outputs[name] = np.broadcast_to(np.asarray(value, dtype=float),
                                                 r.shape).copy()
-                _refuse_overflow(name, outputs[name], r)
+                _refuse_overflow(name, outputs[name], e)
     given = {"kappa": r.kappa_in, "alpha": alpha, "fz": r.fz_in, "gamma": gamma,
              "pressure": r.pressure, "vx": r.vx,
              "phit": r.phit_in if turn_slip else None, "omega": r.omega}

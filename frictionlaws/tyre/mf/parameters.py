@@ -299,17 +299,23 @@ class MFParameters:
     def warn_range(self, name: str, x: Any) -> None:
         """Warn (:class:`~frictionlaws.base.errors.ExtrapolationWarning`) when ``x`` leaves the
         file's validity range of ``name`` (``fz``, ``kappa``, ``alpha``, ``gamma``,
-        ``pressure``)."""
+        ``pressure``), naming how many of the values lie below and above it and how far."""
         lim = self.limits.get(name)
         if lim is None or np.size(x) == 0:  # empty: no point to check, empty results
             return
         lo, hi = lim
-        xmin, xmax = float(np.min(x)), float(np.max(x))
-        if xmin < lo - 1e-12 * abs(lo) or xmax > hi + 1e-12 * abs(hi):
-            warnings.warn(
-                f"{self.name or 'Magic Formula'}: {name} from {xmin:g} to {xmax:g} lies "
-                f"outside the property file's range {lo:g}..{hi:g} (SI): extrapolation",
-                ExtrapolationWarning, stacklevel=3)
+        x = np.asarray(x, dtype=float)
+        below, above = x < lo - 1e-12 * abs(lo), x > hi + 1e-12 * abs(hi)
+        n_below, n_above = int(np.sum(below)), int(np.sum(above))
+        if not n_below and not n_above:
+            return
+        sides = ([f"{n_below} below it, down to {float(np.min(x[below])):g}"] if n_below
+                 else []) + ([f"{n_above} above it, up to {float(np.max(x[above])):g}"]
+                             if n_above else [])
+        warnings.warn(
+            f"{self.name or 'Magic Formula'}: {name} of {n_below + n_above} of {x.size} "
+            f"value(s) lies outside the property file's range {lo:g}..{hi:g} (SI), "
+            f"{' and '.join(sides)}: extrapolation", ExtrapolationWarning, stacklevel=3)
 
     def clamp(self, name: str, x: Any, why: str) -> tuple[Any, Any]:
         """``x`` clipped to the file's range of ``name``, and the mask of the values

@@ -53,15 +53,18 @@ def rolling_radius(p: MFParameters, r: Conditions) -> dict[str, Any]:
 def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: Any,
                   fy: Any) -> dict[str, Any]:
     """R_l, rho and C_z at the wheel speed ``omega`` and free radius ``romega`` (eqs. 4-8;
-    MF 6.2 by root finding, :func:`loaded_radius_62`)."""
+    MF 6.2 by root finding, :func:`loaded_radius_62`), and ``said``: the rows made NaN
+    with a warning (no loaded radius, no deflection)."""
     R0, V0, fz0 = p.need("UNLOADED_RADIUS"), p.need("LONGVL"), p.fnomin
     cz0 = p.need("VERTICAL_STIFFNESS")
     s = p.structure
     pfz1 = s.get("PFZ1", 0.0)
     q_fz2 = s.get("Q_FZ2", 0.0)
     q_fz1 = np.sqrt(max((cz0 * R0 / fz0) ** 2 - 4 * q_fz2, 0.0))
+    said = np.zeros(np.shape(romega), dtype=bool)  # the rows made NaN with a warning
     if p.version == "6.2":
         rl, rho = loaded_radius_62(p, r, omega, romega, fx, fy, q_fz1, q_fz2)
+        said = np.isnan(rl)
         fz_c = r.fz
     else:
         fz_c = r.fz_mz
@@ -72,14 +75,30 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
         x = (rhs / q_fz1 if q_fz2 == 0 else
              (-q_fz1 + np.sqrt(np.maximum(q_fz1**2 + 4 * q_fz2 * rhs, 0.0))) / (2 * q_fz2))
         rho = np.maximum(x * R0, 0.0)
-        rl = np.maximum(romega - rho, 0.0)
+        rl = romega - rho
+    rl, through = _through(p, rl)
     flat = ~(rho > 0)  # no deflection left (a wheel speed far past the model's): no C_z
+    said = said | through | (flat & np.isfinite(rho))
     if np.any(flat & np.isfinite(rho)):
         warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(flat & np.isfinite(rho)))} "
                       "row(s) have no deflection at their wheel speed (the free radius has "
                       "grown past the load's): C_z is NaN there", ExtrapolationWarning,
                       stacklevel=4)
-    return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho)}
+    return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho), "said": said}
+
+
+def _through(p: MFParameters, rl: Any) -> tuple[Any, Any]:
+    """The loaded radius, NaN (with a warning) where the deflection reaches the free
+    radius: a radius of 0 or less is no loaded radius (the load is past the model's); and
+    the mask of those rows."""
+    through = ~(rl > 0) & ~np.isnan(rl)
+    if not np.any(through):
+        return rl, through
+    warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(through))} row(s) deflect the "
+                  "tyre to its centre (the deflection reaches the free radius: the load is "
+                  "past the vertical model's): R_l is NaN there", ExtrapolationWarning,
+                  stacklevel=4)
+    return np.where(through, np.nan, rl), through
 
 
 def fz_62(p: MFParameters, r: Conditions, rl: Any, omega: Any, romega: Any, fx: Any,

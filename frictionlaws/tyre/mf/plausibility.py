@@ -1,0 +1,127 @@
+"""Plausible speeds and wheel speeds: the rule of this evaluator, since a property file
+states no speed limit.
+
+A Magic Formula property file gives the ranges of load, slips, camber and pressure it was
+measured over, but no speed range: MFeval evaluates a forward speed of 10^6 m/s, or a wheel
+speed that contradicts the slip ratio, without a word.  The model's only speed terms are
+the growth of the free radius, ``R_Omega = R0 (Q_RE0 + Q_V1 (Omega R0 / LONGVL)^2)``, and
+the stiffening of the vertical spring, ``1 + Q_V2 (R0 / LONGVL) |Omega|`` (MF 6.x); friction
+does not depend on speed (LMUV is not used), so the forces at any speed are those measured
+at LONGVL.  The rule here (warned, the rows evaluated as given; see the tyre page of the
+guide):
+
+* **speed**: ``|V_x|``, and the circumferential speed ``|Omega| R0`` of the wheel, at most
+  :func:`speed_bound`: the lower of :data:`SPEED_LIMIT` (150 m/s, 540 km/h: above the
+  speed rating of every road tyre, 300+ km/h for a "Y" tyre) and, for a file with a
+  centrifugal growth term Q_V1 > 0, the speed at which that term grows the free radius by
+  :data:`GROWTH_SHARE` (5 % of R0: radial tyres grow by about 1-3 % at their rated
+  speed, so the term is extrapolated past anything measured there; 149 m/s for the
+  packaged MF 6.1 example).  Beyond it the loaded radius can exceed the unloaded radius
+  by centimetres and grows without bound (R_l 1025 km at 10^6 m/s for the MF 6.1
+  example);
+* **wheel speed against slip ratio**: a wheel speed given (``omega``) must be the one the
+  slip ratio describes, ``Omega R_e = (1 + kappa) V_x`` (the relation this evaluator uses
+  when no wheel speed is given), within :data:`SLIP_TOLERANCE` ``max(|V_x|, VXLOW)``:
+  0.1 in slip ratio, the distance from free rolling to about the force peak.  The forces
+  take the slip ratio and the radii, C_z and the turn slip's camber spin take the wheel
+  speed, so a contradiction between them gives outputs of two operating points;
+* **loaded radius**: ``R_l`` above 0 (:mod:`~frictionlaws.tyre.mf.vertical`: a deflection
+  that reaches the free radius gives NaN and a warning, not a radius of 0).
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Any
+
+import numpy as np
+
+from .parameters import MFParameters
+
+__all__ = ["SPEED_LIMIT", "GROWTH_SHARE", "SLIP_TOLERANCE", "speed_bound", "check_speed",
+           "check_wheel_speed"]
+
+#: The highest plausible speed of a tyre [m/s] (540 km/h), whatever its file.
+SPEED_LIMIT = 150.0
+#: The largest plausible centrifugal growth of the free radius, as a share of R0.
+GROWTH_SHARE = 0.05
+#: The largest plausible difference between the wheel's circumferential speed given and
+#: the one the slip ratio gives, as a share of max(|V_x|, VXLOW) [-].
+SLIP_TOLERANCE = 0.1
+
+
+def speed_bound(p: MFParameters) -> tuple[float, str]:
+    """The plausible speed bound of a file [m/s] and what sets it (see the module notes)."""
+    s = p.structure
+    q_v1, v0 = s.get("Q_V1", 0.0), s.get("LONGVL", 0.0)
+    bound, why = SPEED_LIMIT, "above the speed rating of every road tyre"
+    if q_v1 > 0 and v0 > 0:
+        growth = v0 * float(np.sqrt(GROWTH_SHARE / q_v1))
+        if growth < bound:
+            bound = growth
+            why = (f"where the file's free-radius growth Q_V1 (Omega R0 / LONGVL)^2 reaches "
+                   f"{GROWTH_SHARE:.0%} of R0")
+    return bound, why
+
+
+def _name(p: MFParameters) -> str:
+    return p.name or "Magic Formula"
+
+
+def check_speed(p: MFParameters, vx: Any) -> None:
+    """Warn where the forward speed ``|vx|`` [m/s] exceeds :func:`speed_bound`."""
+    bound, why = speed_bound(p)
+    fast = np.abs(vx) > bound
+    if np.any(fast):
+        warnings.warn(
+            f"{_name(p)}: an implausible speed on {int(np.sum(fast))} row(s), |vx| up to "
+            f"{float(np.max(np.abs(vx))):g} m/s, above {bound:.4g} m/s ({why}); evaluated as "
+            "given (friction does not depend on speed in the Magic Formula; its radius and "
+            "stiffness speed terms are extrapolated)", UserWarning,
+            stacklevel=5)
+
+
+def check_wheel_speed(p: MFParameters, vx: Any, kappa: Any, omega_given: Any,
+                      omega: Any, re: Any) -> None:
+    """Warn where the wheel's circumferential speed ``|omega| R0`` exceeds
+    :func:`speed_bound` (rows whose ``vx`` does not, which :func:`check_speed` warns of),
+    and where a wheel speed given contradicts the slip ratio ``kappa`` as evaluated.
+
+    Parameters
+    ----------
+    p : MFParameters
+        The tyre (its structure: UNLOADED_RADIUS, VXLOW).
+    vx, kappa : numpy.ndarray
+        The forward speed [m/s] and the slip ratio the forces take [-].
+    omega_given : numpy.ndarray or None
+        The wheel speed given [rad/s] (None: estimated from the slip ratio).
+    omega, re : numpy.ndarray
+        The wheel speed [rad/s] and effective rolling radius [m] evaluated.
+    """
+    bound, why = speed_bound(p)
+    r0 = p.need("UNLOADED_RADIUS")
+    rim = np.abs(omega) * r0
+    fast = (rim > bound) & ~(np.abs(vx) > bound)
+    if np.any(fast):
+        growth = p.structure.get("Q_V1", 0.0) * np.square(np.max(rim[fast])
+                                                          / p.need("LONGVL"))
+        warnings.warn(
+            f"{_name(p)}: an implausible wheel speed on {int(np.sum(fast))} row(s), its "
+            f"circumferential speed |omega| R0 up to {float(np.max(rim[fast])):g} m/s, above "
+            f"{bound:.4g} m/s ({why}); evaluated as given (the free radius grown by up to "
+            f"{growth:.3g} R0)", UserWarning, stacklevel=5)
+    if omega_given is None:
+        return
+    vxlow = p.structure.get("VXLOW", 0.0)
+    off = np.abs(omega_given * re - (1 + kappa) * vx)
+    allowed = SLIP_TOLERANCE * np.maximum(np.abs(vx), vxlow)
+    bad = off > allowed
+    if np.any(bad):
+        worst = int(np.argmax(np.where(bad, off, -1.0)))
+        warnings.warn(
+            f"{_name(p)}: the wheel speed given contradicts the slip ratio on "
+            f"{int(np.sum(bad))} row(s): omega R_e differs from the (1 + kappa) vx the slip "
+            f"ratio gives by up to {float(off.flat[worst]):.4g} m/s where "
+            f"{float(allowed.flat[worst]):.3g} m/s is plausible; the forces take kappa, the "
+            "radii, C_z and the turn slip's camber spin take omega: outputs of two "
+            "operating points", UserWarning, stacklevel=5)
