@@ -4,6 +4,7 @@ smoothed within each pass, and a block over a sharp curve cut."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from frictionlaws.tyre.data.bins import MIN_BLOCK, SweepBins, blocks, smooth_passes
 
@@ -59,3 +60,37 @@ def test_a_block_over_a_sharp_peak_is_cut() -> None:
         return float(np.max(np.abs(b.curvature(b.mean(curve)) - at)) / np.ptp(curve))
 
     assert worst(cut) < 0.006 and worst(plain) > 0.025  # 0.45 % and 3.1 % of the range
+
+
+@pytest.mark.slow
+def test_a_raw_run_fits_the_aligning_moment_near_zero_slip_angle(tmp_path) -> None:
+    """The held-out MF 6.2 tyre of ``benchmarks/bench_tyre_data.py`` (seed 4242), measured
+    as a raw run at 100 Hz (three loads, three cambers, two pressures, slip-ratio sweeps at
+    0 and +-4 deg): its largest M_z error, at zero slip angle and the lightest load, where
+    the residual torque's narrow peak lies, within 1.8 % of the peak (1.5 % with the blocks
+    over the peak cut; 2.1 % when they averaged it away)."""
+    import warnings
+
+    from frictionlaws.base.errors import ExtrapolationWarning
+    from frictionlaws.tyre import MagicFormula, fit_mf
+    from frictionlaws.tyre.data import read_tyre_files
+    from frictionlaws.tyre.data.synthetic import RawRunSpec, synthetic_raw_run
+    from frictionlaws.tyre.synthetic_rig import moved_tyre, truth_errors
+
+    base = MagicFormula.from_file("MagicFormula62")
+    rng = np.random.default_rng(4242)
+    names = sorted(k for k, v in base.coefficients.items()
+                   if k[:1] in "PQRS" and k[1:2].isalpha() and v != 0)
+    truth = moved_tyre("MagicFormula62", dict(zip(names, rng.uniform(0.8, 1.2, len(names)))),
+                       set_to={})
+    spec = RawRunSpec(loads=(0.4, 1.0, 1.6), cambers_deg=(-3.0, 0.0, 3.0),
+                      pressures=(0.85, 1.1), rate=RATE, cycles=1, alpha_rate_deg=4.8,
+                      kappa_rate=0.15, combined_deg=(-4.0, 4.0), warmup_s=20.0)
+    data, _ = read_tyre_files([synthetic_raw_run(truth, spec).write(tmp_path / "run.dat")])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ExtrapolationWarning)
+        fitted = fit_mf(data, fittyp=62)
+        e = truth_errors(truth, fitted.model, loads=spec.loads, pressures=spec.pressures,
+                         cambers_deg=spec.cambers_deg)
+    assert e["Fx0"] < 0.01 and e["Fy0"] < 0.01 and e["Fx"] < 0.02 and e["Fy"] < 0.02, e
+    assert e["Mz"] < 0.018, e

@@ -160,7 +160,8 @@ class SweepBins:
         """These blocks with those halved (up to :data:`SPLITS` times) whose mean the
         curvature of one of ``values`` (per sample, with its range in ``spans``) moves by
         more than :data:`CURVED_SHARE` of its range (F'' var / 2, F'' from the neighbours,
-        at the ends of a pass the next block's, :meth:`second`), while :data:`MIN_BLOCK` samples or more are left in each half.
+        at the ends of a pass the next block's, :meth:`second`), while :data:`MIN_BLOCK`
+        samples or more are left in each half.
 
         A block over a peak much narrower than the blocks around it (the residual aligning
         torque's, some 0.3 deg wide near zero slip angle) averages the peak away, and the
