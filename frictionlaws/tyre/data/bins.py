@@ -8,10 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import savgol_filter
 
-__all__ = ["blocks", "SweepBins", "smooth_passes", "BINS_PER_SWEEP", "MIN_BLOCK", "MAX_LAG_S",
-           "SLIP_SMOOTH_S", "CURVED_SHARE", "SPLITS"]
+__all__ = ["blocks", "SweepBins", "BINS_PER_SWEEP", "MIN_BLOCK", "MAX_LAG_S", "CURVED_SHARE",
+           "SPLITS"]
 
 #: Blocks per pass of a sweep over its range (averages of consecutive samples).
 BINS_PER_SWEEP = 40
@@ -23,29 +22,6 @@ MAX_LAG_S = 0.5
 #: range is halved (:meth:`SweepBins.split_curved`), at most :data:`SPLITS` times.
 CURVED_SHARE = 0.001
 SPLITS = 3
-#: The window of the local quadratic that smooths the recorded slips within each pass
-#: (:func:`smooth_passes`) [s].
-SLIP_SMOOTH_S = 0.5
-
-
-def smooth_passes(x: np.ndarray, breaks: np.ndarray, size: int) -> np.ndarray:
-    """The recorded slip ``x`` smoothed in time by a local quadratic over ``size`` samples
-    within each stretch between ``breaks`` (a pass of one direction, without gaps); the
-    first and last ``size // 2`` samples of a stretch, and a stretch of ``size`` samples or
-    fewer, as they are (the window would reach over the turn or the start of the sweep,
-    where the slip bends).
-
-    The slip a rig commands moves smoothly, its channel carries the sensor's noise: averaged
-    over a block of a few samples, that noise stays in the block's slip, which matters where
-    a curve is steep (0.03 deg of noise over 3 samples, where the aligning moment rises
-    near zero slip angle, moves a row by some 2 % of the peak M_z)."""
-    out = np.asarray(x, dtype=float).copy()
-    for p in np.split(np.arange(out.size), breaks):
-        window = size | 1
-        if p.size > window:
-            half = window // 2
-            out[p[half:-half]] = savgol_filter(out[p], window, 2, mode="interp")[half:-half]
-    return out
 
 
 def blocks(x: np.ndarray, direction: np.ndarray, steps: list[np.ndarray],

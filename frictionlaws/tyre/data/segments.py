@@ -21,9 +21,8 @@
    down in about equal parts (so that the force's lag behind the slip cancels), else it is
    **one-way** (a step of the slip angle between holds is one);
 4. averages each sweep's samples in blocks, about :data:`BINS_PER_SWEEP` per pass, **up
-   and down apart** (the direction is kept as a column), the slips smoothed in time within
-   each pass first (:data:`SLIP_SMOOTH_S`, :func:`~frictionlaws.tyre.data.bins.smooth_passes`),
-   a block over a sharp curve of the aligning moment cut
+   and down apart** (the direction is kept as a column), a block over a sharp curve of the
+   aligning moment cut
    (:meth:`~frictionlaws.tyre.data.bins.SweepBins.split_curved`): one row per block of
    :data:`MIN_BLOCK` or more samples.
 
@@ -47,17 +46,15 @@ from .bins import (
     BINS_PER_SWEEP,
     MAX_LAG_S,
     MIN_BLOCK,
-    SLIP_SMOOTH_S,
     SweepBins,
     blocks,
-    smooth_passes,
 )
 from .raw_run import RawRun
 from .table import TyreData
 
 __all__ = ["Segment", "PreparedRun", "prepare_run", "REASONS", "LIFT_SHARE", "SMOOTH_S",
            "MIN_LEVEL_S", "SETTLE_S", "MIN_CONDITION_S", "MIN_HOLD_S", "BINS_PER_SWEEP",
-           "MIN_BLOCK", "MAX_LAG_S", "SLIP_SMOOTH_S", "DERIVATIVE_S", "OFF_ROAD_SHARE",
+           "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE",
            "FORCE_WEIGHT", "WARM_MARGIN_K", "WARM_SMOOTH_S",
            "KAPPA_SWEEP", "ALPHA_SWEEP"]
 
@@ -562,10 +559,6 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
         w.drop(sub[0], sub[-1] + 1, "one-way", alpha=level, **cond)
         return
     forces = [k for k in ("fx", "fy", "mz") if k in w.q]
-    breaks = np.flatnonzero((np.diff(direction) != 0) | (np.diff(sub) != 1)) + 1
-    slips = {k: smooth_passes(w.q[k][sub], breaks, w.samples(SLIP_SMOOTH_S))
-             for k in ("alpha", "kappa")}
-    x = slips["alpha" if kind == "lateral" else "kappa"]
     shaping = _shaping(w, sub, kind)
     block, piece = blocks(x, direction, [w.rates[k][sub] / w.rate for k in shaping],
                            [_range(w.q[k][sub]) / FORCE_WEIGHT.get(k, 1.0) for k in shaping])
@@ -580,8 +573,8 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
     b = b.split_curved([w.q[k][kept] + tau * w.rates[k][kept] for k in cut],
                        [_range(w.q[k][sub]) for k in cut])
     means: dict[str, np.ndarray] = {
-        k: b.mean(w.q[k][kept]) for k in ("fz", "gamma", "pressure", "time") if k in w.q}
-    means.update({k: b.mean(v[~thin]) for k, v in slips.items()})
+        k: b.mean(w.q[k][kept]) for k in ("fz", "kappa", "alpha", "gamma", "pressure", "time")
+        if k in w.q}
     for k in forces:
         means[k] = b.curvature(b.mean(w.q[k][kept] + tau * w.rates[k][kept]))
     first = np.full(b.counts.size, np.iinfo(np.int64).max)
