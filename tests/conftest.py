@@ -15,6 +15,7 @@
   ``test_hostile*.py`` files (in each room's folder), where that marker lives
   (``tests/test_hostile_marker_scope.py`` keeps it so): importing the whole suite
   to deselect it cost about 15 s of CPU in each xdist process.
+* The tests marked slow run first, so that the workers share them out early.
 """
 
 from __future__ import annotations
@@ -57,6 +58,14 @@ def pytest_ignore_collect(collection_path: Path, config: Any) -> bool | None:
             and not collection_path.name.startswith("test_hostile")):
         return True
     return None
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(config: Any, items: list[Any]) -> None:
+    """The tests marked slow first, each group in its order (a stable sort): pytest-xdist
+    then starts the longest tests early and fills the gaps with the short ones, instead
+    of ending on one long test on one worker while the other waits."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 @pytest.fixture(scope="module")
