@@ -178,6 +178,11 @@ def test_inst_kya_is_given_per_load_or_its_nan_is_explained(mf61, capsys) -> Non
                       np.array([3000.0, 6000.0, 3000.0, 6000.0]), names=["instKya"])
     assert np.isnan(res.outputs["instKya"]).all()
     assert [w for w in res.warnings if "instKya is NaN on 4 of 4 row(s)" in w]
+    # one point, or one slip angle at several loads, asked for by name: said too
+    for alpha, fz in ((0.05, 4000.0), (0.05, np.array([3000.0, 6000.0]))):
+        res, said = _said(evaluate, mf61, 0.0, alpha, fz, names=["instKya"])
+        assert np.isnan(res.outputs["instKya"]).all()
+        assert [w for w in said if "instKya is NaN on" in w], (alpha, fz)
     # asked for with every output (rows of measured data): NaN by design, not warned of
     _, said = _said(evaluate, mf61, 0.0, np.radians([-5.0, -5.0, 5.0, 5.0]),
                     np.array([3000.0, 6000.0, 3000.0, 6000.0]))

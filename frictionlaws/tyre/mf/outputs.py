@@ -290,12 +290,14 @@ class Evaluation:
         neighbouring points of the last axis that differ in the slip angle only (MFeval's
         output 29, a forward difference along its rows; a point without such a neighbour
         ahead takes the one behind, as MFeval's last point does); NaN for a point with
-        neither, with a warning when it is asked for by name and the slip angle changes
-        along the axis (rows of measured data, all inputs changing, give NaN by design)."""
+        neither, with a warning when it is asked for by name (not when every output is:
+        rows of measured data, all inputs changing, give NaN by design)."""
         r = self.r
         shape = r.shape
         if not shape or shape[-1] < 2:
-            return np.full(shape, np.nan)
+            slope = np.full(shape, np.nan)
+            self._warn_lone(slope)
+            return slope
         da = np.diff(np.broadcast_to(r.alpha, shape), axis=-1)
         dfy = np.diff(np.broadcast_to(self.fy[0], shape), axis=-1)
         sweep = da != 0
@@ -307,14 +309,19 @@ class Evaluation:
         ahead, behind = (np.concatenate(parts, axis=-1) for parts in ((step, none),
                                                                        (none, step)))
         slope = np.where(np.isnan(ahead), behind, ahead)
-        lone = np.isnan(slope)
-        if "instKya" in self.asked and np.any(da != 0) and np.any(lone):
-            warnings.warn(f"{self.p.name or 'Magic Formula'}: instKya is NaN on "
-                          f"{int(lone.sum())} of {lone.size} row(s): no neighbour along the "
-                          "last axis differs from them in the slip angle alone (it is the "
-                          "slope of F_y between such neighbours; sweep the slip angle along "
-                          "the last axis, the other inputs held)", UserWarning, stacklevel=4)
+        self._warn_lone(slope)
         return slope
+
+    def _warn_lone(self, slope: np.ndarray) -> None:
+        """Warn where instKya, asked for by name, is NaN (no sweep neighbour)."""
+        lone = np.isnan(slope)
+        if "instKya" in self.asked and np.any(lone):
+            warnings.warn(f"{self.p.name or 'Magic Formula'}: instKya is NaN on "
+                          f"{int(lone.sum())} of {max(lone.size, 1)} row(s): no neighbour "
+                          "along the last axis differs from them in the slip angle alone "
+                          "(it is the slope of F_y between such neighbours; sweep the slip "
+                          "angle along the last axis, the other inputs held)", UserWarning,
+                          stacklevel=5)
 
     @cached_property
     def rolling(self) -> dict[str, Any]:
