@@ -506,6 +506,11 @@ def _check_policy(parsed: Any, text: str, kind: Quantity, *, column: str | None,
             f"unit '{text}' is an angular velocity (a revolution is 2 pi rad, so rpm to Hz "
             f"is ambiguous), expected {kind.what} (e.g. {_examples(kind)})",
             file=file, column=column)
+    if kind.si == "rad/s" and "radian" not in str(ureg.get_root_units(parsed)[1]):
+        raise InputError(
+            f"unit '{text}' is a frequency (a revolution is 2 pi rad, so Hz to rad/s is "
+            f"ambiguous), expected {kind.what} (e.g. {_examples(kind)})",
+            file=file, column=column)
     if kind.si == "K" and "delta_" in str(parsed):
         raise InputError(
             f"unit '{text}' is a temperature difference, expected {kind.what} "
@@ -727,6 +732,8 @@ def parse_quantity(
             f"(e.g. '{_example_quantity(expected)}')",
             file=file, column=column,
         )
+    if unit_text.strip():
+        _check_policy(unit, unit_text.strip(), kind, column=column, file=file)
     value = float(q.to(target).magnitude)
     if not np.isfinite(value):
         raise InputError(f"{label} '{raw}' is not finite", file=file, column=column)

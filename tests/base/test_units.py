@@ -209,11 +209,23 @@ def test_registry_is_built_once() -> None:
     ("delta_degF", "T", "is a temperature difference"),
     ("rpm", "frequency", "is an angular velocity"),
     ("rad/s", "frequency", "is an angular velocity"),
+    ("Hz", "angular_velocity", "is a frequency"),
+    ("1/s", "angular_velocity", "is a frequency"),
+    ("kHz", "angular_velocity", "is a frequency"),
 ])
 def test_units_pint_calls_compatible_but_mean_something_else(unit, quantity, message):
-    """One unit policy: angles are not mu or slip; a temperature difference is not T."""
+    """One unit policy: angles are not mu or slip; a temperature difference is not T; a
+    frequency is not an angular velocity (nor the reverse): in a unit and in a quantity."""
     with pytest.raises(InputError, match=message):
         units.parse_unit(unit, quantity, column=f"{quantity} [{unit}]", file="f.csv")
+    with pytest.raises(InputError, match=message):
+        units.parse_quantity(f"10 {unit}", quantity, what="--x")
+
+
+@pytest.mark.parametrize(("text", "si"), [
+    ("10 rad/s", 10.0), ("10 rps", 20 * np.pi), ("60 rpm", 2 * np.pi), ("180 deg/s", np.pi)])
+def test_an_angular_velocity_with_an_angle_in_its_unit_is_converted(text, si):
+    assert units.parse_quantity(text, "angular_velocity") == pytest.approx(si, rel=1e-12)
 
 
 @pytest.mark.parametrize(("unit", "quantity"), [

@@ -265,8 +265,26 @@ def test_bad_inputs_raise_clear_errors():
         mf.fx0([0.1, np.nan], 3000.0)
     with pytest.raises(InputError, match="between -90 and 90"):
         mf.fy0(math.pi / 2, 3000.0)
-    with pytest.raises(InputError, match="inflation pressure must be positive"):
+    with pytest.raises(InputError, match="pressure -0.001 kPa is no tyre's inflation"):
         mf.fx0(0.1, 3000.0, pressure=-1.0)
+
+
+@pytest.mark.parametrize("factor", [1e-3, 1e-2, 1e-5, 1e3, 1e4, 0.0, -1.0])
+def test_a_pressure_off_by_a_unit_factor_is_refused_on_every_path(factor: float) -> None:
+    """kPa, bar or psi numbers read as Pa (or Pa as kPa) give a pressure no tyre runs at,
+    which the pressure terms would extrapolate to forces of any sign: refused before any
+    output or warning, by the API's methods, the steady state and the command line."""
+    mf = MagicFormula.from_file("MagicFormula61")
+    bad = [2.6e5, 2.6e5 * factor]
+    for call in (lambda: mf.fy0(0.05, 4000.0, 0.0, bad),
+                 lambda: mf.fx(0.05, 0.02, 4000.0, 0.0, bad),
+                 lambda: mf.steady_state(0.0, 0.05, 4000.0, 0.0, pressure=bad)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with pytest.raises(InputError, match=r"\(row 1\) is no tyre's inflation pressure"):
+                call()
+    assert main(["tyre", "mf", "MagicFormula61", "--alpha", "2", "--pressure",
+                 f"{2.6e2 * factor:g}"]) == 2
 
 
 def test_extrapolation_warns():

@@ -120,7 +120,8 @@ def test_a_pressure_per_row_equals_one_evaluation_per_pressure() -> None:
         one = mf.steady_state(kappa, alpha, fz, 0.0, pressure=x)
         for name in ("Mz", "Mx", "My", "Rl", "2a", "sigmay"):
             assert rows[name][i] == pytest.approx(float(one[name]), rel=1e-12)
-    with pytest.raises(InputError, match="indices \\[1\\]"), warnings.catch_warnings():
+    with (pytest.raises(InputError, match=r"\(row 1\) is no tyre.s inflation pressure"),
+          warnings.catch_warnings()):
         warnings.simplefilter("ignore", ExtrapolationWarning)
         mf.fx0(kappa, fz, pressure=np.array([200e3, -1.0]))
 

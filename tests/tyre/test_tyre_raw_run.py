@@ -179,6 +179,11 @@ def test_a_run_without_camber_or_with_one_load_says_so(tmp_path: Path) -> None:
     (dict(scale={"P": 0.01}), "inflation pressure of 2.* kPa"),  # bar numbers under kPa
     (dict(units={"FX": "m"}), "force"),
     (dict(drop=("ET",)), "no ET channel"),
+    (dict(drop=("SA",)), "no SA channel .*needs FZ, ET, SA, FX, FY"),
+    (dict(drop=("FX",)), "no FX channel"),
+    (dict(drop=("FY",)), "no FY channel"),
+    (dict(units={"ET": "ms"}), "sampling rate of 5e\\+04 Hz .*'ms'"),
+    (dict(units={"ET": "min"}), "sampling rate of 0.8333 Hz .*'min'"),
     (dict(drop=("FZ",)), "no row of channel names"),
 ])
 def test_units_that_cannot_be_right_are_refused(tiny, tmp_path: Path, change, match) -> None:
@@ -263,6 +268,33 @@ def test_a_run_cut_short_is_refused_for_what_it_lacks(tiny, tmp_path: Path) -> N
             if n <= first_loaded:
                 assert "no sample carries a load of 100 N" in text, (n, text)
             assert exc.file == str(path)
+
+
+@pytest.mark.parametrize("order", ["twice", "shuffled", "block again", "reversed",
+                                   "joined"])
+def test_samples_out_of_time_order_are_refused_naming_the_row(tiny, tmp_path: Path,
+                                                              order: str) -> None:
+    lines = _lines(tiny.write(tmp_path / "tiny.txt"))
+    head, rows = lines[:3], lines[3:]
+    rng = np.random.default_rng(41)
+    edited = {"twice": [r for r in rows for _ in (0, 1)],
+              "shuffled": [rows[i] for i in rng.permutation(len(rows))],
+              "block again": rows[:2000] + rows[1500:],
+              "reversed": rows[::-1],
+              "joined": rows + rows}[order]
+    path = tmp_path / "bad.txt"
+    path.write_text("\n".join(head + edited) + "\n")
+    with pytest.raises(InputError, match="the time does not advance here") as exc:
+        load_raw_run(path)
+    assert exc.value.column == "ET" and exc.value.row is not None and exc.value.row > 3
+
+
+def test_a_gap_in_the_time_is_noted(tiny, tmp_path: Path) -> None:
+    lines = _lines(tiny.write(tmp_path / "tiny.txt"))
+    path = tmp_path / "gap.txt"
+    path.write_text("\n".join(lines[:1003] + lines[1503:]) + "\n")  # 10 s at 50 Hz
+    notes = " / ".join(load_raw_run(path).notes)
+    assert "1 gap(s) in the time (ET), the first of 10 s after line 1003" in notes
 
 
 def test_a_run_without_sweeps_is_refused(tiny, tmp_path: Path) -> None:

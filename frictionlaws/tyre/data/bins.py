@@ -9,7 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["blocks", "SweepBins", "BINS_PER_SWEEP", "MIN_BLOCK", "MAX_LAG_S"]
+__all__ = ["blocks", "SweepBins", "BINS_PER_SWEEP", "MIN_BLOCK", "MAX_LAG_S", "CURVED_SHARE",
+           "SPLITS"]
 
 #: Blocks per pass of a sweep over its range (averages of consecutive samples).
 BINS_PER_SWEEP = 40
@@ -17,6 +18,10 @@ BINS_PER_SWEEP = 40
 MIN_BLOCK = 3
 #: The longest force lag behind the slip taken [s].
 MAX_LAG_S = 0.5
+#: A block whose mean the curvature of a curve moves by more than this share of the curve's
+#: range is halved (:meth:`SweepBins.split_curved`), at most :data:`SPLITS` times.
+CURVED_SHARE = 0.001
+SPLITS = 3
 
 
 def blocks(x: np.ndarray, direction: np.ndarray, steps: list[np.ndarray],
@@ -94,12 +99,17 @@ class SweepBins:
             return 0.0
         return float(np.clip(-np.sum(gap * step) / denominator, 0.0, MAX_LAG_S))
 
-    def curvature(self, means: np.ndarray) -> np.ndarray:
-        """Block means moved to the value at the block's mean slip: minus F'' var(x) / 2,
-        F'' from the neighbouring blocks of the same pass (the ends, and blocks closer to a
-        neighbour than twice their own spread of slip, left as they are)."""
-        var = np.maximum(self.mean(self.x * self.x) - self.xm * self.xm, 0.0)
-        out = means.copy()
+    def variance(self) -> np.ndarray:
+        """The spread of the slip within each block (its variance)."""
+        return np.maximum(self.mean(self.x * self.x) - self.xm * self.xm, 0.0)
+
+    def second(self, means: np.ndarray, ends: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """F'' at each block from its neighbouring blocks of the same pass (at the ends of a
+        pass NaN, or with ``ends`` the next block's) and whether those neighbours are
+        distinct (each as far from it as twice its own spread of slip or farther)."""
+        sd = np.sqrt(self.variance())
+        out = np.full(means.size, np.nan)
+        apart = np.zeros(means.size, dtype=bool)
         for k in np.unique(self.passes):
             idx = np.flatnonzero(self.passes == k)
             idx = idx[np.argsort(self.xm[idx])]
@@ -107,10 +117,43 @@ class SweepBins:
                 continue
             x0, x1, x2 = self.xm[idx[:-2]], self.xm[idx[1:-1]], self.xm[idx[2:]]
             y0, y1, y2 = means[idx[:-2]], means[idx[1:-1]], means[idx[2:]]
-            v = var[idx[1:-1]]
-            apart = np.minimum(x1 - x0, x2 - x1) >= 2 * np.sqrt(v)  # distinct neighbours
             with np.errstate(divide="ignore", invalid="ignore"):
-                second = 2 * ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0)
-            ok = apart & np.isfinite(second)
-            out[idx[1:-1]] -= np.where(ok, second, 0.0) * v / 2
-        return out
+                out[idx[1:-1]] = 2 * ((y2 - y1) / (x2 - x1) - (y1 - y0) / (x1 - x0)) / (x2 - x0)
+            apart[idx[1:-1]] = np.minimum(x1 - x0, x2 - x1) >= 2 * sd[idx[1:-1]]
+            if ends:
+                out[idx[[0, -1]]] = out[idx[[1, -2]]]
+        return out, apart
+
+    def curvature(self, means: np.ndarray) -> np.ndarray:
+        """Block means moved to the value at the block's mean slip: minus F'' var(x) / 2,
+        F'' from the neighbouring blocks of the same pass (the ends, and blocks closer to a
+        neighbour than twice their own spread of slip, left as they are)."""
+        second, apart = self.second(means)
+        ok = apart & np.isfinite(second)
+        return means - np.where(ok, second, 0.0) * self.variance() / 2
+
+    def split_curved(self, values: list[np.ndarray], spans: list[float]) -> SweepBins:
+        """These blocks with those halved (up to :data:`SPLITS` times) whose mean the
+        curvature of one of ``values`` (per sample, with its range in ``spans``) moves by
+        more than :data:`CURVED_SHARE` of its range (F'' var / 2, F'' from the neighbours,
+        at the ends of a pass the next block's, :meth:`second`), while :data:`MIN_BLOCK`
+        samples or more are left in each half.
+
+        A block over a peak much narrower than the blocks around it (the residual aligning
+        torque's, some 0.3 deg wide near zero slip angle) averages the peak away, and the
+        curvature its neighbours give (:meth:`curvature`) makes up only part of it: a fit
+        of such rows finds the peak too wide.  Cut, the peak's blocks are a few samples
+        long and their curvature small."""
+        b = self
+        for _ in range(SPLITS):
+            moved = np.zeros(b.counts.size)
+            for v, span in zip(values, spans):
+                second, _ = b.second(b.mean(v), ends=True)
+                moved = np.fmax(moved, np.abs(second) * b.variance() / (2 * span))
+            cut = (moved > CURVED_SHARE) & (b.counts >= 2 * MIN_BLOCK)
+            if not cut.any():
+                break
+            position = np.arange(b.x.size) - np.searchsorted(b.inverse, b.inverse)
+            late = cut[b.inverse] & (position >= b.counts[b.inverse] // 2)
+            b = SweepBins(2 * b.inverse + late, b.x, b.sign, b.piece)
+        return b

@@ -45,6 +45,7 @@ import numpy as np
 
 from ...base.errors import Argument, InputError
 from ...base.numbers import parse_number
+from ..mf.parameters import PLAUSIBLE_PRESSURE
 from .channels import (
     KINDS,
     MAX_CORNERING_COEFFICIENT,
@@ -58,7 +59,8 @@ from .table import check_sign_convention, to_iso_axes
 from .tydex import is_tydex
 
 __all__ = ["RawRun", "load_raw_run", "raw_layout", "MAX_SAMPLES", "RAW_DELIMITERS", "MIN_RIG_LOAD",
-           "MIN_SWEPT_SLIP", "PLAUSIBLE_PRESSURE"]
+           "MIN_SWEPT_SLIP", "PLAUSIBLE_RATE", "GAP_STEPS",
+           "REQUIRED_CHANNELS"]
 
 #: Most samples of a raw run read (a day at 50 Hz is 4.3 million).
 MAX_SAMPLES = 5_000_000
@@ -204,8 +206,12 @@ MIN_RIG_LOAD = 100.0
 #: Slips whose largest magnitude stays below this (rad or slip ratio; 0.11 deg) are the
 #: rig's jitter about zero: too small to check a unit by.
 MIN_SWEPT_SLIP = 0.002
-#: Inflation pressures tyres run at [Pa] (gauge: a bicycle's lowest to an aircraft's).
-PLAUSIBLE_PRESSURE = (2e4, 2.5e6)
+#: Sampling rates a rig records a raw run at [Hz].
+PLAUSIBLE_RATE = (2.0, 5000.0)
+#: A step in time longer than this many sampling steps is a gap (noted).
+GAP_STEPS = 10
+#: The channels a raw run must have: quantity -> the usual name.
+REQUIRED_CHANNELS = {"fz": "FZ", "time": "ET", "alpha": "SA", "fx": "FX", "fy": "FY"}
 
 
 def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
@@ -243,10 +249,10 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     units = _units_row(names, _split(lines[i_units], delimiter), delimiter, source,
                        i_units + 1)
     cols = _columns(names, source, i_names + 1)
-    for q in ("fz", "time"):
+    for q, name in REQUIRED_CHANNELS.items():
         if q not in cols:
-            raise InputError(f"no {'FZ' if q == 'fz' else 'ET'} channel (the "
-                             f"{MEANINGS[q]}): a raw run needs it", file=source,
+            raise InputError(f"no {name} channel (the {MEANINGS[q]}): a raw run needs "
+                             f"{', '.join(REQUIRED_CHANNELS.values())}", file=source,
                              row=i_names + 1)
     order = sorted(cols, key=cols.__getitem__)
     values, rows = _read_samples(lines, i_units + 1, names, [cols[q] for q in order],
@@ -257,12 +263,40 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     run = RawRun(source, quantities, {q: names[cols[q]] for q in cols},
                  dict(zip(names, units)), rows, sign_convention, notes, title,
                  tuple(n for j, n in enumerate(names) if j not in cols.values()))
+    _check_time(run)
     _kappa(run)
     run.notes.append(to_iso_axes(run.quantities, sign_convention))
     _check_axes(run)
     _check_angles(run)
     _check_units(run)
     return run
+
+
+def _check_time(run: RawRun) -> None:
+    """Samples in time order, each once, at a rate a rig records at; gaps noted."""
+    t = run.quantities["time"]
+    name = run.channels["time"]
+    dt = np.diff(t)
+    back = np.flatnonzero(~(dt > 0))
+    if back.size:
+        i = int(back[0]) + 1
+        raise InputError(f"the time does not advance here ({t[i]:.6g} s after {t[i - 1]:.6g} "
+                         f"s; {back.size} such step(s) in all): the samples must be in time "
+                         "order, each once (rows repeated, shuffled or runs joined?)",
+                         file=run.source, column=name, row=int(run.lines[i]))
+    if not dt.size:
+        return
+    rate = 1.0 / float(np.median(dt))
+    lo, hi = PLAUSIBLE_RATE
+    if not lo <= rate <= hi:
+        raise InputError(f"a sampling rate of {rate:.4g} Hz (rigs record at {lo:g}-{hi:g} Hz): "
+                         f"the time's unit '{run.units.get(name, '')}' looks wrong by a factor",
+                         file=run.source, column=name)
+    gaps = np.flatnonzero(dt > GAP_STEPS / rate)
+    if gaps.size:
+        i = int(gaps[0])
+        run.notes.append(f"{gaps.size} gap(s) in the time ({name}), the first of "
+                         f"{dt[i]:.3g} s after line {int(run.lines[i])}: no samples there")
 
 
 def _si(values: np.ndarray, q: str, name: str, unit: str, source: str, line: int

@@ -20,8 +20,11 @@
    the slip ratio steady: a lateral sweep) or steps; a sweep must run both ways, up and
    down in about equal parts (so that the force's lag behind the slip cancels), else it is
    **one-way** (a step of the slip angle between holds is one);
-4. averages each sweep's samples in :data:`BINS_PER_SWEEP` bins of its slip, **up and down
-   apart** (the direction is kept as a column): one row per bin with two or more samples.
+4. averages each sweep's samples in blocks, about :data:`BINS_PER_SWEEP` per pass, **up
+   and down apart** (the direction is kept as a column), a block over a sharp curve of the
+   aligning moment cut
+   (:meth:`~frictionlaws.tyre.data.bins.SweepBins.split_curved`): one row per block of
+   :data:`MIN_BLOCK` or more samples.
 
 Everything dropped is counted by reason (samples and seconds) and reported; the rows keep
 their sweep (``sweep``), direction (+1 up, -1 down), sample count and time.  A fit checks
@@ -39,14 +42,20 @@ from scipy.ndimage import median_filter
 from scipy.signal import savgol_filter
 
 from ...base.errors import InputError
-from .bins import BINS_PER_SWEEP, MAX_LAG_S, MIN_BLOCK, SweepBins, blocks
+from .bins import (
+    BINS_PER_SWEEP,
+    MAX_LAG_S,
+    MIN_BLOCK,
+    SweepBins,
+    blocks,
+)
 from .raw_run import RawRun
 from .table import TyreData
 
 __all__ = ["Segment", "PreparedRun", "prepare_run", "REASONS", "LIFT_SHARE", "SMOOTH_S",
            "MIN_LEVEL_S", "SETTLE_S", "MIN_CONDITION_S", "MIN_HOLD_S", "BINS_PER_SWEEP",
-           "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE", "FORCE_WEIGHT",
-           "WARM_MARGIN_K", "WARM_SMOOTH_S",
+           "MIN_BLOCK", "MAX_LAG_S", "DERIVATIVE_S", "OFF_ROAD_SHARE",
+           "FORCE_WEIGHT", "WARM_MARGIN_K", "WARM_SMOOTH_S",
            "KAPPA_SWEEP", "ALPHA_SWEEP"]
 
 #: A sample is lifted when its load is below this share of the run's 95th-percentile load.
@@ -560,6 +569,9 @@ def _sweep(w: _Work, sub: np.ndarray, kind: str, cond: dict[str, float], level: 
     main = "fy" if kind == "lateral" else "fx"
     tau = b.lag(w.q[main][kept], w.rates[main][kept]) if w.lag else 0.0
     w.lags.append((kind, tau))
+    cut = [k for k in shaping if k == "mz"]  # the sharpest curve; the forces' correct well
+    b = b.split_curved([w.q[k][kept] + tau * w.rates[k][kept] for k in cut],
+                       [_range(w.q[k][sub]) for k in cut])
     means: dict[str, np.ndarray] = {
         k: b.mean(w.q[k][kept]) for k in ("fz", "kappa", "alpha", "gamma", "pressure", "time")
         if k in w.q}

@@ -269,10 +269,11 @@ class MagicFormula(MFParameters):
         if gamma.ndim or gamma != 0.0:
             self.check("gamma", gamma)
             self.warn_range("gamma", gamma)
+        dpi = self.dpi(pressure)  # refuses a pressure no tyre runs at, before any warning
         used = self.pressure if pressure is None else pressure  # the file's INFLPRES too
         if used is not None:
             self.warn_range("pressure", np.asarray(used, dtype=float))
-        return fz, gamma, self.dpi(pressure)
+        return fz, gamma, dpi
 
     def _kappa(self, kappa: Any) -> Any:
         """The checked slip ratio (warned outside the file's range)."""

@@ -32,7 +32,7 @@ from .coefficients import CoefficientView, check_values, checked_coefficients, u
 
 __all__ = ["MFParameters", "real_array", "MF_VERSIONS", "SLIP_ANGLE_INPUTS", "FRICTION_SCALINGS",
            "LOADS_ABOVE_FZMAX", "EQUATIONS", "A_MU", "CONVENTIONS", "check_conventions",
-           "POSITIVE_STRUCTURE", "peak_cause"]
+           "POSITIVE_STRUCTURE", "peak_cause", "PLAUSIBLE_PRESSURE", "check_pressure"]
 
 MF_VERSIONS = ("5.2", "6.1", "6.2")
 #: Degressive friction-scaling constant A_mu of MF 6.1.
@@ -58,6 +58,27 @@ CONVENTIONS: dict[str, tuple[str, ...]] = {
     "loads_above_fzmax": LOADS_ABOVE_FZMAX, "equations": EQUATIONS}
 #: Structure entries that are lengths or speeds of a real tyre: positive.
 POSITIVE_STRUCTURE = frozenset({"UNLOADED_RADIUS", "LONGVL", "WIDTH"})
+
+
+#: Inflation pressures tyres run at [Pa, gauge]: a bicycle's lowest to an aircraft's.
+PLAUSIBLE_PRESSURE = (2e4, 2.5e6)
+
+
+def check_pressure(pressure: Any, what: str = "pressure") -> None:
+    """Refuse an inflation pressure [Pa] no tyre runs at (:data:`PLAUSIBLE_PRESSURE`): a
+    unit off by a factor (kPa or bar read as Pa, Pa as kPa), which the pressure terms
+    would extrapolate to forces of any size or sign."""
+    p = np.asarray(pressure, dtype=float)
+    lo, hi = PLAUSIBLE_PRESSURE
+    with np.errstate(invalid="ignore"):
+        bad = ~((p >= lo) & (p <= hi))
+    if np.any(bad):
+        i = int(np.flatnonzero(bad.ravel())[0])
+        x = float(p.ravel()[i])
+        row = f" (row {i})" if p.size > 1 else ""
+        raise InputError(f"{what} {x / 1e3:g} kPa{row} is no tyre's inflation pressure "
+                         f"(tyres run at {lo / 1e3:g}-{hi / 1e3:g} kPa): a unit off by a "
+                         "factor?")
 
 
 def check_conventions(version: str, source: str, **conventions: str) -> None:
@@ -276,6 +297,8 @@ class MFParameters:
             warnings.warn(self.no_pressure_terms(), UserWarning, stacklevel=4)
         if p is None or self.nominal_pressure is None:
             return 0.0
+        if pressure is not None:
+            check_pressure(p)
         if not (np.isfinite(p) & (np.asarray(p) > 0)).all():
             bad = np.flatnonzero(~(np.isfinite(p) & (np.asarray(p) > 0)).ravel())[:5].tolist()
             raise InputError("inflation pressure must be positive and finite [Pa]; bad values "

@@ -17,7 +17,7 @@ guide):
   :data:`GROWTH_SHARE` (5 % of R0: radial tyres grow by about 1-3 % at their rated
   speed, so the term is extrapolated past anything measured there; 149 m/s for the
   packaged MF 6.1 example).  Beyond it the loaded radius can exceed the unloaded radius
-  by centimetres and grows without bound (R_l 1025 km at 10^6 m/s for the MF 6.1
+  by centimetres and grows without bound (R_l 930 km at 10^6 m/s and FNOMIN for the MF 6.1
   example);
 * **wheel speed against slip ratio**: a wheel speed given (``omega``) must be the one the
   slip ratio describes, ``Omega R_e = (1 + kappa) V_x`` (the relation this evaluator uses
@@ -48,8 +48,6 @@ GROWTH_SHARE = 0.05
 #: The largest plausible difference between the wheel's circumferential speed given and
 #: the one the slip ratio gives, as a share of max(|V_x|, VXLOW) [-].
 SLIP_TOLERANCE = 0.1
-
-
 def speed_bound(p: MFParameters) -> tuple[float, str]:
     """The plausible speed bound of a file [m/s] and what sets it (see the module notes)."""
     s = p.structure
