@@ -41,6 +41,8 @@ The unit tests are physical bounds, not statistics of the data set:
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -51,7 +53,7 @@ from .stages import ALPHA_PURE, KAPPA_PURE
 
 __all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
            "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
-           "MIN_CURVE_CORRELATION"]
+           "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO"]
 
 #: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
 #: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
@@ -59,6 +61,10 @@ MIN_SLIP_SLOPE = 0.5
 #: Smallest plausible slope of F_y / F_z on tan(alpha) within 0.1 rad of zero [1/rad]
 #: (tyres: 5-40; on ice, a peak of 0.1 at 0.1 rad still gives 1).
 MIN_CORNERING_SLOPE = 0.75
+#: Largest ratio of two files' slopes near zero slip (of F_x / F_z on kappa, F_y / F_z on
+#: tan(alpha)) for one tyre [-]: loads and pressures change them by less than 2, sweeps
+#: of another reach (the fit over the window) by up to about 2.
+MAX_FILES_SLOPE_RATIO = 5.0
 #: Half-width of the slip window near zero where the slopes are taken [-, rad].
 _SMALL_SLIP = 0.1
 #: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
@@ -71,6 +77,8 @@ MIN_CURVE_CORRELATION = 0.3
 #: Slip angle beyond which F_y has the opposite sign of alpha in ISO-W axes [rad]
 #: (camber thrust and ply steer can outweigh smaller angles).
 _SIGN_ANGLE = math.radians(2.0)
+#: Slip angles where M_z opposes F_y (a positive trail, before the moment turns over) [rad].
+_MZ_SIGN_ANGLES = (math.radians(1.0), math.radians(4.0))
 
 
 def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
@@ -93,14 +101,35 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
     InputError
         Naming the file, column and row, and the unit the values look like.
     """
+    parts = _files_of(data)
+    for part in parts:  # each file's rows first: the refusal names that file
+        _check_rows(part, fnomin, nominal_pressure, radius)
+    _check_files_agree(parts)
     _check_slip_columns(data)
-    _check_curves(data)
+    _check_rows(data, fnomin, nominal_pressure, radius)
+
+
+def _files_of(data: TyreData) -> list[TyreData]:
+    """The rows of each file of several joined, each named by its file (none for one)."""
+    if len(data.files) < 2 or "file" not in data.extra:
+        return []
+    return [replace(data.subset(data.extra["file"] == i), source=name, files=())
+            for i, name in enumerate(data.files)]
+
+
+def _check_rows(data: TyreData, fnomin: float, p_nom: float | None,
+                radius: float | None) -> None:
+    """The checks of :func:`check_plausible` but the slip columns' (which the files
+    joined answer together: one file may hold the Fx sweeps, another the Fy sweeps)."""
+    _check_curves(data, ("Fx", "Fy"))
     _check_fy_sign(data)
     _check_loads(data, fnomin)
     _check_kappa(data)
     _check_alpha(data)
     _check_small_slip_slopes(data)
-    _check_others(data, nominal_pressure, radius)
+    _check_others(data, p_nom, radius)
+    _check_curves(data, ("Mz",))  # after the slip angles' unit: radians as degrees flatten Mz
+    _check_mz_sign(data)
 
 
 def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
@@ -113,15 +142,15 @@ def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> 
             raise InputError(
                 f"the median pressure {median:g} Pa is far from the template's nominal "
                 f"{p_nom:g} Pa: the values look like another unit (kPa as Pa, bar as kPa?)",
-                file=data.source, column="pressure",
-                row=_row(data, np.isfinite(data.pressure), data.pressure - median))
+                column="pressure",
+                **_at(data, np.isfinite(data.pressure), data.pressure - median))
     if radius is not None:
         arm = np.where(np.isfinite(data.mz), np.abs(data.mz) / data.fz, 0.0)
         if (arm > radius).any():
             raise InputError(
                 f"|Mz| is {arm.max():.3g} m times the load on this row, more than the tyre's "
                 f"radius {radius:g} m: the moments look like N mm under an [N m] header",
-                file=data.source, column="Mz", row=_row(data, arm > radius, arm))
+                column="Mz", **_at(data, arm > radius, arm))
 
 
 def _check_slip_columns(data: TyreData) -> None:
@@ -143,11 +172,15 @@ def _check_slip_columns(data: TyreData) -> None:
             file=data.source, column=slip)
 
 
-def _check_curves(data: TyreData) -> None:
-    """Refuse F_x or F_y with no trend on its slip (all zero, or noise only)."""
+def _check_curves(data: TyreData, names: tuple[str, ...]) -> None:
+    """Refuse F_x, F_y or M_z (of ``names``) with no trend on its slip (all zero, or noise
+    only)."""
     for name, force, slip, pure in (
             ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE),
-            ("Fy", data.fy, np.tan(data.alpha), np.abs(data.kappa) <= KAPPA_PURE)):
+            ("Fy", data.fy, np.tan(data.alpha), np.abs(data.kappa) <= KAPPA_PURE),
+            ("Mz", data.mz, np.tan(data.alpha), np.abs(data.kappa) <= KAPPA_PURE)):
+        if name not in names:
+            continue
         use = np.isfinite(force) & (slip != 0)
         for narrower in (pure, np.abs(slip) <= 1.01 * _SMALL_SLIP):  # where F rises with slip
             if (use & narrower).sum() >= 5 and np.ptp(slip[use & narrower]) > 0:
@@ -162,8 +195,8 @@ def _check_curves(data: TyreData) -> None:
                 f"{name} carries no curve to fit: on {int(use.sum())} rows its ratio to Fz "
                 f"(at most {top:.3g}) has no trend on the slip (correlation {r:.2f}; a "
                 f"tyre's force follows its slip with at least {MIN_CURVE_CORRELATION:g}): "
-                "zero or noise only; check the column, or remove it", file=data.source,
-                column=name, row=_row(data, use, np.where(use, force, 0.0)))
+                "zero or noise only; check the column, or remove it", column=name,
+                **_at(data, use, np.where(use, force, 0.0)))
 
 
 def _check_fy_sign(data: TyreData) -> None:
@@ -187,8 +220,26 @@ def _check_fy_sign(data: TyreData) -> None:
         parts = [head + ", taken in ISO-W axes where a positive slip angle gives a negative "
                  "Fy: the data look like SAE axes (give ", Argument("sign_convention", "sae"),
                  ") or a column of flipped sign (negate Fy, or alpha)"]
-    raise InputError(parts, file=data.source, column="Fy",
-                     row=_row(data, use, np.where(use, data.fy, 0.0)))
+    raise InputError(parts, column="Fy",
+                     **_at(data, use, np.where(use, data.fy, 0.0)))
+
+
+def _check_mz_sign(data: TyreData) -> None:
+    """Refuse M_z with the sign of F_y on most rows near pure side slip at 1-4 degrees."""
+    lo, hi = _MZ_SIGN_ANGLES
+    # pure side slip only: with a slip ratio, F_x's moment arm can turn M_z over
+    use = ((np.abs(data.alpha) >= lo) & (np.abs(data.alpha) <= hi)
+           & (np.abs(data.kappa) <= KAPPA_PURE) & np.isfinite(data.mz) & np.isfinite(data.fy)
+           & (data.mz != 0) & (data.fy != 0))
+    same = int((np.sign(data.mz[use]) == np.sign(data.fy[use])).sum())
+    if use.sum() < 5 or 2 * same <= use.sum():
+        return
+    raise InputError(
+        f"Mz has the sign of Fy on {same} of {int(use.sum())} rows with |alpha| of 1-4 deg: "
+        "near pure side slip the aligning moment opposes the side force (a positive "
+        "pneumatic trail, Mz and Fy of opposite signs, in ISO-W as in SAE axes); the sign "
+        "of Mz looks reversed: a channel of flipped sign (negate Mz, or Fy) or axes that "
+        "flip Mz alone", column="Mz", **_at(data, use, np.where(use, data.mz, 0.0)))
 
 
 def _check_camber(data: TyreData) -> None:
@@ -202,35 +253,37 @@ def _check_camber(data: TyreData) -> None:
     else:
         why = ("no tyre runs beyond 30 deg (at 90 deg the wheel lies on its side): check the "
                "camber column")
-    raise InputError(f"camber {top:.3g} deg is impossible: {why}", file=data.source,
-                     column="gamma", row=_row(data, wide, data.gamma))
+    raise InputError(f"camber {top:.3g} deg is impossible: {why}", column="gamma",
+                     **_at(data, wide, data.gamma))
 
 
-def _row(data: TyreData, mask: np.ndarray, values: np.ndarray) -> int:
-    """Source row of the largest |value| among ``mask``."""
+def _at(data: TyreData, mask: np.ndarray, values: np.ndarray) -> dict[str, Any]:
+    """File and source row of the largest |value| among ``mask`` (of several files joined:
+    the one file holding that row)."""
     idx = np.flatnonzero(mask)
-    return int(data.rows[idx[int(np.argmax(np.abs(values[idx])))]])
+    file, row = data.where(int(idx[int(np.argmax(np.abs(values[idx])))]))
+    return {"file": file, "row": row}
 
 
 def _check_loads(data: TyreData, fnomin: float) -> None:
     for name, force in (("Fx", data.fx), ("Fy", data.fy)):
         ratio = np.where(np.isfinite(force), np.abs(force) / data.fz, 0.0)
         if ratio.max() > MAX_FORCE_RATIO:
-            row = _row(data, ratio > MAX_FORCE_RATIO, ratio)
+            at = _at(data, ratio > MAX_FORCE_RATIO, ratio)
             # most rows too high: the loads' unit; a few: those force cells
             most = np.mean(ratio[np.isfinite(force)] > MAX_FORCE_RATIO) > 0.5
             raise InputError(
                 f"|{name}| is {ratio.max():.3g} times the load Fz on this row (a tyre's "
                 f"friction stays below 4): the loads look like kN given as N (or {name} in "
-                "another unit than its header says)", file=data.source,
-                column="Fz" if most else name, row=row)
+                "another unit than its header says)",
+                column="Fz" if most else name, **at)
     median = float(np.median(data.fz))
     if not fnomin / 100 <= median <= 100 * fnomin:
         likely = "kN given as N" if median < fnomin else "N given as kN (or N*1000)"
         raise InputError(
             f"the median load {median:g} N is far from the template's FNOMIN {fnomin:g} N: "
-            f"the loads look like {likely}", file=data.source, column="Fz",
-            row=_row(data, np.ones(len(data), bool), data.fz - median))
+            f"the loads look like {likely}", column="Fz",
+            **_at(data, np.ones(len(data), bool), data.fz - median))
 
 
 def _check_kappa(data: TyreData) -> None:
@@ -238,8 +291,8 @@ def _check_kappa(data: TyreData) -> None:
     if (k < -1 - 1e-9).any():
         raise InputError(
             f"slip ratio {k.min():g}: below -1 the wheel turns backwards; the values look "
-            "like percent given as a fraction (write 'kappa [%]')", file=data.source,
-            column="kappa", row=_row(data, k < -1 - 1e-9, k))
+            "like percent given as a fraction (write 'kappa [%]')", column="kappa",
+            **_at(data, k < -1 - 1e-9, k))
     use = np.isfinite(data.fx) & (np.abs(k) > 0)
     if not use.any():
         return
@@ -248,14 +301,14 @@ def _check_kappa(data: TyreData) -> None:
         raise InputError(
             f"slip ratios up to {np.max(np.abs(k[use])):g} while |Fx| stays below "
             f"{coef * np.max(np.abs(k[use])):.2g} Fz: the values look like percent given as "
-            "a fraction (write 'kappa [%]')", file=data.source, column="kappa",
-            row=_row(data, use, k))
+            "a fraction (write 'kappa [%]')", column="kappa",
+            **_at(data, use, k))
     if coef > MAX_SLIP_COEFFICIENT:
         raise InputError(
             f"|Fx| reaches {coef * np.max(np.abs(k[use])):.2g} Fz at slip ratios of at most "
             f"{np.max(np.abs(k[use])):.3g}: a slip coefficient of at least {coef:.0f} (tyres "
             "have 10-40); the slip ratios look like fractions under a percent header",
-            file=data.source, column="kappa", row=_row(data, use, k))
+            column="kappa", **_at(data, use, k))
 
 
 def _check_alpha(data: TyreData) -> None:
@@ -270,8 +323,8 @@ def _check_alpha(data: TyreData) -> None:
             f"|Fy| reaches {coef * top:.2g} Fz at slip angles of at most "
             f"{math.degrees(math.atan(top)):.3g} deg: a cornering coefficient of at least "
             f"{coef:.0f} per rad (tyres have about 5-40); the slip angles look like radians "
-            "under a [deg] header", file=data.source, column="alpha",
-            row=_row(data, use, a))
+            "under a [deg] header", column="alpha",
+            **_at(data, use, a))
 
 
 def _slope_near_zero(slip: np.ndarray, force: np.ndarray, fz: np.ndarray,
@@ -285,21 +338,52 @@ def _slope_near_zero(slip: np.ndarray, force: np.ndarray, fz: np.ndarray,
     return abs(float(np.polyfit(slip[use], force[use] / fz[use], 1)[0])), use
 
 
+def _slopes(data: TyreData) -> tuple[tuple[float, np.ndarray], tuple[float, np.ndarray]]:
+    """The slopes near zero slip of F_x / F_z on kappa and F_y / F_z on tan(alpha), each
+    with its rows (:func:`_slope_near_zero`)."""
+    return (_slope_near_zero(data.kappa, data.fx, data.fz, np.abs(data.alpha) <= ALPHA_PURE),
+            _slope_near_zero(np.tan(data.alpha), data.fy, data.fz,
+                             np.abs(data.kappa) <= KAPPA_PURE))
+
+
+def _check_files_agree(parts: list[TyreData]) -> None:
+    """Refuse files whose slopes near zero slip differ by more than a tyre's do (a force
+    column of one file in another unit: daN as N)."""
+    found = [(_slopes(p), p) for p in parts]
+    for i, (name, what, typical) in enumerate((("Fx", "unit slip ratio", 20.0),
+                                               ("Fy", "rad of slip angle", 14.0))):
+        given = [(f[i][0], f[i][1], p) for f, p in found if f[i][0] > 0]  # NaN: not given
+        if len(given) < 2:
+            continue
+        lo, hi = min(g[0] for g in given), max(g[0] for g in given)
+        if hi <= MAX_FILES_SLOPE_RATIO * lo:
+            continue
+        # the file at fault: the slope farthest from a usual tyre's; compared with the nearest
+        k, use, part = max(given, key=lambda g: abs(math.log(g[0] / typical)))
+        k_ok, _, other = min(given, key=lambda g: abs(math.log(g[0] / typical)))
+        force = getattr(part, name.lower())
+        raise InputError(
+            f"{name} / Fz changes by {k:.3g} per {what} near zero slip in this file but "
+            f"by {k_ok:.3g} in '{other.source}', a factor {hi / lo:.3g} apart (one tyre's "
+            f"differ by less than {MAX_FILES_SLOPE_RATIO:g} across loads and pressures): "
+            f"the {name} column of this file looks like another unit than its header says "
+            "(daN as N?)", column=name, **_at(part, use, np.where(use, force, 0.0)))
+
+
 def _check_small_slip_slopes(data: TyreData) -> None:
     """Slopes near zero slip far below any tyre's: percent as fractions, degrees as rad."""
-    kx, use = _slope_near_zero(data.kappa, data.fx, data.fz, np.abs(data.alpha) <= ALPHA_PURE)
+    (kx, use), (ky, use_y) = _slopes(data)
     if kx < MIN_SLIP_SLOPE:
         raise InputError(
             f"Fx / Fz rises by only {kx:.3g} per unit slip ratio near zero slip (tyres have "
             "10-40): the slip ratios look like percent given as a fraction (write "
-            "'kappa [%]')", file=data.source, column="kappa", row=_row(data, use, data.kappa))
+            "'kappa [%]')", column="kappa", **_at(data, use, data.kappa))
     a = np.tan(data.alpha)
-    ky, use = _slope_near_zero(a, data.fy, data.fz, np.abs(data.kappa) <= KAPPA_PURE)
     if ky < MIN_CORNERING_SLOPE:
         raise InputError(
             f"Fy / Fz changes by only {ky:.3g} per rad of slip angle near zero (tyres have "
             "about 5-40): the slip angles look like degrees under a [rad] header",
-            file=data.source, column="alpha", row=_row(data, use, a))
+            column="alpha", **_at(data, use_y, a))
 
 
 def repeated_rows(data: TyreData) -> str | None:

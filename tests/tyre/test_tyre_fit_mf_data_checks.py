@@ -1,0 +1,158 @@
+"""``tyre fit-mf`` refuses, before fitting, an aligning moment of the wrong sign or without
+a curve, and checks each file of several on its own rows (naming that file)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from frictionlaws.base.errors import InputError
+from frictionlaws.cli import main
+from frictionlaws.tyre import MagicFormula, TyreData
+from frictionlaws.tyre.data import write_tydex
+from frictionlaws.tyre.data.synthetic import sweep_data
+from frictionlaws.tyre.mf.fit.checks import check_plausible
+from frictionlaws.tyre.synthetic_rig import rig_data
+
+EXAMPLES = ("MagicFormula52", "MagicFormula61", "MagicFormula62")
+TRUTH = MagicFormula.from_file("MagicFormula61")
+SMALL = dict(n=9, loads=(0.5, 1.0, 1.5), pressures=(1.0,), cambers_deg=(0.0,))
+
+
+def _rig(truth: MagicFormula = TRUTH) -> TyreData:
+    return rig_data(truth, **SMALL, combined=False)
+
+
+def _refused(capsys, files: list[Path], target: Path) -> str:
+    """The one error line of ``tyre fit-mf`` (exit 2, nothing written)."""
+    code = main(["tyre", "fit-mf", *map(str, files), "-o", str(target)])
+    out, err = capsys.readouterr()
+    assert code == 2 and not out and len(err.strip().splitlines()) == 1, err
+    assert err.startswith("error:") and not target.exists()
+    return err
+
+
+@pytest.mark.parametrize("example", EXAMPLES)
+@pytest.mark.parametrize("kind", ["lateral", "combined"])
+def test_mz_of_the_packaged_tyres_passes_and_negated_is_refused(example: str,
+                                                                kind: str) -> None:
+    """Near pure side slip the packaged tyres' Mz opposes Fy, cambered up to 6 deg too."""
+    truth = MagicFormula.from_file(example)
+    with pytest.warns(Warning):  # cambers beyond the files' ranges: extrapolated
+        data = sweep_data(truth, kind, loads=(0.3, 1.0, 2.0), cambers_deg=(-6.0, 0.0, 6.0),
+                          pressures=(1.0,), n=9)
+    check_plausible(data, truth.fnomin)
+    data.mz = -data.mz
+    with pytest.raises(InputError, match="Mz has the sign of Fy on .* rows with |alpha| "
+                                         "of 1-4 deg.*looks reversed") as err:
+        check_plausible(data, truth.fnomin)
+    assert err.value.column == "Mz" and err.value.row is not None
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(share=st.floats(0.0, 1.0), seed=st.integers(0, 2**16))
+def test_mz_with_the_sign_of_fy_on_most_small_angle_rows_is_refused(share: float,
+                                                                    seed: int) -> None:
+    data = _rig()
+    near = np.flatnonzero((np.abs(data.alpha) >= math.radians(1.0))
+                          & (np.abs(data.alpha) <= math.radians(4.0))
+                          & (np.abs(data.kappa) <= 0.01) & np.isfinite(data.mz))
+    flip = np.random.default_rng(seed).permutation(near)[:round(share * near.size)]
+    data.mz[flip] = -data.mz[flip]
+    if 2 * flip.size > near.size:
+        with pytest.raises(InputError, match="Mz has the sign of Fy|carries no curve"):
+            check_plausible(data, TRUTH.fnomin)
+    elif share < 0.3:
+        check_plausible(data, TRUTH.fnomin)
+
+
+def test_a_tydex_file_with_mz_negated_is_refused_on_the_command_line(capsys,
+                                                                     tmp_path: Path) -> None:
+    data = sweep_data(TRUTH, "lateral", loads=(0.5, 1.0), cambers_deg=(0.0,),
+                      pressures=(1.0,), n=9)
+    data.mz = -data.mz
+    tdx = write_tydex(data, tmp_path / "lat_mzflip.tdx")
+    err = _refused(capsys, [tdx], tmp_path / "o.tir")
+    assert f"file '{tdx}', column 'Mz'" in err and "looks reversed" in err
+
+
+@pytest.mark.parametrize("kind", ["zero", "noise"])
+def test_an_mz_column_without_a_curve_is_refused_before_fitting(capsys, tmp_path: Path,
+                                                                kind: str) -> None:
+    data = _rig()
+    finite = np.isfinite(data.mz)
+    noise = 0.003 * data.fz * np.random.default_rng(1).standard_normal(len(data))
+    data.mz[finite] = 0.0 if kind == "zero" else noise[finite]
+    with pytest.raises(InputError, match="Mz carries no curve to fit") as err:
+        check_plausible(data, TRUTH.fnomin)
+    assert err.value.column == "Mz"
+    tdx = write_tydex(data, tmp_path / "mz_flat.tdx")
+    err_line = _refused(capsys, [tdx], tmp_path / "o.tir")
+    assert f"file '{tdx}', column 'Mz'" in err_line and "carries no curve" in err_line
+    assert "<fitted .tir>" not in err_line
+
+
+def _two_files(tmp_path: Path, bad: int, unit: str) -> tuple[list[Path], Path]:
+    """Two TYDEX files of sweeps at other loads, file ``bad`` with ``unit`` wrong."""
+    kind = "lateral" if unit == "alpha_rad" else "longitudinal"
+    parts = [sweep_data(TRUTH, kind, loads=loads, cambers_deg=(0.0,), pressures=(1.0,), n=9)
+             for loads in ((0.5, 1.0), (1.5,))]
+    if unit == "alpha_rad":
+        parts[bad].alpha = np.radians(parts[bad].alpha)  # written under [deg]
+    else:  # percent written as a fraction
+        parts[bad].kappa = 100.0 * parts[bad].kappa
+    files = [write_tydex(p, tmp_path / f"part{i}.tdx") for i, p in enumerate(parts)]
+    return files, files[bad]
+
+
+@pytest.mark.parametrize("unit, column", [("alpha_rad", "alpha"),
+                                          ("kappa_percent", "kappa")])
+@pytest.mark.parametrize("bad", [0, 1])
+def test_a_unit_wrong_in_one_file_of_two_is_refused_naming_that_file(
+        capsys, tmp_path: Path, bad: int, unit: str, column: str) -> None:
+    """Each file is checked on its own rows (the merged rows hide a unit wrong in one file),
+    and the row named is that file's."""
+    files, culprit = _two_files(tmp_path, bad, unit)
+    err = _refused(capsys, files, tmp_path / "o.tir")
+    assert f"file '{culprit}', column '{column}', row " in err, err
+    assert " + " not in err
+    row = int(err.split(", row ")[1].split(":")[0])
+    assert row <= len(culprit.read_text().splitlines())
+
+
+@pytest.mark.parametrize("unit", ["Fx_daN", "Fy_daN"])
+@pytest.mark.parametrize("order", [1, -1])
+def test_a_force_in_daN_beside_a_file_in_N_is_refused_naming_it(
+        capsys, tmp_path: Path, unit: str, order: int) -> None:
+    """A tenth of the force is a plausible tyre alone (on ice), not beside the same tyre's
+    sweeps in N: the slopes near zero slip of the two files differ by a factor 10."""
+    kw = dict(loads=(0.5, 1.0, 1.5), cambers_deg=(0.0,), pressures=(1.0,), n=9)
+    kind = "longitudinal" if unit == "Fx_daN" else "lateral"
+    good, bad = sweep_data(TRUTH, kind, **kw), sweep_data(TRUTH, kind, **kw, seed=12)
+    setattr(bad, unit[:2].lower(), getattr(bad, unit[:2].lower()) / 10.0)
+    files = [write_tydex(good, tmp_path / "good.tdx"), write_tydex(bad, tmp_path / "bad.tdx")]
+    err = _refused(capsys, files[::order], tmp_path / "o.tir")
+    assert f"file '{files[1]}', column '{unit[:2]}', row " in err, err
+    assert "a factor" in err and "daN as N" in err
+
+
+def test_files_of_one_tyre_agree() -> None:
+    """Files of one tyre at other loads, pressures and sweep ranges are not refused."""
+    from frictionlaws.tyre.data.table import join
+
+    parts = [sweep_data(TRUTH, "lateral", loads=(0.4,), pressures=(0.85,), n=9,
+                        cambers_deg=(0.0,), alpha_max_deg=4.0),
+             sweep_data(TRUTH, "lateral", loads=(1.6,), pressures=(1.1,), n=9,
+                        cambers_deg=(0.0,), alpha_max_deg=15.0),
+             sweep_data(TRUTH, "longitudinal", loads=(0.4,), pressures=(0.85,), n=9,
+                        cambers_deg=(0.0,), kappa_max=0.05),
+             sweep_data(TRUTH, "longitudinal", loads=(1.6,), pressures=(1.1,), n=9,
+                        cambers_deg=(0.0,), kappa_max=0.3)]
+    named = [replace(p, source=f"{i}.tdx") for i, p in enumerate(parts)]
+    check_plausible(join(named), TRUTH.fnomin, TRUTH.nominal_pressure)
