@@ -94,6 +94,7 @@ sphinx_gallery_conf = {
     "backreferences_dir": None,
     "doc_module": (),
     "inspect_global_variables": False,
+    "parallel": 2,  # the examples run two at a time (CI has two cores)
 }
 # Examples show the library's own warnings (extrapolation, identifiability) in
 # their output; third-party deprecation chatter is not part of the story.
