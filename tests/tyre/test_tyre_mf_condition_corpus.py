@@ -40,6 +40,9 @@ from frictionlaws.tyre.mf.outputs import evaluate
 from frictionlaws.tyre.mf.plausibility import speed_bound
 from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
 
+#: A corpus (hundreds of evaluations): run with the slow tests, on the newest set only.
+pytestmark = pytest.mark.slow
+
 xr = pytest.importorskip("xarray")
 
 
