@@ -15,26 +15,18 @@
   ``test_hostile*.py`` files (in each room's folder), where that marker lives
   (``tests/test_hostile_marker_scope.py`` keeps it so): importing the whole suite
   to deselect it cost about 15 s of CPU in each xdist process.
-* The tests marked slow run first, so that the workers share them out early; each test
-  process uses one BLAS thread (the workers share the cores).
+* The tests marked slow run first, so that the workers share them out early.
 """
 
 from __future__ import annotations
 
 import os
 import sys
+from pathlib import Path
+from typing import Any
 
-# One BLAS thread per test process, set before numpy loads (here, in the controller, and
-# inherited by pytest-xdist's workers and the commands tests run): two workers on two
-# cores, each with a BLAS thread per core, contend and spin (fit-mf ran 17 % slower).
-for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_threads, "1")
-
-from pathlib import Path  # noqa: E402
-from typing import Any  # noqa: E402
-
-import pytest  # noqa: E402
-from hypothesis import settings  # noqa: E402
+import pytest
+from hypothesis import settings
 
 ROOT = Path(__file__).resolve().parent.parent
 
