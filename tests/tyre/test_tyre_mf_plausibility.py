@@ -23,7 +23,12 @@ import pytest
 from frictionlaws.cli import main
 from frictionlaws.tyre import MagicFormula
 from frictionlaws.tyre.mf.outputs import evaluate
-from frictionlaws.tyre.mf.plausibility import GROWTH_SHARE, SPEED_LIMIT, speed_bound
+from frictionlaws.tyre.mf.plausibility import (
+    GROWTH_SHARE,
+    SPEED_LIMIT,
+    YAW_RATE_LIMIT,
+    speed_bound,
+)
 from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
 from frictionlaws.tyre.transient import transient_slip
 
@@ -112,6 +117,44 @@ def test_a_deflection_to_the_centre_is_no_loaded_radius(tmp_path) -> None:
     out, said = _said(mf.steady_state, 0.0, 0.0, np.array([500.0, 6000.0]))
     assert out["Rl"][0] > 0 and np.isnan(out["Rl"][1])  # before: 0 m, silently
     assert [w for w in said if "1 row(s) deflect the tyre to its centre" in w]
+
+
+def test_generated_turn_slips_are_plausible_or_warned() -> None:
+    """Generated turn slips (|phit| log-uniform 1e-3..1e7 1/m, speeds 0..60 m/s either way,
+    slip angles to 60 deg): warned of exactly where the wheel's yaw rate |phit| V_c exceeds
+    the bound, however small the path radius at a low speed (a wheel pivoting when parked).
+    Before: phit 1e6 1/m at 16.6 m/s gave M_z 537 N m without a word."""
+    mf = MagicFormula.from_file("MagicFormula61")
+    rng = np.random.default_rng(36)
+    n = 200
+    phit = rng.choice([-1, 1], n) * 10 ** rng.uniform(-3, 7, n)
+    vx = rng.choice([-1, 1], n) * np.where(rng.random(n) < 0.2, 0.0, rng.uniform(0, 60, n))
+    alpha = np.radians(rng.uniform(-60, 60, n))
+    rate = np.abs(phit * vx / np.cos(alpha))
+    fast = rate > YAW_RATE_LIMIT
+    assert 0 < fast.sum() < n
+    _, said = _said(evaluate, mf, 0.0, alpha, mf.fnomin, vx=vx, phit=phit, turn_slip=True)
+    (turn,) = [w for w in said if "an implausible turn slip" in w]
+    assert f"on {int(fast.sum())} row(s)" in turn
+    calm = ~fast
+    _, said = _said(evaluate, mf, 0.0, alpha[calm], mf.fnomin, vx=vx[calm], phit=phit[calm],
+                    turn_slip=True)
+    assert not [w for w in said if "turn slip" in w], said
+    # parking: a path radius of 0.5 m at 0.5 m/s (1 rad/s), and a pivot at a standing wheel
+    for vx_, phit_ in ((0.5, 2.0), (0.0, 1e6)):
+        _, said = _said(evaluate, mf, 0.0, 0.0, mf.fnomin, vx=vx_, phit=phit_,
+                        turn_slip=True, limit_checks=vx_ != 0.0)
+        assert not [w for w in said if "implausible turn slip" in w], said
+
+
+def test_an_implausible_turn_slip_is_said_on_every_path(capsys) -> None:
+    argv = ["tyre", "mf", "MagicFormula61", "--phit", "1e6", "--turn-slip", "--outputs", "Mz"]
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert "warning: MagicFormula61_Parameters: an implausible turn slip on 1 row(s)" in err
+    assert main([*argv, "--json"]) == 0
+    doc = json.loads(capsys.readouterr()[0])
+    assert [w for w in doc["warnings"] if "yaw rate |phit| V_c up to 1.66e+07 rad/s" in w]
 
 
 # --------------------------------------------------- F3: a standing wheel, no limit checks

@@ -29,7 +29,7 @@ import numpy as np
 
 from ...base.errors import ExtrapolationWarning, InputError, broadcast_shape
 from .parameters import MFParameters, real_array
-from .plausibility import check_speed
+from .plausibility import check_speed, check_turn_slip_rate
 from .turn_slip import check_turn_slip
 
 __all__ = ["Conditions"]
@@ -96,6 +96,8 @@ class Conditions:
         self.phit_in = np.broadcast_to(given["phit"], shape)
         self.omega = None if omega is None else np.broadcast_to(given["omega"], shape)
         check_speed(p, self.vx)
+        if turn_slip:
+            check_turn_slip_rate(p, self.vx, self.alpha_in, self.phit_in)
         k, a = self._low_speed(p)
         clipped = self._limit(p, {"kappa": k, "alpha": a, "gamma": given["gamma"],
                                   "pressure": given["pressure"]}, saturate)
