@@ -694,6 +694,10 @@ def parse_values(text: str, quantity: str, *, option: str,
     items = [x for x in s.split(",")]
     if len(items) > max_points:
         raise UsageError(f"{option}: {len(items)} values (at most {max_points})")
+    empty = [i + 1 for i, x in enumerate(items) if not x.strip()]
+    if empty:
+        raise UsageError(f"{option} '{text}': item {empty[0]} of the list is empty; expected "
+                         "A,B,C, values separated by single commas")
     return [_bound(x, quantity, option, s, unit) for x in items]
 
 

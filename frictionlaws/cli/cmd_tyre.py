@@ -605,7 +605,8 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
 
 def _print_rows(table: dict[str, Any]) -> None:
     """The rows of a steady state as an aligned text table, units in the header."""
-    cols = [*table["inputs"], *table["outputs"]]
+    cols = list(dict.fromkeys([*table["inputs"], *table["outputs"]]))  # omega: once, as
+    # in the rows of the JSON (the wheel speed given is the one evaluated)
     units = {**table["inputs"], **table["outputs"]}
     head = [f"{c} [{units[c]['unit']}]" for c in cols] + ["clamped"]
     cells = [[f"{r[c]:.6g}" for c in cols] + [",".join(r["clamped"]) or "-"]

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
 from frictionlaws.tyre import MagicFormula
 from frictionlaws.tyre.mf.outputs import evaluate
@@ -230,3 +231,47 @@ def test_inst_kya_is_given_per_load_or_its_nan_is_explained(mf61, capsys) -> Non
     _, said = _said(evaluate, mf61, 0.0, np.radians([-5.0, -5.0, 5.0, 5.0]),
                     np.array([3000.0, 6000.0, 3000.0, 6000.0]))
     assert not [w for w in said if "instKya" in w]
+
+
+# ------------------------------------------------------------ command-line findings
+
+def test_a_wheel_speed_given_is_one_column(capsys) -> None:
+    """Before: the text of ``--omega`` printed the omega column twice (input and output)."""
+    assert main(["tyre", "mf", "MagicFormula61", "--kappa", "0.05", "--omega", "45",
+                 "--outputs", "Fx,omega,Re"]) == 0
+    head = capsys.readouterr()[0].splitlines()[2]
+    assert head.split().count("omega") == 1 and head.split()[-1] == "clamped"
+
+
+@pytest.mark.parametrize(("given", "item"), [("0,,0.1", 2), (",0.1", 1), ("0.1, ", 2)])
+def test_a_list_with_an_empty_item_says_so(capsys, given: str, item: int) -> None:
+    """Before: ``--kappa 0,,0.1`` was told of an 'empty bound' of a range."""
+    assert main(["tyre", "mf", "MagicFormula61", f"--kappa={given}"]) == 2
+    err = capsys.readouterr()[1]
+    assert f"item {item} of the list is empty" in err and "bound" not in err
+
+
+@pytest.mark.parametrize("json_out", [False, True])
+def test_what_was_warned_before_a_refusal_is_said_before_its_error(capsys,
+                                                                   json_out: bool) -> None:
+    """Before: ``--vx 1e200`` warned of an implausible speed, then refused a moment past
+    floating point; the command line said the refusal only (the warnings were collected
+    inside the evaluation and lost with its exception)."""
+    argv = ["tyre", "mf", "MagicFormula61", "--vx", "1e200", *(["--json"] if json_out else [])]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    lines = err.splitlines()
+    assert out == "" and lines[-1].startswith("error: My is not finite")
+    assert [w for w in lines[:-1] if w.startswith("warning: ") and "implausible speed" in w]
+    assert all(w.startswith("warning: ") for w in lines[:-1])
+    mf = MagicFormula.from_file("MagicFormula61")
+    with pytest.warns(UserWarning, match="an implausible speed"), \
+            pytest.raises(InputError, match="My is not finite"):
+        evaluate(mf, 0.0, 0.0, mf.fnomin, vx=1e200)
+
+
+def test_a_loaded_radius_past_floating_point_is_refused(mf61) -> None:
+    """Before: a slip ratio of 1e300 printed R_l inf with exit 0 (null in JSON)."""
+    with pytest.raises(InputError, match="Rl is not finite"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        evaluate(mf61, 1e300, 0.0, mf61.fnomin)
