@@ -40,6 +40,7 @@ from ..tyre.mf.fit.staged import refuse_not_applied
 from ..tyre.mf.inputs import INPUTS
 from ..tyre.mf.model import MagicFormula
 from ..tyre.mf.outputs import OUTPUTS, evaluate
+from ..tyre.reduce import MIN_POINTS as REDUCE_MIN_POINTS
 from ..tyre.reduce import reduce_mf
 from ..tyre.thesis import thesis_comparison
 from ._common import (
@@ -133,8 +134,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--side", choices=("braking", "driving"), default="braking")
     r.add_argument("--slip-max", type=bounded_number(0.0, 1.0, lo_open=True), default=1.0,
                    metavar="SLIP", help="largest slip ratio (0 < SLIP <= 1, default 1)")
-    r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
-                   help="number of slip points (3..100000, default 201)")
+    r.add_argument("--points", type=bounded_int(REDUCE_MIN_POINTS, 100_000), default=201,
+                   help=f"number of slip points ({REDUCE_MIN_POINTS}..100000, default 201)")
     _mf_options(r)
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "

@@ -122,7 +122,7 @@ def test_a_deflection_to_the_centre_is_no_loaded_radius(tmp_path) -> None:
 
 def test_generated_turn_slips_are_plausible_or_warned() -> None:
     """Generated turn slips (|phit| log-uniform 1e-3..1e7 1/m, speeds 0..60 m/s either way,
-    slip angles to 60 deg): warned of exactly where the wheel's yaw rate |phit| V_c exceeds
+    slip angles to 60 deg): warned of exactly where the wheel's yaw rate |phit vx| exceeds
     the bound, however small the path radius at a low speed (a wheel pivoting when parked).
     Before: phit 1e6 1/m at 16.6 m/s gave M_z 537 N m without a word."""
     mf = MagicFormula.from_file("MagicFormula61")
@@ -131,7 +131,7 @@ def test_generated_turn_slips_are_plausible_or_warned() -> None:
     phit = rng.choice([-1, 1], n) * 10 ** rng.uniform(-3, 7, n)
     vx = rng.choice([-1, 1], n) * np.where(rng.random(n) < 0.2, 0.0, rng.uniform(0, 60, n))
     alpha = np.radians(rng.uniform(-60, 60, n))
-    rate = np.abs(phit * vx / np.cos(alpha))
+    rate = np.abs(phit * vx)
     fast = rate > YAW_RATE_LIMIT
     assert 0 < fast.sum() < n
     _, said = _said(evaluate, mf, 0.0, alpha, mf.fnomin, vx=vx, phit=phit, turn_slip=True)
@@ -155,7 +155,7 @@ def test_an_implausible_turn_slip_is_said_on_every_path(capsys) -> None:
     assert "warning: MagicFormula61_Parameters: an implausible turn slip on 1 row(s)" in err
     assert main([*argv, "--json"]) == 0
     doc = json.loads(capsys.readouterr()[0])
-    assert [w for w in doc["warnings"] if "yaw rate |phit| V_c up to 1.66e+07 rad/s" in w]
+    assert [w for w in doc["warnings"] if "yaw rate |phit vx| up to 1.66e+07 rad/s" in w]
 
 
 # --------------------------------------------------- F3: a standing wheel, no limit checks
@@ -275,3 +275,39 @@ def test_a_loaded_radius_past_floating_point_is_refused(mf61) -> None:
     with pytest.raises(InputError, match="Rl is not finite"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         evaluate(mf61, 1e300, 0.0, mf61.fnomin)
+
+
+# ------------------------------------------------------- findings of the hostile pass
+
+def test_a_camber_share_of_one_or_more_is_refused_with_its_coefficients(tmp_path) -> None:
+    """Before: PECP1 = 1 (the model divides by 1 - eps_gamma) refused turn slip at phit = 0
+    as 'F_y is not finite ... past floating point'; a PECP2 that takes eps_gamma past 1 at
+    a high load gave a spin shift of the other sign without a word."""
+    pf = read_property_file(packaged_example("MagicFormula61"))
+    for pecp1, pecp2, fz in ((1.0, 0.0, 6752.0), (0.75, 0.12, 4 * 6752.0)):
+        pf.sections["TURNSLIP_COEFFICIENTS"].update(PECP1=pecp1, PECP2=pecp2)
+        path = tmp_path / "share.tir"
+        path.write_text(format_tir(pf))
+        mf, _ = _said(MagicFormula.from_file, path)
+        with pytest.raises(InputError, match=r"eps_gamma = PECP1 \(1 \+ PECP2 dfz\)"), \
+                warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            evaluate(mf, 0.0, 0.0, fz, np.radians(2.0), turn_slip=True)
+    _, said = _said(evaluate, mf, 0.0, 0.0, 6752.0, turn_slip=True, phit=0.2)  # below 1
+    assert not [w for w in said if "eps_gamma" in w]
+
+
+def test_transient_slip_says_an_implausible_turn_slip_once(mf61) -> None:
+    t = np.linspace(0.0, 0.5, 21)
+    res, said = _said(transient_slip, mf61, t, 16.6, 5000.0, alpha=0.05, phit=1e6,
+                      turn_slip=True)
+    assert len([w for w in said if "an implausible turn slip" in w]) == 1, said
+    assert len([w for w in res.warnings if "an implausible turn slip" in w]) == 1
+
+
+def test_reduce_refuses_too_few_points_by_its_option(capsys) -> None:
+    """Before: ``--points 3`` passed the option's bound (3) and met the library's (10):
+    'n must be an integer >= 10', an argument the command line does not have."""
+    assert main(["tyre", "reduce", "MagicFormula61", "--load", "4", "--points", "5"]) == 2
+    err = capsys.readouterr()[1]
+    assert "--points" in err and "n must" not in err

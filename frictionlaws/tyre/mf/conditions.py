@@ -97,7 +97,7 @@ class Conditions:
         self.omega = None if omega is None else np.broadcast_to(given["omega"], shape)
         check_speed(p, self.vx)
         if turn_slip:
-            check_turn_slip_rate(p, self.vx, self.alpha_in, self.phit_in)
+            check_turn_slip_rate(p, self.vx, self.phit_in)
         k, a = self._low_speed(p)
         clipped = self._limit(p, {"kappa": k, "alpha": a, "gamma": given["gamma"],
                                   "pressure": given["pressure"]}, saturate)
