@@ -579,7 +579,12 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
     """``tyre mf FILE --kappa ...``: every output of the library's table, per row."""
     names = None
     if args.outputs is not None:
-        names = [x.strip() for x in args.outputs.split(",") if x.strip()]
+        names = [x.strip() for x in args.outputs.split(",")]
+        if "" in names and any(names):  # as every list option: an empty item is said
+            raise InputError(f"--outputs {args.outputs!r}: item {names.index('') + 1} of the "
+                             "list is empty; expected NAME,NAME, names separated by single "
+                             "commas")
+        names = [x for x in names if x]
         unknown = [x for x in names if x not in OUTPUTS]
         if unknown or not names:
             raise InputError(f"--outputs {args.outputs!r}: unknown output "

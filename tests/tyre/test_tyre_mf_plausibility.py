@@ -243,10 +243,16 @@ def test_a_wheel_speed_given_is_one_column(capsys) -> None:
     assert head.split().count("omega") == 1 and head.split()[-1] == "clamped"
 
 
-@pytest.mark.parametrize(("given", "item"), [("0,,0.1", 2), (",0.1", 1), ("0.1, ", 2)])
-def test_a_list_with_an_empty_item_says_so(capsys, given: str, item: int) -> None:
-    """Before: ``--kappa 0,,0.1`` was told of an 'empty bound' of a range."""
-    assert main(["tyre", "mf", "MagicFormula61", f"--kappa={given}"]) == 2
+@pytest.mark.parametrize(("option", "given", "item"), [
+    ("--kappa", "0,,0.1", 2), ("--kappa", ",0.1", 1), ("--alpha", "0.1, ", 2),
+    ("--outputs", "Fx,,Fy", 2)])
+def test_a_list_with_an_empty_item_says_so(capsys, option: str, given: str,
+                                           item: int) -> None:
+    """Before: ``--kappa 0,,0.1`` was told of an 'empty bound' of a range, and
+    ``--outputs Fx,,Fy`` dropped the empty item silently."""
+    assert main(["tyre", "mf", "MagicFormula61", f"{option}={given}", "--kappa", "0"]
+                if option == "--outputs" else
+                ["tyre", "mf", "MagicFormula61", f"{option}={given}"]) == 2
     err = capsys.readouterr()[1]
     assert f"item {item} of the list is empty" in err and "bound" not in err
 
@@ -311,3 +317,10 @@ def test_reduce_refuses_too_few_points_by_its_option(capsys) -> None:
     assert main(["tyre", "reduce", "MagicFormula61", "--load", "4", "--points", "5"]) == 2
     err = capsys.readouterr()[1]
     assert "--points" in err and "n must" not in err
+
+
+def test_no_deflection_at_a_load_near_zero_names_the_load(mf61) -> None:
+    """Before: a load of 1e-297 N was told its free radius had grown past the load's."""
+    out, said = _said(evaluate, mf61, 0.1, 0.0, 1e-297)
+    assert np.isnan(out.outputs["Cz"][()])
+    assert [w for w in said if "no deflection (a load too small" in w], said
