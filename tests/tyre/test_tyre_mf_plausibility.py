@@ -276,6 +276,13 @@ def test_what_was_warned_before_a_refusal_is_said_before_its_error(capsys,
         evaluate(mf, 0.0, 0.0, mf.fnomin, vx=1e200)
 
 
+def test_a_pressure_no_tyre_runs_at_is_refused_before_any_warning(capsys) -> None:
+    """With the warnings before a refusal said, the pressure's range warning ('...
+    extrapolation') came before its refusal: the pressure is now checked first."""
+    assert main(["tyre", "mf", "MagicFormula61", "--pressure", "2.6", "--kappa", "0"]) == 2
+    assert capsys.readouterr()[1].count("\n") == 1
+
+
 def test_a_loaded_radius_past_floating_point_is_refused(mf61) -> None:
     """Before: a slip ratio of 1e300 printed R_l inf with exit 0 (null in JSON)."""
     with pytest.raises(InputError, match="Rl is not finite"), warnings.catch_warnings():

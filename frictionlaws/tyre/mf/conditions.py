@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import ExtrapolationWarning, InputError, broadcast_shape
-from .parameters import MFParameters, real_array
+from .parameters import MFParameters, check_pressure, real_array
 from .plausibility import check_speed, check_turn_slip_rate
 from .turn_slip import check_turn_slip
 
@@ -129,6 +129,8 @@ class Conditions:
                "vx": p.check("vx", p.need("LONGVL") if vx is None else vx),
                "phit": p.check("phit", phit),
                "omega": None if omega is None else p.check("omega", omega)}
+        if pressure is not None:  # a pressure no tyre runs at: refused before any warning
+            check_pressure(out["pressure"])
         if not turn_slip and np.any(out["phit"] != 0):
             raise InputError("a turn slip phit other than 0 needs the turn-slip model "
                              "(turn_slip=True, MFeval's useMode x2)")
