@@ -129,8 +129,11 @@ class Conditions:
                "vx": p.check("vx", p.need("LONGVL") if vx is None else vx),
                "phit": p.check("phit", phit),
                "omega": None if omega is None else p.check("omega", omega)}
-        if pressure is not None:  # a pressure no tyre runs at: refused before any warning
-            check_pressure(out["pressure"])
+        if (pressure is not None and p.nominal_pressure is not None
+                and not (saturate and "pressure" in p.limits)):
+            check_pressure(out["pressure"])  # no tyre runs at it: refused before any
+            # warning, where the pressure terms would take it (saturate clamps it to the
+            # file's range first, as MFeval does)
         if not turn_slip and np.any(out["phit"] != 0):
             raise InputError("a turn slip phit other than 0 needs the turn-slip model "
                              "(turn_slip=True, MFeval's useMode x2)")
