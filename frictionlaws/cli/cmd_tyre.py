@@ -725,6 +725,6 @@ def _run_prepare(args: argparse.Namespace) -> int:
         out["written"] = [args.output, *map(str, plots)]
         print(jsonio.dumps(out))
         return 0
-    print(prepared.report())
+    print(_said_once(prepared.report(), prepared.warnings, args))
     print("written: " + ", ".join([args.output, *map(str, plots)]))
     return 0

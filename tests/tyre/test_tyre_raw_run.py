@@ -303,6 +303,40 @@ def test_a_run_without_sweeps_is_refused(tiny, tmp_path: Path) -> None:
         prepare_run(load_raw_run(still))
 
 
+@pytest.mark.parametrize("channel, value, slip, forces", [
+    ("SA", 0.0, "slip angle", "Fy (FY) and Mz (MZ)"),
+    ("SA", 0.7, "slip angle", "Fy (FY) and Mz (MZ)"),
+    ("SL", 0.0, "slip ratio", "Fx (FX)")])
+def test_a_dead_slip_channel_is_warned_of_on_every_path(tiny, tmp_path: Path, capsys,
+                                                        channel: str, value: float,
+                                                        slip: str, forces: str) -> None:
+    """A slip channel that does not sweep (dead, or stuck at a value) leaves its forces
+    without a slip to follow: they are not used, and every path says so, naming the
+    channel and the lines of the rows (the API's warnings, the text, --json, the file)."""
+    dead = _edited(tiny, tmp_path / "dead.txt", scale={channel: 0.0})
+    lines = dead.read_text().splitlines()
+    col = lines[1].split("\t").index(channel)
+    rows = [line.split("\t") for line in lines[3:]]
+    for r in rows:
+        r[col] = f"{value:g}"
+    dead.write_text("\n".join(lines[:3] + ["\t".join(r) for r in rows]) + "\n")
+    said = f"the {slip} channel {channel} stays within "
+    with pytest.warns(UserWarning, match=said):
+        p = prepare_run(load_raw_run(dead))
+    assert len(p.warnings) == 1 and said in p.warnings[0] and f"{forces} are not used" in p.warnings[0]
+    lo, hi = int(p.data.rows.min()), int(p.data.rows.max())
+    assert f"lines {lo}-{hi} of the run" in p.warnings[0]
+    assert all(not np.isfinite(getattr(p.data, f)).any()
+               for f in (("fx",) if channel == "SL" else ("fy", "mz")))
+    out = tmp_path / "sweeps.csv"
+    assert main(["tyre", "prepare", str(dead), "-o", str(out)]) == 0
+    text, err = capsys.readouterr()
+    assert said in err and said not in text  # said once: on stderr, as every warning
+    assert f"# warning: {p.warnings[0]}" in out.read_text()
+    assert main(["tyre", "prepare", str(dead), "-o", str(tmp_path / "s.tdx"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["warnings"] == p.warnings
+
+
 def test_prepare_writes_what_fit_mf_reads(raw, prepared, tmp_path: Path, capsys) -> None:
     out = tmp_path / "sweeps.csv"
     code = main(["tyre", "prepare", str(raw), "-o", str(out), "--plots",

@@ -412,8 +412,10 @@ def _check_units(run: RawRun) -> None:
              "a slip coefficient of {c:.0f} (tyres have 10-40): the slip ratios look like "
              "fractions under a percent unit")):
         use = loaded & other & (np.abs(slip) > 1e-6)
-        # slips within the jitter: the ratio would be the force offsets over a tiny slip
-        if force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP:
+        # slips within the jitter, or held (a channel stuck at a value): the ratio would be
+        # the force offsets over a tiny slip, or a sweep's forces over a slip that is not its
+        if (force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP
+                and np.ptp(slip[use]) >= MIN_SWEPT_SLIP):
             ratio = float(np.percentile(np.abs(q[force][use] / fz[use]), 99.9))
             coef = ratio / float(np.max(np.abs(slip[use])))
             if coef > limit:

@@ -41,6 +41,7 @@ The unit tests are physical bounds, not statistics of the data set:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from typing import Any
 
@@ -53,7 +54,8 @@ from .stages import ALPHA_PURE, KAPPA_PURE
 
 __all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
            "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
-           "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO"]
+           "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO", "MAX_PEAK_RATIO",
+           "LOW_PEAK_FRICTION", "PEAK_SLIPS", "MAX_CAMBER_STIFFNESS"]
 
 #: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
 #: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
@@ -71,6 +73,21 @@ _SMALL_SLIP = 0.1
 MAX_FORCE_RATIO = 5.0
 #: Largest plausible camber [rad] (30 degrees).
 MAX_CAMBER = math.radians(30.0)
+#: Slip ratio and slip angle [rad] a pure-slip sweep must reach for its largest |F| / F_z to
+#: stand for the tyre's peak friction (every tyre is near its peak there: within some 30 %).
+PEAK_SLIPS = (0.1, math.radians(8.0))
+#: Largest ratio of one tyre's peak friction in one direction to the other's (F_x / F_z to
+#: F_y / F_z) [-]: tyres have 0.7-1.5, on any road; a force in daN under an [N] header is
+#: 10 off.
+MAX_PEAK_RATIO = 3.0
+#: Below this peak friction [-] (dry roads: 0.8-1.3; wet: 0.4-0.8; snow: 0.2-0.4; ice:
+#: 0.05-0.2) the force is warned of: on ice it is real, else in daN under an [N] header.
+LOW_PEAK_FRICTION = 0.2
+#: Largest plausible camber stiffness, the slope of F_y / F_z on the camber near zero slip
+#: angle [1/rad] (tyres: about 0.2-2): radians under a [deg] header make it 57 times larger.
+MAX_CAMBER_STIFFNESS = 5.0
+#: A camber setting is a whole degree within this [deg] (of the values read as radians).
+_SETTING_TOL = 0.05
 #: Smallest |correlation| of F_x / F_z with the slip ratio (F_y / F_z with tan(alpha)) for
 #: a force that follows its slip (a tyre's, even on ice: above 0.5; noise: near 0).
 MIN_CURVE_CORRELATION = 0.3
@@ -127,6 +144,7 @@ def _check_rows(data: TyreData, fnomin: float, p_nom: float | None,
     _check_kappa(data)
     _check_alpha(data)
     _check_small_slip_slopes(data)
+    _check_peak_friction(data)
     _check_others(data, p_nom, radius)
     _check_curves(data, ("Mz",))  # after the slip angles' unit: radians as degrees flatten Mz
     _check_mz_sign(data)
@@ -135,6 +153,7 @@ def _check_rows(data: TyreData, fnomin: float, p_nom: float | None,
 def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
     """Camber, pressure and aligning moment against their physical ranges."""
     _check_camber(data)
+    _check_camber_settings(data)
     p = data.pressure[np.isfinite(data.pressure)]
     if p_nom is not None and p.size:
         median = float(np.median(p))
@@ -257,6 +276,95 @@ def _check_camber(data: TyreData) -> None:
                      **_at(data, wide, data.gamma))
 
 
+def _check_camber_settings(data: TyreData) -> None:
+    """Camber levels under a [deg] header so small that, read as radians, they are whole
+    degrees (a rig's settings), with a camber thrust 57 times a tyre's: radians as degrees.
+
+    The levels are found among the values read as radians within :data:`_SETTING_TOL` of
+    a whole degree (nine rows in ten or more, each level on three rows or more, two levels
+    or more); the camber stiffness, the slope over the levels of F_y / F_z at zero slip
+    angle (near pure side slip, within 0.1 rad, one cornering slope for all), must then
+    be above :data:`MAX_CAMBER_STIFFNESS` to refuse: real levels that happen to be whole
+    degrees when read as radians have a tyre's camber thrust.  Without F_y near zero slip
+    angle at two levels, the levels alone are warned of."""
+    if data.units.get("gamma", "").strip().lower() not in ("deg", "degree", "degrees", "°"):
+        return
+    written = np.degrees(data.gamma)  # the numbers as the file writes them
+    if not 0 < float(np.max(np.abs(written))) <= MAX_CAMBER:
+        return
+    setting = np.degrees(written)  # [deg], were the numbers radians
+    near = np.abs(setting - np.round(setting)) <= _SETTING_TOL
+    values, counts = np.unique(np.round(setting[near]), return_counts=True)
+    levels = values[counts >= max(3, 0.05 * len(data))]
+    if near.mean() < 0.9 or levels.size < 2:
+        return
+    top = near & (np.round(setting) == levels[np.argmax(np.abs(levels))])
+    head = (f"the camber takes the levels {', '.join(f'{math.radians(v):.3g}' for v in levels)}"
+            f" deg, which read as radians are the whole degrees "
+            f"{', '.join(f'{v:g}' for v in levels)} of a rig's settings")
+    stiffness = _camber_stiffness(data, np.round(setting), near, levels)
+    if math.isnan(stiffness):
+        warnings.warn(str(InputError(
+            head + "; no Fy near zero slip angle at two levels to tell them by their camber "
+            "thrust: if they are settings in radians, the header's unit is wrong (write "
+            "'gamma [rad]')", column="gamma", **_at(data, top, data.gamma))),
+            UserWarning, stacklevel=2)
+    elif stiffness > MAX_CAMBER_STIFFNESS:
+        raise InputError(
+            head + f", and Fy / Fz changes by {stiffness:.3g} per rad of camber as read "
+            f"(tyres: about 0.2-2): the values look like radians under a [deg] header "
+            "(write 'gamma [rad]')", column="gamma", **_at(data, top, data.gamma))
+
+
+def _camber_stiffness(data: TyreData, setting: np.ndarray, near: np.ndarray,
+                      levels: np.ndarray) -> float:
+    """|slope| of F_y / F_z at zero slip angle over the camber ``levels`` (as read, rad):
+    one F_y / F_z on tan(alpha) per level near pure side slip within 0.1 rad, one slope
+    for all; NaN with fewer than two levels of three such rows or more."""
+    pure = (near & np.isfinite(data.fy) & (np.abs(data.kappa) <= KAPPA_PURE)
+            & (np.abs(data.alpha) <= 1.01 * _SMALL_SLIP))
+    used = [v for v in levels if (pure & (setting == v)).sum() >= 3]
+    if len(used) < 2:
+        return math.nan
+    rows = pure & np.isin(setting, used)
+    design = np.column_stack([np.tan(data.alpha[rows])]
+                             + [(setting[rows] == v).astype(float) for v in used])
+    coef = np.linalg.lstsq(design, data.fy[rows] / data.fz[rows], rcond=None)[0]
+    gamma = [float(np.mean(data.gamma[rows & (setting == v)])) for v in used]
+    return abs(float(np.polyfit(gamma, coef[1:], 1)[0]))
+
+
+def _check_peak_friction(data: TyreData) -> None:
+    """The largest |F_x| / F_z and |F_y| / F_z of sweeps that reach the tyre's peak
+    (:data:`PEAK_SLIPS`): more than :data:`MAX_PEAK_RATIO` apart, one of the two forces is
+    in another unit (refused, naming the one farther from a dry road's 1); below
+    :data:`LOW_PEAK_FRICTION`, a force is on ice or in daN under an [N] header (warned)."""
+    peaks = []
+    for name, force, slip, pure, reach in (
+            ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE, PEAK_SLIPS[0]),
+            ("Fy", data.fy, data.alpha, np.abs(data.kappa) <= KAPPA_PURE, PEAK_SLIPS[1])):
+        use = pure & np.isfinite(force)
+        if use.any() and float(np.max(np.abs(slip[use]))) >= reach:
+            ratio = np.where(use, np.abs(force) / data.fz, 0.0)
+            peaks.append((name, float(ratio.max()), _at(data, use, ratio)))
+    if len(peaks) == 2 and not (1 / MAX_PEAK_RATIO <= peaks[0][1] / peaks[1][1]
+                                <= MAX_PEAK_RATIO):
+        (name, mu, at), (other, mu_other, _) = sorted(
+            peaks, key=lambda p: -abs(math.log(p[1])))
+        raise InputError(
+            f"|{name}| / Fz peaks at {mu:.3g} but |{other}| / Fz at {mu_other:.3g}, a factor "
+            f"{max(mu, mu_other) / min(mu, mu_other):.3g} apart (one tyre's peaks differ by "
+            f"less than {MAX_PEAK_RATIO:g}, on any road): the {name} column looks like "
+            f"another unit than its header says ({'daN as N' if mu < mu_other else 'N as daN'}"
+            "?)", column=name, **at)
+    for name, mu, at in peaks:
+        if mu < LOW_PEAK_FRICTION:
+            warnings.warn(str(InputError(
+                f"|{name}| / Fz peaks at {mu:.3g} (tyres reach 0.8-1.3 on a dry road, 0.2-0.8 "
+                "wet or on snow; less only on ice): unless measured on ice, the column looks "
+                "like daN under an [N] header", column=name, **at)), UserWarning, stacklevel=2)
+
+
 def _at(data: TyreData, mask: np.ndarray, values: np.ndarray) -> dict[str, Any]:
     """File and source row of the largest |value| among ``mask`` (of several files joined:
     the one file holding that row)."""
@@ -314,7 +422,7 @@ def _check_kappa(data: TyreData) -> None:
 def _check_alpha(data: TyreData) -> None:
     a = np.tan(data.alpha)
     use = np.isfinite(data.fy) & (np.abs(a) > 0)
-    if not use.any():
+    if not use.any() or np.ptp(a[use]) == 0:  # a constant slip angle: refused as such
         return
     top = float(np.max(np.abs(a[use])))
     coef = float(np.max(np.abs(data.fy[use]) / data.fz[use])) / top
