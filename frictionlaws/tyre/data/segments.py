@@ -668,12 +668,13 @@ def _unswept(w: _Work, data: TyreData, slip: str, forces: tuple[str, ...]) -> st
     lo, hi = (round(float(f(values)), 9) + 0.0 for f in (np.min, np.max))
     what = "slip angle" if slip == "alpha" else "slip ratio"
     need = (f"{math.degrees(ALPHA_SWEEP):g} deg" if slip == "alpha" else f"{KAPPA_SWEEP:g}")
-    names = " and ".join(f"{f[0].upper()}{f[1:]} ({w.run.channels.get(f, f.upper())})"
-                         for f in forces if np.isfinite(getattr(data, f)).any())
+    given = [f"{f[0].upper()}{f[1:]} ({w.run.channels.get(f, f.upper())})"
+             for f in forces if np.isfinite(getattr(data, f)).any()]
     return (f"the {what} channel {channel} stays within {lo:.3g}..{hi:.3g}{unit} on the "
-            f"{len(data)} rows kept "
-            f"(lines {int(data.rows.min())}-{int(data.rows.max())} of the run; a sweep "
-            f"spans {need} or more): a dead or constant channel? {names} are not used")
+            f"{len(data)} rows kept (lines {int(data.rows.min())}-{int(data.rows.max())} of "
+            f"the run; a sweep spans {need} or more): {' and '.join(given)} "
+            f"{'is' if len(given) == 1 else 'are'} not used, having no {what} to follow "
+            "(a dead or stuck channel, or no such sweep in the run?)")
 
 
 def _dropped_text(w: _Work) -> str:

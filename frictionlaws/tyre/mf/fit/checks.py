@@ -67,6 +67,8 @@ MIN_CORNERING_SLOPE = 0.75
 #: tan(alpha)) for one tyre [-]: loads and pressures change them by less than 2, sweeps
 #: of another reach (the fit over the window) by up to about 2.
 MAX_FILES_SLOPE_RATIO = 5.0
+#: A usual tyre's slopes near zero slip of F_x / F_z on kappa and F_y / F_z on tan(alpha).
+_TYPICAL_SLOPES = (20.0, 14.0)
 #: Half-width of the slip window near zero where the slopes are taken [-, rad].
 _SMALL_SLIP = 0.1
 #: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
@@ -282,63 +284,64 @@ def _check_camber_settings(data: TyreData) -> None:
 
     The levels are found among the values read as radians within :data:`_SETTING_TOL` of
     a whole degree (nine rows in ten or more, each level on three rows or more, two levels
-    or more); the camber stiffness, the slope over the levels of F_y / F_z at zero slip
-    angle (near pure side slip, within 0.1 rad, one cornering slope for all), must then
-    be above :data:`MAX_CAMBER_STIFFNESS` to refuse: real levels that happen to be whole
-    degrees when read as radians have a tyre's camber thrust.  Without F_y near zero slip
-    angle at two levels, the levels alone are warned of."""
+    or more).  The camber stiffness (:func:`_camber_stiffness`) then decides: more than
+    :data:`MAX_CAMBER_STIFFNESS` by two standard errors, refused; less by two, a tyre's
+    (real levels that happen to be whole degrees when read as radians); between, or
+    without F_y near zero slip angle, the levels are warned of."""
     if data.units.get("gamma", "").strip().lower() not in ("deg", "degree", "degrees", "°"):
         return
     written = np.degrees(data.gamma)  # the numbers as the file writes them
     if not 0 < float(np.max(np.abs(written))) <= MAX_CAMBER:
         return
-    setting = np.degrees(written)  # [deg], were the numbers radians
-    near = np.abs(setting - np.round(setting)) <= _SETTING_TOL
-    values, counts = np.unique(np.round(setting[near]), return_counts=True)
+    setting = np.round(np.degrees(written))  # [deg], were the numbers radians
+    near = np.abs(np.degrees(written) - setting) <= _SETTING_TOL
+    values, counts = np.unique(setting[near], return_counts=True)
     levels = values[counts >= max(3, 0.05 * len(data))]
     if near.mean() < 0.9 or levels.size < 2:
         return
-    top = near & (np.round(setting) == levels[np.argmax(np.abs(levels))])
+    at = _at(data, near & (setting == levels[np.argmax(np.abs(levels))]), data.gamma)
     head = (f"the camber takes the levels {', '.join(f'{math.radians(v):.3g}' for v in levels)}"
             f" deg, which read as radians are the whole degrees "
             f"{', '.join(f'{v:g}' for v in levels)} of a rig's settings")
-    stiffness = _camber_stiffness(data, np.round(setting), near, levels)
-    if math.isnan(stiffness):
-        warnings.warn(str(InputError(
-            head + "; no Fy near zero slip angle at two levels to tell them by their camber "
-            "thrust: if they are settings in radians, the header's unit is wrong (write "
-            "'gamma [rad]')", column="gamma", **_at(data, top, data.gamma))),
-            UserWarning, stacklevel=2)
-    elif stiffness > MAX_CAMBER_STIFFNESS:
+    k, se = _camber_stiffness(data, near & np.isin(setting, levels))
+    if k - 2 * se > MAX_CAMBER_STIFFNESS:
         raise InputError(
-            head + f", and Fy / Fz changes by {stiffness:.3g} per rad of camber as read "
-            f"(tyres: about 0.2-2): the values look like radians under a [deg] header "
-            "(write 'gamma [rad]')", column="gamma", **_at(data, top, data.gamma))
+            head + f", and Fy / Fz changes by {k:.3g} +- {se:.2g} per rad of camber as read "
+            "(tyres: about 0.2-2): the values look like radians under a [deg] header "
+            "(write 'gamma [rad]')", column="gamma", **at)
+    if not k + 2 * se < MAX_CAMBER_STIFFNESS:  # NaN: no F_y to tell
+        said = ("no Fy near zero slip angle to tell them by their camber thrust"
+                if math.isnan(k) else f"their camber thrust ({k:.3g} +- {se:.2g} per rad as "
+                "read; tyres: about 0.2-2) does not tell")
+        warnings.warn(str(InputError(
+            f"{head}; {said}: if they are settings in radians, the header's unit is wrong "
+            "(write 'gamma [rad]')", column="gamma", **at)), UserWarning, stacklevel=2)
 
 
-def _camber_stiffness(data: TyreData, setting: np.ndarray, near: np.ndarray,
-                      levels: np.ndarray) -> float:
-    """|slope| of F_y / F_z at zero slip angle over the camber ``levels`` (as read, rad):
-    one F_y / F_z on tan(alpha) per level near pure side slip within 0.1 rad, one slope
-    for all; NaN with fewer than two levels of three such rows or more."""
-    pure = (near & np.isfinite(data.fy) & (np.abs(data.kappa) <= KAPPA_PURE)
-            & (np.abs(data.alpha) <= 1.01 * _SMALL_SLIP))
-    used = [v for v in levels if (pure & (setting == v)).sum() >= 3]
-    if len(used) < 2:
-        return math.nan
-    rows = pure & np.isin(setting, used)
-    design = np.column_stack([np.tan(data.alpha[rows])]
-                             + [(setting[rows] == v).astype(float) for v in used])
-    coef = np.linalg.lstsq(design, data.fy[rows] / data.fz[rows], rcond=None)[0]
-    gamma = [float(np.mean(data.gamma[rows & (setting == v)])) for v in used]
-    return abs(float(np.polyfit(gamma, coef[1:], 1)[0]))
+def _camber_stiffness(data: TyreData, rows: np.ndarray) -> tuple[float, float]:
+    """|slope| of F_y / F_z on the camber as read [1/rad] and its standard error, fitted
+    with a cornering slope and an offset over ``rows`` near pure side slip within 0.1 rad
+    of zero slip angle; NaN without six such rows or without two cambers among them."""
+    use = (rows & np.isfinite(data.fy) & (np.abs(data.kappa) <= KAPPA_PURE)
+           & (np.abs(data.alpha) <= 1.01 * _SMALL_SLIP))
+    if use.sum() < 6 or np.ptp(data.gamma[use]) == 0:
+        return math.nan, math.nan
+    design = np.column_stack([np.ones(int(use.sum())), np.tan(data.alpha[use]),
+                              data.gamma[use]])
+    y = data.fy[use] / data.fz[use]
+    coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+    dof = max(int(use.sum()) - 3, 1)
+    s2 = float(np.sum((y - design @ coef) ** 2)) / dof
+    cov = s2 * np.linalg.pinv(design.T @ design)
+    return abs(float(coef[2])), math.sqrt(max(float(cov[2, 2]), 0.0))
 
 
 def _check_peak_friction(data: TyreData) -> None:
     """The largest |F_x| / F_z and |F_y| / F_z of sweeps that reach the tyre's peak
     (:data:`PEAK_SLIPS`): more than :data:`MAX_PEAK_RATIO` apart, one of the two forces is
-    in another unit (refused, naming the one farther from a dry road's 1); below
-    :data:`LOW_PEAK_FRICTION`, a force is on ice or in daN under an [N] header (warned)."""
+    in another unit (refused, naming first the one whose peak is farther from a dry road's
+    1, and the other's opposite slip); below :data:`LOW_PEAK_FRICTION`, a force is on ice
+    or in daN under an [N] header (warned)."""
     peaks = []
     for name, force, slip, pure, reach in (
             ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE, PEAK_SLIPS[0]),
@@ -349,14 +352,16 @@ def _check_peak_friction(data: TyreData) -> None:
             peaks.append((name, float(ratio.max()), _at(data, use, ratio)))
     if len(peaks) == 2 and not (1 / MAX_PEAK_RATIO <= peaks[0][1] / peaks[1][1]
                                 <= MAX_PEAK_RATIO):
-        (name, mu, at), (other, mu_other, _) = sorted(
-            peaks, key=lambda p: -abs(math.log(p[1])))
+        (name, mu, at), (other, mu_other, _) = sorted(peaks,
+                                                      key=lambda p: -abs(math.log(p[1])))
+        low = mu < mu_other
         raise InputError(
             f"|{name}| / Fz peaks at {mu:.3g} but |{other}| / Fz at {mu_other:.3g}, a factor "
             f"{max(mu, mu_other) / min(mu, mu_other):.3g} apart (one tyre's peaks differ by "
             f"less than {MAX_PEAK_RATIO:g}, on any road): the {name} column looks like "
-            f"another unit than its header says ({'daN as N' if mu < mu_other else 'N as daN'}"
-            "?)", column=name, **at)
+            f"another unit than its header says ({'daN under [N]' if low else 'N under [daN]'}"
+            f"; or {other} in {'N under [daN]' if low else 'daN under [N]'})",
+            column=name, **at)
     for name, mu, at in peaks:
         if mu < LOW_PEAK_FRICTION:
             warnings.warn(str(InputError(
@@ -458,8 +463,8 @@ def _check_files_agree(parts: list[TyreData]) -> None:
     """Refuse files whose slopes near zero slip differ by more than a tyre's do (a force
     column of one file in another unit: daN as N)."""
     found = [(_slopes(p), p) for p in parts]
-    for i, (name, what, typical) in enumerate((("Fx", "unit slip ratio", 20.0),
-                                               ("Fy", "rad of slip angle", 14.0))):
+    for i, (name, what) in enumerate((("Fx", "unit slip ratio"), ("Fy", "rad of slip angle"))):
+        typical = _TYPICAL_SLOPES[i]
         given = [(f[i][0], f[i][1], p) for f, p in found if f[i][0] > 0]  # NaN: not given
         if len(given) < 2:
             continue
