@@ -70,6 +70,7 @@ def test_a_raw_run_from_standard_input_beside_a_tydex_file(tmp_path: Path, capsy
     (lambda t, f: [f[0], t / "." / f[0].name], "given twice"),
     (lambda t, f: ["-", "-"], "standard input ('-') can be given once"),
     (lambda t, f: [f[0], _kpa_as_bar(f[1])], "a unit is wrong in one of them"),
+    (lambda t, f: [f[0], _copied(f[0], t / "copy.tdx")], "hold the same data"),
     (lambda t, f: [f[0], _broken(f[2])], "did you mean FYW"),
     (lambda t, f: [f[0], t / "missing.tdx"], "not found"),
 ])
@@ -82,6 +83,27 @@ def test_files_that_cannot_be_fitted_together_are_refused(tmp_path: Path, capsys
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and match in err, err
     assert not tir.exists()
+
+
+def _copied(path: Path, to: Path) -> Path:
+    to.write_bytes(path.read_bytes())
+    return to
+
+
+@pytest.mark.parametrize("order", [1, -1])
+def test_of_two_files_the_one_whose_pressure_is_no_tyre_s_is_named(tmp_path: Path, capsys,
+                                                                    order: int) -> None:
+    """bar numbers under a kPa unit in one file of two: the file named is that one (its
+    pressure is outside the range tyres run at), in either order."""
+    files = _tydex(tmp_path)[:2]
+    bad = files[1]
+    bad.write_text(bad.read_text().replace("INFLPRES  Inflation pressure            bar",
+                                           "INFLPRES  Inflation pressure            kPa"))
+    assert main(["tyre", "fit-mf", *map(str, files[::order]), "-o",
+                 str(tmp_path / "o.tir")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: file '{bad}', column 'pressure', row ") and (
+        "only this one's is outside the range tyres run at" in err), err
 
 
 def _kpa_as_bar(path: Path) -> Path:

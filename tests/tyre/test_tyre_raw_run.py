@@ -193,6 +193,18 @@ def test_units_that_cannot_be_right_are_refused(tiny, tmp_path: Path, change, ma
     assert exc.value.file == str(path)
 
 
+@pytest.mark.parametrize("scale, unit", [(0.01, "kPa"), (1000.0, "kPa")])
+def test_a_pressure_in_another_unit_is_refused_naming_channel_row_and_unit(
+        tiny, tmp_path: Path, scale: float, unit: str) -> None:
+    """bar numbers (or Pa) under a kPa unit: the one pressure check of the project names
+    the channel, the first loaded sample's line and the unit that looks off."""
+    path = _edited(tiny, tmp_path / "p.txt", scale={"P": scale})
+    with pytest.raises(InputError, match=f"the unit '{unit}' looks off by a factor") as exc:
+        load_raw_run(path)
+    loaded = np.flatnonzero(-tiny.channels["FZ"] > 0.1 * np.percentile(-tiny.channels["FZ"], 95))
+    assert exc.value.column == "P" and exc.value.row == int(loaded[0]) + 4  # title, 2 rows
+
+
 def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path,
                                                         capsys) -> None:
     sae = _edited(tiny, tmp_path / "sae.txt")
@@ -352,6 +364,9 @@ def test_prepare_writes_what_fit_mf_reads(raw, prepared, tmp_path: Path, capsys)
         np.testing.assert_allclose(getattr(back, k), getattr(prepared.data, k), rtol=1e-12)
     assert np.array_equal(back.extra["sweep"], prepared.data.extra["sweep"])
     assert out.read_text().startswith("# steady sweeps prepared by frictionlaws tyre prepare")
+    rows = [line.split(",") for line in out.read_text().splitlines() if line[:1] != "#"]
+    whole = [rows[0].index(k) for k in ("sweep", "direction", "samples")]
+    assert all(r[j].lstrip("-").isdigit() for r in rows[1:] for j in whole)  # integers
     tdx = tmp_path / "sweeps.tdx"
     assert main(["tyre", "prepare", str(raw), "-o", str(tdx), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)

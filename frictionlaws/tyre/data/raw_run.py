@@ -45,7 +45,7 @@ import numpy as np
 
 from ...base.errors import Argument, InputError
 from ...base.numbers import parse_number
-from ..mf.parameters import PLAUSIBLE_PRESSURE
+from ..mf.parameters import check_pressure
 from .channels import (
     KINDS,
     MAX_CORNERING_COEFFICIENT,
@@ -266,9 +266,10 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     _check_time(run)
     _kappa(run)
     run.notes.append(to_iso_axes(run.quantities, sign_convention))
-    _check_axes(run)
+    loaded = _loaded(run)
+    _check_axes(run, loaded)
     _check_angles(run)
-    _check_units(run)
+    _check_units(run, loaded & (run.quantities["fz"] > 0))
     return run
 
 
@@ -350,8 +351,9 @@ def _kappa(run: RawRun) -> None:
                              + ("camber = 0" if name == "gamma" else "not measured"))
 
 
-def _check_axes(run: RawRun) -> None:
-    """Loads of the other sign than the axes declared: the other convention, said."""
+def _loaded(run: RawRun) -> np.ndarray:
+    """The samples that carry a load (:data:`MIN_RIG_LOAD` or more, and a tenth of the
+    run's 95th-percentile |load|): what the checks of the axes and units look at."""
     fz = run.quantities["fz"]
     loaded = np.abs(fz) > max(0.1 * np.percentile(np.abs(fz), 95), MIN_RIG_LOAD)
     if not loaded.any():
@@ -359,6 +361,12 @@ def _check_axes(run: RawRun) -> None:
                          f"largest |{run.channels['fz']}| is {np.max(np.abs(fz)):.3g} N): "
                          "the tyre is lifted throughout, or the run was cut before it was "
                          "loaded", file=run.source, column=run.channels["fz"])
+    return loaded
+
+
+def _check_axes(run: RawRun, loaded: np.ndarray) -> None:
+    """Loads of the other sign than the axes declared: the other convention, said."""
+    fz = run.quantities["fz"]
     if np.mean(fz[loaded] < 0) > 0.5:
         other = "iso" if run.sign_convention == "sae" else "sae"
         said = ("SAE loads are negative in the file and were negated, so these were "
@@ -391,15 +399,12 @@ def _refuse_unit(run: RawRun, q: str, message: str, where: np.ndarray) -> None:
                      column=name, row=int(run.lines[int(np.argmax(where))]))
 
 
-def _check_units(run: RawRun) -> None:
-    """Slips, forces and moments against what tyres do (the bounds of a fit's checks): a unit
-    that is wrong by a factor would otherwise shrink or blow up the sweeps."""
+def _check_units(run: RawRun, loaded: np.ndarray) -> None:
+    """Slips, forces and moments of the ``loaded`` samples (ISO-W: loads positive) against
+    what tyres do (the bounds of a fit's checks): a unit that is wrong by a factor would
+    otherwise shrink or blow up the sweeps."""
     q = run.quantities
     fz = q["fz"]
-    loaded = fz > max(0.1 * np.percentile(fz, 95), MIN_RIG_LOAD)
-    if not loaded.any():
-        raise InputError("no sample carries a load", file=run.source,
-                         column=run.channels["fz"])
     kappa, tan_a = q["kappa"], np.tan(q["alpha"])
     if np.mean(np.abs(kappa[loaded]) > 1) > 0.01:
         _refuse_unit(run, "kappa", "slip ratios beyond -1..1: percent given as fractions?",
@@ -426,17 +431,17 @@ def _check_units(run: RawRun) -> None:
 
 
 def _check_pressure(run: RawRun, loaded: np.ndarray) -> None:
-    """An inflation pressure no tyre runs at: the unit is off by a factor (kPa under MPa,
-    bar under kPa, ...)."""
+    """The median inflation pressure of the loaded samples where tyres run
+    (:func:`~frictionlaws.tyre.mf.parameters.check_pressure`): else the unit is off by a
+    factor (kPa under MPa, bar under kPa, ...); the row named is the first loaded one."""
     p = run.quantities.get("pressure")
     if p is None or not np.isfinite(p[loaded]).any():
         return
-    median = float(np.nanmedian(p[loaded]))
-    lo, hi = PLAUSIBLE_PRESSURE
-    if not lo <= median <= hi:
-        _refuse_unit(run, "pressure", f"a median inflation pressure of {median / 1e3:.4g} kPa "
-                     f"(tyres run at {lo / 1e3:g}-{hi / 1e3:g} kPa): the unit looks wrong by "
-                     "a factor", loaded & np.isfinite(p))
+    name = run.channels["pressure"]
+    measured = loaded & np.isfinite(p)
+    check_pressure(float(np.median(p[measured])), "a median inflation pressure of",
+                   file=run.source, column=name, rows=[int(run.lines[np.argmax(measured)])],
+                   unit=run.units.get(name, ""))
 
 
 def _check_loads_and_moments(run: RawRun, loaded: np.ndarray) -> None:
