@@ -205,6 +205,16 @@ def test_a_pressure_in_another_unit_is_refused_naming_channel_row_and_unit(
     assert exc.value.column == "P" and exc.value.row == int(loaded[0]) + 4  # title, 2 rows
 
 
+def test_camber_settings_in_radians_under_a_degree_unit_are_refused(run, tmp_path: Path
+                                                                    ) -> None:
+    """IA of 0 and 3 deg written in radians under 'deg': the levels read as hundredths of a
+    degree (which the preparation would merge into one), their camber thrust 57 times a
+    tyre's (the run in degrees passes: the ``raw`` fixture)."""
+    with pytest.raises(InputError, match="whole degrees 0, 3 .*look like radians") as exc:
+        load_raw_run(_edited(run, tmp_path / "rad.txt", scale={"IA": math.pi / 180}))
+    assert exc.value.column == "IA" and exc.value.row is not None
+
+
 def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path,
                                                         capsys) -> None:
     sae = _edited(tiny, tmp_path / "sae.txt")

@@ -37,6 +37,7 @@ steady sweeps.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -52,6 +53,7 @@ from .channels import (
     MAX_SLIP_COEFFICIENT,
     MEANINGS,
     RAW_CHANNELS,
+    camber_settings_in_radians,
     convert,
     read_lines,
 )
@@ -428,6 +430,29 @@ def _check_units(run: RawRun, loaded: np.ndarray) -> None:
                              use)
     _check_loads_and_moments(run, loaded)
     _check_pressure(run, loaded)
+    _check_camber_settings(run, loaded)
+
+
+def _check_camber_settings(run: RawRun, loaded: np.ndarray) -> None:
+    """Camber settings in radians under a degree unit
+    (:func:`~frictionlaws.tyre.data.channels.camber_settings_in_radians`, on the loaded
+    samples): refused when the camber thrust says so, else warned of."""
+    q = run.quantities
+    if "gamma" not in run.channels or "fy" not in q:
+        return
+    name = run.channels["gamma"]
+    found = camber_settings_in_radians(q["gamma"][loaded], run.units.get(name, ""),
+                                       q["fy"][loaded], q["fz"][loaded], q["alpha"][loaded],
+                                       np.abs(q["kappa"][loaded]) <= 0.01)
+    if found is None:
+        return
+    text, decisive, top = found
+    error = InputError(text.replace("'gamma [rad]'", f"'rad' in {name}'s unit"),
+                       file=run.source, column=name,
+                       row=int(run.lines[loaded][np.argmax(top)]))
+    if decisive:
+        raise error
+    warnings.warn(str(error), UserWarning, stacklevel=3)
 
 
 def _check_pressure(run: RawRun, loaded: np.ndarray) -> None:

@@ -48,7 +48,12 @@ from typing import Any
 import numpy as np
 
 from ....base.errors import Argument, InputError
-from ...data.channels import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
+from ...data.channels import (
+    MAX_CAMBER_STIFFNESS,
+    MAX_CORNERING_COEFFICIENT,
+    MAX_SLIP_COEFFICIENT,
+    camber_settings_in_radians,
+)
 from ...data.table import COLUMNS, TyreData
 from .stages import ALPHA_PURE, KAPPA_PURE
 
@@ -85,11 +90,6 @@ MAX_PEAK_RATIO = 3.0
 #: Below this peak friction [-] (dry roads: 0.8-1.3; wet: 0.4-0.8; snow: 0.2-0.4; ice:
 #: 0.05-0.2) the force is warned of: on ice it is real, else in daN under an [N] header.
 LOW_PEAK_FRICTION = 0.2
-#: Largest plausible camber stiffness, the slope of F_y / F_z on the camber near zero slip
-#: angle [1/rad] (tyres: about 0.2-2): radians under a [deg] header make it 57 times larger.
-MAX_CAMBER_STIFFNESS = 5.0
-#: A camber setting is a whole degree within this [deg] (of the values read as radians).
-_SETTING_TOL = 0.05
 #: Smallest |correlation| of F_x / F_z with the slip ratio (F_y / F_z with tan(alpha)) for
 #: a force that follows its slip (a tyre's, even on ice: above 0.5; noise: near 0).
 MIN_CURVE_CORRELATION = 0.3
@@ -279,61 +279,19 @@ def _check_camber(data: TyreData) -> None:
 
 
 def _check_camber_settings(data: TyreData) -> None:
-    """Camber levels under a [deg] header so small that, read as radians, they are whole
-    degrees (a rig's settings), with a camber thrust 57 times a tyre's: radians as degrees.
-
-    The levels are found among the values read as radians within :data:`_SETTING_TOL` of
-    a whole degree (nine rows in ten or more, each level on three rows or more, two levels
-    or more).  The camber stiffness (:func:`_camber_stiffness`) then decides: more than
-    :data:`MAX_CAMBER_STIFFNESS` by two standard errors, refused; less by two, a tyre's
-    (real levels that happen to be whole degrees when read as radians); between, or
-    without F_y near zero slip angle, the levels are warned of."""
-    if data.units.get("gamma", "").strip().lower() not in ("deg", "degree", "degrees", "°"):
+    """Camber settings in radians under a [deg] header
+    (:func:`~frictionlaws.tyre.data.channels.camber_settings_in_radians`): refused when the
+    camber thrust says so, else warned of."""
+    found = camber_settings_in_radians(data.gamma, data.units.get("gamma", ""), data.fy,
+                                       data.fz, data.alpha,
+                                       np.abs(data.kappa) <= KAPPA_PURE)
+    if found is None:
         return
-    written = np.degrees(data.gamma)  # the numbers as the file writes them
-    if not 0 < float(np.max(np.abs(written))) <= MAX_CAMBER:
-        return
-    setting = np.round(np.degrees(written))  # [deg], were the numbers radians
-    near = np.abs(np.degrees(written) - setting) <= _SETTING_TOL
-    values, counts = np.unique(setting[near], return_counts=True)
-    levels = values[counts >= max(3, 0.05 * len(data))]
-    if near.mean() < 0.9 or levels.size < 2:
-        return
-    at = _at(data, near & (setting == levels[np.argmax(np.abs(levels))]), data.gamma)
-    head = (f"the camber takes the levels {', '.join(f'{math.radians(v):.3g}' for v in levels)}"
-            f" deg, which read as radians are the whole degrees "
-            f"{', '.join(f'{v:g}' for v in levels)} of a rig's settings")
-    k, se = _camber_stiffness(data, near & np.isin(setting, levels))
-    if k - 2 * se > MAX_CAMBER_STIFFNESS:
-        raise InputError(
-            head + f", and Fy / Fz changes by {k:.3g} +- {se:.2g} per rad of camber as read "
-            "(tyres: about 0.2-2): the values look like radians under a [deg] header "
-            "(write 'gamma [rad]')", column="gamma", **at)
-    if not k + 2 * se < MAX_CAMBER_STIFFNESS:  # NaN: no F_y to tell
-        said = ("no Fy near zero slip angle to tell them by their camber thrust"
-                if math.isnan(k) else f"their camber thrust ({k:.3g} +- {se:.2g} per rad as "
-                "read; tyres: about 0.2-2) does not tell")
-        warnings.warn(str(InputError(
-            f"{head}; {said}: if they are settings in radians, the header's unit is wrong "
-            "(write 'gamma [rad]')", column="gamma", **at)), UserWarning, stacklevel=2)
-
-
-def _camber_stiffness(data: TyreData, rows: np.ndarray) -> tuple[float, float]:
-    """|slope| of F_y / F_z on the camber as read [1/rad] and its standard error, fitted
-    with a cornering slope and an offset over ``rows`` near pure side slip within 0.1 rad
-    of zero slip angle; NaN without six such rows or without two cambers among them."""
-    use = (rows & np.isfinite(data.fy) & (np.abs(data.kappa) <= KAPPA_PURE)
-           & (np.abs(data.alpha) <= 1.01 * _SMALL_SLIP))
-    if use.sum() < 6 or np.ptp(data.gamma[use]) == 0:
-        return math.nan, math.nan
-    design = np.column_stack([np.ones(int(use.sum())), np.tan(data.alpha[use]),
-                              data.gamma[use]])
-    y = data.fy[use] / data.fz[use]
-    coef, *_ = np.linalg.lstsq(design, y, rcond=None)
-    dof = max(int(use.sum()) - 3, 1)
-    s2 = float(np.sum((y - design @ coef) ** 2)) / dof
-    cov = s2 * np.linalg.pinv(design.T @ design)
-    return abs(float(coef[2])), math.sqrt(max(float(cov[2, 2]), 0.0))
+    text, decisive, top = found
+    if decisive:
+        raise InputError(text, column="gamma", **_at(data, top, data.gamma))
+    warnings.warn(str(InputError(text, column="gamma", **_at(data, top, data.gamma))),
+                  UserWarning, stacklevel=2)
 
 
 def _check_peak_friction(data: TyreData) -> None:
