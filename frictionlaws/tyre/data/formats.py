@@ -200,7 +200,7 @@ def _check_consistent(files: list[ReadFile]) -> None:
                              f"{'above' if bad == hi else 'below'} that of "
                              f"'{files[good].path}' ({m[good]:.4g}, unit '{units[1]}'): a "
                              f"unit is wrong in one of them ({hint})"
-                             + (f"; only this one's is outside the range tyres run at"
+                             + ("; only this one's is outside the range tyres run at"
                                 if _outside(column, m[bad]) and not _outside(column, m[good])
                                 else ""), file=files[bad].path, column=column,
                              row=int(files[bad].data.rows[0]))
