@@ -410,6 +410,27 @@ def test_prepare_reads_standard_input(raw, tmp_path: Path, capsys, monkeypatch) 
     assert "prepare from <stdin>" in out.read_text()
 
 
+def test_prepare_reports_what_the_checks_warn_of_on_every_path(tiny, tmp_path: Path,
+                                                               capsys, monkeypatch) -> None:
+    """Forces in daN under 'N' (both: their peaks agree, at an icy road's 0.1): warned of,
+    naming each column, in --json, the written file and on stderr, the file named as the
+    user gave it (standard input: <stdin>)."""
+    import io
+    import sys
+
+    dan = _edited(tiny, tmp_path / "dan.txt", scale={"FX": 0.1, "FY": 0.1, "MZ": 0.1})
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(dan.read_bytes())))
+    out = tmp_path / "s.csv"
+    assert main(["tyre", "prepare", "-", "-o", str(out), "--json"]) == 0
+    text, err = capsys.readouterr()
+    said = json.loads(text)["warnings"]
+    assert [w.split(", row")[0] for w in said] == ["file '<stdin>', column 'Fx'",
+                                                    "file '<stdin>', column 'Fy'"]
+    assert all("looks like daN under an [N] header" in w for w in said)
+    assert all(f"# warning: {w}" in out.read_text() for w in said)
+    assert err.count("warning: file '<stdin>'") == 2 and "frictionlaws-stdin" not in err
+
+
 def test_the_formats_are_told_apart_and_read_together(raw, tmp_path: Path) -> None:
     lat = write_tydex(sweep_data(TRUTH, "lateral", loads=(0.5, 1.2), n=9),
                       tmp_path / "lat.tdx")

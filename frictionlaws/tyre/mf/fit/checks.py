@@ -55,10 +55,11 @@ from ...data.channels import (
     camber_settings_in_radians,
 )
 from ...data.table import COLUMNS, TyreData
+from ..notices import collected
 from .stages import ALPHA_PURE, KAPPA_PURE
 
-__all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
-           "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
+__all__ = ["check_plausible", "plausibility_warnings", "repeated_rows", "MAX_SLIP_COEFFICIENT",
+           "MAX_CORNERING_COEFFICIENT", "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
            "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO", "MAX_PEAK_RATIO",
            "LOW_PEAK_FRICTION", "PEAK_SLIPS", "MAX_CAMBER_STIFFNESS"]
 
@@ -126,6 +127,26 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
     _check_files_agree(parts)
     _check_slip_columns(data)
     _check_rows(data, fnomin, nominal_pressure, radius)
+
+
+def plausibility_warnings(data: TyreData, fnomin: float) -> list[str]:
+    """:func:`check_plausible` on data without a template (the load checked against
+    ``fnomin``), returning what it warns of (issued too, once each): for a path that
+    reports its own warnings, as ``tyre prepare`` does.
+
+    Parameters
+    ----------
+    data : TyreData
+    fnomin : float
+        The load the loads are checked against [N].
+
+    Returns
+    -------
+    list of str
+    """
+    with collected() as raised:
+        check_plausible(data, fnomin)
+    return raised
 
 
 def _files_of(data: TyreData) -> list[TyreData]:
