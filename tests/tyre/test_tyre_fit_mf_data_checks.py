@@ -238,7 +238,8 @@ def test_one_force_of_one_file_in_another_unit_is_refused_by_the_peaks(
     base = TRUTH
     truth = MagicFormula({**base.coefficients, "LMUX": grip, "LMUY": grip},
                          fnomin=base.fnomin, version=base.version, limits=base.limits,
-                         structure=base.structure)
+                         structure=base.structure, pressure=base.pressure,
+                         nominal_pressure=base.nominal_pressure)
     data = rig_data(truth, **SMALL, combined=False, seed=seed)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
