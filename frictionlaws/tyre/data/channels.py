@@ -31,7 +31,8 @@ from ...io import decode_text
 
 __all__ = ["KINDS", "TYDEX_CHANNELS", "TYDEX_OTHER_AXES", "RAW_CHANNELS", "MEANINGS",
            "unit_text", "convert", "read_lines", "MAX_LINE_CHARS", "MAX_CORNERING_COEFFICIENT",
-           "MAX_SLIP_COEFFICIENT", "MAX_CAMBER_STIFFNESS", "camber_settings_in_radians"]
+           "MAX_SLIP_COEFFICIENT", "MAX_CAMBER_STIFFNESS", "camber_settings_in_radians",
+           "slip_coefficient"]
 
 #: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40); the same
 #: bound as the fit's check of its data.
@@ -214,6 +215,29 @@ def read_lines(path: str | Path, what: str) -> tuple[list[str], list[str]]:
             raise InputError(f"line longer than {MAX_LINE_CHARS} characters", file=source,
                              row=number)
     return lines, [note] if note else []
+
+
+def slip_coefficient(force: np.ndarray, fz: np.ndarray, slip: np.ndarray,
+                     share: float = 100.0) -> float:
+    """A lower bound of the slip (or cornering) coefficient: the largest |F| / F_z over the
+    largest |slip| (``tan(alpha)`` for the cornering one).  Above
+    :data:`MAX_SLIP_COEFFICIENT` (:data:`MAX_CORNERING_COEFFICIENT`) no tyre has it: the
+    slips are a unit too small (fractions under a percent header, radians under a degree
+    header).  The one rule of the fit's checks and the raw run's.
+
+    Parameters
+    ----------
+    force, fz, slip : numpy.ndarray
+        The rows to look at (a slip that is not zero on some).
+    share : float
+        The percentile of |F| / F_z taken as its largest (below 100: spikes of a raw run's
+        samples left out).
+
+    Returns
+    -------
+    float
+    """
+    return float(np.percentile(np.abs(force / fz), share)) / float(np.max(np.abs(slip)))
 
 
 def camber_settings_in_radians(gamma: np.ndarray, unit: str, fy: np.ndarray, fz: np.ndarray,

@@ -56,6 +56,7 @@ from .channels import (
     camber_settings_in_radians,
     convert,
     read_lines,
+    slip_coefficient,
 )
 from .table import check_sign_convention, to_iso_axes
 from .tydex import is_tydex
@@ -423,8 +424,7 @@ def _check_units(run: RawRun, loaded: np.ndarray) -> None:
         # the force offsets over a tiny slip, or a sweep's forces over a slip that is not its
         if (force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP
                 and np.ptp(slip[use]) >= MIN_SWEPT_SLIP):
-            ratio = float(np.percentile(np.abs(q[force][use] / fz[use]), 99.9))
-            coef = ratio / float(np.max(np.abs(slip[use])))
+            coef = slip_coefficient(q[force][use], fz[use], slip[use], share=99.9)
             if coef > limit:
                 _refuse_unit(run, "alpha" if force == "fy" else "kappa", what.format(c=coef),
                              use)

@@ -53,6 +53,7 @@ from ...data.channels import (
     MAX_CORNERING_COEFFICIENT,
     MAX_SLIP_COEFFICIENT,
     camber_settings_in_radians,
+    slip_coefficient,
 )
 from ...data.table import COLUMNS, TyreData
 from ..notices import collected
@@ -388,7 +389,7 @@ def _check_kappa(data: TyreData) -> None:
     use = np.isfinite(data.fx) & (np.abs(k) > 0)
     if not use.any():
         return
-    coef = float(np.max(np.abs(data.fx[use]) / data.fz[use]) / np.max(np.abs(k[use])))
+    coef = slip_coefficient(data.fx[use], data.fz[use], k[use])
     if np.max(np.abs(k[use])) > 1 and coef < 0.5:
         raise InputError(
             f"slip ratios up to {np.max(np.abs(k[use])):g} while |Fx| stays below "
@@ -409,7 +410,7 @@ def _check_alpha(data: TyreData) -> None:
     if not use.any() or np.ptp(a[use]) == 0:  # a constant slip angle: refused as such
         return
     top = float(np.max(np.abs(a[use])))
-    coef = float(np.max(np.abs(data.fy[use]) / data.fz[use])) / top
+    coef = slip_coefficient(data.fy[use], data.fz[use], a[use])
     if coef > MAX_CORNERING_COEFFICIENT:
         raise InputError(
             f"|Fy| reaches {coef * top:.2g} Fz at slip angles of at most "
