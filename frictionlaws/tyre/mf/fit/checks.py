@@ -57,12 +57,13 @@ from ...data.channels import (
 )
 from ...data.table import COLUMNS, TyreData
 from ..notices import collected
-from .stages import ALPHA_PURE, KAPPA_PURE
+from .stages import ALPHA_PURE, KAPPA_PURE, load_levels
 
 __all__ = ["check_plausible", "plausibility_warnings", "repeated_rows", "MAX_SLIP_COEFFICIENT",
            "MAX_CORNERING_COEFFICIENT", "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
            "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO", "MAX_PEAK_RATIO",
-           "LOW_PEAK_FRICTION", "PEAK_SLIPS", "MAX_CAMBER_STIFFNESS"]
+           "LOW_PEAK_FRICTION", "PEAK_SLIPS", "MAX_CAMBER_STIFFNESS", "RISING_SHARE",
+           "rising_side"]
 
 #: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
 #: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
@@ -98,8 +99,14 @@ MIN_CURVE_CORRELATION = 0.3
 #: Slip angle beyond which F_y has the opposite sign of alpha in ISO-W axes [rad]
 #: (camber thrust and ply steer can outweigh smaller angles).
 _SIGN_ANGLE = math.radians(2.0)
-#: Slip angles where M_z opposes F_y (a positive trail, before the moment turns over) [rad].
+#: Slip angles where M_z opposes F_y (a positive trail, before the moment turns over) [rad],
+#: on the rows where F_y still rises (:func:`rising_side`).
 _MZ_SIGN_ANGLES = (math.radians(1.0), math.radians(4.0))
+#: Share of its load level's peak |F_y| up to which the side force still rises with the slip
+#: angle and the pneumatic trail is positive: the aligning moment turns over near the peak
+#: of F_y, at 2-3 deg on a dry road but below 1 deg on ice (a Magic Formula tyre with its
+#: friction scaled to 0.2 has M_z of the sign of F_y from 1.5 deg on).
+RISING_SHARE = 0.8
 
 
 def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
@@ -230,6 +237,10 @@ def _check_curves(data: TyreData, names: tuple[str, ...]) -> None:
         for narrower in (pure, np.abs(slip) <= 1.01 * _SMALL_SLIP):  # where F rises with slip
             if (use & narrower).sum() >= 5 and np.ptp(slip[use & narrower]) > 0:
                 use &= narrower
+        if name == "Mz":  # M_z follows the slip only while F_y rises (it turns over after)
+            rising = use & rising_side(data)
+            use = rising if rising.sum() >= 5 and np.ptp(slip[rising]) > 0 else (
+                use if use.any() and np.ptp(force[use]) == 0 else np.zeros_like(use))
         if use.sum() < 3 or np.ptp(slip[use]) == 0:
             continue
         ratio = force[use] / data.fz[use]
@@ -273,9 +284,8 @@ def _check_mz_sign(data: TyreData) -> None:
     """Refuse M_z with the sign of F_y on most rows near pure side slip at 1-4 degrees."""
     lo, hi = _MZ_SIGN_ANGLES
     # pure side slip only: with a slip ratio, F_x's moment arm can turn M_z over
-    use = ((np.abs(data.alpha) >= lo) & (np.abs(data.alpha) <= hi)
-           & (np.abs(data.kappa) <= KAPPA_PURE) & np.isfinite(data.mz) & np.isfinite(data.fy)
-           & (data.mz != 0) & (data.fy != 0))
+    use = ((np.abs(data.alpha) >= lo) & (np.abs(data.alpha) <= hi) & rising_side(data)
+           & np.isfinite(data.mz) & (data.mz != 0) & (data.fy != 0))
     same = int((np.sign(data.mz[use]) == np.sign(data.fy[use])).sum())
     if use.sum() < 5 or 2 * same <= use.sum():
         return
@@ -285,6 +295,35 @@ def _check_mz_sign(data: TyreData) -> None:
         "pneumatic trail, Mz and Fy of opposite signs, in ISO-W as in SAE axes); the sign "
         "of Mz looks reversed: a channel of flipped sign (negate Mz, or Fy) or axes that "
         "flip Mz alone", column="Mz", **_at(data, use, np.where(use, data.mz, 0.0)))
+
+
+def rising_side(data: TyreData) -> np.ndarray:
+    """The rows near pure side slip where F_y still rises with the slip angle: below the
+    slip angle of its load level's peak |F_y| and below :data:`RISING_SHARE` of that peak
+    (where the pneumatic trail is positive and M_z opposes F_y, on any road).
+
+    Parameters
+    ----------
+    data : TyreData
+
+    Returns
+    -------
+    numpy.ndarray
+        A mask of the rows.
+    """
+    pure = (np.abs(data.kappa) <= KAPPA_PURE) & np.isfinite(data.fy) & np.isfinite(data.fz)
+    out = np.zeros(len(data.fy), dtype=bool)
+    if not pure.any():
+        return out
+    levels = load_levels(data.fz[pure])
+    idx = np.flatnonzero(pure)
+    for lv in np.unique(levels):
+        rows = idx[levels == lv]
+        mag = np.abs(data.fy[rows])
+        top = int(np.argmax(mag))
+        out[rows] = ((np.abs(data.alpha[rows]) < abs(float(data.alpha[rows[top]])))
+                     & (mag <= RISING_SHARE * mag[top]))
+    return out
 
 
 def _check_camber(data: TyreData) -> None:
