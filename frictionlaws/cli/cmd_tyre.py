@@ -35,7 +35,7 @@ from ..tyre.brush import BrushModel, BrushTyre
 from ..tyre.data import load_raw_run, prepare_run, write_plots, write_tyre_csv
 from ..tyre.data.tydex import write_tydex
 from ..tyre.mf.fit import check_tir_path, fit_mf
-from ..tyre.mf.fit.checks import check_plausible
+from ..tyre.mf.fit.checks import plausibility_warnings
 from ..tyre.mf.fit.staged import refuse_not_applied
 from ..tyre.mf.inputs import INPUTS
 from ..tyre.mf.model import MagicFormula
@@ -717,9 +717,10 @@ def _run_prepare(args: argparse.Namespace) -> int:
     with data_source(args.raw, "stdin.txt") as path:
         prepared = prepare_run(load_raw_run(path, sign_convention=args.sign_convention),
                                warmup=warmup)
-        check_plausible(prepared.data, float(np.median(prepared.data.fz)))
         shown = shown_source(path)
-        prepared.run.source = prepared.data.source = shown
+        prepared.run.source = prepared.data.source = shown  # before the warnings name it
+        data = prepared.data
+        prepared.warnings += plausibility_warnings(data, float(np.median(data.fz)))
         provenance = [f"steady sweeps prepared by frictionlaws tyre prepare from {shown}",
                       *prepared.summary()[1:], *(f"note: {n}" for n in prepared.notes)]
         if suffix == "csv":
@@ -732,6 +733,6 @@ def _run_prepare(args: argparse.Namespace) -> int:
         out["written"] = [args.output, *map(str, plots)]
         print(jsonio.dumps(out))
         return 0
-    print(prepared.report())
+    print(_said_once(prepared.report(), prepared.warnings, args))
     print("written: " + ", ".join([args.output, *map(str, plots)]))
     return 0

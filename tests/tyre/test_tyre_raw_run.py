@@ -193,6 +193,28 @@ def test_units_that_cannot_be_right_are_refused(tiny, tmp_path: Path, change, ma
     assert exc.value.file == str(path)
 
 
+@pytest.mark.parametrize("scale, unit", [(0.01, "kPa"), (1000.0, "kPa")])
+def test_a_pressure_in_another_unit_is_refused_naming_channel_row_and_unit(
+        tiny, tmp_path: Path, scale: float, unit: str) -> None:
+    """bar numbers (or Pa) under a kPa unit: the one pressure check of the project names
+    the channel, the first loaded sample's line and the unit that looks off."""
+    path = _edited(tiny, tmp_path / "p.txt", scale={"P": scale})
+    with pytest.raises(InputError, match=f"the unit '{unit}' looks off by a factor") as exc:
+        load_raw_run(path)
+    loaded = np.flatnonzero(-tiny.channels["FZ"] > 0.1 * np.percentile(-tiny.channels["FZ"], 95))
+    assert exc.value.column == "P" and exc.value.row == int(loaded[0]) + 4  # title, 2 rows
+
+
+def test_camber_settings_in_radians_under_a_degree_unit_are_refused(run, tmp_path: Path
+                                                                    ) -> None:
+    """IA of 0 and 3 deg written in radians under 'deg': the levels read as hundredths of a
+    degree (which the preparation would merge into one), their camber thrust 57 times a
+    tyre's (the run in degrees passes: the ``raw`` fixture)."""
+    with pytest.raises(InputError, match="whole degrees 0, 3 .*look like radians") as exc:
+        load_raw_run(_edited(run, tmp_path / "rad.txt", scale={"IA": math.pi / 180}))
+    assert exc.value.column == "IA" and exc.value.row is not None
+
+
 def test_the_axes_declared_must_be_the_axes_of_the_file(tiny, tmp_path: Path,
                                                         capsys) -> None:
     sae = _edited(tiny, tmp_path / "sae.txt")
@@ -303,6 +325,42 @@ def test_a_run_without_sweeps_is_refused(tiny, tmp_path: Path) -> None:
         prepare_run(load_raw_run(still))
 
 
+@pytest.mark.parametrize("channel, value, slip, forces", [
+    ("SA", 0.0, "slip angle", "Fy (FY) and Mz (MZ)"),
+    ("SA", 0.7, "slip angle", "Fy (FY) and Mz (MZ)"),
+    ("SL", 0.0, "slip ratio", "Fx (FX)")])
+def test_a_dead_slip_channel_is_warned_of_on_every_path(tiny, tmp_path: Path, capsys,
+                                                        channel: str, value: float,
+                                                        slip: str, forces: str) -> None:
+    """A slip channel that does not sweep (dead, or stuck at a value) leaves its forces
+    without a slip to follow: they are not used, and every path says so, naming the
+    channel and the lines of the rows (the API's warnings, the text, --json, the file)."""
+    dead = _edited(tiny, tmp_path / "dead.txt", scale={channel: 0.0})
+    lines = dead.read_text().splitlines()
+    col = lines[1].split("\t").index(channel)
+    rows = [line.split("\t") for line in lines[3:]]
+    for r in rows:
+        r[col] = f"{value:g}"
+    dead.write_text("\n".join(lines[:3] + ["\t".join(r) for r in rows]) + "\n")
+    said = f"the {slip} channel {channel} stays within "
+    with pytest.warns(UserWarning, match=said):
+        p = prepare_run(load_raw_run(dead))
+    verb = "is" if channel == "SL" else "are"
+    assert len(p.warnings) == 1 and said in p.warnings[0]
+    assert f"{forces} {verb} not used" in p.warnings[0]
+    lo, hi = int(p.data.rows.min()), int(p.data.rows.max())
+    assert f"lines {lo}-{hi} of the run" in p.warnings[0]
+    assert all(not np.isfinite(getattr(p.data, f)).any()
+               for f in (("fx",) if channel == "SL" else ("fy", "mz")))
+    out = tmp_path / "sweeps.csv"
+    assert main(["tyre", "prepare", str(dead), "-o", str(out)]) == 0
+    text, err = capsys.readouterr()
+    assert said in err and said not in text  # said once: on stderr, as every warning
+    assert f"# warning: {p.warnings[0]}" in out.read_text()
+    assert main(["tyre", "prepare", str(dead), "-o", str(tmp_path / "s.tdx"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["warnings"] == p.warnings
+
+
 def test_prepare_writes_what_fit_mf_reads(raw, prepared, tmp_path: Path, capsys) -> None:
     out = tmp_path / "sweeps.csv"
     code = main(["tyre", "prepare", str(raw), "-o", str(out), "--plots",
@@ -316,6 +374,9 @@ def test_prepare_writes_what_fit_mf_reads(raw, prepared, tmp_path: Path, capsys)
         np.testing.assert_allclose(getattr(back, k), getattr(prepared.data, k), rtol=1e-12)
     assert np.array_equal(back.extra["sweep"], prepared.data.extra["sweep"])
     assert out.read_text().startswith("# steady sweeps prepared by frictionlaws tyre prepare")
+    rows = [line.split(",") for line in out.read_text().splitlines() if line[:1] != "#"]
+    whole = [rows[0].index(k) for k in ("sweep", "direction", "samples")]
+    assert all(r[j].lstrip("-").isdigit() for r in rows[1:] for j in whole)  # integers
     tdx = tmp_path / "sweeps.tdx"
     assert main(["tyre", "prepare", str(raw), "-o", str(tdx), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
@@ -347,6 +408,27 @@ def test_prepare_reads_standard_input(raw, tmp_path: Path, capsys, monkeypatch) 
     assert main(["tyre", "prepare", "-", "-o", str(out)]) == 0
     assert "raw run <stdin>" in capsys.readouterr().out
     assert "prepare from <stdin>" in out.read_text()
+
+
+def test_prepare_reports_what_the_checks_warn_of_on_every_path(tiny, tmp_path: Path,
+                                                               capsys, monkeypatch) -> None:
+    """Forces in daN under 'N' (both: their peaks agree, at an icy road's 0.1): warned of,
+    naming each column, in --json, the written file and on stderr, the file named as the
+    user gave it (standard input: <stdin>)."""
+    import io
+    import sys
+
+    dan = _edited(tiny, tmp_path / "dan.txt", scale={"FX": 0.1, "FY": 0.1, "MZ": 0.1})
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(dan.read_bytes())))
+    out = tmp_path / "s.csv"
+    assert main(["tyre", "prepare", "-", "-o", str(out), "--json"]) == 0
+    text, err = capsys.readouterr()
+    said = json.loads(text)["warnings"]
+    assert [w.split(", row")[0] for w in said] == ["file '<stdin>', column 'Fx'",
+                                                    "file '<stdin>', column 'Fy'"]
+    assert all("looks like daN under an [N] header" in w for w in said)
+    assert all(f"# warning: {w}" in out.read_text() for w in said)
+    assert err.count("warning: file '<stdin>'") == 2 and "frictionlaws-stdin" not in err
 
 
 def test_the_formats_are_told_apart_and_read_together(raw, tmp_path: Path) -> None:

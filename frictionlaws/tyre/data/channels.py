@@ -31,13 +31,25 @@ from ...io import decode_text
 
 __all__ = ["KINDS", "TYDEX_CHANNELS", "TYDEX_OTHER_AXES", "RAW_CHANNELS", "MEANINGS",
            "unit_text", "convert", "read_lines", "MAX_LINE_CHARS", "MAX_CORNERING_COEFFICIENT",
-           "MAX_SLIP_COEFFICIENT"]
+           "MAX_SLIP_COEFFICIENT", "MAX_CAMBER_STIFFNESS", "camber_settings_in_radians",
+           "slip_coefficient"]
 
 #: Largest plausible cornering coefficient K_y / F_z [1/rad] (tyres: about 5-40); the same
 #: bound as the fit's check of its data.
 MAX_CORNERING_COEFFICIENT = 60.0
 #: Largest plausible longitudinal slip coefficient K_x / F_z [-] (tyres: about 10-40).
 MAX_SLIP_COEFFICIENT = 150.0
+
+#: Largest plausible camber stiffness, the slope of F_y / F_z on the camber near zero slip
+#: angle [1/rad] (tyres: about 0.2-2): radians under a [deg] header make it 57 times larger.
+MAX_CAMBER_STIFFNESS = 5.0
+#: A camber setting is a whole degree within this [deg] (of the values read as radians).
+_SETTING_TOL = 0.05
+#: Largest camber a tyre runs at [rad] (30 degrees): smaller numbers under a [deg] header
+#: may be radians.
+_LARGEST_CAMBER = np.radians(30.0)
+#: A small slip angle [rad]: where F_y / F_z is near linear in it (and in the camber).
+_SMALL_ALPHA = 0.1
 
 #: Quantity -> kind of :func:`frictionlaws.base.units.to_si` (the SI unit follows from it).
 KINDS: dict[str, str] = {
@@ -203,3 +215,103 @@ def read_lines(path: str | Path, what: str) -> tuple[list[str], list[str]]:
             raise InputError(f"line longer than {MAX_LINE_CHARS} characters", file=source,
                              row=number)
     return lines, [note] if note else []
+
+
+def slip_coefficient(force: np.ndarray, fz: np.ndarray, slip: np.ndarray,
+                     share: float = 100.0) -> float:
+    """A lower bound of the slip (or cornering) coefficient: the largest |F| / F_z over the
+    largest |slip| (``tan(alpha)`` for the cornering one).  Above
+    :data:`MAX_SLIP_COEFFICIENT` (:data:`MAX_CORNERING_COEFFICIENT`) no tyre has it: the
+    slips are a unit too small (fractions under a percent header, radians under a degree
+    header).  The one rule of the fit's checks and the raw run's.
+
+    Parameters
+    ----------
+    force, fz, slip : numpy.ndarray
+        The rows to look at (a slip that is not zero on some).
+    share : float
+        The percentile of |F| / F_z taken as its largest (below 100: spikes of a raw run's
+        samples left out).
+
+    Returns
+    -------
+    float
+    """
+    return float(np.percentile(np.abs(force / fz), share)) / float(np.max(np.abs(slip)))
+
+
+def camber_settings_in_radians(gamma: np.ndarray, unit: str, fy: np.ndarray, fz: np.ndarray,
+                               alpha: np.ndarray, pure: np.ndarray
+                               ) -> tuple[str, bool, np.ndarray] | None:
+    """Camber levels under a [deg] header so small that, read as radians, they are whole
+    degrees (a rig's settings): radians under a degree header, told by the camber thrust.
+
+    The levels are found among the values read as radians within :data:`_SETTING_TOL` of a
+    whole degree (nine values in ten or more, each level on three or more, and on a
+    twentieth of them, two levels or more).  The camber stiffness (the slope of F_y / F_z on
+    the camber as read, fitted with a cornering slope and an offset over the ``pure`` rows
+    within 0.1 rad of zero slip angle) then decides: above :data:`MAX_CAMBER_STIFFNESS` by
+    two standard errors, the values are radians; below it by two, a tyre's (real levels
+    that happen to be whole degrees when read as radians); between, or without F_y there,
+    the levels are said but cannot be told.
+
+    Parameters
+    ----------
+    gamma : numpy.ndarray
+        The camber as read [rad].
+    unit : str
+        The unit of the camber column or channel.
+    fy, fz, alpha : numpy.ndarray
+        Lateral force and load [N] (NaN: not measured), slip angle [rad].
+    pure : numpy.ndarray
+        The rows near pure side slip (slip ratio near zero), boolean.
+
+    Returns
+    -------
+    tuple or None
+        None when the values are not such levels (or the unit is no degree); else the
+        message (without its location), True when the values are radians (to refuse),
+        False when that cannot be told (to warn), and the rows of the largest level.
+    """
+    if unit.strip().lower() not in ("deg", "degree", "degrees", "°"):
+        return None
+    written = np.degrees(gamma)  # the numbers as the file writes them
+    if not 0 < float(np.max(np.abs(written))) <= _LARGEST_CAMBER:
+        return None
+    setting = np.round(np.degrees(written))  # [deg], were the numbers radians
+    near = np.abs(np.degrees(written) - setting) <= _SETTING_TOL
+    values, counts = np.unique(setting[near], return_counts=True)
+    levels = values[counts >= max(3, 0.05 * gamma.size)] + 0.0  # no -0
+    if near.mean() < 0.9 or levels.size < 2:
+        return None
+    top = near & (setting == levels[np.argmax(np.abs(levels))])
+    head = (f"the camber takes the levels {', '.join(f'{np.radians(v):.3g}' for v in levels)}"
+            f" deg, which read as radians are the whole degrees "
+            f"{', '.join(f'{v:g}' for v in levels)} of a rig's settings")
+    use = (near & np.isin(setting, levels) & pure & np.isfinite(fy)
+           & (np.abs(alpha) <= 1.01 * _SMALL_ALPHA))
+    k, se = _camber_stiffness(gamma[use], fy[use] / fz[use], np.tan(alpha[use]))
+    if k - 2 * se > MAX_CAMBER_STIFFNESS:
+        return (head + f", and Fy / Fz changes by {k:.3g} +- {se:.2g} per rad of camber as "
+                "read (tyres: about 0.2-2): the values look like radians under a [deg] "
+                "header (write 'gamma [rad]')", True, top)
+    if k + 2 * se < MAX_CAMBER_STIFFNESS:
+        return None
+    said = ("no Fy near zero slip angle to tell them by their camber thrust" if np.isnan(k)
+            else f"their camber thrust ({k:.3g} +- {se:.2g} per rad as read; tyres: about "
+            "0.2-2) does not tell")
+    return (f"{head}; {said}: if they are settings in radians, the header's unit is wrong "
+            "(write 'gamma [rad]')", False, top)
+
+
+def _camber_stiffness(gamma: np.ndarray, ratio: np.ndarray, tan_alpha: np.ndarray
+                      ) -> tuple[float, float]:
+    """|slope| of F_y / F_z (``ratio``) on ``gamma`` fitted with a slope on tan(alpha) and
+    an offset, and its standard error; NaN without six rows or two cambers."""
+    if gamma.size < 6 or np.ptp(gamma) == 0:
+        return np.nan, np.nan
+    design = np.column_stack([np.ones(gamma.size), tan_alpha, gamma])
+    coef, *_ = np.linalg.lstsq(design, ratio, rcond=None)
+    s2 = float(np.sum((ratio - design @ coef) ** 2)) / max(gamma.size - 3, 1)
+    cov = s2 * np.linalg.pinv(design.T @ design)
+    return abs(float(coef[2])), float(np.sqrt(max(float(cov[2, 2]), 0.0)))

@@ -28,7 +28,8 @@ import numpy as np
 
 from ...base.errors import InputError
 from ...base.outputs import check_input_file
-from .raw_run import load_raw_run, raw_layout
+from ..mf.parameters import PLAUSIBLE_PRESSURE
+from .raw_run import MIN_RIG_LOAD, load_raw_run, raw_layout
 from .segments import prepare_run
 from .table import TyreData, join, read_tyre_data
 from .tydex import is_tydex, read_tydex
@@ -178,7 +179,7 @@ def _check_consistent(files: list[ReadFile]) -> None:
 
     checks = (("load", "fz", [f.data.fz for f in files], LOAD_RATIO, "kN as N?"),
               ("pressure", "pressure", [f.data.pressure for f in files], PRESSURE_RATIO,
-               "kPa as bar, psi as kPa?"),
+               "bar as kPa, kPa as bar, psi as kPa?"),
               ("largest slip angle", "alpha",
                [np.array([np.max(np.abs(f.data.alpha))]) for f in files], ANGLE_RATIO,
                "radians as degrees?"))
@@ -190,9 +191,27 @@ def _check_consistent(files: list[ReadFile]) -> None:
             continue
         lo, hi = min(use, key=lambda i: m[i]), max(use, key=lambda i: m[i])
         if m[hi] >= ratio * m[lo]:
-            units = [files[i].data.units.get(column, "?") for i in (lo, hi)]
-            raise InputError(f"the {what} of '{files[hi].path}' ({m[hi]:.4g} in SI, unit "
-                             f"'{units[1]}') is {m[hi] / m[lo]:.3g} times that of "
-                             f"'{files[lo].path}' ({m[lo]:.4g}, unit '{units[0]}'): a unit is "
-                             f"wrong in one of them ({hint})", file=files[hi].path,
-                             column=column)
+            # the file at fault: the one outside the range tyres run at, when only one is
+            bad, good = ((lo, hi) if _outside(column, m[lo]) and not _outside(column, m[hi])
+                         else (hi, lo))
+            units = [files[i].data.units.get(column, "?") for i in (bad, good)]
+            raise InputError(f"the {what} of '{files[bad].path}' ({m[bad]:.4g} in SI, unit "
+                             f"'{units[0]}') is a factor {m[hi] / m[lo]:.3g} "
+                             f"{'above' if bad == hi else 'below'} that of "
+                             f"'{files[good].path}' ({m[good]:.4g}, unit '{units[1]}'): a "
+                             f"unit is wrong in one of them ({hint})"
+                             + ("; only this one's is outside the range tyres run at"
+                                if _outside(column, m[bad]) and not _outside(column, m[good])
+                                else ""), file=files[bad].path, column=column,
+                             row=int(files[bad].data.rows[0]))
+
+
+#: The range of a file's median load [N] and pressure [Pa] that tyres run at (a rig's
+#: lightest load to an aircraft's; :data:`~frictionlaws.tyre.mf.parameters.PLAUSIBLE_PRESSURE`).
+_PLAUSIBLE = {"fz": (MIN_RIG_LOAD, 1e6), "pressure": PLAUSIBLE_PRESSURE}
+
+
+def _outside(column: str, median: float) -> bool:
+    """True when a file's median ``column`` is outside the range tyres run at."""
+    lo, hi = _PLAUSIBLE.get(column, (-np.inf, np.inf))
+    return not lo <= median <= hi

@@ -37,6 +37,7 @@ steady sweeps.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,15 +46,17 @@ import numpy as np
 
 from ...base.errors import Argument, InputError
 from ...base.numbers import parse_number
-from ..mf.parameters import PLAUSIBLE_PRESSURE
+from ..mf.parameters import check_pressure
 from .channels import (
     KINDS,
     MAX_CORNERING_COEFFICIENT,
     MAX_SLIP_COEFFICIENT,
     MEANINGS,
     RAW_CHANNELS,
+    camber_settings_in_radians,
     convert,
     read_lines,
+    slip_coefficient,
 )
 from .table import check_sign_convention, to_iso_axes
 from .tydex import is_tydex
@@ -266,9 +269,10 @@ def load_raw_run(path: str | Path, *, sign_convention: str = "sae") -> RawRun:
     _check_time(run)
     _kappa(run)
     run.notes.append(to_iso_axes(run.quantities, sign_convention))
-    _check_axes(run)
+    loaded = _loaded(run)
+    _check_axes(run, loaded)
     _check_angles(run)
-    _check_units(run)
+    _check_units(run, loaded & (run.quantities["fz"] > 0))
     return run
 
 
@@ -350,8 +354,9 @@ def _kappa(run: RawRun) -> None:
                              + ("camber = 0" if name == "gamma" else "not measured"))
 
 
-def _check_axes(run: RawRun) -> None:
-    """Loads of the other sign than the axes declared: the other convention, said."""
+def _loaded(run: RawRun) -> np.ndarray:
+    """The samples that carry a load (:data:`MIN_RIG_LOAD` or more, and a tenth of the
+    run's 95th-percentile |load|): what the checks of the axes and units look at."""
     fz = run.quantities["fz"]
     loaded = np.abs(fz) > max(0.1 * np.percentile(np.abs(fz), 95), MIN_RIG_LOAD)
     if not loaded.any():
@@ -359,6 +364,12 @@ def _check_axes(run: RawRun) -> None:
                          f"largest |{run.channels['fz']}| is {np.max(np.abs(fz)):.3g} N): "
                          "the tyre is lifted throughout, or the run was cut before it was "
                          "loaded", file=run.source, column=run.channels["fz"])
+    return loaded
+
+
+def _check_axes(run: RawRun, loaded: np.ndarray) -> None:
+    """Loads of the other sign than the axes declared: the other convention, said."""
+    fz = run.quantities["fz"]
     if np.mean(fz[loaded] < 0) > 0.5:
         other = "iso" if run.sign_convention == "sae" else "sae"
         said = ("SAE loads are negative in the file and were negated, so these were "
@@ -391,15 +402,12 @@ def _refuse_unit(run: RawRun, q: str, message: str, where: np.ndarray) -> None:
                      column=name, row=int(run.lines[int(np.argmax(where))]))
 
 
-def _check_units(run: RawRun) -> None:
-    """Slips, forces and moments against what tyres do (the bounds of a fit's checks): a unit
-    that is wrong by a factor would otherwise shrink or blow up the sweeps."""
+def _check_units(run: RawRun, loaded: np.ndarray) -> None:
+    """Slips, forces and moments of the ``loaded`` samples (ISO-W: loads positive) against
+    what tyres do (the bounds of a fit's checks): a unit that is wrong by a factor would
+    otherwise shrink or blow up the sweeps."""
     q = run.quantities
     fz = q["fz"]
-    loaded = fz > max(0.1 * np.percentile(fz, 95), MIN_RIG_LOAD)
-    if not loaded.any():
-        raise InputError("no sample carries a load", file=run.source,
-                         column=run.channels["fz"])
     kappa, tan_a = q["kappa"], np.tan(q["alpha"])
     if np.mean(np.abs(kappa[loaded]) > 1) > 0.01:
         _refuse_unit(run, "kappa", "slip ratios beyond -1..1: percent given as fractions?",
@@ -412,29 +420,53 @@ def _check_units(run: RawRun) -> None:
              "a slip coefficient of {c:.0f} (tyres have 10-40): the slip ratios look like "
              "fractions under a percent unit")):
         use = loaded & other & (np.abs(slip) > 1e-6)
-        # slips within the jitter: the ratio would be the force offsets over a tiny slip
-        if force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP:
-            ratio = float(np.percentile(np.abs(q[force][use] / fz[use]), 99.9))
-            coef = ratio / float(np.max(np.abs(slip[use])))
+        # slips within the jitter, or held (a channel stuck at a value): the ratio would be
+        # the force offsets over a tiny slip, or a sweep's forces over a slip that is not its
+        if (force in q and use.sum() > 10 and np.max(np.abs(slip[use])) >= MIN_SWEPT_SLIP
+                and np.ptp(slip[use]) >= MIN_SWEPT_SLIP):
+            coef = slip_coefficient(q[force][use], fz[use], slip[use], share=99.9)
             if coef > limit:
                 _refuse_unit(run, "alpha" if force == "fy" else "kappa", what.format(c=coef),
                              use)
     _check_loads_and_moments(run, loaded)
     _check_pressure(run, loaded)
+    _check_camber_settings(run, loaded)
+
+
+def _check_camber_settings(run: RawRun, loaded: np.ndarray) -> None:
+    """Camber settings in radians under a degree unit
+    (:func:`~frictionlaws.tyre.data.channels.camber_settings_in_radians`, on the loaded
+    samples): refused when the camber thrust says so, else warned of."""
+    q = run.quantities
+    if "gamma" not in run.channels or "fy" not in q:
+        return
+    name = run.channels["gamma"]
+    found = camber_settings_in_radians(q["gamma"][loaded], run.units.get(name, ""),
+                                       q["fy"][loaded], q["fz"][loaded], q["alpha"][loaded],
+                                       np.abs(q["kappa"][loaded]) <= 0.01)
+    if found is None:
+        return
+    text, decisive, top = found
+    error = InputError(text.replace("'gamma [rad]'", f"'rad' in {name}'s unit"),
+                       file=run.source, column=name,
+                       row=int(run.lines[loaded][np.argmax(top)]))
+    if decisive:
+        raise error
+    warnings.warn(str(error), UserWarning, stacklevel=3)
 
 
 def _check_pressure(run: RawRun, loaded: np.ndarray) -> None:
-    """An inflation pressure no tyre runs at: the unit is off by a factor (kPa under MPa,
-    bar under kPa, ...)."""
+    """The median inflation pressure of the loaded samples where tyres run
+    (:func:`~frictionlaws.tyre.mf.parameters.check_pressure`): else the unit is off by a
+    factor (kPa under MPa, bar under kPa, ...); the row named is the first loaded one."""
     p = run.quantities.get("pressure")
     if p is None or not np.isfinite(p[loaded]).any():
         return
-    median = float(np.nanmedian(p[loaded]))
-    lo, hi = PLAUSIBLE_PRESSURE
-    if not lo <= median <= hi:
-        _refuse_unit(run, "pressure", f"a median inflation pressure of {median / 1e3:.4g} kPa "
-                     f"(tyres run at {lo / 1e3:g}-{hi / 1e3:g} kPa): the unit looks wrong by "
-                     "a factor", loaded & np.isfinite(p))
+    name = run.channels["pressure"]
+    measured = loaded & np.isfinite(p)
+    check_pressure(float(np.median(p[measured])), "a median inflation pressure of",
+                   file=run.source, column=name, rows=[int(run.lines[np.argmax(measured)])],
+                   unit=run.units.get(name, ""))
 
 
 def _check_loads_and_moments(run: RawRun, loaded: np.ndarray) -> None:

@@ -34,6 +34,7 @@ them as it checks every data (units, signs, curves); so does ``tyre prepare``.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -42,6 +43,7 @@ from scipy.ndimage import median_filter
 from scipy.signal import savgol_filter
 
 from ...base.errors import InputError
+from ..mf.notices import collected
 from .bins import (
     BINS_PER_SWEEP,
     MAX_LAG_S,
@@ -145,7 +147,8 @@ class PreparedRun:
     ``status`` holds, per sample, the code of :data:`REASONS` (0: kept); ``lags`` the
     (sweep kind, lag [s]) found in each sweep kept; ``offsets`` the force channels' zero
     offsets measured while lifted (``"time"`` [s], ``"fx"``, ``"fy"`` [N], ``"mz"`` [N m]
-    at each lift; empty without lifts or when not subtracted).
+    at each lift; empty without lifts or when not subtracted); ``warnings`` what the
+    preparation warned of (a measured channel not used), also issued as Python warnings.
     """
 
     data: TyreData
@@ -157,6 +160,7 @@ class PreparedRun:
     rate: float = math.nan
     lags: list[tuple[str, float]] = field(default_factory=list)
     offsets: dict[str, np.ndarray] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
 
     def dropped(self) -> dict[str, tuple[int, float]]:
         """Reason -> (samples, seconds) of what was dropped."""
@@ -185,7 +189,7 @@ class PreparedRun:
         for reason, (count, seconds) in self.dropped().items():
             lines.append(f"dropped {reason}: {count} samples ({seconds:.1f} s, "
                          f"{100 * count / n:.1f} %)")
-        return lines
+        return lines + [f"warning: {w}" for w in self.warnings]
 
     def report(self) -> str:
         """Plain-text report: the summary, then the notes."""
@@ -200,7 +204,8 @@ class PreparedRun:
                 "levels": {"load_N": self.levels["load"].tolist(),
                            "camber_rad": self.levels["camber"].tolist(),
                            "pressure_Pa": self.levels["pressure"].tolist()},
-                "segments": [s.to_dict() for s in self.segments], "notes": list(self.notes)}
+                "segments": [s.to_dict() for s in self.segments], "notes": list(self.notes),
+                "warnings": list(self.warnings)}
 
 
 def _shown(values: np.ndarray, scale: float, unit: str) -> str:
@@ -625,8 +630,9 @@ def _shaping(w: _Work, sub: np.ndarray, kind: str) -> list[str]:
     return out
 
 
-def _data(w: _Work, rows: list, source_notes: list[str]) -> TyreData:
-    """The binned rows as tyre data; a force its slip does not vary for is not kept."""
+def _data(w: _Work, rows: list) -> TyreData:
+    """The binned rows as tyre data; a force its slip does not vary for is not kept (warned
+    of, naming the slip channel and the rows)."""
     if not rows:
         raise InputError("no sweep was found in the run: no slip angle or slip ratio swept "
                          "up and down at a steady load (what was dropped: "
@@ -636,20 +642,39 @@ def _data(w: _Work, rows: list, source_notes: list[str]) -> TyreData:
     nan = np.full(n, math.nan)
     data = TyreData(cat["fz"], cat["kappa"], cat["alpha"], cat["gamma"],
                     cat.get("pressure", nan), cat.get("fx", nan), cat.get("fy", nan),
-                    cat["rows"].astype(int), w.run.source, source_notes,
+                    cat["rows"].astype(int), w.run.source, [],
                     cat.get("mz", nan), w.run.unused, (), "iso",
                     {q: w.run.units[c] for q, c in w.run.channels.items()},
                     {k: cat[k] for k in ("sweep", "direction", "samples", "time")})
-    if np.ptp(data.kappa) < KAPPA_SWEEP and np.isfinite(data.fx).any():
-        data.fx = nan.copy()
-        data.notes.append("no slip-ratio sweep: Fx is not used (it has no slip to follow)")
-    if np.ptp(data.alpha) < ALPHA_SWEEP and (np.isfinite(data.fy).any()
-                                              or np.isfinite(data.mz).any()):
-        data.fy, data.mz = nan.copy(), nan.copy()
-        data.notes.append("no slip-angle sweep and no slip-ratio sweep off zero slip angle: "
-                          "Fy and Mz are not used")
+    unused = [(slip, forces) for slip, span, forces in
+              (("kappa", KAPPA_SWEEP, ("fx",)), ("alpha", ALPHA_SWEEP, ("fy", "mz")))
+              if np.ptp(getattr(data, slip)) < span
+              and any(np.isfinite(getattr(data, f)).any() for f in forces)]
+    for slip, forces in unused:  # (a run sweeps one slip at least, or has no rows)
+        warnings.warn(_unswept(w, data, slip, forces), UserWarning, stacklevel=3)
+    for _, forces in unused:
+        for f in forces:
+            setattr(data, f, nan.copy())
     data.validate()
     return data
+
+
+def _unswept(w: _Work, data: TyreData, slip: str, forces: tuple[str, ...]) -> str:
+    """Why the ``forces`` of a prepared run are not used: their slip's channel does not
+    sweep on the rows kept (named, with its span, the rows and the channels not used)."""
+    channel = w.run.channels.get(slip, f"none ({slip} = 0)")
+    values = getattr(data, slip) * (180 / math.pi if slip == "alpha" else 1.0)
+    unit = " deg" if slip == "alpha" else ""
+    lo, hi = (round(float(f(values)), 9) + 0.0 for f in (np.min, np.max))
+    what = "slip angle" if slip == "alpha" else "slip ratio"
+    need = (f"{math.degrees(ALPHA_SWEEP):g} deg" if slip == "alpha" else f"{KAPPA_SWEEP:g}")
+    given = [f"{f[0].upper()}{f[1:]} ({w.run.channels.get(f, f.upper())})"
+             for f in forces if np.isfinite(getattr(data, f)).any()]
+    return (f"the {what} channel {channel} stays within {lo:.3g}..{hi:.3g}{unit} on the "
+            f"{len(data)} rows kept (lines {int(data.rows.min())}-{int(data.rows.max())} of "
+            f"the run; a sweep spans {need} or more): {' and '.join(given)} "
+            f"{'is' if len(given) == 1 else 'are'} not used, having no {what} to follow "
+            "(a dead or stuck channel, or no such sweep in the run?)")
 
 
 def _dropped_text(w: _Work) -> str:
@@ -700,11 +725,13 @@ def prepare_run(run: RawRun, *, warmup: float = 0.0, zero_offsets: bool = True,
     w.segments.sort(key=lambda s: s.start)
     _level_notes(w, levels)
     _lag_notes(w)
+    with collected() as unused:  # a channel not used: warned once, on every path
+        data = _data(w, rows)
     notes = list(run.notes) + w.notes
-    prepared = PreparedRun(_data(w, rows, list(notes)), run, w.segments, w.status, levels,
-                           notes, w.rate, w.lags, w.offsets)
-    prepared.data.notes.append("prepared from a raw rig run: "
-                               + "; ".join(prepared.summary()[1:]))
+    data.notes = list(notes)
+    prepared = PreparedRun(data, run, w.segments, w.status, levels, notes, w.rate, w.lags,
+                           w.offsets, unused)
+    data.notes.append("prepared from a raw rig run: " + "; ".join(prepared.summary()[1:]))
     return prepared
 
 

@@ -311,6 +311,8 @@ def _convert(table: Any, j: int, unit: str | None, col: str) -> np.ndarray:
     return si
 
 
+#: The per-row columns of whole numbers (written as integers).
+_WHOLE = ("sweep", "direction", "samples")
 #: Per-row columns a file may carry beside the tyre data (as ``tyre prepare`` writes them):
 #: name -> what it is.
 EXTRA_COLUMNS = {"sweep": "a label per sweep", "direction": "+1 up, -1 down",
@@ -413,6 +415,7 @@ def join(parts: Sequence[TyreData]) -> TyreData:
     if twice:
         raise InputError(f"the same file is given twice ({', '.join(twice)}): its rows "
                          "would count twice")
+    _refuse_same_data(parts)
     cat = {name: np.concatenate([getattr(p, name) for p in parts])
            for name in ("fz", "kappa", "alpha", "gamma", "pressure", "fx", "fy", "rows", "mz")}
     extra = _joined_extra(parts)
@@ -427,6 +430,20 @@ def join(parts: Sequence[TyreData]) -> TyreData:
                     unused, missing, parts[0].sign_convention, units, extra, tuple(sources))
     data.validate()
     return data
+
+
+def _refuse_same_data(parts: Sequence[TyreData]) -> None:
+    """Refuse two files of the same rows (every value of every column, a copy under
+    another name): the measurement would count twice, doubling its weight in a fit."""
+    seen: dict[bytes, str] = {}
+    for p in parts:
+        table = np.stack([getattr(p, k) for k in COLUMNS], axis=1)
+        key = np.where(np.isnan(table), np.inf, table).tobytes()  # NaN (not measured) alike
+        if key in seen:
+            raise InputError(f"'{seen[key]}' and '{p.source}' hold the same data (every "
+                             "value of every row): the same measurement given twice would "
+                             "count double in a fit; give it once", file=p.source)
+        seen[key] = p.source
 
 
 def _joined_extra(parts: Sequence[TyreData]) -> dict[str, np.ndarray]:
@@ -468,8 +485,10 @@ def tyre_csv_text(data: TyreData, comments: Sequence[str] = ()) -> str:
     values += [data.extra[k] for k in extras]
     lines = comment_lines(comments)
     lines.append(",".join(header))
+    whole = [k in _WHOLE for k in cols] + [k in _WHOLE for k in extras]
     for row in zip(*values, strict=True):
-        lines.append(",".join("" if not np.isfinite(v) else repr(float(v)) for v in row))
+        lines.append(",".join("" if not np.isfinite(v) else str(int(v)) if w and v == int(v)
+                              else repr(float(v)) for v, w in zip(row, whole, strict=True)))
     return "\n".join(lines) + "\n"
 
 

@@ -64,21 +64,47 @@ POSITIVE_STRUCTURE = frozenset({"UNLOADED_RADIUS", "LONGVL", "WIDTH"})
 PLAUSIBLE_PRESSURE = (2e4, 2.5e6)
 
 
-def check_pressure(pressure: Any, what: str = "pressure") -> None:
+def check_pressure(pressure: Any, what: str = "pressure", *, file: str | None = None,
+                   column: str | None = None, rows: Any = None, unit: str | None = None
+                   ) -> None:
     """Refuse an inflation pressure [Pa] no tyre runs at (:data:`PLAUSIBLE_PRESSURE`): a
     unit off by a factor (kPa or bar read as Pa, Pa as kPa), which the pressure terms
-    would extrapolate to forces of any size or sign."""
+    would extrapolate to forces of any size or sign.
+
+    Parameters
+    ----------
+    pressure : array-like
+        Pressures [Pa].
+    what : str
+        What they are, for the message.
+    file, column : str, optional
+        Where they were read, named in the message.
+    rows : array-like of int, optional
+        The source row of each value (named in the message; without it, the 0-based
+        index of an array's value).
+    unit : str, optional
+        The unit they were read in, named in the message as the one that looks off.
+
+    Raises
+    ------
+    InputError
+        Naming the first pressure off, its file, column and row, and the plausible range.
+    """
     p = np.asarray(pressure, dtype=float)
     lo, hi = PLAUSIBLE_PRESSURE
     with np.errstate(invalid="ignore"):
         bad = ~((p >= lo) & (p <= hi))
-    if np.any(bad):
-        i = int(np.flatnonzero(bad.ravel())[0])
-        x = float(p.ravel()[i])
-        row = f" (row {i})" if p.size > 1 else ""
-        raise InputError(f"{what} {x / 1e3:g} kPa{row} is no tyre's inflation pressure "
-                         f"(tyres run at {lo / 1e3:g}-{hi / 1e3:g} kPa): a unit off by a "
-                         "factor?")
+    if not np.any(bad):
+        return
+    i = int(np.flatnonzero(bad.ravel())[0])
+    x = float(p.ravel()[i])
+    row = None if rows is None else int(np.asarray(rows).ravel()[i])
+    at = f" (row {i})" if rows is None and p.size > 1 else ""
+    cause = (f"the unit '{unit}' looks off by a factor (bar or psi as kPa, kPa as Pa?)"
+             if unit else "a unit off by a factor?")
+    raise InputError(f"{what} {x / 1e3:.4g} kPa{at} is no tyre's inflation pressure (tyres run "
+                     f"at {lo / 1e3:g}-{hi / 1e3:g} kPa): {cause}", file=file, column=column,
+                     row=row)
 
 
 def check_conventions(version: str, source: str, **conventions: str) -> None:

@@ -41,19 +41,29 @@ The unit tests are physical bounds, not statistics of the data set:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from ....base.errors import Argument, InputError
-from ...data.channels import MAX_CORNERING_COEFFICIENT, MAX_SLIP_COEFFICIENT
+from ...data.channels import (
+    MAX_CAMBER_STIFFNESS,
+    MAX_CORNERING_COEFFICIENT,
+    MAX_SLIP_COEFFICIENT,
+    camber_settings_in_radians,
+    slip_coefficient,
+)
 from ...data.table import COLUMNS, TyreData
-from .stages import ALPHA_PURE, KAPPA_PURE
+from ..notices import collected
+from .stages import ALPHA_PURE, KAPPA_PURE, load_levels
 
-__all__ = ["check_plausible", "repeated_rows", "MAX_SLIP_COEFFICIENT", "MAX_CORNERING_COEFFICIENT",
-           "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
-           "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO"]
+__all__ = ["check_plausible", "plausibility_warnings", "repeated_rows", "MAX_SLIP_COEFFICIENT",
+           "MAX_CORNERING_COEFFICIENT", "MAX_FORCE_RATIO", "MIN_SLIP_SLOPE", "MIN_CORNERING_SLOPE",
+           "MIN_CURVE_CORRELATION", "MAX_FILES_SLOPE_RATIO", "MAX_PEAK_RATIO",
+           "LOW_PEAK_FRICTION", "PEAK_SLIPS", "MAX_CAMBER_STIFFNESS", "RISING_SHARE",
+           "rising_side"]
 
 #: Smallest plausible slope of F_x / F_z on the slip ratio within 0.1 of zero [-] (tyres:
 #: 10-40; on ice, a peak of 0.1 at a slip of 0.1 still gives 1).
@@ -65,20 +75,38 @@ MIN_CORNERING_SLOPE = 0.75
 #: tan(alpha)) for one tyre [-]: loads and pressures change them by less than 2, sweeps
 #: of another reach (the fit over the window) by up to about 2.
 MAX_FILES_SLOPE_RATIO = 5.0
+#: A usual tyre's slopes near zero slip of F_x / F_z on kappa and F_y / F_z on tan(alpha).
+_TYPICAL_SLOPES = (20.0, 14.0)
 #: Half-width of the slip window near zero where the slopes are taken [-, rad].
 _SMALL_SLIP = 0.1
 #: Largest plausible |F_x| or |F_y| over F_z on one row (peak friction is below 4).
 MAX_FORCE_RATIO = 5.0
 #: Largest plausible camber [rad] (30 degrees).
 MAX_CAMBER = math.radians(30.0)
+#: Slip ratio and slip angle [rad] a pure-slip sweep must reach for its largest |F| / F_z to
+#: stand for the tyre's peak friction (every tyre is near its peak there: within some 30 %).
+PEAK_SLIPS = (0.1, math.radians(8.0))
+#: Largest ratio of one tyre's peak friction in one direction to the other's (F_x / F_z to
+#: F_y / F_z) [-]: tyres have 0.7-1.5, on any road; a force in daN under an [N] header is
+#: 10 off.
+MAX_PEAK_RATIO = 3.0
+#: Below this peak friction [-] (dry roads: 0.8-1.3; wet: 0.4-0.8; snow: 0.2-0.4; ice:
+#: 0.05-0.2) the force is warned of: on ice it is real, else in daN under an [N] header.
+LOW_PEAK_FRICTION = 0.2
 #: Smallest |correlation| of F_x / F_z with the slip ratio (F_y / F_z with tan(alpha)) for
 #: a force that follows its slip (a tyre's, even on ice: above 0.5; noise: near 0).
 MIN_CURVE_CORRELATION = 0.3
 #: Slip angle beyond which F_y has the opposite sign of alpha in ISO-W axes [rad]
 #: (camber thrust and ply steer can outweigh smaller angles).
 _SIGN_ANGLE = math.radians(2.0)
-#: Slip angles where M_z opposes F_y (a positive trail, before the moment turns over) [rad].
+#: Slip angles where M_z opposes F_y (a positive trail, before the moment turns over) [rad],
+#: on the rows where F_y still rises (:func:`rising_side`).
 _MZ_SIGN_ANGLES = (math.radians(1.0), math.radians(4.0))
+#: Share of its load level's peak |F_y| up to which the side force still rises with the slip
+#: angle and the pneumatic trail is positive: the aligning moment turns over near the peak
+#: of F_y, at 2-3 deg on a dry road but below 1 deg on ice (a Magic Formula tyre with its
+#: friction scaled to 0.2 has M_z of the sign of F_y from 1.5 deg on).
+RISING_SHARE = 0.8
 
 
 def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | None = None,
@@ -109,6 +137,26 @@ def check_plausible(data: TyreData, fnomin: float, nominal_pressure: float | Non
     _check_rows(data, fnomin, nominal_pressure, radius)
 
 
+def plausibility_warnings(data: TyreData, fnomin: float) -> list[str]:
+    """:func:`check_plausible` on data without a template (the load checked against
+    ``fnomin``), returning what it warns of (issued too, once each): for a path that
+    reports its own warnings, as ``tyre prepare`` does.
+
+    Parameters
+    ----------
+    data : TyreData
+    fnomin : float
+        The load the loads are checked against [N].
+
+    Returns
+    -------
+    list of str
+    """
+    with collected() as raised:
+        check_plausible(data, fnomin)
+    return raised
+
+
 def _files_of(data: TyreData) -> list[TyreData]:
     """The rows of each file of several joined, each named by its file (none for one)."""
     if len(data.files) < 2 or "file" not in data.extra:
@@ -123,6 +171,9 @@ def _check_rows(data: TyreData, fnomin: float, p_nom: float | None,
     joined answer together: one file may hold the Fx sweeps, another the Fy sweeps)."""
     _check_curves(data, ("Fx", "Fy"))
     _check_fy_sign(data)
+    # one force in another unit than the other: named before the loads' and slopes' checks
+    # (which see a force 10 off as a load in kN, or a flat slope as degrees under [rad])
+    _check_peak_friction(data)
     _check_loads(data, fnomin)
     _check_kappa(data)
     _check_alpha(data)
@@ -135,6 +186,7 @@ def _check_rows(data: TyreData, fnomin: float, p_nom: float | None,
 def _check_others(data: TyreData, p_nom: float | None, radius: float | None) -> None:
     """Camber, pressure and aligning moment against their physical ranges."""
     _check_camber(data)
+    _check_camber_settings(data)
     p = data.pressure[np.isfinite(data.pressure)]
     if p_nom is not None and p.size:
         median = float(np.median(p))
@@ -185,6 +237,10 @@ def _check_curves(data: TyreData, names: tuple[str, ...]) -> None:
         for narrower in (pure, np.abs(slip) <= 1.01 * _SMALL_SLIP):  # where F rises with slip
             if (use & narrower).sum() >= 5 and np.ptp(slip[use & narrower]) > 0:
                 use &= narrower
+        if name == "Mz":  # M_z follows the slip only while F_y rises (it turns over after)
+            rising = use & rising_side(data)
+            use = rising if rising.sum() >= 5 and np.ptp(slip[rising]) > 0 else (
+                use if use.any() and np.ptp(force[use]) == 0 else np.zeros_like(use))
         if use.sum() < 3 or np.ptp(slip[use]) == 0:
             continue
         ratio = force[use] / data.fz[use]
@@ -228,9 +284,8 @@ def _check_mz_sign(data: TyreData) -> None:
     """Refuse M_z with the sign of F_y on most rows near pure side slip at 1-4 degrees."""
     lo, hi = _MZ_SIGN_ANGLES
     # pure side slip only: with a slip ratio, F_x's moment arm can turn M_z over
-    use = ((np.abs(data.alpha) >= lo) & (np.abs(data.alpha) <= hi)
-           & (np.abs(data.kappa) <= KAPPA_PURE) & np.isfinite(data.mz) & np.isfinite(data.fy)
-           & (data.mz != 0) & (data.fy != 0))
+    use = ((np.abs(data.alpha) >= lo) & (np.abs(data.alpha) <= hi) & rising_side(data)
+           & np.isfinite(data.mz) & (data.mz != 0) & (data.fy != 0))
     same = int((np.sign(data.mz[use]) == np.sign(data.fy[use])).sum())
     if use.sum() < 5 or 2 * same <= use.sum():
         return
@@ -240,6 +295,35 @@ def _check_mz_sign(data: TyreData) -> None:
         "pneumatic trail, Mz and Fy of opposite signs, in ISO-W as in SAE axes); the sign "
         "of Mz looks reversed: a channel of flipped sign (negate Mz, or Fy) or axes that "
         "flip Mz alone", column="Mz", **_at(data, use, np.where(use, data.mz, 0.0)))
+
+
+def rising_side(data: TyreData) -> np.ndarray:
+    """The rows near pure side slip where F_y still rises with the slip angle: below the
+    slip angle of its load level's peak |F_y| and below :data:`RISING_SHARE` of that peak
+    (where the pneumatic trail is positive and M_z opposes F_y, on any road).
+
+    Parameters
+    ----------
+    data : TyreData
+
+    Returns
+    -------
+    numpy.ndarray
+        A mask of the rows.
+    """
+    pure = (np.abs(data.kappa) <= KAPPA_PURE) & np.isfinite(data.fy) & np.isfinite(data.fz)
+    out = np.zeros(len(data.fy), dtype=bool)
+    if not pure.any():
+        return out
+    levels = load_levels(data.fz[pure])
+    idx = np.flatnonzero(pure)
+    for lv in np.unique(levels):
+        rows = idx[levels == lv]
+        mag = np.abs(data.fy[rows])
+        top = int(np.argmax(mag))
+        out[rows] = ((np.abs(data.alpha[rows]) < abs(float(data.alpha[rows[top]])))
+                     & (mag <= RISING_SHARE * mag[top]))
+    return out
 
 
 def _check_camber(data: TyreData) -> None:
@@ -255,6 +339,58 @@ def _check_camber(data: TyreData) -> None:
                "camber column")
     raise InputError(f"camber {top:.3g} deg is impossible: {why}", column="gamma",
                      **_at(data, wide, data.gamma))
+
+
+def _check_camber_settings(data: TyreData) -> None:
+    """Camber settings in radians under a [deg] header
+    (:func:`~frictionlaws.tyre.data.channels.camber_settings_in_radians`): refused when the
+    camber thrust says so, else warned of."""
+    found = camber_settings_in_radians(data.gamma, data.units.get("gamma", ""), data.fy,
+                                       data.fz, data.alpha,
+                                       np.abs(data.kappa) <= KAPPA_PURE)
+    if found is None:
+        return
+    text, decisive, top = found
+    if decisive:
+        raise InputError(text, column="gamma", **_at(data, top, data.gamma))
+    warnings.warn(str(InputError(text, column="gamma", **_at(data, top, data.gamma))),
+                  UserWarning, stacklevel=2)
+
+
+def _check_peak_friction(data: TyreData) -> None:
+    """The largest |F_x| / F_z and |F_y| / F_z of sweeps that reach the tyre's peak
+    (:data:`PEAK_SLIPS`): more than :data:`MAX_PEAK_RATIO` apart, one of the two forces is
+    in another unit (refused, naming first the one whose peak is farther from a dry road's
+    1, and the other's opposite slip); below :data:`LOW_PEAK_FRICTION`, a force is on ice
+    or in daN under an [N] header (warned)."""
+    peaks = []
+    for name, force, slip, pure, reach in (
+            ("Fx", data.fx, data.kappa, np.abs(data.alpha) <= ALPHA_PURE, PEAK_SLIPS[0]),
+            ("Fy", data.fy, data.alpha, np.abs(data.kappa) <= KAPPA_PURE, PEAK_SLIPS[1])):
+        use = pure & np.isfinite(force)
+        if use.any() and float(np.max(np.abs(slip[use]))) >= reach:
+            ratio = np.where(use, np.abs(force) / data.fz, 0.0)
+            # the peak of the twentieth of the rows highest: a spike on a row is no peak
+            top = float(np.sort(ratio[use])[-max(1, int(np.ceil(0.05 * use.sum())))])
+            peaks.append((name, top, _at(data, use & (ratio == top), ratio)))
+    if len(peaks) == 2 and not (1 / MAX_PEAK_RATIO <= peaks[0][1] / peaks[1][1]
+                                <= MAX_PEAK_RATIO):
+        (name, mu, at), (other, mu_other, _) = sorted(peaks,
+                                                      key=lambda p: -abs(math.log(p[1])))
+        low = mu < mu_other
+        raise InputError(
+            f"|{name}| / Fz peaks at {mu:.3g} but |{other}| / Fz at {mu_other:.3g}, a factor "
+            f"{max(mu, mu_other) / min(mu, mu_other):.3g} apart (one tyre's peaks differ by "
+            f"less than {MAX_PEAK_RATIO:g}, on any road): the {name} column looks like "
+            f"another unit than its header says ({'daN under [N]' if low else 'N under [daN]'}"
+            f"; or {other} in {'N under [daN]' if low else 'daN under [N]'})",
+            column=name, **at)
+    for name, mu, at in peaks:
+        if mu < LOW_PEAK_FRICTION:
+            warnings.warn(str(InputError(
+                f"|{name}| / Fz peaks at {mu:.3g} (tyres reach 0.8-1.3 on a dry road, 0.2-0.8 "
+                "wet or on snow; less only on ice): unless measured on ice, the column looks "
+                "like daN under an [N] header", column=name, **at)), UserWarning, stacklevel=2)
 
 
 def _at(data: TyreData, mask: np.ndarray, values: np.ndarray) -> dict[str, Any]:
@@ -296,7 +432,7 @@ def _check_kappa(data: TyreData) -> None:
     use = np.isfinite(data.fx) & (np.abs(k) > 0)
     if not use.any():
         return
-    coef = float(np.max(np.abs(data.fx[use]) / data.fz[use]) / np.max(np.abs(k[use])))
+    coef = slip_coefficient(data.fx[use], data.fz[use], k[use])
     if np.max(np.abs(k[use])) > 1 and coef < 0.5:
         raise InputError(
             f"slip ratios up to {np.max(np.abs(k[use])):g} while |Fx| stays below "
@@ -314,10 +450,10 @@ def _check_kappa(data: TyreData) -> None:
 def _check_alpha(data: TyreData) -> None:
     a = np.tan(data.alpha)
     use = np.isfinite(data.fy) & (np.abs(a) > 0)
-    if not use.any():
+    if not use.any() or np.ptp(a[use]) == 0:  # a constant slip angle: refused as such
         return
     top = float(np.max(np.abs(a[use])))
-    coef = float(np.max(np.abs(data.fy[use]) / data.fz[use])) / top
+    coef = slip_coefficient(data.fy[use], data.fz[use], a[use])
     if coef > MAX_CORNERING_COEFFICIENT:
         raise InputError(
             f"|Fy| reaches {coef * top:.2g} Fz at slip angles of at most "
@@ -350,8 +486,8 @@ def _check_files_agree(parts: list[TyreData]) -> None:
     """Refuse files whose slopes near zero slip differ by more than a tyre's do (a force
     column of one file in another unit: daN as N)."""
     found = [(_slopes(p), p) for p in parts]
-    for i, (name, what, typical) in enumerate((("Fx", "unit slip ratio", 20.0),
-                                               ("Fy", "rad of slip angle", 14.0))):
+    for i, (name, what) in enumerate((("Fx", "unit slip ratio"), ("Fy", "rad of slip angle"))):
+        typical = _TYPICAL_SLOPES[i]
         given = [(f[i][0], f[i][1], p) for f, p in found if f[i][0] > 0]  # NaN: not given
         if len(given) < 2:
             continue
