@@ -49,7 +49,7 @@ from typing import Any
 
 from .. import __version__
 from ..base.errors import FitError, InputError, bounded_message
-from ._messages import WARNING_WIDTH, UsageError
+from ._messages import WARNING_WIDTH, UsageError, shown_source
 from ._messages import short_warning as _short
 from .commands import COMMANDS
 
@@ -240,8 +240,9 @@ def _library_path(word: re.Match[str]) -> str:
 
 
 def _clean(text: str) -> str:
-    """One line, without library source paths (``.../site-packages/x/y.py:12``)."""
-    return _one_line(_WORD.sub(_library_path, str(text)))
+    """One line, without library source paths (``.../site-packages/x/y.py:12``) and with
+    standard input's private copy named ``<stdin>``."""
+    return _one_line(shown_source(_WORD.sub(_library_path, str(text))))
 
 
 def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:

@@ -767,15 +767,6 @@ def data_sources(data: Sequence[str]) -> Iterator[list[str]]:
         yield [stack.enter_context(data_source(d)) if d == STDIN else d for d in data]
 
 
-def shown_source(path: str) -> str:
-    """A source path as the user gave it: the private copy of standard input is ``<stdin>``."""
-    p = os.path.normpath(str(path))
-    parent = os.path.basename(os.path.dirname(p))
-    if os.path.basename(p).startswith("stdin.") and parent.startswith("frictionlaws-stdin-"):
-        return "<stdin>"
-    return str(path)
-
-
 def print_json(obj: Any) -> None:
     """Print ``obj`` as strict JSON on stdout (null for non-finite numbers)."""
     print(dumps(obj))

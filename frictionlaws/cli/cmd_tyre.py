@@ -59,8 +59,8 @@ from ._common import (
     parse_values,
     refuse_unused,
     report_text,
-    shown_source,
 )
+from ._messages import shown_source
 from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "parse_loads"]
