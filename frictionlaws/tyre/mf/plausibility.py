@@ -50,7 +50,14 @@ import numpy as np
 from .parameters import MFParameters
 
 __all__ = ["SPEED_LIMIT", "GROWTH_SHARE", "SLIP_TOLERANCE", "YAW_RATE_LIMIT", "speed_bound",
-           "check_speed", "check_wheel_speed", "check_turn_slip_rate"]
+           "check_speed", "check_wheel_speed", "check_turn_slip_rate", "SlipContradiction"]
+
+
+class SlipContradiction(UserWarning):
+    """A wheel speed given that contradicts the slip ratio given (outputs of two operating
+    points).  A caller that gives the wheel speed alone, with a placeholder slip ratio (the
+    transient's radii and relaxation lengths), ignores it."""
+
 
 #: The highest plausible speed of a tyre [m/s] (540 km/h), whatever its file.
 SPEED_LIMIT = 150.0
@@ -138,7 +145,7 @@ def check_wheel_speed(p: MFParameters, vx: Any, kappa: Any, omega_given: Any,
             f"ratio gives by up to {float(off.flat[worst]):.4g} m/s where "
             f"{float(allowed.flat[worst]):.3g} m/s is plausible; the forces take kappa, the "
             "radii, C_z and the turn slip's camber spin take omega: outputs of two "
-            "operating points", UserWarning, stacklevel=5)
+            "operating points", SlipContradiction, stacklevel=5)
 
 
 def check_turn_slip_rate(p: MFParameters, vx: Any, phit: Any) -> None:
