@@ -12,10 +12,11 @@ import re
 
 __all__ = ["UsageError", "WARNING_WIDTH", "short_warning", "shown_source"]
 
-#: The private copy of standard input a command reads
+#: The directory name of the private copy of standard input a command reads
 #: (:func:`frictionlaws.cli._common.data_source`: ``.../frictionlaws-stdin-XXXX/stdin.csv``).
-_STDIN_COPY = re.compile(r"(?:[A-Za-z]:)?[^\s'\"]*frictionlaws-stdin-[^\\/\s'\"]+[\\/]"
-                         r"stdin\.\w+")
+_STDIN_DIR = "frictionlaws-stdin-"
+#: The rest of that copy's path from its directory's name on (matched at one place only).
+_STDIN_TAIL = re.compile(r"frictionlaws-stdin-[^\\/\s'\"]{1,64}[\\/]stdin\.\w{1,8}")
 
 
 class UsageError(Exception):
@@ -39,5 +40,21 @@ def short_warning(text: str) -> str:
 
 def shown_source(text: str) -> str:
     """``text`` (a path, or a message naming paths) with the private copy of standard input
-    named as the user gave it: ``<stdin>``."""
-    return _STDIN_COPY.sub("<stdin>", str(text))
+    named as the user gave it: ``<stdin>``.  Linear in the length of ``text`` (each copy's
+    path is matched from its directory's name, found by a plain search)."""
+    text = str(text)
+    out: list[str] = []
+    done = 0
+    at = text.find(_STDIN_DIR)
+    while at >= 0:
+        tail = _STDIN_TAIL.match(text, at)
+        if tail is None:
+            at = text.find(_STDIN_DIR, at + 1)
+            continue
+        start = at  # back over the temporary directory's path to the path's first character
+        while start > done and text[start - 1] not in " \t\n'\"([=":
+            start -= 1
+        out.append(text[done:start] + "<stdin>")
+        done = tail.end()
+        at = text.find(_STDIN_DIR, done)
+    return "".join(out) + text[done:]
