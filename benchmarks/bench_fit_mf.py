@@ -29,7 +29,9 @@ errors against its truth and the largest over the corpus.
 draws, the share of draws over the issue's line (:data:`LINES`), and the bias of the pure
 curves: the largest mean signed error of F_x0 and F_y0 over the grid of
 :func:`~frictionlaws.tyre.synthetic_rig.truth_errors`, with its standard error.  A miss the
-noise explains has a mean error near zero at its worst point; a bias does not.
+noise explains has a mean error near zero; a bias does not.  The largest of the grid's
+means is itself two or three standard errors from zero by chance: a bias is a mean that
+stays as ``K`` grows.
 """
 
 from __future__ import annotations
