@@ -12,7 +12,9 @@ parses, dispatches and keeps the output clean:
   file (``OSError``) and malformed JSON/TOML are bad input too;
 * Python, numpy, scipy and pandas warnings raised during a command are collected
   and printed once each, after the command's output, as ``warning: ...`` lines
-  (with a count when repeated), never with source paths;
+  (with a count when repeated), never with source paths; when the command then fails,
+  they come before its one ``error:`` line (what was warned of before the refusal is
+  not lost, and the last line is the error);
 * an unexpected internal error -> exit 3 and one line asking for a report;
   ``--debug`` adds the traceback.
 
@@ -47,7 +49,7 @@ from typing import Any
 
 from .. import __version__
 from ..base.errors import FitError, InputError, bounded_message
-from ._messages import WARNING_WIDTH, UsageError
+from ._messages import WARNING_WIDTH, UsageError, shown_source
 from ._messages import short_warning as _short
 from .commands import COMMANDS
 
@@ -238,8 +240,9 @@ def _library_path(word: re.Match[str]) -> str:
 
 
 def _clean(text: str) -> str:
-    """One line, without library source paths (``.../site-packages/x/y.py:12``)."""
-    return _one_line(_WORD.sub(_library_path, str(text)))
+    """One line, without library source paths (``.../site-packages/x/y.py:12``) and with
+    standard input's private copy named ``<stdin>``."""
+    return _one_line(shown_source(_WORD.sub(_library_path, str(text))))
 
 
 def flag_label(args: argparse.Namespace | None) -> Callable[[str], str]:
@@ -594,11 +597,13 @@ def main(argv: Sequence[str] | None = None) -> int:
             _terminate_as_interrupt():
         warnings.simplefilter("always")
         with _strict_json_stdout(bool(getattr(args, "json", False))):
-            code = _dispatch(args)
+            code, last = _dispatch(args)
     if not args.quiet:
         for record in records:
             collected.add(record, args.verbose)
         collected.print(args.verbose)
+    if last:  # a failure's one line comes last, after what was warned before it
+        print(last, file=sys.stderr, end="")
     return code
 
 
@@ -627,24 +632,23 @@ def _terminate_as_interrupt() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
-def _dispatch(args: argparse.Namespace) -> int:
-    """Run the command; turn every failure into an exit code and one stderr line."""
+def _dispatch(args: argparse.Namespace) -> tuple[int, str]:
+    """Run the command; turn every failure into an exit code and what stderr says of it
+    (one line, and the traceback with ``--debug``), printed after the warnings."""
     try:
-        return int(args._run(args) or 0)
+        return int(args._run(args) or 0), ""
     except BrokenPipeError:
-        return 0
+        return 0, ""
     except _Terminated:
-        print("terminated", file=sys.stderr)
-        return 143
+        return 143, "terminated\n"
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        return 130, "interrupted\n"
     except Exception as exc:  # noqa: BLE001 - every failure is one line, never a traceback
         message, code = _failure(exc, args)
-        _fail(message, code)
+        last = f"error: {message}\n"
         if code == 3 and getattr(args, "debug", False):
-            traceback.print_exc(file=sys.stderr)
-        return code
+            last += traceback.format_exc()
+        return code, last
 
 
 def _failure(exc: Exception, args: argparse.Namespace) -> tuple[str, int]:
@@ -667,11 +671,6 @@ def _failure(exc: Exception, args: argparse.Namespace) -> tuple[str, int]:
 
 def _is_toml_error(exc: Exception) -> bool:
     return type(exc).__name__ == "TOMLDecodeError"
-
-
-def _fail(message: str, code: int) -> int:
-    print(f"error: {message}", file=sys.stderr)
-    return code
 
 
 def entry() -> None:

@@ -23,8 +23,8 @@ from ._common import (
     job_count,
     progress_value,
     refuse_unused,
-    shown_source,
 )
+from ._messages import shown_source
 
 __all__ = ["add_campaign_options", "wants_campaign", "run_fit_campaign", "split_names",
            "campaign_progress"]

@@ -694,6 +694,10 @@ def parse_values(text: str, quantity: str, *, option: str,
     items = [x for x in s.split(",")]
     if len(items) > max_points:
         raise UsageError(f"{option}: {len(items)} values (at most {max_points})")
+    empty = [i + 1 for i, x in enumerate(items) if not x.strip()]
+    if empty:
+        raise UsageError(f"{option} '{text}': item {empty[0]} of the list is empty; expected "
+                         "A,B,C, values separated by single commas")
     return [_bound(x, quantity, option, s, unit) for x in items]
 
 
@@ -761,15 +765,6 @@ def data_sources(data: Sequence[str]) -> Iterator[list[str]]:
     """
     with contextlib.ExitStack() as stack:
         yield [stack.enter_context(data_source(d)) if d == STDIN else d for d in data]
-
-
-def shown_source(path: str) -> str:
-    """A source path as the user gave it: the private copy of standard input is ``<stdin>``."""
-    p = os.path.normpath(str(path))
-    parent = os.path.basename(os.path.dirname(p))
-    if os.path.basename(p).startswith("stdin.") and parent.startswith("frictionlaws-stdin-"):
-        return "<stdin>"
-    return str(path)
 
 
 def print_json(obj: Any) -> None:

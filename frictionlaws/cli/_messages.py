@@ -1,5 +1,6 @@
 """The shape of the command line's messages that every part of it shares: a usage error,
-and a warning cut to one readable line (``-v`` prints it in full).
+a warning cut to one readable line (``-v`` prints it in full), and standard input named as
+the user gave it.
 
 Kept apart from :mod:`frictionlaws.cli._common` (which imports the library) so that
 :mod:`frictionlaws.cli` itself loads nothing of the library.
@@ -7,7 +8,14 @@ Kept apart from :mod:`frictionlaws.cli._common` (which imports the library) so t
 
 from __future__ import annotations
 
-__all__ = ["UsageError", "WARNING_WIDTH", "short_warning"]
+import re
+
+__all__ = ["UsageError", "WARNING_WIDTH", "short_warning", "shown_source"]
+
+#: The private copy of standard input a command reads
+#: (:func:`frictionlaws.cli._common.data_source`: ``.../frictionlaws-stdin-XXXX/stdin.csv``).
+_STDIN_COPY = re.compile(r"(?:[A-Za-z]:)?[^\s'\"]*frictionlaws-stdin-[^\\/\s'\"]+[\\/]"
+                         r"stdin\.\w+")
 
 
 class UsageError(Exception):
@@ -27,3 +35,9 @@ def short_warning(text: str) -> str:
     if cut <= WARNING_WIDTH // 2:
         cut = max(head.rfind(": "), head.rfind(", "))
     return (head[:cut] if cut > WARNING_WIDTH // 2 else head).rstrip() + " ... (-v: in full)"
+
+
+def shown_source(text: str) -> str:
+    """``text`` (a path, or a message naming paths) with the private copy of standard input
+    named as the user gave it: ``<stdin>``."""
+    return _STDIN_COPY.sub("<stdin>", str(text))

@@ -29,8 +29,8 @@ from ._common import (
     data_source,
     data_sources,
     progress_value,
-    shown_source,
 )
+from ._messages import shown_source
 from .commands import COMMANDS
 
 __all__ = ["add_parser", "run"]

@@ -40,6 +40,7 @@ from ..tyre.mf.fit.staged import refuse_not_applied
 from ..tyre.mf.inputs import INPUTS
 from ..tyre.mf.model import MagicFormula
 from ..tyre.mf.outputs import OUTPUTS, evaluate
+from ..tyre.reduce import MIN_POINTS as REDUCE_MIN_POINTS
 from ..tyre.reduce import reduce_mf
 from ..tyre.thesis import thesis_comparison
 from ._common import (
@@ -58,8 +59,8 @@ from ._common import (
     parse_values,
     refuse_unused,
     report_text,
-    shown_source,
 )
+from ._messages import shown_source
 from .commands import COMMANDS
 
 __all__ = ["add_parser", "run", "parse_loads"]
@@ -133,8 +134,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     r.add_argument("--side", choices=("braking", "driving"), default="braking")
     r.add_argument("--slip-max", type=bounded_number(0.0, 1.0, lo_open=True), default=1.0,
                    metavar="SLIP", help="largest slip ratio (0 < SLIP <= 1, default 1)")
-    r.add_argument("--points", type=bounded_int(3, 100_000), default=201,
-                   help="number of slip points (3..100000, default 201)")
+    r.add_argument("--points", type=bounded_int(REDUCE_MIN_POINTS, 100_000), default=201,
+                   help=f"number of slip points ({REDUCE_MIN_POINTS}..100000, default 201)")
     _mf_options(r)
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--save", metavar="FILE", help="save the fitted law as versioned JSON "
@@ -578,7 +579,12 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
     """``tyre mf FILE --kappa ...``: every output of the library's table, per row."""
     names = None
     if args.outputs is not None:
-        names = [x.strip() for x in args.outputs.split(",") if x.strip()]
+        names = [x.strip() for x in args.outputs.split(",")]
+        if "" in names and any(names):  # as every list option: an empty item is said
+            raise InputError(f"--outputs {args.outputs!r}: item {names.index('') + 1} of the "
+                             "list is empty; expected NAME,NAME, names separated by single "
+                             "commas")
+        names = [x for x in names if x]
         unknown = [x for x in names if x not in OUTPUTS]
         if unknown or not names:
             raise InputError(f"--outputs {args.outputs!r}: unknown output "
@@ -605,7 +611,8 @@ def _print_steady_state(mf: Any, args: argparse.Namespace) -> int:
 
 def _print_rows(table: dict[str, Any]) -> None:
     """The rows of a steady state as an aligned text table, units in the header."""
-    cols = [*table["inputs"], *table["outputs"]]
+    cols = list(dict.fromkeys([*table["inputs"], *table["outputs"]]))  # omega: once, as
+    # in the rows of the JSON (the wheel speed given is the one evaluated)
     units = {**table["inputs"], **table["outputs"]}
     head = [f"{c} [{units[c]['unit']}]" for c in cols] + ["clamped"]
     cells = [[f"{r[c]:.6g}" for c in cols] + [",".join(r["clamped"]) or "-"]

@@ -36,9 +36,11 @@ from ..law.registry import get_law
 from .mf.model import MagicFormula
 from .mf.notices import collected
 
-__all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve"]
+__all__ = ["Reduction", "reduce_mf", "equivalent_pacejka", "mf_slip_curve", "MIN_POINTS"]
 
 SIDES = ("braking", "driving")
+#: The fewest slip points a reduction samples (a six-parameter law needs more than six).
+MIN_POINTS = 10
 
 
 def mf_slip_curve(mf: MagicFormula, fz: float, slip: Any, *, side: str = "braking",
@@ -242,8 +244,8 @@ def _slip_law(law: str) -> Any:
 
 def _check_request(n: Any, slip_max: Any, fz: Any) -> float:
     """Check the sampling (``n`` points up to ``slip_max``) and return the load as a float."""
-    if not (isinstance(n, int) and n >= 10):
-        raise InputError(f"n must be an integer >= 10, got {n!r}")
+    if not (isinstance(n, int) and n >= MIN_POINTS):
+        raise InputError(f"n must be an integer >= {MIN_POINTS}, got {n!r}")
     if not (0 < slip_max <= 1):
         raise InputError(f"slip_max must lie in (0, 1], got {slip_max!r}")
     load = float(fz)

@@ -51,6 +51,7 @@ one at the lagged slips.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -61,6 +62,7 @@ from .mf.model import MagicFormula
 from .mf.notices import collected
 from .mf.outputs import evaluate
 from .mf.parameters import real_array
+from .mf.plausibility import SlipContradiction
 
 __all__ = ["TransientSlip", "transient_slip", "relax", "relax_source", "travelled",
            "TRANSIENT_OUTPUTS"]
@@ -299,12 +301,18 @@ def _relaxation_lengths(mf: MagicFormula, rest: dict[str, Any]
 
 
 def _wheel_speed_slip(t: np.ndarray, h: dict[str, np.ndarray], re: np.ndarray,
-                      sx: np.ndarray, lag_x: np.ndarray, k0: float | None
+                      sx: np.ndarray, lag_x: np.ndarray, k0: float | None, name: str
                       ) -> tuple[np.ndarray, np.ndarray]:
     """(kappa of the wheel speed, NaN at standstill; kappa') from the slip speed."""
     speed, slip_speed = np.abs(h["vx"]), re * h["omega"] - h["vx"]
     moving = speed > 0
     slip = np.where(moving, slip_speed / np.where(moving, speed, 1.0), np.nan)
+    if not moving.all():
+        warnings.warn(
+            f"{name}: {int(np.sum(~moving))} of {moving.size} sample(s) at a standing wheel (V_x = "
+            "0): the slip ratio of the wheel speed is not defined there, so kappa and the "
+            "steady-state Fx, Fy and Mz are NaN; the lagged ones are computed (the slip "
+            "speed R_e omega - V_x drives them)", UserWarning, stacklevel=4)
     start = k0 if k0 is not None else (slip[0] if moving[0] else 0.0)
     return slip, relax_source(slip_speed, lag_x, np.diff(t) * _step_mean(1 / sx), start)
 
@@ -371,8 +379,10 @@ def _transient(mf: MagicFormula, t: Any, vx: Any, fz: Any, kappa: Any, alpha: An
     opts: dict[str, Any] = {"pressure": h.get("pressure"), "vx": h["vx"], "phit": h["phit"],
                             "turn_slip": turn_slip, "limit_checks": limit_checks}
     forces = ("Fx", "Fy", "Mz")
-    rest = evaluate(mf, 0.0, 0.0, h["fz"], h["gamma"], names=("Re", "sigmax", "sigmay"),
-                    omega=h.get("omega"), **opts).outputs
+    with warnings.catch_warnings():  # the slip ratio 0 here stands for none (omega's)
+        warnings.simplefilter("ignore", SlipContradiction)
+        rest = evaluate(mf, 0.0, 0.0, h["fz"], h["gamma"], names=("Re", "sigmax", "sigmay"),
+                        omega=h.get("omega"), **opts).outputs
     sx, sy = _relaxation_lengths(mf, rest)
     dist = travelled(t, h["vx"])
     lag_x = np.diff(dist) * _step_mean(1 / sx)
@@ -381,7 +391,7 @@ def _transient(mf: MagicFormula, t: Any, vx: Any, fz: Any, kappa: Any, alpha: An
         slip = np.array(h["kappa"])
         kt = relax(slip, lag_x, k0)
     else:
-        slip, kt = _wheel_speed_slip(t, h, rest["Re"], sx, lag_x, k0)
+        slip, kt = _wheel_speed_slip(t, h, rest["Re"], sx, lag_x, k0, mf.name)
     at = relax(h["alpha"], np.diff(dist) * _step_mean(1 / sy), a0)
     lagged = evaluate(mf, kt, at, h["fz"], h["gamma"], names=forces, **opts).outputs
     known = np.isfinite(slip)

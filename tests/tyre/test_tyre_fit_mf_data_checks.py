@@ -5,7 +5,9 @@ that file)."""
 
 from __future__ import annotations
 
+import io
 import math
+import sys
 import warnings
 from dataclasses import replace
 from pathlib import Path
@@ -33,12 +35,14 @@ def _rig(truth: MagicFormula = TRUTH) -> TyreData:
 
 
 def _refused(capsys, files: list[Path], target: Path) -> str:
-    """The one error line of ``tyre fit-mf`` (exit 2, nothing written)."""
+    """The one error line of ``tyre fit-mf`` (exit 2, nothing written), last on stderr
+    after what the checks warned of before the refusal."""
     code = main(["tyre", "fit-mf", *map(str, files), "-o", str(target)])
     out, err = capsys.readouterr()
-    assert code == 2 and not out and len(err.strip().splitlines()) == 1, err
-    assert err.startswith("error:") and not target.exists()
-    return err
+    *warned, last = err.strip().splitlines()
+    assert code == 2 and not out and all(w.startswith("warning: ") for w in warned), err
+    assert last.startswith("error:") and not target.exists()
+    return last
 
 
 @pytest.mark.parametrize("example", EXAMPLES)
@@ -285,3 +289,19 @@ def test_a_single_force_in_daN_is_warned_of_naming_its_column() -> None:
     data.fx = data.fx / 10
     with pytest.warns(UserWarning, match=r"column 'Fx', row \d+: \|Fx\| / Fz peaks at 0.1"):
         check_plausible(data, TRUTH.fnomin)
+
+
+def test_a_warning_of_the_data_read_from_standard_input_names_it_as_given(
+        capsys, monkeypatch, tmp_path: Path) -> None:
+    """What the data checks warn of names standard input '<stdin>' on stderr, as the report,
+    JSON and file do, not the private copy the command reads."""
+    data = sweep_data(TRUTH, "longitudinal", cambers_deg=(0.0,), loads=(0.5, 1.0), n=9,
+                      pressures=(1.0,))
+    data.fx = data.fx / 10
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tdx = write_tydex(data, tmp_path / "fx_daN.tdx")
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(tdx.read_bytes())))
+    assert main(["tyre", "fit-mf", "-", "-o", str(tmp_path / "o.tir")]) == 0
+    err = capsys.readouterr().err
+    assert "warning: file '<stdin>', column 'Fx'" in err and "frictionlaws-stdin-" not in err

@@ -4,8 +4,9 @@ every property file through every path says the same, or is refused alike.
 The conditions are the values and options a new user tries (an input beyond the file's
 range in slip, angle, camber, load, pressure and speed; a load clamped at FZMAX or reduced
 below FZMIN; ``saturate``; an option the file's version cannot apply; a speed the model
-does not cover), singly and in pairs; the files are the packaged MF 5.2, 6.1 and 6.2 and
-an MF 5.2 without its load range (no FZMAX, no FZMIN).  Each case runs through the API
+does not cover; a turn slip within reason and one no wheel turns at), singly and in
+pairs; the files are the packaged MF 5.2, 6.1 and 6.2 and an MF 5.2 without its load
+range (no FZMAX, no FZMIN).  Each case runs through the API
 (:func:`~frictionlaws.tyre.mf.outputs.evaluate`, with the Python warnings it raises),
 xarray (the dataset's ``warnings`` attribute), ``tyre mf --json`` (its ``warnings`` list
 and per-row ``clamped`` flags) and the text of ``tyre mf`` (its ``warning:`` lines and
@@ -17,7 +18,8 @@ and one ``error:`` line (beside the ``warning:`` lines of what ran before, as ev
 prints them).  Neither a traceback nor exit 0 with a warning lost.
 
 Before, the JSON of ``tyre mf`` lost an option the file cannot apply (the text warned of it
-on stderr; the JSON had it in its notes only, with an empty ``warnings`` list).
+on stderr; the JSON had it in its notes only, with an empty ``warnings`` list); a turn slip
+of 1e6 1/m at 16.6 m/s (a yaw rate of 1.7e7 rad/s) gave M_z 537 N m with no word.
 """
 
 from __future__ import annotations
@@ -37,8 +39,9 @@ from frictionlaws.cli import main
 from frictionlaws.cli._messages import short_warning
 from frictionlaws.tyre.mf.model import MagicFormula
 from frictionlaws.tyre.mf.outputs import evaluate
-from frictionlaws.tyre.mf.plausibility import speed_bound
+from frictionlaws.tyre.mf.plausibility import YAW_RATE_LIMIT, speed_bound
 from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
+from frictionlaws.tyre.mf.turn_slip import check_turn_slip
 
 #: A corpus (hundreds of evaluations): run with the slow tests, on the newest set only.
 pytestmark = pytest.mark.slow
@@ -79,6 +82,11 @@ SINGLE: dict[str, Condition] = {
     "omega-contradicts": Condition(("--omega", "500"), {"omega": 500.0}),
     "standing-no-checks": Condition(("--vx", "0", "--no-limit-checks"), {"vx": 0.0},
                                     options={"limit_checks": False}),
+    # a path radius of 5 m (parking), and of 1 um at speed (a yaw rate of 1.7e7 rad/s)
+    "turn-slip-within": Condition(("--phit", "0.2", "--turn-slip"), {"phit": 0.2},
+                                  options={"turn_slip": True}),
+    "turn-slip-implausible": Condition(("--phit", "1e6", "--turn-slip"), {"phit": 1e6},
+                                       options={"turn_slip": True}),
 }
 #: Pairs that ask one thing each (an input given twice is not a pair).
 PAIRS = {f"{a}+{b}": (a, b) for a, b in itertools.combinations(SINGLE, 2)
@@ -87,7 +95,7 @@ PAIRS = {f"{a}+{b}": (a, b) for a, b in itertools.combinations(SINGLE, 2)
 FILES = ("MagicFormula52", "MagicFormula61", "MagicFormula62", "no-load-range")
 #: Where a condition's input is not given: the file's nominal state, one row.
 NOMINAL = {"kappa": 0.05, "alpha": 0.02, "gamma": 0.0, "pressure": None, "vx": None,
-           "omega": None}
+           "omega": None, "phit": 0.0}
 
 
 def _combined(names: tuple[str, ...]) -> Condition:
@@ -128,7 +136,8 @@ def _api(file: str, c: Condition) -> Said:
             fz = c.inputs.get("fz", mf.fnomin)
             kw = {**NOMINAL, **{k: v for k, v in c.inputs.items() if k != "fz"}}
             res = evaluate(mf, kw["kappa"], kw["alpha"], fz, kw["gamma"], kw["pressure"],
-                           kw["vx"], c.saturate, omega=kw["omega"], **c.options)
+                           kw["vx"], c.saturate, omega=kw["omega"], phit=kw["phit"],
+                           **c.options)
         except InputError:
             return Said(None)
     raised = list(dict.fromkeys(str(w.message) for w in caught))
@@ -145,7 +154,7 @@ def _xarray(file: str, c: Condition) -> Said:
             kw = {**NOMINAL, **{k: v for k, v in c.inputs.items() if k != "fz"}}
             ds = mf.steady_state(xr.DataArray([kw["kappa"]], dims="row"), kw["alpha"], fz,
                                  kw["gamma"], kw["pressure"], kw["vx"], c.saturate,
-                                 omega=kw["omega"], **c.options)
+                                 omega=kw["omega"], phit=kw["phit"], **c.options)
         except InputError:
             return Said(None)
     rows = [sorted(ds.attrs["clamped"]) if flag else [] for flag in ds["clamped"].values]
@@ -194,7 +203,8 @@ def _short(said: Said) -> Said:
 
 #: The plausibility conditions (speed, wheel speed, a standing wheel without the limit
 #: checks): their pairs are tried on one file (the rule is the same for every file).
-PLAUSIBILITY = {"speed-implausible", "omega-contradicts", "standing-no-checks"}
+PLAUSIBILITY = {"speed-implausible", "omega-contradicts", "standing-no-checks",
+                "turn-slip-within", "turn-slip-implausible"}
 
 
 @pytest.mark.parametrize(("case", "file"), [
@@ -214,15 +224,25 @@ def test_a_condition_is_said_alike_on_every_path_or_refused_alike(
     _expected(path, c, api)
 
 
+def _has_turn_slip(mf: MagicFormula) -> bool:
+    try:
+        check_turn_slip(mf)
+    except InputError:
+        return False
+    return True
+
+
 def _expected(path: str, c: Condition, api: Said) -> None:
     """The corpus is not vacuous: what the file's ranges and version call for is said."""
     checks = c.options.get("limit_checks", True)
-    if api.warnings is None:  # saturate needs the limit checks; the rest is evaluated
-        assert c.saturate and not checks
-        return
+    turn_slip = c.options.get("turn_slip", False)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mf = MagicFormula.from_file(path)
+    if api.warnings is None:  # saturate needs the limit checks, turn slip its
+        # coefficients; the rest is evaluated
+        assert c.saturate and not checks or turn_slip and not _has_turn_slip(mf)
+        return
     said = " | ".join(api.warnings)
     vxlow = mf.structure.get("VXLOW", 0.0)
     vx = c.inputs.get("vx", mf.need("LONGVL"))
@@ -231,6 +251,8 @@ def _expected(path: str, c: Condition, api: Said) -> None:
     assert ("an implausible speed" in said) == (abs(vx) > speed_bound(mf)[0]), said
     assert ("the wheel speed given contradicts" in said) == ("omega" in c.inputs), said
     assert ("at a standing wheel" in said) == (vx == 0 and not checks), said
+    yaw_rate = abs(c.inputs.get("phit", 0.0) * vx)
+    assert ("an implausible turn slip" in said) == (yaw_rate > YAW_RATE_LIMIT), said
     for name, value in c.inputs.items():
         if low_speed and name in ("kappa", "alpha"):
             continue  # taken towards 0 with the speed: the range is checked after that

@@ -20,10 +20,16 @@ from typing import Any
 import numpy as np
 import pytest
 
+from frictionlaws.base.errors import InputError
 from frictionlaws.cli import main
 from frictionlaws.tyre import MagicFormula
 from frictionlaws.tyre.mf.outputs import evaluate
-from frictionlaws.tyre.mf.plausibility import GROWTH_SHARE, SPEED_LIMIT, speed_bound
+from frictionlaws.tyre.mf.plausibility import (
+    GROWTH_SHARE,
+    SPEED_LIMIT,
+    YAW_RATE_LIMIT,
+    speed_bound,
+)
 from frictionlaws.tyre.mf.tir import format_tir, packaged_example, read_property_file
 from frictionlaws.tyre.transient import transient_slip
 
@@ -114,6 +120,44 @@ def test_a_deflection_to_the_centre_is_no_loaded_radius(tmp_path) -> None:
     assert [w for w in said if "1 row(s) deflect the tyre to its centre" in w]
 
 
+def test_generated_turn_slips_are_plausible_or_warned() -> None:
+    """Generated turn slips (|phit| log-uniform 1e-3..1e7 1/m, speeds 0..60 m/s either way,
+    slip angles to 60 deg): warned of exactly where the wheel's yaw rate |phit vx| exceeds
+    the bound, however small the path radius at a low speed (a wheel pivoting when parked).
+    Before: phit 1e6 1/m at 16.6 m/s gave M_z 537 N m without a word."""
+    mf = MagicFormula.from_file("MagicFormula61")
+    rng = np.random.default_rng(36)
+    n = 200
+    phit = rng.choice([-1, 1], n) * 10 ** rng.uniform(-3, 7, n)
+    vx = rng.choice([-1, 1], n) * np.where(rng.random(n) < 0.2, 0.0, rng.uniform(0, 60, n))
+    alpha = np.radians(rng.uniform(-60, 60, n))
+    rate = np.abs(phit * vx)
+    fast = rate > YAW_RATE_LIMIT
+    assert 0 < fast.sum() < n
+    _, said = _said(evaluate, mf, 0.0, alpha, mf.fnomin, vx=vx, phit=phit, turn_slip=True)
+    (turn,) = [w for w in said if "an implausible turn slip" in w]
+    assert f"on {int(fast.sum())} row(s)" in turn
+    calm = ~fast
+    _, said = _said(evaluate, mf, 0.0, alpha[calm], mf.fnomin, vx=vx[calm], phit=phit[calm],
+                    turn_slip=True)
+    assert not [w for w in said if "turn slip" in w], said
+    # parking: a path radius of 0.5 m at 0.5 m/s (1 rad/s), and a pivot at a standing wheel
+    for vx_, phit_ in ((0.5, 2.0), (0.0, 1e6)):
+        _, said = _said(evaluate, mf, 0.0, 0.0, mf.fnomin, vx=vx_, phit=phit_,
+                        turn_slip=True, limit_checks=vx_ != 0.0)
+        assert not [w for w in said if "implausible turn slip" in w], said
+
+
+def test_an_implausible_turn_slip_is_said_on_every_path(capsys) -> None:
+    argv = ["tyre", "mf", "MagicFormula61", "--phit", "1e6", "--turn-slip", "--outputs", "Mz"]
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert "warning: MagicFormula61_Parameters: an implausible turn slip on 1 row(s)" in err
+    assert main([*argv, "--json"]) == 0
+    doc = json.loads(capsys.readouterr()[0])
+    assert [w for w in doc["warnings"] if "yaw rate |phit vx| up to 1.66e+07 rad/s" in w]
+
+
 # --------------------------------------------------- F3: a standing wheel, no limit checks
 
 @pytest.mark.parametrize("turn_slip", [False, True])
@@ -187,3 +231,103 @@ def test_inst_kya_is_given_per_load_or_its_nan_is_explained(mf61, capsys) -> Non
     _, said = _said(evaluate, mf61, 0.0, np.radians([-5.0, -5.0, 5.0, 5.0]),
                     np.array([3000.0, 6000.0, 3000.0, 6000.0]))
     assert not [w for w in said if "instKya" in w]
+
+
+# ------------------------------------------------------------ command-line findings
+
+def test_a_wheel_speed_given_is_one_column(capsys) -> None:
+    """Before: the text of ``--omega`` printed the omega column twice (input and output)."""
+    assert main(["tyre", "mf", "MagicFormula61", "--kappa", "0.05", "--omega", "45",
+                 "--outputs", "Fx,omega,Re"]) == 0
+    head = capsys.readouterr()[0].splitlines()[2]
+    assert head.split().count("omega") == 1 and head.split()[-1] == "clamped"
+
+
+@pytest.mark.parametrize(("option", "given", "item"), [
+    ("--kappa", "0,,0.1", 2), ("--kappa", ",0.1", 1), ("--alpha", "0.1, ", 2),
+    ("--outputs", "Fx,,Fy", 2)])
+def test_a_list_with_an_empty_item_says_so(capsys, option: str, given: str,
+                                           item: int) -> None:
+    """Before: ``--kappa 0,,0.1`` was told of an 'empty bound' of a range, and
+    ``--outputs Fx,,Fy`` dropped the empty item silently."""
+    assert main(["tyre", "mf", "MagicFormula61", f"{option}={given}", "--kappa", "0"]
+                if option == "--outputs" else
+                ["tyre", "mf", "MagicFormula61", f"{option}={given}"]) == 2
+    err = capsys.readouterr()[1]
+    assert f"item {item} of the list is empty" in err and "bound" not in err
+
+
+@pytest.mark.parametrize("json_out", [False, True])
+def test_what_was_warned_before_a_refusal_is_said_before_its_error(capsys,
+                                                                   json_out: bool) -> None:
+    """Before: ``--vx 1e200`` warned of an implausible speed, then refused a moment past
+    floating point; the command line said the refusal only (the warnings were collected
+    inside the evaluation and lost with its exception)."""
+    argv = ["tyre", "mf", "MagicFormula61", "--vx", "1e200", *(["--json"] if json_out else [])]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    lines = err.splitlines()
+    assert out == "" and lines[-1].startswith("error: My is not finite")
+    assert [w for w in lines[:-1] if w.startswith("warning: ") and "implausible speed" in w]
+    assert all(w.startswith("warning: ") for w in lines[:-1])
+    mf = MagicFormula.from_file("MagicFormula61")
+    with pytest.warns(UserWarning, match="an implausible speed"), \
+            pytest.raises(InputError, match="My is not finite"):
+        evaluate(mf, 0.0, 0.0, mf.fnomin, vx=1e200)
+
+
+def test_a_pressure_no_tyre_runs_at_is_refused_before_any_warning(capsys) -> None:
+    """With the warnings before a refusal said, the pressure's range warning ('...
+    extrapolation') came before its refusal: the pressure is now checked first."""
+    assert main(["tyre", "mf", "MagicFormula61", "--pressure", "2.6", "--kappa", "0"]) == 2
+    assert capsys.readouterr()[1].count("\n") == 1
+
+
+def test_a_loaded_radius_past_floating_point_is_refused(mf61) -> None:
+    """Before: a slip ratio of 1e300 printed R_l inf with exit 0 (null in JSON)."""
+    with pytest.raises(InputError, match="Rl is not finite"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        evaluate(mf61, 1e300, 0.0, mf61.fnomin)
+
+
+# ------------------------------------------------------- findings of the hostile pass
+
+def test_a_camber_share_of_one_or_more_is_refused_with_its_coefficients(tmp_path) -> None:
+    """Before: PECP1 = 1 (the model divides by 1 - eps_gamma) refused turn slip at phit = 0
+    as 'F_y is not finite ... past floating point'; a PECP2 that takes eps_gamma past 1 at
+    a high load gave a spin shift of the other sign without a word."""
+    pf = read_property_file(packaged_example("MagicFormula61"))
+    for pecp1, pecp2, fz in ((1.0, 0.0, 6752.0), (0.75, 0.12, 4 * 6752.0)):
+        pf.sections["TURNSLIP_COEFFICIENTS"].update(PECP1=pecp1, PECP2=pecp2)
+        path = tmp_path / "share.tir"
+        path.write_text(format_tir(pf))
+        mf, _ = _said(MagicFormula.from_file, path)
+        with pytest.raises(InputError, match=r"eps_gamma = PECP1 \(1 \+ PECP2 dfz\)"), \
+                warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            evaluate(mf, 0.0, 0.0, fz, np.radians(2.0), turn_slip=True)
+    _, said = _said(evaluate, mf, 0.0, 0.0, 6752.0, turn_slip=True, phit=0.2)  # below 1
+    assert not [w for w in said if "eps_gamma" in w]
+
+
+def test_transient_slip_says_an_implausible_turn_slip_once(mf61) -> None:
+    t = np.linspace(0.0, 0.5, 21)
+    res, said = _said(transient_slip, mf61, t, 16.6, 5000.0, alpha=0.05, phit=1e6,
+                      turn_slip=True)
+    assert len([w for w in said if "an implausible turn slip" in w]) == 1, said
+    assert len([w for w in res.warnings if "an implausible turn slip" in w]) == 1
+
+
+def test_reduce_refuses_too_few_points_by_its_option(capsys) -> None:
+    """Before: ``--points 3`` passed the option's bound (3) and met the library's (10):
+    'n must be an integer >= 10', an argument the command line does not have."""
+    assert main(["tyre", "reduce", "MagicFormula61", "--load", "4", "--points", "5"]) == 2
+    err = capsys.readouterr()[1]
+    assert "--points" in err and "n must" not in err
+
+
+def test_no_deflection_at_a_load_near_zero_names_the_load(mf61) -> None:
+    """Before: a load of 1e-297 N was told its free radius had grown past the load's."""
+    out, said = _said(evaluate, mf61, 0.1, 0.0, 1e-297)
+    assert np.isnan(out.outputs["Cz"][()])
+    assert [w for w in said if "no deflection (a load too small" in w], said

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -192,6 +194,26 @@ def test_a_wheel_speed_history_relaxes_the_slip_ratio_as_its_slip_speed(
     np.testing.assert_allclose(r.kappa_t, relax(slip, lag), rtol=0, atol=1e-14)
     steady = mf.steady_state(slip, 0.0, FZ, vx=VX)["Fx"]
     np.testing.assert_allclose(r.Fx_steady, steady, rtol=1e-12)
+
+
+def test_a_wheel_speed_far_from_free_rolling_and_a_standing_wheel_are_said_truly(
+        mf: MagicFormula) -> None:
+    # the slip ratio comes from the wheel speed: nothing to contradict, however far from
+    # free rolling; where the wheel stands it is not defined, and the NaN is said
+    t = np.linspace(0.0, 1.0, 11)
+    vx = np.where(np.arange(t.size) < 3, 0.0, VX)
+    with pytest.warns(UserWarning) as caught:
+        r = transient_slip(mf, t, vx, FZ, omega=1.5 * VX / 0.3)
+    said = [str(w.message) for w in caught]
+    assert not any("contradicts the slip ratio" in w for w in said + r.warnings)
+    standing = [w for w in r.warnings if "standing wheel" in w]
+    assert len(standing) == 1 and "3 of 11 sample(s)" in standing[0]
+    assert np.isnan(r.kappa[:3]).all() and np.isnan(r.Fx_steady[:3]).all()
+    assert np.isfinite(r.kappa[3:]).all() and r.kappa[3] > 0.4
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a wheel that never stands: no word of it
+        r = transient_slip(mf, t, VX, FZ, omega=VX / 0.3)
+    assert not r.warnings
 
 
 def test_at_standstill_a_spinning_wheel_winds_up_its_slip() -> None:

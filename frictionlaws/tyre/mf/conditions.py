@@ -28,8 +28,8 @@ from typing import Any
 import numpy as np
 
 from ...base.errors import ExtrapolationWarning, InputError, broadcast_shape
-from .parameters import MFParameters, real_array
-from .plausibility import check_speed
+from .parameters import MFParameters, check_pressure, real_array
+from .plausibility import check_speed, check_turn_slip_rate
 from .turn_slip import check_turn_slip
 
 __all__ = ["Conditions"]
@@ -96,6 +96,8 @@ class Conditions:
         self.phit_in = np.broadcast_to(given["phit"], shape)
         self.omega = None if omega is None else np.broadcast_to(given["omega"], shape)
         check_speed(p, self.vx)
+        if turn_slip:
+            check_turn_slip_rate(p, self.vx, self.phit_in)
         k, a = self._low_speed(p)
         clipped = self._limit(p, {"kappa": k, "alpha": a, "gamma": given["gamma"],
                                   "pressure": given["pressure"]}, saturate)
@@ -127,6 +129,11 @@ class Conditions:
                "vx": p.check("vx", p.need("LONGVL") if vx is None else vx),
                "phit": p.check("phit", phit),
                "omega": None if omega is None else p.check("omega", omega)}
+        if (pressure is not None and p.nominal_pressure is not None
+                and not (saturate and "pressure" in p.limits)):
+            check_pressure(out["pressure"])  # no tyre runs at it: refused before any
+            # warning, where the pressure terms would take it (saturate clamps it to the
+            # file's range first, as MFeval does)
         if not turn_slip and np.any(out["phit"] != 0):
             raise InputError("a turn slip phit other than 0 needs the turn-slip model "
                              "(turn_slip=True, MFeval's useMode x2)")

@@ -39,12 +39,21 @@ def collected(standing: Sequence[str] = ()) -> Iterator[list[str]]:
     list of str
         Filled when the block ends: ``standing``, then the text of each other distinct
         warning raised inside.  Those are then issued again (once each), so that the
-        caller's filters apply to them.
+        caller's filters apply to them; also when the block raises (an input refused
+        after a warning: the command line prints the warnings before its one error line).
     """
     texts: list[str] = list(dict.fromkeys(standing))
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        yield texts
+    caught: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            yield texts
+    finally:  # also when the block refuses: what was warned before stays said
+        _issue_again(caught, texts)
+
+
+def _issue_again(caught: list[warnings.WarningMessage], texts: list[str]) -> None:
+    """Add each distinct warning of ``caught`` to ``texts`` and issue it again, once."""
     seen: set[tuple[type, str]] = set()
     for w in caught:
         key = (w.category, str(w.message))

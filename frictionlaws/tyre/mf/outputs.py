@@ -465,8 +465,8 @@ def _refuse_overflow(name: str, value: np.ndarray, e: Evaluation) -> None:
     overflows the slip speed)."""
     r = e.r
     bad = np.isinf(value) if name == "instKya" else ~np.isfinite(value)
-    if name in ("Rl", "rho", "Cz"):
-        bad &= ~e.loaded["said"]
+    if name in ("Rl", "rho", "Cz"):  # a NaN said of; an infinity never (R_l past 1e308 m)
+        bad &= ~(e.loaded["said"] & np.isnan(value))
     if not bad.any():
         return
     i = int(np.flatnonzero(bad.ravel())[0])

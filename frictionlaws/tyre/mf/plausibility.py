@@ -1,5 +1,5 @@
-"""Plausible speeds and wheel speeds: the rule of this evaluator, since a property file
-states no speed limit.
+"""Plausible speeds, wheel speeds and turn slips: the rules of this evaluator, since a
+property file states no speed or yaw-rate limit.
 
 A Magic Formula property file gives the ranges of load, slips, camber and pressure it was
 measured over, but no speed range: MFeval evaluates a forward speed of 10^6 m/s, or a wheel
@@ -25,6 +25,17 @@ guide):
   0.1 in slip ratio, the distance from free rolling to about the force peak.  The forces
   take the slip ratio and the radii, C_z and the turn slip's camber spin take the wheel
   speed, so a contradiction between them gives outputs of two operating points;
+* **turn slip**: the wheel's yaw rate ``|phit V_x|`` (the path curvature ``phit`` times the
+  forward speed: ``phit = -psi_dot / V_c``, Pacejka 2012 eq. 4.75, MFeval's fifth input,
+  with the contact centre's speed ``V_c`` taken as ``|V_x|``, as the speed rule takes it,
+  so that a warning does not change with the slip angle) at most :data:`YAW_RATE_LIMIT`
+  (2 pi rad/s, a turn a second: above a car's yaw rate when it spins out, a few rad/s,
+  plus the quickest steering, about 1 rad/s at the road wheel).  A bound on the curvature
+  alone would be wrong: a wheel pivoting on the spot (parking) has a path radius of 0,
+  and the turn-slip model is made for it (its factors saturate as ``R0 |phit|`` grows,
+  the spin moment tends to ``M_zpinf``); but a path radius of 1 um at 16.6 m/s (``phit``
+  1e6 1/m) is a yaw rate of 1.7e7 rad/s, outputs of no tyre.  At a standing wheel
+  (``V_x = 0``) any curvature is the pivot's limit and is not warned of;
 * **loaded radius**: ``R_l`` above 0 (:mod:`~frictionlaws.tyre.mf.vertical`: a deflection
   that reaches the free radius gives NaN and a warning, not a radius of 0).
 """
@@ -38,8 +49,15 @@ import numpy as np
 
 from .parameters import MFParameters
 
-__all__ = ["SPEED_LIMIT", "GROWTH_SHARE", "SLIP_TOLERANCE", "speed_bound", "check_speed",
-           "check_wheel_speed"]
+__all__ = ["SPEED_LIMIT", "GROWTH_SHARE", "SLIP_TOLERANCE", "YAW_RATE_LIMIT", "speed_bound",
+           "check_speed", "check_wheel_speed", "check_turn_slip_rate", "SlipContradiction"]
+
+
+class SlipContradiction(UserWarning):
+    """A wheel speed given that contradicts the slip ratio given (outputs of two operating
+    points).  A caller that gives the wheel speed alone, with a placeholder slip ratio (the
+    transient's radii and relaxation lengths), ignores it."""
+
 
 #: The highest plausible speed of a tyre [m/s] (540 km/h), whatever its file.
 SPEED_LIMIT = 150.0
@@ -48,6 +66,11 @@ GROWTH_SHARE = 0.05
 #: The largest plausible difference between the wheel's circumferential speed given and
 #: the one the slip ratio gives, as a share of max(|V_x|, VXLOW) [-].
 SLIP_TOLERANCE = 0.1
+#: The highest plausible yaw rate of a wheel about its vertical axis [rad/s] (a turn a
+#: second), which bounds the turn slip: ``|phit| V_c`` (see the module notes).
+YAW_RATE_LIMIT = 2 * np.pi
+
+
 def speed_bound(p: MFParameters) -> tuple[float, str]:
     """The plausible speed bound of a file [m/s] and what sets it (see the module notes)."""
     s = p.structure
@@ -122,4 +145,25 @@ def check_wheel_speed(p: MFParameters, vx: Any, kappa: Any, omega_given: Any,
             f"ratio gives by up to {float(off.flat[worst]):.4g} m/s where "
             f"{float(allowed.flat[worst]):.3g} m/s is plausible; the forces take kappa, the "
             "radii, C_z and the turn slip's camber spin take omega: outputs of two "
-            "operating points", UserWarning, stacklevel=5)
+            "operating points", SlipContradiction, stacklevel=5)
+
+
+def check_turn_slip_rate(p: MFParameters, vx: Any, phit: Any) -> None:
+    """Warn where the turn slip ``phit`` [1/m] at the speed ``vx`` [m/s] (as given) is a
+    yaw rate of the wheel ``|phit vx|`` above :data:`YAW_RATE_LIMIT` (see the module
+    notes)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        rate = np.abs(phit * vx)
+    fast = rate > YAW_RATE_LIMIT
+    if not np.any(fast):
+        return
+    worst = int(np.argmax(np.where(fast, rate, -1.0)))
+    radius = 1 / float(np.abs(np.broadcast_to(phit, fast.shape).flat[worst]))
+    speed = float(np.abs(np.broadcast_to(vx, fast.shape).flat[worst]))
+    warnings.warn(
+        f"{_name(p)}: an implausible turn slip on {int(np.sum(fast))} row(s), the wheel's "
+        f"yaw rate |phit vx| up to {float(rate.flat[worst]):.4g} rad/s (a path radius of "
+        f"{radius:.3g} m at {speed:.4g} m/s), above {YAW_RATE_LIMIT:.3g} rad/s (a turn a "
+        "second: beyond a spinning car's yaw rate and the quickest steering); evaluated as "
+        "given (the turn-slip factors saturate towards those of a wheel pivoting on the "
+        "spot)", UserWarning, stacklevel=5)

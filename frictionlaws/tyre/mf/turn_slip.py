@@ -33,6 +33,7 @@ into factors on the Magic Formula (all 1 without turn slip):
   ``B_Drp = K_zgr0 / (C_Drp D_Drp (1 - eps_gamma))``,
   ``K_zgr0 = F_z R0 (QDZ8 QDZ9 dfz + QDZ10 + QDZ11 dfz |gamma|) LKZC``.
 
+A camber share ``eps_gamma >= 1`` is refused (the model divides by ``1 - eps_gamma``).
 Where MFeval 4.0 gives no number this module gives the limit: zeta_7 at ``phit = 0``
 (0/0 in MFeval: the ratio tends to ``M_zpinf (2/pi) QCRP2 G_yk (1 - eps_gamma) /
 |K_zgr0|``) and S_Hyp at a standing wheel (``V_x = 0``: D_Hyp = 0 times a bounded sine).
@@ -103,10 +104,29 @@ def spin(p: MFParameters, phit: Any, alpha: Any, gamma: Any, vx: Any, omega: Any
     c = p.c
     vxlow = p.structure.get("VXLOW", 0.0)
     eps_gamma = c.PECP1 * (1 + c.PECP2 * dfz)
+    _check_camber_share(p, eps_gamma, dfz)
     v_c = np.hypot(vx, np.tan(alpha) * vx)
     v_c = np.where(np.abs(vx) < vxlow, np.where(vx < 0, -vxlow, vxlow), v_c)
     phi = -phit - (1 - eps_gamma) * omega * np.sin(gamma) / v_c
     return Spin(phi=phi, phit=phit, eps_gamma=eps_gamma)
+
+
+def _check_camber_share(p: MFParameters, eps_gamma: Any, dfz: Any) -> None:
+    """Refuse a camber share eps_gamma of 1 or more: the model divides by ``1 - eps_gamma``
+    (the spin stiffness ``K_yRp0 = K_yg0 / (1 - eps_gamma)``; MFeval gives inf or NaN at
+    1 and a spin shift of the other sign above), and a share of the camber not acting as
+    spin above the whole camber is no tyre's.  A file's PECP2 can take it there at a load
+    far above the nominal one."""
+    eps = np.broadcast_to(np.asarray(eps_gamma, dtype=float), np.shape(dfz))
+    if np.all(eps < 1):
+        return
+    i = int(np.argmax(eps))
+    raise InputError(
+        f"turn slip: the share of the camber not acting as spin, eps_gamma = PECP1 (1 + "
+        f"PECP2 dfz) = {float(eps.flat[i]):.4g} at dfz = {float(np.ravel(dfz)[i]):.4g} "
+        f"(PECP1 = {p.c.PECP1:g}, PECP2 = {p.c.PECP2:g}); the turn-slip model divides by "
+        "1 - eps_gamma and holds for eps_gamma < 1 only (a lower load, or a file whose "
+        "PECP1, PECP2 keep it below 1)", file=p.source)
 
 
 def zeta_x(p: MFParameters, s: Spin, kappa: Any, dfz: Any) -> Any:

@@ -81,8 +81,9 @@ def loaded_radius(p: MFParameters, r: Conditions, omega: Any, romega: Any, fx: A
     said = said | through | (flat & np.isfinite(rho))
     if np.any(flat & np.isfinite(rho)):
         warnings.warn(f"{p.name or 'Magic Formula'}: {int(np.sum(flat & np.isfinite(rho)))} "
-                      "row(s) have no deflection at their wheel speed (the free radius has "
-                      "grown past the load's): C_z is NaN there", ExtrapolationWarning,
+                      "row(s) have no deflection (a load too small to deflect the tyre in "
+                      "floating point, or a wheel speed whose free radius has grown past the "
+                      "load's): C_z is NaN there", ExtrapolationWarning,
                       stacklevel=4)
     return {"Rl": rl, "rho": rho, "Cz": fz_c / np.where(flat, np.nan, rho), "said": said}
 
