@@ -10,6 +10,7 @@ version's default template.  The seeds were drawn once for this test, not tuned.
 from __future__ import annotations
 
 import math
+import runpy
 import warnings
 from pathlib import Path
 
@@ -134,3 +135,21 @@ def test_a_random_tyre_is_the_same_for_the_same_seed_and_moved_from_its_example(
     assert moved == ["PDX1", "PKY1", "QBZ1"]
     assert all(abs(a.coefficients[k] / example.coefficients[k] - 1) <= 0.2 for k in moved)
     assert 3e3 <= a.fnomin <= 9e3 and 1.8e5 <= (a.nominal_pressure or 0) <= 3.2e5
+
+
+def test_the_benchmarks_noise_draws_measure_a_pure_curves_error_with_its_sign() -> None:
+    # the evidence NOISE_LIMITED cites comes from benchmarks/bench_fit_mf.py --draws
+    bench = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_fit_mf.py"
+    if not bench.exists():
+        pytest.skip("needs the repository's benchmarks/")
+    pure_errors = runpy.run_path(str(bench), run_name="bench_fit_mf_under_test")["pure_errors"]
+    truth = random_tyre(1001)
+    assert not pure_errors(truth, truth, "Fy0").any()
+    more = MagicFormula(dict(truth.coefficients, PDY1=1.02 * truth.coefficients["PDY1"]),
+                        fnomin=truth.fnomin, version=truth.version, structure=truth.structure)
+    e = pure_errors(truth, more, "Fy0")
+    assert e.shape == (30, 97)  # 5 loads x 2 pressures x 3 cambers, the slip grid
+    end = e[:, [0, -1]]  # at +-12 deg, near the peak: 2 % more, of the force's sign
+    assert np.all(np.abs(end) > 0.01) and np.all(np.abs(end) < 0.03)
+    assert np.all(np.sign(end[:, 0]) == -np.sign(end[:, 1]))
+    assert pure_errors(truth, truth, "Fx0").shape == (30, 101)
