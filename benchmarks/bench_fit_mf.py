@@ -23,6 +23,15 @@ sweep) of ``N`` tyres drawn at random
 turn with their coefficients moved by up to 20 %, FNOMIN 3-9 kN, nominal pressure 180-320
 kPa), each as its own version from the default template, and prints each tyre's largest
 errors against its truth and the largest over the corpus.
+
+``--seeds S ... --draws K`` fits each of those tyres to ``K`` noise draws of its rig data
+(noise seeds 1..K) and prints, per tyre, each figure's mean and standard deviation over the
+draws, the share of draws over the issue's line (:data:`LINES`), and the bias of the pure
+curves: the largest mean signed error of F_x0 and F_y0 over the grid of
+:func:`~frictionlaws.tyre.synthetic_rig.truth_errors`, with its standard error.  A miss the
+noise explains has a mean error near zero; a bias does not.  The largest of the grid's
+means is itself two or three standard errors from zero by chance: a bias is a mean that
+stays as ``K`` grows.
 """
 
 from __future__ import annotations
@@ -70,6 +79,52 @@ def plain_least_squares(data: object, names: list[str]) -> tuple[MagicFormula, f
 
 
 _QUANTITIES = ("Fx0", "Fy0", "Fx", "Fy", "Mz")
+#: The accuracy line of the held-out check: largest error against the truth, share of peak.
+LINES = {"Fx0": 0.005, "Fy0": 0.005, "Fx": 0.01, "Fy": 0.01, "Mz": 0.02}
+
+
+def pure_errors(truth: MagicFormula, fitted: MagicFormula, name: str) -> np.ndarray:
+    """Signed error of the fitted pure curve ``name`` ("Fx0" or "Fy0") against the truth,
+    as a share of the true curve's peak, on the grid of ``truth_errors`` (loads x pressures
+    x cambers x slips)."""
+    x = name == "Fx0"
+    slip = np.linspace(-0.25, 0.25, 101) if x else np.radians(np.linspace(-12, 12, 97))
+    out = []
+    for fz in truth.fnomin * np.array([0.4, 0.7, 1.0, 1.3, 1.6]):
+        for p in (truth.nominal_pressure or 2.6e5) * np.array([0.85, 1.1]):
+            for g in np.radians([-3.0, 0.0, 3.0]):
+                t, f = (np.asarray((m.fx0 if x else m.fy0)(
+                    slip, fz, g, p if m.nominal_pressure else None)) for m in (truth, fitted))
+                out.append((f - t) / np.abs(t).max())
+    return np.array(out)
+
+
+def noise_draws(seeds: list[int], k: int) -> None:
+    """Fit each tyre of ``seeds`` to ``k`` noise draws; print the figures' spread and the
+    pure curves' bias."""
+    fittyp = {v: k for k, v in FITTYPS.items() if k in (6, 61, 62)}
+    for seed in seeds:
+        truth = random_tyre(seed)
+        errs, signed = [], []
+        for noise in range(1, k + 1):
+            t0 = time.process_time()
+            res = fit_mf(rig_data(truth, seed=noise), fittyp=fittyp[truth.version])
+            cpu = time.process_time() - t0
+            errs.append(truth_errors(truth, res.model))
+            signed.append([pure_errors(truth, res.model, q) for q in ("Fx0", "Fy0")])
+            print(f"{seed:>4} noise {noise:>3} cpu {cpu:6.1f} s"
+                  + "".join(f"{100 * errs[-1][q]:>7.2f}%" for q in _QUANTITIES), flush=True)
+        print(f"tyre {seed} (MF {truth.version}), {k} draws: mean, SD and share over the line")
+        for q in _QUANTITIES:
+            v = 100 * np.array([e[q] for e in errs])
+            print(f"  {q:>3}: {v.mean():.3f} % SD {v.std(ddof=1):.3f} %, over "
+                  f"{100 * LINES[q]:g} %: {int((v > 100 * LINES[q]).sum())}/{k}")
+        for i, q in enumerate(("Fx0", "Fy0")):
+            e = 100 * np.array([s[i] for s in signed])
+            mean, sd = e.mean(0), e.std(0, ddof=1)
+            j = np.unravel_index(np.argmax(np.abs(mean)), mean.shape)
+            print(f"  {q} bias: largest |mean error| {abs(mean[j]):.3f} % of peak (its standard "
+                  f"error {sd[j] / np.sqrt(k):.3f} %, SD of one fit there {sd[j]:.3f} %)")
 
 
 def corpus(draws: list[tuple[int, int]]) -> None:
@@ -102,12 +157,20 @@ def main() -> None:
     parser.add_argument("--corpus", type=int, default=0,
                         help="fit this many random tyres instead (accuracy over a corpus): "
                              "tyre seeds 0..N-1, noise seeds 100..")
+    parser.add_argument("--draws", type=int, default=0, metavar="K",
+                        help="with --seeds: fit each tyre to K noise draws (seeds 1..K) and "
+                             "print the figures' spread and the pure curves' bias")
     parser.add_argument("--seeds", type=int, nargs="+", default=[], metavar="S",
                         help="fit the random tyres of these seeds instead, each measured "
                              "with its own seed as the noise seed (the held-out test's "
                              "tyres: 1001 1002 1003)")
     args = parser.parse_args()
     warnings.simplefilter("ignore", ExtrapolationWarning)
+    if args.draws and not args.seeds:
+        parser.error("--draws needs --seeds (the tyres whose noise is drawn again)")
+    if args.draws:
+        noise_draws(args.seeds, args.draws)
+        return
     if args.corpus or args.seeds:
         corpus([(s, s) for s in args.seeds] or [(s, 100 + s) for s in range(args.corpus)])
         return

@@ -10,6 +10,7 @@ version's default template.  The seeds were drawn once for this test, not tuned.
 from __future__ import annotations
 
 import math
+import runpy
 import warnings
 from pathlib import Path
 
@@ -35,8 +36,18 @@ SEEDS = (1001, 1002, 1003)
 #: share only while the error at the worst point is within :data:`NOISE_SD` standard
 #: deviations of the fit's own prediction there (:func:`_worst_in_sd`).  Seed 1001:
 #: F_y0 ends 0.565 % off at 12 deg (the sweep's end), 1.6 FNOMIN, camber -3 deg, 2.7 SD
-#: of the prediction (SD 0.21 % of peak there); the same tyre with five other noise draws
-#: (``rig_data(random_tyre(1001), seed=1..5)``) ends 0.19, 0.35, 0.46, 0.29, 0.27 %.
+#: of the prediction (SD 0.21 % of peak there).  That is the noise, not a bias of the fit:
+#: refitted to 12 other noise draws (``python benchmarks/bench_fit_mf.py --seeds 1001
+#: --draws 12``) F_y0 ends 0.33 % on average (SD 0.09 %; 0.19-0.50 %, 1 of 12 over 0.5 %)
+#: and the largest mean error over the grid is 0.09 % of peak, within two of its standard
+#: errors; the fit ends at the weighted least-squares optimum of its rows (a refit from the
+#: truth's values ends at the same point), its weights are the rig's noise (each load's
+#: largest force, within 2 %), no F_y0 coefficient is held at the template, and the later
+#: stages lower the F_y0 error (0.68 % after the pure-slip stages).  Seed 1005 (MF 6.1; not
+#: run here, for CI time) misses the same way: 0.57 % at 0.4 FNOMIN, the lower pressure,
+#: camber 3 deg, -1.75 deg; 12 other draws 0.43 % on average (SD 0.11 %, 2 of 12 over
+#: 0.5 %); its one held F_y0 coefficient, PPY4 (a third pressure would set it), cannot
+#: matter at two pressures (held, the model still meets the truth within 1e-13 of peak).
 NOISE_LIMITED = {1001: ("Fy0",)}
 #: How far (in standard deviations of the fitted curve) a noise-limited figure may be.
 NOISE_SD = 3.0
@@ -124,3 +135,21 @@ def test_a_random_tyre_is_the_same_for_the_same_seed_and_moved_from_its_example(
     assert moved == ["PDX1", "PKY1", "QBZ1"]
     assert all(abs(a.coefficients[k] / example.coefficients[k] - 1) <= 0.2 for k in moved)
     assert 3e3 <= a.fnomin <= 9e3 and 1.8e5 <= (a.nominal_pressure or 0) <= 3.2e5
+
+
+def test_the_benchmarks_noise_draws_measure_a_pure_curves_error_with_its_sign() -> None:
+    # the evidence NOISE_LIMITED cites comes from benchmarks/bench_fit_mf.py --draws
+    bench = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_fit_mf.py"
+    if not bench.exists():
+        pytest.skip("needs the repository's benchmarks/")
+    pure_errors = runpy.run_path(str(bench), run_name="bench_fit_mf_under_test")["pure_errors"]
+    truth = random_tyre(1001)
+    assert not pure_errors(truth, truth, "Fy0").any()
+    more = MagicFormula(dict(truth.coefficients, PDY1=1.02 * truth.coefficients["PDY1"]),
+                        fnomin=truth.fnomin, version=truth.version, structure=truth.structure)
+    e = pure_errors(truth, more, "Fy0")
+    assert e.shape == (30, 97)  # 5 loads x 2 pressures x 3 cambers, the slip grid
+    end = e[:, [0, -1]]  # at +-12 deg, near the peak: 2 % more, of the force's sign
+    assert np.all(np.abs(end) > 0.01) and np.all(np.abs(end) < 0.03)
+    assert np.all(np.sign(end[:, 0]) == -np.sign(end[:, 1]))
+    assert pure_errors(truth, truth, "Fx0").shape == (30, 101)
