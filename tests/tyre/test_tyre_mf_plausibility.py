@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 import re
 import warnings
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -162,8 +163,8 @@ def test_an_implausible_turn_slip_is_said_on_every_path(capsys) -> None:
 
 @pytest.mark.parametrize("turn_slip", [False, True])
 def test_a_standing_wheel_without_the_limit_checks_is_warned_of(turn_slip: bool) -> None:
-    mf = MagicFormula.from_file("tests/tyre/data/mfeval/MF61_turnslip_variant.tir"
-                                if turn_slip else "MagicFormula61")
+    variant = Path(__file__).parent / "data" / "mfeval" / "MF61_turnslip_variant.tir"
+    mf = MagicFormula.from_file(str(variant) if turn_slip else "MagicFormula61")
     vx = np.array([-1e-9, 0.0, 1e-9])
     kw = {"turn_slip": turn_slip, "phit": 0.1 if turn_slip else 0.0}
     out, said = _said(mf.steady_state, 0.0, np.radians(3.0), 6000.0, np.radians(2.0),
