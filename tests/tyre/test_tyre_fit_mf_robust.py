@@ -12,6 +12,7 @@ import pytest
 from frictionlaws.base.errors import ExtrapolationWarning, InputError
 from frictionlaws.cli import main
 from frictionlaws.tyre import MagicFormula, TyreData, fit_mf
+from frictionlaws.tyre.data.synthetic import sweep_data
 from frictionlaws.tyre.mf.fit.bootstrap import find_sweeps
 from frictionlaws.tyre.mf.fit.stages import level_scale
 from frictionlaws.tyre.synthetic_rig import moved_tyre, rig_data, truth_errors
@@ -184,6 +185,22 @@ def test_the_sweep_bootstrap_covers_the_truth_where_asymptotic_errors_are_too_sm
     assert rms_asym > 2.0, z_asym
     assert 0.5 < rms_boot < 1.5, z_boot
     assert max(abs(z) for z in z_boot) < 3.0, z_boot
+
+
+@pytest.mark.parametrize("kind", ["lateral", "longitudinal"])
+def test_the_sweeps_of_one_kind_are_found_with_the_other_slip_jittering(kind: str) -> None:
+    """A slip held near zero (a slip ratio within +-0.001 in slip-angle sweeps) starts no
+    sweep: each load's sweep is found whole (it was cut at every row, and the rows taken
+    for shuffled)."""
+    truth = moved_tyre()
+    data = sweep_data(truth, kind, loads=(0.5, 1.0, 1.5), cambers_deg=(0.0,),
+                      pressures=(1.0,), n=15)
+    held = "kappa" if kind == "lateral" else "alpha"
+    jitter = np.random.default_rng(1).uniform(-1e-3, 1e-3, len(data))
+    setattr(data, held, getattr(data, held) + jitter)
+    labels = find_sweeps(data)
+    assert np.unique(labels).size in (3, 6)  # each load's sweep, whole or up and down
+    assert np.bincount(labels).min() >= 7
 
 
 def test_the_sweeps_of_rig_data_are_found_and_shuffled_rows_are_refused() -> None:

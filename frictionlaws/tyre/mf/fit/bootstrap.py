@@ -8,7 +8,8 @@ are too small.  The sweep bootstrap keeps each sweep whole:
 
 1. **sweeps** are found in the row order (:func:`find_sweeps`): a new sweep starts
    where the load, pressure or camber level changes, where the slips jump by more
-   than :data:`SWEEP_JUMP` of their measured range, and at the turning point of an
+   than :data:`SWEEP_JUMP` of their measured range (at least :data:`SWEEP_REACH`: a
+   channel that only jitters starts no sweep), and at the turning point of an
    up-and-down sweep; or they are given (``sweeps=`` labels);
 2. **strata**: the sweeps are grouped by kind (slip ratio or slip angle swept, near
    pure slip or at a combined slip) and load level; each resample draws, within every
@@ -53,12 +54,16 @@ from .stages import (
     together_rows,
 )
 
-__all__ = ["find_sweeps", "sweep_bootstrap", "check_options", "SWEEP_JUMP", "DEFAULT_RESAMPLES",
-           "MIN_MEDIAN_SWEEP", "check_can_resample", "STRATA"]
+__all__ = ["find_sweeps", "sweep_bootstrap", "check_options", "SWEEP_JUMP", "SWEEP_REACH",
+           "DEFAULT_RESAMPLES", "MIN_MEDIAN_SWEEP", "check_can_resample", "STRATA"]
 
 #: A step of (kappa, alpha), each as a share of its measured range, larger than this
 #: starts a new sweep.
 SWEEP_JUMP = 0.2
+#: The least range a swept slip ratio and slip angle [rad] have: a channel that moves less
+#: only jitters (a slip angle held at zero in a slip-ratio sweep), and its steps are taken
+#: as shares of this range, not of its own.
+SWEEP_REACH = (0.05, math.radians(2.0))
 #: Resamples of the sweep bootstrap unless told otherwise.
 DEFAULT_RESAMPLES = 100
 #: Rows in order have sweeps of at least this median length; shorter means the rows
@@ -87,8 +92,8 @@ def find_sweeps(data: Any) -> np.ndarray:
     condition = np.stack([load_levels(data.fz),
                           _labels(p, 0.02 * max(float(np.median(p)), 1.0)),
                           _labels(data.gamma, math.radians(0.2))], axis=1)
-    span_k = max(float(np.ptp(data.kappa)), 1e-9)
-    span_a = max(float(np.ptp(data.alpha)), 1e-9)
+    span_k = max(float(np.ptp(data.kappa)), SWEEP_REACH[0])
+    span_a = max(float(np.ptp(data.alpha)), SWEEP_REACH[1])
     step = np.hypot(np.diff(data.kappa) / span_k, np.diff(data.alpha) / span_a)
     starts = np.flatnonzero((step > SWEEP_JUMP) | np.any(np.diff(condition, axis=0) != 0,
                                                          axis=1)) + 1
@@ -150,8 +155,8 @@ def check_can_resample(data: Any, sweeps: Any = None) -> list[list[np.ndarray]]:
 def _strata(data: Any, labels: np.ndarray) -> list[list[np.ndarray]]:
     """The rows of each sweep, grouped by (kind, load level) (module notes, step 2)."""
     level = load_levels(data.fz)
-    span_k = max(float(np.ptp(data.kappa)), 1e-9)
-    span_a = max(float(np.ptp(data.alpha)), 1e-9)
+    span_k = max(float(np.ptp(data.kappa)), SWEEP_REACH[0])
+    span_a = max(float(np.ptp(data.alpha)), SWEEP_REACH[1])
     groups: dict[tuple[int, int], list[np.ndarray]] = {}
     for s in np.unique(labels):
         rows = np.flatnonzero(labels == s)
