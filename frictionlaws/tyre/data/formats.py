@@ -192,8 +192,8 @@ def _check_consistent(files: list[ReadFile]) -> None:
         lo, hi = min(use, key=lambda i: m[i]), max(use, key=lambda i: m[i])
         if m[hi] >= ratio * m[lo]:
             # the file at fault: the one outside the range tyres run at, when only one is
-            bad, good = ((lo, hi) if _outside(column, m[lo]) and not _outside(column, m[hi])
-                         else (hi, lo))
+            out_lo, out_hi = _outside(column, m[lo]), _outside(column, m[hi])
+            bad, good = (lo, hi) if out_lo and not out_hi else (hi, lo)
             units = [files[i].data.units.get(column, "?") for i in (bad, good)]
             raise InputError(f"the {what} of '{files[bad].path}' ({m[bad]:.4g} in SI, unit "
                              f"'{units[0]}') is a factor {m[hi] / m[lo]:.3g} "
@@ -201,8 +201,7 @@ def _check_consistent(files: list[ReadFile]) -> None:
                              f"'{files[good].path}' ({m[good]:.4g}, unit '{units[1]}'): a "
                              f"unit is wrong in one of them ({hint})"
                              + ("; only this one's is outside the range tyres run at"
-                                if _outside(column, m[bad]) and not _outside(column, m[good])
-                                else ""), file=files[bad].path, column=column,
+                                if out_lo != out_hi else ""), file=files[bad].path, column=column,
                              row=int(files[bad].data.rows[0]))
 
 

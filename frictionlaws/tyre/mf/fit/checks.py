@@ -239,8 +239,10 @@ def _check_curves(data: TyreData, names: tuple[str, ...]) -> None:
                 use &= narrower
         if name == "Mz":  # M_z follows the slip only while F_y rises (it turns over after)
             rising = use & rising_side(data)
-            use = rising if rising.sum() >= 5 and np.ptp(slip[rising]) > 0 else (
-                use if use.any() and np.ptp(force[use]) == 0 else np.zeros_like(use))
+            if rising.sum() >= 5 and np.ptp(slip[rising]) > 0:
+                use = rising
+            elif not (use.any() and np.ptp(force[use]) == 0):
+                continue  # too few such rows: only an M_z that never changes is told
         if use.sum() < 3 or np.ptp(slip[use]) == 0:
             continue
         ratio = force[use] / data.fz[use]
@@ -351,10 +353,10 @@ def _check_camber_settings(data: TyreData) -> None:
     if found is None:
         return
     text, decisive, top = found
+    error = InputError(text, column="gamma", **_at(data, top, data.gamma))
     if decisive:
-        raise InputError(text, column="gamma", **_at(data, top, data.gamma))
-    warnings.warn(str(InputError(text, column="gamma", **_at(data, top, data.gamma))),
-                  UserWarning, stacklevel=2)
+        raise error
+    warnings.warn(str(error), UserWarning, stacklevel=2)
 
 
 def _check_peak_friction(data: TyreData) -> None:
